@@ -1,0 +1,83 @@
+//! Cells and 8-connected motion on a grid.
+//!
+//! A cell is `(x, y)` with `x` to the right and `y` downwards (image rows), so that a
+//! grid's row 0 is the top row of its image. Straight steps cost 1, diagonal steps √2.
+
+/// √2, the cost of a diagonal step in cells.
+pub const SQRT2: f64 = std::f64::consts::SQRT_2;
+
+/// A cell of a grid: column `x` (to the right) and row `y` (downwards).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Default)]
+pub struct Cell {
+    /// Column, 0 at the left.
+    pub x: i32,
+    /// Row, 0 at the top.
+    pub y: i32,
+}
+
+impl Cell {
+    /// The cell at column `x`, row `y`.
+    pub const fn new(x: i32, y: i32) -> Self {
+        Self { x, y }
+    }
+
+    /// The cell moved by `(dx, dy)`.
+    pub const fn offset(self, dx: i32, dy: i32) -> Self {
+        Self { x: self.x + dx, y: self.y + dy }
+    }
+
+    /// Euclidean distance between the two cells' centres, in cells.
+    pub fn dist(self, other: Cell) -> f64 {
+        let dx = f64::from(self.x - other.x);
+        let dy = f64::from(self.y - other.y);
+        (dx * dx + dy * dy).sqrt()
+    }
+
+    /// Squared Euclidean distance between the two cells' centres, in cells².
+    pub fn dist2(self, other: Cell) -> i64 {
+        let dx = i64::from(self.x - other.x);
+        let dy = i64::from(self.y - other.y);
+        dx * dx + dy * dy
+    }
+
+    /// Octile distance: the length of the shortest 8-connected path on an empty grid.
+    pub fn octile(self, other: Cell) -> f64 {
+        let dx = (self.x - other.x).unsigned_abs();
+        let dy = (self.y - other.y).unsigned_abs();
+        let (lo, hi) = if dx < dy { (dx, dy) } else { (dy, dx) };
+        f64::from(hi - lo) + SQRT2 * f64::from(lo)
+    }
+
+    /// Whether the two cells are 8-neighbours (and not the same cell).
+    pub fn is_neighbour8(self, other: Cell) -> bool {
+        let dx = (self.x - other.x).abs();
+        let dy = (self.y - other.y).abs();
+        dx <= 1 && dy <= 1 && (dx, dy) != (0, 0)
+    }
+}
+
+impl std::fmt::Display for Cell {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "({}, {})", self.x, self.y)
+    }
+}
+
+/// The 8 neighbour offsets `(dx, dy)`: the 4 straight ones first, then the 4 diagonals.
+pub const NEIGHBOURS8: [(i32, i32); 8] = [
+    (1, 0),
+    (0, 1),
+    (-1, 0),
+    (0, -1),
+    (1, 1),
+    (-1, 1),
+    (-1, -1),
+    (1, -1),
+];
+
+/// The 4 straight neighbour offsets `(dx, dy)`.
+pub const NEIGHBOURS4: [(i32, i32); 4] = [(1, 0), (0, 1), (-1, 0), (0, -1)];
+
+/// Cost in cells of a step by `(dx, dy)` with `|dx|, |dy| ≤ 1`: 1 straight, √2 diagonal.
+pub fn step_cost(dx: i32, dy: i32) -> f64 {
+    if dx != 0 && dy != 0 { SQRT2 } else { 1.0 }
+}

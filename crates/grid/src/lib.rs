@@ -1,0 +1,24 @@
+//! `grid`: cells, flat row-major grids, rasters and map files for frontier.
+//!
+//! Everything else in frontier stands on these types: [`Cell`] and 8-connected motion
+//! (straight steps cost 1, diagonal √2, no squeezing between two blocked cells sharing a
+//! vertex), [`Grid`], the three known states [`Occ`] and a map with its resolution
+//! ([`GridMap`]). Raster algorithms live here too: the exact Euclidean distance transform
+//! (Felzenszwalb & Huttenlocher) and connected components. Map files (ROS map_server
+//! YAML + PGM/PNG, bare bitmaps, MovingAI `.map`, ASCII art) are read and written by
+//! [`io`].
+//!
+//! `grid` knows nothing about robots, sensors or strategies.
+#![forbid(unsafe_code)]
+#![warn(missing_docs)]
+
+pub mod cell;
+pub mod components;
+pub mod edt;
+pub mod grid;
+pub mod io;
+pub mod occ;
+
+pub use cell::{Cell, NEIGHBOURS4, NEIGHBOURS8, SQRT2, step_cost};
+pub use grid::Grid;
+pub use occ::{GridMap, Occ};

@@ -1,0 +1,1 @@
+//! sense (being written)
