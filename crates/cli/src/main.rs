@@ -1,1 +1,74 @@
-fn main() {}
+//! `frontier`: the command-line program.
+//!
+//! Arguments are parsed and validated in two stages (as ripgrep does): clap turns flags
+//! into raw values, then each command resolves them — loading or generating the map,
+//! parsing the sensor, looking up the strategy preset — into ready-to-run objects before
+//! any simulation starts, so every mistake is reported up front with the flag it came from.
+
+mod args;
+mod demo;
+mod env_cmd;
+mod explore_cmd;
+mod map_cmd;
+mod report;
+
+use clap::{Parser, Subcommand};
+
+/// Frontier-based robot exploration: every strategy from the classic papers, on real and
+/// generated maps.
+#[derive(Parser)]
+#[command(name = "frontier", version, about, long_about = None)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Explore built-in environments with the single-robot presets and print a table
+    /// of path lengths (mean ± sd over seeds), like Holz et al.'s Table 1.
+    Demo(demo::DemoArgs),
+    /// Run one exploration and print a summary (or JSON); write pictures with --out.
+    Explore(explore_cmd::ExploreArgs),
+    /// Generate a built-in environment and write it as PNG or ROS YAML + PGM.
+    Env(env_cmd::EnvArgs),
+    /// Inspect map files.
+    Map {
+        #[command(subcommand)]
+        command: map_cmd::MapCommand,
+    },
+    /// List strategies, environments and sensors.
+    List,
+}
+
+fn main() {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Demo(a) => demo::run(a),
+        Command::Explore(a) => explore_cmd::run(a),
+        Command::Env(a) => env_cmd::run(a),
+        Command::Map { command } => map_cmd::run(command),
+        Command::List => {
+            list();
+            Ok(())
+        }
+    };
+    if let Err(e) = result {
+        eprintln!("error: {e:#}");
+        std::process::exit(1);
+    }
+}
+
+fn list() {
+    println!("strategies (--strategy):");
+    for (name, what) in explore::strategy::PRESETS {
+        println!("  {name:<10} {what}");
+    }
+    println!("\nenvironments (--env):");
+    env_cmd::print_kinds();
+    println!("\nsensors (--sensor), ranges in metres or in cells with suffix c:");
+    println!("  los:r=5                   360° line of sight (Quattrini Li et al.'s laser)");
+    println!("  footprint:r=5             every cell within r, through walls");
+    println!("  lidar:r=8,fov=180,res=1   beams over a field of view (Holz: 180°, 1°)");
+    println!("\nbelief maps (--belief): known (ternary), reflection (Holz), evidence (Yamauchi)");
+}

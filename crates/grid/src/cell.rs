@@ -23,7 +23,10 @@ impl Cell {
 
     /// The cell moved by `(dx, dy)`.
     pub const fn offset(self, dx: i32, dy: i32) -> Self {
-        Self { x: self.x + dx, y: self.y + dy }
+        Self {
+            x: self.x + dx,
+            y: self.y + dy,
+        }
     }
 
     /// Euclidean distance between the two cells' centres, in cells.

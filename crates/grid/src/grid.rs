@@ -13,7 +13,11 @@ pub struct Grid<T> {
 impl<T: Clone> Grid<T> {
     /// A grid of `width × height` cells, each set to `fill`.
     pub fn new(width: usize, height: usize, fill: T) -> Self {
-        Self { width, height, data: vec![fill; width * height] }
+        Self {
+            width,
+            height,
+            data: vec![fill; width * height],
+        }
     }
 
     /// Set every cell to `value`.
@@ -25,7 +29,11 @@ impl<T: Clone> Grid<T> {
 impl<T> Grid<T> {
     /// A grid over existing row-major data; `None` if `data.len() != width * height`.
     pub fn from_vec(width: usize, height: usize, data: Vec<T>) -> Option<Self> {
-        (width.checked_mul(height) == Some(data.len())).then_some(Self { width, height, data })
+        (width.checked_mul(height) == Some(data.len())).then_some(Self {
+            width,
+            height,
+            data,
+        })
     }
 
     /// Number of columns.
@@ -50,20 +58,29 @@ impl<T> Grid<T> {
 
     /// Whether `cell` lies inside the grid.
     pub fn contains(&self, cell: Cell) -> bool {
-        cell.x >= 0 && cell.y >= 0 && (cell.x as usize) < self.width && (cell.y as usize) < self.height
+        cell.x >= 0
+            && cell.y >= 0
+            && (cell.x as usize) < self.width
+            && (cell.y as usize) < self.height
     }
 
     /// Flat index of `cell`, which must lie inside the grid.
     #[inline]
     pub fn index(&self, cell: Cell) -> usize {
-        debug_assert!(self.contains(cell), "{cell} outside {}x{}", self.width, self.height);
+        debug_assert!(
+            self.contains(cell),
+            "{cell} outside {}x{}",
+            self.width,
+            self.height
+        );
         cell.y as usize * self.width + cell.x as usize
     }
 
     /// Flat index of `cell`, or `None` outside the grid.
     #[inline]
     pub fn checked_index(&self, cell: Cell) -> Option<usize> {
-        self.contains(cell).then(|| cell.y as usize * self.width + cell.x as usize)
+        self.contains(cell)
+            .then(|| cell.y as usize * self.width + cell.x as usize)
     }
 
     /// The cell at flat index `i`.
@@ -108,14 +125,20 @@ impl<T> Grid<T> {
 
     /// A grid of the same size with `f` applied to every value.
     pub fn map<U>(&self, f: impl FnMut(&T) -> U) -> Grid<U> {
-        Grid { width: self.width, height: self.height, data: self.data.iter().map(f).collect() }
+        Grid {
+            width: self.width,
+            height: self.height,
+            data: self.data.iter().map(f).collect(),
+        }
     }
 
     /// Flat indices of the in-grid 8-neighbours of flat index `i`.
     #[inline]
     pub fn neighbours8(&self, i: usize) -> impl Iterator<Item = usize> + '_ {
         let c = self.cell(i);
-        NEIGHBOURS8.iter().filter_map(move |&(dx, dy)| self.checked_index(c.offset(dx, dy)))
+        NEIGHBOURS8
+            .iter()
+            .filter_map(move |&(dx, dy)| self.checked_index(c.offset(dx, dy)))
     }
 
     /// Every cell of the grid in row-major order.

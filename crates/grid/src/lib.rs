@@ -18,6 +18,7 @@ pub mod edt;
 pub mod grid;
 pub mod io;
 pub mod occ;
+pub mod resample;
 
 pub use cell::{Cell, NEIGHBOURS4, NEIGHBOURS8, SQRT2, step_cost};
 pub use grid::Grid;

@@ -54,7 +54,11 @@ pub struct GridMap {
 impl GridMap {
     /// A map over `cells` at `resolution` m/cell with origin `[0, 0, 0]`.
     pub fn new(cells: Grid<Occ>, resolution: f64) -> Self {
-        Self { cells, resolution, origin: [0.0, 0.0, 0.0] }
+        Self {
+            cells,
+            resolution,
+            origin: [0.0, 0.0, 0.0],
+        }
     }
 
     /// Number of columns.
@@ -78,6 +82,10 @@ impl GridMap {
         for &c in self.cells.data() {
             n[c as usize] += 1;
         }
-        (n[Occ::Free as usize], n[Occ::Occupied as usize], n[Occ::Unknown as usize])
+        (
+            n[Occ::Free as usize],
+            n[Occ::Occupied as usize],
+            n[Occ::Unknown as usize],
+        )
     }
 }

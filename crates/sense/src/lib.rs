@@ -1,1 +1,45 @@
-//! sense (being written)
+//! `sense`: sensor models that read a ground-truth grid, and belief maps built from what
+//! they see.
+//!
+//! Sensors (all implement [`Sensor`], all described by a [`SensorSpec`] string):
+//!
+//! - [`LosSensor`] (`los:r=5`): the ideal 360° laser of Quattrini Li, Amigoni & Basilico
+//!   (2012) — a cell is seen iff the segment between the two cell centres is at most `r`
+//!   long, crosses only free cells and never squeezes between two blocked cells sharing a
+//!   vertex. Exact semantics and the slow reference test ([`segment_clear`],
+//!   [`los_visible`]) are in [`segment`]; the fast scan walks a precomputed, shared ray
+//!   template ([`LosTemplate`]).
+//! - [`FootprintSensor`] (`footprint:r=3`): every cell within `r`, Quattrini Li et al.'s
+//!   speed-up.
+//! - [`LidarSensor`] (`lidar:r=8,fov=180,res=1`): Holz et al.'s planar scanner, beams
+//!   traced with Amanatides & Woo's grid traversal.
+//!
+//! Belief maps (all implement [`Belief`], chosen by [`BeliefKind`]): the ternary
+//! [`KnownGrid`], Holz et al.'s [`ReflectionMap`] (free iff p ≤ 0.25) and Yamauchi's
+//! log-odds [`EvidenceGrid`] (prior 0.5).
+//!
+//! Shared conventions: cells `(x, y)` with `y` down, flat row-major indices; in a ground
+//! truth, `Unknown` (outside the world) is opaque and seen as Occupied; cells outside the
+//! grid are opaque and never reported; headings are radians in grid coordinates (y down).
+#![forbid(unsafe_code)]
+#![warn(missing_docs)]
+
+pub mod belief;
+pub mod error;
+pub mod footprint;
+pub mod lidar;
+pub mod los;
+pub mod ray_template;
+pub mod segment;
+pub mod sensor;
+pub mod spec;
+
+pub use belief::{Belief, BeliefKind, EvidenceGrid, KnownGrid, ReflectionMap};
+pub use error::SenseError;
+pub use footprint::{FootprintSensor, MAX_RANGE_CELLS};
+pub use lidar::LidarSensor;
+pub use los::LosSensor;
+pub use ray_template::{LosTemplate, MAX_TEMPLATE_RANGE_CELLS};
+pub use segment::{los_visible, segment_clear};
+pub use sensor::{Observation, Pose, Sensor};
+pub use spec::{Range, SensorSpec};

@@ -1,1 +1,23 @@
-//! sim (being written)
+//! `sim`: the one exploration loop of frontier, for one robot or a team.
+//!
+//! Every strategy of the five papers runs through [`run`]: robots sense the ground truth,
+//! integrate what they see into one shared belief map, keep the frontier cells up to date
+//! incrementally, decide goals with the strategy's (candidate generator, assigner,
+//! re-plan policy) triple, and move cell by cell along 8-connected shortest paths at speed
+//! v — concurrently, in the order of their clocks — until no reachable frontier is left
+//! or the coverage goal is met (Faigl & Kulich's steps 1–8; DESIGN.md "One loop").
+//!
+//! `sim` is deterministic given (map, configuration, seed): all randomness comes from
+//! streams derived from the seed, and ties are broken by robot id and cell index.
+//! It touches no files and no serde formats.
+#![warn(missing_docs)]
+
+pub mod config;
+pub mod metrics;
+pub mod run;
+pub mod seed;
+pub mod truth;
+
+pub use config::{RunConfig, SimError};
+pub use metrics::{EndReason, PhaseTimes, RunResult, Trace};
+pub use run::run;

@@ -1,1 +1,280 @@
-//! Map files in and out (being written).
+//! Map files in and out.
+//!
+//! Formats, chosen by the file's extension in [`load_map`] and [`save_map`]:
+//!
+//! | extension | format | resolution |
+//! |---|---|---|
+//! | `.yaml`, `.yml` | ROS map_server YAML + PGM/PNG image ([`ros`]) | from the YAML |
+//! | `.pgm`, `.png` | bare bitmap, e.g. a Stage floor plan ([`bitmap`]) | required in [`LoadOptions`] |
+//! | `.map` | MovingAI benchmark map ([`movingai`]) | default 1 m |
+//! | `.txt` | ASCII art: `#` wall, `.` free, `?` unknown ([`ascii`]) | default 1 m |
+//!
+//! Every failure is a [`MapError`] naming the file and what is wrong; nothing a file
+//! contains makes these functions panic, and maps of more than [`MAX_CELLS`] cells are
+//! refused before anything is allocated for them.
+
+pub mod ascii;
+pub mod bitmap;
+pub mod error;
+pub mod movingai;
+pub mod pgm;
+pub mod png;
+pub mod raster;
+pub mod ros;
+
+use std::path::Path;
+
+pub use ascii::{ascii_map, parse_ascii, to_ascii};
+pub use bitmap::{add_border, parse_bitmap};
+pub use error::{MEMORY, MapError, MapErrorKind};
+pub use movingai::{parse_movingai, to_movingai};
+pub use pgm::{encode_pgm, parse_pgm};
+pub use png::{encode_png, parse_png};
+pub use raster::{Raster, Thresholds};
+pub use ros::{RosMapMeta, RosMode, parse_ros_yaml, parse_ros_yaml_meta, to_ros_yaml};
+
+use crate::grid::Grid;
+use crate::occ::{GridMap, Occ};
+use crate::resample;
+
+/// The largest map accepted, in cells (2²⁸ ≈ 268 million); larger ones are refused before
+/// allocating.
+pub const MAX_CELLS: u64 = 1 << 28;
+
+/// The largest file read, in bytes (4 GiB); larger ones are refused before reading.
+pub const MAX_FILE_BYTES: u64 = 1 << 32;
+
+/// Options for [`load_map`].
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct LoadOptions {
+    /// Size of a pixel in metres, `(along x, along y)`.
+    ///
+    /// Required for bare bitmaps; overrides the default 1 m of `.map` and `.txt` files and
+    /// the `resolution` of a ROS YAML file. Non-square pixels (`rx != ry`) are resampled
+    /// to square cells of side `min(rx, ry)` by nearest-neighbour sampling.
+    pub resolution: Option<(f64, f64)>,
+    /// Grow the map by one Occupied cell on each side (Stage bitmaps often have no
+    /// outer wall). Applies to every format.
+    pub border: bool,
+}
+
+impl LoadOptions {
+    /// Options with square cells of side `resolution` metres and no border.
+    pub fn with_resolution(resolution: f64) -> Self {
+        Self {
+            resolution: Some((resolution, resolution)),
+            border: false,
+        }
+    }
+}
+
+/// Load a map, choosing the format by the extension of `path` (see the [module docs](self)).
+pub fn load_map(path: &Path, opts: &LoadOptions) -> Result<GridMap, MapError> {
+    let ext = extension(path);
+    let map = match ext.as_str() {
+        "yaml" | "yml" => {
+            let text = read_text(path)?;
+            parse_ros_yaml(&text, path, opts)?
+        }
+        "pgm" | "png" => {
+            let (rx, ry) = opts
+                .resolution
+                .ok_or_else(|| MapError::new(path, MapErrorKind::ResolutionRequired))?;
+            let bytes = read_bytes(path)?;
+            let raster = if ext == "pgm" {
+                parse_pgm(&bytes, path)?
+            } else {
+                parse_png(&bytes, path)?
+            };
+            let cells = parse_bitmap(&raster);
+            finish(GridMap::new(cells, 1.0), (rx, ry), path, opts.border)?
+        }
+        "map" => {
+            let text = read_text(path)?;
+            let map = parse_movingai(&text, path, 1.0)?;
+            finish(
+                map,
+                opts.resolution.unwrap_or((1.0, 1.0)),
+                path,
+                opts.border,
+            )?
+        }
+        "txt" => {
+            let text = read_text(path)?;
+            let map = ascii::parse_ascii_named(&text, path, 1.0)?;
+            finish(
+                map,
+                opts.resolution.unwrap_or((1.0, 1.0)),
+                path,
+                opts.border,
+            )?
+        }
+        _ => return Err(MapError::new(path, MapErrorKind::UnknownFormat(ext))),
+    };
+    Ok(map)
+}
+
+/// Save a map, choosing the format by the extension of `path`.
+///
+/// `.png`: 8-bit greyscale PNG (free 254, occupied 0, unknown 205); `.pgm`: the same as
+/// binary PGM (P5); `.yaml`/`.yml`: ROS map_server YAML plus a P5 PGM beside it with the
+/// same stem; `.map`: MovingAI (Unknown is written as `@`, out of bounds, and so reads
+/// back as Occupied); `.txt`: ASCII art. Only the YAML keeps the resolution and origin.
+pub fn save_map(map: &GridMap, path: &Path) -> Result<(), MapError> {
+    let ext = extension(path);
+    match ext.as_str() {
+        "png" => write(path, &encode_png(&map.cells, path)?),
+        "pgm" => write(path, &encode_pgm(&map.cells, path)?),
+        "map" => write(path, to_movingai(&map.cells).as_bytes()),
+        "txt" => write(path, to_ascii(&map.cells).as_bytes()),
+        "yaml" | "yml" => {
+            let image = path.with_extension("pgm");
+            let image_name = image
+                .file_name()
+                .map(Path::new)
+                .ok_or_else(|| MapError::new(path, MapErrorKind::UnknownFormat(ext.clone())))?;
+            let yaml = to_ros_yaml(map, image_name, path)?;
+            let pgm = encode_pgm(&map.cells, &image)?;
+            write(&image, &pgm)?;
+            write(path, yaml.as_bytes())
+        }
+        _ => Err(MapError::new(path, MapErrorKind::UnknownFormat(ext))),
+    }
+}
+
+/// The lower-case extension of `path`, or `""`.
+fn extension(path: &Path) -> String {
+    path.extension()
+        .and_then(|e| e.to_str())
+        .unwrap_or("")
+        .to_ascii_lowercase()
+}
+
+/// Apply the pixel size `(rx, ry)` (resampling non-square pixels) and the optional border.
+pub(crate) fn finish(
+    map: GridMap,
+    (rx, ry): (f64, f64),
+    path: &Path,
+    border: bool,
+) -> Result<GridMap, MapError> {
+    for r in [rx, ry] {
+        check_resolution(r, path)?;
+    }
+    let mut map = map;
+    if rx == ry {
+        map.resolution = rx;
+    } else {
+        let side = rx.min(ry);
+        let (w, h) = resample::resampled_size(map.width(), map.height(), (rx, ry), side)
+            .ok_or_else(|| {
+                MapError::new(
+                    path,
+                    MapErrorKind::TooLarge {
+                        width: (map.width() as f64 * rx / side).round() as u64,
+                        height: (map.height() as f64 * ry / side).round() as u64,
+                        limit: MAX_CELLS,
+                    },
+                )
+            })?;
+        check_size(w as u64, h as u64, path)?;
+        let cells = resample::resample_nearest(&map.cells, (rx, ry), side).ok_or_else(|| {
+            MapError::new(
+                path,
+                MapErrorKind::TooLarge {
+                    width: w as u64,
+                    height: h as u64,
+                    limit: MAX_CELLS,
+                },
+            )
+        })?;
+        map = GridMap {
+            cells,
+            resolution: side,
+            origin: map.origin,
+        };
+    }
+    if border {
+        check_size(map.width() as u64 + 2, map.height() as u64 + 2, path)?;
+        map = add_border(&map);
+    }
+    Ok(map)
+}
+
+/// Error unless `r` is a positive finite resolution.
+pub(crate) fn check_resolution(r: f64, path: &Path) -> Result<(), MapError> {
+    if r.is_finite() && r > 0.0 {
+        Ok(())
+    } else {
+        Err(MapError::new(path, MapErrorKind::BadResolution(r)))
+    }
+}
+
+/// Error unless a `width × height` map is non-empty and at most [`MAX_CELLS`] cells.
+pub(crate) fn check_size(width: u64, height: u64, path: &Path) -> Result<(), MapError> {
+    if width == 0 || height == 0 {
+        return Err(MapError::new(
+            path,
+            MapErrorKind::EmptyMap { width, height },
+        ));
+    }
+    match width.checked_mul(height) {
+        Some(n) if n <= MAX_CELLS => Ok(()),
+        _ => Err(MapError::new(
+            path,
+            MapErrorKind::TooLarge {
+                width,
+                height,
+                limit: MAX_CELLS,
+            },
+        )),
+    }
+}
+
+/// Read a whole file, refusing ones larger than [`MAX_FILE_BYTES`].
+pub(crate) fn read_bytes(path: &Path) -> Result<Vec<u8>, MapError> {
+    let err = |e| MapError::new(path, MapErrorKind::Read(e));
+    let size = std::fs::metadata(path).map_err(err)?.len();
+    if size > MAX_FILE_BYTES {
+        return Err(MapError::new(
+            path,
+            MapErrorKind::FileTooLarge {
+                size,
+                limit: MAX_FILE_BYTES,
+            },
+        ));
+    }
+    std::fs::read(path).map_err(err)
+}
+
+/// Read a whole UTF-8 text file.
+pub(crate) fn read_text(path: &Path) -> Result<String, MapError> {
+    let bytes = read_bytes(path)?;
+    String::from_utf8(bytes).map_err(|e| {
+        MapError::new(
+            path,
+            MapErrorKind::WrongFormat {
+                expected: "text",
+                found: format!("invalid UTF-8 at byte {}", e.utf8_error().valid_up_to()),
+            },
+        )
+    })
+}
+
+/// Write a whole file.
+fn write(path: &Path, bytes: &[u8]) -> Result<(), MapError> {
+    std::fs::write(path, bytes).map_err(|e| MapError::new(path, MapErrorKind::Write(e)))
+}
+
+/// The grey level written for a state: free 254, occupied 0, unknown 205 (as ROS map_saver).
+pub fn grey_of(occ: Occ) -> u8 {
+    match occ {
+        Occ::Free => 254,
+        Occ::Occupied => 0,
+        Occ::Unknown => 205,
+    }
+}
+
+/// The grey image of a grid, row-major, one byte per cell (see [`grey_of`]).
+pub(crate) fn grey_bytes(cells: &Grid<Occ>) -> Vec<u8> {
+    cells.data().iter().map(|&o| grey_of(o)).collect()
+}

@@ -1,0 +1,131 @@
+//! Flags shared by several commands, and their resolution into maps and configurations.
+
+use std::path::PathBuf;
+
+use anyhow::{Context, Result, bail};
+use clap::Args;
+use grid::GridMap;
+use world::{EnvKind, EnvSpec};
+
+/// Where the ground truth comes from: a built-in environment or a map file.
+#[derive(Args, Clone, Debug)]
+pub struct MapSource {
+    /// Built-in environment kind (see `frontier list`); the default when no --map is given
+    /// is `office`.
+    #[arg(long, conflicts_with = "map")]
+    pub env: Option<String>,
+    /// A map file: ROS .yaml, .pgm/.png bitmap (needs --resolution), MovingAI .map, ASCII .txt.
+    #[arg(long)]
+    pub map: Option<PathBuf>,
+    /// Metres per cell for bitmaps and .map files; "RX,RY" for non-square pixels; for --env,
+    /// the resolution to generate at.
+    #[arg(long)]
+    pub resolution: Option<String>,
+    /// Add a wall around a bare bitmap (Stage floor plans often have none).
+    #[arg(long)]
+    pub border: bool,
+    /// Size of a generated environment in metres, "WxH".
+    #[arg(long)]
+    pub size: Option<String>,
+    /// Seed of the generated environment (default: --seed).
+    #[arg(long)]
+    pub env_seed: Option<u64>,
+}
+
+/// A loaded or generated ground truth with the name runs report.
+pub struct Truth {
+    /// Name used in reports: the environment's name or the map file's stem.
+    pub name: String,
+    /// The map.
+    pub map: GridMap,
+}
+
+/// Parse "R" or "RX,RY" (metres per cell).
+pub fn parse_resolution(s: &str) -> Result<(f64, f64)> {
+    let parse = |p: &str| -> Result<f64> {
+        let v: f64 = p.trim().parse().map_err(|_| anyhow::anyhow!("--resolution: expected a positive number of metres per cell (or RX,RY), found '{s}'"))?;
+        if !(v.is_finite() && v > 0.0) {
+            bail!("--resolution: expected a positive number of metres per cell, found '{s}'");
+        }
+        Ok(v)
+    };
+    match s.split_once(',') {
+        Some((x, y)) => Ok((parse(x)?, parse(y)?)),
+        None => {
+            let v = parse(s)?;
+            Ok((v, v))
+        }
+    }
+}
+
+/// Parse "WxH" in metres.
+pub fn parse_size(s: &str) -> Result<(f64, f64)> {
+    let err = || anyhow::anyhow!("--size: expected WxH in metres (e.g. 25x20), found '{s}'");
+    let (w, h) = s.split_once(['x', 'X']).ok_or_else(err)?;
+    let w: f64 = w.trim().parse().map_err(|_| err())?;
+    let h: f64 = h.trim().parse().map_err(|_| err())?;
+    if !(w.is_finite() && h.is_finite() && w > 0.0 && h > 0.0) {
+        return Err(err());
+    }
+    Ok((w, h))
+}
+
+/// Parse "X,Y" (cells).
+pub fn parse_cell(s: &str, flag: &str) -> Result<grid::Cell> {
+    let err = || anyhow::anyhow!("{flag}: expected a cell X,Y (column, row), found '{s}'");
+    let (x, y) = s.split_once(',').ok_or_else(err)?;
+    Ok(grid::Cell::new(
+        x.trim().parse().map_err(|_| err())?,
+        y.trim().parse().map_err(|_| err())?,
+    ))
+}
+
+impl MapSource {
+    /// Load the map file or generate the environment (`seed` is the default env seed).
+    pub fn resolve(&self, seed: u64) -> Result<Truth> {
+        let resolution = self
+            .resolution
+            .as_deref()
+            .map(parse_resolution)
+            .transpose()?;
+        if let Some(path) = &self.map {
+            if self.size.is_some() {
+                bail!("--size applies to generated environments (--env), not to --map");
+            }
+            let opts = grid::io::LoadOptions {
+                resolution,
+                border: self.border,
+            };
+            let map = grid::io::load_map(path, &opts)?;
+            let name = path
+                .file_stem()
+                .map(|s| s.to_string_lossy().into_owned())
+                .unwrap_or_else(|| "map".into());
+            return Ok(Truth { name, map });
+        }
+        let kind: EnvKind = self
+            .env
+            .as_deref()
+            .unwrap_or("office")
+            .parse()
+            .map_err(|e| anyhow::anyhow!("--env: {e}"))?;
+        let resolution = match resolution {
+            Some((x, y)) if x != y => {
+                bail!("--resolution: a generated environment has square cells; give one number")
+            }
+            Some((x, _)) => Some(x),
+            None => None,
+        };
+        let spec = EnvSpec {
+            kind,
+            seed: self.env_seed.unwrap_or(seed),
+            size_m: self.size.as_deref().map(parse_size).transpose()?,
+            resolution,
+        };
+        let env = world::generate(&spec).with_context(|| format!("generating {kind}"))?;
+        Ok(Truth {
+            name: env.name.clone(),
+            map: env.map,
+        })
+    }
+}

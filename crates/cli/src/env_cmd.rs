@@ -1,0 +1,91 @@
+//! `frontier env`: generate a built-in environment and write it.
+
+use std::path::PathBuf;
+
+use anyhow::{Context, Result, bail};
+use clap::Args;
+use world::{EnvKind, EnvSpec};
+
+use crate::args::{parse_resolution, parse_size};
+
+/// Flags of `frontier env`.
+#[derive(Args, Clone, Debug)]
+pub struct EnvArgs {
+    /// Kind of environment (office, hospital, cave, maze, potholes, empty).
+    pub kind: Option<String>,
+    /// List the kinds with their default sizes and resolutions.
+    #[arg(long)]
+    pub list: bool,
+    /// Seed.
+    #[arg(long, default_value_t = 0)]
+    pub seed: u64,
+    /// Size in metres, "WxH".
+    #[arg(long)]
+    pub size: Option<String>,
+    /// Metres per cell.
+    #[arg(long)]
+    pub resolution: Option<String>,
+    /// Output file: .png, .yaml (ROS map_server YAML + PGM beside it), .pgm, .map or .txt.
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+}
+
+/// Print every kind with its defaults.
+pub fn print_kinds() {
+    for &kind in EnvKind::all() {
+        let info = kind.info();
+        println!(
+            "  {:<9} {:>5} m x {:<5} m at {:<5} m/cell  {}",
+            kind.to_string(),
+            info.size_m.0,
+            info.size_m.1,
+            info.resolution,
+            info.description
+        );
+    }
+}
+
+/// Run `frontier env`.
+pub fn run(a: EnvArgs) -> Result<()> {
+    if a.list {
+        print_kinds();
+        return Ok(());
+    }
+    let Some(kind) = a.kind.as_deref() else {
+        bail!("give a kind (e.g. `frontier env office --out office.yaml`) or --list");
+    };
+    let kind: EnvKind = kind.parse().map_err(|e| anyhow::anyhow!("{e}"))?;
+    let Some(out) = &a.out else {
+        bail!("--out FILE is required (.png, .yaml, .pgm, .map or .txt)")
+    };
+    let resolution = match a.resolution.as_deref().map(parse_resolution).transpose()? {
+        Some((x, y)) if x != y => bail!("--resolution: give one number (cells are square)"),
+        r => r.map(|r| r.0),
+    };
+    let spec = EnvSpec {
+        kind,
+        seed: a.seed,
+        size_m: a.size.as_deref().map(parse_size).transpose()?,
+        resolution,
+    };
+    let env = world::generate(&spec)?;
+    grid::io::save_map(&env.map, out).with_context(|| format!("writing {}", out.display()))?;
+    let (free, occ, unk) = env.map.counts();
+    println!(
+        "{}: {}x{} cells at {} m ({} free, {} occupied, {} unknown{}) written to {}",
+        env.name,
+        env.map.width(),
+        env.map.height(),
+        env.map.resolution,
+        free,
+        occ,
+        unk,
+        if env.room_count > 0 {
+            format!(", {} rooms", env.room_count)
+        } else {
+            String::new()
+        },
+        out.display()
+    );
+    Ok(())
+}

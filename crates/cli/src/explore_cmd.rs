@@ -1,0 +1,148 @@
+//! `frontier explore`: one run, a summary or JSON, pictures and a trace.
+
+use std::path::PathBuf;
+
+use anyhow::{Context, Result, bail};
+use clap::Args;
+use explore::strategy::{SensingMode, Strategy};
+use sense::{BeliefKind, SensorSpec};
+use sim::RunConfig;
+
+use crate::args::{MapSource, Truth, parse_cell};
+use crate::report;
+
+/// Flags of `frontier explore`.
+#[derive(Args, Clone, Debug)]
+pub struct ExploreArgs {
+    #[command(flatten)]
+    pub source: MapSource,
+    /// Master seed: start cell, random choices (and the environment, unless --env-seed).
+    #[arg(long, default_value_t = 0)]
+    pub seed: u64,
+    /// Start cell "X,Y" (column, row; row 0 at the top); default: a free cell chosen by seed.
+    #[arg(long)]
+    pub start: Option<String>,
+    /// Strategy preset (see `frontier list`).
+    #[arg(long, default_value = "cf-rr")]
+    pub strategy: String,
+    /// Sensor, e.g. los:r=5, footprint:r=3, lidar:r=8,fov=180,res=1 (metres; cells with suffix c).
+    #[arg(long, default_value = "los:r=5")]
+    pub sensor: String,
+    /// Belief map: known, reflection, evidence.
+    #[arg(long, default_value = "known")]
+    pub belief: String,
+    /// Sensing mode: continuous or on-arrival (default: the strategy's).
+    #[arg(long)]
+    pub sensing: Option<String>,
+    /// Robot clearance from known obstacles in metres (Holz's d_max).
+    #[arg(long, default_value_t = 0.0)]
+    pub clearance: f64,
+    /// Speed in metres per second.
+    #[arg(long, default_value_t = 1.0)]
+    pub speed: f64,
+    /// Number of robots.
+    #[arg(long, default_value_t = 1)]
+    pub robots: usize,
+    /// Stop at this coverage (0..1]; default: explore everything reachable.
+    #[arg(long)]
+    pub goal: Option<f64>,
+    /// Stop after this many cell moves of the whole team.
+    #[arg(long, default_value_t = 10_000_000)]
+    pub max_moves: u64,
+    /// Write final.png, map.png and trace.json into this directory.
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+    /// Print one JSON object instead of the summary.
+    #[arg(long)]
+    pub json: bool,
+    /// Leave wall-clock timings out of the JSON (null), so that equal runs print equal bytes.
+    #[arg(long)]
+    pub no_timing: bool,
+}
+
+/// Resolve flags into a run configuration (everything but the map).
+pub fn config(a: &ExploreArgs, truth: &Truth) -> Result<RunConfig> {
+    let strategy = Strategy::preset(&a.strategy).map_err(|e| anyhow::anyhow!("--strategy: {e}"))?;
+    let sensor: SensorSpec = a
+        .sensor
+        .parse()
+        .map_err(|e| anyhow::anyhow!("--sensor: {e}"))?;
+    let belief: BeliefKind = a
+        .belief
+        .parse()
+        .map_err(|e| anyhow::anyhow!("--belief: {e}"))?;
+    let sensing = a
+        .sensing
+        .as_deref()
+        .map(|s| s.parse::<SensingMode>())
+        .transpose()
+        .map_err(|e| anyhow::anyhow!("--sensing: {e}"))?;
+    let mut cfg = RunConfig::new(strategy);
+    cfg.sensor = sensor;
+    cfg.belief = belief;
+    cfg.sensing = sensing;
+    cfg.robots = a.robots;
+    cfg.clearance_m = a.clearance;
+    cfg.speed = a.speed;
+    cfg.seed = a.seed;
+    cfg.coverage_goal = a.goal;
+    cfg.max_moves = a.max_moves;
+    cfg.record_trace = a.out.is_some();
+    if let Some(s) = &a.start {
+        let first = parse_cell(s, "--start")?;
+        if !truth.map.cells.contains(first) {
+            bail!(
+                "--start {s}: outside the {}x{} map",
+                truth.map.width(),
+                truth.map.height()
+            );
+        }
+        if a.robots == 1 {
+            cfg.starts = vec![first];
+        } else {
+            let trav =
+                sim::truth::traversable(&truth.map.cells, a.clearance / truth.map.resolution);
+            sim::truth::check_start(&truth.map.cells, &trav, first)?;
+            cfg.starts = sim::truth::team_starts(&truth.map.cells, &trav, first, a.robots)?;
+        }
+    }
+    Ok(cfg)
+}
+
+/// Run `frontier explore`.
+pub fn run(a: ExploreArgs) -> Result<()> {
+    let truth = a.source.resolve(a.seed)?;
+    let cfg = config(&a, &truth)?;
+    let result = sim::run(&truth.map, &cfg)?;
+    if let Some(dir) = &a.out {
+        std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
+        let png = dir.join("final.png");
+        viz::final_picture(&truth.map, &result)
+            .save(&png)
+            .with_context(|| format!("writing {}", png.display()))?;
+        let map_png = dir.join("map.png");
+        viz::map_picture(&truth.map.cells)
+            .save(&map_png)
+            .with_context(|| format!("writing {}", map_png.display()))?;
+        let trace = dir.join("trace.json");
+        let text = serde_json::to_string(&report::trace_json(&truth, &cfg, &result))?;
+        std::fs::write(&trace, text).with_context(|| format!("writing {}", trace.display()))?;
+    }
+    if a.json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&report::summary_json(
+                &truth,
+                &cfg,
+                &result,
+                !a.no_timing
+            ))?
+        );
+    } else {
+        print!("{}", report::summary_text(&truth, &cfg, &result));
+        if let Some(dir) = &a.out {
+            println!("pictures and trace written to {}", dir.display());
+        }
+    }
+    Ok(())
+}

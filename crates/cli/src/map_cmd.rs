@@ -1,0 +1,79 @@
+//! `frontier map info`: what a map file holds.
+
+use std::path::PathBuf;
+
+use anyhow::Result;
+use clap::Subcommand;
+use grid::Occ;
+use grid::components::{Connectivity, label};
+use serde_json::json;
+
+use crate::args::parse_resolution;
+
+/// Subcommands of `frontier map`.
+#[derive(Subcommand, Clone, Debug)]
+pub enum MapCommand {
+    /// Size, resolution, cell counts and free connected components of a map file.
+    Info {
+        /// The map file (.yaml, .pgm, .png, .map, .txt).
+        file: PathBuf,
+        /// Metres per cell ("R" or "RX,RY") for bitmaps and .map files.
+        #[arg(long)]
+        resolution: Option<String>,
+        /// Add a wall around a bare bitmap.
+        #[arg(long)]
+        border: bool,
+        /// Print JSON.
+        #[arg(long)]
+        json: bool,
+    },
+}
+
+/// Run `frontier map ...`.
+pub fn run(cmd: MapCommand) -> Result<()> {
+    let MapCommand::Info {
+        file,
+        resolution,
+        border,
+        json,
+    } = cmd;
+    let resolution = resolution.as_deref().map(parse_resolution).transpose()?;
+    let map = grid::io::load_map(&file, &grid::io::LoadOptions { resolution, border })?;
+    let (free, occupied, unknown) = map.counts();
+    let cells = &map.cells;
+    let (_, components) = label(
+        cells.width(),
+        cells.height(),
+        |i| cells[i] == Occ::Free,
+        Connectivity::Motion,
+    );
+    let (w, h) = (map.width(), map.height());
+    if json {
+        let v = json!({
+            "file": file.display().to_string(),
+            "width": w, "height": h,
+            "resolution": map.resolution,
+            "width_m": w as f64 * map.resolution, "height_m": h as f64 * map.resolution,
+            "origin": map.origin,
+            "free": free, "occupied": occupied, "unknown": unknown,
+            "free_components": components,
+        });
+        println!("{}", serde_json::to_string_pretty(&v)?);
+    } else {
+        println!("{}", file.display());
+        println!(
+            "  size        {w} x {h} cells, {:.2} m x {:.2} m",
+            w as f64 * map.resolution,
+            h as f64 * map.resolution
+        );
+        println!(
+            "  resolution  {} m/cell, origin [{}, {}, {}]",
+            map.resolution, map.origin[0], map.origin[1], map.origin[2]
+        );
+        println!("  cells       {free} free, {occupied} occupied, {unknown} unknown");
+        println!(
+            "  free space  {components} connected component(s) (8-connected, no corner squeezing)"
+        );
+    }
+    Ok(())
+}

@@ -1,0 +1,148 @@
+//! What a run prints: the human summary, the JSON summary and the trace file.
+
+use serde_json::{Value, json};
+use sim::{RunConfig, RunResult};
+
+use crate::args::Truth;
+
+fn cell_json(map: &grid::Grid<grid::Occ>, i: u32) -> Value {
+    let c = map.cell(i as usize);
+    json!([c.x, c.y])
+}
+
+/// Round to `digits` decimals so that JSON stays short and stable.
+fn round(v: f64, digits: i32) -> f64 {
+    let f = 10f64.powi(digits);
+    (v * f).round() / f
+}
+
+/// At most `n` points of the coverage curve, evenly spaced by index, last point kept.
+fn downsample(curve: &[(f64, f64)], n: usize) -> Vec<Value> {
+    if curve.is_empty() {
+        return Vec::new();
+    }
+    let step = curve.len().div_ceil(n).max(1);
+    let mut out: Vec<Value> = curve
+        .iter()
+        .step_by(step)
+        .map(|&(d, c)| json!([round(d, 3), round(c, 5)]))
+        .collect();
+    if (curve.len() - 1) % step != 0 {
+        let &(d, c) = curve.last().expect("non-empty");
+        out.push(json!([round(d, 3), round(c, 5)]));
+    }
+    out
+}
+
+/// The JSON summary of a run (`timing`: include wall-clock times).
+pub fn summary_json(truth: &Truth, cfg: &RunConfig, r: &RunResult, timing: bool) -> Value {
+    let ms = |s: f64| {
+        if timing {
+            json!(round(s * 1000.0, 3))
+        } else {
+            Value::Null
+        }
+    };
+    json!({
+        "env": truth.name,
+        "width": truth.map.width(),
+        "height": truth.map.height(),
+        "resolution": truth.map.resolution,
+        "seed": cfg.seed,
+        "strategy": cfg.strategy.name,
+        "robots": cfg.robots,
+        "sensor": cfg.sensor.to_string(),
+        "sensing": cfg.sensing_mode().to_string(),
+        "belief": cfg.belief.to_string(),
+        "clearance_m": cfg.clearance_m,
+        "speed": cfg.speed,
+        "starts": r.starts.iter().map(|c| json!([c.x, c.y])).collect::<Vec<_>>(),
+        "complete": r.complete(),
+        "reason": r.reason.as_str(),
+        "coverage": round(r.coverage, 6),
+        "reachable_cells": r.reachable_cells,
+        "path_length_m": r.path_length_m.iter().map(|&l| round(l, 4)).collect::<Vec<_>>(),
+        "max_path_length_m": round(r.max_path_length_m(), 4),
+        "total_path_length_m": round(r.total_path_length_m(), 4),
+        "time_s": round(r.time_s, 4),
+        "decisions": r.decisions,
+        "moves": r.moves,
+        "decide_ms": ms(r.times.decide_s),
+        "timing_ms": {
+            "sense": ms(r.times.sense_s),
+            "upkeep": ms(r.times.upkeep_s),
+            "decide": ms(r.times.decide_s),
+            "total": ms(r.times.total_s),
+        },
+        "coverage_curve": downsample(&r.coverage_curve, 100),
+    })
+}
+
+/// The trace file: trails, decisions and frontier counts, cells as [x, y].
+pub fn trace_json(truth: &Truth, cfg: &RunConfig, r: &RunResult) -> Value {
+    let cells = &truth.map.cells;
+    let trace = r.trace.as_ref();
+    json!({
+        "env": truth.name,
+        "width": cells.width(),
+        "height": cells.height(),
+        "resolution": truth.map.resolution,
+        "strategy": cfg.strategy.name,
+        "seed": cfg.seed,
+        "trails": trace.map(|t| t.trails.iter().map(|trail| trail.iter().map(|&i| cell_json(cells, i)).collect::<Vec<_>>()).collect::<Vec<_>>()),
+        "goals": trace.map(|t| t.goals.iter().map(|&(time, robot, g)| json!({
+            "t": round(time, 4), "robot": robot, "goal": g.map(|g| cell_json(cells, g)),
+        })).collect::<Vec<_>>()),
+        "frontier_counts": trace.map(|t| t.frontier_counts.iter().map(|&(time, robot, n)| json!([round(time, 4), robot, n])).collect::<Vec<_>>()),
+        "frontiers_left": r.frontiers_left.iter().map(|&i| cell_json(cells, i)).collect::<Vec<_>>(),
+    })
+}
+
+/// A few lines for people.
+pub fn summary_text(truth: &Truth, cfg: &RunConfig, r: &RunResult) -> String {
+    let mut s = String::new();
+    let (w, h) = (truth.map.width(), truth.map.height());
+    s += &format!(
+        "{} ({}x{} cells at {} m) · strategy {} · {} robot(s) · sensor {} ({}) · seed {}\n",
+        truth.name,
+        w,
+        h,
+        truth.map.resolution,
+        cfg.strategy.name,
+        cfg.robots,
+        cfg.sensor,
+        cfg.sensing_mode(),
+        cfg.seed
+    );
+    s += &format!(
+        "ended: {} · coverage {:.2} % of {} reachable cells\n",
+        r.reason.as_str(),
+        r.coverage * 100.0,
+        r.reachable_cells
+    );
+    if r.path_length_m.len() == 1 {
+        s += &format!(
+            "path length {:.2} m · time {:.1} s at {} m/s\n",
+            r.path_length_m[0], r.time_s, cfg.speed
+        );
+    } else {
+        let each: Vec<String> = r.path_length_m.iter().map(|l| format!("{l:.1}")).collect();
+        s += &format!(
+            "path lengths [{}] m · L = max {:.2} m · total {:.2} m · time {:.1} s\n",
+            each.join(", "),
+            r.max_path_length_m(),
+            r.total_path_length_m(),
+            r.time_s
+        );
+    }
+    s += &format!(
+        "{} decisions, {} moves · wall time {:.0} ms (sense {:.0}, frontier upkeep {:.0}, decide {:.0})\n",
+        r.decisions,
+        r.moves,
+        r.times.total_s * 1e3,
+        r.times.sense_s * 1e3,
+        r.times.upkeep_s * 1e3,
+        r.times.decide_s * 1e3
+    );
+    s
+}

@@ -1,0 +1,181 @@
+//! What one decision sees: the team, the shared belief, and per-robot reachability maps.
+//!
+//! A decision is the middle of the one exploration loop (DESIGN.md): candidates are
+//! generated from the belief, then an assigner gives goals to the robots that decide.
+//! Costs come from one reachability map per robot per decision (Holz et al.'s
+//! "path search without goal specification"), computed lazily: a nearest-frontier
+//! query stops at the first candidate it settles and touches only what it must.
+
+use grid::{Grid, Occ};
+use rand_pcg::Pcg64Mcg;
+
+use crate::plan::reachability::Reachability;
+use crate::upkeep::FrontierUpkeep;
+
+/// How far each robot's reachability map has been computed in the current decision.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Extent {
+    /// Not computed for this decision.
+    Stale,
+    /// Computed until some goal was settled: costs are valid for settled cells only.
+    Partial,
+    /// Every reachable cell has its cost.
+    Full,
+}
+
+/// Per-robot reachability maps, reused across decisions (no allocation in steady state).
+pub struct Planner {
+    maps: Vec<Reachability>,
+    extent: Vec<Extent>,
+    width: usize,
+    height: usize,
+}
+
+impl Planner {
+    /// Buffers for `robots` robots on a `width × height` map.
+    pub fn new(width: usize, height: usize, robots: usize) -> Self {
+        Self {
+            maps: (0..robots)
+                .map(|_| Reachability::new(width, height))
+                .collect(),
+            extent: vec![Extent::Stale; robots],
+            width,
+            height,
+        }
+    }
+
+    /// Number of robots served.
+    pub fn robots(&self) -> usize {
+        self.maps.len()
+    }
+
+    /// Grid size `(width, height)` the buffers are for.
+    pub fn size(&self) -> (usize, usize) {
+        (self.width, self.height)
+    }
+
+    /// Forget all maps: the belief or the robots moved since they were computed.
+    pub fn invalidate(&mut self) {
+        self.extent.fill(Extent::Stale);
+    }
+
+    /// Robot `r`'s full reachability map from cell `from` over traversable cells.
+    pub fn full(
+        &mut self,
+        r: usize,
+        from: u32,
+        known: &Grid<Occ>,
+        upkeep: &FrontierUpkeep,
+    ) -> &Reachability {
+        if self.extent[r] != Extent::Full {
+            self.maps[r].compute(from as usize, |i| upkeep.is_traversable(known, i));
+            self.extent[r] = Extent::Full;
+        }
+        &self.maps[r]
+    }
+
+    /// The goal nearest to robot `r` (at `from`) by path, stopping the search as soon as one
+    /// is settled; `None` if no goal is reachable.
+    pub fn nearest(
+        &mut self,
+        r: usize,
+        from: u32,
+        known: &Grid<Occ>,
+        upkeep: &FrontierUpkeep,
+        is_goal: impl Fn(usize) -> bool,
+    ) -> Option<u32> {
+        let found =
+            self.maps[r].nearest(from as usize, |i| upkeep.is_traversable(known, i), is_goal);
+        self.extent[r] = Extent::Partial;
+        found.map(|g| g as u32)
+    }
+
+    /// Robot `r`'s reachability map as last computed (full or partial).
+    pub fn map(&self, r: usize) -> &Reachability {
+        &self.maps[r]
+    }
+
+    /// Write robot `r`'s path to `goal` (start and goal included) into `out`; false if the
+    /// goal was not settled by the last search of robot `r`.
+    pub fn path(&self, r: usize, goal: u32, out: &mut Vec<u32>) -> bool {
+        self.extent[r] != Extent::Stale && self.maps[r].path_to(goal as usize, out)
+    }
+}
+
+/// Goals that must not be chosen again: Yamauchi's lists of visited and inaccessible
+/// frontiers. A reached goal that is still a frontier after sensing from it cannot be
+/// explored from there, so choosing it again would loop forever.
+#[derive(Clone, Debug, Default)]
+pub struct GoalLists {
+    excluded: Vec<bool>,
+    /// Goals reached and sensed from, in order.
+    pub visited: Vec<u32>,
+    /// Goals given up as inaccessible (no progress for the time limit), in order.
+    pub inaccessible: Vec<u32>,
+}
+
+impl GoalLists {
+    /// Empty lists for a map of `cells` cells.
+    pub fn new(cells: usize) -> Self {
+        Self {
+            excluded: vec![false; cells],
+            visited: Vec::new(),
+            inaccessible: Vec::new(),
+        }
+    }
+
+    /// Record that a robot reached `goal` and sensed there.
+    pub fn mark_visited(&mut self, goal: u32) {
+        if !self.excluded[goal as usize] {
+            self.excluded[goal as usize] = true;
+            self.visited.push(goal);
+        }
+    }
+
+    /// Record that `goal` could not be reached.
+    pub fn mark_inaccessible(&mut self, goal: u32) {
+        if !self.excluded[goal as usize] {
+            self.excluded[goal as usize] = true;
+            self.inaccessible.push(goal);
+        }
+    }
+
+    /// Whether `cell` is on either list.
+    #[inline]
+    pub fn is_excluded(&self, cell: u32) -> bool {
+        self.excluded[cell as usize]
+    }
+}
+
+/// Everything a candidate generator and an assigner may look at or use in one decision.
+pub struct DecisionCtx<'a> {
+    /// The shared belief, classified.
+    pub known: &'a Grid<Occ>,
+    /// Traversability and the incrementally kept frontier cells.
+    pub upkeep: &'a mut FrontierUpkeep,
+    /// Per-robot reachability maps.
+    pub planner: &'a mut Planner,
+    /// Cell (flat index) of every robot.
+    pub robots: &'a [u32],
+    /// Whether each robot takes part in this decision (others keep `goals[r]`).
+    pub deciding: &'a [bool],
+    /// Current goal of every robot (`None` for those without one).
+    pub goals: &'a [Option<u32>],
+    /// Goals that must not be chosen.
+    pub lists: &'a GoalLists,
+    /// Metres per cell.
+    pub resolution: f64,
+    /// Sensor range in cells.
+    pub sensor_range_cells: f64,
+    /// The run's seeded random stream.
+    pub rng: &'a mut Pcg64Mcg,
+}
+
+/// A goal chosen for one robot, with its path cost in cells.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Goal {
+    /// The goal cell (flat index).
+    pub cell: u32,
+    /// Length of the shortest path to it, in cells.
+    pub cost: f64,
+}

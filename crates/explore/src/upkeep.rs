@@ -1,0 +1,187 @@
+//! Incremental frontier upkeep: what the simulation calls after every integration.
+//!
+//! Whether a cell is a frontier depends only on its own traversability and on the known states
+//! of its 8 neighbours. So after an observation changed the classes of some cells, only
+//! (a) the cells whose traversability changed (reported by [`Traversability::update`]) and
+//! (b) the 8-neighbours of the changed cells can change frontier status. [`FrontierUpkeep`]
+//! re-tests exactly those, so one update costs O(changed cells × clearance disk) for cells that
+//! became or stopped being Occupied and O(changed cells) otherwise, independent of the map size.
+//! [`crate::frontier::frontiers_from_scratch`] is the oracle it is tested against.
+
+use crate::frontier::{FrontierSet, Region, is_frontier_xy};
+use crate::traversability::Traversability;
+use grid::{Grid, NEIGHBOURS8, Occ};
+
+/// Traversability and the frontier set, kept up to date incrementally, plus scratch buffers.
+#[derive(Clone, Debug)]
+pub struct FrontierUpkeep {
+    /// Per-cell clearance counts.
+    pub trav: Traversability,
+    /// The current frontier cells.
+    pub frontiers: FrontierSet,
+    /// Cells whose traversability may have changed in the current update.
+    touched: Vec<u32>,
+    /// Generation stamps: a cell was re-tested in this update iff `stamp[i] == epoch`.
+    stamp: Vec<u32>,
+    epoch: u32,
+    /// Generation stamps for region labelling.
+    seen: Vec<u32>,
+    seen_epoch: u32,
+    /// Work stack for region labelling.
+    stack: Vec<u32>,
+}
+
+impl FrontierUpkeep {
+    /// Nothing known yet on a `width × height` map with the robot's clearance in cells.
+    pub fn new(width: usize, height: usize, clearance_cells: f64) -> Self {
+        let n = width * height;
+        Self {
+            trav: Traversability::new(width, height, clearance_cells),
+            frontiers: FrontierSet::new(width, height),
+            touched: Vec::new(),
+            stamp: vec![0; n],
+            epoch: 0,
+            seen: vec![0; n],
+            seen_epoch: 0,
+            stack: Vec::new(),
+        }
+    }
+
+    /// Update traversability and the frontier set for the cells whose class changed (flat
+    /// indices; `known` is the belief after the change and has the size given to `new`);
+    /// cost ∝ changed cells. Out-of-grid indices are ignored, duplicates are harmless.
+    pub fn update(&mut self, known: &Grid<Occ>, changed: &[u32]) {
+        debug_assert_eq!(
+            known.len(),
+            self.stamp.len(),
+            "belief size differs from upkeep size"
+        );
+        self.touched.clear();
+        self.trav.update(known, changed, &mut self.touched);
+        self.epoch = next_gen(self.epoch, &mut self.stamp);
+        let n = self.stamp.len().min(known.len());
+        let (w, h) = (self.trav.width() as i32, self.trav.height() as i32);
+        for k in 0..self.touched.len() {
+            let i = self.touched[k] as usize;
+            self.retest(known, i);
+        }
+        for &c in changed {
+            let i = c as usize;
+            if i >= n {
+                continue;
+            }
+            let (x, y) = ((i % w as usize) as i32, (i / w as usize) as i32);
+            for &(dx, dy) in &NEIGHBOURS8 {
+                let (nx, ny) = (x + dx, y + dy);
+                if nx >= 0 && ny >= 0 && nx < w && ny < h {
+                    self.retest_xy(known, (ny * w + nx) as usize, nx, ny);
+                }
+            }
+        }
+    }
+
+    /// Forget everything and recount from `known` (cost ∝ map; for a first, pre-filled belief).
+    pub fn rebuild(&mut self, known: &Grid<Occ>) {
+        let (w, h) = (self.trav.width(), self.trav.height());
+        self.trav = Traversability::new(w, h, self.trav.clearance_cells());
+        self.frontiers.clear();
+        let changed: Vec<u32> = (0..known.len().min(w * h))
+            .filter(|&i| !known[i].is_unknown())
+            .map(|i| i as u32)
+            .collect();
+        self.update(known, &changed);
+    }
+
+    #[inline]
+    fn retest(&mut self, known: &Grid<Occ>, i: usize) {
+        if self.stamp[i] == self.epoch {
+            return;
+        }
+        let w = self.trav.width();
+        self.retest_xy(known, i, (i % w) as i32, (i / w) as i32);
+    }
+
+    #[inline]
+    fn retest_xy(&mut self, known: &Grid<Occ>, i: usize, x: i32, y: i32) {
+        if self.stamp[i] == self.epoch {
+            return;
+        }
+        self.stamp[i] = self.epoch;
+        if is_frontier_xy(known, &self.trav, i, x, y) {
+            self.frontiers.insert(i);
+        } else {
+            self.frontiers.remove(i);
+        }
+    }
+
+    /// 8-connected regions of the current frontier set with at least `min_size` cells, sorted by
+    /// their smallest cell index (deterministic); each region's cells are sorted. `grid_width`
+    /// must be the width given to `new` (checked in debug builds). Reuses `out`'s and internal
+    /// buffers; cost ∝ frontier cells (times log for the sorting).
+    pub fn regions(&mut self, grid_width: usize, min_size: usize, out: &mut Vec<Region>) {
+        debug_assert_eq!(
+            grid_width,
+            self.trav.width(),
+            "grid width differs from upkeep width"
+        );
+        let (w, h) = (self.trav.width() as i32, self.trav.height() as i32);
+        self.seen_epoch = next_gen(self.seen_epoch, &mut self.seen);
+        let mut n_out = 0;
+        for k in 0..self.frontiers.len() {
+            let seed = self.frontiers.cells()[k];
+            if self.seen[seed as usize] == self.seen_epoch {
+                continue;
+            }
+            if n_out == out.len() {
+                out.push(Region {
+                    cells: Vec::new(),
+                    centroid: (0.0, 0.0),
+                    representative: 0,
+                });
+            }
+            let region = &mut out[n_out];
+            region.cells.clear();
+            self.seen[seed as usize] = self.seen_epoch;
+            self.stack.clear();
+            self.stack.push(seed);
+            while let Some(c) = self.stack.pop() {
+                region.cells.push(c);
+                let (x, y) = ((c as i32) % w, (c as i32) / w);
+                for &(dx, dy) in &NEIGHBOURS8 {
+                    let (nx, ny) = (x + dx, y + dy);
+                    if nx < 0 || ny < 0 || nx >= w || ny >= h {
+                        continue;
+                    }
+                    let j = (ny * w + nx) as usize;
+                    if self.seen[j] != self.seen_epoch && self.frontiers.contains(j) {
+                        self.seen[j] = self.seen_epoch;
+                        self.stack.push(j as u32);
+                    }
+                }
+            }
+            if region.cells.len() >= min_size.max(1) {
+                region.cells.sort_unstable();
+                region.finish(w as usize);
+                n_out += 1;
+            }
+        }
+        out.truncate(n_out);
+        out.sort_unstable_by_key(|r| r.cells[0]);
+    }
+
+    /// Whether cell `i` is traversable in `known` under the kept clearance counts.
+    #[inline]
+    pub fn is_traversable(&self, known: &Grid<Occ>, i: usize) -> bool {
+        self.trav.is_traversable(known, i)
+    }
+}
+
+/// The next generation stamp, clearing `stamps` when the counter wraps.
+pub(crate) fn next_gen(epoch: u32, stamps: &mut [u32]) -> u32 {
+    if epoch == u32::MAX {
+        stamps.fill(0);
+        1
+    } else {
+        epoch + 1
+    }
+}

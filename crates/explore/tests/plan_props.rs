@@ -1,0 +1,246 @@
+//! Planners against slow oracles on random small maps: Dijkstra == Bellman–Ford (with the
+//! no-corner-squeezing rule), `nearest` finds a goal of minimal cost, A* == Dijkstra, and
+//! extracted paths are valid 8-connected paths whose step costs sum to the reported cost.
+
+use explore::{AStar, Reachability};
+use grid::SQRT2;
+use proptest::prelude::*;
+
+/// Bellman–Ford over the same motion model, written independently of the planners.
+fn bellman_ford(w: usize, h: usize, pass: &[bool], start: usize) -> Vec<f64> {
+    let mut d = vec![f64::INFINITY; w * h];
+    d[start] = 0.0;
+    for _ in 0..w * h {
+        let mut changed = false;
+        for u in 0..w * h {
+            if d[u].is_infinite() {
+                continue;
+            }
+            let (ux, uy) = ((u % w) as i64, (u / w) as i64);
+            for dy in -1i64..=1 {
+                for dx in -1i64..=1 {
+                    let (vx, vy) = (ux + dx, uy + dy);
+                    if (dx, dy) == (0, 0) || vx < 0 || vy < 0 || vx >= w as i64 || vy >= h as i64 {
+                        continue;
+                    }
+                    let v = (vy * w as i64 + vx) as usize;
+                    if !pass[v] {
+                        continue;
+                    }
+                    let step = if dx != 0 && dy != 0 {
+                        let a = pass[(uy * w as i64 + vx) as usize];
+                        let b = pass[(vy * w as i64 + ux) as usize];
+                        if !a && !b {
+                            continue;
+                        }
+                        SQRT2
+                    } else {
+                        1.0
+                    };
+                    if d[u] + step < d[v] - 1e-12 {
+                        d[v] = d[u] + step;
+                        changed = true;
+                    }
+                }
+            }
+        }
+        if !changed {
+            break;
+        }
+    }
+    d
+}
+
+/// A valid path: start..=goal, 8-connected steps, passable cells after the start, no squeezing;
+/// returns its summed step cost.
+fn check_path(
+    w: usize,
+    pass: &[bool],
+    path: &[u32],
+    start: usize,
+    goal: usize,
+) -> Result<f64, TestCaseError> {
+    prop_assert_eq!(path.first().map(|&c| c as usize), Some(start));
+    prop_assert_eq!(path.last().map(|&c| c as usize), Some(goal));
+    let mut total = 0.0;
+    for win in path.windows(2) {
+        let (a, b) = (win[0] as usize, win[1] as usize);
+        prop_assert!(pass[b], "impassable cell {} on path", b);
+        let (ax, ay) = ((a % w) as i64, (a / w) as i64);
+        let (bx, by) = ((b % w) as i64, (b / w) as i64);
+        let (dx, dy) = (bx - ax, by - ay);
+        prop_assert!(
+            dx.abs() <= 1 && dy.abs() <= 1 && (dx, dy) != (0, 0),
+            "not a step"
+        );
+        if dx != 0 && dy != 0 {
+            let o1 = pass[(ay * w as i64 + bx) as usize];
+            let o2 = pass[(by * w as i64 + ax) as usize];
+            prop_assert!(o1 || o2, "corner squeeze {} -> {}", a, b);
+            total += SQRT2;
+        } else {
+            total += 1.0;
+        }
+    }
+    Ok(total)
+}
+
+fn map() -> impl Strategy<Value = (usize, usize, Vec<bool>)> {
+    (1usize..20, 1usize..20, 0.4f64..0.95).prop_flat_map(|(w, h, p)| {
+        (
+            Just(w),
+            Just(h),
+            proptest::collection::vec(prop::bool::weighted(p), w * h),
+        )
+    })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(192))]
+
+    #[test]
+    fn dijkstra_matches_bellman_ford((w, h, pass) in map(), starts in proptest::collection::vec(any::<prop::sample::Index>(), 1..4)) {
+        let mut r = Reachability::new(w, h);
+        let mut path = Vec::new();
+        // several searches on the same buffers exercise the generation stamps
+        for s in starts {
+            let start = s.index(w * h);
+            r.compute(start, |i| pass[i]);
+            prop_assert_eq!(r.start(), Some(start));
+            let bf = bellman_ford(w, h, &pass, start);
+            for (i, &want) in bf.iter().enumerate() {
+                match r.cost(i) {
+                    None => prop_assert!(want.is_infinite(), "cell {} unreached, bf {}", i, want),
+                    Some(c) => {
+                        prop_assert!((c - want).abs() < 1e-9, "cell {}: {} vs bf {}", i, c, want);
+                        prop_assert!(r.path_to(i, &mut path));
+                        let total = check_path(w, &pass, &path, start, i)?;
+                        prop_assert!((total - c).abs() < 1e-9);
+                    }
+                }
+            }
+            // settled in non-decreasing order of cost, each exactly once
+            let settled = r.settled();
+            prop_assert_eq!(settled.len(), bf.iter().filter(|d| d.is_finite()).count());
+            for win in settled.windows(2) {
+                prop_assert!(bf[win[0] as usize] <= bf[win[1] as usize] + 1e-9);
+            }
+        }
+    }
+
+    #[test]
+    fn nearest_finds_a_cheapest_goal(
+        (w, h, pass) in map(),
+        s in any::<prop::sample::Index>(),
+        goals_p in 0.0f64..0.2,
+        seed in any::<u64>(),
+    ) {
+        let start = s.index(w * h);
+        // goal set from a cheap hash of the seed
+        let is_goal: Vec<bool> = (0..w * h)
+            .map(|i| {
+                let x = (seed ^ (i as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+                ((x >> 11) as f64 / (1u64 << 53) as f64) < goals_p
+            })
+            .collect();
+        let bf = bellman_ford(w, h, &pass, start);
+        let best = (0..w * h).filter(|&i| is_goal[i]).map(|i| bf[i]).fold(f64::INFINITY, f64::min);
+        let mut r = Reachability::new(w, h);
+        // a full search first, so stale data from it must not leak into `nearest`
+        r.compute((start + 1) % (w * h), |i| pass[i]);
+        let got = r.nearest(start, |i| pass[i], |i| is_goal[i]);
+        match got {
+            None => prop_assert!(best.is_infinite()),
+            Some(g) => {
+                prop_assert!(is_goal[g]);
+                prop_assert!((bf[g] - best).abs() < 1e-9, "goal cost {} best {}", bf[g], best);
+                let c = r.cost(g);
+                prop_assert!(c.is_some());
+                prop_assert!((c.unwrap_or(f64::NAN) - best).abs() < 1e-9);
+                let mut path = Vec::new();
+                prop_assert!(r.path_to(g, &mut path));
+                let total = check_path(w, &pass, &path, start, g)?;
+                prop_assert!((total - best).abs() < 1e-9);
+                // every settled cell has its final cost; goal is the last settled
+                prop_assert_eq!(r.settled().last().map(|&c| c as usize), Some(g));
+                for &c in r.settled() {
+                    let c = c as usize;
+                    prop_assert!((r.cost(c).unwrap_or(f64::NAN) - bf[c]).abs() < 1e-9);
+                    // nothing cheaper than the goal is a goal... except by tie
+                    if is_goal[c] {
+                        prop_assert_eq!(c, g);
+                    }
+                }
+                // cells not settled report no cost
+                let n_settled = (0..w * h).filter(|&i| r.cost(i).is_some()).count();
+                prop_assert_eq!(n_settled, r.settled().len());
+            }
+        }
+    }
+
+    #[test]
+    fn astar_matches_dijkstra((w, h, pass) in map(), pairs in proptest::collection::vec((any::<prop::sample::Index>(), any::<prop::sample::Index>()), 1..5)) {
+        let mut a = AStar::new(w, h);
+        let mut path = Vec::new();
+        for (s, g) in pairs {
+            let (start, goal) = (s.index(w * h), g.index(w * h));
+            let bf = bellman_ford(w, h, &pass, start);
+            match a.search(start, goal, |i| pass[i], &mut path) {
+                None => {
+                    prop_assert!(bf[goal].is_infinite(), "A* found nothing, bf {}", bf[goal]);
+                    prop_assert!(path.is_empty());
+                }
+                Some(c) => {
+                    prop_assert!((c - bf[goal]).abs() < 1e-9, "A* {} vs bf {}", c, bf[goal]);
+                    let total = check_path(w, &pass, &path, start, goal)?;
+                    prop_assert!((total - c).abs() < 1e-9);
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn squeeze_rule_worked_example() {
+    // 2x2: passable only on the diagonal (0,0) and (1,1): the diagonal step squeezes
+    let pass = [true, false, false, true];
+    let mut r = Reachability::new(2, 2);
+    r.compute(0, |i| pass[i]);
+    assert_eq!(r.cost(3), None);
+    let mut a = AStar::new(2, 2);
+    let mut path = Vec::new();
+    assert_eq!(a.search(0, 3, |i| pass[i], &mut path), None);
+    // one orthogonal cell open: the diagonal step is allowed
+    let pass = [true, true, false, true];
+    r.compute(0, |i| pass[i]);
+    assert_eq!(r.cost(3), Some(SQRT2));
+    assert_eq!(a.search(0, 3, |i| pass[i], &mut path), Some(SQRT2));
+    assert_eq!(path, [0, 3]);
+}
+
+#[test]
+fn start_is_always_allowed_and_ties_break_by_index() {
+    // 3x1 corridor, the start cell itself impassable
+    let pass = [true, false, true];
+    let mut r = Reachability::new(3, 1);
+    r.compute(1, |i| pass[i]);
+    assert_eq!(r.cost(0), Some(1.0));
+    assert_eq!(r.cost(2), Some(1.0));
+    assert_eq!(r.settled(), [1, 0, 2]);
+    // two goals at equal cost: the lower index is settled first
+    assert_eq!(r.nearest(1, |i| pass[i], |i| i != 1), Some(0));
+    // the start may itself be the goal
+    assert_eq!(r.nearest(1, |i| pass[i], |_| true), Some(1));
+    let mut path = Vec::new();
+    assert!(r.path_to(1, &mut path));
+    assert_eq!(path, [1]);
+    // out-of-grid input does not panic
+    r.compute(99, |_| true);
+    assert_eq!(r.start(), None);
+    assert_eq!(r.cost(0), None);
+    assert!(!r.path_to(0, &mut path));
+    let mut a = AStar::new(3, 1);
+    assert_eq!(a.search(0, 99, |_| true, &mut path), None);
+    assert_eq!(a.search(1, 1, |_| false, &mut path), Some(0.0));
+    assert_eq!(path, [1]);
+}

@@ -1,0 +1,127 @@
+//! A decoded greyscale image and ROS map_server's rule turning pixels into cell states.
+//!
+//! A pixel of value `v` out of `maxval` has occupancy `p = (maxval - v) / maxval` (with
+//! `negate`, `p = v / maxval`), computed in that order as ROS 1 map_server does:
+//! `p > occupied_thresh` is Occupied, `p < free_thresh` is Free, anything
+//! between is Unknown. Colour pixels use the mean of their colour channels (as ROS 1
+//! map_server); a fully transparent pixel (alpha 0) is Unknown.
+
+use crate::grid::Grid;
+use crate::occ::Occ;
+
+/// A decoded greyscale image: each pixel's brightness is `values[i] / maxval`.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Raster {
+    /// Number of columns.
+    pub width: usize,
+    /// Number of rows; row 0 is the top of the image.
+    pub height: usize,
+    /// The value of a white pixel (for colour images, the sum of the channels' maxima).
+    pub maxval: u32,
+    /// Brightness of each pixel, row-major, in `0..=maxval` (for colour, the channel sum).
+    pub values: Vec<u32>,
+    /// Whether each pixel is fully transparent (alpha 0); empty if the image has no alpha.
+    pub transparent: Vec<bool>,
+}
+
+impl Raster {
+    /// Whether pixel `i` is fully transparent.
+    #[inline]
+    pub fn is_transparent(&self, i: usize) -> bool {
+        self.transparent.get(i).copied().unwrap_or(false)
+    }
+
+    /// Brightness of pixel `i` in `[0, 1]`.
+    #[inline]
+    pub fn shade(&self, i: usize) -> f64 {
+        f64::from(self.values[i]) / f64::from(self.maxval.max(1))
+    }
+}
+
+/// ROS map_server's thresholds on occupancy probability.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Thresholds {
+    /// Occupancy above this is Occupied.
+    pub occupied: f64,
+    /// Occupancy below this is Free.
+    pub free: f64,
+    /// Whether dark pixels are free and light ones occupied.
+    pub negate: bool,
+}
+
+impl Default for Thresholds {
+    /// ROS's usual values: occupied 0.65, free 0.196, negate off.
+    fn default() -> Self {
+        Self {
+            occupied: 0.65,
+            free: 0.196,
+            negate: false,
+        }
+    }
+}
+
+impl Thresholds {
+    /// The occupancy probability of a pixel of value `value` out of `maxval`, computed as
+    /// ROS 1 map_server does: `(maxval − value) / maxval`, or `value / maxval` with `negate`.
+    #[inline]
+    pub fn occupancy(&self, value: u32, maxval: u32) -> f64 {
+        let (v, m) = (f64::from(value), f64::from(maxval.max(1)));
+        if self.negate { v / m } else { (m - v) / m }
+    }
+
+    /// The state of a pixel of value `value` out of `maxval` (ROS trinary mode): Occupied
+    /// if its occupancy is above `occupied`, Free if below `free`, else Unknown.
+    #[inline]
+    pub fn classify(&self, value: u32, maxval: u32) -> Occ {
+        let p = self.occupancy(value, maxval);
+        if p > self.occupied {
+            Occ::Occupied
+        } else if p < self.free {
+            Occ::Free
+        } else {
+            Occ::Unknown
+        }
+    }
+
+    /// The states of every pixel of `raster` (trinary/scale mode; transparent → Unknown).
+    pub fn classify_raster(&self, raster: &Raster) -> Grid<Occ> {
+        let data = (0..raster.values.len())
+            .map(|i| {
+                if raster.is_transparent(i) {
+                    Occ::Unknown
+                } else {
+                    self.classify(raster.values[i], raster.maxval)
+                }
+            })
+            .collect();
+        // The raster's length is width * height by construction; fall back to an empty grid
+        // rather than panic if a caller built an inconsistent one by hand.
+        Grid::from_vec(raster.width, raster.height, data)
+            .unwrap_or_else(|| Grid::new(0, 0, Occ::Unknown))
+    }
+
+    /// The states of every pixel of `raster` in ROS `raw` mode.
+    ///
+    /// The pixel value scaled to `0..=255` (`round(255 · v / maxval)`) *is* the occupancy
+    /// in percent, as nav2's map_server: values `≥ 100 · occupied` (up to 100) are Occupied,
+    /// values `≤ 100 · free` are Free, everything else (between the thresholds, or above
+    /// 100 such as 255 = −1) is Unknown. `negate` and alpha are ignored, as in nav2.
+    pub fn classify_raw(&self, raster: &Raster) -> Grid<Occ> {
+        let data = (0..raster.values.len())
+            .map(|i| {
+                let v = (raster.shade(i) * 255.0).round();
+                if v > 100.0 {
+                    Occ::Unknown
+                } else if v >= 100.0 * self.occupied {
+                    Occ::Occupied
+                } else if v <= 100.0 * self.free {
+                    Occ::Free
+                } else {
+                    Occ::Unknown
+                }
+            })
+            .collect();
+        Grid::from_vec(raster.width, raster.height, data)
+            .unwrap_or_else(|| Grid::new(0, 0, Occ::Unknown))
+    }
+}

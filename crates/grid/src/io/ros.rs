@@ -1,0 +1,299 @@
+//! ROS map_server maps: a YAML file naming an image (PGM or PNG) and how to read it.
+//!
+//! ```yaml
+//! image: office.pgm        # relative to the YAML's folder
+//! resolution: 0.05         # metres per pixel
+//! origin: [-10.0, -10.0, 0.0]  # pose [x, y, yaw] of the lower-left pixel
+//! negate: 0
+//! occupied_thresh: 0.65
+//! free_thresh: 0.196
+//! mode: trinary            # optional: trinary (default), scale or raw
+//! ```
+//!
+//! `image`, `resolution`, `origin`, `negate`, `occupied_thresh` and `free_thresh` are
+//! required, as in ROS; other fields are ignored. Pixels are classified as in
+//! [`Thresholds`]: in `trinary` and `scale` modes the occupancy `p = (maxval − v)/maxval`
+//! (`v/maxval` with `negate`) is Occupied above `occupied_thresh`, Free below
+//! `free_thresh`, else Unknown — `scale` mode's intermediate occupancies have no place in
+//! a three-state map, so they are Unknown too — and a fully transparent PNG pixel is
+//! Unknown. `raw` mode follows nav2 (see [`Thresholds::classify_raw`]). Image row 0 is
+//! grid row 0 (the top); `origin` stays the lower-left corner.
+
+use std::path::{Path, PathBuf};
+
+use yaml_rust2::{Yaml, YamlLoader};
+
+use super::error::{MapError, MapErrorKind};
+use super::raster::Thresholds;
+use super::{LoadOptions, MAX_FILE_BYTES, check_resolution, finish, parse_pgm, parse_png};
+use crate::occ::GridMap;
+
+/// How map_server turns pixel values into occupancy.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum RosMode {
+    /// Occupied, free or unknown by the thresholds.
+    #[default]
+    Trinary,
+    /// Thresholds, with occupancies in between scaled (Unknown here); alpha 0 is Unknown.
+    Scale,
+    /// The pixel value is the occupancy in percent.
+    Raw,
+}
+
+/// The contents of a ROS map YAML file.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RosMapMeta {
+    /// The image's path as written in the YAML.
+    pub image: PathBuf,
+    /// Metres per pixel.
+    pub resolution: f64,
+    /// Pose `[x, y, yaw]` of the lower-left corner of the map.
+    pub origin: [f64; 3],
+    /// Occupancy thresholds and `negate`.
+    pub thresholds: Thresholds,
+    /// How pixel values are read.
+    pub mode: RosMode,
+}
+
+/// Parse the fields of a ROS map YAML file; `yaml_path` is the file named in errors.
+pub fn parse_ros_yaml_meta(text: &str, yaml_path: &Path) -> Result<RosMapMeta, MapError> {
+    let err = |kind| MapError::new(yaml_path, kind);
+    let docs = YamlLoader::load_from_str(text)
+        .map_err(|e| err(MapErrorKind::YamlSyntax(e.to_string())))?;
+    let doc = match docs.first() {
+        Some(d @ Yaml::Hash(_)) => d,
+        Some(other) => {
+            return Err(err(MapErrorKind::YamlSyntax(format!(
+                "expected a mapping of fields (image, resolution, ...), found {}",
+                show(other)
+            ))));
+        }
+        None => {
+            return Err(err(MapErrorKind::YamlSyntax(
+                "the file is empty: expected a mapping of fields (image, resolution, ...)"
+                    .to_string(),
+            )));
+        }
+    };
+    let field = |name: &'static str| -> Result<&Yaml, MapError> {
+        match &doc[name] {
+            Yaml::BadValue => Err(err(MapErrorKind::MissingField(name))),
+            y => Ok(y),
+        }
+    };
+    let bad = |name: &'static str, expected: &str, y: &Yaml| {
+        err(MapErrorKind::BadField {
+            field: name,
+            expected: expected.to_string(),
+            found: show(y),
+        })
+    };
+
+    let image = match field("image")? {
+        Yaml::String(s) if !s.trim().is_empty() => PathBuf::from(s.trim()),
+        y => return Err(bad("image", "an image file name", y)),
+    };
+
+    let y = field("resolution")?;
+    let resolution = match number(y) {
+        Some(r) if r.is_finite() && r > 0.0 => r,
+        _ => return Err(bad("resolution", "a positive number", y)),
+    };
+
+    let y = field("origin")?;
+    let origin = match y {
+        Yaml::Array(a) if a.len() == 3 => {
+            let mut o = [0.0; 3];
+            for (slot, v) in o.iter_mut().zip(a) {
+                match number(v) {
+                    Some(x) if x.is_finite() => *slot = x,
+                    _ => return Err(bad("origin", "a list of three numbers [x, y, yaw]", y)),
+                }
+            }
+            o
+        }
+        _ => return Err(bad("origin", "a list of three numbers [x, y, yaw]", y)),
+    };
+
+    let y = field("negate")?;
+    let negate = match y {
+        Yaml::Integer(0) | Yaml::Boolean(false) => false,
+        Yaml::Integer(1) | Yaml::Boolean(true) => true,
+        _ => return Err(bad("negate", "0 or 1", y)),
+    };
+
+    let threshold = |name: &'static str| -> Result<f64, MapError> {
+        let y = field(name)?;
+        match number(y) {
+            Some(t) if (0.0..=1.0).contains(&t) => Ok(t),
+            _ => Err(bad(name, "a number between 0 and 1", y)),
+        }
+    };
+    let occupied = threshold("occupied_thresh")?;
+    let free = threshold("free_thresh")?;
+    if free > occupied {
+        return Err(err(MapErrorKind::BadField {
+            field: "free_thresh",
+            expected: format!("at most occupied_thresh ({occupied})"),
+            found: free.to_string(),
+        }));
+    }
+
+    let mode = match &doc["mode"] {
+        Yaml::BadValue | Yaml::Null => RosMode::Trinary,
+        Yaml::String(s) if s == "trinary" => RosMode::Trinary,
+        Yaml::String(s) if s == "scale" => RosMode::Scale,
+        Yaml::String(s) if s == "raw" => RosMode::Raw,
+        y => return Err(bad("mode", "trinary, scale or raw", y)),
+    };
+
+    Ok(RosMapMeta {
+        image,
+        resolution,
+        origin,
+        thresholds: Thresholds {
+            occupied,
+            free,
+            negate,
+        },
+        mode,
+    })
+}
+
+/// Load a ROS map: parse the YAML `text` of the file `yaml_path`, then read its image
+/// (a relative `image` path is taken from the YAML's folder).
+///
+/// `opts.resolution`, if given, overrides the YAML's; `opts.border` adds a wall.
+pub fn parse_ros_yaml(
+    text: &str,
+    yaml_path: &Path,
+    opts: &LoadOptions,
+) -> Result<GridMap, MapError> {
+    let meta = parse_ros_yaml_meta(text, yaml_path)?;
+    let image = match yaml_path.parent() {
+        Some(dir) if meta.image.is_relative() => dir.join(&meta.image),
+        _ => meta.image.clone(),
+    };
+    let image_err = |source| {
+        MapError::new(
+            yaml_path,
+            MapErrorKind::ImageFile {
+                image: image.clone(),
+                source,
+            },
+        )
+    };
+    let size = std::fs::metadata(&image).map_err(image_err)?.len();
+    if size > MAX_FILE_BYTES {
+        return Err(MapError::new(
+            &image,
+            MapErrorKind::FileTooLarge {
+                size,
+                limit: MAX_FILE_BYTES,
+            },
+        ));
+    }
+    let bytes = std::fs::read(&image).map_err(image_err)?;
+    let ext = image
+        .extension()
+        .and_then(|e| e.to_str())
+        .unwrap_or("")
+        .to_ascii_lowercase();
+    let raster = match ext.as_str() {
+        "pgm" | "pnm" => parse_pgm(&bytes, &image)?,
+        "png" => parse_png(&bytes, &image)?,
+        _ => {
+            return Err(MapError::new(
+                yaml_path,
+                MapErrorKind::BadField {
+                    field: "image",
+                    expected: "a .pgm or .png file".to_string(),
+                    found: format!("{:?}", meta.image.display().to_string()),
+                },
+            ));
+        }
+    };
+    let cells = match meta.mode {
+        RosMode::Trinary | RosMode::Scale => meta.thresholds.classify_raster(&raster),
+        RosMode::Raw => meta.thresholds.classify_raw(&raster),
+    };
+    let map = GridMap {
+        cells,
+        resolution: meta.resolution,
+        origin: meta.origin,
+    };
+    let res = opts
+        .resolution
+        .unwrap_or((meta.resolution, meta.resolution));
+    finish(map, res, yaml_path, opts.border)
+}
+
+/// The ROS map YAML for `map` whose image is saved as `image` (written as given, so
+/// normally a bare file name beside the YAML); `yaml_path` is named in errors.
+///
+/// Written with mode trinary, negate 0, occupied_thresh 0.65, free_thresh 0.196, which
+/// read the grey levels of [`grey_of`](super::grey_of) back exactly.
+pub fn to_ros_yaml(map: &GridMap, image: &Path, yaml_path: &Path) -> Result<String, MapError> {
+    check_resolution(map.resolution, yaml_path)?;
+    if map.origin.iter().any(|v| !v.is_finite()) {
+        return Err(MapError::new(
+            yaml_path,
+            MapErrorKind::BadField {
+                field: "origin",
+                expected: "finite numbers".to_string(),
+                found: format!("{:?}", map.origin),
+            },
+        ));
+    }
+    let name = image
+        .to_str()
+        .ok_or_else(|| MapError::new(yaml_path, MapErrorKind::BadFileName(image.to_path_buf())))?;
+    let [x, y, yaw] = map.origin;
+    Ok(format!(
+        "image: {}\nmode: trinary\nresolution: {:?}\norigin: [{x:?}, {y:?}, {yaw:?}]\n\
+         negate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n",
+        quote(name),
+        map.resolution,
+    ))
+}
+
+/// `s` as a YAML double-quoted string.
+fn quote(s: &str) -> String {
+    let mut out = String::with_capacity(s.len() + 2);
+    out.push('"');
+    for c in s.chars() {
+        match c {
+            '"' => out.push_str("\\\""),
+            '\\' => out.push_str("\\\\"),
+            c if c.is_control() => out.push_str(&format!("\\u{:04X}", u32::from(c))),
+            c => out.push(c),
+        }
+    }
+    out.push('"');
+    out
+}
+
+/// A YAML value as a number: floats, integers, and strings holding a number.
+fn number(y: &Yaml) -> Option<f64> {
+    match y {
+        Yaml::Real(_) => y.as_f64(),
+        Yaml::Integer(i) => Some(*i as f64),
+        Yaml::String(s) if s.bytes().any(|b| b.is_ascii_digit()) => s.trim().parse().ok(),
+        _ => None,
+    }
+}
+
+/// A YAML value as written, for error messages.
+fn show(y: &Yaml) -> String {
+    match y {
+        Yaml::Real(s) => s.clone(),
+        Yaml::Integer(i) => i.to_string(),
+        Yaml::String(s) => format!("{s:?}"),
+        Yaml::Boolean(b) => b.to_string(),
+        Yaml::Array(a) => format!("a list of {} items", a.len()),
+        Yaml::Hash(_) => "a mapping".to_string(),
+        Yaml::Alias(_) => "an alias".to_string(),
+        Yaml::Null => "nothing (null)".to_string(),
+        Yaml::BadValue => "an invalid value".to_string(),
+    }
+}

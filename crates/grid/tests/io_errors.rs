@@ -1,0 +1,612 @@
+//! Every class of malformed map input gives an error naming the file and what is wrong.
+
+use std::path::{Path, PathBuf};
+
+use grid::io::{
+    LoadOptions, MAX_CELLS, MapErrorKind, encode_png, load_map, parse_ascii, parse_movingai,
+    parse_pgm, parse_png, parse_ros_yaml_meta,
+};
+use grid::{Grid, Occ};
+
+/// A fresh scratch folder for one test.
+fn scratch(test: &str) -> PathBuf {
+    let dir =
+        std::env::temp_dir().join(format!("frontier-io-errors-{}-{test}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("create scratch folder");
+    dir
+}
+
+/// The message of an error result.
+fn msg<T>(r: Result<T, grid::io::MapError>) -> String {
+    match r {
+        Ok(_) => panic!("expected an error, got a value"),
+        Err(e) => e.to_string(),
+    }
+}
+
+const GOOD_YAML: &str = "image: office.pgm\nresolution: 0.05\norigin: [0.0, 0.0, 0.0]\n\
+                         negate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n";
+
+fn yaml_with(field: &str, value: &str) -> String {
+    GOOD_YAML
+        .lines()
+        .map(|l| {
+            if l.starts_with(&format!("{field}:")) {
+                format!("{field}: {value}")
+            } else {
+                l.into()
+            }
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+#[test]
+fn truncated_binary_pgm() {
+    let mut bytes = b"P5\n600 400\n255\n".to_vec();
+    bytes.extend(std::iter::repeat_n(254u8, 1200));
+    assert_eq!(
+        msg(parse_pgm(&bytes, Path::new("office.pgm"))),
+        "office.pgm: truncated: header says 600x400 pixels (240000 bytes), \
+         file has 1200 bytes of pixel data"
+    );
+    // 16-bit pixels take two bytes each.
+    let mut bytes = b"P5 2 2 1000 ".to_vec();
+    bytes.extend([0u8; 7]);
+    assert_eq!(
+        msg(parse_pgm(&bytes, Path::new("a.pgm"))),
+        "a.pgm: truncated: header says 2x2 pixels (8 bytes), file has 7 bytes of pixel data"
+    );
+}
+
+#[test]
+fn truncated_plain_pgm() {
+    assert_eq!(
+        msg(parse_pgm(b"P2\n3 2\n255\n0 1 2\n3 4\n", Path::new("p.pgm"))),
+        "p.pgm: pixel (2, 1): missing: the file ends after 5 of 3x2 pixel values"
+    );
+    // A header at the size limit with almost no data fails fast, without reserving 2^28
+    // pixels first.
+    assert_eq!(
+        msg(parse_pgm(b"P2 16384 16384 255\n0 1", Path::new("p.pgm"))),
+        "p.pgm: pixel (2, 0): missing: the file ends after 2 of 16384x16384 pixel values"
+    );
+    assert_eq!(
+        msg(parse_movingai(
+            "type octile\nheight 16384\nwidth 16384\nmap\n",
+            Path::new("m.map"),
+            1.0
+        )),
+        "m.map: line 5: the file ends after 0 of 16384 map rows"
+    );
+    assert_eq!(
+        msg(parse_pgm(b"P2 2 1 255 0 x", Path::new("p.pgm"))),
+        "p.pgm: pixel (1, 0): expected a number, found 'x'"
+    );
+}
+
+#[test]
+fn truncated_or_bad_pgm_header() {
+    assert_eq!(
+        msg(parse_pgm(b"P5\n# comment\n600", Path::new("h.pgm"))),
+        "h.pgm: bad PGM header: expected height (a number), found end of file"
+    );
+    assert_eq!(
+        msg(parse_pgm(b"P5 4 4 0\n", Path::new("h.pgm"))),
+        "h.pgm: bad PGM header: maxval must be between 1 and 65535, found 0"
+    );
+    assert_eq!(
+        msg(parse_pgm(b"P5 1 1 70000\n", Path::new("h.pgm"))),
+        "h.pgm: bad PGM header: maxval must be between 1 and 65535, found 70000"
+    );
+    assert_eq!(
+        msg(parse_pgm(
+            b"P5 99999999999999999999999 1 255\n",
+            Path::new("h.pgm")
+        )),
+        "h.pgm: bad PGM header: width is too large"
+    );
+}
+
+#[test]
+fn pgm_pixel_above_maxval() {
+    assert_eq!(
+        msg(parse_pgm(b"P5 2 1 100\n\x05\x65", Path::new("m.pgm"))),
+        "m.pgm: pixel (1, 0): value 101 is above maxval 100"
+    );
+    assert_eq!(
+        msg(parse_pgm(b"P2 1 2 7\n7\n8\n", Path::new("m.pgm"))),
+        "m.pgm: pixel (0, 1): value 8 is above maxval 7"
+    );
+}
+
+#[test]
+fn mislabelled_images() {
+    let png = encode_png(&Grid::new(2, 2, Occ::Free), Path::new("x.png")).expect("encode");
+    assert_eq!(
+        msg(parse_pgm(&png, Path::new("plan.pgm"))),
+        "plan.pgm: not a PGM file: it is a PNG image (mislabelled?)"
+    );
+    assert_eq!(
+        msg(parse_png(b"P5 1 1 255\n\x00", Path::new("plan.png"))),
+        "plan.png: not a PNG file: it is a PGM image (mislabelled?)"
+    );
+    assert_eq!(
+        msg(parse_pgm(b"P6 1 1 255\n\x00\x00\x00", Path::new("c.pgm"))),
+        "c.pgm: not a PGM file: it is a PPM (colour) image"
+    );
+    assert_eq!(
+        msg(parse_pgm(b"GIF89a..", Path::new("g.pgm"))),
+        "g.pgm: not a PGM file: it starts with \"GIF89a..\""
+    );
+    assert_eq!(
+        msg(parse_pgm(b"", Path::new("e.pgm"))),
+        "e.pgm: not a PGM file: the file is empty"
+    );
+    // Through load_map, by extension.
+    let dir = scratch("mislabelled");
+    let path = dir.join("plan.png");
+    std::fs::write(&path, b"P5 1 1 255\n\x00").expect("write");
+    let e = msg(load_map(&path, &LoadOptions::with_resolution(0.1)));
+    assert!(
+        e.ends_with("plan.png: not a PNG file: it is a PGM image (mislabelled?)"),
+        "{e}"
+    );
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
+fn truncated_png() {
+    let png = encode_png(&Grid::new(40, 30, Occ::Free), Path::new("x.png")).expect("encode");
+    let cut = &png[..png.len() - 20];
+    let truncated = "cut.png: bad PNG: truncated: the file ends before the image data does";
+    assert_eq!(msg(parse_png(cut, Path::new("cut.png"))), truncated);
+    assert_eq!(msg(parse_png(&png[..20], Path::new("cut.png"))), truncated);
+    // A corrupted checksum.
+    let mut bad = png.clone();
+    bad[30] ^= 0xff;
+    let e = msg(parse_png(&bad, Path::new("crc.png")));
+    assert!(e.starts_with("crc.png: bad PNG: "), "{e}");
+}
+
+/// CRC-32 (PNG's), bit by bit.
+fn crc32(bytes: &[u8]) -> u32 {
+    let mut crc = !0u32;
+    for &b in bytes {
+        crc ^= u32::from(b);
+        for _ in 0..8 {
+            crc = if crc & 1 != 0 {
+                (crc >> 1) ^ 0xEDB8_8320
+            } else {
+                crc >> 1
+            };
+        }
+    }
+    !crc
+}
+
+#[test]
+fn too_large_refused_before_allocating() {
+    // PGM header claiming 2^15 x 2^14 = 2^29 pixels with almost no data.
+    assert_eq!(
+        msg(parse_pgm(b"P5 32768 16384 255\n\x00", Path::new("big.pgm"))),
+        format!(
+            "big.pgm: map too large: 32768x16384 cells is more than the limit of {MAX_CELLS} cells"
+        )
+    );
+    // Width x height overflowing u64.
+    let e = msg(parse_pgm(
+        b"P5 18446744073709551615 3 255\n",
+        Path::new("big.pgm"),
+    ));
+    assert!(
+        e.contains("map too large: 18446744073709551615x3 cells"),
+        "{e}"
+    );
+    // PNG whose IHDR claims 100000 x 100000 pixels.
+    let mut png = encode_png(&Grid::new(1, 1, Occ::Free), Path::new("x.png")).expect("encode");
+    png[16..20].copy_from_slice(&100_000u32.to_be_bytes());
+    png[20..24].copy_from_slice(&100_000u32.to_be_bytes());
+    let crc = crc32(&png[12..29]);
+    png[29..33].copy_from_slice(&crc.to_be_bytes());
+    assert_eq!(
+        msg(parse_png(&png, Path::new("big.png"))),
+        format!(
+            "big.png: map too large: 100000x100000 cells is more than the limit of {MAX_CELLS} cells"
+        )
+    );
+    // MovingAI header.
+    assert_eq!(
+        msg(parse_movingai(
+            "type octile\nheight 1000000\nwidth 1000000\nmap\n",
+            Path::new("big.map"),
+            1.0
+        )),
+        format!(
+            "big.map: map too large: 1000000x1000000 cells is more than the limit of {MAX_CELLS} cells"
+        )
+    );
+    // Non-square pixels whose resampled size would be too large.
+    let dir = scratch("too-large");
+    let path = dir.join("thin.txt");
+    std::fs::write(&path, "..\n..\n").expect("write");
+    let opts = LoadOptions {
+        resolution: Some((1.0, 1e-9)),
+        border: false,
+    };
+    let e = msg(load_map(&path, &opts));
+    assert!(
+        e.contains("thin.txt: map too large: 2000000000x2 cells is more than the limit"),
+        "{e}"
+    );
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
+fn zero_size() {
+    assert_eq!(
+        msg(parse_pgm(b"P5 0 5 255\n", Path::new("z.pgm"))),
+        "z.pgm: empty map: width 0 and height 5 must both be positive"
+    );
+    assert_eq!(
+        msg(parse_movingai(
+            "type octile\nheight 0\nwidth 4\nmap\n",
+            Path::new("z.map"),
+            1.0
+        )),
+        "z.map: empty map: width 4 and height 0 must both be positive"
+    );
+    assert_eq!(
+        msg(parse_ascii("", 1.0)),
+        "<memory>: empty map: width 0 and height 0 must both be positive"
+    );
+    assert_eq!(
+        msg(encode_png(
+            &Grid::new(0, 3, Occ::Free),
+            Path::new("out.png")
+        )),
+        "out.png: empty map: width 0 and height 3 must both be positive"
+    );
+}
+
+#[test]
+fn negative_size() {
+    assert_eq!(
+        msg(parse_movingai(
+            "type octile\nheight -3\nwidth 4\nmap\n",
+            Path::new("n.map"),
+            1.0
+        )),
+        "n.map: line 2: height must be a whole number, found \"-3\""
+    );
+    assert_eq!(
+        msg(parse_pgm(b"P5 -3 4 255\n", Path::new("n.pgm"))),
+        "n.pgm: bad PGM header: expected width (a number), found '-'"
+    );
+}
+
+#[test]
+fn bad_resolution() {
+    assert_eq!(
+        msg(parse_ascii("..", 0.0)),
+        "<memory>: resolution must be a positive finite number of metres per cell, found 0"
+    );
+    assert_eq!(
+        msg(parse_movingai(
+            "type octile\nheight 1\nwidth 1\nmap\n.\n",
+            Path::new("r.map"),
+            -1.0
+        )),
+        "r.map: resolution must be a positive finite number of metres per cell, found -1"
+    );
+    let dir = scratch("bad-resolution");
+    let path = dir.join("a.txt");
+    std::fs::write(&path, "..\n").expect("write");
+    let opts = LoadOptions {
+        resolution: Some((0.1, f64::NAN)),
+        border: false,
+    };
+    let e = msg(load_map(&path, &opts));
+    assert!(
+        e.ends_with(
+            "a.txt: resolution must be a positive finite number of metres per cell, found NaN"
+        ),
+        "{e}"
+    );
+    let bitmap = dir.join("plan.pgm");
+    std::fs::write(&bitmap, b"P5 1 1 255\n\x00").expect("write");
+    let e = msg(load_map(&bitmap, &LoadOptions::default()));
+    assert!(
+        e.ends_with("plan.pgm: --resolution is required for a bare bitmap"),
+        "{e}"
+    );
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
+fn yaml_bad_field_types() {
+    let p = Path::new("maps/office.yaml");
+    let cases = [
+        (
+            "resolution",
+            "abc",
+            "field 'resolution': expected a positive number, found \"abc\"",
+        ),
+        (
+            "resolution",
+            "-0.05",
+            "field 'resolution': expected a positive number, found -0.05",
+        ),
+        (
+            "resolution",
+            "0",
+            "field 'resolution': expected a positive number, found 0",
+        ),
+        (
+            "resolution",
+            ".nan",
+            "field 'resolution': expected a positive number, found .nan",
+        ),
+        (
+            "resolution",
+            "[1, 2]",
+            "field 'resolution': expected a positive number, found a list of 2 items",
+        ),
+        (
+            "origin",
+            "[1.0, 2.0]",
+            "field 'origin': expected a list of three numbers [x, y, yaw], found a list of 2 items",
+        ),
+        (
+            "origin",
+            "7",
+            "field 'origin': expected a list of three numbers [x, y, yaw], found 7",
+        ),
+        ("negate", "2", "field 'negate': expected 0 or 1, found 2"),
+        (
+            "negate",
+            "yes",
+            "field 'negate': expected 0 or 1, found \"yes\"",
+        ),
+        (
+            "occupied_thresh",
+            "1.5",
+            "field 'occupied_thresh': expected a number between 0 and 1, found 1.5",
+        ),
+        (
+            "free_thresh",
+            "~",
+            "field 'free_thresh': expected a number between 0 and 1, found nothing (null)",
+        ),
+        (
+            "free_thresh",
+            "0.7",
+            "field 'free_thresh': expected at most occupied_thresh (0.65), found 0.7",
+        ),
+        (
+            "image",
+            "{a: 1}",
+            "field 'image': expected an image file name, found a mapping",
+        ),
+        (
+            "image",
+            "''",
+            "field 'image': expected an image file name, found \"\"",
+        ),
+    ];
+    for (field, value, want) in cases {
+        let text = yaml_with(field, value);
+        assert_eq!(
+            msg(parse_ros_yaml_meta(&text, p)),
+            format!("maps/office.yaml: {want}"),
+            "{text}"
+        );
+    }
+    let text = format!("{GOOD_YAML}mode: fancy\n");
+    assert_eq!(
+        msg(parse_ros_yaml_meta(&text, p)),
+        "maps/office.yaml: field 'mode': expected trinary, scale or raw, found \"fancy\""
+    );
+    // Quoted numbers are numbers (yaml-cpp reads them so too); extra fields are allowed.
+    let text = format!("{}\nextra: [1, 2]\n", yaml_with("resolution", "\"0.1\""));
+    assert_eq!(
+        parse_ros_yaml_meta(&text, p).expect("valid").resolution,
+        0.1
+    );
+}
+
+#[test]
+fn yaml_missing_field_and_syntax() {
+    let p = Path::new("office.yaml");
+    for field in [
+        "image",
+        "resolution",
+        "origin",
+        "negate",
+        "occupied_thresh",
+        "free_thresh",
+    ] {
+        let text: String = GOOD_YAML
+            .lines()
+            .filter(|l| !l.starts_with(&format!("{field}:")))
+            .map(|l| format!("{l}\n"))
+            .collect();
+        assert_eq!(
+            msg(parse_ros_yaml_meta(&text, p)),
+            format!("office.yaml: missing field '{field}'")
+        );
+    }
+    let e = msg(parse_ros_yaml_meta("image: [a, b\nresolution: 1\n", p));
+    assert!(e.starts_with("office.yaml: YAML syntax error: "), "{e}");
+    assert_eq!(
+        msg(parse_ros_yaml_meta("", p)),
+        "office.yaml: YAML syntax error: the file is empty: expected a mapping of fields \
+         (image, resolution, ...)"
+    );
+    assert_eq!(
+        msg(parse_ros_yaml_meta("- 1\n- 2\n", p)),
+        "office.yaml: YAML syntax error: expected a mapping of fields (image, resolution, ...), \
+         found a list of 2 items"
+    );
+}
+
+#[test]
+fn yaml_missing_image_file() {
+    let dir = scratch("missing-image");
+    let yaml = dir.join("office.yaml");
+    std::fs::write(&yaml, GOOD_YAML).expect("write");
+    let e = msg(load_map(&yaml, &LoadOptions::default()));
+    let image = dir.join("office.pgm");
+    let want = format!("{}: image file '{}': ", yaml.display(), image.display());
+    assert!(e.starts_with(&want), "{e}");
+    // An image of a format we cannot read.
+    std::fs::write(&yaml, yaml_with("image", "office.bmp")).expect("write");
+    std::fs::write(dir.join("office.bmp"), b"BM").expect("write");
+    let e = msg(load_map(&yaml, &LoadOptions::default()));
+    assert!(
+        e.ends_with(
+            "office.yaml: field 'image': expected a .pgm or .png file, found \"office.bmp\""
+        ),
+        "{e}"
+    );
+    // A truncated image names the image file.
+    std::fs::write(&yaml, GOOD_YAML).expect("write");
+    std::fs::write(&image, b"P5 4 4 255\n\x00\x00").expect("write");
+    let e = msg(load_map(&yaml, &LoadOptions::default()));
+    assert!(e.ends_with("office.pgm: truncated: header says 4x4 pixels (16 bytes), file has 2 bytes of pixel data"), "{e}");
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
+fn missing_map_file_and_unknown_extension() {
+    let dir = scratch("missing-map");
+    let path = dir.join("nothere.map");
+    let e = msg(load_map(&path, &LoadOptions::default()));
+    assert!(
+        e.starts_with(&format!("{}: cannot read: ", path.display())),
+        "{e}"
+    );
+    let e = msg(load_map(&dir.join("plan.bmp"), &LoadOptions::default()));
+    assert!(
+        e.ends_with(
+            "plan.bmp: unknown map format \"bmp\": expected .yaml, .yml, .pgm, .png, .map or .txt"
+        ),
+        "{e}"
+    );
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
+fn movingai_unknown_character() {
+    let text = "type octile\nheight 2\nwidth 3\nmap\n.@T\n.x.\n";
+    assert_eq!(
+        msg(parse_movingai(text, Path::new("m.map"), 1.0)),
+        "m.map: line 6, column 2: unknown character 'x' (allowed: '.', 'G', 'S' free; \
+         '@', 'O', 'T', 'W' blocked)"
+    );
+}
+
+#[test]
+fn movingai_bad_header_and_rows() {
+    let p = Path::new("m.map");
+    let cases = [
+        (
+            "type grid\nheight 1\nwidth 1\nmap\n.\n",
+            "line 1: type must be 'octile', found \"grid\"",
+        ),
+        (
+            "height 1\nwidth 1\nmap\n.\n",
+            "line 3: header has no 'type' line",
+        ),
+        (
+            "type octile\nwidth 1\nmap\n.\n",
+            "line 3: header has no 'height' line",
+        ),
+        (
+            "type octile\nheight 1\nmap\n.\n",
+            "line 3: header has no 'width' line",
+        ),
+        (
+            "type octile\nheight 1\nheight 1\nwidth 1\nmap\n.\n",
+            "line 3: height is given twice",
+        ),
+        (
+            "type octile\nheight x\nwidth 1\nmap\n.\n",
+            "line 2: height must be a whole number, found \"x\"",
+        ),
+        (
+            "type octile\nsize 1\nmap\n",
+            "line 2: unknown header field \"size\" (expected type, height, width or map)",
+        ),
+        (
+            "type octile\nheight 1 2\n",
+            "line 2: expected a header line 'type octile', 'height H', 'width W' or 'map', found \"height 1 2\"",
+        ),
+        (
+            "type octile\nheight 1\nwidth 1\n",
+            "line 4: the file ends before the 'map' line",
+        ),
+        (
+            "type octile\nheight 2\nwidth 2\nmap\n..\n",
+            "line 6: the file ends after 1 of 2 map rows",
+        ),
+        (
+            "type octile\nheight 2\nwidth 2\nmap\n..\n...\n",
+            "line 6: map row has 3 cells, but width is 2",
+        ),
+        (
+            "type octile\nheight 1\nwidth 2\nmap\n..\n..\n",
+            "line 6: more map rows than the height 1",
+        ),
+    ];
+    for (text, want) in cases {
+        assert_eq!(
+            msg(parse_movingai(text, p, 1.0)),
+            format!("m.map: {want}"),
+            "{text}"
+        );
+    }
+}
+
+#[test]
+fn ascii_errors() {
+    assert_eq!(
+        msg(parse_ascii("#.#\n# #\n", 1.0)),
+        "<memory>: line 2, column 2: unknown character ' ' (allowed: '#' wall, '.' free, '?' unknown)"
+    );
+    assert_eq!(
+        msg(parse_ascii("#.#\n#.\n###\n", 1.0)),
+        "<memory>: line 2: row has 2 cells, but the first row has 3"
+    );
+    assert_eq!(
+        msg(parse_ascii("#.#\n\n###\n", 1.0)),
+        "<memory>: line 2: row has 0 cells, but the first row has 3"
+    );
+}
+
+#[test]
+fn not_utf8_text() {
+    let dir = scratch("utf8");
+    let path = dir.join("bad.map");
+    std::fs::write(&path, b"type octile\n\xff\xfe").expect("write");
+    let e = msg(load_map(&path, &LoadOptions::default()));
+    assert!(
+        e.ends_with("bad.map: not a text file: invalid UTF-8 at byte 12"),
+        "{e}"
+    );
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
+fn error_kind_is_matchable() {
+    let e = parse_ascii("", 1.0).expect_err("empty");
+    assert!(matches!(
+        e.kind,
+        MapErrorKind::EmptyMap {
+            width: 0,
+            height: 0
+        }
+    ));
+    assert_eq!(e.path, Path::new("<memory>"));
+}

@@ -1,0 +1,294 @@
+//! Worked examples of each map format, with hand-computed expected cells.
+
+use std::path::{Path, PathBuf};
+
+use grid::io::{LoadOptions, ascii_map, load_map, parse_ascii, parse_movingai, save_map, to_ascii};
+use grid::{Grid, GridMap, Occ};
+
+use Occ::{Free as F, Occupied as O, Unknown as U};
+
+/// A fresh scratch folder for one test.
+fn scratch(test: &str) -> PathBuf {
+    let dir =
+        std::env::temp_dir().join(format!("frontier-io-formats-{}-{test}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("create scratch folder");
+    dir
+}
+
+fn row(map: &GridMap) -> Vec<Occ> {
+    map.cells.data().to_vec()
+}
+
+const PIXELS: &str = "0 89 90 204 205 206 254 255";
+
+fn ros_yaml(image: &str, extra: &str) -> String {
+    format!(
+        "image: {image}\nresolution: 0.05\norigin: [-10.0, -2.5, 0.0]\n{extra}\
+         occupied_thresh: 0.65\nfree_thresh: 0.196\n"
+    )
+}
+
+#[test]
+fn ros_trinary_thresholds_on_plain_pgm() {
+    let dir = scratch("trinary");
+    std::fs::create_dir_all(dir.join("img")).expect("mkdir");
+    std::fs::write(
+        dir.join("img/office.pgm"),
+        format!("P2\n# made by hand\n8 1\n255\n{PIXELS}\n"),
+    )
+    .expect("write");
+    let yaml = dir.join("office.yaml");
+    std::fs::write(
+        &yaml,
+        ros_yaml("img/office.pgm", "negate: 0\nmode: trinary\n"),
+    )
+    .expect("write");
+    let map = load_map(&yaml, &LoadOptions::default()).expect("load");
+    // p = (255 - v) / 255: 0 → 1, 89 → 0.651, 90 → 0.647, 204 → 0.2, 205 → 0.19608,
+    // 206 → 0.192, 254 → 0.004, 255 → 0.
+    assert_eq!(row(&map), vec![O, O, U, U, U, F, F, F]);
+    assert_eq!(map.resolution, 0.05);
+    assert_eq!(map.origin, [-10.0, -2.5, 0.0]);
+    // negate: p = v / 255.
+    std::fs::write(&yaml, ros_yaml("img/office.pgm", "negate: 1\n")).expect("write");
+    let map = load_map(&yaml, &LoadOptions::default()).expect("load");
+    assert_eq!(row(&map), vec![F, U, U, O, O, O, O, O]);
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
+fn ros_rows_top_first() {
+    let dir = scratch("rows");
+    std::fs::write(dir.join("m.pgm"), b"P5 2 3 255\n\x00\x00\xfe\xfe\xcd\xcd").expect("write");
+    let yaml = dir.join("m.yaml");
+    std::fs::write(&yaml, ros_yaml("m.pgm", "negate: 0\n")).expect("write");
+    let map = load_map(&yaml, &LoadOptions::default()).expect("load");
+    assert_eq!((map.width(), map.height()), (2, 3));
+    assert_eq!(map.cells.data(), &[O, O, F, F, U, U]);
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
+fn ros_sixteen_bit_pgm_scales_by_maxval() {
+    let dir = scratch("16bit");
+    let mut bytes = b"P5\n4 1\n65535\n".to_vec();
+    for v in [0u16, 65535, 205 * 257, 206 * 257] {
+        bytes.extend(v.to_be_bytes());
+    }
+    std::fs::write(dir.join("m.pgm"), bytes).expect("write");
+    // maxval 1000: 1000 is white, 0 black, 196 → p = 0.804.
+    std::fs::write(dir.join("n.pgm"), b"P2 3 1 1000 1000 0 196").expect("write");
+    let yaml = dir.join("m.yaml");
+    std::fs::write(&yaml, ros_yaml("m.pgm", "negate: 0\n")).expect("write");
+    assert_eq!(
+        row(&load_map(&yaml, &LoadOptions::default()).expect("load")),
+        vec![O, F, U, F]
+    );
+    std::fs::write(&yaml, ros_yaml("n.pgm", "negate: 0\n")).expect("write");
+    assert_eq!(
+        row(&load_map(&yaml, &LoadOptions::default()).expect("load")),
+        vec![F, O, O]
+    );
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
+fn ros_png_colour_and_alpha() {
+    let dir = scratch("png");
+    let px: [[u8; 4]; 5] = [
+        [255, 255, 255, 0], // transparent: unknown
+        [255, 0, 0, 255],   // mean 85: p = 0.667, occupied
+        [254, 254, 254, 255],
+        [205, 205, 205, 255],
+        [0, 0, 0, 1], // barely opaque black: occupied
+    ];
+    let img = image::RgbaImage::from_raw(5, 1, px.concat()).expect("image");
+    img.save(dir.join("m.png")).expect("save png");
+    let yaml = dir.join("m.yaml");
+    for mode in ["trinary", "scale"] {
+        std::fs::write(
+            &yaml,
+            ros_yaml("m.png", &format!("negate: 0\nmode: {mode}\n")),
+        )
+        .expect("write");
+        let map = load_map(&yaml, &LoadOptions::default()).expect("load");
+        assert_eq!(row(&map), vec![U, O, F, U, O], "mode {mode}");
+    }
+    // A 16-bit grey PNG.
+    let img = image::ImageBuffer::<image::Luma<u16>, _>::from_raw(3, 1, vec![0u16, 65535, 52685])
+        .expect("image");
+    img.save(dir.join("g.png")).expect("save png");
+    std::fs::write(&yaml, ros_yaml("g.png", "negate: 0\n")).expect("write");
+    assert_eq!(
+        row(&load_map(&yaml, &LoadOptions::default()).expect("load")),
+        vec![O, F, U]
+    );
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
+fn ros_raw_mode() {
+    let dir = scratch("raw");
+    std::fs::write(dir.join("m.pgm"), b"P2 8 1 255 0 19 20 64 65 100 101 255").expect("write");
+    let yaml = dir.join("m.yaml");
+    // Values are occupancy percentages; negate is ignored in raw mode (as nav2).
+    std::fs::write(&yaml, ros_yaml("m.pgm", "negate: 1\nmode: raw\n")).expect("write");
+    let map = load_map(&yaml, &LoadOptions::default()).expect("load");
+    assert_eq!(row(&map), vec![F, F, U, U, O, O, U, U]);
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
+fn ros_yaml_written_for_ros_tools() {
+    let dir = scratch("write-yaml");
+    let map = GridMap {
+        cells: Grid::from_vec(3, 1, vec![F, O, U]).expect("grid"),
+        resolution: 0.05,
+        origin: [-10.0, 2.5, 0.0],
+    };
+    let yaml = dir.join("office.yaml");
+    save_map(&map, &yaml).expect("save");
+    assert_eq!(
+        std::fs::read_to_string(&yaml).expect("read"),
+        "image: \"office.pgm\"\nmode: trinary\nresolution: 0.05\norigin: [-10.0, 2.5, 0.0]\n\
+         negate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n"
+    );
+    let pgm = std::fs::read(dir.join("office.pgm")).expect("read pgm");
+    let header = b"P5\n# frontier occupancy map: free 254, occupied 0, unknown 205\n3 1\n255\n";
+    assert_eq!(&pgm[..header.len()], header);
+    assert_eq!(&pgm[header.len()..], &[254, 0, 205]);
+    // A PNG is 8-bit grey with the same levels.
+    let png = dir.join("office.png");
+    save_map(&map, &png).expect("save");
+    let img = image::open(&png).expect("open").into_luma8();
+    assert_eq!(img.as_raw(), &vec![254, 0, 205]);
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
+fn bare_bitmap_with_border() {
+    let dir = scratch("border");
+    let path = dir.join("plan.pgm");
+    std::fs::write(&path, b"P5 2 1 255\n\xff\xcd").expect("write");
+    let opts = LoadOptions {
+        resolution: Some((0.5, 0.5)),
+        border: true,
+    };
+    let map = load_map(&path, &opts).expect("load");
+    assert_eq!(to_ascii(&map.cells), "####\n#.?#\n####\n");
+    assert_eq!(map.resolution, 0.5);
+    assert_eq!(map.origin, [-0.5, -0.5, 0.0]);
+    let plain = load_map(&path, &LoadOptions::with_resolution(0.5)).expect("load");
+    assert_eq!(to_ascii(&plain.cells), ".?\n");
+    // Dark is obstacle with the ROS default thresholds.
+    std::fs::write(&path, b"P5 3 1 255\n\x00\x59\x5a").expect("write");
+    let map = load_map(&path, &LoadOptions::with_resolution(1.0)).expect("load");
+    assert_eq!(row(&map), vec![O, O, U]);
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
+fn border_moves_origin_along_yaw() {
+    let map = GridMap {
+        cells: Grid::new(1, 1, F),
+        resolution: 2.0,
+        origin: [10.0, 20.0, std::f64::consts::FRAC_PI_2],
+    };
+    let b = grid::io::add_border(&map);
+    // One cell down-left in the map frame: map x is world y, map y is world -x.
+    assert!(
+        (b.origin[0] - 12.0).abs() < 1e-12 && (b.origin[1] - 18.0).abs() < 1e-12,
+        "{:?}",
+        b.origin
+    );
+}
+
+#[test]
+fn movingai_characters() {
+    let text = "type octile\r\nheight 2\r\nwidth 4\r\nmap\r\n.GS@\r\nOTW.\r\n";
+    let map = parse_movingai(text, Path::new("m.map"), 0.25).expect("parse");
+    assert_eq!(row(&map), vec![F, F, F, O, O, O, O, F]);
+    assert_eq!(map.resolution, 0.25);
+    // Header fields in another order, blank trailing lines.
+    let text = "type octile\nwidth 1\nheight 2\nmap\n.\n@\n\n";
+    assert_eq!(
+        row(&parse_movingai(text, Path::new("m.map"), 1.0).expect("parse")),
+        vec![F, O]
+    );
+}
+
+#[test]
+fn non_square_pixels_resample_to_square_cells() {
+    let dir = scratch("non-square");
+    let path = dir.join("a.txt");
+    std::fs::write(&path, "#.\n?.\n").expect("write");
+    // Pixels 0.1 wide, 0.2 tall → cells of 0.1, each row doubled.
+    let opts = LoadOptions {
+        resolution: Some((0.1, 0.2)),
+        border: false,
+    };
+    let map = load_map(&path, &opts).expect("load");
+    assert_eq!(to_ascii(&map.cells), "#.\n#.\n?.\n?.\n");
+    assert_eq!(map.resolution, 0.1);
+    // Pixels 0.3 wide, 0.1 tall → each column tripled.
+    let opts = LoadOptions {
+        resolution: Some((0.3, 0.1)),
+        border: true,
+    };
+    let map = load_map(&path, &opts).expect("load");
+    assert_eq!(
+        to_ascii(&map.cells),
+        "########\n####...#\n#???...#\n########\n"
+    );
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
+fn ascii_art() {
+    let map = parse_ascii("#.?\r\n...\n", 0.5).expect("parse");
+    assert_eq!(row(&map), vec![O, F, U, F, F, F]);
+    assert_eq!((map.width(), map.height(), map.resolution), (3, 2, 0.5));
+    let m = ascii_map(
+        "
+        ###
+        #.?
+        ",
+    );
+    assert_eq!(to_ascii(&m.cells), "###\n#.?\n");
+    assert_eq!(m.resolution, 1.0);
+}
+
+#[test]
+#[should_panic(
+    expected = "ascii_map: bad test map: <memory>: line 1, column 2: unknown character 'x'"
+)]
+fn ascii_map_panics_clearly() {
+    let _ = ascii_map("#x#");
+}
+
+#[test]
+fn yml_extension_and_absolute_image_path() {
+    let dir = scratch("yml");
+    let map = GridMap {
+        cells: ascii_map("#.?").cells,
+        resolution: 0.1,
+        origin: [1.0, 2.0, 0.5],
+    };
+    let yml = dir.join("m.yml");
+    save_map(&map, &yml).expect("save");
+    assert_eq!(load_map(&yml, &LoadOptions::default()).expect("load"), map);
+    // A YAML elsewhere naming the image by absolute path.
+    std::fs::create_dir_all(dir.join("other")).expect("mkdir");
+    let other = dir.join("other/abs.yaml");
+    let image = dir.join("m.pgm");
+    let text = ros_yaml(&format!("{:?}", image.display().to_string()), "negate: 0\n");
+    std::fs::write(&other, text).expect("write");
+    assert_eq!(
+        load_map(&other, &LoadOptions::default())
+            .expect("load")
+            .cells,
+        map.cells
+    );
+    let _ = std::fs::remove_dir_all(dir);
+}

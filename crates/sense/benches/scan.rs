@@ -1,0 +1,76 @@
+//! One `los` scan + `KnownGrid` integration at r = 100 cells, and the template build.
+
+use std::hint::black_box;
+
+use criterion::{BatchSize, Criterion, criterion_group, criterion_main};
+use grid::{Cell, Grid, Occ};
+use sense::{Belief, KnownGrid, LosSensor, LosTemplate, Observation, Pose, Sensor};
+
+const N: usize = 400;
+const R: f64 = 100.0;
+
+/// 400×400 rooms of 40×40 cells: walls every 40 cells with a 4-cell door in each wall
+/// segment, plus a few pillars.
+fn rooms() -> Grid<Occ> {
+    let mut g = Grid::new(N, N, Occ::Free);
+    for i in 0..N {
+        for w in (0..N).step_by(40) {
+            let door = i % 40 >= 18 && i % 40 < 22;
+            if !door {
+                g.set(Cell::new(w as i32, i as i32), Occ::Occupied);
+                g.set(Cell::new(i as i32, w as i32), Occ::Occupied);
+            }
+        }
+    }
+    for y in (10..N).step_by(40) {
+        for x in (10..N).step_by(40) {
+            g.set(Cell::new(x as i32, y as i32), Occ::Occupied);
+        }
+    }
+    g
+}
+
+fn bench(c: &mut Criterion) {
+    let sensor = LosSensor::new(R).expect("valid range");
+    eprintln!(
+        "template r={R}: {} targets, {} nodes",
+        sensor.template().targets(),
+        sensor.template().len()
+    );
+    // The centre of a room (walls lie on multiples of 40, pillars at 10 + 40k).
+    let pose = Pose::new(Cell::new(220, 220), 0.0);
+    for (name, truth) in [("open", Grid::new(N, N, Occ::Free)), ("rooms", rooms())] {
+        let mut obs = Observation::new();
+        let mut changed = Vec::new();
+        sensor.scan(&truth, pose, &mut obs);
+        eprintln!("{name}: {} cells seen", obs.len());
+        c.bench_function(&format!("los_scan_integrate_r100_{name}"), |b| {
+            // A fresh, all-Unknown belief per iteration (built outside the timing).
+            b.iter_batched_ref(
+                || KnownGrid::new(N, N),
+                |belief| {
+                    changed.clear();
+                    sensor.scan(black_box(&truth), pose, &mut obs);
+                    belief.integrate(&obs, &mut changed);
+                    black_box(changed.len())
+                },
+                BatchSize::LargeInput,
+            )
+        });
+        c.bench_function(&format!("los_scan_only_r100_{name}"), |b| {
+            b.iter(|| {
+                sensor.scan(black_box(&truth), pose, &mut obs);
+                black_box(obs.len())
+            })
+        });
+    }
+    let mut g = c.benchmark_group("template");
+    g.sample_size(10);
+    g.bench_function("los_template_build_r100", |b| {
+        b.iter(|| black_box(LosTemplate::new(black_box(R)).expect("valid").len()))
+    });
+    g.finish();
+}
+
+criterion_group!(benches, bench);
+criterion_main!(benches);

@@ -1,0 +1,120 @@
+//! Belief maps: what the robots know, built from observations.
+//!
+//! Every belief map classifies each cell as Free, Occupied or Unknown and keeps that
+//! classification materialised as a `Grid<Occ>` ([`Belief::known`]), so that frontier
+//! detection and planning read one plain grid whatever the belief model.
+
+mod evidence;
+mod known;
+mod reflection;
+
+use std::fmt;
+use std::str::FromStr;
+
+use grid::{Grid, Occ};
+
+use crate::error::SenseError;
+use crate::sensor::Observation;
+
+pub use evidence::EvidenceGrid;
+pub use known::KnownGrid;
+pub use reflection::ReflectionMap;
+
+/// A map of what is known, updated from observations.
+///
+/// Observation entries whose index is outside the map, or whose state is `Unknown`, are
+/// ignored.
+pub trait Belief: Send {
+    /// Integrate an observation; push the flat index of every cell whose class (Occ) changed.
+    ///
+    /// `changed` is appended to, not cleared; each index is pushed at most once per call
+    /// (observations hold no duplicates).
+    fn integrate(&mut self, obs: &Observation, changed: &mut Vec<u32>);
+    /// The current class of every cell, kept up to date by `integrate` (a materialised `Grid<Occ>`).
+    fn known(&self) -> &Grid<Occ>;
+    /// Probability that cell i is occupied (0.5 if unknown) — for entropy-based information gain.
+    fn p_occupied(&self, i: usize) -> f64;
+}
+
+/// The belief-map models, by name: `known`, `reflection`, `evidence`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+pub enum BeliefKind {
+    /// [`KnownGrid`]: ternary, the latest observation of a cell wins (ideal sensors).
+    #[default]
+    Known,
+    /// [`ReflectionMap`]: Holz et al.'s hit/miss counts, free iff p ≤ 0.25.
+    Reflection,
+    /// [`EvidenceGrid`]: Yamauchi's log-odds evidence grid with prior 0.5.
+    Evidence,
+}
+
+impl BeliefKind {
+    /// An empty belief map of this kind, `width × height` cells, everything Unknown.
+    pub fn build(self, width: usize, height: usize) -> Box<dyn Belief> {
+        match self {
+            BeliefKind::Known => Box::new(KnownGrid::new(width, height)),
+            BeliefKind::Reflection => Box::new(ReflectionMap::new(width, height)),
+            BeliefKind::Evidence => Box::new(EvidenceGrid::new(width, height)),
+        }
+    }
+}
+
+impl fmt::Display for BeliefKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            BeliefKind::Known => "known",
+            BeliefKind::Reflection => "reflection",
+            BeliefKind::Evidence => "evidence",
+        })
+    }
+}
+
+impl FromStr for BeliefKind {
+    type Err = SenseError;
+
+    fn from_str(s: &str) -> Result<Self, SenseError> {
+        match s.trim() {
+            "known" => Ok(BeliefKind::Known),
+            "reflection" => Ok(BeliefKind::Reflection),
+            "evidence" => Ok(BeliefKind::Evidence),
+            _ => Err(SenseError::UnknownBelief(s.into())),
+        }
+    }
+}
+
+/// Set `known[i]` to `class`, recording `i` in `changed` if it differs.
+#[inline]
+pub(crate) fn set_class(known: &mut Grid<Occ>, i: usize, class: Occ, changed: &mut Vec<u32>) {
+    let slot = &mut known[i];
+    if *slot != class {
+        *slot = class;
+        changed.push(i as u32);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn kinds_parse_and_display() {
+        for k in [
+            BeliefKind::Known,
+            BeliefKind::Reflection,
+            BeliefKind::Evidence,
+        ] {
+            assert_eq!(k.to_string().parse::<BeliefKind>(), Ok(k));
+            let b = k.build(3, 2);
+            assert_eq!((b.known().width(), b.known().height()), (3, 2));
+            assert!(b.known().data().iter().all(|c| c.is_unknown()));
+            assert_eq!(b.p_occupied(0), 0.5);
+        }
+        assert_eq!(
+            "bayes"
+                .parse::<BeliefKind>()
+                .expect_err("unknown")
+                .to_string(),
+            "belief map 'bayes': expected one of known, reflection, evidence"
+        );
+    }
+}

@@ -1,0 +1,174 @@
+//! The ideal 360° laser of Quattrini Li et al.: a cell is seen iff its centre is joined
+//! to the sensor cell's centre by a segment of length ≤ r that crosses only free cells
+//! and never squeezes between two non-free cells sharing a vertex (exact semantics in
+//! [`crate::segment`]). The occupied cell ending a segment is seen as occupied.
+//!
+//! A scan walks the shared [`LosTemplate`] prefix tree, skipping the subtree of every
+//! blocked cell or vertex, so its cost grows with what is seen (see [`LosTemplate`] for
+//! the measured constant). Its result equals
+//! [`los_visible`](crate::los_visible) for every cell (checked by property tests).
+
+use std::sync::Arc;
+
+use grid::{Cell, Grid, Occ};
+
+use crate::error::SenseError;
+use crate::ray_template::{LosNode, LosTemplate};
+use crate::sensor::{Observation, Pose, Sensor, observed};
+
+/// The ideal line-of-sight sensor (360°, range in cells), backed by a shared ray template.
+#[derive(Clone, Debug)]
+pub struct LosSensor {
+    template: Arc<LosTemplate>,
+}
+
+impl LosSensor {
+    /// A line-of-sight sensor of range `r` cells; its template is shared with other sensors
+    /// of the same range. Errors if `r` is negative, not finite or above
+    /// [`MAX_TEMPLATE_RANGE_CELLS`](crate::MAX_TEMPLATE_RANGE_CELLS).
+    pub fn new(r: f64) -> Result<Self, SenseError> {
+        Ok(Self {
+            template: LosTemplate::shared(r)?,
+        })
+    }
+
+    /// A sensor over an existing template.
+    pub fn with_template(template: Arc<LosTemplate>) -> Self {
+        Self { template }
+    }
+
+    /// The ray template this sensor walks.
+    pub fn template(&self) -> &Arc<LosTemplate> {
+        &self.template
+    }
+
+    /// Call `seen(flat index, observed state)` for every cell seen from `origin` in `truth`,
+    /// in template pre-order (each cell once). Nothing is seen from outside the grid.
+    #[inline]
+    pub fn for_each_seen(&self, truth: &Grid<Occ>, origin: Cell, mut seen: impl FnMut(u32, Occ)) {
+        let nodes = self.template.nodes();
+        let Some(o) = truth.checked_index(origin) else {
+            return;
+        };
+        let (w, h) = (truth.width() as i64, truth.height() as i64);
+        let reach = self.template.range().floor() as i64;
+        let (ox, oy) = (i64::from(origin.x), i64::from(origin.y));
+        let data = truth.data();
+        if ox >= reach && oy >= reach && ox + reach < w && oy + reach < h {
+            // The whole disc is inside the grid: plain index arithmetic.
+            let w = w as isize;
+            let at = move |dx: i16, dy: i16| (o as isize + dy as isize * w + dx as isize) as usize;
+            walk(nodes, data, at, &mut seen);
+        } else {
+            // Near the border: cells outside the grid are opaque (index `usize::MAX`).
+            let at = move |dx: i16, dy: i16| {
+                let (x, y) = (ox + i64::from(dx), oy + i64::from(dy));
+                if x >= 0 && y >= 0 && x < w && y < h {
+                    (y * w + x) as usize
+                } else {
+                    usize::MAX
+                }
+            };
+            walk(nodes, data, at, &mut seen);
+        }
+    }
+}
+
+/// Walk the template: `at(dx, dy)` gives the flat index of an offset (`usize::MAX` outside
+/// the grid). A node whose squeeze check fails or whose cell is not free (or outside)
+/// has its subtree skipped; target cells inside the grid are reported.
+#[inline(always)]
+fn walk(
+    nodes: &[LosNode],
+    data: &[Occ],
+    at: impl Fn(i16, i16) -> usize,
+    seen: &mut impl FnMut(u32, Occ),
+) {
+    let free = |i: usize| data.get(i).is_some_and(|&s| s == Occ::Free);
+    let mut k = 0;
+    while k < nodes.len() {
+        let n = nodes[k];
+        if n.squeeze() {
+            let (sx, sy) = (n.dx.signum(), n.dy.signum());
+            if !free(at(n.dx - sx, n.dy)) && !free(at(n.dx, n.dy - sy)) {
+                k = n.end();
+                continue;
+            }
+        }
+        let i = at(n.dx, n.dy);
+        let Some(&state) = data.get(i) else {
+            k = n.end();
+            continue;
+        };
+        if n.is_target() {
+            seen(i as u32, observed(state));
+        }
+        k = if state == Occ::Free { k + 1 } else { n.end() };
+    }
+}
+
+impl Sensor for LosSensor {
+    fn scan(&self, truth: &Grid<Occ>, pose: Pose, out: &mut Observation) {
+        out.clear();
+        out.origin = pose.cell;
+        let cells = &mut out.cells;
+        self.for_each_seen(truth, pose.cell, |i, s| cells.push((i, s)));
+    }
+
+    fn range_cells(&self) -> f64 {
+        self.template.range()
+    }
+
+    fn is_omnidirectional(&self) -> bool {
+        true
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn open_area_sees_the_whole_disc() {
+        let g = Grid::new(11, 11, Occ::Free);
+        let s = LosSensor::new(3.0).expect("valid");
+        let mut obs = Observation::new();
+        s.scan(&g, Pose::new(Cell::new(5, 5), 0.0), &mut obs);
+        assert_eq!(obs.len(), 29);
+        assert!(obs.cells.iter().all(|&(_, o)| o == Occ::Free));
+        // At the corner, only the in-grid quarter: offsets with dx, dy ≥ 0 and d² ≤ 9.
+        s.scan(&g, Pose::new(Cell::new(0, 0), 0.0), &mut obs);
+        assert_eq!(obs.len(), 11);
+        // Outside the grid nothing is seen.
+        s.scan(&g, Pose::new(Cell::new(-1, 0), 0.0), &mut obs);
+        assert!(obs.is_empty());
+    }
+
+    #[test]
+    fn wall_is_seen_and_hides_what_is_behind() {
+        // Row 0: sensor at x=0, wall at x=2.
+        let mut g = Grid::new(5, 1, Occ::Free);
+        g.set(Cell::new(2, 0), Occ::Occupied);
+        let s = LosSensor::new(4.0).expect("valid");
+        let mut obs = Observation::new();
+        s.scan(&g, Pose::new(Cell::new(0, 0), 0.0), &mut obs);
+        let mut seen = obs.cells.clone();
+        seen.sort_unstable();
+        assert_eq!(
+            seen,
+            vec![(0, Occ::Free), (1, Occ::Free), (2, Occ::Occupied)]
+        );
+    }
+
+    #[test]
+    fn unknown_truth_is_seen_as_occupied() {
+        let mut g = Grid::new(3, 1, Occ::Free);
+        g.set(Cell::new(1, 0), Occ::Unknown);
+        let s = LosSensor::new(2.0).expect("valid");
+        let mut obs = Observation::new();
+        s.scan(&g, Pose::new(Cell::new(0, 0), 0.0), &mut obs);
+        let mut seen = obs.cells.clone();
+        seen.sort_unstable();
+        assert_eq!(seen, vec![(0, Occ::Free), (1, Occ::Occupied)]);
+    }
+}

@@ -1,0 +1,93 @@
+//! What every sensor shares: the pose it senses from, the observation it fills, and the
+//! [`Sensor`] trait.
+
+use grid::{Cell, Grid, Occ};
+
+/// Where a sensor senses from: a cell (the sensor sits at its centre) and a heading.
+///
+/// The heading is in radians in *grid* coordinates: heading θ looks along
+/// `(cos θ, sin θ)` with `x` to the right and `y` **down**, so θ = 0 looks right
+/// (+x) and θ = π/2 looks down (+y, the next image row). Omnidirectional sensors
+/// ignore it.
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub struct Pose {
+    /// The cell the sensor sits in (at its centre).
+    pub cell: Cell,
+    /// Heading in radians, grid coordinates (y down).
+    pub heading: f64,
+}
+
+impl Pose {
+    /// A pose at `cell` looking along `heading` (radians, y down).
+    pub const fn new(cell: Cell, heading: f64) -> Self {
+        Self { cell, heading }
+    }
+}
+
+/// What one scan saw: flat indices of the seen cells with their observed state.
+///
+/// Every state is `Free` or `Occupied` (never `Unknown`), and no index appears twice.
+/// Reuse one `Observation` across scans: [`Sensor::scan`] clears it and keeps its
+/// allocation.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Observation {
+    /// The cell the scan was taken from.
+    pub origin: Cell,
+    /// `(flat index, observed state)` of every seen cell, without duplicates.
+    pub cells: Vec<(u32, Occ)>,
+}
+
+impl Observation {
+    /// An empty observation.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Forget every seen cell, keeping the allocation.
+    pub fn clear(&mut self) {
+        self.cells.clear();
+    }
+
+    /// Number of seen cells.
+    pub fn len(&self) -> usize {
+        self.cells.len()
+    }
+
+    /// Whether no cell was seen.
+    pub fn is_empty(&self) -> bool {
+        self.cells.is_empty()
+    }
+}
+
+/// A range sensor reading a ground-truth grid.
+///
+/// Ground-truth `Unknown` cells (outside the world) are opaque and reported as
+/// `Occupied` when seen; cells outside the grid are opaque and never reported.
+pub trait Sensor: Send + Sync {
+    /// Clears `out`, then fills it with what is seen from `pose` in `truth`.
+    fn scan(&self, truth: &Grid<Occ>, pose: Pose, out: &mut Observation);
+    /// The sensor's range in cells.
+    fn range_cells(&self) -> f64;
+    /// Whether the sensor sees all around (360°), so that its heading does not matter.
+    fn is_omnidirectional(&self) -> bool;
+}
+
+/// The observed state of a ground-truth state: Free stays Free, anything else is opaque
+/// and seen as Occupied.
+#[inline]
+pub(crate) fn observed(truth: Occ) -> Occ {
+    if truth == Occ::Free {
+        Occ::Free
+    } else {
+        Occ::Occupied
+    }
+}
+
+/// Whether a squared distance in cells² is within range `r` (cells).
+///
+/// The one comparison every circular sensor and the oracle use, so that they agree
+/// exactly for fractional `r`.
+#[inline]
+pub(crate) fn within_range(d2: i64, r: f64) -> bool {
+    (d2 as f64) <= r * r
+}

@@ -1,0 +1,385 @@
+//! Sensor specs: the textual description of a sensor (`los:r=5`, `footprint:r=3`,
+//! `lidar:r=8,fov=180,res=1`, `los:r=4c`) and how it is turned into a [`Sensor`].
+//!
+//! Ranges are in metres, or in cells with a `c` suffix (`r=4c`, as in the multi-robot
+//! study's 4-cell sensor). Angles are in degrees. Lidar defaults: `fov=180`, `res=1`
+//! (Holz et al.'s scanner). Kinds and keys are lower-case; whitespace around items is
+//! ignored. `Display` writes the canonical form, which parses back to the same spec.
+
+use std::fmt;
+use std::str::FromStr;
+
+use crate::error::SenseError;
+use crate::footprint::FootprintSensor;
+use crate::lidar::{LidarSensor, MIN_LIDAR_RES_DEG};
+use crate::los::LosSensor;
+use crate::sensor::Sensor;
+
+/// A sensor range: metres (converted with the map's resolution) or cells.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Range {
+    /// A range in metres.
+    Metres(f64),
+    /// A range in cells (written with a `c` suffix).
+    Cells(f64),
+}
+
+impl Range {
+    /// The range in cells for a map of `resolution` metres per cell.
+    pub fn cells(self, resolution: f64) -> f64 {
+        match self {
+            Range::Metres(m) => m / resolution,
+            Range::Cells(c) => c,
+        }
+    }
+}
+
+impl fmt::Display for Range {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Range::Metres(m) => write!(f, "{m}"),
+            Range::Cells(c) => write!(f, "{c}c"),
+        }
+    }
+}
+
+/// A sensor described by kind and parameters, before it is built for a map resolution.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum SensorSpec {
+    /// The ideal 360° line-of-sight laser ([`LosSensor`]).
+    Los {
+        /// Range.
+        r: Range,
+    },
+    /// Every cell within range, through walls ([`FootprintSensor`]).
+    Footprint {
+        /// Range.
+        r: Range,
+    },
+    /// A laser scanner with a field of view ([`LidarSensor`]).
+    Lidar {
+        /// Range.
+        r: Range,
+        /// Field of view in degrees, in (0, 360].
+        fov_deg: f64,
+        /// Angular resolution in degrees, in [0.01, 360].
+        res_deg: f64,
+    },
+}
+
+const EXPECT_RANGE: &str = "a positive number of metres (or cells with suffix c)";
+const EXPECT_FOV: &str = "a field of view in (0, 360] degrees";
+const EXPECT_RES: &str = "an angular resolution in [0.01, 360] degrees";
+
+impl SensorSpec {
+    /// Build the sensor for a map of `resolution` metres per cell.
+    pub fn build(&self, resolution: f64) -> Result<Box<dyn Sensor>, SenseError> {
+        if !(resolution.is_finite() && resolution > 0.0) {
+            return Err(SenseError::BadResolution(resolution));
+        }
+        let r = self.range_cells(resolution);
+        Ok(match *self {
+            SensorSpec::Los { .. } => Box::new(LosSensor::new(r)?),
+            SensorSpec::Footprint { .. } => Box::new(FootprintSensor::new(r)?),
+            SensorSpec::Lidar {
+                fov_deg, res_deg, ..
+            } => Box::new(LidarSensor::new(r, fov_deg, res_deg)?),
+        })
+    }
+
+    /// The 360° version of this sensor (for a sweep on arrival): a lidar with `fov=360`;
+    /// the circular sensors unchanged.
+    pub fn sweep(&self) -> SensorSpec {
+        match *self {
+            SensorSpec::Lidar { r, res_deg, .. } => SensorSpec::Lidar {
+                r,
+                fov_deg: 360.0,
+                res_deg,
+            },
+            other => other,
+        }
+    }
+
+    /// The range in cells for a map of `resolution` metres per cell.
+    pub fn range_cells(&self, resolution: f64) -> f64 {
+        self.range().cells(resolution)
+    }
+
+    /// The range as written.
+    pub fn range(&self) -> Range {
+        match *self {
+            SensorSpec::Los { r } | SensorSpec::Footprint { r } | SensorSpec::Lidar { r, .. } => r,
+        }
+    }
+}
+
+impl fmt::Display for SensorSpec {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            SensorSpec::Los { r } => write!(f, "los:r={r}"),
+            SensorSpec::Footprint { r } => write!(f, "footprint:r={r}"),
+            SensorSpec::Lidar {
+                r,
+                fov_deg,
+                res_deg,
+            } => {
+                write!(f, "lidar:r={r},fov={fov_deg},res={res_deg}")
+            }
+        }
+    }
+}
+
+/// Parse a finite number (rejecting `inf`, `nan`).
+fn number(s: &str) -> Option<f64> {
+    s.parse::<f64>().ok().filter(|v| v.is_finite())
+}
+
+fn parse_range(value: &str) -> Option<Range> {
+    let (num, cells) = match value.strip_suffix('c') {
+        Some(n) => (n, true),
+        None => (value.strip_suffix('m').unwrap_or(value), false),
+    };
+    let v = number(num.trim_end()).filter(|&v| v > 0.0)?;
+    Some(if cells {
+        Range::Cells(v)
+    } else {
+        Range::Metres(v)
+    })
+}
+
+impl FromStr for SensorSpec {
+    type Err = SenseError;
+
+    fn from_str(spec: &str) -> Result<Self, SenseError> {
+        let (kind, items) = match spec.split_once(':') {
+            Some((k, rest)) => (k.trim(), Some(rest)),
+            None => (spec.trim(), None),
+        };
+        let valid: &'static str = match kind {
+            "los" | "footprint" => "r",
+            "lidar" => "r, fov, res",
+            _ => {
+                return Err(SenseError::UnknownKind {
+                    spec: spec.into(),
+                    kind: kind.into(),
+                });
+            }
+        };
+        let mut r = None;
+        let mut fov_deg = 180.0;
+        let mut res_deg = 1.0;
+        let mut given: Vec<&str> = Vec::with_capacity(3);
+        for item in items.into_iter().flat_map(|s| s.split(',')) {
+            let Some((key, value)) = item.split_once('=') else {
+                return Err(SenseError::Malformed {
+                    spec: spec.into(),
+                    item: item.trim().into(),
+                });
+            };
+            let (key, value) = (key.trim(), value.trim());
+            let bad = |expected: &str| SenseError::BadValue {
+                spec: spec.into(),
+                key: key.into(),
+                expected: expected.into(),
+                found: value.into(),
+            };
+            match (key, kind) {
+                ("r", _) => r = Some(parse_range(value).ok_or_else(|| bad(EXPECT_RANGE))?),
+                ("fov", "lidar") => {
+                    fov_deg = number(value)
+                        .filter(|&v| v > 0.0 && v <= 360.0)
+                        .ok_or_else(|| bad(EXPECT_FOV))?;
+                }
+                ("res", "lidar") => {
+                    res_deg = number(value)
+                        .filter(|v| (MIN_LIDAR_RES_DEG..=360.0).contains(v))
+                        .ok_or_else(|| bad(EXPECT_RES))?;
+                }
+                _ => {
+                    return Err(SenseError::UnknownKey {
+                        spec: spec.into(),
+                        key: key.into(),
+                        valid,
+                    });
+                }
+            }
+            if given.contains(&key) {
+                return Err(SenseError::DuplicateKey {
+                    spec: spec.into(),
+                    key: key.into(),
+                });
+            }
+            given.push(key);
+        }
+        let r = r.ok_or(SenseError::MissingKey {
+            spec: spec.into(),
+            key: "r",
+            expected: EXPECT_RANGE,
+        })?;
+        Ok(match kind {
+            "los" => SensorSpec::Los { r },
+            "footprint" => SensorSpec::Footprint { r },
+            _ => SensorSpec::Lidar {
+                r,
+                fov_deg,
+                res_deg,
+            },
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn parse(s: &str) -> Result<SensorSpec, SenseError> {
+        s.parse()
+    }
+
+    #[test]
+    fn parses_the_documented_forms() {
+        assert_eq!(
+            parse("los:r=5"),
+            Ok(SensorSpec::Los {
+                r: Range::Metres(5.0)
+            })
+        );
+        assert_eq!(
+            parse("los:r=4c"),
+            Ok(SensorSpec::Los {
+                r: Range::Cells(4.0)
+            })
+        );
+        assert_eq!(
+            parse("footprint:r=3"),
+            Ok(SensorSpec::Footprint {
+                r: Range::Metres(3.0)
+            })
+        );
+        assert_eq!(
+            parse("lidar:r=8,fov=180,res=1"),
+            Ok(SensorSpec::Lidar {
+                r: Range::Metres(8.0),
+                fov_deg: 180.0,
+                res_deg: 1.0
+            })
+        );
+        assert_eq!(
+            parse(" lidar : r = 2.5c , res=0.5"),
+            Ok(SensorSpec::Lidar {
+                r: Range::Cells(2.5),
+                fov_deg: 180.0,
+                res_deg: 0.5
+            })
+        );
+        assert_eq!(
+            parse("los:r=1.5m"),
+            Ok(SensorSpec::Los {
+                r: Range::Metres(1.5)
+            })
+        );
+    }
+
+    #[test]
+    fn error_messages_name_spec_key_and_expectation() {
+        let msg = |s: &str| parse(s).expect_err("should fail").to_string();
+        assert_eq!(
+            msg("lidar:r=x"),
+            "sensor 'lidar:r=x': key 'r': expected a positive number of metres \
+             (or cells with suffix c), found \"x\""
+        );
+        assert_eq!(
+            msg("sonar:r=3"),
+            "sensor 'sonar:r=3': unknown kind 'sonar': expected one of los, footprint, lidar"
+        );
+        assert_eq!(
+            msg("los:r=3,fov=90"),
+            "sensor 'los:r=3,fov=90': unknown key 'fov': expected one of r"
+        );
+        assert_eq!(
+            msg("lidar:r=3,range=9"),
+            "sensor 'lidar:r=3,range=9': unknown key 'range': expected one of r, fov, res"
+        );
+        assert_eq!(
+            msg("los"),
+            "sensor 'los': missing key 'r': expected a positive number of metres \
+             (or cells with suffix c)"
+        );
+        assert_eq!(msg("los:r"), "sensor 'los:r': item 'r': expected key=value");
+        assert_eq!(
+            msg("los:r=1,r=2"),
+            "sensor 'los:r=1,r=2': key 'r' given more than once"
+        );
+        assert_eq!(
+            msg("lidar:r=1,fov=0"),
+            "sensor 'lidar:r=1,fov=0': key 'fov': expected a field of view in (0, 360] degrees, \
+             found \"0\""
+        );
+        assert_eq!(
+            msg("lidar:r=1,res=-1"),
+            "sensor 'lidar:r=1,res=-1': key 'res': expected an angular resolution in \
+             [0.01, 360] degrees, found \"-1\""
+        );
+        for bad in [
+            "los:r=0",
+            "los:r=-2",
+            "los:r=inf",
+            "los:r=NaN",
+            "los:r=c",
+            "los:r=3cc",
+        ] {
+            assert!(
+                matches!(parse(bad), Err(SenseError::BadValue { .. })),
+                "{bad}"
+            );
+        }
+    }
+
+    #[test]
+    fn display_round_trips() {
+        for s in [
+            "los:r=5",
+            "los:r=4c",
+            "footprint:r=0.25",
+            "lidar:r=8,fov=180,res=1",
+        ] {
+            let spec = parse(s).expect("valid");
+            assert_eq!(spec.to_string(), s);
+            assert_eq!(parse(&spec.to_string()), Ok(spec));
+        }
+        assert_eq!(
+            parse("lidar:r=8").expect("valid").to_string(),
+            "lidar:r=8,fov=180,res=1"
+        );
+    }
+
+    #[test]
+    fn build_sweep_and_ranges() {
+        let spec = parse("lidar:r=2,fov=90,res=2").expect("valid");
+        assert_eq!(spec.range_cells(0.5), 4.0);
+        assert_eq!(
+            spec.sweep(),
+            parse("lidar:r=2,fov=360,res=2").expect("valid")
+        );
+        let s = spec.build(0.5).expect("builds");
+        assert_eq!(s.range_cells(), 4.0);
+        assert!(!s.is_omnidirectional());
+        assert!(
+            spec.sweep()
+                .build(0.5)
+                .expect("builds")
+                .is_omnidirectional()
+        );
+        let los = parse("los:r=4c").expect("valid");
+        assert_eq!(los.sweep(), los);
+        assert_eq!(los.build(0.05).expect("builds").range_cells(), 4.0);
+        assert!(los.build(0.0).is_err());
+        assert!(los.build(f64::NAN).is_err());
+        // 100 m at 5 cm is 2000 cells: too large for a template, an error and no panic.
+        assert!(matches!(
+            parse("los:r=100").expect("valid").build(0.05),
+            Err(SenseError::BadRange { .. })
+        ));
+        assert!(parse("footprint:r=3").expect("valid").build(0.5).is_ok());
+    }
+}

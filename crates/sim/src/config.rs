@@ -1,0 +1,94 @@
+//! What one run is: strategy, sensor, belief, team, motion and limits.
+
+use explore::strategy::{SensingMode, Strategy};
+use grid::Cell;
+use sense::{BeliefKind, SensorSpec};
+
+/// A fully resolved run: everything but the map.
+#[derive(Clone, Debug)]
+pub struct RunConfig {
+    /// The strategy triple (from a preset).
+    pub strategy: Strategy,
+    /// The sensor every robot carries.
+    pub sensor: SensorSpec,
+    /// How observations are integrated.
+    pub belief: BeliefKind,
+    /// Sensing mode; `None` = the strategy's default.
+    pub sensing: Option<SensingMode>,
+    /// Number of robots.
+    pub robots: usize,
+    /// Start cells; empty = chosen by seed (the first), the others at the nearest distinct
+    /// traversable cells around it.
+    pub starts: Vec<Cell>,
+    /// The robot's clearance from known obstacles, in metres (Holz's d_max).
+    pub clearance_m: f64,
+    /// Speed in metres per second.
+    pub speed: f64,
+    /// Master seed.
+    pub seed: u64,
+    /// Stop once this share of the reachable free cells is known (`None` = explore fully).
+    pub coverage_goal: Option<f64>,
+    /// Stop after this many cell moves of the whole team.
+    pub max_moves: u64,
+    /// Keep a per-step trace (trails, goals, frontier counts) for pictures.
+    pub record_trace: bool,
+}
+
+impl RunConfig {
+    /// A single-robot run of `strategy` with the `los` sensor of range 5 m and the defaults.
+    pub fn new(strategy: Strategy) -> Self {
+        Self {
+            strategy,
+            sensor: SensorSpec::Los {
+                r: sense::Range::Metres(5.0),
+            },
+            belief: BeliefKind::Known,
+            sensing: None,
+            robots: 1,
+            starts: Vec::new(),
+            clearance_m: 0.0,
+            speed: 1.0,
+            seed: 0,
+            coverage_goal: None,
+            max_moves: 10_000_000,
+            record_trace: false,
+        }
+    }
+
+    /// The sensing mode in force.
+    pub fn sensing_mode(&self) -> SensingMode {
+        self.sensing.unwrap_or(self.strategy.sensing)
+    }
+}
+
+/// Why a run could not start.
+#[derive(Debug, thiserror::Error)]
+pub enum SimError {
+    /// A parameter is out of range.
+    #[error("{field}: expected {expected}, found {found}")]
+    BadParameter {
+        /// The parameter's name as the user knows it (e.g. "--speed").
+        field: &'static str,
+        /// What is allowed.
+        expected: &'static str,
+        /// The value given.
+        found: String,
+    },
+    /// A start cell is outside the map or not traversable.
+    #[error("start {cell}: {why}")]
+    BadStart {
+        /// The start cell.
+        cell: Cell,
+        /// What is wrong with it.
+        why: String,
+    },
+    /// The map has no traversable cell.
+    #[error("the map has no free cell a robot with clearance {clearance_m} m can stand on")]
+    NoFreeSpace {
+        /// The clearance asked for.
+        clearance_m: f64,
+    },
+    /// The sensor cannot be built at this resolution.
+    #[error("sensor: {0}")]
+    Sensor(#[from] sense::SenseError),
+}

@@ -1,0 +1,526 @@
+//! The loop (DESIGN.md "One loop for every strategy"; Faigl & Kulich's steps 1–8).
+//!
+//! Robots move concurrently: the robot whose clock is earliest (ties: lowest id) makes the
+//! next cell move, so the team's moves interleave as they would in continuous time at
+//! speed v. After every move the robot senses (continuous mode) and the frontier upkeep
+//! sees only the cells that changed; then the re-plan policy decides whether this robot
+//! (or, for the periodic s_max trigger, the whole team) decides again.
+//!
+//! Robots are points on cells and may pass through each other (neither multi-robot paper
+//! models inter-robot collisions).
+
+use std::time::Instant;
+
+use explore::candidates::{CandidateSet, centroids};
+use explore::decision::{DecisionCtx, Goal, GoalLists, Planner};
+use explore::strategy::SensingMode;
+use explore::upkeep::FrontierUpkeep;
+use grid::{Cell, GridMap, Occ, step_cost};
+use rand_pcg::Pcg64Mcg;
+use sense::{Belief, Observation, Pose, Sensor};
+
+use crate::config::{RunConfig, SimError};
+use crate::metrics::{EndReason, PhaseTimes, RunResult, Trace};
+use crate::{seed, truth};
+
+/// One robot's state.
+struct Robot {
+    cell: u32,
+    heading: f64,
+    /// Seconds: distance / speed (plus waiting).
+    clock: f64,
+    /// Cells travelled (straight 1, diagonal √2).
+    dist_cells: f64,
+    /// Remaining cells of the current path (next cell first is at `path_pos`).
+    path: Vec<u32>,
+    path_pos: usize,
+    goal: Option<u32>,
+    moves_since_decision: u32,
+    /// Remaining path cost to the goal, its lowest value so far, and the clock then
+    /// (Yamauchi's no-progress rule).
+    remaining: f64,
+    best_remaining: f64,
+    progress_clock: f64,
+    /// No goal was found at its last decision.
+    idle: bool,
+}
+
+/// Everything the loop owns besides the robots.
+struct Team<'a> {
+    truth: &'a GridMap,
+    cfg: &'a RunConfig,
+    sensor: Box<dyn Sensor>,
+    sweep: Box<dyn Sensor>,
+    belief: Box<dyn Belief>,
+    upkeep: FrontierUpkeep,
+    planner: Planner,
+    lists: GoalLists,
+    candidates: CandidateSet,
+    centroid_scratch: centroids::Scratch,
+    rng: Pcg64Mcg,
+    obs: Observation,
+    changed: Vec<u32>,
+    /// Ground-truth reachable cells, and which of them are known free.
+    reachable: Vec<bool>,
+    counted: Vec<bool>,
+    covered: usize,
+    reachable_cells: usize,
+    range_cells: f64,
+    // Decision buffers.
+    cells_buf: Vec<u32>,
+    goals_buf: Vec<Option<u32>>,
+    deciding: Vec<bool>,
+    out: Vec<Option<Goal>>,
+    path_buf: Vec<u32>,
+    arrive_buf: Vec<usize>,
+    all: Vec<usize>,
+    // Metrics.
+    decisions: u64,
+    moves: u64,
+    times: PhaseTimes,
+    total_dist_cells: f64,
+    curve: Vec<(f64, f64)>,
+    trace: Option<Trace>,
+}
+
+/// Run one exploration of `truth` as configured.
+pub fn run(truth: &GridMap, cfg: &RunConfig) -> Result<RunResult, SimError> {
+    let started = Instant::now();
+    validate(cfg)?;
+    let res = truth.resolution;
+    let cells = &truth.cells;
+    let clearance_cells = cfg.clearance_m / res;
+    let trav_truth = truth::traversable(cells, clearance_cells);
+    let starts: Vec<Cell> = if cfg.starts.is_empty() {
+        let mut rng = seed::rng(cfg.seed, "start");
+        let first = truth::random_start(cells, &trav_truth, &mut rng, cfg.clearance_m)?;
+        truth::team_starts(cells, &trav_truth, first, cfg.robots)?
+    } else {
+        if cfg.starts.len() != cfg.robots {
+            return Err(SimError::BadParameter {
+                field: "--start",
+                expected: "one start cell per robot (or one, for the whole team)",
+                found: format!("{} starts for {} robots", cfg.starts.len(), cfg.robots),
+            });
+        }
+        for &s in &cfg.starts {
+            truth::check_start(cells, &trav_truth, s)?;
+        }
+        cfg.starts.clone()
+    };
+    let reachable = truth::reachable_from(cells, &trav_truth, cells.index(starts[0]));
+    let reachable_cells = reachable.iter().filter(|&&r| r).count();
+    drop(trav_truth);
+
+    let sensor = cfg.sensor.build(res)?;
+    let sweep = cfg.sensor.sweep().build(res)?;
+    let (w, h) = (cells.width(), cells.height());
+    let m = cfg.robots;
+    let mut team = Team {
+        truth,
+        cfg,
+        range_cells: sensor.range_cells(),
+        sensor,
+        sweep,
+        belief: cfg.belief.build(w, h),
+        upkeep: FrontierUpkeep::new(w, h, clearance_cells),
+        planner: Planner::new(w, h, m),
+        lists: GoalLists::new(cells.len()),
+        candidates: CandidateSet::new(cells.len()),
+        centroid_scratch: centroids::Scratch::default(),
+        rng: seed::rng(cfg.seed, "strategy"),
+        obs: Observation::new(),
+        changed: Vec::new(),
+        counted: vec![false; cells.len()],
+        reachable,
+        covered: 0,
+        reachable_cells,
+        cells_buf: vec![0; m],
+        goals_buf: vec![None; m],
+        deciding: vec![false; m],
+        out: vec![None; m],
+        path_buf: Vec::new(),
+        arrive_buf: Vec::new(),
+        all: (0..m).collect(),
+        decisions: 0,
+        moves: 0,
+        times: PhaseTimes::default(),
+        total_dist_cells: 0.0,
+        curve: vec![(0.0, 0.0)],
+        trace: cfg.record_trace.then(|| Trace {
+            trails: vec![Vec::new(); m],
+            ..Trace::default()
+        }),
+    };
+    let mut robots: Vec<Robot> = starts
+        .iter()
+        .map(|&c| Robot {
+            cell: cells.index(c) as u32,
+            heading: 0.0,
+            clock: 0.0,
+            dist_cells: 0.0,
+            path: Vec::new(),
+            path_pos: 0,
+            goal: None,
+            moves_since_decision: 0,
+            remaining: f64::INFINITY,
+            best_remaining: f64::INFINITY,
+            progress_clock: 0.0,
+            idle: false,
+        })
+        .collect();
+    if let Some(t) = team.trace.as_mut() {
+        for (r, robot) in robots.iter().enumerate() {
+            t.trails[r].push(robot.cell);
+        }
+    }
+    // Every robot looks around once where it stands.
+    for r in 0..m {
+        let pose = Pose {
+            cell: cells.cell(robots[r].cell as usize),
+            heading: 0.0,
+        };
+        team.sense(pose, true);
+    }
+    let all: Vec<usize> = (0..m).collect();
+    team.decide(&mut robots, &all);
+
+    let reason = loop {
+        if let Some(g) = cfg.coverage_goal
+            && team.coverage() >= g
+        {
+            break EndReason::GoalReached;
+        }
+        if team.moves >= cfg.max_moves {
+            break EndReason::StepLimit;
+        }
+        // The active robot with the earliest clock moves next.
+        let Some(r) = (0..m)
+            .filter(|&r| !robots[r].idle)
+            .min_by(|&a, &b| robots[a].clock.total_cmp(&robots[b].clock).then(a.cmp(&b)))
+        else {
+            break if team.covered == team.reachable_cells {
+                EndReason::Complete
+            } else {
+                EndReason::NoReachableFrontier
+            };
+        };
+        team.step(&mut robots, r);
+    };
+
+    let frontiers_left: Vec<u32> = {
+        let mut f: Vec<u32> = team.upkeep.frontiers.cells().to_vec();
+        f.sort_unstable();
+        f
+    };
+    team.times.total_s = started.elapsed().as_secs_f64();
+    let path_length_m: Vec<f64> = robots.iter().map(|r| r.dist_cells * res).collect();
+    let time_s = robots
+        .iter()
+        .map(|r| r.dist_cells * res / cfg.speed)
+        .fold(0.0, f64::max);
+    Ok(RunResult {
+        reason,
+        coverage: team.coverage(),
+        reachable_cells: team.reachable_cells,
+        path_length_m,
+        time_s,
+        decisions: team.decisions,
+        moves: team.moves,
+        starts,
+        ends: robots.iter().map(|r| cells.cell(r.cell as usize)).collect(),
+        coverage_curve: team.curve.iter().map(|&(d, c)| (d * res, c)).collect(),
+        times: team.times,
+        belief: team.belief.known().clone(),
+        frontiers_left,
+        trace: team.trace,
+    })
+}
+
+fn validate(cfg: &RunConfig) -> Result<(), SimError> {
+    let bad = |field, expected, found: String| {
+        Err(SimError::BadParameter {
+            field,
+            expected,
+            found,
+        })
+    };
+    if cfg.robots == 0 {
+        return bad("--robots", "at least 1", cfg.robots.to_string());
+    }
+    if !(cfg.speed.is_finite() && cfg.speed > 0.0) {
+        return bad(
+            "--speed",
+            "a positive number of metres per second",
+            cfg.speed.to_string(),
+        );
+    }
+    if !(cfg.clearance_m.is_finite() && cfg.clearance_m >= 0.0) {
+        return bad(
+            "--clearance",
+            "a non-negative number of metres",
+            cfg.clearance_m.to_string(),
+        );
+    }
+    if let Some(g) = cfg.coverage_goal
+        && !(g > 0.0 && g <= 1.0)
+    {
+        return bad("--goal", "a coverage share in (0, 1]", g.to_string());
+    }
+    Ok(())
+}
+
+impl Team<'_> {
+    fn coverage(&self) -> f64 {
+        if self.reachable_cells == 0 {
+            1.0
+        } else {
+            self.covered as f64 / self.reachable_cells as f64
+        }
+    }
+
+    /// Sense from `pose` (with the 360° sweep if `sweep`), integrate, keep frontiers and
+    /// coverage up to date.
+    fn sense(&mut self, pose: Pose, sweep: bool) {
+        let t0 = Instant::now();
+        let sensor = if sweep { &self.sweep } else { &self.sensor };
+        sensor.scan(&self.truth.cells, pose, &mut self.obs);
+        self.changed.clear();
+        self.belief.integrate(&self.obs, &mut self.changed);
+        let t1 = Instant::now();
+        let known = self.belief.known();
+        self.upkeep.update(known, &self.changed);
+        let t2 = Instant::now();
+        let before = self.covered;
+        for &c in &self.changed {
+            let c = c as usize;
+            if self.reachable[c] {
+                let free = known[c] == Occ::Free;
+                if free != self.counted[c] {
+                    self.counted[c] = free;
+                    if free {
+                        self.covered += 1
+                    } else {
+                        self.covered -= 1
+                    }
+                }
+            }
+        }
+        if self.covered != before {
+            let cov = self.coverage();
+            self.curve.push((self.total_dist_cells, cov));
+        }
+        self.times.sense_s += (t1 - t0).as_secs_f64();
+        self.times.upkeep_s += (t2 - t1).as_secs_f64();
+    }
+
+    /// Whether `cell` is a frontier that still needs a visit.
+    fn is_open_frontier(&self, cell: u32) -> bool {
+        self.upkeep.frontiers.contains(cell as usize)
+    }
+
+    /// Decide goals for the robots in `who` (plus any idle robot, which retries).
+    fn decide(&mut self, robots: &mut [Robot], who: &[usize]) {
+        let t0 = Instant::now();
+        let m = robots.len();
+        self.deciding.fill(false);
+        for &r in who {
+            self.deciding[r] = true;
+        }
+        for r in 0..m {
+            if robots[r].idle {
+                self.deciding[r] = true;
+            }
+            self.cells_buf[r] = robots[r].cell;
+            self.goals_buf[r] = if self.deciding[r] {
+                None
+            } else {
+                robots[r].goal
+            };
+            self.out[r] = None;
+        }
+        self.planner.invalidate();
+        {
+            let mut ctx = DecisionCtx {
+                known: self.belief.known(),
+                upkeep: &mut self.upkeep,
+                planner: &mut self.planner,
+                robots: &self.cells_buf,
+                deciding: &self.deciding,
+                goals: &self.goals_buf,
+                lists: &self.lists,
+                resolution: self.truth.resolution,
+                sensor_range_cells: self.range_cells,
+                rng: &mut self.rng,
+            };
+            self.cfg.strategy.candidates.generate(
+                &mut ctx,
+                &mut self.candidates,
+                &mut self.centroid_scratch,
+            );
+            self.cfg
+                .strategy
+                .assigner
+                .assign(&mut ctx, &self.candidates, &mut self.out);
+        }
+        for r in 0..m {
+            if !self.deciding[r] {
+                continue;
+            }
+            self.decisions += 1;
+            let robot = &mut robots[r];
+            robot.moves_since_decision = 0;
+            robot.path.clear();
+            robot.path_pos = 0;
+            match self.out[r] {
+                Some(goal) if self.planner.path(r, goal.cell, &mut self.path_buf) => {
+                    robot.goal = Some(goal.cell);
+                    robot.idle = false;
+                    robot.path.extend_from_slice(&self.path_buf[1..]);
+                    robot.remaining = goal.cost;
+                    robot.best_remaining = goal.cost;
+                    robot.progress_clock = robot.clock;
+                }
+                _ => {
+                    robot.goal = None;
+                    robot.idle = true;
+                }
+            }
+            if let Some(t) = self.trace.as_mut() {
+                t.goals.push((robot.clock, r, robot.goal));
+            }
+        }
+        // An idle robot waits for the others: its clock follows the earliest active one.
+        if let Some(t) = robots
+            .iter()
+            .filter(|r| !r.idle)
+            .map(|r| r.clock)
+            .min_by(f64::total_cmp)
+        {
+            for robot in robots.iter_mut().filter(|r| r.idle) {
+                robot.clock = robot.clock.max(t);
+            }
+        }
+        self.times.decide_s += t0.elapsed().as_secs_f64();
+        // A goal under the robot's feet is reached at once (a nested decision may follow,
+        // so collect first).
+        let mut arriving = std::mem::take(&mut self.arrive_buf);
+        arriving.clear();
+        arriving.extend((0..m).filter(|&r| {
+            self.deciding[r] && robots[r].goal.is_some() && robots[r].path.is_empty()
+        }));
+        for &r in &arriving {
+            if robots[r].goal.is_some() && robots[r].path_pos >= robots[r].path.len() {
+                self.arrive(robots, r);
+            }
+        }
+        self.arrive_buf = arriving;
+    }
+
+    /// Robot `r` stands on its goal: sweep if sensing on arrival, face any unknown
+    /// neighbour the sensor could not see, put the goal on the visited list, decide again.
+    fn arrive(&mut self, robots: &mut [Robot], r: usize) {
+        let goal = robots[r].goal.expect("arriving robot has a goal");
+        let cell = self.truth.cells.cell(goal as usize);
+        if self.cfg.sensing_mode() == SensingMode::OnArrival {
+            self.sense(
+                Pose {
+                    cell,
+                    heading: robots[r].heading,
+                },
+                true,
+            );
+        } else if self.is_open_frontier(goal) && !self.sensor.is_omnidirectional() {
+            // Turn towards the unknown it is next to and look again.
+            let known = self.belief.known();
+            let (mut sx, mut sy) = (0.0, 0.0);
+            for n in known.neighbours8(goal as usize) {
+                if known[n] == Occ::Unknown {
+                    let c = known.cell(n);
+                    sx += f64::from(c.x - cell.x);
+                    sy += f64::from(c.y - cell.y);
+                }
+            }
+            let heading = sy.atan2(sx);
+            robots[r].heading = heading;
+            self.sense(Pose { cell, heading }, false);
+        }
+        self.lists.mark_visited(goal);
+        robots[r].goal = None;
+        self.decide(robots, &[r]);
+    }
+
+    /// Robot `r` makes one cell move along its path, senses, and applies the re-plan policy.
+    fn step(&mut self, robots: &mut [Robot], r: usize) {
+        let Some(&next) = robots[r].path.get(robots[r].path_pos) else {
+            self.decide(robots, &[r]);
+            return;
+        };
+        // Never enter a cell the belief does not show traversable: re-plan instead.
+        if !self
+            .upkeep
+            .is_traversable(self.belief.known(), next as usize)
+        {
+            self.decide(robots, &[r]);
+            return;
+        }
+        let cells = &self.truth.cells;
+        let (a, b) = (
+            cells.cell(robots[r].cell as usize),
+            cells.cell(next as usize),
+        );
+        let (dx, dy) = (b.x - a.x, b.y - a.y);
+        let len = step_cost(dx, dy);
+        {
+            let robot = &mut robots[r];
+            robot.cell = next;
+            robot.heading = f64::from(dy).atan2(f64::from(dx));
+            robot.dist_cells += len;
+            robot.remaining -= len;
+            robot.clock += len * self.truth.resolution / self.cfg.speed;
+            robot.path_pos += 1;
+            robot.moves_since_decision += 1;
+        }
+        self.moves += 1;
+        self.total_dist_cells += len;
+        if self.cfg.sensing_mode() == SensingMode::Continuous {
+            self.sense(
+                Pose {
+                    cell: b,
+                    heading: robots[r].heading,
+                },
+                false,
+            );
+        }
+        if let Some(t) = self.trace.as_mut() {
+            t.trails[r].push(next);
+            t.frontier_counts
+                .push((robots[r].clock, r, self.upkeep.frontiers.len() as u32));
+        }
+        let goal = robots[r].goal.expect("a moving robot has a goal");
+        let replan = self.cfg.strategy.replan;
+        if next == goal {
+            self.arrive(robots, r);
+        } else if replan.recheck && !self.is_open_frontier(goal) {
+            // Repetitive re-checking (Holz): an O(1) look-up per move.
+            self.decide(robots, &[r]);
+        } else if replan
+            .every_moves
+            .is_some_and(|s| robots[r].moves_since_decision >= s)
+        {
+            let all = std::mem::take(&mut self.all);
+            self.decide(robots, &all);
+            self.all = all;
+        } else if let Some(limit) = replan.no_progress_s {
+            let robot = &mut robots[r];
+            if robot.remaining < robot.best_remaining - 1e-9 {
+                robot.best_remaining = robot.remaining;
+                robot.progress_clock = robot.clock;
+            } else if robot.clock - robot.progress_clock > limit {
+                self.lists.mark_inaccessible(goal);
+                robots[r].goal = None;
+                self.decide(robots, &[r]);
+            }
+        }
+    }
+}

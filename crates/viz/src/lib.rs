@@ -1,0 +1,164 @@
+//! `viz`: pictures of what happened in an exploration run.
+//!
+//! [`final_picture`] draws the ground truth faintly under the final belief (known free
+//! white, known occupied black), the frontier cells left, every robot's trajectory in its
+//! own colour, its start (ring) and its end (square). Pictures are upscaled by a whole
+//! factor so that small maps stay legible. `viz` only draws into memory; the caller
+//! writes files.
+#![warn(missing_docs)]
+
+use grid::{Cell, Grid, GridMap, Occ};
+use image::{Rgb, RgbImage};
+use sim::RunResult;
+
+/// Colours of the robots' trajectories, cycled for larger teams.
+pub const ROBOT_COLOURS: [[u8; 3]; 8] = [
+    [31, 119, 180],
+    [255, 127, 14],
+    [44, 160, 44],
+    [148, 103, 189],
+    [140, 86, 75],
+    [227, 119, 194],
+    [23, 190, 207],
+    [188, 189, 34],
+];
+
+const UNKNOWN_FREE: [u8; 3] = [226, 228, 236];
+const UNKNOWN_OCCUPIED: [u8; 3] = [178, 180, 190];
+const UNKNOWN_OUTSIDE: [u8; 3] = [205, 205, 205];
+const KNOWN_FREE: [u8; 3] = [255, 255, 255];
+const KNOWN_OCCUPIED: [u8; 3] = [25, 25, 25];
+const FRONTIER: [u8; 3] = [220, 30, 30];
+
+/// The whole-number scale at which a `width × height` map is drawn: at least 1, and
+/// enough for the longer side to reach about 600 pixels.
+pub fn scale_for(width: usize, height: usize) -> u32 {
+    let longest = width.max(height).max(1);
+    (600usize.div_ceil(longest)).clamp(1, 16) as u32
+}
+
+/// Draw a ground-truth map alone (free white, occupied black, outside grey).
+pub fn map_picture(map: &Grid<Occ>) -> RgbImage {
+    let s = scale_for(map.width(), map.height());
+    let mut img = RgbImage::new(map.width() as u32 * s, map.height() as u32 * s);
+    for i in 0..map.len() {
+        let colour = match map[i] {
+            Occ::Free => KNOWN_FREE,
+            Occ::Occupied => KNOWN_OCCUPIED,
+            Occ::Unknown => UNKNOWN_OUTSIDE,
+        };
+        fill_cell(&mut img, map.cell(i), s, colour);
+    }
+    img
+}
+
+/// Draw the end of a run: truth (faint), belief, frontiers left, trajectories, starts, ends.
+/// Trajectories need the run's trace; without it only starts and ends are marked.
+pub fn final_picture(truth: &GridMap, result: &RunResult) -> RgbImage {
+    let cells = &truth.cells;
+    let s = scale_for(cells.width(), cells.height());
+    let mut img = RgbImage::new(cells.width() as u32 * s, cells.height() as u32 * s);
+    for i in 0..cells.len() {
+        let colour = match (result.belief[i], cells[i]) {
+            (Occ::Free, _) => KNOWN_FREE,
+            (Occ::Occupied, _) => KNOWN_OCCUPIED,
+            (Occ::Unknown, Occ::Free) => UNKNOWN_FREE,
+            (Occ::Unknown, Occ::Occupied) => UNKNOWN_OCCUPIED,
+            (Occ::Unknown, Occ::Unknown) => UNKNOWN_OUTSIDE,
+        };
+        fill_cell(&mut img, cells.cell(i), s, colour);
+    }
+    for &f in &result.frontiers_left {
+        fill_cell(&mut img, cells.cell(f as usize), s, FRONTIER);
+    }
+    if let Some(trace) = &result.trace {
+        for (r, trail) in trace.trails.iter().enumerate() {
+            let colour = ROBOT_COLOURS[r % ROBOT_COLOURS.len()];
+            for w in trail.windows(2) {
+                let (a, b) = (cells.cell(w[0] as usize), cells.cell(w[1] as usize));
+                line(&mut img, centre(a, s), centre(b, s), colour, s >= 4);
+            }
+        }
+    }
+    let marker = (s * 2).max(3) as i64;
+    for (r, (&start, &end)) in result.starts.iter().zip(&result.ends).enumerate() {
+        let colour = ROBOT_COLOURS[r % ROBOT_COLOURS.len()];
+        ring(&mut img, centre(start, s), marker, [0, 150, 0]);
+        square(&mut img, centre(end, s), marker, colour);
+    }
+    img
+}
+
+fn centre(c: Cell, s: u32) -> (i64, i64) {
+    let s = i64::from(s);
+    (i64::from(c.x) * s + s / 2, i64::from(c.y) * s + s / 2)
+}
+
+fn fill_cell(img: &mut RgbImage, c: Cell, s: u32, colour: [u8; 3]) {
+    for dy in 0..s {
+        for dx in 0..s {
+            img.put_pixel(c.x as u32 * s + dx, c.y as u32 * s + dy, Rgb(colour));
+        }
+    }
+}
+
+fn put(img: &mut RgbImage, x: i64, y: i64, colour: [u8; 3]) {
+    if x >= 0 && y >= 0 && (x as u32) < img.width() && (y as u32) < img.height() {
+        img.put_pixel(x as u32, y as u32, Rgb(colour));
+    }
+}
+
+/// A Bresenham line, two pixels thick when `thick`.
+fn line(
+    img: &mut RgbImage,
+    (mut x0, mut y0): (i64, i64),
+    (x1, y1): (i64, i64),
+    colour: [u8; 3],
+    thick: bool,
+) {
+    let dx = (x1 - x0).abs();
+    let dy = -(y1 - y0).abs();
+    let sx = if x0 < x1 { 1 } else { -1 };
+    let sy = if y0 < y1 { 1 } else { -1 };
+    let mut err = dx + dy;
+    loop {
+        put(img, x0, y0, colour);
+        if thick {
+            put(img, x0 + 1, y0, colour);
+            put(img, x0, y0 + 1, colour);
+        }
+        if x0 == x1 && y0 == y1 {
+            break;
+        }
+        let e2 = 2 * err;
+        if e2 >= dy {
+            err += dy;
+            x0 += sx;
+        }
+        if e2 <= dx {
+            err += dx;
+            y0 += sy;
+        }
+    }
+}
+
+fn ring(img: &mut RgbImage, (cx, cy): (i64, i64), r: i64, colour: [u8; 3]) {
+    for y in -r..=r {
+        for x in -r..=r {
+            let d2 = x * x + y * y;
+            if d2 <= r * r && d2 >= (r - 2).max(0).pow(2) {
+                put(img, cx + x, cy + y, colour);
+            }
+        }
+    }
+}
+
+fn square(img: &mut RgbImage, (cx, cy): (i64, i64), r: i64, colour: [u8; 3]) {
+    let r = (r * 2 / 3).max(2);
+    for y in -r..=r {
+        for x in -r..=r {
+            let edge = x.abs() == r || y.abs() == r;
+            put(img, cx + x, cy + y, if edge { [0, 0, 0] } else { colour });
+        }
+    }
+}

@@ -1,0 +1,288 @@
+//! `cave`: irregular open caves with island obstacles, like Stage's "cave" world used by
+//! Holz et al. (2010) (16 m × 16 m).
+//!
+//! The rock is a threshold of smooth random terrain defined in metres, so a cave looks the
+//! same at every resolution:
+//!
+//! 1. value noise: random heights on lattices of 4 m, 2 m and 1 m pitch, each interpolated
+//!    with a smoothstep and summed with weights 1, ½, ¼;
+//! 2. a rise towards the boundary, so caves close before the outer wall;
+//! 3. a threshold at the 52 % quantile of the terrain sampled every 0.25 m (so the share of
+//!    open floor does not depend on the seed or the resolution): lower ground is free;
+//! 4. caves left apart are joined to the largest one by tunnels 0.9 m wide, each along a
+//!    shortest 4-connected path through rock from the cave system to the nearest other cave
+//!    of at least 1 m² (nearest first, at most 64 tunnels);
+//! 5. a few round islands (0.25–0.6 m radius) in open floor, each with at least 1 m of free
+//!    ground around it;
+//! 6. the boundary wall, then every free pocket not in the largest connected cave is filled.
+//!
+//! Only arithmetic and square roots are used, so the cells do not depend on the platform's
+//! maths library.
+
+use grid::components::{Connectivity, component_sizes, label, largest};
+use grid::{Grid, NEIGHBOURS4, Occ};
+
+use crate::raster::{Scale, WALL_M, border};
+use crate::rng::Draws;
+
+/// Lattice pitches (m) and weights of the noise octaves.
+const OCTAVES: [(f64, f64); 3] = [(3.0, 1.0), (1.5, 0.45), (0.75, 0.2)];
+/// Distance from the boundary (m) over which the terrain rises.
+const RISE_M: f64 = 1.5;
+/// Height of that rise at the boundary.
+const RISE: f64 = 1.2;
+/// Share of the terrain samples that is open floor.
+const FREE_QUANTILE: f64 = 0.6;
+/// Spacing (m) of the samples that fix the threshold.
+const SAMPLE_M: f64 = 0.25;
+/// Radius of a tunnel joining two caves, in metres.
+const TUNNEL_R_M: f64 = 0.45;
+/// Smallest cave worth a tunnel, in m².
+const MIN_CAVE_M2: f64 = 1.0;
+/// Most tunnels dug in one cave system.
+const MAX_TUNNELS: usize = 64;
+/// Free ground kept around an island, in metres.
+const ISLAND_CLEAR_M: f64 = 1.0;
+
+/// One octave of value noise: random heights at the lattice points.
+struct Octave {
+    pitch: f64,
+    weight: f64,
+    nx: usize,
+    values: Vec<f64>,
+}
+
+impl Octave {
+    fn new(pitch: f64, weight: f64, width_m: f64, height_m: f64, rng: &mut Draws) -> Self {
+        let nx = (width_m / pitch).ceil() as usize + 2;
+        let ny = (height_m / pitch).ceil() as usize + 2;
+        let values = (0..nx * ny).map(|_| rng.unit()).collect();
+        Self {
+            pitch,
+            weight,
+            nx,
+            values,
+        }
+    }
+
+    /// Interpolated height at `(x, y)` metres (inside the area it was made for).
+    fn at(&self, x: f64, y: f64) -> f64 {
+        let (u, v) = (x / self.pitch, y / self.pitch);
+        let (i, j) = (u.floor(), v.floor());
+        let smooth = |t: f64| t * t * (3.0 - 2.0 * t);
+        let (fu, fv) = (smooth(u - i), smooth(v - j));
+        let k = j as usize * self.nx + i as usize;
+        let (a, b) = (self.values[k], self.values[k + 1]);
+        let (c, d) = (self.values[k + self.nx], self.values[k + self.nx + 1]);
+        let top = a + (b - a) * fu;
+        let bottom = c + (d - c) * fu;
+        self.weight * (top + (bottom - top) * fv)
+    }
+}
+
+/// The cave terrain: noise plus the rise at the boundary.
+struct Terrain {
+    octaves: Vec<Octave>,
+    width_m: f64,
+    height_m: f64,
+}
+
+impl Terrain {
+    fn at(&self, x: f64, y: f64) -> f64 {
+        let x = x.clamp(0.0, self.width_m);
+        let y = y.clamp(0.0, self.height_m);
+        let mut h: f64 = self.octaves.iter().map(|o| o.at(x, y)).sum();
+        let edge = x.min(y).min(self.width_m - x).min(self.height_m - y);
+        if edge < RISE_M {
+            let t = 1.0 - edge / RISE_M;
+            h += RISE * t * t;
+        }
+        h
+    }
+}
+
+/// Generate a cave of `width_m × height_m` metres at `res` m/cell (pockets not yet filled).
+pub fn cave(width_m: f64, height_m: f64, res: f64, rng: &mut Draws) -> Grid<Occ> {
+    let scale = Scale { res };
+    let (w, h) = (
+        scale.cell(width_m).max(1) as usize,
+        scale.cell(height_m).max(1) as usize,
+    );
+    let octaves = OCTAVES
+        .iter()
+        .map(|&(pitch, weight)| Octave::new(pitch, weight, width_m, height_m, rng))
+        .collect();
+    let terrain = Terrain {
+        octaves,
+        width_m,
+        height_m,
+    };
+    // threshold from a resolution-independent sample
+    let (sx, sy) = (
+        (width_m / SAMPLE_M) as usize,
+        (height_m / SAMPLE_M) as usize,
+    );
+    let mut samples = Vec::with_capacity(sx * sy);
+    for j in 0..sy {
+        for i in 0..sx {
+            samples.push(terrain.at((i as f64 + 0.5) * SAMPLE_M, (j as f64 + 0.5) * SAMPLE_M));
+        }
+    }
+    samples.sort_unstable_by(f64::total_cmp);
+    let threshold = samples
+        .get(((samples.len() as f64 * FREE_QUANTILE) as usize).min(samples.len().saturating_sub(1)))
+        .copied()
+        .unwrap_or(0.0);
+    let mut cells = Grid::new(w, h, Occ::Occupied);
+    for y in 0..h {
+        let ym = scale.centre(y);
+        for x in 0..w {
+            if terrain.at(scale.centre(x), ym) < threshold {
+                cells[y * w + x] = Occ::Free;
+            }
+        }
+    }
+    let inner = scale.cells_at_least_one(WALL_M) as usize;
+    tunnels(&mut cells, res, inner);
+    // islands in open floor
+    let want = ((width_m * height_m / 50.0).round() as usize).clamp(2, 40);
+    let mut islands: Vec<(f64, f64, f64)> = Vec::with_capacity(want);
+    for _ in 0..want * 30 {
+        if islands.len() == want {
+            break;
+        }
+        let r = rng.range(0.25, 0.6);
+        let (cx, cy) = (rng.range(0.0, width_m), rng.range(0.0, height_m));
+        let clear = r + ISLAND_CLEAR_M;
+        // the centre and 16 points around it at the clearance radius must be open floor
+        let ring = (0..16).all(|k| {
+            let (c, s) = UNIT16[k];
+            terrain.at(cx + clear * c, cy + clear * s) < threshold
+        });
+        let spaced = islands.iter().all(|&(ox, oy, or)| {
+            ((ox - cx).powi(2) + (oy - cy).powi(2)).sqrt() > or + clear + ISLAND_CLEAR_M
+        });
+        if terrain.at(cx, cy) < threshold && ring && spaced {
+            islands.push((cx, cy, r));
+        }
+    }
+    for &(cx, cy, r) in &islands {
+        let x0 = ((cx - r) / res).floor().max(0.0) as usize;
+        let x1 = (((cx + r) / res).ceil() as usize).min(w);
+        let y0 = ((cy - r) / res).floor().max(0.0) as usize;
+        let y1 = (((cy + r) / res).ceil() as usize).min(h);
+        for y in y0..y1 {
+            for x in x0..x1 {
+                let (dx, dy) = (scale.centre(x) - cx, scale.centre(y) - cy);
+                if dx * dx + dy * dy <= r * r {
+                    cells[y * w + x] = Occ::Occupied;
+                }
+            }
+        }
+    }
+    // islands too small to cover a cell centre still get their centre cell
+    for &(cx, cy, _) in &islands {
+        let (x, y) = ((cx / res) as usize, (cy / res) as usize);
+        if x < w && y < h {
+            cells[y * w + x] = Occ::Occupied;
+        }
+    }
+    border(&mut cells, scale.cells_at_least_one(WALL_M));
+    cells
+}
+
+/// Join every cave of at least [`MIN_CAVE_M2`] to the largest by tunnels through rock, never
+/// touching the `inner` outermost cells.
+fn tunnels(cells: &mut Grid<Occ>, res: f64, inner: usize) {
+    let (w, h) = (cells.width(), cells.height());
+    let min_cells = (MIN_CAVE_M2 / (res * res)).ceil() as usize;
+    let r_cells = TUNNEL_R_M / res;
+    let reach = r_cells.floor() as i64;
+    const UNSEEN: u32 = u32::MAX;
+    let mut parent = vec![UNSEEN; w * h];
+    let mut queue: Vec<usize> = Vec::new();
+    for _ in 0..MAX_TUNNELS {
+        let (labels, count) = label(w, h, |i| cells[i] == Occ::Free, Connectivity::Motion);
+        let sizes = component_sizes(&labels, count);
+        let Some(main) = largest(&sizes) else { return };
+        // breadth-first search from the main cave through everything inside the wall
+        parent.fill(UNSEEN);
+        queue.clear();
+        for (i, &l) in labels.data().iter().enumerate() {
+            if l == main {
+                parent[i] = i as u32;
+                queue.push(i);
+            }
+        }
+        let mut head = 0;
+        let mut found = None;
+        'search: while head < queue.len() {
+            let i = queue[head];
+            head += 1;
+            let (x, y) = (i % w, i / w);
+            for &(dx, dy) in &NEIGHBOURS4 {
+                let (nx, ny) = (x as i64 + dx as i64, y as i64 + dy as i64);
+                let inside = |v: i64, n: usize| v >= inner as i64 && v < (n - inner) as i64;
+                if !inside(nx, w) || !inside(ny, h) {
+                    continue;
+                }
+                let j = ny as usize * w + nx as usize;
+                if parent[j] != UNSEEN {
+                    continue;
+                }
+                parent[j] = i as u32;
+                let l = labels[j];
+                if l != 0 && l != main && sizes[l as usize] >= min_cells {
+                    found = Some(j);
+                    break 'search;
+                }
+                queue.push(j);
+            }
+        }
+        let Some(end) = found else { return };
+        // carve discs along the path back to the main cave
+        let mut i = end;
+        loop {
+            let (cx, cy) = ((i % w) as i64, (i / w) as i64);
+            for y in (cy - reach).max(inner as i64)..=(cy + reach).min((h - inner) as i64 - 1) {
+                for x in (cx - reach).max(inner as i64)..=(cx + reach).min((w - inner) as i64 - 1) {
+                    let d2 = ((x - cx) * (x - cx) + (y - cy) * (y - cy)) as f64;
+                    if d2 <= r_cells * r_cells {
+                        cells[y as usize * w + x as usize] = Occ::Free;
+                    }
+                }
+            }
+            cells[i] = Occ::Free;
+            let p = parent[i] as usize;
+            if p == i {
+                break;
+            }
+            i = p;
+        }
+    }
+}
+
+/// `(cos, sin)` of the 16 directions `k · 22.5°`, written out to avoid platform maths.
+const UNIT16: [(f64, f64); 16] = {
+    const A: f64 = 0.923_879_532_511_286_7; // cos 22.5°
+    const B: f64 = 0.382_683_432_365_089_8; // sin 22.5°
+    const C: f64 = std::f64::consts::FRAC_1_SQRT_2;
+    [
+        (1.0, 0.0),
+        (A, B),
+        (C, C),
+        (B, A),
+        (0.0, 1.0),
+        (-B, A),
+        (-C, C),
+        (-A, B),
+        (-1.0, 0.0),
+        (-A, -B),
+        (-C, -C),
+        (-B, -A),
+        (0.0, -1.0),
+        (B, -A),
+        (C, -C),
+        (A, -B),
+    ]
+};
