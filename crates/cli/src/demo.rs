@@ -115,7 +115,7 @@ pub fn run(a: DemoArgs) -> Result<()> {
         .par_iter()
         .map(|job| {
             let mut cfg = RunConfig::new(strategies[job.strategy].clone());
-            cfg.sensor = sensor.clone();
+            cfg.sensor = sensor;
             cfg.seed = job.seed;
             cfg.record_trace = job.seed == 0;
             sim::run(&envs[job.env][job.seed as usize].map, &cfg)

@@ -29,7 +29,7 @@ enum Command {
     /// of path lengths (mean ± sd over seeds), like Holz et al.'s Table 1.
     Demo(demo::DemoArgs),
     /// Run one exploration and print a summary (or JSON); write pictures with --out.
-    Explore(explore_cmd::ExploreArgs),
+    Explore(Box<explore_cmd::ExploreArgs>),
     /// Generate a built-in environment and write it as PNG or ROS YAML + PGM.
     Env(env_cmd::EnvArgs),
     /// Inspect map files.
@@ -45,7 +45,7 @@ fn main() {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Demo(a) => demo::run(a),
-        Command::Explore(a) => explore_cmd::run(a),
+        Command::Explore(a) => explore_cmd::run(*a),
         Command::Env(a) => env_cmd::run(a),
         Command::Map { command } => map_cmd::run(command),
         Command::List => {

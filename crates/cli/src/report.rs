@@ -27,7 +27,7 @@ fn downsample(curve: &[(f64, f64)], n: usize) -> Vec<Value> {
         .step_by(step)
         .map(|&(d, c)| json!([round(d, 3), round(c, 5)]))
         .collect();
-    if (curve.len() - 1) % step != 0 {
+    if !(curve.len() - 1).is_multiple_of(step) {
         let &(d, c) = curve.last().expect("non-empty");
         out.push(json!([round(d, 3), round(c, 5)]));
     }

@@ -79,7 +79,8 @@ pub struct RunResult {
     pub times: PhaseTimes,
     /// The final belief, classified.
     pub belief: Grid<Occ>,
-    /// Frontier cells left at the end (none when complete).
+    /// Open frontier cells left at the end: frontier cells not on the visited or inaccessible
+    /// lists (none when complete).
     pub frontiers_left: Vec<u32>,
     /// The per-step trace, when asked for.
     pub trace: Option<Trace>,

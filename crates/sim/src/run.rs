@@ -175,9 +175,9 @@ pub fn run(truth: &GridMap, cfg: &RunConfig) -> Result<RunResult, SimError> {
         }
     }
     // Every robot looks around once where it stands.
-    for r in 0..m {
+    for robot in &robots {
         let pose = Pose {
-            cell: cells.cell(robots[r].cell as usize),
+            cell: cells.cell(robot.cell as usize),
             heading: 0.0,
         };
         team.sense(pose, true);
@@ -209,7 +209,17 @@ pub fn run(truth: &GridMap, cfg: &RunConfig) -> Result<RunResult, SimError> {
     };
 
     let frontiers_left: Vec<u32> = {
-        let mut f: Vec<u32> = team.upkeep.frontiers.cells().to_vec();
+        // Frontier cells still open: not on the visited or inaccessible lists (a visited
+        // goal that is still a frontier borders cells no position can see, such as a
+        // wall cell behind a corner squeeze).
+        let mut f: Vec<u32> = team
+            .upkeep
+            .frontiers
+            .cells()
+            .iter()
+            .copied()
+            .filter(|&c| !team.lists.is_excluded(c))
+            .collect();
         f.sort_unstable();
         f
     };
@@ -320,6 +330,8 @@ impl Team<'_> {
     }
 
     /// Decide goals for the robots in `who` (plus any idle robot, which retries).
+    // Robot r's state is spread over several parallel buffers, so index loops read best.
+    #[allow(clippy::needless_range_loop)]
     fn decide(&mut self, robots: &mut [Robot], who: &[usize]) {
         let t0 = Instant::now();
         let m = robots.len();

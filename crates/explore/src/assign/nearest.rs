@@ -8,11 +8,11 @@ use crate::decision::{DecisionCtx, Goal};
 
 /// Each deciding robot independently takes its nearest reachable candidate.
 pub fn assign(ctx: &mut DecisionCtx<'_>, candidates: &CandidateSet, out: &mut [Option<Goal>]) {
-    for r in 0..ctx.robots.len() {
+    for (r, slot) in out.iter_mut().enumerate().take(ctx.robots.len()) {
         if !ctx.deciding[r] {
             continue;
         }
-        out[r] = None;
+        *slot = None;
         if candidates.is_empty() {
             continue;
         }
@@ -27,7 +27,7 @@ pub fn assign(ctx: &mut DecisionCtx<'_>, candidates: &CandidateSet, out: &mut [O
                 .map(r)
                 .cost(cell as usize)
                 .unwrap_or(f64::INFINITY);
-            out[r] = Some(Goal { cell, cost });
+            *slot = Some(Goal { cell, cost });
         }
     }
 }

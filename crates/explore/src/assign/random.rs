@@ -7,11 +7,11 @@ use crate::decision::{DecisionCtx, Goal};
 
 /// Each deciding robot takes a candidate drawn uniformly from those it can reach.
 pub fn assign(ctx: &mut DecisionCtx<'_>, candidates: &CandidateSet, out: &mut [Option<Goal>]) {
-    for r in 0..ctx.robots.len() {
+    for (r, slot) in out.iter_mut().enumerate().take(ctx.robots.len()) {
         if !ctx.deciding[r] {
             continue;
         }
-        out[r] = None;
+        *slot = None;
         let reach = ctx.planner.full(r, ctx.robots[r], ctx.known, ctx.upkeep);
         let reachable = candidates
             .cells()
@@ -31,6 +31,6 @@ pub fn assign(ctx: &mut DecisionCtx<'_>, candidates: &CandidateSet, out: &mut [O
             .nth(k)
             .expect("k < number of reachable candidates");
         let cost = reach.cost(cell as usize).unwrap_or(f64::INFINITY);
-        out[r] = Some(Goal { cell, cost });
+        *slot = Some(Goal { cell, cost });
     }
 }

@@ -4,6 +4,18 @@
 //! size (about the robot's size) are ignored; each remaining region contributes its
 //! centroid, snapped to the nearest region cell that a deciding robot can reach (the
 //! centroid of a curved region may lie in unknown space or behind a wall).
+//!
+//! Deviation: when no region of the minimum size has a reachable, unvisited cell, the
+//! smaller regions are taken too. Yamauchi's filter is there to ignore sensor noise; with
+//! the ideal sensors of a simulation a small region is real unexplored space (a narrow
+//! passage, a wall seen at a grazing angle), and without the fallback the robot would stop
+//! with reachable space unexplored.
+//!
+//! Deviation: when no region of the minimum size has a reachable, unvisited cell, the
+//! smaller regions are taken too. Yamauchi's filter is there to ignore sensor noise; with
+//! the ideal sensors of a simulation a small region is real unexplored space (a narrow
+//! passage, a wall seen at a grazing angle), and without the fallback the robot would stop
+//! with reachable space unexplored.
 
 use super::CandidateSet;
 use crate::decision::DecisionCtx;
@@ -17,6 +29,18 @@ pub struct Scratch {
 
 /// One snapped centroid per region of at least `min_cells` cells.
 pub fn generate(
+    ctx: &mut DecisionCtx<'_>,
+    min_cells: usize,
+    out: &mut CandidateSet,
+    scratch: &mut Scratch,
+) {
+    generate_min(ctx, min_cells, out, scratch);
+    if out.is_empty() && min_cells > 1 {
+        generate_min(ctx, 1, out, scratch);
+    }
+}
+
+fn generate_min(
     ctx: &mut DecisionCtx<'_>,
     min_cells: usize,
     out: &mut CandidateSet,

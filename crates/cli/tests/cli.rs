@@ -1,0 +1,218 @@
+//! End-to-end tests of the `frontier` binary: outputs, determinism and error messages.
+
+use std::path::Path;
+use std::process::{Command, Output};
+
+fn frontier(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_frontier"))
+        .args(args)
+        .output()
+        .expect("run frontier")
+}
+
+fn ok(args: &[&str]) -> String {
+    let out = frontier(args);
+    assert!(
+        out.status.success(),
+        "frontier {args:?} failed: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8(out.stdout).expect("utf-8")
+}
+
+fn err(args: &[&str]) -> String {
+    let out = frontier(args);
+    assert!(!out.status.success(), "frontier {args:?} should fail");
+    String::from_utf8(out.stderr).expect("utf-8")
+}
+
+#[test]
+fn explore_json_has_the_fields_and_is_byte_identical() {
+    let args = [
+        "explore",
+        "--env",
+        "office",
+        "--seed",
+        "4",
+        "--strategy",
+        "cf-rr",
+        "--json",
+        "--no-timing",
+    ];
+    let a = ok(&args);
+    let b = ok(&args);
+    assert_eq!(a, b, "same seed, same JSON");
+    let v: serde_json::Value = serde_json::from_str(&a).unwrap();
+    for key in [
+        "env",
+        "seed",
+        "strategy",
+        "robots",
+        "sensor",
+        "complete",
+        "reason",
+        "coverage",
+        "path_length_m",
+        "max_path_length_m",
+        "total_path_length_m",
+        "time_s",
+        "decisions",
+        "decide_ms",
+    ] {
+        assert!(v.get(key).is_some(), "missing {key} in {a}");
+    }
+    assert_eq!(v["complete"], true);
+    assert_eq!(v["reason"], "complete");
+    assert_eq!(v["coverage"], 1.0);
+    assert_eq!(v["env"], "office-s4");
+    assert_eq!(v["decide_ms"], serde_json::Value::Null);
+    let other = ok(&[
+        "explore",
+        "--env",
+        "office",
+        "--seed",
+        "5",
+        "--json",
+        "--no-timing",
+    ]);
+    assert_ne!(a, other, "another seed, another run");
+    // With timings, the timing fields are numbers.
+    let timed: serde_json::Value =
+        serde_json::from_str(&ok(&["explore", "--env", "maze", "--json"])).unwrap();
+    assert!(timed["decide_ms"].is_number());
+}
+
+#[test]
+fn explore_writes_pictures_and_trace() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("run");
+    let text = ok(&[
+        "explore",
+        "--env",
+        "maze",
+        "--strategy",
+        "yamauchi",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(text.contains("ended: complete"), "{text}");
+    let png = image::open(out.join("final.png")).unwrap();
+    assert!(png.width() >= 500, "upscaled picture, got {}", png.width());
+    let trace: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("trace.json")).unwrap()).unwrap();
+    assert_eq!(trace["strategy"], "yamauchi");
+    assert!(trace["trails"][0].as_array().unwrap().len() > 10);
+}
+
+#[test]
+fn explore_on_a_map_file_from_a_start() {
+    let dir = tempfile::tempdir().unwrap();
+    let map = dir.path().join("rooms.txt");
+    std::fs::write(
+        &map,
+        "##########\n#....#...#\n#....#...#\n#.........#\n##########\n"
+            .replace(".........#\n", "........#\n"),
+    )
+    .unwrap();
+    let v: serde_json::Value = serde_json::from_str(&ok(&[
+        "explore",
+        "--map",
+        map.to_str().unwrap(),
+        "--start",
+        "1,1",
+        "--sensor",
+        "los:r=2",
+        "--json",
+    ]))
+    .unwrap();
+    assert_eq!(v["complete"], true);
+    assert_eq!(v["starts"][0], serde_json::json!([1, 1]));
+}
+
+#[test]
+fn env_writes_a_ros_map_that_map_info_reads_back() {
+    let dir = tempfile::tempdir().unwrap();
+    let yaml = dir.path().join("office.yaml");
+    let text = ok(&[
+        "env",
+        "office",
+        "--seed",
+        "2",
+        "--out",
+        yaml.to_str().unwrap(),
+    ]);
+    assert!(text.contains("50x40 cells"), "{text}");
+    assert!(Path::new(&dir.path().join("office.pgm")).exists());
+    let info: serde_json::Value =
+        serde_json::from_str(&ok(&["map", "info", yaml.to_str().unwrap(), "--json"])).unwrap();
+    assert_eq!(info["width"], 50);
+    assert_eq!(info["height"], 40);
+    assert_eq!(info["resolution"], 0.5);
+    assert_eq!(info["free_components"], 1);
+    assert_eq!(info["unknown"], 0);
+}
+
+#[test]
+fn env_list_names_every_kind() {
+    let text = ok(&["env", "--list"]);
+    for kind in ["office", "hospital", "cave", "maze", "potholes", "empty"] {
+        assert!(text.contains(kind), "{text}");
+    }
+}
+
+#[test]
+fn demo_prints_a_table() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = ok(&[
+        "demo",
+        "--seeds",
+        "2",
+        "--envs",
+        "office,maze",
+        "--strategies",
+        "cf,cf-rr",
+        "--out",
+        dir.path().to_str().unwrap(),
+    ]);
+    assert!(text.contains("mean ± sd over 2 seeds"), "{text}");
+    assert!(
+        text.contains("all 8 runs explored everything reachable"),
+        "{text}"
+    );
+    assert!(dir.path().join("office-cf-rr.png").exists());
+}
+
+#[test]
+fn errors_name_the_flag_and_what_was_found() {
+    assert!(err(&["explore", "--strategy", "nearestt"]).contains(
+        "--strategy: unknown strategy 'nearestt': expected one of yamauchi, cf, cf-rr, random"
+    ));
+    let e = err(&["explore", "--sensor", "lidar:r=x"]);
+    assert!(
+        e.contains("--sensor") && e.contains("'r'") && e.contains("\"x\""),
+        "{e}"
+    );
+    let e = err(&["explore", "--env", "castle"]);
+    assert!(e.contains("--env") && e.contains("castle"), "{e}");
+    let e = err(&["explore", "--map", "no/such/map.yaml"]);
+    assert!(e.contains("no/such/map.yaml"), "{e}");
+    let e = err(&["explore", "--env", "office", "--start", "0,0"]);
+    assert!(e.contains("start (0, 0): the cell is occupied"), "{e}");
+    let e = err(&["explore", "--env", "office", "--start", "500,2"]);
+    assert!(e.contains("outside the 50x40 map"), "{e}");
+    let e = err(&["explore", "--speed=-1"]);
+    assert!(e.contains("--speed: expected a positive number"), "{e}");
+    let e = err(&["explore", "--env", "office", "--resolution", "abc"]);
+    assert!(e.contains("--resolution") && e.contains("abc"), "{e}");
+    let e = err(&["explore", "--env", "office", "--size", "10by3"]);
+    assert!(e.contains("--size: expected WxH"), "{e}");
+}
+
+#[test]
+fn malformed_map_file_is_a_named_error() {
+    let dir = tempfile::tempdir().unwrap();
+    let map = dir.path().join("bad.map");
+    std::fs::write(&map, "type octile\nheight 2\nwidth 3\nmap\n..x\n...\n").unwrap();
+    let e = err(&["map", "info", map.to_str().unwrap()]);
+    assert!(e.contains("bad.map") && e.contains("line 5"), "{e}");
+}

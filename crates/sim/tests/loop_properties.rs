@@ -1,0 +1,196 @@
+//! The loop's promises on every built-in environment × single-robot preset × a few seeds:
+//! complete exploration with coverage 1.0 under the ideal `los` sensor, robots only ever on
+//! truly free cells, 8-connected paths without corner squeezing, reported lengths equal to
+//! the summed steps, and bit-identical repeat runs.
+
+use explore::strategy::{PRESETS, Strategy};
+use grid::{Occ, SQRT2};
+use sim::{EndReason, RunConfig, RunResult};
+use world::{EnvKind, EnvSpec};
+
+fn run(kind: EnvKind, preset: &str, seed: u64) -> (grid::GridMap, RunResult) {
+    let env = world::generate(&EnvSpec {
+        kind,
+        seed,
+        size_m: None,
+        resolution: None,
+    })
+    .expect("generate");
+    let mut cfg = RunConfig::new(Strategy::preset(preset).expect("preset"));
+    cfg.seed = seed;
+    cfg.record_trace = true;
+    let r = sim::run(&env.map, &cfg).expect("run");
+    (env.map, r)
+}
+
+fn check(kind: EnvKind, preset: &str, seed: u64) {
+    let (map, r) = run(kind, preset, seed);
+    let what = format!("{kind} seed {seed} {preset}");
+    assert_eq!(
+        r.reason,
+        EndReason::Complete,
+        "{what}: ended '{}' at coverage {}",
+        r.reason.as_str(),
+        r.coverage
+    );
+    assert_eq!(r.coverage, 1.0, "{what}");
+    assert!(r.frontiers_left.is_empty(), "{what}: frontiers left");
+    let cells = &map.cells;
+    let trace = r.trace.as_ref().expect("trace");
+    for (robot, trail) in trace.trails.iter().enumerate() {
+        assert_eq!(
+            cells.cell(trail[0] as usize),
+            r.starts[robot],
+            "{what}: trail starts at the start"
+        );
+        let mut length = 0.0;
+        for &c in trail {
+            assert_eq!(
+                cells[c as usize],
+                Occ::Free,
+                "{what}: robot stood on {}",
+                cells.cell(c as usize)
+            );
+        }
+        for w in trail.windows(2) {
+            let (a, b) = (cells.cell(w[0] as usize), cells.cell(w[1] as usize));
+            assert!(a.is_neighbour8(b), "{what}: jump {a} -> {b}");
+            let (dx, dy) = (b.x - a.x, b.y - a.y);
+            if dx != 0 && dy != 0 {
+                let side1 = cells[cells.index(a.offset(dx, 0))];
+                let side2 = cells[cells.index(a.offset(0, dy))];
+                assert!(
+                    side1 == Occ::Free || side2 == Occ::Free,
+                    "{what}: squeezed {a} -> {b}"
+                );
+                length += SQRT2;
+            } else {
+                length += 1.0;
+            }
+        }
+        let reported = r.path_length_m[robot];
+        assert!(
+            (length * map.resolution - reported).abs() < 1e-6,
+            "{what}: summed steps {} m, reported {reported} m",
+            length * map.resolution
+        );
+    }
+    // Same seed, same result, bit for bit.
+    let (_, again) = run(kind, preset, seed);
+    assert_eq!(
+        again.path_length_m, r.path_length_m,
+        "{what}: repeat run differs"
+    );
+    assert_eq!(again.decisions, r.decisions, "{what}");
+    assert_eq!(again.trace, r.trace, "{what}");
+    assert_eq!(again.belief, r.belief, "{what}");
+    assert_eq!(again.coverage_curve, r.coverage_curve, "{what}");
+}
+
+fn all_presets(kind: EnvKind) {
+    for &(preset, _) in PRESETS {
+        for seed in 0..2 {
+            check(kind, preset, seed);
+        }
+    }
+}
+
+#[test]
+fn office() {
+    all_presets(EnvKind::Office);
+}
+
+#[test]
+fn hospital() {
+    all_presets(EnvKind::Hospital);
+}
+
+#[test]
+fn cave() {
+    all_presets(EnvKind::Cave);
+}
+
+#[test]
+fn maze() {
+    all_presets(EnvKind::Maze);
+}
+
+#[test]
+fn potholes() {
+    all_presets(EnvKind::Potholes);
+}
+
+#[test]
+fn empty() {
+    all_presets(EnvKind::Empty);
+}
+
+#[test]
+fn closest_frontier_beats_random() {
+    // Holz et al.'s Tables 1–3: random frontier paths are far longer than closest frontier.
+    let mut cf = 0.0;
+    let mut random = 0.0;
+    for seed in 0..3 {
+        cf += run(EnvKind::Office, "cf", seed).1.path_length_m[0];
+        random += run(EnvKind::Office, "random", seed).1.path_length_m[0];
+    }
+    assert!(random > 1.3 * cf, "random {random} m vs cf {cf} m");
+}
+
+#[test]
+fn coverage_goal_stops_early() {
+    let env = world::generate(&EnvSpec {
+        kind: EnvKind::Office,
+        seed: 3,
+        size_m: None,
+        resolution: None,
+    })
+    .unwrap();
+    let mut cfg = RunConfig::new(Strategy::preset("cf-rr").unwrap());
+    cfg.coverage_goal = Some(0.5);
+    let r = sim::run(&env.map, &cfg).unwrap();
+    assert_eq!(r.reason, EndReason::GoalReached);
+    assert!(
+        r.coverage >= 0.5 && r.coverage < 1.0,
+        "coverage {}",
+        r.coverage
+    );
+}
+
+#[test]
+fn step_limit_is_a_stated_reason() {
+    let env = world::generate(&EnvSpec {
+        kind: EnvKind::Office,
+        seed: 3,
+        size_m: None,
+        resolution: None,
+    })
+    .unwrap();
+    let mut cfg = RunConfig::new(Strategy::preset("cf").unwrap());
+    cfg.max_moves = 10;
+    let r = sim::run(&env.map, &cfg).unwrap();
+    assert_eq!(r.reason, EndReason::StepLimit);
+    assert_eq!(r.moves, 10);
+}
+
+#[test]
+fn bad_parameters_are_named() {
+    let env = world::generate(&EnvSpec {
+        kind: EnvKind::Empty,
+        seed: 0,
+        size_m: None,
+        resolution: None,
+    })
+    .unwrap();
+    let mut cfg = RunConfig::new(Strategy::preset("cf").unwrap());
+    cfg.speed = 0.0;
+    let e = sim::run(&env.map, &cfg).unwrap_err().to_string();
+    assert_eq!(
+        e,
+        "--speed: expected a positive number of metres per second, found 0"
+    );
+    let mut cfg = RunConfig::new(Strategy::preset("cf").unwrap());
+    cfg.starts = vec![grid::Cell::new(0, 0)];
+    let e = sim::run(&env.map, &cfg).unwrap_err().to_string();
+    assert_eq!(e, "start (0, 0): the cell is occupied");
+}
