@@ -169,6 +169,34 @@ pub struct DecisionCtx<'a> {
     pub sensor_range_cells: f64,
     /// The run's seeded random stream.
     pub rng: &'a mut Pcg64Mcg,
+    /// The shared belief itself (occupancy probabilities, for information gain).
+    pub belief: &'a dyn sense::Belief,
+    /// The robots' sensor (for simulated scans on the belief).
+    pub sensor: &'a dyn sense::Sensor,
+    /// State that candidate generators and assigners keep across decisions.
+    pub memory: &'a mut Memory,
+}
+
+/// State kept across decisions by the pieces that need it (buffers, cluster centres,
+/// segmentations, samples). Each piece owns its part; all start empty.
+#[derive(Default)]
+pub struct Memory {
+    /// Region buffers of the centroid generator.
+    pub centroids: crate::candidates::centroids::Scratch,
+    /// Free edges and k-means state of the RFE generator.
+    pub rfe: crate::candidates::rfe::State,
+    /// Visibility buffers of the coverage (CC) generator.
+    pub coverage: crate::candidates::coverage::State,
+    /// Sampled poses and their information gain (decision-theoretic generator).
+    pub dt: crate::candidates::dt_samples::State,
+    /// Utilities of the greedy-with-utility assigner.
+    pub greedy_utility: crate::assign::greedy_utility::State,
+    /// Clusters and routes of the MTSP assigner.
+    pub mtsp: crate::assign::mtsp::State,
+    /// Cluster centres of Solanas & Garcia's assigner, kept between decisions.
+    pub sga: crate::assign::sga::State,
+    /// The segmentation of the belief used by the same-segment-first assigner.
+    pub segments: crate::segment::State,
 }
 
 /// A goal chosen for one robot, with its path cost in cells.

@@ -32,6 +32,7 @@ pub mod candidates;
 pub mod decision;
 pub mod frontier;
 pub mod plan;
+pub mod segment;
 pub mod strategy;
 pub mod traversability;
 pub mod upkeep;

@@ -7,6 +7,11 @@
 //! | `cf` | Holz et al. 2010 | all frontier cells | nearest by path | on arrival | continuous |
 //! | `cf-rr` | Holz et al. 2010 | all frontier cells | nearest by path | on arrival, or when the target stops being a frontier | continuous |
 //! | `random` | Holz et al. 2010 (RF) | all frontier cells | uniform over reachable ones | on arrival | continuous |
+//! | `cf-rr-seg` | Holz et al. 2010 | all frontier cells | nearest in the robot's segment first | as `cf-rr` | continuous |
+//! | `dt`, `dt500` | González-Baños & Latombe, Holz §3.2 | 100 / 500 samples near frontiers | max I·exp(−0.2 L) | on arrival | continuous |
+//! | `dt-rr` | beyond the paper | as `dt` | as `dt` | also when the target's utility halves | continuous |
+//! | `nearest`, `greedy`, `greedy-utility`, `minpos` | seed 002 | all frontier cells | as named | on arrival (per robot) | continuous |
+//! | `<a>-<c>` e.g. `ha-cc` | Faigl & Kulich 2013 | `af`, `centroids`, `rfe`, `cc` | `nearest`, `greedy`/`ia`, `ga`, `greedy-utility`, `minpos`, `ha`, `ma`, `sga` | every s_max = 7 moves (team) | continuous |
 
 use crate::assign::AssignerKind;
 use crate::candidates::CandidateKind;
@@ -52,6 +57,9 @@ pub struct ReplanPolicy {
     /// Yamauchi's inaccessible list: give the goal up when the remaining path has not
     /// shortened for this many seconds.
     pub no_progress_s: Option<f64>,
+    /// Decision-theoretic re-checking (`dt-rr`): re-decide when the target's utility,
+    /// re-evaluated while travelling, falls below this fraction of its value at decision time.
+    pub utility_drop: Option<f64>,
 }
 
 /// A strategy: the three swappable pieces of the one loop, plus its sensing mode.
@@ -70,6 +78,10 @@ pub struct Strategy {
 }
 
 /// Preset names with one-line descriptions, in the order they are listed to users.
+/// Besides these, `<assigner>-<candidates>` combines any assigner of Faigl & Kulich's
+/// framework (`nearest`, `greedy`, `ia`, `ga`, `greedy-utility`, `minpos`, `ha`, `ma`,
+/// `sga`) with any candidate generator (`af`, `centroids`, `rfe`, `cc`), re-planning every
+/// s_max = 7 cell moves.
 pub const PRESETS: &[(&str, &str)] = &[
     (
         "yamauchi",
@@ -84,17 +96,80 @@ pub const PRESETS: &[(&str, &str)] = &[
         "Holz et al. 2010: closest frontier with repetitive re-checking",
     ),
     (
+        "cf-rr-seg",
+        "Holz et al. 2010: closest frontier in the robot's own room segment first, with RR",
+    ),
+    (
         "random",
         "Holz et al. 2010: random frontier cell (baseline)",
+    ),
+    (
+        "dt",
+        "González-Baños & Latombe as in Holz et al.: max I·exp(-0.2 L) over 100 samples near frontiers",
+    ),
+    ("dt500", "the same with 500 samples"),
+    (
+        "dt-rr",
+        "dt, re-deciding while travelling when the target's utility drops below half",
+    ),
+    (
+        "nearest",
+        "multi-robot study: each robot to its nearest frontier cell, no coordination",
+    ),
+    (
+        "greedy",
+        "multi-robot study: repeatedly the globally cheapest robot-frontier pair",
+    ),
+    (
+        "greedy-utility",
+        "multi-robot study: greedy on utility minus beta x cost, utility lowered near chosen goals",
+    ),
+    (
+        "minpos",
+        "multi-robot study: MinPos, the frontier where the robot ranks best by distance",
+    ),
+    (
+        "ga-af, ia-cc, ha-rfe, ma-cc, sga-af, ...",
+        "Faigl & Kulich 2013: <assigner>-<candidates>, re-plan every s_max = 7 moves",
     ),
 ];
 
 /// Error for a strategy name that is not a preset.
 #[derive(Debug, thiserror::Error)]
-#[error("unknown strategy '{found}': expected one of {}", PRESETS.iter().map(|p| p.0).collect::<Vec<_>>().join(", "))]
+#[error(
+    "unknown strategy '{found}': expected yamauchi, cf, cf-rr, cf-rr-seg, random, dt, dt500, dt-rr, nearest, greedy, greedy-utility, minpos, or <assigner>-<candidates> with an assigner of nearest, greedy, ia, ga, greedy-utility, minpos, ha, ma, sga and candidates af, centroids, rfe, cc"
+)]
 pub struct UnknownStrategy {
     /// The name given.
     pub found: String,
+}
+
+fn assigner_named(name: &str) -> Option<AssignerKind> {
+    Some(match name {
+        "nearest" => AssignerKind::Nearest,
+        "greedy" | "ia" => AssignerKind::Greedy,
+        "ga" => AssignerKind::RandomOrderGreedy,
+        "greedy-utility" => AssignerKind::GreedyUtility {
+            beta: crate::assign::greedy_utility::DEFAULT_BETA,
+        },
+        "minpos" => AssignerKind::MinPos,
+        "ha" => AssignerKind::Hungarian,
+        "ma" => AssignerKind::Mtsp,
+        "sga" => AssignerKind::Sga,
+        _ => return None,
+    })
+}
+
+fn candidates_named(name: &str) -> Option<CandidateKind> {
+    Some(match name {
+        "af" => CandidateKind::AllFrontiers,
+        "centroids" => CandidateKind::RegionCentroids { min_size_m: 0.5 },
+        "rfe" => CandidateKind::Rfe {
+            min_edge: crate::candidates::rfe::DEFAULT_MIN_EDGE,
+        },
+        "cc" => CandidateKind::Coverage,
+        _ => return None,
+    })
 }
 
 impl Strategy {
@@ -104,7 +179,14 @@ impl Strategy {
             every_moves: None,
             recheck: false,
             no_progress_s: None,
+            utility_drop: None,
         };
+        let rr = ReplanPolicy {
+            recheck: true,
+            ..on_arrival
+        };
+        let dt = |n| CandidateKind::DtSamples { n };
+        let dt_utility = AssignerKind::DtUtility { lambda: 0.2 };
         let (candidates, assigner, replan, sensing) = match name {
             "yamauchi" => (
                 CandidateKind::RegionCentroids { min_size_m: 0.5 },
@@ -124,10 +206,15 @@ impl Strategy {
             "cf-rr" => (
                 CandidateKind::AllFrontiers,
                 AssignerKind::Nearest,
-                ReplanPolicy {
-                    recheck: true,
-                    ..on_arrival
+                rr,
+                SensingMode::Continuous,
+            ),
+            "cf-rr-seg" => (
+                CandidateKind::AllFrontiers,
+                AssignerKind::SegmentFirst {
+                    rule: crate::segment::Rule::Holz,
                 },
+                rr,
                 SensingMode::Continuous,
             ),
             "random" => (
@@ -136,10 +223,39 @@ impl Strategy {
                 on_arrival,
                 SensingMode::Continuous,
             ),
+            "dt" => (dt(100), dt_utility, on_arrival, SensingMode::Continuous),
+            "dt500" => (dt(500), dt_utility, on_arrival, SensingMode::Continuous),
+            "dt-rr" => (
+                dt(100),
+                dt_utility,
+                ReplanPolicy {
+                    utility_drop: Some(0.5),
+                    ..on_arrival
+                },
+                SensingMode::Continuous,
+            ),
+            "nearest" | "greedy" | "greedy-utility" | "minpos" => (
+                CandidateKind::AllFrontiers,
+                assigner_named(name).expect("listed above"),
+                on_arrival,
+                SensingMode::Continuous,
+            ),
             _ => {
-                return Err(UnknownStrategy {
+                let unknown = || UnknownStrategy {
                     found: name.to_string(),
-                });
+                };
+                let (a, c) = name.rsplit_once('-').ok_or_else(unknown)?;
+                let assigner = assigner_named(a).ok_or_else(unknown)?;
+                let candidates = candidates_named(c).ok_or_else(unknown)?;
+                (
+                    candidates,
+                    assigner,
+                    ReplanPolicy {
+                        every_moves: Some(7),
+                        ..on_arrival
+                    },
+                    SensingMode::Continuous,
+                )
             }
         };
         Ok(Strategy {

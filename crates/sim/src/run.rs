@@ -11,8 +11,8 @@
 
 use std::time::Instant;
 
-use explore::candidates::{CandidateSet, centroids};
-use explore::decision::{DecisionCtx, Goal, GoalLists, Planner};
+use explore::candidates::CandidateSet;
+use explore::decision::{DecisionCtx, Goal, GoalLists, Memory, Planner};
 use explore::strategy::SensingMode;
 use explore::upkeep::FrontierUpkeep;
 use grid::{Cell, GridMap, Occ, step_cost};
@@ -56,7 +56,7 @@ struct Team<'a> {
     planner: Planner,
     lists: GoalLists,
     candidates: CandidateSet,
-    centroid_scratch: centroids::Scratch,
+    memory: Memory,
     rng: Pcg64Mcg,
     obs: Observation,
     changed: Vec<u32>,
@@ -127,7 +127,7 @@ pub fn run(truth: &GridMap, cfg: &RunConfig) -> Result<RunResult, SimError> {
         planner: Planner::new(w, h, m),
         lists: GoalLists::new(cells.len()),
         candidates: CandidateSet::new(cells.len()),
-        centroid_scratch: centroids::Scratch::default(),
+        memory: Memory::default(),
         rng: seed::rng(cfg.seed, "strategy"),
         obs: Observation::new(),
         changed: Vec::new(),
@@ -364,12 +364,14 @@ impl Team<'_> {
                 resolution: self.truth.resolution,
                 sensor_range_cells: self.range_cells,
                 rng: &mut self.rng,
+                belief: self.belief.as_ref(),
+                sensor: self.sensor.as_ref(),
+                memory: &mut self.memory,
             };
-            self.cfg.strategy.candidates.generate(
-                &mut ctx,
-                &mut self.candidates,
-                &mut self.centroid_scratch,
-            );
+            self.cfg
+                .strategy
+                .candidates
+                .generate(&mut ctx, &mut self.candidates);
             self.cfg
                 .strategy
                 .assigner

@@ -28,16 +28,13 @@ pub struct Scratch {
 }
 
 /// One snapped centroid per region of at least `min_cells` cells.
-pub fn generate(
-    ctx: &mut DecisionCtx<'_>,
-    min_cells: usize,
-    out: &mut CandidateSet,
-    scratch: &mut Scratch,
-) {
-    generate_min(ctx, min_cells, out, scratch);
+pub fn generate(ctx: &mut DecisionCtx<'_>, min_cells: usize, out: &mut CandidateSet) {
+    let mut scratch = std::mem::take(&mut ctx.memory.centroids);
+    generate_min(ctx, min_cells, out, &mut scratch);
     if out.is_empty() && min_cells > 1 {
-        generate_min(ctx, 1, out, scratch);
+        generate_min(ctx, 1, out, &mut scratch);
     }
+    ctx.memory.centroids = scratch;
 }
 
 fn generate_min(

@@ -1,10 +1,14 @@
 //! Goal candidates: which cells a strategy may send a robot to.
 //!
-//! One file per kind: all frontier cells (Holz's closest frontier, seed 002, Faigl's AF)
-//! and region centroids (Yamauchi).
+//! One file per kind: all frontier cells (Holz's closest frontier, seed 002, Faigl's AF),
+//! region centroids (Yamauchi), free-edge representatives (RFE) and coverage candidates
+//! (CC) of Faigl & Kulich, and decision-theoretic samples (González-Baños & Latombe).
 
 pub mod all_frontiers;
 pub mod centroids;
+pub mod coverage;
+pub mod dt_samples;
+pub mod rfe;
 
 use crate::decision::DecisionCtx;
 
@@ -68,7 +72,7 @@ impl CandidateSet {
 }
 
 /// Which candidate generator a strategy uses.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub enum CandidateKind {
     /// Every frontier cell (AF).
     AllFrontiers,
@@ -78,23 +82,35 @@ pub enum CandidateKind {
         /// Minimum region size in metres (Yamauchi: roughly the robot's size).
         min_size_m: f64,
     },
+    /// Faigl & Kulich's representatives of free edges: k-means per free edge of at least
+    /// `min_edge` cells, n_r = 1 + floor(|F| / (1.8 ρ) + 0.5) representatives each.
+    Rfe {
+        /// n_f: the smallest free edge kept, in cells.
+        min_edge: usize,
+    },
+    /// Faigl & Kulich's Algorithm 1: a greedy set cover of the frontier cells by cells that
+    /// see them within 0.8 ρ.
+    Coverage,
+    /// González-Baños & Latombe's samples near frontiers, scored by information gain.
+    DtSamples {
+        /// Number of sampled poses.
+        n: usize,
+    },
 }
 
 impl CandidateKind {
     /// Fill `out` with the candidates of this kind for the current decision.
-    pub fn generate(
-        &self,
-        ctx: &mut DecisionCtx<'_>,
-        out: &mut CandidateSet,
-        scratch: &mut centroids::Scratch,
-    ) {
+    pub fn generate(&self, ctx: &mut DecisionCtx<'_>, out: &mut CandidateSet) {
         out.clear();
-        match self {
+        match *self {
             CandidateKind::AllFrontiers => all_frontiers::generate(ctx, out),
             CandidateKind::RegionCentroids { min_size_m } => {
                 let min_cells = (min_size_m / ctx.resolution).ceil().max(1.0) as usize;
-                centroids::generate(ctx, min_cells, out, scratch)
+                centroids::generate(ctx, min_cells, out)
             }
+            CandidateKind::Rfe { min_edge } => rfe::generate(ctx, min_edge, out),
+            CandidateKind::Coverage => coverage::generate(ctx, out),
+            CandidateKind::DtSamples { n } => dt_samples::generate(ctx, n, out),
         }
     }
 }

@@ -1,0 +1,12 @@
+//! Hungarian assignment (Faigl & Kulich's HA).
+//!
+//! (Being written.)
+
+use crate::candidates::CandidateSet;
+use crate::decision::{DecisionCtx, Goal};
+
+/// Give goals to the deciding robots.
+pub fn assign(ctx: &mut DecisionCtx<'_>, candidates: &CandidateSet, out: &mut [Option<Goal>]) {
+    let _ = (ctx, candidates, out);
+    todo!("Hungarian assignment (Faigl & Kulich's HA).")
+}
