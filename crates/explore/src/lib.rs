@@ -31,9 +31,11 @@ pub mod assign;
 pub mod candidates;
 pub mod decision;
 pub mod frontier;
+pub mod kmeans;
 pub mod plan;
 pub mod segment;
 pub mod strategy;
+pub mod tsp;
 pub mod traversability;
 pub mod upkeep;
 

@@ -1,0 +1,3 @@
+//! Open travelling-salesman routes by path distance (nearest neighbour, 2-opt, Or-opt), for MTSP.
+//!
+//! (Being written.)

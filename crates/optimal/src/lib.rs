@@ -1,0 +1,1 @@
+//! `optimal`: offline optimal exploration paths (being written).
