@@ -18,8 +18,8 @@ use world::{EnvKind, EnvSpec};
 /// Flags of `frontier demo`.
 #[derive(Args, Clone, Debug)]
 pub struct DemoArgs {
-    /// Number of seeds per environment and strategy.
-    #[arg(long, default_value_t = 5)]
+    /// Number of seeds per environment and strategy (Holz et al. ran 10).
+    #[arg(long, default_value_t = 10)]
     pub seeds: u64,
     /// Environments, comma-separated.
     #[arg(long, default_value = "office,hospital,cave")]

@@ -43,6 +43,10 @@ pub struct ExploreArgs {
     /// Number of robots.
     #[arg(long, default_value_t = 1)]
     pub robots: usize,
+    /// Re-plan every this many cell moves (Faigl & Kulich's s_max; -1 = on arrival only);
+    /// default: the strategy's.
+    #[arg(long, allow_negative_numbers = true)]
+    pub s_max: Option<i64>,
     /// Stop at this coverage (0..1]; default: explore everything reachable.
     #[arg(long)]
     pub goal: Option<f64>,
@@ -77,6 +81,17 @@ pub fn config(a: &ExploreArgs, truth: &Truth) -> Result<RunConfig> {
         .map(|s| s.parse::<SensingMode>())
         .transpose()
         .map_err(|e| anyhow::anyhow!("--sensing: {e}"))?;
+    let mut strategy = strategy;
+    match a.s_max {
+        None => {}
+        Some(-1) => strategy.replan.every_moves = None,
+        Some(n) if n > 0 && n <= i64::from(u32::MAX) => {
+            strategy.replan.every_moves = Some(n as u32)
+        }
+        Some(n) => {
+            bail!("--s-max: expected a positive number of cell moves or -1 (on arrival), found {n}")
+        }
+    }
     let mut cfg = RunConfig::new(strategy);
     cfg.sensor = sensor;
     cfg.belief = belief;

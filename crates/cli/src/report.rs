@@ -56,6 +56,7 @@ pub fn summary_json(truth: &Truth, cfg: &RunConfig, r: &RunResult, timing: bool)
         "belief": cfg.belief.to_string(),
         "clearance_m": cfg.clearance_m,
         "speed": cfg.speed,
+        "s_max": cfg.strategy.replan.every_moves,
         "starts": r.starts.iter().map(|c| json!([c.x, c.y])).collect::<Vec<_>>(),
         "complete": r.complete(),
         "reason": r.reason.as_str(),

@@ -98,7 +98,14 @@ impl FrontierSet {
     }
 }
 
-/// Whether cell `i` is a frontier cell: traversable with at least one Unknown in-grid 8-neighbour.
+/// Whether cell `i` is a frontier cell: traversable with at least one Unknown in-grid
+/// 8-neighbour that is not behind a corner squeeze.
+///
+/// Deviation from the papers' "adjacent to an unknown cell": a diagonal unknown neighbour
+/// whose two cells sharing the vertex are both occupied does not count. Motion never
+/// squeezes between two blocked cells sharing a vertex and the line-of-sight sensor never
+/// sees through such a vertex, so that neighbour can never be entered or seen from here;
+/// counting it would leave a permanent phantom frontier at every inner wall corner.
 pub fn is_frontier(known: &Grid<Occ>, trav: &Traversability, i: usize) -> bool {
     let w = known.width().max(1);
     is_frontier_xy(known, trav, i, (i % w) as i32, (i / w) as i32)
@@ -120,7 +127,15 @@ pub(crate) fn is_frontier_xy(
     let data = known.data();
     NEIGHBOURS8.iter().any(|&(dx, dy)| {
         let (nx, ny) = (x + dx, y + dy);
-        nx >= 0 && ny >= 0 && nx < w && ny < h && data[(ny * w + nx) as usize].is_unknown()
+        if !(nx >= 0 && ny >= 0 && nx < w && ny < h && data[(ny * w + nx) as usize].is_unknown()) {
+            return false;
+        }
+        // A diagonal neighbour behind a corner squeeze (both cells sharing the vertex are
+        // occupied) is neither reachable nor visible from here: it does not count.
+        dx == 0
+            || dy == 0
+            || !(data[(y * w + nx) as usize].is_occupied()
+                && data[(ny * w + x) as usize].is_occupied())
     })
 }
 

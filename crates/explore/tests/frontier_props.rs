@@ -30,7 +30,12 @@ fn brute_frontiers(known: &Grid<Occ>, trav: &[bool]) -> Vec<u32> {
             trav[i]
                 && (-1..=1).any(|dy| {
                     (-1..=1).any(|dx| {
-                        (dx, dy) != (0, 0) && known.try_get(c.offset(dx, dy)) == Some(&Occ::Unknown)
+                        (dx, dy) != (0, 0)
+                            && known.try_get(c.offset(dx, dy)) == Some(&Occ::Unknown)
+                            && !(dx != 0
+                                && dy != 0
+                                && known.try_get(c.offset(dx, 0)) == Some(&Occ::Occupied)
+                                && known.try_get(c.offset(0, dy)) == Some(&Occ::Occupied))
                     })
                 })
         })
