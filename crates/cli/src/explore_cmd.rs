@@ -56,6 +56,12 @@ pub struct ExploreArgs {
     /// Write final.png, map.png and trace.json into this directory.
     #[arg(long)]
     pub out: Option<PathBuf>,
+    /// Write an animated GIF of the run.
+    #[arg(long)]
+    pub gif: Option<PathBuf>,
+    /// Write a self-contained HTML page that replays the run (opens from a file, no network).
+    #[arg(long)]
+    pub html: Option<PathBuf>,
     /// Print one JSON object instead of the summary.
     #[arg(long)]
     pub json: bool,
@@ -102,7 +108,7 @@ pub fn config(a: &ExploreArgs, truth: &Truth) -> Result<RunConfig> {
     cfg.seed = a.seed;
     cfg.coverage_goal = a.goal;
     cfg.max_moves = a.max_moves;
-    cfg.record_trace = a.out.is_some();
+    cfg.record_trace = a.out.is_some() || a.gif.is_some() || a.html.is_some();
     if let Some(s) = &a.start {
         let first = parse_cell(s, "--start")?;
         if !truth.map.cells.contains(first) {
@@ -142,6 +148,26 @@ pub fn run(a: ExploreArgs) -> Result<()> {
         let trace = dir.join("trace.json");
         let text = serde_json::to_string(&report::trace_json(&truth, &cfg, &result))?;
         std::fs::write(&trace, text).with_context(|| format!("writing {}", trace.display()))?;
+    }
+    if let Some(path) = &a.gif {
+        let bytes =
+            viz::animate::animate_gif(&truth.map, &result, &viz::animate::GifOptions::default())?;
+        std::fs::write(path, bytes).with_context(|| format!("writing {}", path.display()))?;
+    }
+    if let Some(path) = &a.html {
+        let meta = format!(
+            "{} · {} robot(s) · sensor {} ({}) · seed {} · {}x{} cells at {} m",
+            cfg.strategy.name,
+            cfg.robots,
+            cfg.sensor,
+            cfg.sensing_mode(),
+            cfg.seed,
+            truth.map.width(),
+            truth.map.height(),
+            truth.map.resolution
+        );
+        let page = viz::replay::replay_html(&truth.map, &result, &truth.name, &meta)?;
+        std::fs::write(path, page).with_context(|| format!("writing {}", path.display()))?;
     }
     if a.json {
         println!(

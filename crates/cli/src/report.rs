@@ -90,11 +90,12 @@ pub fn trace_json(truth: &Truth, cfg: &RunConfig, r: &RunResult) -> Value {
         "resolution": truth.map.resolution,
         "strategy": cfg.strategy.name,
         "seed": cfg.seed,
-        "trails": trace.map(|t| t.trails.iter().map(|trail| trail.iter().map(|&i| cell_json(cells, i)).collect::<Vec<_>>()).collect::<Vec<_>>()),
-        "goals": trace.map(|t| t.goals.iter().map(|&(time, robot, g)| json!({
-            "t": round(time, 4), "robot": robot, "goal": g.map(|g| cell_json(cells, g)),
+        "trails": trace.map(|t| t.trails().iter().map(|trail| trail.iter().map(|&i| cell_json(cells, i)).collect::<Vec<_>>()).collect::<Vec<_>>()),
+        "goals": trace.map(|t| t.goals.iter().map(|g| json!({
+            "t": round(t.events.get((g.event as usize).saturating_sub(1)).map_or(0.0, |e| e.t), 4),
+            "event": g.event, "robot": g.robot, "goal": g.goal.map(|c| cell_json(cells, c)),
         })).collect::<Vec<_>>()),
-        "frontier_counts": trace.map(|t| t.frontier_counts.iter().map(|&(time, robot, n)| json!([round(time, 4), robot, n])).collect::<Vec<_>>()),
+        "events": trace.map(|t| t.events.iter().map(|e| json!([round(e.t, 4), e.robot, cell_json(cells, e.cell), round(e.dist_m, 4), round(e.coverage, 6), e.frontiers])).collect::<Vec<_>>()),
         "frontiers_left": r.frontiers_left.iter().map(|&i| cell_json(cells, i)).collect::<Vec<_>>(),
     })
 }

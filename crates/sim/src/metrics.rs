@@ -41,15 +41,78 @@ pub struct PhaseTimes {
     pub total_s: f64,
 }
 
-/// Per-step record of a run, for pictures and replays.
+/// One moment of a run: a robot moved one cell (and sensed, in continuous mode), or looked
+/// around where it stands (at its start, or on arrival).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TraceEvent {
+    /// Time of the event in seconds (the robot's clock).
+    pub t: f64,
+    /// The robot.
+    pub robot: u32,
+    /// The robot's cell after the event.
+    pub cell: u32,
+    /// The robot's distance travelled so far, in metres.
+    pub dist_m: f64,
+    /// Coverage after the event.
+    pub coverage: f64,
+    /// Number of frontier cells after the event.
+    pub frontiers: u32,
+}
+
+/// A decision in the trace: after which event, which robot, which goal.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TraceGoal {
+    /// Number of events before the decision.
+    pub event: u32,
+    /// The robot.
+    pub robot: u32,
+    /// Its new goal, or `None` if it found none.
+    pub goal: Option<u32>,
+}
+
+/// Per-step record of a run, for pictures and replays: every event with the belief changes
+/// it made (only what changed, so a long run stays compact).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Trace {
+    /// Number of robots.
+    pub robots: usize,
+    /// Start cell of each robot.
+    pub starts: Vec<u32>,
+    /// Every event in order.
+    pub events: Vec<TraceEvent>,
+    /// Belief changes (cell, new class); event k made `changes[change_ends[k-1]..change_ends[k]]`.
+    pub changes: Vec<(u32, Occ)>,
+    /// End of each event's changes in `changes`.
+    pub change_ends: Vec<u32>,
+    /// Every decision's outcome.
+    pub goals: Vec<TraceGoal>,
+    /// Goal candidates of each decision (not recorded when the candidates are all frontier
+    /// cells, which the frontier layer shows): (events before it, candidate cells).
+    pub candidates: Vec<(u32, Vec<u32>)>,
+}
+
+impl Trace {
     /// Every cell each robot stood on, in order (start included).
-    pub trails: Vec<Vec<u32>>,
-    /// Every decision's outcome: (time s, robot, goal cell or `None`).
-    pub goals: Vec<(f64, usize, Option<u32>)>,
-    /// Number of frontier cells after each move: (time s, robot, count).
-    pub frontier_counts: Vec<(f64, usize, u32)>,
+    pub fn trails(&self) -> Vec<Vec<u32>> {
+        let mut trails: Vec<Vec<u32>> = self.starts.iter().map(|&s| vec![s]).collect();
+        for e in &self.events {
+            let trail = &mut trails[e.robot as usize];
+            if trail.last() != Some(&e.cell) {
+                trail.push(e.cell);
+            }
+        }
+        trails
+    }
+
+    /// The belief changes made by event `k`.
+    pub fn changes_of(&self, k: usize) -> &[(u32, Occ)] {
+        let start = if k == 0 {
+            0
+        } else {
+            self.change_ends[k - 1] as usize
+        };
+        &self.changes[start..self.change_ends[k] as usize]
+    }
 }
 
 /// The result of one run.
@@ -69,6 +132,8 @@ pub struct RunResult {
     pub decisions: u64,
     /// Cell moves of the whole team.
     pub moves: u64,
+    /// The robot's clearance in cells (traversability of the belief used clearance this big).
+    pub clearance_cells: f64,
     /// Start cell of each robot.
     pub starts: Vec<Cell>,
     /// Final cell of each robot.

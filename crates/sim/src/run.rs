@@ -11,7 +11,7 @@
 
 use std::time::Instant;
 
-use explore::candidates::CandidateSet;
+use explore::candidates::{CandidateKind, CandidateSet};
 use explore::decision::{DecisionCtx, Goal, GoalLists, Memory, Planner};
 use explore::strategy::SensingMode;
 use explore::upkeep::FrontierUpkeep;
@@ -20,7 +20,7 @@ use rand_pcg::Pcg64Mcg;
 use sense::{Belief, Observation, Pose, Sensor};
 
 use crate::config::{RunConfig, SimError};
-use crate::metrics::{EndReason, PhaseTimes, RunResult, Trace};
+use crate::metrics::{EndReason, PhaseTimes, RunResult, Trace, TraceEvent, TraceGoal};
 use crate::{seed, truth};
 
 /// One robot's state.
@@ -148,7 +148,8 @@ pub fn run(truth: &GridMap, cfg: &RunConfig) -> Result<RunResult, SimError> {
         total_dist_cells: 0.0,
         curve: vec![(0.0, 0.0)],
         trace: cfg.record_trace.then(|| Trace {
-            trails: vec![Vec::new(); m],
+            robots: m,
+            starts: starts.iter().map(|&c| cells.index(c) as u32).collect(),
             ..Trace::default()
         }),
     };
@@ -169,18 +170,14 @@ pub fn run(truth: &GridMap, cfg: &RunConfig) -> Result<RunResult, SimError> {
             idle: false,
         })
         .collect();
-    if let Some(t) = team.trace.as_mut() {
-        for (r, robot) in robots.iter().enumerate() {
-            t.trails[r].push(robot.cell);
-        }
-    }
     // Every robot looks around once where it stands.
-    for robot in &robots {
+    for r in 0..m {
         let pose = Pose {
-            cell: cells.cell(robot.cell as usize),
+            cell: cells.cell(robots[r].cell as usize),
             heading: 0.0,
         };
         team.sense(pose, true);
+        team.record(&robots, r);
     }
     let all: Vec<usize> = (0..m).collect();
     team.decide(&mut robots, &all);
@@ -237,6 +234,7 @@ pub fn run(truth: &GridMap, cfg: &RunConfig) -> Result<RunResult, SimError> {
         time_s,
         decisions: team.decisions,
         moves: team.moves,
+        clearance_cells,
         starts,
         ends: robots.iter().map(|r| cells.cell(r.cell as usize)).collect(),
         coverage_curve: team.curve.iter().map(|&(d, c)| (d * res, c)).collect(),
@@ -301,6 +299,10 @@ impl Team<'_> {
         let known = self.belief.known();
         self.upkeep.update(known, &self.changed);
         let t2 = Instant::now();
+        if let Some(t) = self.trace.as_mut() {
+            t.changes
+                .extend(self.changed.iter().map(|&c| (c, known[c as usize])));
+        }
         let before = self.covered;
         for &c in &self.changed {
             let c = c as usize;
@@ -322,6 +324,24 @@ impl Team<'_> {
         }
         self.times.sense_s += (t1 - t0).as_secs_f64();
         self.times.upkeep_s += (t2 - t1).as_secs_f64();
+    }
+
+    /// Close the trace's current event: robot `r` is where it is, with the changes sensed
+    /// since the last event.
+    fn record(&mut self, robots: &[Robot], r: usize) {
+        let coverage = self.coverage();
+        let frontiers = self.upkeep.frontiers.len() as u32;
+        if let Some(t) = self.trace.as_mut() {
+            t.events.push(TraceEvent {
+                t: robots[r].clock,
+                robot: r as u32,
+                cell: robots[r].cell,
+                dist_m: robots[r].dist_cells * self.truth.resolution,
+                coverage,
+                frontiers,
+            });
+            t.change_ends.push(t.changes.len() as u32);
+        }
     }
 
     /// Whether `cell` is a frontier that still needs a visit.
@@ -377,6 +397,12 @@ impl Team<'_> {
                 .assigner
                 .assign(&mut ctx, &self.candidates, &mut self.out);
         }
+        if let Some(t) = self.trace.as_mut()
+            && self.cfg.strategy.candidates != CandidateKind::AllFrontiers
+        {
+            t.candidates
+                .push((t.events.len() as u32, self.candidates.cells().to_vec()));
+        }
         for r in 0..m {
             if !self.deciding[r] {
                 continue;
@@ -401,7 +427,11 @@ impl Team<'_> {
                 }
             }
             if let Some(t) = self.trace.as_mut() {
-                t.goals.push((robot.clock, r, robot.goal));
+                t.goals.push(TraceGoal {
+                    event: t.events.len() as u32,
+                    robot: r as u32,
+                    goal: robot.goal,
+                });
             }
         }
         // An idle robot waits for the others: its clock follows the earliest active one.
@@ -444,6 +474,7 @@ impl Team<'_> {
                 },
                 true,
             );
+            self.record(robots, r);
         } else if self.is_open_frontier(goal) && !self.sensor.is_omnidirectional() {
             // Turn towards the unknown it is next to and look again.
             let known = self.belief.known();
@@ -458,6 +489,7 @@ impl Team<'_> {
             let heading = sy.atan2(sx);
             robots[r].heading = heading;
             self.sense(Pose { cell, heading }, false);
+            self.record(robots, r);
         }
         self.lists.mark_visited(goal);
         robots[r].goal = None;
@@ -506,11 +538,7 @@ impl Team<'_> {
                 false,
             );
         }
-        if let Some(t) = self.trace.as_mut() {
-            t.trails[r].push(next);
-            t.frontier_counts
-                .push((robots[r].clock, r, self.upkeep.frontiers.len() as u32));
-        }
+        self.record(robots, r);
         let goal = robots[r].goal.expect("a moving robot has a goal");
         let replan = self.cfg.strategy.replan;
         if next == goal {

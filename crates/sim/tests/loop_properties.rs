@@ -37,7 +37,9 @@ fn check(kind: EnvKind, preset: &str, seed: u64) {
     assert!(r.frontiers_left.is_empty(), "{what}: frontiers left");
     let cells = &map.cells;
     let trace = r.trace.as_ref().expect("trace");
-    for (robot, trail) in trace.trails.iter().enumerate() {
+    let trails = trace.trails();
+    assert_eq!(trace.events.len(), trace.change_ends.len(), "{what}");
+    for (robot, trail) in trails.iter().enumerate() {
         assert_eq!(
             cells.cell(trail[0] as usize),
             r.starts[robot],
@@ -69,6 +71,17 @@ fn check(kind: EnvKind, preset: &str, seed: u64) {
             }
         }
         let reported = r.path_length_m[robot];
+        let last = trace
+            .events
+            .iter()
+            .rev()
+            .find(|e| e.robot as usize == robot)
+            .expect("events");
+        assert!(
+            (last.dist_m - reported).abs() < 1e-9,
+            "{what}: trace distance {} vs {reported}",
+            last.dist_m
+        );
         assert!(
             (length * map.resolution - reported).abs() < 1e-6,
             "{what}: summed steps {} m, reported {reported} m",

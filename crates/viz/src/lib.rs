@@ -3,9 +3,27 @@
 //! [`final_picture`] draws the ground truth faintly under the final belief (known free
 //! white, known occupied black), the frontier cells left, every robot's trajectory in its
 //! own colour, its start (ring) and its end (square). Pictures are upscaled by a whole
-//! factor so that small maps stay legible. `viz` only draws into memory; the caller
-//! writes files.
+//! factor so that small maps stay legible. [`animate::animate_gif`] makes an animated GIF
+//! of a run and [`replay::replay_html`] a self-contained HTML page that replays it. `viz`
+//! only draws into memory; the caller writes files.
 #![warn(missing_docs)]
+
+pub mod animate;
+pub mod replay;
+
+/// Why a picture could not be made.
+#[derive(Debug, thiserror::Error)]
+pub enum VizError {
+    /// The run was made without a trace.
+    #[error("the run has no trace (record_trace was off)")]
+    NoTrace,
+    /// A frame side would exceed the format's limit.
+    #[error("picture side of {0} pixels is too large")]
+    TooLarge(u32),
+    /// The GIF encoder failed.
+    #[error("GIF encoding: {0}")]
+    Gif(String),
+}
 
 use grid::{Cell, Grid, GridMap, Occ};
 use image::{Rgb, RgbImage};
@@ -72,7 +90,7 @@ pub fn final_picture(truth: &GridMap, result: &RunResult) -> RgbImage {
         fill_cell(&mut img, cells.cell(f as usize), s, FRONTIER);
     }
     if let Some(trace) = &result.trace {
-        for (r, trail) in trace.trails.iter().enumerate() {
+        for (r, trail) in trace.trails().iter().enumerate() {
             let colour = ROBOT_COLOURS[r % ROBOT_COLOURS.len()];
             for w in trail.windows(2) {
                 let (a, b) = (cells.cell(w[0] as usize), cells.cell(w[1] as usize));

@@ -1,0 +1,93 @@
+//! The GIF decodes with the expected frame count and size; the replay page carries the run.
+
+use explore::strategy::Strategy;
+use sim::RunConfig;
+use viz::animate::{GifOptions, animate_gif, frame_events};
+use world::{EnvKind, EnvSpec};
+
+fn run(kind: EnvKind, robots: usize) -> (grid::GridMap, sim::RunResult) {
+    let env = world::generate(&EnvSpec {
+        kind,
+        seed: 1,
+        size_m: None,
+        resolution: None,
+    })
+    .unwrap();
+    let mut cfg = RunConfig::new(Strategy::preset("cf-rr").unwrap());
+    cfg.record_trace = true;
+    cfg.robots = robots;
+    let r = sim::run(&env.map, &cfg).unwrap();
+    (env.map, r)
+}
+
+#[test]
+fn gif_has_the_frames_and_size_asked_for() {
+    let (map, r) = run(EnvKind::Office, 2);
+    let opts = GifOptions {
+        max_frames: 40,
+        max_side: 300,
+        delay_cs: 5,
+    };
+    let bytes = animate_gif(&map, &r, &opts).unwrap();
+    let mut decoder = gif::DecodeOptions::new();
+    decoder.set_color_output(gif::ColorOutput::Indexed);
+    let mut d = decoder.read_info(bytes.as_slice()).unwrap();
+    // 50 x 40 cells upscaled by the whole factor 300 / 50 = 6.
+    assert_eq!((d.width(), d.height()), (300, 240));
+    let mut frames = 0;
+    while let Some(f) = d.read_next_frame().unwrap() {
+        assert_eq!((f.width, f.height), (300, 240));
+        frames += 1;
+    }
+    assert_eq!(frames, 40);
+}
+
+#[test]
+fn large_maps_are_downscaled() {
+    let env = world::generate(&EnvSpec {
+        kind: EnvKind::Cave,
+        seed: 1,
+        size_m: None,
+        resolution: None,
+    })
+    .unwrap();
+    let mut cfg = RunConfig::new(Strategy::preset("cf").unwrap());
+    cfg.record_trace = true;
+    let r = sim::run(&env.map, &cfg).unwrap();
+    let bytes = animate_gif(
+        &env.map,
+        &r,
+        &GifOptions {
+            max_frames: 3,
+            max_side: 100,
+            delay_cs: 5,
+        },
+    )
+    .unwrap();
+    let d = gif::DecodeOptions::new()
+        .read_info(bytes.as_slice())
+        .unwrap();
+    // 160 cells, two per pixel.
+    assert_eq!((d.width(), d.height()), (80, 80));
+}
+
+#[test]
+fn frames_are_spread_over_the_run_and_end_at_its_end() {
+    assert_eq!(frame_events(10, 5), vec![1, 3, 5, 7, 9]);
+    assert_eq!(frame_events(3, 150), vec![0, 1, 2]);
+    assert_eq!(*frame_events(1234, 150).last().unwrap(), 1233);
+}
+
+#[test]
+fn replay_page_is_self_contained_and_carries_the_run() {
+    let (map, r) = run(EnvKind::Maze, 1);
+    let page = viz::replay::replay_html(&map, &r, "maze-s1", "cf-rr").unwrap();
+    assert!(!page.contains("/*DATA*/null"), "data inlined");
+    assert!(
+        !page.contains("http://") && !page.contains("https://"),
+        "no network references"
+    );
+    assert!(page.contains("\"title\":\"maze-s1\""));
+    let trace = r.trace.as_ref().unwrap();
+    assert!(page.contains(&format!("\"robots\":{}", trace.robots)));
+}
