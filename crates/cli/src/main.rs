@@ -6,11 +6,14 @@
 //! any simulation starts, so every mistake is reported up front with the flag it came from.
 
 mod args;
+mod bench_cmd;
 mod demo;
 mod env_cmd;
 mod explore_cmd;
 mod map_cmd;
+mod optimal_cmd;
 mod report;
+mod segment_cmd;
 
 use clap::{Parser, Subcommand};
 
@@ -37,6 +40,12 @@ enum Command {
         #[command(subcommand)]
         command: map_cmd::MapCommand,
     },
+    /// Segment a map into rooms (Holz et al.'s Figure 7) and score it against ground truth.
+    Segment(Box<segment_cmd::SegmentArgs>),
+    /// Offline optimal exploration path (Quattrini Li et al. 2012) and competitive ratios.
+    Optimal(Box<optimal_cmd::OptimalArgs>),
+    /// Run, merge, export and report benchmark studies (scenario files or built-in suites).
+    Bench(Box<bench_cmd::BenchArgs>),
     /// List strategies, environments and sensors.
     List,
 }
@@ -48,6 +57,9 @@ fn main() {
         Command::Explore(a) => explore_cmd::run(*a),
         Command::Env(a) => env_cmd::run(a),
         Command::Map { command } => map_cmd::run(command),
+        Command::Segment(a) => segment_cmd::run(*a),
+        Command::Optimal(a) => optimal_cmd::run(*a),
+        Command::Bench(a) => bench_cmd::run(*a),
         Command::List => {
             list();
             Ok(())

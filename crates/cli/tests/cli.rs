@@ -185,7 +185,7 @@ fn demo_prints_a_table() {
 #[test]
 fn errors_name_the_flag_and_what_was_found() {
     assert!(err(&["explore", "--strategy", "nearestt"]).contains(
-        "--strategy: unknown strategy 'nearestt': expected one of yamauchi, cf, cf-rr, random"
+        "--strategy: unknown strategy 'nearestt': expected yamauchi, cf, cf-rr, cf-rr-seg, random, dt"
     ));
     let e = err(&["explore", "--sensor", "lidar:r=x"]);
     assert!(

@@ -35,8 +35,8 @@ pub mod kmeans;
 pub mod plan;
 pub mod segment;
 pub mod strategy;
-pub mod tsp;
 pub mod traversability;
+pub mod tsp;
 pub mod upkeep;
 
 pub use frontier::{FrontierSet, Region, frontiers_from_scratch, is_frontier};

@@ -1,1 +1,51 @@
-//! `optimal`: offline optimal exploration paths (being written).
+//! `optimal`: offline optimal exploration paths and competitive ratios, after Quattrini Li,
+//! Amigoni & Basilico (2012), "Searching for Optimal Off-Line Exploration Paths in Grid
+//! Environments for a Robot with Limited Visibility".
+//!
+//! For a known map, a start and a 360° sensor (`los` or `footprint`), [`solve`] finds the
+//! shortest sequence of sensing positions whose time-discrete perceptions cover all free
+//! cells (or a fraction G of them), by A* over states (robot cell, perceived set). An online
+//! strategy's competitive ratio is its path length over this optimum ([`competitive_ratio`]).
+//!
+//! - [`problem`]: the problem, targets, visibility;
+//! - [`actions`]: boundary cells, cluster representatives (with the "drop clusters < k"
+//!   speed-up);
+//! - [`heuristic`]: the paper's bound (with admissibility proofs per sensor) and a stronger
+//!   landmark-MST bound;
+//! - [`search`]: A*, weighted A*, limits and bounds;
+//! - [`coarse`]: solving on a coarsened map (the paper's cell sizes 1, 2, 4).
+//!
+//! ```
+//! use grid::{Cell, Grid, Occ};
+//! use optimal::{Config, Problem, SensorModel, solve};
+//! let map = Grid::new(12, 3, Occ::Free);
+//! let p = Problem::new(&map, Cell::new(0, 1), SensorModel::Los(3.0)).unwrap();
+//! let out = solve(&p, &Config::default()).unwrap();
+//! assert_eq!(out.status, optimal::Status::Optimal);
+//! assert!(out.upper_bound > 0.0);
+//! ```
+#![forbid(unsafe_code)]
+#![warn(missing_docs)]
+
+pub mod actions;
+pub mod coarse;
+pub mod dijkstra;
+pub mod error;
+pub mod heuristic;
+pub mod problem;
+pub mod search;
+
+pub use actions::ActionSet;
+pub use coarse::{Coarsened, coarsen_problem};
+pub use error::OptimalError;
+pub use heuristic::HeuristicKind;
+pub use problem::{Problem, SensorModel};
+pub use search::{
+    Config, Outcome, Solution, Stats, Status, StopReason, heuristic_value, solve, walk,
+};
+
+/// Competitive ratio of an online path: `online_length / optimal_length` (same units);
+/// `None` if the optimal length is not positive.
+pub fn competitive_ratio(online_length: f64, optimal_length: f64) -> Option<f64> {
+    (optimal_length > 0.0 && online_length.is_finite()).then(|| online_length / optimal_length)
+}

@@ -50,17 +50,16 @@ impl FootprintSensor {
     }
 }
 
-impl Sensor for FootprintSensor {
-    fn scan(&self, truth: &Grid<Occ>, pose: Pose, out: &mut Observation) {
-        out.clear();
-        out.origin = pose.cell;
+impl FootprintSensor {
+    /// Call `seen(flat index)` for every in-grid cell within range of `pose`'s cell.
+    #[inline]
+    fn for_each_in_range(&self, grid: &Grid<Occ>, pose: Pose, mut seen: impl FnMut(usize)) {
         let o = pose.cell;
-        if !truth.contains(o) {
+        if !grid.contains(o) {
             return;
         }
-        let (w, h) = (truth.width() as i64, truth.height() as i64);
+        let (w, h) = (grid.width() as i64, grid.height() as i64);
         let reach = (self.half.len() / 2) as i64;
-        let data = truth.data();
         for (row, &half) in self.half.iter().enumerate() {
             let y = i64::from(o.y) + row as i64 - reach;
             if y < 0 || y >= h {
@@ -69,10 +68,19 @@ impl Sensor for FootprintSensor {
             let x0 = (i64::from(o.x) - i64::from(half)).max(0);
             let x1 = (i64::from(o.x) + i64::from(half)).min(w - 1);
             for x in x0..=x1 {
-                let i = (y * w + x) as usize;
-                out.cells.push((i as u32, observed(data[i])));
+                seen((y * w + x) as usize);
             }
         }
+    }
+}
+
+impl Sensor for FootprintSensor {
+    fn scan(&self, truth: &Grid<Occ>, pose: Pose, out: &mut Observation) {
+        out.clear();
+        out.origin = pose.cell;
+        let data = truth.data();
+        let cells = &mut out.cells;
+        self.for_each_in_range(truth, pose, |i| cells.push((i as u32, observed(data[i]))));
     }
 
     fn range_cells(&self) -> f64 {
@@ -81,6 +89,12 @@ impl Sensor for FootprintSensor {
 
     fn is_omnidirectional(&self) -> bool {
         true
+    }
+
+    /// Every cell within range, as in a real scan: walls do not block a footprint.
+    fn predict(&self, known: &Grid<Occ>, pose: Pose, out: &mut Vec<u32>) {
+        out.clear();
+        self.for_each_in_range(known, pose, |i| out.push(i as u32));
     }
 }
 

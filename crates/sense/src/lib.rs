@@ -14,6 +14,9 @@
 //! - [`LidarSensor`] (`lidar:r=8,fov=180,res=1`): Holz et al.'s planar scanner, beams
 //!   traced with Amanatides & Woo's grid traversal.
 //!
+//! Information gain ([`gain`]): the expected entropy drop of a predicted scan on a belief
+//! ([`Sensor::predict`]), for decision-theoretic exploration.
+//!
 //! Belief maps (all implement [`Belief`], chosen by [`BeliefKind`]): the ternary
 //! [`KnownGrid`], Holz et al.'s [`ReflectionMap`] (free iff p ≤ 0.25) and Yamauchi's
 //! log-odds [`EvidenceGrid`] (prior 0.5).
@@ -27,6 +30,7 @@
 pub mod belief;
 pub mod error;
 pub mod footprint;
+pub mod gain;
 pub mod lidar;
 pub mod los;
 pub mod ray_template;
@@ -37,6 +41,7 @@ pub mod spec;
 pub use belief::{Belief, BeliefKind, EvidenceGrid, KnownGrid, ReflectionMap};
 pub use error::SenseError;
 pub use footprint::{FootprintSensor, MAX_RANGE_CELLS};
+pub use gain::{GainScratch, InverseModel, entropy, information_gain};
 pub use lidar::LidarSensor;
 pub use los::LosSensor;
 pub use ray_template::{LosTemplate, MAX_TEMPLATE_RANGE_CELLS};

@@ -14,12 +14,14 @@
 //!   Unknown) is reported Occupied and ends the beam; leaving the grid ends it unreported.
 //! - The sensor's own cell is always reported; if it is non-free, nothing else is seen.
 //! - Cells crossed by several beams are reported once (the observation is sorted by index).
+//! - A predicted scan ([`Sensor::predict`]) traces the same beams on a belief, passing
+//!   through Unknown cells too; it reports cells unsorted and with repeats.
 
 use grid::{Grid, Occ};
 
 use crate::error::SenseError;
 use crate::footprint::check_plain_range;
-use crate::sensor::{Observation, Pose, Sensor, observed};
+use crate::sensor::{Observation, Pose, Sensor, observed, predicted_transparent};
 
 /// The smallest angular resolution accepted, in degrees (at most 36,000 beams).
 pub const MIN_LIDAR_RES_DEG: f64 = 0.01;
@@ -91,19 +93,29 @@ impl LidarSensor {
     }
 }
 
-impl Sensor for LidarSensor {
-    fn scan(&self, truth: &Grid<Occ>, pose: Pose, out: &mut Observation) {
-        out.clear();
-        out.origin = pose.cell;
-        let Some(origin) = truth.checked_index(pose.cell) else {
+impl LidarSensor {
+    /// Trace every beam from `pose` in `grid`: `seen(flat index, state)` for each cell a beam
+    /// enters within range, in beam order (cells may repeat across beams). A beam passes
+    /// through cells whose state is `transparent` and ends at (after reporting) the first
+    /// other one; leaving the grid ends it unreported. The sensor's own cell is reported
+    /// first; if it is not transparent nothing else is.
+    #[inline]
+    fn trace(
+        &self,
+        grid: &Grid<Occ>,
+        pose: Pose,
+        transparent: impl Fn(Occ) -> bool,
+        mut seen: impl FnMut(usize, Occ),
+    ) {
+        let Some(origin) = grid.checked_index(pose.cell) else {
             return;
         };
-        let data = truth.data();
-        out.cells.push((origin as u32, observed(data[origin])));
-        if data[origin] != Occ::Free {
+        let data = grid.data();
+        seen(origin, data[origin]);
+        if !transparent(data[origin]) {
             return;
         }
-        let (w, h) = (truth.width() as i64, truth.height() as i64);
+        let (w, h) = (grid.width() as i64, grid.height() as i64);
         let (ch, sh) = (pose.heading.cos(), pose.heading.sin());
         for &(c, s) in &self.beams {
             // Rotate the relative direction by the heading.
@@ -131,12 +143,26 @@ impl Sensor for LidarSensor {
                     break;
                 }
                 let i = (y * w + x) as usize;
-                out.cells.push((i as u32, observed(data[i])));
-                if data[i] != Occ::Free {
+                seen(i, data[i]);
+                if !transparent(data[i]) {
                     break;
                 }
             }
         }
+    }
+}
+
+impl Sensor for LidarSensor {
+    fn scan(&self, truth: &Grid<Occ>, pose: Pose, out: &mut Observation) {
+        out.clear();
+        out.origin = pose.cell;
+        let cells = &mut out.cells;
+        self.trace(
+            truth,
+            pose,
+            |s| s == Occ::Free,
+            |i, s| cells.push((i as u32, observed(s))),
+        );
         out.cells.sort_unstable_by_key(|&(i, _)| i);
         out.cells.dedup_by_key(|&mut (i, _)| i);
     }
@@ -147,6 +173,15 @@ impl Sensor for LidarSensor {
 
     fn is_omnidirectional(&self) -> bool {
         self.fov_deg >= 360.0
+    }
+
+    /// The beams of [`scan`](Sensor::scan) on the belief, unsorted and with repeats (no
+    /// sort: callers deduplicate with a mark buffer).
+    fn predict(&self, known: &Grid<Occ>, pose: Pose, out: &mut Vec<u32>) {
+        out.clear();
+        self.trace(known, pose, predicted_transparent, |i, _| {
+            out.push(i as u32)
+        });
     }
 }
 

@@ -7,6 +7,8 @@
 //! blocked cell or vertex, so its cost grows with what is seen (see [`LosTemplate`] for
 //! the measured constant). Its result equals
 //! [`los_visible`](crate::los_visible) for every cell (checked by property tests).
+//! A predicted scan ([`Sensor::predict`]) walks the same template on a belief with Unknown
+//! cells transparent.
 
 use std::sync::Arc;
 
@@ -14,7 +16,7 @@ use grid::{Cell, Grid, Occ};
 
 use crate::error::SenseError;
 use crate::ray_template::{LosNode, LosTemplate};
-use crate::sensor::{Observation, Pose, Sensor, observed};
+use crate::sensor::{Observation, Pose, Sensor, observed, predicted_transparent};
 
 /// The ideal line-of-sight sensor (360°, range in cells), backed by a shared ray template.
 #[derive(Clone, Debug)]
@@ -46,19 +48,38 @@ impl LosSensor {
     /// in template pre-order (each cell once). Nothing is seen from outside the grid.
     #[inline]
     pub fn for_each_seen(&self, truth: &Grid<Occ>, origin: Cell, mut seen: impl FnMut(u32, Occ)) {
+        self.for_each_through(
+            truth,
+            origin,
+            |s| s == Occ::Free,
+            |i, s| seen(i, observed(s)),
+        );
+    }
+
+    /// Call `seen(flat index, state in grid)` for every cell reached from `origin` when
+    /// rays pass through the cells whose state is `transparent` and stop at (and report)
+    /// the first other one; the squeeze test blocks between two non-transparent cells.
+    #[inline]
+    fn for_each_through(
+        &self,
+        grid: &Grid<Occ>,
+        origin: Cell,
+        transparent: impl Fn(Occ) -> bool,
+        mut seen: impl FnMut(u32, Occ),
+    ) {
         let nodes = self.template.nodes();
-        let Some(o) = truth.checked_index(origin) else {
+        let Some(o) = grid.checked_index(origin) else {
             return;
         };
-        let (w, h) = (truth.width() as i64, truth.height() as i64);
+        let (w, h) = (grid.width() as i64, grid.height() as i64);
         let reach = self.template.range().floor() as i64;
         let (ox, oy) = (i64::from(origin.x), i64::from(origin.y));
-        let data = truth.data();
+        let data = grid.data();
         if ox >= reach && oy >= reach && ox + reach < w && oy + reach < h {
             // The whole disc is inside the grid: plain index arithmetic.
             let w = w as isize;
             let at = move |dx: i16, dy: i16| (o as isize + dy as isize * w + dx as isize) as usize;
-            walk(nodes, data, at, &mut seen);
+            walk(nodes, data, at, &transparent, &mut seen);
         } else {
             // Near the border: cells outside the grid are opaque (index `usize::MAX`).
             let at = move |dx: i16, dy: i16| {
@@ -69,22 +90,24 @@ impl LosSensor {
                     usize::MAX
                 }
             };
-            walk(nodes, data, at, &mut seen);
+            walk(nodes, data, at, &transparent, &mut seen);
         }
     }
 }
 
 /// Walk the template: `at(dx, dy)` gives the flat index of an offset (`usize::MAX` outside
-/// the grid). A node whose squeeze check fails or whose cell is not free (or outside)
-/// has its subtree skipped; target cells inside the grid are reported.
+/// the grid). A node whose squeeze check fails or whose cell is not transparent (or
+/// outside) has its subtree skipped; target cells inside the grid are reported with their
+/// state.
 #[inline(always)]
 fn walk(
     nodes: &[LosNode],
     data: &[Occ],
     at: impl Fn(i16, i16) -> usize,
+    transparent: &impl Fn(Occ) -> bool,
     seen: &mut impl FnMut(u32, Occ),
 ) {
-    let free = |i: usize| data.get(i).is_some_and(|&s| s == Occ::Free);
+    let free = |i: usize| data.get(i).is_some_and(|&s| transparent(s));
     let mut k = 0;
     while k < nodes.len() {
         let n = nodes[k];
@@ -101,9 +124,9 @@ fn walk(
             continue;
         };
         if n.is_target() {
-            seen(i as u32, observed(state));
+            seen(i as u32, state);
         }
-        k = if state == Occ::Free { k + 1 } else { n.end() };
+        k = if transparent(state) { k + 1 } else { n.end() };
     }
 }
 
@@ -121,6 +144,11 @@ impl Sensor for LosSensor {
 
     fn is_omnidirectional(&self) -> bool {
         true
+    }
+
+    fn predict(&self, known: &Grid<Occ>, pose: Pose, out: &mut Vec<u32>) {
+        out.clear();
+        self.for_each_through(known, pose.cell, predicted_transparent, |i, _| out.push(i));
     }
 }
 

@@ -70,6 +70,28 @@ pub trait Sensor: Send + Sync {
     fn range_cells(&self) -> f64;
     /// Whether the sensor sees all around (360°), so that its heading does not matter.
     fn is_omnidirectional(&self) -> bool;
+
+    /// Clears `out`, then fills it with the flat indices of the cells a scan from `pose`
+    /// would observe on the *belief* `known`: a predicted scan, for information gain.
+    ///
+    /// Rays pass through Free and Unknown cells (an unknown cell would be observed and is
+    /// assumed not to block) and stop at known Occupied cells, which are included; cells
+    /// outside the grid are opaque and never reported. Indices may repeat (overlapping
+    /// beams): callers deduplicate. The default scans a copy of `known` with Unknown made
+    /// Free, which allocates; the built-in sensors walk the belief directly.
+    fn predict(&self, known: &Grid<Occ>, pose: Pose, out: &mut Vec<u32>) {
+        let transparent = known.map(|&s| if s == Occ::Unknown { Occ::Free } else { s });
+        let mut obs = Observation::new();
+        self.scan(&transparent, pose, &mut obs);
+        out.clear();
+        out.extend(obs.cells.iter().map(|&(i, _)| i));
+    }
+}
+
+/// Whether a belief cell lets a predicted ray through: everything but known Occupied.
+#[inline]
+pub(crate) fn predicted_transparent(s: Occ) -> bool {
+    s != Occ::Occupied
 }
 
 /// The observed state of a ground-truth state: Free stays Free, anything else is opaque

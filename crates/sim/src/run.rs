@@ -11,9 +11,13 @@
 
 use std::time::Instant;
 
+use explore::assign::{AssignerKind, utility};
 use explore::candidates::{CandidateKind, CandidateSet};
 use explore::decision::{DecisionCtx, Goal, GoalLists, Memory, Planner};
 use explore::strategy::SensingMode;
+
+/// `dt-rr` re-evaluates its target's utility every this many moves (one predicted scan).
+const DT_RECHECK_MOVES: u32 = 5;
 use explore::upkeep::FrontierUpkeep;
 use grid::{Cell, GridMap, Occ, step_cost};
 use rand_pcg::Pcg64Mcg;
@@ -43,6 +47,9 @@ struct Robot {
     progress_clock: f64,
     /// No goal was found at its last decision.
     idle: bool,
+    /// `dt-rr`: the target's utility at decision time and the heading it was scored with.
+    utility0: f64,
+    heading0: f64,
 }
 
 /// Everything the loop owns besides the robots.
@@ -127,7 +134,11 @@ pub fn run(truth: &GridMap, cfg: &RunConfig) -> Result<RunResult, SimError> {
         planner: Planner::new(w, h, m),
         lists: GoalLists::new(cells.len()),
         candidates: CandidateSet::new(cells.len()),
-        memory: Memory::default(),
+        memory: {
+            let mut memory = Memory::default();
+            memory.dt.model = sense::gain::InverseModel::for_belief(cfg.belief);
+            memory
+        },
         rng: seed::rng(cfg.seed, "strategy"),
         obs: Observation::new(),
         changed: Vec::new(),
@@ -168,6 +179,8 @@ pub fn run(truth: &GridMap, cfg: &RunConfig) -> Result<RunResult, SimError> {
             best_remaining: f64::INFINITY,
             progress_clock: 0.0,
             idle: false,
+            utility0: 0.0,
+            heading0: 0.0,
         })
         .collect();
     // Every robot looks around once where it stands.
@@ -418,6 +431,26 @@ impl Team<'_> {
                     robot.idle = false;
                     robot.path.extend_from_slice(&self.path_buf[1..]);
                     robot.remaining = goal.cost;
+                    if let (Some(_), AssignerKind::DtUtility { lambda }) = (
+                        self.cfg.strategy.replan.utility_drop,
+                        self.cfg.strategy.assigner,
+                    ) {
+                        robot.heading0 = utility::chosen_heading(&self.memory.dt, goal.cell)
+                            .unwrap_or(robot.heading);
+                        let pose = Pose {
+                            cell: self.truth.cells.cell(goal.cell as usize),
+                            heading: robot.heading0,
+                        };
+                        robot.utility0 = utility::target_utility(
+                            &mut self.memory.dt,
+                            self.belief.as_ref(),
+                            self.sensor.as_ref(),
+                            pose,
+                            goal.cost,
+                            self.truth.resolution,
+                            lambda,
+                        );
+                    }
                     robot.best_remaining = goal.cost;
                     robot.progress_clock = robot.clock;
                 }
@@ -545,6 +578,28 @@ impl Team<'_> {
             self.arrive(robots, r);
         } else if replan.recheck && !self.is_open_frontier(goal) {
             // Repetitive re-checking (Holz): an O(1) look-up per move.
+            self.decide(robots, &[r]);
+        } else if let (Some(fraction), AssignerKind::DtUtility { lambda }) =
+            (replan.utility_drop, self.cfg.strategy.assigner)
+            && robots[r].moves_since_decision.is_multiple_of(DT_RECHECK_MOVES)
+            && {
+                let pose = Pose {
+                    cell: self.truth.cells.cell(goal as usize),
+                    heading: robots[r].heading0,
+                };
+                let u = utility::target_utility(
+                    &mut self.memory.dt,
+                    self.belief.as_ref(),
+                    self.sensor.as_ref(),
+                    pose,
+                    robots[r].remaining,
+                    self.truth.resolution,
+                    lambda,
+                );
+                u < fraction * robots[r].utility0
+            }
+        {
+            // `dt-rr`: the target is no longer worth the trip.
             self.decide(robots, &[r]);
         } else if replan
             .every_moves

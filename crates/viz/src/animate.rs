@@ -257,7 +257,9 @@ pub fn animate_gif(
                         // Sample: the cell at the block's corner, obstacles winning.
                         let (px, py, _) = g.cell_px(x as i32, y as i32);
                         let k = (py as u32 * g.width + px as u32) as usize;
-                        if x as u32 % g.down == 0 && y as u32 % g.down == 0 || c == OCCUPIED {
+                        if (x as u32).is_multiple_of(g.down) && (y as u32).is_multiple_of(g.down)
+                            || c == OCCUPIED
+                        {
                             buf[k] = c;
                         }
                     } else {

@@ -1,12 +1,160 @@
-//! Hungarian assignment (Faigl & Kulich's HA).
+//! Hungarian assignment (Faigl & Kulich 2013, §III-B, HA): the optimal assignment of the
+//! robot × goal path-cost matrix.
 //!
-//! (Being written.)
+//! The linear sum assignment is solved by the `lsap` crate (a port of SciPy's shortest
+//! augmenting path solver: rectangular, f64 costs). Faigl & Kulich used a C Hungarian
+//! implementation; any exact solver gives the same optimal total cost.
+//!
+//! Precisions and deviations:
+//! - only each robot's k cheapest free goals are offered to the solver (k = number of
+//!   deciding robots, ties by candidate order), at most k² columns. This keeps the optimum:
+//!   in an optimal assignment a robot whose goal is not among its k cheapest could move to
+//!   one of them that the k − 1 others leave free, at no higher cost. So a decision on all
+//!   frontier cells (thousands) costs O(k n) for the selection plus a k × k² solve;
+//! - unreachable pairs get a large finite cost (lsap rejects infinities), larger than any
+//!   assignment of finite pairs, so one is used only if unavoidable; a robot it is given to
+//!   counts as unassigned;
+//! - goals of robots that keep their goal this time count as assigned;
+//! - with more robots than free goals, the robots left without a goal (and those that reach
+//!   none of the free goals) take their cheapest reachable goal, taken or not;
+//! - should the solver fail (it cannot on finite costs), the greedy rule decides instead;
+//! - a single deciding robot takes its nearest free goal (the optimum of a 1 × n problem)
+//!   by an early-stopping search ([`greedy::assign_single`]).
 
+use crate::assign::greedy;
 use crate::candidates::CandidateSet;
 use crate::decision::{DecisionCtx, Goal};
 
-/// Give goals to the deciding robots.
+/// Buffers of [`optimal`], reused across decisions.
+#[derive(Clone, Debug, Default)]
+pub struct Buffers {
+    /// Candidate columns of the reduced problem.
+    pub cols: Vec<usize>,
+    /// Row-major costs of the reduced problem.
+    pub cost: Vec<f64>,
+    /// One row's free columns, for selecting its cheapest.
+    pub row: Vec<usize>,
+}
+
+/// Optimal assignment on a row-major `rows × cols` cost matrix (`INFINITY` = unreachable),
+/// columns with `taken[j]` excluded: `out[i]` becomes row `i`'s column, `None` for rows left
+/// over (more rows than free columns) or matched only to an unreachable column. Among the
+/// assignments with the most reachable pairs it minimises the total cost.
+pub fn optimal(
+    rows: usize,
+    cols: usize,
+    cost: &[f64],
+    taken: &[bool],
+    buf: &mut Buffers,
+    out: &mut Vec<Option<usize>>,
+) {
+    out.clear();
+    out.resize(rows, None);
+    if rows == 0 || cols == 0 {
+        return;
+    }
+    // Offer each row its k cheapest free columns, (cost, index) order.
+    let k = rows;
+    buf.cols.clear();
+    let key = |i: usize, j: usize| (cost[i * cols + j], j);
+    for i in 0..rows {
+        buf.row.clear();
+        buf.row.extend((0..cols).filter(|&j| !taken[j]));
+        if buf.row.len() > k {
+            buf.row.select_nth_unstable_by(k - 1, |&a, &b| {
+                let (ca, cb) = (key(i, a), key(i, b));
+                ca.0.total_cmp(&cb.0).then(ca.1.cmp(&cb.1))
+            });
+            buf.row.truncate(k);
+        }
+        buf.cols.extend_from_slice(&buf.row);
+    }
+    buf.cols.sort_unstable();
+    buf.cols.dedup();
+    let n = buf.cols.len();
+    if n == 0 {
+        return;
+    }
+    let max_finite = buf
+        .cols
+        .iter()
+        .flat_map(|&j| (0..rows).map(move |i| cost[i * cols + j]))
+        .filter(|c| c.is_finite())
+        .fold(0.0f64, f64::max);
+    // Any assignment with one more unreachable pair costs more than one with fewer.
+    let big = (max_finite + 1.0) * (rows as f64 + 1.0);
+    buf.cost.clear();
+    for i in 0..rows {
+        buf.cost.extend(buf.cols.iter().map(|&j| {
+            let c = cost[i * cols + j];
+            if c.is_finite() { c } else { big }
+        }));
+    }
+    match lsap::solve(rows, n, &buf.cost, false) {
+        Ok((r, c)) => {
+            for (&i, &jj) in r.iter().zip(&c) {
+                let j = buf.cols[jj];
+                if cost[i * cols + j].is_finite() {
+                    out[i] = Some(j);
+                }
+            }
+        }
+        Err(_) => {
+            let mut free = Vec::new();
+            greedy::solve(rows, cols, cost, taken, &mut free, out);
+        }
+    }
+}
+
+/// Give each robot `out[i] == None` its cheapest reachable column (earliest on ties).
+fn leftovers_take_cheapest(cols: usize, cost: &[f64], out: &mut [Option<usize>]) {
+    for (i, slot) in out.iter_mut().enumerate() {
+        if slot.is_some() {
+            continue;
+        }
+        let row = &cost[i * cols..(i + 1) * cols];
+        let mut best: Option<(f64, usize)> = None;
+        for (j, &c) in row.iter().enumerate() {
+            if c.is_finite() && best.is_none_or(|(b, _)| c < b) {
+                best = Some((c, j));
+            }
+        }
+        *slot = best.map(|(_, j)| j);
+    }
+}
+
+/// HA on a cost matrix: [`optimal`], then the robots left over take their cheapest goal.
+pub fn solve(
+    rows: usize,
+    cols: usize,
+    cost: &[f64],
+    taken: &[bool],
+    buf: &mut Buffers,
+    out: &mut Vec<Option<usize>>,
+) {
+    optimal(rows, cols, cost, taken, buf, out);
+    if cols > 0 {
+        leftovers_take_cheapest(cols, cost, out);
+    }
+}
+
+/// Give goals to the deciding robots: the assignment of least total path cost.
 pub fn assign(ctx: &mut DecisionCtx<'_>, candidates: &CandidateSet, out: &mut [Option<Goal>]) {
-    let _ = (ctx, candidates, out);
-    todo!("Hungarian assignment (Faigl & Kulich's HA).")
+    if greedy::assign_single(ctx, candidates, out) {
+        return;
+    }
+    let mut st = std::mem::take(&mut ctx.memory.greedy_utility);
+    let s = &mut st.scratch;
+    s.matrix.fill(ctx, candidates, false);
+    let m = &s.matrix;
+    solve(
+        m.rows.len(),
+        m.n_cols(),
+        &m.cost,
+        &m.taken,
+        &mut st.hungarian,
+        &mut s.assigned,
+    );
+    s.matrix.write(&s.assigned, out);
+    ctx.memory.greedy_utility = st;
 }

@@ -1,16 +1,300 @@
-//! Multiple-TSP assignment: cluster first, route second (Faigl & Kulich's MA).
+//! Multiple-TSP assignment: cluster first, route second (Faigl & Kulich 2013, §III-B, MA).
 //!
-//! (Being written.)
+//! The goals are split by k-means into as many clusters as robots; the clusters are
+//! assigned to the robots optimally, the cost of robot i for cluster j being the length of
+//! an open TSP route from the robot through the goals of the cluster (Faigl, Kulich &
+//! Přeučil's ⟨cluster first, route second⟩); each robot's next goal is the first goal of
+//! its route. Robot-to-goal costs are path lengths from the robots' reachability maps.
+//!
+//! Choices and deviations:
+//! - **Goal-to-goal distances** are not searched (that would be a Dijkstra per goal): we
+//!   use the lower bound d(a, b) = max(octile(a, b), max_r |d_r(a) − d_r(b)|) over the
+//!   robots' path costs d_r (triangle inequality), exact in open space and along the
+//!   robots' shortest-path trees. Routes are optimised against this bound; the goal a robot
+//!   is sent to is still reached by its true shortest path.
+//! - Routes for the robot × cluster cost matrix are nearest neighbour + local search
+//!   (`OpenTsp::with_effort(1, 0)`); the assigned robot's own route is then re-solved with
+//!   the full effort of [`crate::tsp`]. The paper used Chained Lin–Kernighan (Concorde).
+//! - The optimal cluster-to-robot assignment is the `lsap` solver (SciPy's shortest
+//!   augmenting path) on that matrix; goals a robot cannot reach add a large finite penalty.
+//! - **Team semantics**: every robot that reaches a goal takes part in the clustering and the
+//!   assignment, so the split of the work accounts for the robots that keep their goals;
+//!   only deciding robots get new goals. Goals held by non-deciding robots are taken and
+//!   left out. With fewer goals than robots there are fewer clusters, and a deciding robot
+//!   without a cluster (or whose cluster it cannot reach) takes its cheapest free goal, or
+//!   failing that its cheapest goal taken or not (as HA does).
+//! - k-means++ seeding draws from the run's generator: MA is stochastic, as in the paper.
 
 use crate::candidates::CandidateSet;
 use crate::decision::{DecisionCtx, Goal};
+use crate::kmeans::{Init, KMeans, Point};
+use crate::tsp::OpenTsp;
 
-/// State kept across decisions.
-#[derive(Default)]
-pub struct State {}
+/// Added to a route's cost for each goal of the cluster the robot cannot reach.
+const UNREACHABLE: f64 = 1e9;
+
+/// Clusters, matrices and routes, kept across decisions.
+pub struct State {
+    goals: Vec<u32>,
+    points: Vec<Point>,
+    /// Participating robots.
+    part: Vec<usize>,
+    /// `dist[p * goals + g]`: path cost of participant p to goal g (∞ if unreachable).
+    dist: Vec<f64>,
+    kmeans: KMeans,
+    /// Goals ordered by cluster: cluster j is `order[cstart[j]..cstart[j + 1]]`.
+    order: Vec<u32>,
+    cstart: Vec<usize>,
+    /// Node list and matrix of one route.
+    nodes: Vec<u32>,
+    dm: Vec<f64>,
+    /// Participants × clusters route costs, row-major.
+    cost: Vec<f64>,
+    /// Cluster of each participant (`usize::MAX` for none) from the last decision.
+    cluster_of: Vec<usize>,
+    fast: OpenTsp,
+    full: OpenTsp,
+}
+
+impl Default for State {
+    fn default() -> Self {
+        Self {
+            goals: Vec::new(),
+            points: Vec::new(),
+            part: Vec::new(),
+            dist: Vec::new(),
+            kmeans: KMeans::new(),
+            order: Vec::new(),
+            cstart: Vec::new(),
+            nodes: Vec::new(),
+            dm: Vec::new(),
+            cost: Vec::new(),
+            cluster_of: Vec::new(),
+            fast: OpenTsp::with_effort(1, 0),
+            full: OpenTsp::new(),
+        }
+    }
+}
+
+impl State {
+    /// Robots that took part in the last decision.
+    pub fn participants(&self) -> &[usize] {
+        &self.part
+    }
+
+    /// The last robot × cluster route-cost matrix (participants × clusters, row-major) and
+    /// its number of clusters.
+    pub fn cost_matrix(&self) -> (&[f64], usize) {
+        (&self.cost, self.cstart.len().saturating_sub(1))
+    }
+
+    /// The cluster assigned to each participant in the last decision (`None`: no cluster).
+    pub fn assignment(&self) -> impl Iterator<Item = Option<usize>> + '_ {
+        self.cluster_of
+            .iter()
+            .map(|&c| (c != usize::MAX).then_some(c))
+    }
+
+    /// The free goals of the last decision (cells).
+    pub fn goals(&self) -> &[u32] {
+        &self.goals
+    }
+
+    /// The goals of cluster `j` in the last decision, as indices into [`goals`](Self::goals).
+    pub fn cluster(&self, j: usize) -> &[u32] {
+        &self.order[self.cstart[j]..self.cstart[j + 1]]
+    }
+}
 
 /// Give goals to the deciding robots.
 pub fn assign(ctx: &mut DecisionCtx<'_>, candidates: &CandidateSet, out: &mut [Option<Goal>]) {
-    let _ = (ctx, candidates, out);
-    todo!("Multiple-TSP assignment: cluster first, route second (Faigl & Kulich's MA).")
+    let mut st = std::mem::take(&mut ctx.memory.mtsp);
+    run(ctx, candidates, out, &mut st);
+    ctx.memory.mtsp = st;
+}
+
+fn run(
+    ctx: &mut DecisionCtx<'_>,
+    candidates: &CandidateSet,
+    out: &mut [Option<Goal>],
+    st: &mut State,
+) {
+    let m = ctx.robots.len();
+    for (r, slot) in out.iter_mut().enumerate().take(m) {
+        if ctx.deciding[r] {
+            *slot = None;
+        }
+    }
+    st.goals.clear();
+    st.part.clear();
+    st.cstart.clear();
+    st.cost.clear();
+    st.cluster_of.clear();
+    if candidates.is_empty() || !ctx.deciding.iter().any(|&d| d) {
+        return;
+    }
+    for r in 0..m {
+        ctx.planner.full(r, ctx.robots[r], ctx.known, ctx.upkeep);
+    }
+    let planner = &*ctx.planner;
+    let taken = |c: u32| (0..m).any(|r| !ctx.deciding[r] && ctx.goals[r] == Some(c));
+    let width = ctx.known.width();
+    // Free goals reachable by some robot; participants = robots reaching one of them.
+    for &c in candidates.cells() {
+        if !taken(c) && (0..m).any(|r| planner.map(r).cost(c as usize).is_some()) {
+            st.goals.push(c);
+        }
+    }
+    let ng = st.goals.len();
+    for r in 0..m {
+        if st
+            .goals
+            .iter()
+            .any(|&g| planner.map(r).cost(g as usize).is_some())
+        {
+            st.part.push(r);
+        }
+    }
+    st.dist.clear();
+    for &r in &st.part {
+        let map = planner.map(r);
+        st.dist.extend(
+            st.goals
+                .iter()
+                .map(|&g| map.cost(g as usize).unwrap_or(f64::INFINITY)),
+        );
+    }
+    let np = st.part.len();
+    if ng > 0 {
+        // Cluster first.
+        st.points.clear();
+        st.points.extend(
+            st.goals
+                .iter()
+                .map(|&g| ((g as usize % width) as f64, (g as usize / width) as f64)),
+        );
+        let k = np.min(ng);
+        st.kmeans
+            .fit(&st.points, None, Init::PlusPlus(k), &mut *ctx.rng);
+        let k = st.kmeans.centres().len();
+        st.order.clear();
+        st.cstart.push(0);
+        for j in 0..k {
+            for (g, &l) in st.kmeans.labels().iter().enumerate() {
+                if l as usize == j {
+                    st.order.push(g as u32);
+                }
+            }
+            st.cstart.push(st.order.len());
+        }
+        // Route second: the participants × clusters matrix.
+        st.cost.resize(np * k, 0.0);
+        for p in 0..np {
+            for j in 0..k {
+                let (c, _) = route(st, ctx, p, j, false);
+                st.cost[p * k + j] = c;
+            }
+        }
+        st.cluster_of.resize(np, usize::MAX);
+        // The solver cannot fail on finite costs; if it did, everyone falls back below.
+        if let Ok((rows, cols)) = lsap::solve(np, k, &st.cost, false) {
+            for (p, j) in rows.into_iter().zip(cols) {
+                st.cluster_of[p] = j;
+            }
+        }
+        for p in 0..np {
+            let r = st.part[p];
+            let j = st.cluster_of[p];
+            if !ctx.deciding[r] || j == usize::MAX {
+                continue;
+            }
+            let (_, first) = route(st, ctx, p, j, true);
+            if let Some(g) = first {
+                let cell = st.goals[g];
+                out[r] = Some(Goal {
+                    cell,
+                    cost: st.dist[p * ng + g],
+                });
+            }
+        }
+    }
+    // Deciding robots left without a goal: cheapest free goal, else cheapest goal.
+    for (r, slot) in out.iter_mut().enumerate().take(m) {
+        if !ctx.deciding[r] || slot.is_some() {
+            continue;
+        }
+        let map = planner.map(r);
+        let cheapest = |cells: &mut dyn Iterator<Item = u32>| {
+            let mut best: Option<Goal> = None;
+            for c in cells {
+                if let Some(cost) = map.cost(c as usize)
+                    && best.is_none_or(|b| cost < b.cost)
+                {
+                    best = Some(Goal { cell: c, cost });
+                }
+            }
+            best
+        };
+        *slot = cheapest(&mut st.goals.iter().copied())
+            .or_else(|| cheapest(&mut candidates.cells().iter().copied()));
+    }
+}
+
+/// Route participant `p` through cluster `j`: its cost (with penalties for unreachable
+/// goals) and the first goal (index into `st.goals`). `full` selects the thorough solver.
+fn route(
+    st: &mut State,
+    ctx: &DecisionCtx<'_>,
+    p: usize,
+    j: usize,
+    full: bool,
+) -> (f64, Option<usize>) {
+    let ng = st.goals.len();
+    let np = st.part.len();
+    let width = ctx.known.width();
+    st.nodes.clear();
+    let mut penalty = 0.0;
+    for &g in &st.order[st.cstart[j]..st.cstart[j + 1]] {
+        if st.dist[p * ng + g as usize].is_finite() {
+            st.nodes.push(g);
+        } else {
+            penalty += UNREACHABLE;
+        }
+    }
+    let n = st.nodes.len() + 1;
+    st.dm.clear();
+    st.dm.resize(n * n, 0.0);
+    for a in 1..n {
+        let ga = st.nodes[a - 1] as usize;
+        let d0 = st.dist[p * ng + ga];
+        st.dm[a] = d0;
+        st.dm[a * n] = d0;
+        let ca = grid::Cell::new(
+            (st.goals[ga] as usize % width) as i32,
+            (st.goals[ga] as usize / width) as i32,
+        );
+        for b in a + 1..n {
+            let gb = st.nodes[b - 1] as usize;
+            let cb = grid::Cell::new(
+                (st.goals[gb] as usize % width) as i32,
+                (st.goals[gb] as usize / width) as i32,
+            );
+            let mut d = ca.octile(cb);
+            for q in 0..np {
+                let (x, y) = (st.dist[q * ng + ga], st.dist[q * ng + gb]);
+                if x.is_finite() && y.is_finite() {
+                    d = d.max((x - y).abs());
+                }
+            }
+            st.dm[a * n + b] = d;
+            st.dm[b * n + a] = d;
+        }
+    }
+    let solver = if full { &mut st.full } else { &mut st.fast };
+    let c = solver.solve(n, &st.dm);
+    let first = solver
+        .route()
+        .get(1)
+        .map(|&v| st.nodes[v as usize - 1] as usize);
+    (c + penalty, first)
 }

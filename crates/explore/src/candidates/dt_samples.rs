@@ -1,16 +1,254 @@
-//! Decision-theoretic samples near frontiers (González-Baños & Latombe; Holz et al. §3.2).
+//! Decision-theoretic samples near frontiers (González-Baños & Latombe 2002, as Holz et al.
+//! 2010 ran it, §3.2): `n` poses drawn from the free space "in the vicinity of frontiers",
+//! each scored by its expected information gain `I(p)` ([`sense::gain`]).
 //!
-//! (Being written.)
+//! The vicinity is every cell within the sensor range (Euclidean, centre to centre) of a
+//! frontier cell that is not on the visited/inaccessible lists: one exact distance
+//! transform from those frontier cells per decision, over their bounding box grown by the
+//! range. Eligible cells are listed in index order within that box. A sample must also be reachable by a
+//! deciding robot (its full reachability map) and not stand where a deciding robot stands.
+//! Samples are drawn uniformly without replacement (a partial Fisher–Yates shuffle of the
+//! eligible cells, listed in index order, driven by the run's `rng`), so a run is
+//! deterministic. `I(p)` is stored in [`State::gains`], aligned with the candidate set's
+//! order, for the utility assigner.
+//!
+//! Heading: a lidar's gain depends on where it looks. We use the heading the robot will
+//! have on arrival — the direction of the last step of its planned path to the sample, from
+//! the same reachability map the loop takes the path from (for a team: the lowest-index
+//! deciding robot that reaches the sample). A robot already on the cell is taken to face
+//! its unknown neighbours, as the loop turns it on arrival.
+//!
+//! Deviations, both to keep the loop's termination guarantee:
+//! - a sample whose gain is 0 cannot reveal anything from there, so it is not kept (it
+//!   would have utility 0 and never win anyway, unless all do);
+//! - when no draw has a positive gain (e.g. the last unknown cells hide behind corners no
+//!   nearby pose sees), every reachable, unlisted frontier cell becomes a candidate with
+//!   its gain (possibly 0), so the utility assigner degrades to the nearest frontier there.
+
+use grid::Grid;
+use grid::edt::{EdtScratch, edt_squared_into};
+use rand::RngExt;
+use sense::{Belief, GainScratch, InverseModel, Pose, Sensor, information_gain};
 
 use super::CandidateSet;
 use crate::decision::DecisionCtx;
+use crate::plan::Reachability;
 
-/// State kept across decisions.
-#[derive(Default)]
-pub struct State {}
+/// Samples, their gains and the buffers kept across decisions.
+pub struct State {
+    /// `I(p)` in bits of each candidate, aligned with [`cells`](Self::cells).
+    pub gains: Vec<f64>,
+    /// The candidates the gains belong to, in the candidate set's order.
+    pub cells: Vec<u32>,
+    /// The heading (radians, grid coordinates) each gain was evaluated with.
+    pub headings: Vec<f64>,
+    /// The simulated update of the gain ([`InverseModel::IDEAL`] unless the loop sets the
+    /// belief's own model, see [`InverseModel::for_belief`]).
+    pub model: InverseModel,
+    /// Whether the last decision fell back to frontier cells (no sample had a gain).
+    pub fell_back: bool,
+    /// Buffers of the gain evaluation (shared with the utility assigner).
+    pub scratch: GainScratch,
+    eligible: Vec<u32>,
+    near: Grid<f64>,
+    edt: EdtScratch,
+    path: Vec<u32>,
+}
 
-/// Fill `out` with the candidates.
+impl Default for State {
+    fn default() -> Self {
+        Self {
+            gains: Vec::new(),
+            cells: Vec::new(),
+            headings: Vec::new(),
+            model: InverseModel::IDEAL,
+            fell_back: false,
+            scratch: GainScratch::new(),
+            eligible: Vec::new(),
+            near: Grid::new(0, 0, f64::INFINITY),
+            edt: EdtScratch::new(),
+            path: Vec::new(),
+        }
+    }
+}
+
+impl State {
+    /// Forget the candidates of the last decision (keeps the buffers).
+    fn clear(&mut self) {
+        self.gains.clear();
+        self.cells.clear();
+        self.headings.clear();
+        self.fell_back = false;
+    }
+
+    /// Whether the stored gains belong to exactly these candidates.
+    pub fn aligned_with(&self, candidates: &CandidateSet) -> bool {
+        self.cells == candidates.cells()
+    }
+
+    /// Evaluate `cell` as seen on arrival along `reach`'s path, and record it as the next
+    /// candidate (gain and heading); returns the gain.
+    pub(crate) fn record(
+        &mut self,
+        sensor: &dyn Sensor,
+        belief: &dyn Belief,
+        reach: &Reachability,
+        cell: u32,
+    ) -> f64 {
+        let (gain, heading) = self.evaluate(sensor, belief, reach, cell);
+        self.cells.push(cell);
+        self.gains.push(gain);
+        self.headings.push(heading);
+        gain
+    }
+
+    /// `(I(p), heading)` of `cell` on arrival along `reach`'s path.
+    fn evaluate(
+        &mut self,
+        sensor: &dyn Sensor,
+        belief: &dyn Belief,
+        reach: &Reachability,
+        cell: u32,
+    ) -> (f64, f64) {
+        let known = belief.known();
+        let heading = if sensor.is_omnidirectional() {
+            0.0
+        } else {
+            arrival_heading(known, reach, cell, &mut self.path)
+        };
+        let pose = Pose::new(known.cell(cell as usize), heading);
+        let gain = information_gain(sensor, belief, &self.model, pose, &mut self.scratch);
+        (gain, heading)
+    }
+}
+
+/// The heading on arrival at `cell` along `reach`'s shortest path: the direction of its last
+/// step; at the start itself, towards the mean of its Unknown 8-neighbours (0 if none).
+pub fn arrival_heading(
+    known: &Grid<grid::Occ>,
+    reach: &Reachability,
+    cell: u32,
+    path: &mut Vec<u32>,
+) -> f64 {
+    let at = known.cell(cell as usize);
+    if reach.path_to(cell as usize, path) && path.len() >= 2 {
+        let from = known.cell(path[path.len() - 2] as usize);
+        return f64::from(at.y - from.y).atan2(f64::from(at.x - from.x));
+    }
+    let (mut sx, mut sy) = (0.0, 0.0);
+    for n in known.neighbours8(cell as usize) {
+        if known[n].is_unknown() {
+            let c = known.cell(n);
+            sx += f64::from(c.x - at.x);
+            sy += f64::from(c.y - at.y);
+        }
+    }
+    if sx == 0.0 && sy == 0.0 {
+        0.0
+    } else {
+        f64::atan2(sy, sx)
+    }
+}
+
+/// Fill `out` with those of `n` reachable samples near frontiers that have a positive gain
+/// (or, failing that, the reachable frontier cells), and their gains in `ctx.memory.dt`.
 pub fn generate(ctx: &mut DecisionCtx<'_>, n: usize, out: &mut CandidateSet) {
-    let _ = (ctx, n, out);
-    todo!("Decision-theoretic samples near frontiers (González-Baños & Latombe; Holz et al. §3.2).")
+    let mut st = std::mem::take(&mut ctx.memory.dt);
+    st.clear();
+    fill(ctx, n, out, &mut st);
+    ctx.memory.dt = st;
+}
+
+fn fill(ctx: &mut DecisionCtx<'_>, n: usize, out: &mut CandidateSet, st: &mut State) {
+    let m = ctx.robots.len();
+    let mut any = false;
+    for r in (0..m).filter(|&r| ctx.deciding[r]) {
+        ctx.planner.full(r, ctx.robots[r], ctx.known, ctx.upkeep);
+        any = true;
+    }
+    let lists = ctx.lists;
+    let frontiers = &ctx.upkeep.frontiers;
+    if !any || !frontiers.cells().iter().any(|&c| !lists.is_excluded(c)) {
+        return;
+    }
+    // The distance transform runs on the frontier cells' bounding box grown by the range
+    // (clipped): every cell within range of a frontier cell lies in it, and every frontier
+    // cell too, so distances there are exact.
+    let (w, h) = (ctx.known.width(), ctx.known.height());
+    let range = ctx.sensor_range_cells.max(0.0);
+    let r2 = range * range;
+    let grow = range.ceil().min((w + h) as f64) as usize;
+    let (mut x0, mut y0, mut x1, mut y1) = (usize::MAX, usize::MAX, 0, 0);
+    for &c in frontiers.cells() {
+        if !lists.is_excluded(c) {
+            let (x, y) = (c as usize % w, c as usize / w);
+            (x0, y0, x1, y1) = (x0.min(x), y0.min(y), x1.max(x), y1.max(y));
+        }
+    }
+    let (x0, y0) = (x0.saturating_sub(grow), y0.saturating_sub(grow));
+    let (x1, y1) = ((x1 + grow).min(w - 1), (y1 + grow).min(h - 1));
+    let (bw, bh) = (x1 - x0 + 1, y1 - y0 + 1);
+    let to_map = |j: usize| (y0 + j / bw) * w + x0 + j % bw;
+    // Reuse the buffer's allocation whatever the box size.
+    let mut buf = std::mem::replace(&mut st.near, Grid::new(0, 0, 0.0)).into_vec();
+    buf.clear();
+    buf.resize(bw * bh, f64::INFINITY);
+    st.near = Grid::from_vec(bw, bh, buf).unwrap_or_else(|| Grid::new(bw, bh, f64::INFINITY));
+    edt_squared_into(
+        bw,
+        bh,
+        |j| {
+            let i = to_map(j);
+            frontiers.contains(i) && !lists.is_excluded(i as u32)
+        },
+        &mut st.near,
+        &mut st.edt,
+    );
+    let planner = &*ctx.planner;
+    let reacher = |i: usize| (0..m).find(|&r| ctx.deciding[r] && planner.map(r).is_settled(i));
+    st.eligible.clear();
+    for (j, &d2) in st.near.data().iter().enumerate() {
+        let i = to_map(j);
+        if d2 <= r2
+            && !lists.is_excluded(i as u32)
+            && !(0..m).any(|r| ctx.deciding[r] && ctx.robots[r] as usize == i)
+            && reacher(i).is_some()
+        {
+            st.eligible.push(i as u32);
+        }
+    }
+
+    // Partial Fisher–Yates: n draws without replacement; those with a gain are kept.
+    let len = st.eligible.len();
+    let mut kept = 0;
+    for k in 0..len.min(n) {
+        let j = ctx.rng.random_range(k..len);
+        st.eligible.swap(k, j);
+        let c = st.eligible[k];
+        let Some(r) = reacher(c as usize) else {
+            continue;
+        };
+        let (gain, heading) = st.evaluate(ctx.sensor, ctx.belief, planner.map(r), c);
+        if gain > 0.0 {
+            out.insert(c);
+            st.cells.push(c);
+            st.gains.push(gain);
+            st.headings.push(heading);
+            kept += 1;
+        }
+    }
+    if kept > 0 {
+        return;
+    }
+    // Fallback: the reachable, unlisted frontier cells themselves.
+    st.fell_back = true;
+    for &c in frontiers.cells() {
+        if lists.is_excluded(c) || out.contains(c as usize) {
+            continue;
+        }
+        if let Some(r) = reacher(c as usize) {
+            out.insert(c);
+            st.record(ctx.sensor, ctx.belief, planner.map(r), c);
+        }
+    }
 }

@@ -1,6 +1,40 @@
 //! Room segmentation of partial maps (Holz et al. 2010 §2.4, Figure 7).
 //!
-//! (Being written.)
+//! The pipeline follows Figure 7, one step per file:
+//!
+//! 1. [`skeleton`] and [`graph`]: the Voronoi diagram of free space as a one-cell-wide
+//!    skeleton of the distance transform, turned into a graph of nodes (junctions, end
+//!    points) with degree and clearance;
+//! 2. [`critical`]: critical points — local minima of clearance of degree 2 — under one of
+//!    three rules ([`Rule`]);
+//! 3. and 4. [`regions`]: two seeds per critical point, every free cell to its nearest seed;
+//! 5. and 6. [`merge`]: the split graph and the iterative merge of adjacent segments that do
+//!    not come from the same split point.
+//!
+//! [`cache`] keeps a segmentation between decisions ([`State`]) and [`score`] compares a
+//! segmentation with ground-truth rooms.
+//!
+//! Partial maps: only known free cells are segmented; unknown cells count as not free (as
+//! walls) for the distance transform and the skeleton. A room seen only in part is
+//! segmented as far as it is seen, and a doorway into unseen space is not a narrowing yet —
+//! the split appears once the space behind it has been seen wide enough.
+//!
+//! Everything is deterministic (index order, no hash maps) and reuses its buffers.
+
+pub mod cache;
+pub mod critical;
+pub mod graph;
+pub mod merge;
+pub mod regions;
+pub mod score;
+pub mod skeleton;
+
+use grid::{Grid, Occ};
+
+pub use cache::State;
+pub use critical::CriticalPoint;
+pub use graph::{NONE, VoronoiGraph};
+pub use skeleton::Skeleton;
 
 /// Which critical points split the map.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -14,6 +48,118 @@ pub enum Rule {
     Thrun,
 }
 
-/// The segmentation kept between decisions.
-#[derive(Default)]
-pub struct State {}
+impl Rule {
+    /// All rules, for comparisons.
+    pub const ALL: [Rule; 3] = [Rule::Holz, Rule::Wurm, Rule::Thrun];
+
+    /// Lower-case name (`holz`, `wurm`, `thrun`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Rule::Holz => "holz",
+            Rule::Wurm => "wurm",
+            Rule::Thrun => "thrun",
+        }
+    }
+}
+
+impl std::str::FromStr for Rule {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        match s.to_ascii_lowercase().as_str() {
+            "holz" => Ok(Rule::Holz),
+            "wurm" => Ok(Rule::Wurm),
+            "thrun" => Ok(Rule::Thrun),
+            _ => Err(format!(
+                "unknown segmentation rule '{s}': expected holz, wurm or thrun"
+            )),
+        }
+    }
+}
+
+/// A segmentation of the free cells of a map.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Segmentation {
+    /// Grid width.
+    pub width: usize,
+    /// Grid height.
+    pub height: usize,
+    /// Segment id per cell, `0..count`; [`NONE`] for cells that are not free.
+    pub labels: Vec<u32>,
+    /// Number of segments.
+    pub count: u32,
+    /// The critical points that split the map.
+    pub critical: Vec<CriticalPoint>,
+}
+
+impl Segmentation {
+    /// The segment of cell `i`, if it is a segmented free cell.
+    #[inline]
+    pub fn label(&self, i: usize) -> Option<u32> {
+        self.labels.get(i).copied().filter(|&l| l != NONE)
+    }
+
+    /// Number of cells of each segment.
+    pub fn sizes(&self) -> Vec<usize> {
+        let mut s = vec![0; self.count as usize];
+        for &l in &self.labels {
+            if l != NONE {
+                s[l as usize] += 1;
+            }
+        }
+        s
+    }
+}
+
+/// All buffers of the segmentation pipeline, reused across calls.
+#[derive(Clone, Debug, Default)]
+pub struct Segmenter {
+    /// The skeleton of the last map segmented.
+    pub skeleton: Skeleton,
+    /// Its Voronoi graph.
+    pub graph: VoronoiGraph,
+    finder: critical::Finder,
+    assigner: regions::Assigner,
+    merger: merge::Merger,
+    result: Segmentation,
+}
+
+impl Segmenter {
+    /// Empty buffers.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Segment the free cells of `known` with critical points under `rule`.
+    pub fn run(&mut self, known: &Grid<Occ>, rule: Rule) -> &Segmentation {
+        self.skeleton.compute(known);
+        self.graph.build(&self.skeleton);
+        let r = &mut self.result;
+        self.finder
+            .find(&self.skeleton, &self.graph, rule, &mut r.critical);
+        let initial = self.assigner.assign(known, &r.critical, &mut r.labels);
+        r.count = self
+            .merger
+            .merge(known.width(), &mut r.labels, initial, r.critical.len());
+        r.width = known.width();
+        r.height = known.height();
+        &self.result
+    }
+
+    /// The last segmentation computed.
+    pub fn result(&self) -> &Segmentation {
+        &self.result
+    }
+
+    /// Mutable access to the last segmentation (for incremental label upkeep).
+    pub(crate) fn result_mut(&mut self) -> &mut Segmentation {
+        &mut self.result
+    }
+}
+
+/// Segment the free cells of `known` (allocating fresh buffers).
+pub fn segment(known: &Grid<Occ>, rule: Rule) -> Segmentation {
+    let mut s = Segmenter::new();
+    s.run(known, rule);
+    s.result
+}

@@ -1,0 +1,75 @@
+//! Errors of the benchmark harness: every one names the file (and, for scenario files, the
+//! line and key) it came from.
+
+use std::path::PathBuf;
+
+/// What can go wrong while reading a scenario, running trials or writing results.
+#[derive(Debug, thiserror::Error)]
+pub enum BenchError {
+    /// The scenario file is not valid TOML or does not fit the schema (toml's message
+    /// carries the line, column and key).
+    #[error("{file}: {message}")]
+    Toml {
+        /// The scenario file (or `suite:NAME`).
+        file: String,
+        /// toml's message, with line and column.
+        message: String,
+    },
+    /// A value in the scenario file is not acceptable.
+    #[error("{file}:{line}: key `{key}`: {message}")]
+    Scenario {
+        /// The scenario file (or `suite:NAME`).
+        file: String,
+        /// 1-based line of the offending value (0 when the key is missing).
+        line: usize,
+        /// The key, e.g. `strategies` or `env[2].map`.
+        key: String,
+        /// What is wrong.
+        message: String,
+    },
+    /// Reading or writing a file failed.
+    #[error("{path}: {source}")]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// The cause.
+        source: std::io::Error,
+    },
+    /// The results database failed.
+    #[error("{path}: {source}")]
+    Sql {
+        /// The database file.
+        path: PathBuf,
+        /// The cause.
+        source: rusqlite::Error,
+    },
+    /// A database does not hold what is expected (another scenario, a foreign schema).
+    #[error("{path}: {message}")]
+    Store {
+        /// The database file.
+        path: PathBuf,
+        /// What is wrong.
+        message: String,
+    },
+    /// Anything else, described in words (bad command-line values, plotting failures).
+    #[error("{0}")]
+    Other(String),
+}
+
+impl BenchError {
+    /// An SQLite error on `path`.
+    pub fn sql(path: &std::path::Path) -> impl FnOnce(rusqlite::Error) -> BenchError + '_ {
+        move |source| BenchError::Sql {
+            path: path.to_path_buf(),
+            source,
+        }
+    }
+
+    /// An I/O error on `path`.
+    pub fn io(path: &std::path::Path) -> impl FnOnce(std::io::Error) -> BenchError + '_ {
+        move |source| BenchError::Io {
+            path: path.to_path_buf(),
+            source,
+        }
+    }
+}

@@ -1,0 +1,787 @@
+//! Resolving a scenario into a flat, ordered list of trials before anything runs
+//! (issue 9, "Scenario files" and "Running").
+//!
+//! Everything is validated first — preset names, sensor specs, environments, map files,
+//! start cells, numbers — and each mistake is reported with the file, line and key.
+//!
+//! **Seeds.** A trial's seed is `sim::seed::derive(master, "ENV|start=S|trial=T")`: it
+//! depends on the master seed, the environment, the start variant and the trial number,
+//! never on the thread count or order. It deliberately does *not* depend on the strategy,
+//! sensor or robot count: every strategy meets the same random starts and the same random
+//! streams (common random numbers), so paired comparisons by (start variant, trial) are fair.
+//!
+//! **Starts.** With `perturbations = k > 0`, an environment has k start variants, each a
+//! cell drawn uniformly from the traversable cells within `radius` metres (Euclidean, in
+//! cells) of its base start and connected to it (Faigl & Kulich's start perturbations); the
+//! base start is the `[[env]]`'s `start`, or drawn by seed. With no perturbations, a given
+//! `start` is the only variant; otherwise every trial draws its own start from its seed
+//! (the multi-robot study's random starts). Teams stand at the nearest distinct
+//! traversable cells around the first robot's start, as `frontier explore` places them.
+//!
+//! **Trials per variant.** `trials` runs per start variant for stochastic strategies (and
+//! for random starts); a deterministic strategy at a fixed start would repeat the same run,
+//! so it runs once unless `repeat_deterministic = true`.
+
+use std::collections::BTreeSet;
+
+use explore::assign::AssignerKind;
+use explore::candidates::CandidateKind;
+use explore::strategy::{SensingMode, Strategy};
+use grid::{Cell, GridMap};
+use rand::RngExt;
+use sense::{BeliefKind, SensorSpec};
+use sim::RunConfig;
+use world::{EnvKind, EnvSpec};
+
+use crate::error::BenchError;
+use crate::scenario::{ScenarioFile, Source};
+
+/// A resolved study: environments, variants, common settings and the flat trial list.
+#[derive(Clone, Debug)]
+pub struct Plan {
+    /// Name of the study.
+    pub name: String,
+    /// Description from the scenario.
+    pub description: String,
+    /// Where it came from (file or `suite:NAME`).
+    pub source: String,
+    /// Master seed.
+    pub master_seed: u64,
+    /// Environments, in file order (seeds in order).
+    pub envs: Vec<EnvInstance>,
+    /// Variants: (strategy, sensor, robot count) combinations.
+    pub variants: Vec<Variant>,
+    /// Settings shared by every trial.
+    pub common: Common,
+    /// Every trial, in a fixed order (environment, variant, start variant, trial).
+    pub trials: Vec<Trial>,
+    /// Strategies left out because they are not built yet, with the reason.
+    pub skipped: Vec<String>,
+}
+
+/// One environment of the study.
+#[derive(Clone, Debug)]
+pub struct EnvInstance {
+    /// Unique name (e.g. `office-s3`, or the map file's stem).
+    pub name: String,
+    /// Built-in kind, or `map`.
+    pub kind: String,
+    /// Generation seed of a built-in kind.
+    pub env_seed: Option<u64>,
+    /// The map file, as written in the scenario.
+    pub map_file: Option<String>,
+    /// The ground truth.
+    pub map: GridMap,
+    /// Start variants: a fixed team start (cells for the largest team), or `None` = drawn
+    /// by each trial's seed.
+    pub starts: Vec<Option<Vec<Cell>>>,
+}
+
+/// A (strategy, sensor, robot count) combination.
+#[derive(Clone, Debug)]
+pub struct Variant {
+    /// Strategy label in results (preset name, or with `/s_max=N`).
+    pub label: String,
+    /// The strategy with its parameters.
+    pub strategy: Strategy,
+    /// The sensor.
+    pub sensor: SensorSpec,
+    /// Number of robots.
+    pub robots: usize,
+    /// Whether the strategy draws random numbers (then it runs `trials` times per start).
+    pub stochastic: bool,
+}
+
+/// Settings shared by every trial.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Common {
+    /// Speed in metres per second.
+    pub speed: f64,
+    /// Clearance in metres.
+    pub clearance_m: f64,
+    /// Coverage goal.
+    pub coverage_goal: Option<f64>,
+    /// Move limit of the team.
+    pub max_moves: u64,
+    /// Belief map.
+    pub belief: BeliefKind,
+    /// Sensing mode override.
+    pub sensing: Option<SensingMode>,
+    /// Trials per start variant.
+    pub trials: u32,
+    /// Repeat deterministic strategies too.
+    pub repeat_deterministic: bool,
+}
+
+/// One run to do.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Trial {
+    /// Stable key: `ENV|LABEL|SENSOR|m=ROBOTS|start=S|trial=T`.
+    pub key: String,
+    /// Index into [`Plan::envs`].
+    pub env: usize,
+    /// Index into [`Plan::variants`].
+    pub variant: usize,
+    /// Start variant.
+    pub start_variant: u32,
+    /// Trial number within the start variant.
+    pub trial: u32,
+    /// The run's seed.
+    pub seed: u64,
+}
+
+/// Whether a strategy draws random numbers: random assigners, random-order greedy, the
+/// k-means based MA and SGA, RFE's k-means, and the decision-theoretic samples.
+pub fn is_stochastic(s: &Strategy) -> bool {
+    matches!(
+        s.assigner,
+        AssignerKind::Random
+            | AssignerKind::RandomOrderGreedy
+            | AssignerKind::Mtsp
+            | AssignerKind::Sga
+    ) || matches!(
+        s.candidates,
+        CandidateKind::Rfe { .. } | CandidateKind::DtSamples { .. }
+    )
+}
+
+/// What to do with a strategy that is not built yet.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Unbuilt {
+    /// Leave it out and say so in [`Plan::skipped`] (built-in suites).
+    Skip,
+    /// Report an error naming the key (users' files).
+    Error,
+}
+
+fn span_of<T>(s: &toml::Spanned<T>) -> Option<std::ops::Range<usize>> {
+    Some(s.span())
+}
+
+impl Plan {
+    /// Parse and resolve a scenario: load or generate every environment, check every value,
+    /// and list the trials.
+    pub fn resolve(src: &Source, unbuilt: Unbuilt) -> Result<Plan, BenchError> {
+        let file: ScenarioFile = src.parse()?;
+        resolve(src, file, unbuilt)
+    }
+
+    /// The run configuration of `t` (everything but the map).
+    pub fn config(&self, t: &Trial) -> RunConfig {
+        let v = &self.variants[t.variant];
+        let env = &self.envs[t.env];
+        let mut cfg = RunConfig::new(v.strategy.clone());
+        cfg.sensor = v.sensor;
+        cfg.belief = self.common.belief;
+        cfg.sensing = self.common.sensing;
+        cfg.robots = v.robots;
+        cfg.clearance_m = self.common.clearance_m;
+        cfg.speed = self.common.speed;
+        cfg.seed = t.seed;
+        cfg.coverage_goal = self.common.coverage_goal;
+        cfg.max_moves = self.common.max_moves;
+        if let Some(team) = &env.starts[t.start_variant as usize] {
+            cfg.starts = team[..v.robots].to_vec();
+        }
+        cfg
+    }
+
+    /// A text naming the settings every trial shares; a results database holds the results
+    /// of one fingerprint only, so a changed scenario cannot silently mix with old results.
+    pub fn fingerprint(&self) -> String {
+        let c = &self.common;
+        format!(
+            "seed={} speed={} clearance={} goal={:?} max_moves={} belief={} sensing={}",
+            self.master_seed,
+            c.speed,
+            c.clearance_m,
+            c.coverage_goal,
+            c.max_moves,
+            c.belief,
+            c.sensing.map_or("default".to_string(), |s| s.to_string())
+        )
+    }
+}
+
+fn nonneg(src: &Source, v: &toml::Spanned<i64>, key: &str, min: i64) -> Result<u64, BenchError> {
+    let x = *v.get_ref();
+    if x < min {
+        return Err(src.error(
+            span_of(v),
+            key,
+            format!("expected an integer >= {min}, found {x}"),
+        ));
+    }
+    Ok(x as u64)
+}
+
+fn positive_f64(src: &Source, v: &toml::Spanned<f64>, key: &str) -> Result<f64, BenchError> {
+    let x = *v.get_ref();
+    if !(x.is_finite() && x > 0.0) {
+        return Err(src.error(
+            span_of(v),
+            key,
+            format!("expected a positive number, found {x}"),
+        ));
+    }
+    Ok(x)
+}
+
+/// s_max as written: -1 = on arrival, N > 0 = every N moves.
+fn s_max_value(src: &Source, v: &toml::Spanned<i64>, key: &str) -> Result<Option<u32>, BenchError> {
+    match *v.get_ref() {
+        -1 => Ok(None),
+        n if n > 0 && n <= i64::from(u32::MAX) => Ok(Some(n as u32)),
+        n => Err(src.error(
+            span_of(v),
+            key,
+            format!("expected a positive number of cell moves or -1 (on arrival), found {n}"),
+        )),
+    }
+}
+
+fn resolve(src: &Source, f: ScenarioFile, unbuilt: Unbuilt) -> Result<Plan, BenchError> {
+    let master_seed = match &f.seed {
+        Some(s) => nonneg(src, s, "seed", 0)?,
+        None => 0,
+    };
+    let name = f.name.clone().unwrap_or_else(|| {
+        std::path::Path::new(&src.file)
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_else(|| "study".into())
+    });
+
+    // Common settings.
+    let speed = match &f.speed {
+        Some(v) => positive_f64(src, v, "speed")?,
+        None => 1.0,
+    };
+    let clearance_m = match &f.clearance {
+        Some(v) => {
+            let x = *v.get_ref();
+            if !(x.is_finite() && x >= 0.0) {
+                return Err(src.error(
+                    span_of(v),
+                    "clearance",
+                    format!("expected a number of metres >= 0, found {x}"),
+                ));
+            }
+            x
+        }
+        None => 0.0,
+    };
+    let coverage_goal = match &f.coverage_goal {
+        Some(v) => {
+            let x = *v.get_ref();
+            if !(x > 0.0 && x <= 1.0) {
+                return Err(src.error(
+                    span_of(v),
+                    "coverage_goal",
+                    format!("expected a share in (0, 1], found {x}"),
+                ));
+            }
+            Some(x)
+        }
+        None => None,
+    };
+    let max_moves = match &f.max_moves {
+        Some(v) => nonneg(src, v, "max_moves", 1)?,
+        None => 10_000_000,
+    };
+    let belief = match &f.belief {
+        Some(v) => v
+            .get_ref()
+            .parse::<BeliefKind>()
+            .map_err(|e| src.error(span_of(v), "belief", e.to_string()))?,
+        None => BeliefKind::Known,
+    };
+    let sensing = match &f.sensing {
+        Some(v) => Some(
+            v.get_ref()
+                .parse::<SensingMode>()
+                .map_err(|e| src.error(span_of(v), "sensing", e))?,
+        ),
+        None => None,
+    };
+    let trials = match &f.trials {
+        Some(v) => {
+            let n = nonneg(src, v, "trials", 1)?;
+            u32::try_from(n).map_err(|_| src.error(span_of(v), "trials", "too many trials"))?
+        }
+        None => 1,
+    };
+    let common = Common {
+        speed,
+        clearance_m,
+        coverage_goal,
+        max_moves,
+        belief,
+        sensing,
+        trials,
+        repeat_deterministic: f.repeat_deterministic.unwrap_or(false),
+    };
+
+    // Strategies.
+    let global_s_max = f
+        .s_max
+        .as_ref()
+        .map(|v| s_max_value(src, v, "s_max"))
+        .transpose()?;
+    let mut strategies: Vec<(String, Strategy)> = Vec::new();
+    let mut skipped = Vec::new();
+    let mut add = |label: String,
+                   strategy: Strategy,
+                   span: Option<std::ops::Range<usize>>,
+                   key: &str|
+     -> Result<(), BenchError> {
+        if strategies.iter().any(|(l, _)| *l == label) {
+            return Err(src.error(span, key, format!("strategy '{label}' is listed twice")));
+        }
+        if let Err(why) = crate::built::check(&strategy) {
+            match unbuilt {
+                Unbuilt::Skip => {
+                    skipped.push(format!("{label}: not built yet ({why})"));
+                    return Ok(());
+                }
+                Unbuilt::Error => {
+                    return Err(src.error(
+                        span,
+                        key,
+                        format!("strategy '{label}' cannot run yet: {why}"),
+                    ));
+                }
+            }
+        }
+        strategies.push((label, strategy));
+        Ok(())
+    };
+    for (i, s) in f.strategies.iter().enumerate() {
+        let key = format!("strategies[{i}]");
+        let mut strategy = Strategy::preset(s.get_ref())
+            .map_err(|e| src.error(span_of(s), &key, e.to_string()))?;
+        if let (Some(every), Some(_)) = (global_s_max, strategy.replan.every_moves) {
+            strategy.replan.every_moves = every;
+        }
+        add(s.get_ref().clone(), strategy, span_of(s), &key)?;
+    }
+    for (i, entry) in f.strategy.iter().enumerate() {
+        let e = entry.get_ref();
+        let key = format!("strategy[{i}].preset");
+        let mut strategy = Strategy::preset(e.preset.get_ref())
+            .map_err(|err| src.error(span_of(&e.preset), &key, err.to_string()))?;
+        let mut label = e.preset.get_ref().clone();
+        if let Some(v) = &e.s_max {
+            strategy.replan.every_moves = s_max_value(src, v, &format!("strategy[{i}].s_max"))?;
+            label = format!("{label}/s_max={}", v.get_ref());
+        } else if let (Some(every), Some(_)) = (global_s_max, strategy.replan.every_moves) {
+            strategy.replan.every_moves = every;
+        }
+        if let Some(l) = &e.label {
+            if l.get_ref().is_empty() || l.get_ref().contains('|') {
+                return Err(src.error(
+                    span_of(l),
+                    format!("strategy[{i}].label"),
+                    "expected a non-empty name without '|'",
+                ));
+            }
+            label = l.get_ref().clone();
+        }
+        add(label, strategy, span_of(&e.preset), &key)?;
+    }
+    if strategies.is_empty() && skipped.is_empty() {
+        return Err(src.error(None, "strategies", "no strategy given"));
+    }
+
+    // Sensors and robot counts.
+    let sensors: Vec<SensorSpec> = match &f.sensors {
+        Some(list) => {
+            if list.get_ref().is_empty() {
+                return Err(src.error(span_of(list), "sensors", "expected at least one sensor"));
+            }
+            list.get_ref()
+                .iter()
+                .enumerate()
+                .map(|(i, s)| {
+                    s.get_ref()
+                        .parse::<SensorSpec>()
+                        .map_err(|e| src.error(span_of(s), format!("sensors[{i}]"), e.to_string()))
+                })
+                .collect::<Result<_, _>>()?
+        }
+        None => vec![SensorSpec::Los {
+            r: sense::Range::Metres(5.0),
+        }],
+    };
+    let robots: Vec<usize> = match &f.robots {
+        Some(list) => {
+            if list.get_ref().is_empty() {
+                return Err(src.error(
+                    span_of(list),
+                    "robots",
+                    "expected at least one robot count",
+                ));
+            }
+            let mut out = Vec::new();
+            for (i, r) in list.get_ref().iter().enumerate() {
+                let n = nonneg(src, r, &format!("robots[{i}]"), 1)?;
+                if n > 1000 {
+                    return Err(src.error(
+                        span_of(r),
+                        format!("robots[{i}]"),
+                        "at most 1000 robots",
+                    ));
+                }
+                if out.contains(&(n as usize)) {
+                    return Err(src.error(
+                        span_of(r),
+                        format!("robots[{i}]"),
+                        format!("{n} is listed twice"),
+                    ));
+                }
+                out.push(n as usize);
+            }
+            out
+        }
+        None => vec![1],
+    };
+    let max_robots = robots.iter().copied().max().unwrap_or(1);
+
+    // Perturbations.
+    let perturbations = match &f.perturbations {
+        Some(v) => nonneg(src, v, "perturbations", 0)? as u32,
+        None => 0,
+    };
+    let radius_m = match (&f.radius, perturbations) {
+        (Some(v), _) => Some(positive_f64(src, v, "radius")?),
+        (None, 0) => None,
+        (None, _) => {
+            return Err(src.error(
+                f.perturbations.as_ref().and_then(span_of),
+                "radius",
+                "perturbations need a radius in metres",
+            ));
+        }
+    };
+
+    // Environments.
+    if f.env.is_empty() {
+        return Err(src.error(None, "env", "no [[env]] given"));
+    }
+    let mut envs: Vec<EnvInstance> = Vec::new();
+    for (i, entry) in f.env.iter().enumerate() {
+        for mut env in load_env(src, i, entry)? {
+            let key = format!("env[{i}]");
+            let start = entry
+                .get_ref()
+                .start
+                .as_ref()
+                .map(|s| {
+                    let v = s.get_ref();
+                    match v.as_slice() {
+                        [x, y] if i32::try_from(*x).is_ok() && i32::try_from(*y).is_ok() => {
+                            Ok(Cell::new(*x as i32, *y as i32))
+                        }
+                        _ => Err(src.error(
+                            span_of(s),
+                            format!("{key}.start"),
+                            "expected a cell [x, y]",
+                        )),
+                    }
+                })
+                .transpose()?;
+            env.starts = start_variants(
+                &env,
+                start,
+                perturbations,
+                radius_m,
+                clearance_m,
+                master_seed,
+                max_robots,
+            )
+            .map_err(|m| {
+                let span = entry
+                    .get_ref()
+                    .start
+                    .as_ref()
+                    .map_or(Some(entry.span()), span_of);
+                src.error(span, format!("{key}.start"), format!("{}: {m}", env.name))
+            })?;
+            if envs.iter().any(|e| e.name == env.name) {
+                return Err(src.error(
+                    Some(entry.span()),
+                    format!("{key}.name"),
+                    format!("environment '{}' appears twice", env.name),
+                ));
+            }
+            envs.push(env);
+        }
+    }
+
+    // Variants: strategy-major, then sensor, then robots.
+    let mut variants = Vec::new();
+    for (label, strategy) in &strategies {
+        for sensor in &sensors {
+            for &m in &robots {
+                variants.push(Variant {
+                    label: label.clone(),
+                    stochastic: is_stochastic(strategy),
+                    strategy: strategy.clone(),
+                    sensor: *sensor,
+                    robots: m,
+                });
+            }
+        }
+    }
+    for env in &envs {
+        for v in &variants {
+            v.sensor.build(env.map.resolution).map_err(|e| {
+                src.error(
+                    None,
+                    "sensors",
+                    format!("{} on {}: {e}", v.sensor, env.name),
+                )
+            })?;
+        }
+    }
+
+    let mut trials = Vec::new();
+    let mut keys = BTreeSet::new();
+    for (e, env) in envs.iter().enumerate() {
+        for (vi, v) in variants.iter().enumerate() {
+            for (sv, start) in env.starts.iter().enumerate() {
+                let n = if start.is_none() || v.stochastic || common.repeat_deterministic {
+                    common.trials
+                } else {
+                    1
+                };
+                for t in 0..n {
+                    let key = format!(
+                        "{}|{}|{}|m={}|start={sv}|trial={t}",
+                        env.name, v.label, v.sensor, v.robots
+                    );
+                    let seed = sim::seed::derive(
+                        master_seed,
+                        &format!("{}|start={sv}|trial={t}", env.name),
+                    );
+                    if !keys.insert(key.clone()) {
+                        return Err(src.error(
+                            None,
+                            "env",
+                            format!("trial key '{key}' is not unique"),
+                        ));
+                    }
+                    trials.push(Trial {
+                        key,
+                        env: e,
+                        variant: vi,
+                        start_variant: sv as u32,
+                        trial: t,
+                        seed,
+                    });
+                }
+            }
+        }
+    }
+    Ok(Plan {
+        name,
+        description: f.description.clone().unwrap_or_default(),
+        source: src.file.clone(),
+        master_seed,
+        envs,
+        variants,
+        common,
+        trials,
+        skipped,
+    })
+}
+
+/// Load or generate the environments of `[[env]]` number `i`.
+fn load_env(
+    src: &Source,
+    i: usize,
+    entry: &toml::Spanned<crate::scenario::EnvEntry>,
+) -> Result<Vec<EnvInstance>, BenchError> {
+    let e = entry.get_ref();
+    let key = format!("env[{i}]");
+    let resolution = e
+        .resolution
+        .as_ref()
+        .map(|r| positive_f64(src, r, &format!("{key}.resolution")))
+        .transpose()?;
+    match (&e.kind, &e.map) {
+        (Some(_), Some(m)) => Err(src.error(
+            span_of(m),
+            format!("{key}.map"),
+            "give either `kind` (a built-in environment) or `map` (a file), not both",
+        )),
+        (None, None) => Err(src.error(
+            Some(entry.span()),
+            format!("{key}.kind"),
+            "expected `kind` (a built-in environment) or `map` (a file)",
+        )),
+        (None, Some(m)) => {
+            let misplaced = [
+                ("seeds", e.seeds.as_ref().map(|v| v.span())),
+                ("count", e.count.as_ref().map(|v| v.span())),
+                ("size", e.size.as_ref().map(|v| v.span())),
+            ];
+            for (field, span) in misplaced {
+                if let Some(span) = span {
+                    return Err(src.error(
+                        Some(span),
+                        format!("{key}.{field}"),
+                        "applies to built-in environments (`kind`), not to map files",
+                    ));
+                }
+            }
+            let path = match &src.dir {
+                Some(d) => d.join(m.get_ref()),
+                None => std::path::PathBuf::from(m.get_ref()),
+            };
+            let opts = grid::io::LoadOptions {
+                resolution: resolution.map(|r| (r, r)),
+                border: e.border.unwrap_or(false),
+            };
+            let map = grid::io::load_map(&path, &opts)
+                .map_err(|err| src.error(span_of(m), format!("{key}.map"), err.to_string()))?;
+            let name = match &e.name {
+                Some(n) => n.get_ref().clone(),
+                None => path
+                    .file_stem()
+                    .map(|s| s.to_string_lossy().into_owned())
+                    .unwrap_or_else(|| "map".into()),
+            };
+            Ok(vec![EnvInstance {
+                name,
+                kind: "map".into(),
+                env_seed: None,
+                map_file: Some(m.get_ref().clone()),
+                map,
+                starts: Vec::new(),
+            }])
+        }
+        (Some(k), None) => {
+            if e.border.is_some() {
+                return Err(src.error(
+                    span_of(k),
+                    format!("{key}.border"),
+                    "applies to map files, not to built-in environments",
+                ));
+            }
+            let kind: EnvKind = k
+                .get_ref()
+                .parse()
+                .map_err(|err| src.error(span_of(k), format!("{key}.kind"), format!("{err}")))?;
+            let size_m = match &e.size {
+                Some(s) => match s.get_ref().as_slice() {
+                    [w, h] => Some((*w, *h)),
+                    _ => {
+                        return Err(src.error(
+                            span_of(s),
+                            format!("{key}.size"),
+                            "expected [width, height] in metres",
+                        ));
+                    }
+                },
+                None => None,
+            };
+            let seeds: Vec<u64> = match (&e.seeds, &e.count) {
+                (Some(_), Some(c)) => {
+                    return Err(src.error(
+                        span_of(c),
+                        format!("{key}.count"),
+                        "give either `seeds` or `count`, not both",
+                    ));
+                }
+                (Some(list), None) => list
+                    .get_ref()
+                    .iter()
+                    .enumerate()
+                    .map(|(j, s)| nonneg(src, s, &format!("{key}.seeds[{j}]"), 0))
+                    .collect::<Result<_, _>>()?,
+                (None, Some(c)) => (0..nonneg(src, c, &format!("{key}.count"), 1)?).collect(),
+                (None, None) => vec![0],
+            };
+            if e.name.is_some() && seeds.len() > 1 {
+                return Err(src.error(
+                    e.name.as_ref().and_then(span_of),
+                    format!("{key}.name"),
+                    "a name applies to one environment; several seeds are named by seed",
+                ));
+            }
+            let mut out = Vec::new();
+            for seed in seeds {
+                let spec = EnvSpec {
+                    kind,
+                    seed,
+                    size_m,
+                    resolution,
+                };
+                let env = world::generate(&spec).map_err(|err| {
+                    let span = e.size.as_ref().map_or(span_of(k), span_of);
+                    src.error(span, key.clone(), err.to_string())
+                })?;
+                out.push(EnvInstance {
+                    name: e.name.as_ref().map_or(env.name, |n| n.get_ref().clone()),
+                    kind: kind.to_string(),
+                    env_seed: Some(seed),
+                    map_file: None,
+                    map: env.map,
+                    starts: Vec::new(),
+                });
+            }
+            Ok(out)
+        }
+    }
+}
+
+/// The start variants of `env` (see the module doc).
+fn start_variants(
+    env: &EnvInstance,
+    start: Option<Cell>,
+    perturbations: u32,
+    radius_m: Option<f64>,
+    clearance_m: f64,
+    master_seed: u64,
+    max_robots: usize,
+) -> Result<Vec<Option<Vec<Cell>>>, String> {
+    let cells = &env.map.cells;
+    if start.is_none() && perturbations == 0 {
+        return Ok(vec![None]);
+    }
+    let trav = sim::truth::traversable(cells, clearance_m / env.map.resolution);
+    let base = match start {
+        Some(c) => {
+            sim::truth::check_start(cells, &trav, c).map_err(|e| e.to_string())?;
+            c
+        }
+        None => {
+            let mut rng = sim::seed::rng(master_seed, &format!("{}|base", env.name));
+            sim::truth::random_start(cells, &trav, &mut rng, clearance_m)
+                .map_err(|e| e.to_string())?
+        }
+    };
+    let team = |first: Cell| {
+        sim::truth::team_starts(cells, &trav, first, max_robots).map_err(|e| e.to_string())
+    };
+    if perturbations == 0 {
+        return Ok(vec![Some(team(base)?)]);
+    }
+    let r_cells = radius_m.unwrap_or(0.0) / env.map.resolution;
+    let reach = sim::truth::reachable_from(cells, &trav, cells.index(base));
+    let near: Vec<usize> = (0..cells.len())
+        .filter(|&i| {
+            let c = cells.cell(i);
+            let (dx, dy) = (f64::from(c.x - base.x), f64::from(c.y - base.y));
+            reach[i] && dx * dx + dy * dy <= r_cells * r_cells
+        })
+        .collect();
+    (0..perturbations)
+        .map(|j| {
+            let mut rng = sim::seed::rng(master_seed, &format!("{}|start={j}", env.name));
+            let c = cells.cell(near[rng.random_range(0..near.len())]);
+            team(c).map(Some)
+        })
+        .collect()
+}

@@ -1,0 +1,583 @@
+//! `frontier bench report`: tables, tests and charts of a results database, written as
+//! `report.md` (with `plots/*.svg` and `envs/*.png` beside it) and a self-contained
+//! `report.html` (charts inline as SVG, pictures as data URIs; no network needed).
+//!
+//! A *setting* is (environment, sensor, robot count). Per setting and strategy the report
+//! gives n, the share of complete runs, L (the longest path of one robot — the path length
+//! for one robot; Holz's and Faigl & Kulich's metric) as mean ± sd, median, IQR, min, max,
+//! Shapiro–Wilk's p, and the exploration time; a box plot of L per strategy (Holz Figure 8);
+//! mean coverage over team distance; and Faigl & Kulich's +/=/- matrix at α. Strategies are
+//! paired by (start variant, trial) when both have the same ones (the seeds are shared, so
+//! these are the same starts), else by start variant (means over trials) when at least 5
+//! start variants are shared, else compared unpaired (Mann–Whitney U). Per (environment,
+//! sensor) with several robot counts, mean time vs robot count is drawn (the multi-robot
+//! study's Figures 2–3). The summary at the end counts +/=/- over all settings (Table I).
+
+use std::collections::BTreeMap;
+use std::fmt::Write as _;
+use std::path::Path;
+
+use crate::error::BenchError;
+use crate::plots;
+use crate::stats::{self, Pairing, Verdict};
+use crate::store::{Store, TrialRow};
+
+/// Options of the report.
+#[derive(Clone, Copy, Debug)]
+pub struct ReportOptions {
+    /// Significance level of the +/=/- verdicts.
+    pub alpha: f64,
+}
+
+impl Default for ReportOptions {
+    fn default() -> Self {
+        Self {
+            alpha: stats::DEFAULT_ALPHA,
+        }
+    }
+}
+
+/// A piece of the report, rendered to Markdown and to HTML.
+enum Block {
+    Heading(u8, String),
+    Para(String),
+    Table(Vec<String>, Vec<Vec<String>>),
+    Svg(String, String),
+    Png(String, Vec<u8>),
+}
+
+/// (environment, sensor, robots).
+type Setting = (String, String, i64);
+
+/// Write the report of database `db` into directory `out`; returns the files written.
+pub fn write(
+    db: &Path,
+    out: &Path,
+    opts: &ReportOptions,
+) -> Result<Vec<std::path::PathBuf>, BenchError> {
+    if !db.exists() {
+        return Err(BenchError::Io {
+            path: db.to_path_buf(),
+            source: std::io::Error::new(std::io::ErrorKind::NotFound, "no such database"),
+        });
+    }
+    let store = Store::open_raw(db)?;
+    let rows = store.rows()?;
+    let envs = store.envs()?;
+    let scenario = store.meta("scenario")?.unwrap_or_default();
+    let fingerprint = store.meta("fingerprint")?.unwrap_or_default();
+    drop(store);
+    let blocks = build(&scenario, &fingerprint, &rows, &envs, opts)?;
+    std::fs::create_dir_all(out.join("plots")).map_err(BenchError::io(out))?;
+    std::fs::create_dir_all(out.join("envs")).map_err(BenchError::io(out))?;
+    let mut files = Vec::new();
+    for b in &blocks {
+        let (path, bytes) = match b {
+            Block::Svg(name, svg) => (
+                out.join("plots").join(format!("{name}.svg")),
+                svg.as_bytes(),
+            ),
+            Block::Png(name, png) => (out.join("envs").join(format!("{name}.png")), png.as_slice()),
+            _ => continue,
+        };
+        std::fs::write(&path, bytes).map_err(BenchError::io(&path))?;
+        files.push(path);
+    }
+    let md = out.join("report.md");
+    std::fs::write(&md, markdown(&blocks)).map_err(BenchError::io(&md))?;
+    let html = out.join("report.html");
+    std::fs::write(&html, html_page(&scenario, &blocks)).map_err(BenchError::io(&html))?;
+    files.push(md);
+    files.push(html);
+    Ok(files)
+}
+
+/// A file-name-safe version of `s`.
+fn slug(s: &str) -> String {
+    s.chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '-' || c == '.' {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect()
+}
+
+fn fmt(x: f64) -> String {
+    if x.abs() >= 100.0 {
+        format!("{x:.1}")
+    } else {
+        format!("{x:.2}")
+    }
+}
+
+fn build(
+    scenario: &str,
+    fingerprint: &str,
+    rows: &[TrialRow],
+    envs: &[crate::store::EnvPicture],
+    opts: &ReportOptions,
+) -> Result<Vec<Block>, BenchError> {
+    let mut blocks = vec![Block::Heading(1, format!("Benchmark report: {scenario}"))];
+    let versions: std::collections::BTreeSet<&str> =
+        rows.iter().map(|r| r.version.as_str()).collect();
+    let wall: f64 = rows.iter().map(|r| r.wall_s).sum();
+    blocks.push(Block::Para(format!(
+        "{} trials; settings: {fingerprint}; program version {}; {:.1} s of trial wall time. \
+         L = longest path of one robot (m); verdicts at α = {} (Faigl & Kulich: row vs column, \
+         + = row significantly lower).",
+        rows.len(),
+        versions.into_iter().collect::<Vec<_>>().join(", "),
+        wall,
+        opts.alpha
+    )));
+    let mut settings: BTreeMap<Setting, BTreeMap<String, Vec<&TrialRow>>> = BTreeMap::new();
+    for r in rows {
+        settings
+            .entry((r.env.clone(), r.sensor.clone(), r.robots))
+            .or_default()
+            .entry(r.strategy.clone())
+            .or_default()
+            .push(r);
+    }
+    // Faigl-style totals: (a, b) -> [+, =, -].
+    let mut totals: BTreeMap<(String, String), [usize; 3]> = BTreeMap::new();
+    let env_names: Vec<String> = {
+        let mut v: Vec<String> = settings.keys().map(|k| k.0.clone()).collect();
+        v.dedup();
+        v
+    };
+    for env in &env_names {
+        blocks.push(Block::Heading(2, format!("Environment {env}")));
+        if let Some(p) = envs.iter().find(|e| &e.name == env) {
+            blocks.push(Block::Para(format!(
+                "{} x {} cells at {} m per cell.",
+                p.width, p.height, p.resolution
+            )));
+            blocks.push(Block::Png(slug(env), p.png.clone()));
+        }
+        for ((e, sensor, robots), by_strategy) in settings.iter().filter(|(k, _)| &k.0 == env) {
+            let name = format!("{e} · {sensor} · {robots} robot(s)");
+            let id = slug(&format!("{e}-{sensor}-m{robots}"));
+            blocks.push(Block::Heading(3, name.clone()));
+            blocks.push(summary_table(by_strategy));
+            let labels: Vec<String> = by_strategy.keys().cloned().collect();
+            let data: Vec<Vec<f64>> = by_strategy
+                .values()
+                .map(|v| v.iter().map(|r| r.max_path).collect())
+                .collect();
+            blocks.push(Block::Svg(
+                format!("box-{id}"),
+                plots::box_plot(&format!("L per strategy — {name}"), "L (m)", &labels, &data)?,
+            ));
+            blocks.push(Block::Svg(
+                format!("coverage-{id}"),
+                plots::line_chart(
+                    &format!("Mean coverage over team distance — {name}"),
+                    "team distance (m)",
+                    "coverage",
+                    &coverage_curves(by_strategy),
+                )?,
+            ));
+            if by_strategy.len() >= 2 {
+                let (table, verdicts) = matrix(by_strategy, opts.alpha);
+                blocks.push(Block::Para(format!("+/=/- of L at α = {}:", opts.alpha)));
+                blocks.push(table);
+                for (a, b, v) in verdicts {
+                    let slot = match v {
+                        Verdict::Better => 0,
+                        Verdict::Same => 1,
+                        Verdict::Worse => 2,
+                    };
+                    totals.entry((a, b)).or_default()[slot] += 1;
+                }
+            }
+        }
+        // Time vs robot count per sensor.
+        let sensors: std::collections::BTreeSet<&String> = settings
+            .keys()
+            .filter(|k| &k.0 == env)
+            .map(|k| &k.1)
+            .collect();
+        for sensor in sensors {
+            let mut series: BTreeMap<String, Vec<(f64, f64)>> = BTreeMap::new();
+            for ((_, _, robots), by_strategy) in settings
+                .iter()
+                .filter(|(k, _)| &k.0 == env && &k.1 == sensor)
+            {
+                for (s, rs) in by_strategy {
+                    let mean = rs.iter().map(|r| r.time_s).sum::<f64>() / rs.len() as f64;
+                    series
+                        .entry(s.clone())
+                        .or_default()
+                        .push((*robots as f64, mean));
+                }
+            }
+            if series.values().any(|p| p.len() >= 2) {
+                let series: Vec<(String, Vec<(f64, f64)>)> = series.into_iter().collect();
+                blocks.push(Block::Heading(
+                    3,
+                    format!("{env} · {sensor}: time vs robots"),
+                ));
+                blocks.push(Block::Svg(
+                    slug(&format!("time-{env}-{sensor}")),
+                    plots::line_chart(
+                        &format!("Mean exploration time vs robots — {env} · {sensor}"),
+                        "robots",
+                        "time (s)",
+                        &series,
+                    )?,
+                ));
+            }
+        }
+    }
+    if !totals.is_empty() {
+        blocks.push(Block::Heading(
+            2,
+            "All settings: +/=/- counts (Faigl & Kulich Table I)".into(),
+        ));
+        let names: Vec<String> = {
+            let mut v: Vec<String> = totals
+                .keys()
+                .flat_map(|(a, b)| [a.clone(), b.clone()])
+                .collect();
+            v.sort();
+            v.dedup();
+            v
+        };
+        let mut header = vec!["row vs column".to_string()];
+        header.extend(names.iter().cloned());
+        let body = names
+            .iter()
+            .map(|a| {
+                let mut row = vec![a.clone()];
+                for b in &names {
+                    row.push(match totals.get(&(a.clone(), b.clone())) {
+                        Some([p, e, m]) => format!("{p}/{e}/{m}"),
+                        None => String::new(),
+                    });
+                }
+                row
+            })
+            .collect();
+        blocks.push(Block::Para("Cells: settings where the row strategy is significantly better / not different / significantly worse.".into()));
+        blocks.push(Block::Table(header, body));
+    }
+    Ok(blocks)
+}
+
+fn summary_table(by_strategy: &BTreeMap<String, Vec<&TrialRow>>) -> Block {
+    let header = [
+        "strategy",
+        "n",
+        "complete",
+        "L mean ± sd",
+        "median",
+        "IQR",
+        "min",
+        "max",
+        "Shapiro–Wilk p",
+        "time mean ± sd (s)",
+    ]
+    .map(String::from)
+    .to_vec();
+    let body = by_strategy
+        .iter()
+        .map(|(s, rs)| {
+            let l: Vec<f64> = rs.iter().map(|r| r.max_path).collect();
+            let t: Vec<f64> = rs.iter().map(|r| r.time_s).collect();
+            let complete = rs
+                .iter()
+                .filter(|r| r.reason == "complete" || r.reason == "goal reached")
+                .count();
+            let mut row = vec![
+                s.clone(),
+                rs.len().to_string(),
+                format!("{complete}/{}", rs.len()),
+            ];
+            match stats::summarize(&l) {
+                Ok(x) => row.extend([
+                    format!("{} ± {}", fmt(x.mean), fmt(x.sd)),
+                    fmt(x.median),
+                    fmt(x.iqr),
+                    fmt(x.min),
+                    fmt(x.max),
+                ]),
+                Err(e) => row.extend([
+                    e.to_string(),
+                    String::new(),
+                    String::new(),
+                    String::new(),
+                    String::new(),
+                ]),
+            }
+            row.push(stats::shapiro_wilk(&l).map_or("–".into(), |w| format!("{:.3}", w.p_value)));
+            row.push(
+                stats::summarize(&t)
+                    .map_or("–".into(), |x| format!("{} ± {}", fmt(x.mean), fmt(x.sd))),
+            );
+            row
+        })
+        .collect();
+    Block::Table(header, body)
+}
+
+/// The values of `a` and `b` to compare, and how (see the module doc).
+fn samples(a: &[&TrialRow], b: &[&TrialRow]) -> (Vec<f64>, Vec<f64>, Pairing) {
+    let by_trial = |rs: &[&TrialRow]| -> BTreeMap<(i64, i64), f64> {
+        rs.iter()
+            .map(|r| ((r.start_variant, r.trial), r.max_path))
+            .collect()
+    };
+    let (ta, tb) = (by_trial(a), by_trial(b));
+    if ta.len() >= 2 && ta.keys().eq(tb.keys()) {
+        return (
+            ta.into_values().collect(),
+            tb.into_values().collect(),
+            Pairing::Paired,
+        );
+    }
+    let by_start = |rs: &[&TrialRow]| -> BTreeMap<i64, (f64, usize)> {
+        let mut m: BTreeMap<i64, (f64, usize)> = BTreeMap::new();
+        for r in rs {
+            let e = m.entry(r.start_variant).or_default();
+            e.0 += r.max_path;
+            e.1 += 1;
+        }
+        m
+    };
+    let (sa, sb) = (by_start(a), by_start(b));
+    if sa.len() >= 5 && sa.keys().eq(sb.keys()) {
+        let mean =
+            |m: BTreeMap<i64, (f64, usize)>| m.into_values().map(|(s, n)| s / n as f64).collect();
+        return (mean(sa), mean(sb), Pairing::Paired);
+    }
+    (
+        a.iter().map(|r| r.max_path).collect(),
+        b.iter().map(|r| r.max_path).collect(),
+        Pairing::Unpaired,
+    )
+}
+
+/// The +/=/- table of one setting and its verdicts (a, b, verdict of a vs b).
+fn matrix(
+    by_strategy: &BTreeMap<String, Vec<&TrialRow>>,
+    alpha: f64,
+) -> (Block, Vec<(String, String, Verdict)>) {
+    let names: Vec<&String> = by_strategy.keys().collect();
+    let mut header = vec!["row vs column".to_string()];
+    header.extend(names.iter().map(|s| (*s).clone()));
+    let mut verdicts = Vec::new();
+    let mut body = Vec::new();
+    for a in &names {
+        let mut row = vec![(*a).clone()];
+        for b in &names {
+            if a == b {
+                row.push("·".into());
+                continue;
+            }
+            let (x, y, pairing) = samples(&by_strategy[*a], &by_strategy[*b]);
+            match stats::compare(&x, &y, alpha, pairing) {
+                Ok(c) => {
+                    verdicts.push(((*a).clone(), (*b).clone(), c.verdict));
+                    let how = if pairing == Pairing::Paired { "W" } else { "U" };
+                    row.push(format!(
+                        "{} (p={:.2e}, {how})",
+                        c.verdict.symbol(),
+                        c.p_value
+                    ));
+                }
+                Err(e) => row.push(format!("? ({e})")),
+            }
+        }
+        body.push(row);
+    }
+    (Block::Table(header, body), verdicts)
+}
+
+/// Mean coverage over team distance per strategy, on 41 distances from 0 to the longest.
+fn coverage_curves(
+    by_strategy: &BTreeMap<String, Vec<&TrialRow>>,
+) -> Vec<(String, Vec<(f64, f64)>)> {
+    let curves: BTreeMap<&String, Vec<Vec<(f64, f64)>>> = by_strategy
+        .iter()
+        .map(|(s, rs)| {
+            (
+                s,
+                rs.iter()
+                    .map(|r| {
+                        serde_json::from_str::<Vec<(f64, f64)>>(&r.coverage_curve)
+                            .unwrap_or_default()
+                    })
+                    .collect(),
+            )
+        })
+        .collect();
+    let longest = curves
+        .values()
+        .flatten()
+        .filter_map(|c| c.last().map(|p| p.0))
+        .fold(0.0, f64::max)
+        .max(1e-9);
+    let at = |c: &[(f64, f64)], d: f64| -> f64 {
+        c.iter()
+            .take_while(|p| p.0 <= d)
+            .last()
+            .map_or(0.0, |p| p.1)
+    };
+    curves
+        .into_iter()
+        .map(|(s, cs)| {
+            let pts = (0..=40)
+                .map(|k| {
+                    let d = longest * k as f64 / 40.0;
+                    let mean = cs.iter().map(|c| at(c, d)).sum::<f64>() / cs.len().max(1) as f64;
+                    (d, mean)
+                })
+                .collect();
+            (s.clone(), pts)
+        })
+        .collect()
+}
+
+fn markdown(blocks: &[Block]) -> String {
+    let mut s = String::new();
+    for b in blocks {
+        match b {
+            Block::Heading(l, t) => {
+                let _ = writeln!(s, "{} {t}\n", "#".repeat(*l as usize));
+            }
+            Block::Para(t) => {
+                let _ = writeln!(s, "{t}\n");
+            }
+            Block::Table(h, rows) => {
+                let cell = |c: &String| c.replace('|', "\\|");
+                let _ = writeln!(
+                    s,
+                    "| {} |",
+                    h.iter().map(cell).collect::<Vec<_>>().join(" | ")
+                );
+                let _ = writeln!(s, "|{}", "---|".repeat(h.len()));
+                for r in rows {
+                    let _ = writeln!(
+                        s,
+                        "| {} |",
+                        r.iter().map(cell).collect::<Vec<_>>().join(" | ")
+                    );
+                }
+                s.push('\n');
+            }
+            Block::Svg(name, _) => {
+                let _ = writeln!(s, "![{name}](plots/{name}.svg)\n");
+            }
+            Block::Png(name, _) => {
+                let _ = writeln!(s, "![{name}](envs/{name}.png)\n");
+            }
+        }
+    }
+    s
+}
+
+fn escape(s: &str) -> String {
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+}
+
+/// Standard base64 with padding.
+pub fn base64(bytes: &[u8]) -> String {
+    const A: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    let mut out = String::with_capacity(bytes.len().div_ceil(3) * 4);
+    for chunk in bytes.chunks(3) {
+        let b = [
+            chunk[0],
+            *chunk.get(1).unwrap_or(&0),
+            *chunk.get(2).unwrap_or(&0),
+        ];
+        let n = (u32::from(b[0]) << 16) | (u32::from(b[1]) << 8) | u32::from(b[2]);
+        for k in 0..4 {
+            if k <= chunk.len() {
+                out.push(A[(n >> (18 - 6 * k) & 63) as usize] as char);
+            } else {
+                out.push('=');
+            }
+        }
+    }
+    out
+}
+
+fn html_page(scenario: &str, blocks: &[Block]) -> String {
+    let mut s = String::new();
+    let _ = write!(
+        s,
+        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>{}</title>\n<style>\
+body{{font-family:sans-serif;max-width:1100px;margin:2em auto;padding:0 1em;color:#222}}\
+table{{border-collapse:collapse;margin:1em 0;font-size:90%}}td,th{{border:1px solid #bbb;padding:3px 7px;text-align:right}}\
+td:first-child,th:first-child{{text-align:left}}th{{background:#eee}}img.env{{image-rendering:pixelated;max-width:500px;border:1px solid #999}}\
+</style></head><body>\n",
+        escape(&format!("Benchmark report: {scenario}"))
+    );
+    for b in blocks {
+        match b {
+            Block::Heading(l, t) => {
+                let _ = writeln!(s, "<h{l}>{}</h{l}>", escape(t));
+            }
+            Block::Para(t) => {
+                let _ = writeln!(s, "<p>{}</p>", escape(t));
+            }
+            Block::Table(h, rows) => {
+                s.push_str("<table><tr>");
+                for c in h {
+                    let _ = write!(s, "<th>{}</th>", escape(c));
+                }
+                s.push_str("</tr>\n");
+                for r in rows {
+                    s.push_str("<tr>");
+                    for c in r {
+                        let _ = write!(s, "<td>{}</td>", escape(c));
+                    }
+                    s.push_str("</tr>\n");
+                }
+                s.push_str("</table>\n");
+            }
+            Block::Svg(_, svg) => {
+                // Drop the XML declaration, if any: the SVG is inlined.
+                let body = svg.find("<svg").map_or(svg.as_str(), |i| &svg[i..]);
+                let _ = writeln!(s, "<div>{body}</div>");
+            }
+            Block::Png(name, png) => {
+                let _ = writeln!(
+                    s,
+                    "<img class=\"env\" alt=\"{}\" src=\"data:image/png;base64,{}\">",
+                    escape(name),
+                    base64(png)
+                );
+            }
+        }
+    }
+    s.push_str("</body></html>\n");
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn base64_matches_rfc4648_examples() {
+        for (raw, enc) in [
+            ("", ""),
+            ("f", "Zg=="),
+            ("fo", "Zm8="),
+            ("foo", "Zm9v"),
+            ("foob", "Zm9vYg=="),
+            ("fooba", "Zm9vYmE="),
+            ("foobar", "Zm9vYmFy"),
+        ] {
+            assert_eq!(base64(raw.as_bytes()), enc);
+        }
+    }
+}

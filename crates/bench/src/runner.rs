@@ -1,0 +1,277 @@
+//! Running a plan: parallel seeded trials, a progress bar, shards and resumption
+//! (issue 9, "Running").
+//!
+//! Trials run on a rayon pool of the requested size; each finished trial is written to the
+//! store at once. Because every trial's seed comes from the plan (never from thread order)
+//! and rows are keyed, the database's contents do not depend on the thread count, the
+//! order of completion, interruptions or shards — only the `wall_s` column does.
+//! A trial that fails (a simulation error, or a panic in a piece of a strategy) is reported
+//! and not stored, so a later run retries it.
+
+use std::panic::AssertUnwindSafe;
+use std::path::Path;
+use std::sync::Mutex;
+use std::time::Instant;
+
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use rayon::prelude::*;
+use sim::RunResult;
+
+use crate::error::BenchError;
+use crate::plan::{Plan, Trial};
+use crate::store::{Store, TrialRow};
+
+/// The program version written into every row.
+pub const VERSION: &str = env!("CARGO_PKG_VERSION");
+
+/// Shard `index` of `count` (1-based, as `--shard I/N`): trial number i belongs to shard
+/// `i mod N + 1`, so shards get equal shares of every part of the study.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Shard {
+    /// Which shard, 1..=count.
+    pub index: usize,
+    /// How many shards.
+    pub count: usize,
+}
+
+impl std::str::FromStr for Shard {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Shard, String> {
+        let err = || format!("--shard: expected I/N with 1 <= I <= N (e.g. 2/8), found '{s}'");
+        let (i, n) = s.split_once('/').ok_or_else(err)?;
+        let index: usize = i.trim().parse().map_err(|_| err())?;
+        let count: usize = n.trim().parse().map_err(|_| err())?;
+        if index == 0 || count == 0 || index > count {
+            return Err(err());
+        }
+        Ok(Shard { index, count })
+    }
+}
+
+impl std::fmt::Display for Shard {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}/{}", self.index, self.count)
+    }
+}
+
+impl Shard {
+    /// Whether trial number `i` of the plan belongs to this shard.
+    pub fn contains(&self, i: usize) -> bool {
+        i % self.count == self.index - 1
+    }
+}
+
+/// How to run a plan.
+#[derive(Clone, Debug, Default)]
+pub struct RunOptions {
+    /// Worker threads (`None`: rayon's default, one per core).
+    pub threads: Option<usize>,
+    /// Run only this shard's trials.
+    pub shard: Option<Shard>,
+    /// Show a progress bar on standard error.
+    pub progress: bool,
+    /// Run at most this many of the pending trials (the first ones in plan order).
+    pub limit: Option<usize>,
+}
+
+/// What a run did.
+#[derive(Clone, Debug, Default)]
+pub struct RunSummary {
+    /// Trials of the plan (of the shard, if any).
+    pub total: usize,
+    /// Of those, already in the database before this run.
+    pub already_done: usize,
+    /// Trials run and stored now.
+    pub ran: usize,
+    /// Trials that failed: (key, message).
+    pub failed: Vec<(String, String)>,
+    /// Wall-clock seconds of this run.
+    pub wall_s: f64,
+}
+
+/// Whether a progress bar should be drawn: standard error is a terminal and `CI` is unset.
+pub fn progress_wanted() -> bool {
+    use std::io::IsTerminal;
+    std::io::stderr().is_terminal() && std::env::var_os("CI").is_none()
+}
+
+/// Run the trials of `plan` missing from the database at `db`.
+pub fn run(plan: &Plan, db: &Path, opts: &RunOptions) -> Result<RunSummary, BenchError> {
+    let started = Instant::now();
+    let store = Store::open(db, &plan.name, &plan.fingerprint())?;
+    for env in &plan.envs {
+        store.put_env(&env_picture(env)?)?;
+    }
+    let done = store.finished()?;
+    let mine: Vec<&Trial> = plan
+        .trials
+        .iter()
+        .enumerate()
+        .filter(|(i, _)| opts.shard.is_none_or(|s| s.contains(*i)))
+        .map(|(_, t)| t)
+        .collect();
+    let mut pending: Vec<&Trial> = mine
+        .iter()
+        .copied()
+        .filter(|t| !done.contains(&t.key))
+        .collect();
+    let mut summary = RunSummary {
+        total: mine.len(),
+        already_done: mine.len() - pending.len(),
+        ..RunSummary::default()
+    };
+    if let Some(limit) = opts.limit {
+        pending.truncate(limit);
+    }
+    let bar = if opts.progress {
+        let bar =
+            ProgressBar::with_draw_target(Some(pending.len() as u64), ProgressDrawTarget::stderr());
+        if let Ok(style) = ProgressStyle::with_template(
+            "{bar:40} {pos}/{len} trials · {per_sec} · ETA {eta} · {msg}",
+        ) {
+            bar.set_style(style);
+        }
+        bar
+    } else {
+        ProgressBar::hidden()
+    };
+    let store = Mutex::new(store);
+    let failed = Mutex::new(Vec::new());
+    let fatal: Mutex<Option<BenchError>> = Mutex::new(None);
+    let ran = std::sync::atomic::AtomicUsize::new(0);
+    let work = || {
+        pending.par_iter().for_each(|t| {
+            if fatal.lock().map(|f| f.is_some()).unwrap_or(true) {
+                return;
+            }
+            let t0 = Instant::now();
+            let cfg = plan.config(t);
+            let map = &plan.envs[t.env].map;
+            let outcome = std::panic::catch_unwind(AssertUnwindSafe(|| sim::run(map, &cfg)));
+            let wall_s = t0.elapsed().as_secs_f64();
+            let message = match outcome {
+                Ok(Ok(result)) => {
+                    let r = row(plan, t, &result, wall_s);
+                    let inserted = store
+                        .lock()
+                        .map_err(|e| BenchError::Other(e.to_string()))
+                        .and_then(|s| s.insert(&r));
+                    match inserted {
+                        Ok(_) => {
+                            ran.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                            None
+                        }
+                        Err(e) => {
+                            if let Ok(mut f) = fatal.lock() {
+                                f.get_or_insert(e);
+                            }
+                            None
+                        }
+                    }
+                }
+                Ok(Err(e)) => Some(e.to_string()),
+                Err(payload) => Some(format!(
+                    "panicked: {}",
+                    crate::built::panic_message(payload.as_ref())
+                )),
+            };
+            if let Some(m) = message {
+                if let Ok(mut f) = failed.lock() {
+                    f.push((t.key.clone(), m));
+                }
+                bar.set_message(format!("{} failed", failed.lock().map_or(0, |f| f.len())));
+            }
+            bar.inc(1);
+        })
+    };
+    match opts.threads {
+        Some(n) => rayon::ThreadPoolBuilder::new()
+            .num_threads(n)
+            .build()
+            .map_err(|e| BenchError::Other(format!("--threads: {e}")))?
+            .install(work),
+        None => work(),
+    }
+    bar.finish_and_clear();
+    if let Some(e) = fatal.into_inner().ok().flatten() {
+        return Err(e);
+    }
+    let mut failed = failed.into_inner().unwrap_or_default();
+    failed.sort();
+    summary.failed = failed;
+    summary.ran = ran.into_inner();
+    summary.wall_s = started.elapsed().as_secs_f64();
+    Ok(summary)
+}
+
+/// The ground truth of `env` as a PNG picture.
+pub fn env_picture(env: &crate::plan::EnvInstance) -> Result<crate::store::EnvPicture, BenchError> {
+    let img = viz::map_picture(&env.map.cells);
+    let mut png = Vec::new();
+    img.write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
+        .map_err(|e| BenchError::Other(format!("picture of {}: {e}", env.name)))?;
+    Ok(crate::store::EnvPicture {
+        name: env.name.clone(),
+        width: env.map.width() as i64,
+        height: env.map.height() as i64,
+        resolution: env.map.resolution,
+        png,
+    })
+}
+
+/// At most 65 points of a curve, evenly spaced by index, first and last kept.
+pub fn thin_curve(curve: &[(f64, f64)]) -> Vec<(f64, f64)> {
+    const K: usize = 64;
+    if curve.len() <= K + 1 {
+        return curve.to_vec();
+    }
+    let n = curve.len() - 1;
+    (0..=K).map(|k| curve[(k * n + K / 2) / K]).collect()
+}
+
+/// The database row of trial `t` with `result`.
+pub fn row(plan: &Plan, t: &Trial, result: &RunResult, wall_s: f64) -> TrialRow {
+    let v = &plan.variants[t.variant];
+    let env = &plan.envs[t.env];
+    let cfg = plan.config(t);
+    let starts: Vec<[i32; 2]> = result.starts.iter().map(|c| [c.x, c.y]).collect();
+    TrialRow {
+        key: t.key.clone(),
+        scenario: plan.name.clone(),
+        env: env.name.clone(),
+        env_kind: env.kind.clone(),
+        env_seed: env.env_seed.map(|s| s as i64),
+        map_file: env.map_file.clone(),
+        resolution: env.map.resolution,
+        width: env.map.width() as i64,
+        height: env.map.height() as i64,
+        strategy: v.label.clone(),
+        preset: v.strategy.name.clone(),
+        s_max: v.strategy.replan.every_moves.map(i64::from),
+        sensor: v.sensor.to_string(),
+        belief: plan.common.belief.to_string(),
+        sensing: cfg.sensing_mode().to_string(),
+        robots: v.robots as i64,
+        start_variant: i64::from(t.start_variant),
+        trial: i64::from(t.trial),
+        seed: t.seed.to_string(),
+        starts: serde_json::to_string(&starts).unwrap_or_default(),
+        clearance: plan.common.clearance_m,
+        speed: plan.common.speed,
+        coverage_goal: plan.common.coverage_goal,
+        max_moves: plan.common.max_moves.min(i64::MAX as u64) as i64,
+        path_lengths: serde_json::to_string(&result.path_length_m).unwrap_or_default(),
+        max_path: result.max_path_length_m(),
+        total_path: result.total_path_length_m(),
+        time_s: result.time_s,
+        coverage: result.coverage,
+        decisions: result.decisions as i64,
+        moves: result.moves as i64,
+        reason: result.reason.as_str().to_string(),
+        reachable_cells: result.reachable_cells as i64,
+        coverage_curve: serde_json::to_string(&thin_curve(&result.coverage_curve))
+            .unwrap_or_default(),
+        version: VERSION.to_string(),
+        wall_s,
+    }
+}

@@ -1,0 +1,179 @@
+//! Scenario files: the TOML schema of a study (issue 9, "Scenario files").
+//!
+//! A scenario lists environments (built-in kinds with seeds, size and resolution, or map
+//! files with their resolution), robot counts, sensors, strategies (preset names, with an
+//! optional s_max), start positions (one per trial drawn by seed, a fixed start, or k
+//! perturbations within a radius of a base start), trials per variant, speed, clearance,
+//! coverage goal and a master seed:
+//!
+//! ```toml
+//! name = "example"
+//! seed = 1                      # master seed
+//! robots = [1, 2]
+//! sensors = ["los:r=4c"]
+//! strategies = ["cf", "random"]
+//! trials = 3                    # per start variant (deterministic strategies with a fixed start: 1)
+//!
+//! [[strategy]]                  # a preset with parameters
+//! preset = "ha-cc"
+//! s_max = 5                     # -1 = re-plan on arrival only
+//!
+//! [[env]]
+//! kind = "maze"
+//! seeds = [0, 1]
+//! size = [12, 10]               # metres
+//! resolution = 0.5
+//! start = [2, 2]                # optional base start cell (x, y)
+//!
+//! [[env]]
+//! map = "maps/lab.yaml"         # relative to the scenario file
+//! ```
+//!
+//! Unknown keys are rejected by serde (`deny_unknown_fields`) and toml reports the line and
+//! column; values that parse but are not acceptable (an unknown preset, a bad sensor spec,
+//! an unreadable map) are reported by [`crate::plan`] with the file, line and key, using
+//! the spans kept here.
+
+use serde::Deserialize;
+use toml::Spanned;
+
+use crate::error::BenchError;
+
+/// The whole scenario file, as written.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ScenarioFile {
+    /// Name of the study (default: the file's stem).
+    pub name: Option<String>,
+    /// Free text, shown in reports.
+    pub description: Option<String>,
+    /// Master seed of every trial seed.
+    pub seed: Option<Spanned<i64>>,
+    /// Environments, one `[[env]]` table each.
+    #[serde(default)]
+    pub env: Vec<Spanned<EnvEntry>>,
+    /// Robot counts (default `[1]`).
+    pub robots: Option<Spanned<Vec<Spanned<i64>>>>,
+    /// Sensor specs, e.g. `los:r=5` (default `["los:r=5"]`).
+    pub sensors: Option<Spanned<Vec<Spanned<String>>>>,
+    /// Preset names.
+    #[serde(default)]
+    pub strategies: Vec<Spanned<String>>,
+    /// Presets with parameters, one `[[strategy]]` table each.
+    #[serde(default)]
+    pub strategy: Vec<Spanned<StrategyEntry>>,
+    /// Re-planning period of the presets that re-plan every s_max moves (-1 = on arrival).
+    pub s_max: Option<Spanned<i64>>,
+    /// Trials per start variant (default 1).
+    pub trials: Option<Spanned<i64>>,
+    /// Also repeat deterministic strategies `trials` times at a fixed start.
+    pub repeat_deterministic: Option<bool>,
+    /// Number of start perturbations around each environment's base start (default 0).
+    pub perturbations: Option<Spanned<i64>>,
+    /// Radius of the perturbations in metres.
+    pub radius: Option<Spanned<f64>>,
+    /// Speed in metres per second (default 1).
+    pub speed: Option<Spanned<f64>>,
+    /// Clearance from obstacles in metres (default 0).
+    pub clearance: Option<Spanned<f64>>,
+    /// Stop at this coverage in (0, 1] (default: explore everything reachable).
+    pub coverage_goal: Option<Spanned<f64>>,
+    /// Stop after this many cell moves of the team.
+    pub max_moves: Option<Spanned<i64>>,
+    /// Belief map: known, reflection, evidence.
+    pub belief: Option<Spanned<String>>,
+    /// Sensing mode: continuous or on-arrival (default: each strategy's).
+    pub sensing: Option<Spanned<String>>,
+}
+
+/// One `[[env]]` table: a built-in kind or a map file.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct EnvEntry {
+    /// Built-in kind (office, hospital, cave, maze, potholes, empty).
+    pub kind: Option<Spanned<String>>,
+    /// Environment seeds of a built-in kind.
+    pub seeds: Option<Spanned<Vec<Spanned<i64>>>>,
+    /// Seeds 0..count of a built-in kind (instead of `seeds`).
+    pub count: Option<Spanned<i64>>,
+    /// Size `[width, height]` in metres of a built-in kind.
+    pub size: Option<Spanned<Vec<f64>>>,
+    /// Metres per cell: generation resolution, or the map file's pixel size.
+    pub resolution: Option<Spanned<f64>>,
+    /// A map file (ROS YAML, PGM/PNG, MovingAI .map, ASCII .txt).
+    pub map: Option<Spanned<String>>,
+    /// Add a wall around a bare bitmap.
+    pub border: Option<bool>,
+    /// Name in results (default: the generated name or the file's stem).
+    pub name: Option<Spanned<String>>,
+    /// Base start cell `[x, y]`.
+    pub start: Option<Spanned<Vec<i64>>>,
+}
+
+/// One `[[strategy]]` table: a preset with parameters.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StrategyEntry {
+    /// Preset name.
+    pub preset: Spanned<String>,
+    /// Re-plan every this many moves (-1 = on arrival only).
+    pub s_max: Option<Spanned<i64>>,
+    /// Name in results (default: the preset, with `/s_max=N` when given).
+    pub label: Option<Spanned<String>>,
+}
+
+/// A scenario's text and where it came from, for error messages.
+#[derive(Clone, Debug)]
+pub struct Source {
+    /// File name, or `suite:NAME` for built-in suites.
+    pub file: String,
+    /// The TOML text.
+    pub text: String,
+    /// Directory that relative map paths start from (`None` for suites).
+    pub dir: Option<std::path::PathBuf>,
+}
+
+impl Source {
+    /// Read a scenario file.
+    pub fn read(path: &std::path::Path) -> Result<Source, BenchError> {
+        let text = std::fs::read_to_string(path).map_err(BenchError::io(path))?;
+        Ok(Source {
+            file: path.display().to_string(),
+            text,
+            dir: path.parent().map(|p| p.to_path_buf()),
+        })
+    }
+
+    /// Parse the text against the schema.
+    pub fn parse(&self) -> Result<ScenarioFile, BenchError> {
+        toml::from_str(&self.text).map_err(|e| BenchError::Toml {
+            file: self.file.clone(),
+            message: e.to_string().trim_end().to_string(),
+        })
+    }
+
+    /// 1-based line of byte offset `at`.
+    pub fn line_of(&self, at: usize) -> usize {
+        let at = at.min(self.text.len());
+        self.text.as_bytes()[..at]
+            .iter()
+            .filter(|&&b| b == b'\n')
+            .count()
+            + 1
+    }
+
+    /// An error about `key`, at the value spanning `span` (`None`: the key is missing).
+    pub fn error(
+        &self,
+        span: Option<std::ops::Range<usize>>,
+        key: impl Into<String>,
+        message: impl Into<String>,
+    ) -> BenchError {
+        BenchError::Scenario {
+            file: self.file.clone(),
+            line: span.map_or(0, |s| self.line_of(s.start)),
+            key: key.into(),
+            message: message.into(),
+        }
+    }
+}

@@ -1,0 +1,426 @@
+//! The results store: one SQLite database per study, one row per trial (issue 9, "Running").
+//!
+//! Each row holds the full configuration, the seed, the metrics, the program version and
+//! the wall time, and is committed on its own as the trial finishes. The database runs in
+//! WAL mode, so a process killed at any moment (SIGKILL included) loses at most the trials
+//! in flight: SQLite's journal keeps every committed row and never leaves a half-written
+//! one. Rows are keyed by the trial's stable key, which is how a re-run skips finished
+//! trials and how shard databases merge.
+
+use std::collections::BTreeSet;
+use std::path::Path;
+
+use rusqlite::{Connection, OptionalExtension, params};
+use serde::Serialize;
+
+use crate::error::BenchError;
+
+/// Version of the table layout; databases of another version are refused.
+pub const SCHEMA_VERSION: &str = "1";
+
+/// One finished trial, as stored (and as exported to CSV, column for column).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct TrialRow {
+    /// Stable key `ENV|STRATEGY|SENSOR|m=ROBOTS|start=S|trial=T`.
+    pub key: String,
+    /// Study name.
+    pub scenario: String,
+    /// Environment name.
+    pub env: String,
+    /// Built-in kind or `map`.
+    pub env_kind: String,
+    /// Generation seed of a built-in environment.
+    pub env_seed: Option<i64>,
+    /// Map file as written in the scenario.
+    pub map_file: Option<String>,
+    /// Metres per cell.
+    pub resolution: f64,
+    /// Map width in cells.
+    pub width: i64,
+    /// Map height in cells.
+    pub height: i64,
+    /// Strategy label.
+    pub strategy: String,
+    /// Preset the strategy comes from.
+    pub preset: String,
+    /// Re-planning period in moves (`None` = on arrival).
+    pub s_max: Option<i64>,
+    /// Sensor spec.
+    pub sensor: String,
+    /// Belief map kind.
+    pub belief: String,
+    /// Sensing mode in force.
+    pub sensing: String,
+    /// Number of robots.
+    pub robots: i64,
+    /// Start variant.
+    pub start_variant: i64,
+    /// Trial number within the start variant.
+    pub trial: i64,
+    /// The run's seed (decimal; it is an unsigned 64-bit number).
+    pub seed: String,
+    /// Start cells of the robots, JSON `[[x, y], ...]`.
+    pub starts: String,
+    /// Clearance in metres.
+    pub clearance: f64,
+    /// Speed in metres per second.
+    pub speed: f64,
+    /// Coverage goal.
+    pub coverage_goal: Option<f64>,
+    /// Move limit.
+    pub max_moves: i64,
+    /// Path length of each robot in metres, JSON array.
+    pub path_lengths: String,
+    /// Longest path of one robot (Faigl & Kulich's L), metres.
+    pub max_path: f64,
+    /// Total path of the team, metres.
+    pub total_path: f64,
+    /// Exploration time in seconds.
+    pub time_s: f64,
+    /// Coverage reached.
+    pub coverage: f64,
+    /// Decisions taken.
+    pub decisions: i64,
+    /// Cell moves of the team.
+    pub moves: i64,
+    /// Why the run ended.
+    pub reason: String,
+    /// Reachable free cells (coverage's denominator).
+    pub reachable_cells: i64,
+    /// Coverage over team distance, JSON `[[metres, coverage], ...]` (at most 65 points).
+    pub coverage_curve: String,
+    /// Program version that ran the trial.
+    pub version: String,
+    /// Wall-clock seconds of the trial (the only column that differs between equal runs).
+    pub wall_s: f64,
+}
+
+const COLUMNS: &str = "key, scenario, env, env_kind, env_seed, map_file, resolution, width, height, \
+strategy, preset, s_max, sensor, belief, sensing, robots, start_variant, trial, seed, starts, \
+clearance, speed, coverage_goal, max_moves, path_lengths, max_path, total_path, time_s, coverage, \
+decisions, moves, reason, reachable_cells, coverage_curve, version, wall_s";
+
+const CREATE: &str = "
+CREATE TABLE IF NOT EXISTS meta (key TEXT PRIMARY KEY, value TEXT NOT NULL);
+CREATE TABLE IF NOT EXISTS envs (name TEXT PRIMARY KEY, width INTEGER NOT NULL,
+    height INTEGER NOT NULL, resolution REAL NOT NULL, png BLOB NOT NULL);
+CREATE TABLE IF NOT EXISTS trials (
+    key TEXT PRIMARY KEY, scenario TEXT NOT NULL, env TEXT NOT NULL, env_kind TEXT NOT NULL,
+    env_seed INTEGER, map_file TEXT, resolution REAL NOT NULL, width INTEGER NOT NULL,
+    height INTEGER NOT NULL, strategy TEXT NOT NULL, preset TEXT NOT NULL, s_max INTEGER,
+    sensor TEXT NOT NULL, belief TEXT NOT NULL, sensing TEXT NOT NULL, robots INTEGER NOT NULL,
+    start_variant INTEGER NOT NULL, trial INTEGER NOT NULL, seed TEXT NOT NULL,
+    starts TEXT NOT NULL, clearance REAL NOT NULL, speed REAL NOT NULL, coverage_goal REAL,
+    max_moves INTEGER NOT NULL, path_lengths TEXT NOT NULL, max_path REAL NOT NULL,
+    total_path REAL NOT NULL, time_s REAL NOT NULL, coverage REAL NOT NULL,
+    decisions INTEGER NOT NULL, moves INTEGER NOT NULL, reason TEXT NOT NULL,
+    reachable_cells INTEGER NOT NULL, coverage_curve TEXT NOT NULL, version TEXT NOT NULL,
+    wall_s REAL NOT NULL
+);";
+
+/// A picture of one environment of the study, kept in the database for reports.
+#[derive(Clone, Debug, PartialEq)]
+pub struct EnvPicture {
+    /// Environment name.
+    pub name: String,
+    /// Width in cells.
+    pub width: i64,
+    /// Height in cells.
+    pub height: i64,
+    /// Metres per cell.
+    pub resolution: f64,
+    /// The ground truth as PNG.
+    pub png: Vec<u8>,
+}
+
+/// An open results database.
+pub struct Store {
+    conn: Connection,
+    path: std::path::PathBuf,
+}
+
+impl Store {
+    /// Open (or create) the database at `path` for study `scenario` with `fingerprint`
+    /// (see [`crate::plan::Plan::fingerprint`]); a database of another study or
+    /// fingerprint is refused, so results of different settings never mix.
+    pub fn open(path: &Path, scenario: &str, fingerprint: &str) -> Result<Store, BenchError> {
+        let store = Store::open_raw(path)?;
+        store.claim(scenario, fingerprint)?;
+        Ok(store)
+    }
+
+    /// Open (or create) the database without checking what study it holds.
+    pub fn open_raw(path: &Path) -> Result<Store, BenchError> {
+        let sql = BenchError::sql(path);
+        let conn = Connection::open(path).map_err(sql)?;
+        let sql = BenchError::sql(path);
+        conn.busy_timeout(std::time::Duration::from_secs(30))
+            .map_err(sql)?;
+        let mode: String = conn
+            .query_row("PRAGMA journal_mode=WAL", [], |r| r.get(0))
+            .map_err(BenchError::sql(path))?;
+        if !mode.eq_ignore_ascii_case("wal") {
+            return Err(BenchError::Store {
+                path: path.to_path_buf(),
+                message: format!("could not switch to WAL mode (journal mode is {mode})"),
+            });
+        }
+        conn.execute_batch("PRAGMA synchronous=NORMAL;")
+            .map_err(BenchError::sql(path))?;
+        conn.execute_batch(CREATE).map_err(BenchError::sql(path))?;
+        let store = Store {
+            conn,
+            path: path.to_path_buf(),
+        };
+        match store.meta("schema_version")? {
+            None => store.set_meta("schema_version", SCHEMA_VERSION)?,
+            Some(v) if v == SCHEMA_VERSION => {}
+            Some(v) => {
+                return Err(store.problem(format!(
+                    "results of table layout {v}; this program writes layout {SCHEMA_VERSION}"
+                )));
+            }
+        }
+        Ok(store)
+    }
+
+    fn problem(&self, message: String) -> BenchError {
+        BenchError::Store {
+            path: self.path.clone(),
+            message,
+        }
+    }
+
+    /// Record the study in an empty database, or check that it is the same study.
+    pub fn claim(&self, scenario: &str, fingerprint: &str) -> Result<(), BenchError> {
+        for (key, want) in [("scenario", scenario), ("fingerprint", fingerprint)] {
+            match self.meta(key)? {
+                None => self.set_meta(key, want)?,
+                Some(have) if have == want => {}
+                Some(have) => {
+                    return Err(self.problem(format!(
+                        "holds results of another {key} ('{have}', not '{want}'); use another database file"
+                    )));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// A value of the meta table.
+    pub fn meta(&self, key: &str) -> Result<Option<String>, BenchError> {
+        self.conn
+            .query_row("SELECT value FROM meta WHERE key = ?1", [key], |r| r.get(0))
+            .optional()
+            .map_err(BenchError::sql(&self.path))
+    }
+
+    fn set_meta(&self, key: &str, value: &str) -> Result<(), BenchError> {
+        self.conn
+            .execute(
+                "INSERT OR REPLACE INTO meta (key, value) VALUES (?1, ?2)",
+                [key, value],
+            )
+            .map(|_| ())
+            .map_err(BenchError::sql(&self.path))
+    }
+
+    /// Keys of the finished trials.
+    pub fn finished(&self) -> Result<BTreeSet<String>, BenchError> {
+        let mut st = self
+            .conn
+            .prepare("SELECT key FROM trials")
+            .map_err(BenchError::sql(&self.path))?;
+        let keys = st
+            .query_map([], |r| r.get::<_, String>(0))
+            .map_err(BenchError::sql(&self.path))?
+            .collect::<Result<BTreeSet<_>, _>>()
+            .map_err(BenchError::sql(&self.path))?;
+        Ok(keys)
+    }
+
+    /// Insert one finished trial, committed at once (a trial already stored is kept);
+    /// whether the row was new.
+    pub fn insert(&self, r: &TrialRow) -> Result<bool, BenchError> {
+        let mut st = self
+            .conn
+            .prepare_cached(&format!(
+                "INSERT OR IGNORE INTO trials ({COLUMNS}) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14, ?15, ?16, ?17, ?18, ?19, ?20, ?21, ?22, ?23, ?24, ?25, ?26, ?27, ?28, ?29, ?30, ?31, ?32, ?33, ?34, ?35, ?36)"
+            ))
+            .map_err(BenchError::sql(&self.path))?;
+        st.execute(params![
+            r.key,
+            r.scenario,
+            r.env,
+            r.env_kind,
+            r.env_seed,
+            r.map_file,
+            r.resolution,
+            r.width,
+            r.height,
+            r.strategy,
+            r.preset,
+            r.s_max,
+            r.sensor,
+            r.belief,
+            r.sensing,
+            r.robots,
+            r.start_variant,
+            r.trial,
+            r.seed,
+            r.starts,
+            r.clearance,
+            r.speed,
+            r.coverage_goal,
+            r.max_moves,
+            r.path_lengths,
+            r.max_path,
+            r.total_path,
+            r.time_s,
+            r.coverage,
+            r.decisions,
+            r.moves,
+            r.reason,
+            r.reachable_cells,
+            r.coverage_curve,
+            r.version,
+            r.wall_s,
+        ])
+        .map(|n| n == 1)
+        .map_err(BenchError::sql(&self.path))
+    }
+
+    /// Store the picture of environment `name` (PNG bytes) unless it is there already.
+    pub fn put_env(&self, e: &EnvPicture) -> Result<(), BenchError> {
+        self.conn
+            .execute(
+                "INSERT OR IGNORE INTO envs (name, width, height, resolution, png) VALUES (?1, ?2, ?3, ?4, ?5)",
+                params![e.name, e.width, e.height, e.resolution, e.png],
+            )
+            .map(|_| ())
+            .map_err(BenchError::sql(&self.path))
+    }
+
+    /// The stored environment pictures, ordered by name.
+    pub fn envs(&self) -> Result<Vec<EnvPicture>, BenchError> {
+        let mut st = self
+            .conn
+            .prepare("SELECT name, width, height, resolution, png FROM envs ORDER BY name")
+            .map_err(BenchError::sql(&self.path))?;
+        let rows = st
+            .query_map([], |r| {
+                Ok(EnvPicture {
+                    name: r.get(0)?,
+                    width: r.get(1)?,
+                    height: r.get(2)?,
+                    resolution: r.get(3)?,
+                    png: r.get(4)?,
+                })
+            })
+            .map_err(BenchError::sql(&self.path))?
+            .collect::<Result<Vec<_>, _>>()
+            .map_err(BenchError::sql(&self.path))?;
+        Ok(rows)
+    }
+
+    /// Every stored trial, ordered by key.
+    pub fn rows(&self) -> Result<Vec<TrialRow>, BenchError> {
+        let mut st = self
+            .conn
+            .prepare(&format!("SELECT {COLUMNS} FROM trials ORDER BY key"))
+            .map_err(BenchError::sql(&self.path))?;
+        let rows = st
+            .query_map([], |r| {
+                Ok(TrialRow {
+                    key: r.get(0)?,
+                    scenario: r.get(1)?,
+                    env: r.get(2)?,
+                    env_kind: r.get(3)?,
+                    env_seed: r.get(4)?,
+                    map_file: r.get(5)?,
+                    resolution: r.get(6)?,
+                    width: r.get(7)?,
+                    height: r.get(8)?,
+                    strategy: r.get(9)?,
+                    preset: r.get(10)?,
+                    s_max: r.get(11)?,
+                    sensor: r.get(12)?,
+                    belief: r.get(13)?,
+                    sensing: r.get(14)?,
+                    robots: r.get(15)?,
+                    start_variant: r.get(16)?,
+                    trial: r.get(17)?,
+                    seed: r.get(18)?,
+                    starts: r.get(19)?,
+                    clearance: r.get(20)?,
+                    speed: r.get(21)?,
+                    coverage_goal: r.get(22)?,
+                    max_moves: r.get(23)?,
+                    path_lengths: r.get(24)?,
+                    max_path: r.get(25)?,
+                    total_path: r.get(26)?,
+                    time_s: r.get(27)?,
+                    coverage: r.get(28)?,
+                    decisions: r.get(29)?,
+                    moves: r.get(30)?,
+                    reason: r.get(31)?,
+                    reachable_cells: r.get(32)?,
+                    coverage_curve: r.get(33)?,
+                    version: r.get(34)?,
+                    wall_s: r.get(35)?,
+                })
+            })
+            .map_err(BenchError::sql(&self.path))?
+            .collect::<Result<Vec<_>, _>>()
+            .map_err(BenchError::sql(&self.path))?;
+        Ok(rows)
+    }
+
+    /// Copy every trial of the databases `inputs` into this one (trials already here are
+    /// kept). All inputs must hold the same study and fingerprint; an empty output takes
+    /// them over. Returns the number of rows added.
+    pub fn merge_from(&self, inputs: &[std::path::PathBuf]) -> Result<usize, BenchError> {
+        let mut added = 0;
+        for input in inputs {
+            if !input.exists() {
+                return Err(BenchError::Io {
+                    path: input.clone(),
+                    source: std::io::Error::new(std::io::ErrorKind::NotFound, "no such file"),
+                });
+            }
+            let other = Store::open_raw(input)?;
+            let scenario = other.meta("scenario")?.unwrap_or_default();
+            let fingerprint = other.meta("fingerprint")?.unwrap_or_default();
+            self.claim(&scenario, &fingerprint)
+                .map_err(|e| BenchError::Other(format!("merging {}: {e}", input.display())))?;
+            let rows = other.rows()?;
+            let envs = other.envs()?;
+            drop(other);
+            for e in &envs {
+                self.put_env(e)?;
+            }
+            let tx = self
+                .conn
+                .unchecked_transaction()
+                .map_err(BenchError::sql(&self.path))?;
+            for r in &rows {
+                added += usize::from(self.insert(r)?);
+            }
+            tx.commit().map_err(BenchError::sql(&self.path))?;
+        }
+        Ok(added)
+    }
+
+    /// Write every trial as CSV (header = column names, rows ordered by key).
+    pub fn export_csv(&self, out: &Path) -> Result<usize, BenchError> {
+        let rows = self.rows()?;
+        let mut w = csv::Writer::from_path(out)
+            .map_err(|e| BenchError::Other(format!("{}: {e}", out.display())))?;
+        for r in &rows {
+            w.serialize(r)
+                .map_err(|e| BenchError::Other(format!("{}: {e}", out.display())))?;
+        }
+        w.flush().map_err(BenchError::io(out))?;
+        Ok(rows.len())
+    }
+}

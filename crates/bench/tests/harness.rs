@@ -1,0 +1,320 @@
+//! The harness end to end on tiny studies: thread-count independence, resumption, shards
+//! and merge, CSV export, and scenario errors naming file, line and key.
+
+use std::path::Path;
+
+use bench::{Plan, RunOptions, Shard, Source, Store, TrialRow, Unbuilt};
+
+const TINY: &str = r#"
+name = "tiny"
+seed = 7
+robots = [1, 2]
+sensors = ["los:r=3c"]
+strategies = ["cf", "random"]
+trials = 2
+
+[[env]]
+kind = "maze"
+seeds = [0]
+size = [6, 5]
+resolution = 0.5
+
+[[env]]
+kind = "office"
+seeds = [1]
+size = [10, 10]
+resolution = 0.5
+start = [3, 3]
+"#;
+
+fn source(text: &str) -> Source {
+    Source {
+        file: "tiny.toml".into(),
+        text: text.into(),
+        dir: None,
+    }
+}
+
+fn plan() -> Plan {
+    Plan::resolve(&source(TINY), Unbuilt::Error).expect("tiny scenario resolves")
+}
+
+/// Rows without the wall times, which are the only non-deterministic column.
+fn rows(db: &Path) -> Vec<TrialRow> {
+    let store = Store::open_raw(db).expect("open");
+    store
+        .rows()
+        .expect("rows")
+        .into_iter()
+        .map(|mut r| {
+            r.wall_s = 0.0;
+            r
+        })
+        .collect()
+}
+
+fn opts(threads: usize) -> RunOptions {
+    RunOptions {
+        threads: Some(threads),
+        ..RunOptions::default()
+    }
+}
+
+#[test]
+fn plan_lists_trials_with_stable_keys_and_seeds() {
+    let p = plan();
+    // maze: random start per trial -> every strategy 2 trials; office: fixed start ->
+    // cf (deterministic) 1 trial, random 2 trials; times 2 robot counts.
+    assert_eq!(p.trials.len(), 2 * 2 * 2 + (1 + 2) * 2);
+    let again = plan();
+    assert_eq!(p.trials, again.trials);
+    let t = &p.trials[0];
+    assert_eq!(t.key, "maze-s0-6x5m-r0.5|cf|los:r=3c|m=1|start=0|trial=0");
+    assert_eq!(
+        t.seed,
+        sim::seed::derive(7, "maze-s0-6x5m-r0.5|start=0|trial=0")
+    );
+    // Common random numbers: the same start and trial give the same seed for every strategy.
+    let same: Vec<u64> = p
+        .trials
+        .iter()
+        .filter(|t| t.env == 0 && t.start_variant == 0 && t.trial == 1)
+        .map(|t| t.seed)
+        .collect();
+    assert!(same.len() == 4 && same.iter().all(|&s| s == same[0]));
+}
+
+#[test]
+fn one_and_two_threads_give_identical_databases() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = plan();
+    let (a, b) = (dir.path().join("a.sqlite"), dir.path().join("b.sqlite"));
+    let sa = bench::runner::run(&p, &a, &opts(1)).unwrap();
+    let sb = bench::runner::run(&p, &b, &opts(2)).unwrap();
+    assert!(sa.failed.is_empty(), "{:?}", sa.failed);
+    assert_eq!((sa.ran, sb.ran), (p.trials.len(), p.trials.len()));
+    let (ra, rb) = (rows(&a), rows(&b));
+    assert_eq!(ra.len(), p.trials.len());
+    assert_eq!(ra, rb);
+    // Every robot count and both strategies explored something.
+    assert!(ra.iter().all(|r| r.coverage > 0.0 && r.max_path > 0.0));
+    // A second run resumes: nothing left to do.
+    let again = bench::runner::run(&p, &a, &opts(2)).unwrap();
+    assert_eq!((again.ran, again.already_done), (0, p.trials.len()));
+}
+
+#[test]
+fn resuming_an_interrupted_run_gives_the_uninterrupted_results() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = plan();
+    let (whole, parts) = (dir.path().join("w.sqlite"), dir.path().join("p.sqlite"));
+    bench::runner::run(&p, &whole, &opts(2)).unwrap();
+    let first = bench::runner::run(
+        &p,
+        &parts,
+        &RunOptions {
+            limit: Some(5),
+            ..opts(2)
+        },
+    )
+    .unwrap();
+    assert_eq!(first.ran, 5);
+    let rest = bench::runner::run(&p, &parts, &opts(1)).unwrap();
+    assert_eq!((rest.already_done, rest.ran), (5, p.trials.len() - 5));
+    assert_eq!(rows(&whole), rows(&parts));
+}
+
+#[test]
+fn merged_shards_equal_the_unsharded_run() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = plan();
+    let whole = dir.path().join("w.sqlite");
+    bench::runner::run(&p, &whole, &opts(2)).unwrap();
+    let mut shards = Vec::new();
+    let mut total = 0;
+    for i in 1..=3 {
+        let db = dir.path().join(format!("s{i}.sqlite"));
+        let s = bench::runner::run(
+            &p,
+            &db,
+            &RunOptions {
+                shard: Some(Shard { index: i, count: 3 }),
+                ..opts(1)
+            },
+        )
+        .unwrap();
+        total += s.ran;
+        shards.push(db);
+    }
+    assert_eq!(total, p.trials.len());
+    let merged = dir.path().join("m.sqlite");
+    let out = Store::open_raw(&merged).unwrap();
+    assert_eq!(out.merge_from(&shards).unwrap(), p.trials.len());
+    assert_eq!(
+        out.merge_from(&shards).unwrap(),
+        0,
+        "merging twice adds nothing"
+    );
+    assert_eq!(out.envs().unwrap().len(), 2);
+    drop(out);
+    assert_eq!(rows(&whole), rows(&merged));
+    // CSV: a header and one line per trial.
+    let csv = dir.path().join("t.csv");
+    let n = Store::open_raw(&merged).unwrap().export_csv(&csv).unwrap();
+    let text = std::fs::read_to_string(&csv).unwrap();
+    assert_eq!(n, p.trials.len());
+    assert_eq!(text.lines().count(), n + 1);
+    assert!(text.starts_with("key,scenario,env,env_kind,env_seed,"));
+}
+
+#[test]
+fn a_database_of_other_settings_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let db = dir.path().join("a.sqlite");
+    let p = plan();
+    bench::runner::run(
+        &p,
+        &db,
+        &RunOptions {
+            limit: Some(1),
+            ..opts(1)
+        },
+    )
+    .unwrap();
+    let other = Plan::resolve(
+        &source(&TINY.replace("seed = 7", "seed = 8")),
+        Unbuilt::Error,
+    )
+    .unwrap();
+    let err = bench::runner::run(&other, &db, &opts(1))
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("fingerprint"), "{err}");
+}
+
+#[test]
+fn shard_syntax() {
+    assert_eq!("2/8".parse::<Shard>(), Ok(Shard { index: 2, count: 8 }));
+    for bad in ["0/3", "4/3", "x/3", "3", "1/0"] {
+        assert!(bad.parse::<Shard>().is_err(), "{bad}");
+    }
+}
+
+/// The error of resolving `text` with `line` replaced by `with`.
+fn error_of(edit: (&str, &str)) -> String {
+    assert!(TINY.contains(edit.0), "{}", edit.0);
+    let text = TINY.replacen(edit.0, edit.1, 1);
+    Plan::resolve(&source(&text), Unbuilt::Error)
+        .expect_err("bad scenario must fail")
+        .to_string()
+}
+
+#[test]
+fn bad_scenarios_name_file_line_and_key() {
+    let cases = [
+        (
+            (
+                "strategies = [\"cf\", \"random\"]",
+                "strategies = [\"cf\", \"nope\"]",
+            ),
+            "tiny.toml:6: key `strategies[1]`",
+            "unknown strategy 'nope'",
+        ),
+        (
+            ("sensors = [\"los:r=3c\"]", "sensors = [\"laser:r=3\"]"),
+            "tiny.toml:5: key `sensors[0]`",
+            "laser",
+        ),
+        (
+            ("robots = [1, 2]", "robots = [1, 0]"),
+            "tiny.toml:4: key `robots[1]`",
+            ">= 1",
+        ),
+        (
+            ("kind = \"maze\"", "kind = \"castle\""),
+            "tiny.toml:10: key `env[0].kind`",
+            "castle",
+        ),
+        (
+            ("trials = 2", "trials = 0"),
+            "tiny.toml:7: key `trials`",
+            ">= 1",
+        ),
+        (
+            ("start = [3, 3]", "start = [0, 0]"),
+            "tiny.toml:20: key `env[1].start`",
+            "occupied",
+        ),
+        (
+            ("size = [6, 5]", "size = [6]"),
+            "tiny.toml:12: key `env[0].size`",
+            "[width, height]",
+        ),
+        (
+            ("kind = \"maze\"", "map = \"no/such/map.yaml\""),
+            "tiny.toml:11: key `env[0].seeds`",
+            "not to map files",
+        ),
+    ];
+    for ((from, to), place, what) in cases {
+        let e = error_of((from, to));
+        assert!(e.starts_with(place), "{to}: {e}");
+        assert!(e.contains(what), "{to}: {e}");
+    }
+    // Unknown keys and wrong types: toml's message names line and key.
+    let e = error_of(("trials = 2", "trails = 2"));
+    assert!(
+        e.starts_with("tiny.toml: ") && e.contains("line 7") && e.contains("trails"),
+        "{e}"
+    );
+    let e = error_of(("resolution = 0.5\n\n[[env]]", "resolutoin = 0.5\n\n[[env]]"));
+    assert!(e.contains("line 13") && e.contains("resolutoin"), "{e}");
+    let e = error_of(("trials = 2", "trials = \"two\""));
+    assert!(e.contains("line 7") && e.contains("trials"), "{e}");
+}
+
+#[test]
+fn unreadable_map_file_names_the_key() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("s.toml");
+    std::fs::write(
+        &path,
+        "strategies = [\"cf\"]\n[[env]]\nmap = \"missing.pgm\"\nresolution = 0.1\n",
+    )
+    .unwrap();
+    let src = Source::read(&path).unwrap();
+    let e = Plan::resolve(&src, Unbuilt::Error).unwrap_err().to_string();
+    assert!(e.contains("s.toml:3: key `env[0].map`"), "{e}");
+    assert!(e.contains("missing.pgm"), "{e}");
+}
+
+#[test]
+fn report_is_written_and_self_contained() {
+    let dir = tempfile::tempdir().unwrap();
+    let db = dir.path().join("a.sqlite");
+    bench::runner::run(&plan(), &db, &opts(2)).unwrap();
+    let out = dir.path().join("report");
+    bench::report::write(&db, &out, &bench::report::ReportOptions::default()).unwrap();
+    let md = std::fs::read_to_string(out.join("report.md")).unwrap();
+    let html = std::fs::read_to_string(out.join("report.html")).unwrap();
+    assert!(md.contains("| strategy | n |"), "{md}");
+    assert!(md.contains("+/=/- of L"));
+    assert!(md.contains("time vs robots"));
+    assert!(out.join("envs").join("maze-s0-6x5m-r0.5.png").exists());
+    // Charts inline as SVG with text elements (no font files), pictures as data URIs,
+    // and nothing fetched from the network.
+    assert!(html.contains("<svg") && html.contains("<text"));
+    assert!(html.contains("data:image/png;base64,"));
+    assert!(!html.contains("src=\"http") && !html.contains("href=\"http"));
+}
+
+#[test]
+fn suites_resolve() {
+    for (name, _, _) in bench::suites::SUITES {
+        if *name == "faigl2013" {
+            continue; // big environments; resolving it is checked by the CLI's dry run
+        }
+        let p = bench::suites::plan(name).unwrap();
+        assert!(!p.trials.is_empty(), "{name}");
+    }
+}

@@ -1,0 +1,229 @@
+//! `frontier bench`: run a study (a scenario file or a built-in suite) into a resumable
+//! SQLite database, and merge, export and report such databases (issue 9).
+//!
+//! ```text
+//! frontier bench study.toml [--db study.sqlite] [--threads N] [--shard I/N]
+//! frontier bench --suite quick --report quick-report
+//! frontier bench merge all.sqlite shard-*.sqlite
+//! frontier bench export all.sqlite --csv all.csv
+//! frontier bench report all.sqlite --out report/
+//! ```
+
+use std::path::PathBuf;
+
+use anyhow::{Context, Result, bail};
+use clap::{Args, Subcommand};
+
+/// Flags of `frontier bench`.
+#[derive(Args, Debug)]
+#[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]
+pub struct BenchArgs {
+    /// What to do besides running a study.
+    #[command(subcommand)]
+    pub command: Option<BenchCommand>,
+    /// Running a study.
+    #[command(flatten)]
+    pub run: RunArgs,
+}
+
+/// Flags of running a study.
+#[derive(Args, Debug)]
+pub struct RunArgs {
+    /// Scenario file (TOML; see `crates/bench/src/scenario.rs` for the keys).
+    #[arg(conflicts_with = "suite", required_unless_present = "suite")]
+    pub scenario: Option<PathBuf>,
+    /// Built-in suite: quick, holz2010, multirobot, faigl2013, quattrini2012.
+    #[arg(long)]
+    pub suite: Option<String>,
+    /// Results database; re-running with the same database resumes (default: NAME.sqlite).
+    #[arg(long)]
+    pub db: Option<PathBuf>,
+    /// Worker threads (default: one per core).
+    #[arg(long, short = 'j')]
+    pub threads: Option<usize>,
+    /// Run only shard I of N (1-based, e.g. 3/8), for job arrays.
+    #[arg(long)]
+    pub shard: Option<String>,
+    /// Run at most this many of the pending trials.
+    #[arg(long)]
+    pub limit: Option<usize>,
+    /// Only print the plan (environments, variants, trial count); run nothing.
+    #[arg(long)]
+    pub dry_run: bool,
+    /// After the run, write report.md and report.html into this directory.
+    #[arg(long)]
+    pub report: Option<PathBuf>,
+    /// Never draw the progress bar.
+    #[arg(long)]
+    pub no_progress: bool,
+}
+
+/// Subcommands of `frontier bench`.
+#[derive(Subcommand, Debug)]
+pub enum BenchCommand {
+    /// Combine shard databases into one (trials already in OUT are kept).
+    Merge {
+        /// The database to write (created if missing).
+        out: PathBuf,
+        /// Shard databases.
+        #[arg(required = true)]
+        inputs: Vec<PathBuf>,
+    },
+    /// Write every trial of a database as one flat CSV table.
+    Export {
+        /// The database.
+        db: PathBuf,
+        /// The CSV file to write.
+        #[arg(long)]
+        csv: PathBuf,
+    },
+    /// Write report.md and a self-contained report.html (tables, tests, charts).
+    Report {
+        /// The database.
+        db: PathBuf,
+        /// Output directory.
+        #[arg(long)]
+        out: PathBuf,
+        /// Significance level of the +/=/- verdicts.
+        #[arg(long, default_value_t = 0.001)]
+        alpha: f64,
+    },
+    /// List the built-in suites.
+    Suites,
+}
+
+/// Run `frontier bench`.
+pub fn run(a: BenchArgs) -> Result<()> {
+    match a.command {
+        Some(BenchCommand::Merge { out, inputs }) => {
+            let store = bench::Store::open_raw(&out)?;
+            let added = store.merge_from(&inputs)?;
+            let total = store.finished()?.len();
+            println!(
+                "merged {} database(s) into {}: {added} new trial(s), {total} in all",
+                inputs.len(),
+                out.display()
+            );
+            Ok(())
+        }
+        Some(BenchCommand::Export { db, csv }) => {
+            if !db.exists() {
+                bail!("{}: no such database", db.display());
+            }
+            let n = bench::Store::open_raw(&db)?.export_csv(&csv)?;
+            println!("wrote {n} trial(s) to {}", csv.display());
+            Ok(())
+        }
+        Some(BenchCommand::Report { db, out, alpha }) => report(&db, &out, alpha),
+        Some(BenchCommand::Suites) => {
+            for (name, what, _) in bench::suites::SUITES {
+                println!("  {name:<14} {what}");
+            }
+            Ok(())
+        }
+        None => run_study(a.run),
+    }
+}
+
+fn report(db: &std::path::Path, out: &std::path::Path, alpha: f64) -> Result<()> {
+    if !(alpha > 0.0 && alpha < 1.0) {
+        bail!("--alpha: expected a level in (0, 1), found {alpha}");
+    }
+    bench::report::write(db, out, &bench::report::ReportOptions { alpha })?;
+    println!(
+        "wrote {} and {}",
+        out.join("report.md").display(),
+        out.join("report.html").display()
+    );
+    Ok(())
+}
+
+fn run_study(a: RunArgs) -> Result<()> {
+    let shard = a
+        .shard
+        .as_deref()
+        .map(|s| s.parse::<bench::Shard>())
+        .transpose()
+        .map_err(|e| anyhow::anyhow!(e))?;
+    if a.threads == Some(0) {
+        bail!("--threads: expected at least 1");
+    }
+    let plan = match (&a.suite, &a.scenario) {
+        (Some(name), _) => bench::suites::plan(name)?,
+        (None, Some(path)) => {
+            bench::Plan::resolve(&bench::Source::read(path)?, bench::Unbuilt::Error)?
+        }
+        (None, None) => bail!("give a scenario file or --suite NAME"),
+    };
+    for s in &plan.skipped {
+        eprintln!("note: skipping strategy {s}");
+    }
+    let db =
+        a.db.clone()
+            .unwrap_or_else(|| PathBuf::from(format!("{}.sqlite", plan.name)));
+    let shard_text = shard.map_or(String::new(), |s| format!(", shard {s}"));
+    eprintln!(
+        "{}: {} trials ({} environments, {} variants{shard_text}) -> {}",
+        plan.name,
+        plan.trials.len(),
+        plan.envs.len(),
+        plan.variants.len(),
+        db.display()
+    );
+    if a.dry_run {
+        for env in &plan.envs {
+            println!(
+                "env {:<28} {}x{} cells at {} m, {} start variant(s)",
+                env.name,
+                env.map.width(),
+                env.map.height(),
+                env.map.resolution,
+                env.starts.len()
+            );
+        }
+        for v in &plan.variants {
+            println!(
+                "variant {:<22} {:<28} robots {:<3}{}",
+                v.label,
+                v.sensor.to_string(),
+                v.robots,
+                if v.stochastic { " stochastic" } else { "" }
+            );
+        }
+        return Ok(());
+    }
+    let opts = bench::RunOptions {
+        threads: a.threads,
+        shard,
+        progress: !a.no_progress && bench::runner::progress_wanted(),
+        limit: a.limit,
+    };
+    let summary =
+        bench::runner::run(&plan, &db, &opts).with_context(|| format!("running {}", plan.name))?;
+    let rate = if summary.wall_s > 0.0 {
+        summary.ran as f64 / summary.wall_s
+    } else {
+        0.0
+    };
+    eprintln!(
+        "{} of {} trials done before, {} run now in {:.1} s ({rate:.2} trials/s), {} failed",
+        summary.already_done,
+        summary.total,
+        summary.ran,
+        summary.wall_s,
+        summary.failed.len()
+    );
+    for (key, why) in &summary.failed {
+        eprintln!("  failed: {key}: {why}");
+    }
+    if let Some(out) = &a.report {
+        report(&db, out, bench::stats::DEFAULT_ALPHA)?;
+    }
+    if !summary.failed.is_empty() {
+        bail!(
+            "{} trial(s) failed; they are not stored, so running the same command again retries them",
+            summary.failed.len()
+        );
+    }
+    Ok(())
+}

@@ -1,0 +1,399 @@
+//! `frontier optimal`: the offline optimal exploration path (Quattrini Li, Amigoni &
+//! Basilico 2012) for a map, start and sensor, and the competitive ratios of online
+//! strategies run with the same sensor and on-arrival perception from the same start.
+
+use std::path::PathBuf;
+use std::time::Duration;
+
+use anyhow::{Context, Result, bail};
+use clap::Args;
+use explore::strategy::{SensingMode, Strategy};
+use grid::{Cell, Occ};
+use image::{Rgb, RgbImage};
+use optimal::{ActionSet, Config, HeuristicKind, Outcome, coarsen_problem, solve};
+use sense::SensorSpec;
+use serde_json::{Value, json};
+use sim::RunConfig;
+
+use crate::args::{MapSource, parse_cell};
+
+/// Flags of `frontier optimal`.
+#[derive(Args, Clone, Debug)]
+pub struct OptimalArgs {
+    #[command(flatten)]
+    pub source: MapSource,
+    /// Seed of a generated environment (unless --env-seed) and of the compared runs.
+    #[arg(long, default_value_t = 0)]
+    pub seed: u64,
+    /// Start cell "X,Y" of the map (column, row; row 0 at the top); default: the free cell
+    /// nearest the map's centre.
+    #[arg(long)]
+    pub start: Option<String>,
+    /// Sensor: los:r=R or footprint:r=R (metres; cells with suffix c).
+    #[arg(long, default_value = "los:r=5")]
+    pub sensor: String,
+    /// Solve on cells this many map cells wide (the paper's 1, 2, 4).
+    #[arg(long, default_value_t = 1)]
+    pub cell_size: usize,
+    /// Coverage goal G in (0, 1]: the fraction of free cells to perceive.
+    #[arg(long, default_value_t = 1.0)]
+    pub goal: f64,
+    /// Move only to cluster representatives of the boundary cells.
+    #[arg(long)]
+    pub cluster: bool,
+    /// Drop clusters with fewer than K boundary cells (implies --cluster).
+    #[arg(long)]
+    pub min_cluster: Option<usize>,
+    /// Consider every reachable perceived cell as a position (exact, slow).
+    #[arg(long, conflicts_with_all = ["cluster", "min_cluster"])]
+    pub all_cells: bool,
+    /// Heuristic: landmarks (default), paper, paper-as-published (not admissible with
+    /// footprint or G < 1), zero.
+    #[arg(long, default_value = "landmarks")]
+    pub heuristic: String,
+    /// Number of landmarks of the landmark heuristic.
+    #[arg(long, default_value_t = 32)]
+    pub landmarks: usize,
+    /// Weighted A*: the result is at most W times the optimum (1 = optimal).
+    #[arg(long, default_value_t = 1.0)]
+    pub weight: f64,
+    /// Stop after this many seconds with the best bounds.
+    #[arg(long)]
+    pub time_limit: Option<f64>,
+    /// Stop after expanding this many states.
+    #[arg(long, default_value_t = 50_000_000)]
+    pub max_nodes: u64,
+    /// Memory budget of the search in MiB.
+    #[arg(long, default_value_t = 1024)]
+    pub memory_mb: usize,
+    /// Online presets to compare, e.g. cf,cf-rr,yamauchi.
+    #[arg(long, value_delimiter = ',')]
+    pub compare: Vec<String>,
+    /// Write optimal.png (the optimal path) into this directory.
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+    /// Print one JSON object instead of the summary.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// One compared online run.
+struct Compared {
+    name: String,
+    length_m: f64,
+    coverage: f64,
+    reason: &'static str,
+    ratio: Option<f64>,
+}
+
+fn default_start(map: &grid::GridMap) -> Option<Cell> {
+    let centre = Cell::new(map.width() as i32 / 2, map.height() as i32 / 2);
+    map.cells
+        .cells()
+        .filter(|&c| map.cells.get(c).is_free())
+        .min_by_key(|&c| (c.dist2(centre), c.y, c.x))
+}
+
+/// Run `frontier optimal`.
+pub fn run(a: OptimalArgs) -> Result<()> {
+    let truth = a.source.resolve(a.seed)?;
+    let map = &truth.map;
+    let spec: SensorSpec = a
+        .sensor
+        .parse()
+        .map_err(|e| anyhow::anyhow!("--sensor: {e}"))?;
+    if matches!(spec, SensorSpec::Lidar { .. }) {
+        bail!("--sensor: the optimal search needs a 360° sensor: los:r=R or footprint:r=R");
+    }
+    let heuristic: HeuristicKind = a
+        .heuristic
+        .parse()
+        .map_err(|e| anyhow::anyhow!("--heuristic: {e}"))?;
+    if !(a.goal > 0.0 && a.goal <= 1.0) {
+        bail!(
+            "--goal: expected a coverage fraction in (0, 1], found {}",
+            a.goal
+        );
+    }
+    if !(a.weight.is_finite() && a.weight >= 1.0) {
+        bail!("--weight: expected a number ≥ 1, found {}", a.weight);
+    }
+    if !(1..=64).contains(&a.cell_size) {
+        bail!(
+            "--cell-size: expected a factor in 1..=64, found {}",
+            a.cell_size
+        );
+    }
+    let time_limit = match a.time_limit {
+        None => None,
+        Some(s) if s.is_finite() && s > 0.0 => Some(Duration::from_secs_f64(s)),
+        Some(s) => bail!("--time-limit: expected a positive number of seconds, found {s}"),
+    };
+    let start = match &a.start {
+        Some(s) => {
+            let c = parse_cell(s, "--start")?;
+            if !map.cells.contains(c) {
+                bail!(
+                    "--start {s}: outside the {}x{} map",
+                    map.width(),
+                    map.height()
+                );
+            }
+            if !map.cells.get(c).is_free() {
+                bail!("--start {s}: not a free cell");
+            }
+            c
+        }
+        None => default_start(map).context("the map has no free cell")?,
+    };
+    let actions = if a.all_cells {
+        ActionSet::All
+    } else if a.cluster || a.min_cluster.is_some() {
+        ActionSet::Clusters {
+            min_size: a.min_cluster.unwrap_or(1).max(1),
+        }
+    } else {
+        ActionSet::Boundary
+    };
+    let cfg = Config {
+        goal: a.goal,
+        actions,
+        heuristic,
+        weight: a.weight,
+        landmarks: a.landmarks,
+        max_nodes: a.max_nodes,
+        max_bytes: a.memory_mb.saturating_mul(1 << 20),
+        time_limit,
+    };
+    let co = coarsen_problem(map, a.cell_size, start, &spec)?;
+    let out = solve(&co.problem, &cfg)?;
+    let res = co.resolution();
+    let optimal_m = out.upper_bound * res;
+
+    let mut compared = Vec::new();
+    for name in &a.compare {
+        let strategy = Strategy::preset(name).map_err(|e| anyhow::anyhow!("--compare: {e}"))?;
+        let mut rc = RunConfig::new(strategy);
+        rc.sensor = spec;
+        rc.sensing = Some(SensingMode::OnArrival);
+        rc.starts = vec![start];
+        rc.seed = a.seed;
+        rc.coverage_goal = (a.goal < 1.0).then_some(a.goal);
+        let r = sim::run(map, &rc).with_context(|| format!("running {name}"))?;
+        let length_m = r.path_length_m.first().copied().unwrap_or(0.0);
+        compared.push(Compared {
+            name: name.clone(),
+            length_m,
+            coverage: r.coverage,
+            reason: r.reason.as_str(),
+            ratio: if out.upper_bound.is_finite() {
+                optimal::competitive_ratio(length_m, optimal_m)
+            } else {
+                None
+            },
+        });
+    }
+
+    if let Some(dir) = &a.out {
+        std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
+        let png = dir.join("optimal.png");
+        picture(&co, &out)
+            .save(&png)
+            .with_context(|| format!("writing {}", png.display()))?;
+    }
+    if a.json {
+        let v = to_json(
+            (map.width(), map.height()),
+            &truth.name,
+            &a,
+            &co,
+            start,
+            &out,
+            &compared,
+        );
+        println!("{}", serde_json::to_string_pretty(&v)?);
+    } else {
+        print_summary(
+            (map.width(), map.height()),
+            &truth.name,
+            &a,
+            &co,
+            start,
+            &out,
+            &compared,
+        );
+        if let Some(dir) = &a.out {
+            println!("picture written to {}", dir.join("optimal.png").display());
+        }
+    }
+    Ok(())
+}
+
+fn positions(out: &Outcome) -> Vec<Cell> {
+    out.solution
+        .as_ref()
+        .map(|s| s.positions.clone())
+        .unwrap_or_default()
+}
+
+fn print_summary(
+    fine: (usize, usize),
+    name: &str,
+    a: &OptimalArgs,
+    co: &optimal::Coarsened,
+    start: Cell,
+    out: &Outcome,
+    compared: &[Compared],
+) {
+    let res = co.resolution();
+    println!(
+        "{name}: {}x{} cells at {} m (cell size {}), start {start}{}, sensor {}, goal {}",
+        co.map.width(),
+        co.map.height(),
+        res,
+        a.cell_size,
+        if co.start_moved {
+            " (moved to the nearest free coarse cell)"
+        } else {
+            ""
+        },
+        a.sensor,
+        a.goal
+    );
+    println!(
+        "targets {} (need {}), {} free cells no position can perceive",
+        out.targets,
+        out.needed,
+        co.problem.unperceivable()
+    );
+    println!("{}", out.message);
+    if out.upper_bound.is_finite() {
+        println!(
+            "length {:.2} m ({:.3} cells), optimal: {}, bounds [{:.2}, {:.2}] m",
+            out.upper_bound * res,
+            out.upper_bound,
+            out.status == optimal::Status::Optimal,
+            out.lower_bound * res,
+            out.upper_bound * res
+        );
+    } else {
+        println!(
+            "no solution; optimal length ≥ {:.2} m",
+            out.lower_bound * res
+        );
+    }
+    println!(
+        "nodes expanded {}, generated {}, stored {}, {:.1} MiB, {:.3} s",
+        out.stats.expanded,
+        out.stats.generated,
+        out.stats.stored,
+        out.stats.bytes as f64 / f64::from(1 << 20),
+        out.stats.seconds
+    );
+    let ps: Vec<String> = positions(out)
+        .iter()
+        .map(|&c| co.to_fine(c, fine.0, fine.1).to_string())
+        .collect();
+    println!("positions (map cells): {}", ps.join(" "));
+    for c in compared {
+        println!(
+            "{:<10} length {:.2} m, coverage {:.3} ({}), competitive ratio {}",
+            c.name,
+            c.length_m,
+            c.coverage,
+            c.reason,
+            c.ratio.map_or("n/a".into(), |r| format!("{r:.3}"))
+        );
+    }
+}
+
+fn to_json(
+    fine: (usize, usize),
+    name: &str,
+    a: &OptimalArgs,
+    co: &optimal::Coarsened,
+    start: Cell,
+    out: &Outcome,
+    compared: &[Compared],
+) -> Value {
+    let res = co.resolution();
+    let finite = |v: f64| if v.is_finite() { json!(v) } else { Value::Null };
+    json!({
+        "map": name,
+        "cell_size": a.cell_size,
+        "resolution_m": res,
+        "start": [start.x, start.y],
+        "start_moved": co.start_moved,
+        "sensor": a.sensor,
+        "goal": a.goal,
+        "heuristic": a.heuristic,
+        "weight": a.weight,
+        "status": out.status.as_str(),
+        "optimal": out.status == optimal::Status::Optimal,
+        "stop": out.stop.map(|s| s.as_str()),
+        "message": out.message,
+        "length_m": finite(out.upper_bound * res),
+        "lower_bound_m": out.lower_bound * res,
+        "upper_bound_m": finite(out.upper_bound * res),
+        "targets": out.targets,
+        "needed": out.needed,
+        "nodes_expanded": out.stats.expanded,
+        "nodes_generated": out.stats.generated,
+        "nodes_stored": out.stats.stored,
+        "bytes": out.stats.bytes,
+        "seconds": out.stats.seconds,
+        "positions": positions(out)
+            .iter()
+            .map(|&c| {
+                let f = co.to_fine(c, fine.0, fine.1);
+                json!([f.x, f.y])
+            })
+            .collect::<Vec<_>>(),
+        "compare": compared.iter().map(|c| json!({
+            "strategy": c.name,
+            "length_m": c.length_m,
+            "coverage": c.coverage,
+            "end": c.reason,
+            "competitive_ratio": c.ratio,
+        })).collect::<Vec<_>>(),
+    })
+}
+
+/// The paper's Figure 2: unperceived cells black, obstacles light grey, perceived free
+/// cells white, sensing positions dark grey, the path red.
+fn picture(co: &optimal::Coarsened, out: &Outcome) -> RgbImage {
+    let cells = co.problem.cells();
+    let (w, h) = (cells.width(), cells.height());
+    let scale = (800 / w.max(h).max(1)).clamp(1, 16) as u32;
+    let mut perceived = vec![false; cells.len()];
+    let mut obs = sense::Observation::new();
+    let mut seen = Vec::new();
+    if let Some(sol) = &out.solution {
+        for &p in &sol.positions {
+            seen.clear();
+            co.problem
+                .seen_targets(cells.index(p) as u32, &mut obs, &mut seen);
+            for &t in &seen {
+                perceived[co.problem.targets()[t as usize] as usize] = true;
+            }
+        }
+    }
+    let mut colour: Vec<Rgb<u8>> = (0..cells.len())
+        .map(|i| match cells[i] {
+            Occ::Free if perceived[i] => Rgb([255, 255, 255]),
+            Occ::Free => Rgb([0, 0, 0]),
+            _ => Rgb([200, 200, 200]),
+        })
+        .collect();
+    if let Some(sol) = &out.solution {
+        for &c in &sol.path {
+            colour[cells.index(c)] = Rgb([220, 30, 30]);
+        }
+        for &c in &sol.positions {
+            colour[cells.index(c)] = Rgb([90, 90, 90]);
+        }
+    }
+    RgbImage::from_fn(w as u32 * scale, h as u32 * scale, |x, y| {
+        colour[(y / scale) as usize * w + (x / scale) as usize]
+    })
+}

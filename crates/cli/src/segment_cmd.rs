@@ -1,0 +1,217 @@
+//! `frontier segment`: segment a map into rooms (Holz et al. 2010, Figure 7), draw the
+//! segments and, with ground-truth rooms, score them.
+//!
+//! Ground truth comes from a generated office or hospital (its room labels) or from
+//! `--truth FILE`: the same floor plan with every doorway drawn closed, so that each room is
+//! one connected free region (the convention of public room-segmentation datasets).
+
+use std::path::PathBuf;
+
+use anyhow::{Context, Result, bail};
+use clap::Args;
+use explore::segment::score::{RoomScores, score};
+use explore::segment::{NONE, Rule, Segmentation, segment};
+use grid::components::{Connectivity, label};
+use grid::{Grid, GridMap, Occ};
+use image::{Rgb, RgbImage};
+use serde_json::json;
+use world::{EnvKind, EnvSpec};
+
+use crate::args::{MapSource, parse_resolution, parse_size};
+
+/// Flags of `frontier segment`.
+#[derive(Args, Clone, Debug)]
+pub struct SegmentArgs {
+    /// The map to segment.
+    #[command(flatten)]
+    pub source: MapSource,
+    /// Seed of a generated environment (when --env-seed is not given).
+    #[arg(long, default_value_t = 0)]
+    pub seed: u64,
+    /// Critical-point rule: holz (relaxed, default), wurm (adjacent to a junction) or
+    /// thrun (every local minimum).
+    #[arg(long, default_value = "holz")]
+    pub rule: String,
+    /// Ground-truth rooms: the same floor plan with every doorway closed (same size and
+    /// format options as --map).
+    #[arg(long)]
+    pub truth: Option<PathBuf>,
+    /// Write a picture of the segments (PNG).
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+    /// Print JSON.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// Run `frontier segment`.
+pub fn run(a: SegmentArgs) -> Result<()> {
+    let rule: Rule = a
+        .rule
+        .parse()
+        .map_err(|e: String| anyhow::anyhow!("--rule: {e}"))?;
+    if a.truth.is_some() && a.source.map.is_none() {
+        bail!("--truth goes with --map; a generated office or hospital has its own rooms");
+    }
+    let truth = a.source.resolve(a.seed)?;
+    let rooms = match &a.truth {
+        Some(path) => Some(truth_rooms(path, &a.source, &truth.map)?),
+        None if a.source.map.is_none() => generated_rooms(&a.source, a.seed)?,
+        None => None,
+    };
+    let seg = segment(&truth.map.cells, rule);
+    let scores = rooms.as_ref().map(|r| score(&seg.labels, r.data()));
+    if let Some(out) = &a.out {
+        picture(&truth.map, &seg)
+            .save(out)
+            .with_context(|| format!("writing {}", out.display()))?;
+    }
+    if a.json {
+        let s = scores.map(|s| {
+            json!({
+                "precision": s.precision, "recall": s.recall, "f1": s.f1, "ari": s.ari,
+                "segments_scored": s.segments, "rooms": s.rooms, "matched": s.matched,
+            })
+        });
+        let v = json!({
+            "map": truth.name,
+            "rule": rule.name(),
+            "segments": seg.count,
+            "critical_points": seg.critical.len(),
+            "scores": s,
+        });
+        println!("{}", serde_json::to_string_pretty(&v)?);
+    } else {
+        println!(
+            "{}: {} segments ({} critical points, rule {})",
+            truth.name,
+            seg.count,
+            seg.critical.len(),
+            rule.name()
+        );
+        if let Some(s) = scores {
+            print_scores(&s);
+        }
+    }
+    Ok(())
+}
+
+fn print_scores(s: &RoomScores) {
+    println!(
+        "  rooms {}, recovered {} (overlap >= 80 % both ways)",
+        s.rooms, s.matched
+    );
+    println!(
+        "  precision {:.3}  recall {:.3}  F1 {:.3}  ARI {:.3}",
+        s.precision, s.recall, s.f1, s.ari
+    );
+}
+
+/// The room labels of a generated office or hospital; `None` for kinds without rooms.
+fn generated_rooms(source: &MapSource, seed: u64) -> Result<Option<Grid<u32>>> {
+    let kind: EnvKind = source
+        .env
+        .as_deref()
+        .unwrap_or("office")
+        .parse()
+        .map_err(|e| anyhow::anyhow!("--env: {e}"))?;
+    let resolution = source
+        .resolution
+        .as_deref()
+        .map(parse_resolution)
+        .transpose()?
+        .map(|r| r.0);
+    let spec = EnvSpec {
+        kind,
+        seed: source.env_seed.unwrap_or(seed),
+        size_m: source.size.as_deref().map(parse_size).transpose()?,
+        resolution,
+    };
+    let env = world::generate(&spec).with_context(|| format!("generating {kind}"))?;
+    Ok(env.rooms)
+}
+
+/// Room labels from a ground-truth floor plan: its free components, numbered from 1.
+fn truth_rooms(path: &std::path::Path, source: &MapSource, map: &GridMap) -> Result<Grid<u32>> {
+    let resolution = source
+        .resolution
+        .as_deref()
+        .map(parse_resolution)
+        .transpose()?;
+    let opts = grid::io::LoadOptions {
+        resolution,
+        border: source.border,
+    };
+    let t = grid::io::load_map(path, &opts)?;
+    if (t.width(), t.height()) != (map.width(), map.height()) {
+        bail!(
+            "--truth {}: {} x {} cells, but the map has {} x {}",
+            path.display(),
+            t.width(),
+            t.height(),
+            map.width(),
+            map.height()
+        );
+    }
+    let cells = &t.cells;
+    // components numbered 1..=count, 0 outside
+    let (labels, _) = label(
+        cells.width(),
+        cells.height(),
+        |i| cells[i] == Occ::Free,
+        Connectivity::Motion,
+    );
+    Ok(labels)
+}
+
+/// A distinct, deterministic colour per segment.
+fn colour(label: u32) -> [u8; 3] {
+    // golden-ratio hue steps, moderate saturation
+    let h = (f64::from(label) * 0.618_033_988_749_895).fract() * 6.0;
+    let (s, v) = (0.55, 0.95);
+    let c = v * s;
+    let x = c * (1.0 - ((h % 2.0) - 1.0).abs());
+    let (r, g, b) = match h as u32 {
+        0 => (c, x, 0.0),
+        1 => (x, c, 0.0),
+        2 => (0.0, c, x),
+        3 => (0.0, x, c),
+        4 => (x, 0.0, c),
+        _ => (c, 0.0, x),
+    };
+    let m = v - c;
+    let to = |u: f64| ((u + m) * 255.0).round() as u8;
+    [to(r), to(g), to(b)]
+}
+
+/// The segments in colour over the map, critical points in red.
+fn picture(map: &GridMap, seg: &Segmentation) -> RgbImage {
+    let (w, h) = (map.width(), map.height());
+    let s = viz::scale_for(w, h);
+    let mut img = RgbImage::new(w as u32 * s, h as u32 * s);
+    let mut critical = vec![false; w * h];
+    for cp in &seg.critical {
+        critical[cp.cell as usize] = true;
+    }
+    for y in 0..h {
+        for x in 0..w {
+            let i = y * w + x;
+            let px = if critical[i] {
+                [220, 20, 20]
+            } else if seg.labels[i] != NONE {
+                colour(seg.labels[i])
+            } else {
+                match map.cells[i] {
+                    Occ::Occupied => [25, 25, 25],
+                    _ => [205, 205, 205],
+                }
+            };
+            for dy in 0..s {
+                for dx in 0..s {
+                    img.put_pixel(x as u32 * s + dx, y as u32 * s + dy, Rgb(px));
+                }
+            }
+        }
+    }
+    img
+}

@@ -1,0 +1,159 @@
+//! Keeping a segmentation between decisions (Holz et al. 2010 §2.4 segment the map "built so
+//! far" at every decision; here it is recomputed only when the map changed enough).
+//!
+//! The refresh rule: the state remembers the known grid as of its last update. At each
+//! update the grid is compared with it cell by cell (a linear scan of bytes, far cheaper than
+//! a segmentation) and the changed cells are added to a drift count. The whole pipeline runs
+//! again when the rule, the grid size changed, or the drift since the last full run reaches
+//! [`REFRESH_FRACTION`] of the free cells of that run (at least one cell). Otherwise the old
+//! segmentation is kept and patched: cells that stopped being free lose their label, and
+//! newly free cells take the label of the labelled free cell they connect to (a breadth-first
+//! growth from the old labels, in index order), so that new frontier cells have a segment.
+//! Newly free cells that connect to no labelled cell stay unlabelled until the next full run.
+
+use std::collections::VecDeque;
+
+use grid::{Grid, Occ};
+
+use super::graph::NONE;
+use super::skeleton::RING;
+use super::{Rule, Segmentation, Segmenter};
+
+/// Fraction of the free cells that must change before the segmentation is recomputed.
+pub const REFRESH_FRACTION: f64 = 0.02;
+
+/// The segmentation kept between decisions.
+#[derive(Default)]
+pub struct State {
+    segmenter: Segmenter,
+    rule: Option<Rule>,
+    seen: Vec<Occ>,
+    width: usize,
+    free_at_full: usize,
+    drift: usize,
+    changed: Vec<u32>,
+    queue: VecDeque<u32>,
+    full_runs: usize,
+    patches: usize,
+}
+
+impl State {
+    /// An empty state (nothing segmented yet).
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Bring the segmentation up to date with `known` under `rule` (see the module
+    /// documentation for when it is recomputed) and return it.
+    pub fn update(&mut self, known: &Grid<Occ>, rule: Rule) -> &Segmentation {
+        let cells = known.data();
+        let fresh = self.rule != Some(rule)
+            || self.width != known.width()
+            || self.seen.len() != cells.len();
+        if !fresh {
+            self.changed.clear();
+            for (i, (s, &k)) in self.seen.iter_mut().zip(cells).enumerate() {
+                if *s != k {
+                    *s = k;
+                    self.changed.push(i as u32);
+                }
+            }
+            if self.changed.is_empty() {
+                return self.segmenter.result();
+            }
+            self.drift += self.changed.len();
+            let limit = ((REFRESH_FRACTION * self.free_at_full as f64) as usize).max(1);
+            if self.drift < limit {
+                self.patch(known);
+                return self.segmenter.result();
+            }
+        }
+        self.full(known, rule);
+        self.segmenter.result()
+    }
+
+    /// The segmentation as of the last update.
+    pub fn segmentation(&self) -> &Segmentation {
+        self.segmenter.result()
+    }
+
+    /// How many times the whole pipeline ran.
+    pub fn full_runs(&self) -> usize {
+        self.full_runs
+    }
+
+    /// How many times the segmentation was patched instead.
+    pub fn patches(&self) -> usize {
+        self.patches
+    }
+
+    fn full(&mut self, known: &Grid<Occ>, rule: Rule) {
+        self.segmenter.run(known, rule);
+        self.rule = Some(rule);
+        self.width = known.width();
+        self.seen.clear();
+        self.seen.extend_from_slice(known.data());
+        self.free_at_full = self.seen.iter().filter(|c| c.is_free()).count();
+        self.drift = 0;
+        self.full_runs += 1;
+    }
+
+    fn patch(&mut self, known: &Grid<Occ>) {
+        self.patches += 1;
+        let (w, h) = (known.width() as i64, known.height() as i64);
+        let cells = known.data();
+        let seg = self.segmenter.result_mut();
+        let labels = &mut seg.labels;
+        for &c in &self.changed {
+            if !cells[c as usize].is_free() {
+                labels[c as usize] = NONE;
+            }
+        }
+        // motion-connected free neighbour of `i` in direction (dx, dy)
+        let neighbour = |i: usize, dx: i32, dy: i32| -> Option<usize> {
+            let (x, y) = ((i as i64) % w, (i as i64) / w);
+            let (nx, ny) = (x + dx as i64, y + dy as i64);
+            if nx < 0 || ny < 0 || nx >= w || ny >= h {
+                return None;
+            }
+            let j = (ny * w + nx) as usize;
+            if !cells[j].is_free() {
+                return None;
+            }
+            if dx != 0 && dy != 0 {
+                let a = cells[(y * w + nx) as usize].is_free();
+                let b = cells[(ny * w + x) as usize].is_free();
+                if !a && !b {
+                    return None;
+                }
+            }
+            Some(j)
+        };
+        self.queue.clear();
+        for &c in &self.changed {
+            let c = c as usize;
+            if !cells[c].is_free() || labels[c] != NONE {
+                continue;
+            }
+            let from = RING
+                .iter()
+                .filter_map(|&(dx, dy)| neighbour(c, dx, dy))
+                .find(|&j| labels[j] != NONE);
+            if let Some(j) = from {
+                labels[c] = labels[j];
+                self.queue.push_back(c as u32);
+            }
+        }
+        while let Some(i) = self.queue.pop_front() {
+            let i = i as usize;
+            for &(dx, dy) in RING.iter() {
+                if let Some(j) = neighbour(i, dx, dy)
+                    && labels[j] == NONE
+                {
+                    labels[j] = labels[i];
+                    self.queue.push_back(j as u32);
+                }
+            }
+        }
+    }
+}

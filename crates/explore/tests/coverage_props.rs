@@ -1,0 +1,261 @@
+//! Faigl & Kulich's CC (Algorithm 1) against a slow oracle: covering sets by the direct
+//! segment test from each candidate, and the greedy cover recomputed naively.
+
+use explore::Reachability;
+use explore::candidates::{CandidateKind, CandidateSet};
+use explore::decision::{DecisionCtx, GoalLists, Memory, Planner};
+use explore::{FrontierUpkeep, frontiers_from_scratch};
+use grid::{Cell, Grid, Occ};
+use proptest::prelude::*;
+use rand::SeedableRng;
+use rand_pcg::Pcg64Mcg;
+use sense::{KnownGrid, LosSensor, los_visible, segment_clear};
+
+struct Fixture {
+    known: Grid<Occ>,
+    upkeep: FrontierUpkeep,
+    planner: Planner,
+    lists: GoalLists,
+    rng: Pcg64Mcg,
+    belief: KnownGrid,
+    sensor: LosSensor,
+    memory: Memory,
+    robots: Vec<u32>,
+    deciding: Vec<bool>,
+    goals: Vec<Option<u32>>,
+    range: f64,
+}
+
+impl Fixture {
+    fn new(known: Grid<Occ>, robots: Vec<u32>, range: f64, seed: u64) -> Self {
+        let (w, h) = (known.width(), known.height());
+        let mut upkeep = FrontierUpkeep::new(w, h, 0.0);
+        upkeep.rebuild(&known);
+        let m = robots.len();
+        Self {
+            planner: Planner::new(w, h, m),
+            lists: GoalLists::new(w * h),
+            rng: Pcg64Mcg::seed_from_u64(seed),
+            belief: KnownGrid::new(w, h),
+            sensor: LosSensor::new(range).expect("valid range"),
+            memory: Memory::default(),
+            deciding: vec![true; m],
+            goals: vec![None; m],
+            robots,
+            range,
+            known,
+            upkeep,
+        }
+    }
+
+    fn ctx(&mut self) -> DecisionCtx<'_> {
+        self.planner.invalidate();
+        DecisionCtx {
+            known: &self.known,
+            upkeep: &mut self.upkeep,
+            planner: &mut self.planner,
+            robots: &self.robots,
+            deciding: &self.deciding,
+            goals: &self.goals,
+            lists: &self.lists,
+            resolution: 0.2,
+            sensor_range_cells: self.range,
+            rng: &mut self.rng,
+            belief: &self.belief,
+            sensor: &self.sensor,
+            memory: &mut self.memory,
+        }
+    }
+}
+
+/// A random known map: obstacles, a band of unknown on the right, unknown specks.
+fn random_known(w: usize, h: usize, bits: &[u8], cut: usize) -> Grid<Occ> {
+    let mut g = Grid::new(w, h, Occ::Free);
+    for i in 0..w * h {
+        let (x, b) = (i % w, bits[i % bits.len()]);
+        g[i] = if x >= cut || b < 5 {
+            Occ::Unknown
+        } else if b < 22 {
+            Occ::Occupied
+        } else {
+            Occ::Free
+        };
+    }
+    g
+}
+
+/// The lowest cell of the largest traversable component.
+fn largest_component_cell(known: &Grid<Occ>, up: &FrontierUpkeep) -> Option<usize> {
+    let (w, h) = (known.width(), known.height());
+    let mut seen = vec![false; w * h];
+    let mut best: Option<(usize, usize)> = None;
+    let mut r = Reachability::new(w, h);
+    for i in 0..w * h {
+        if seen[i] || !up.is_traversable(known, i) {
+            continue;
+        }
+        r.compute(i, |j| up.is_traversable(known, j));
+        for &c in r.settled() {
+            seen[c as usize] = true;
+        }
+        let size = r.settled().len();
+        if best.is_none_or(|(s, _)| size > s) {
+            best = Some((size, i));
+        }
+    }
+    best.map(|(_, i)| i)
+}
+
+/// The slow Algorithm 1: every eligible cell against every frontier by `los_visible`.
+fn oracle(fx: &Fixture, robot: u32) -> Vec<(u32, Vec<u32>)> {
+    let known = &fx.known;
+    let (w, h) = (known.width(), known.height());
+    let trav = |i: usize| fx.upkeep.is_traversable(known, i);
+    let mut reach = Reachability::new(w, h);
+    reach.compute(robot as usize, trav);
+    let ok = |i: u32| !fx.lists.is_excluded(i) && reach.cost(i as usize).is_some();
+    let mut front: Vec<u32> = frontiers_from_scratch(known, &fx.upkeep.trav)
+        .into_iter()
+        .filter(|&f| ok(f))
+        .collect();
+    front.sort_unstable();
+    let cells: Vec<u32> = (0..(w * h) as u32)
+        .filter(|&c| trav(c as usize) && ok(c))
+        .collect();
+    let r = 0.8 * fx.range;
+    let sees: Vec<Vec<u32>> = cells
+        .iter()
+        .map(|&c| {
+            front
+                .iter()
+                .copied()
+                .filter(|&f| los_visible(known, known.cell(c as usize), known.cell(f as usize), r))
+                .collect()
+        })
+        .collect();
+    let mut covered = vec![false; w * h];
+    let mut out = Vec::new();
+    loop {
+        let mut best: Option<(usize, usize)> = None; // (count, index into cells)
+        for (k, s) in sees.iter().enumerate() {
+            let cnt = s.iter().filter(|&&f| !covered[f as usize]).count();
+            if cnt > 0 && best.is_none_or(|(b, _)| cnt > b) {
+                best = Some((cnt, k));
+            }
+        }
+        let Some((_, k)) = best else { break };
+        let credit: Vec<u32> = sees[k]
+            .iter()
+            .copied()
+            .filter(|&f| !covered[f as usize])
+            .collect();
+        for &f in &credit {
+            covered[f as usize] = true;
+        }
+        out.push((cells[k], credit));
+    }
+    out
+}
+
+#[test]
+fn corridor_worked_example() {
+    // A 3-wide corridor, known for x < 12, unknown beyond: the frontier is the column
+    // x = 11 (3 cells). With ρ = 5 (0.8 ρ = 4), the lowest cell seeing all three wins.
+    let (w, h) = (20, 5);
+    let mut g = Grid::new(w, h, Occ::Free);
+    for i in 0..w * h {
+        let c = g.cell(i);
+        if c.y == 0 || c.y == 4 {
+            g[i] = Occ::Occupied;
+        } else if c.x >= 12 {
+            g[i] = Occ::Unknown;
+        }
+    }
+    let robot = g.index(Cell::new(1, 2)) as u32;
+    let mut fx = Fixture::new(g, vec![robot], 5.0, 1);
+    let mut out = CandidateSet::new(w * h);
+    let mut ctx = fx.ctx();
+    CandidateKind::Coverage.generate(&mut ctx, &mut out);
+    let credits: Vec<(u32, Vec<u32>)> = fx
+        .memory
+        .coverage
+        .credits()
+        .map(|(c, s)| (c, s.to_vec()))
+        .collect();
+    assert_eq!(credits.len(), 1);
+    // (8, 1) is the lowest index seeing (11, 1), (11, 2), (11, 3) within 4.
+    assert_eq!(fx.known.cell(credits[0].0 as usize), Cell::new(8, 1));
+    assert_eq!(credits, oracle(&fx, robot));
+    assert_eq!(out.cells(), &[credits[0].0]);
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(128))]
+
+    #[test]
+    fn visibility_is_symmetric_between_free_cells(
+        bits in prop::collection::vec(0u8..100, 144),
+        a in 0usize..144,
+        b in 0usize..144,
+    ) {
+        let g = random_known(12, 12, &bits, 12);
+        prop_assume!(g[a] == Occ::Free && g[b] == Occ::Free);
+        let (ca, cb) = (g.cell(a), g.cell(b));
+        prop_assert_eq!(segment_clear(&g, ca, cb), segment_clear(&g, cb, ca));
+    }
+
+    #[test]
+    fn cover_equals_the_slow_greedy_and_is_sound(
+        bits in prop::collection::vec(0u8..100, 37),
+        cut in 6usize..16,
+        range in 1.0f64..7.0,
+        visited in prop::collection::vec(0usize..256, 0..4),
+    ) {
+        let (w, h) = (16, 16);
+        let known = random_known(w, h, &bits, cut);
+        let up = {
+            let mut u = FrontierUpkeep::new(w, h, 0.0);
+            u.rebuild(&known);
+            u
+        };
+        let Some(robot) = largest_component_cell(&known, &up) else {
+            return Ok(());
+        };
+        let mut fx = Fixture::new(known, vec![robot as u32], range, 3);
+        for v in visited {
+            if v != robot {
+                fx.lists.mark_visited(v as u32);
+            }
+        }
+        let mut out = CandidateSet::new(w * h);
+        let mut ctx = fx.ctx();
+        CandidateKind::Coverage.generate(&mut ctx, &mut out);
+        let got: Vec<(u32, Vec<u32>)> = fx
+            .memory
+            .coverage
+            .credits()
+            .map(|(c, s)| (c, s.to_vec()))
+            .collect();
+        // Soundness by the direct segment test: every credited frontier is seen.
+        let r2 = (0.8 * range) * (0.8 * range);
+        for (c, fs) in &got {
+            let cc = fx.known.cell(*c as usize);
+            prop_assert!(fx.upkeep.is_traversable(&fx.known, *c as usize));
+            for &f in fs {
+                let cf = fx.known.cell(f as usize);
+                prop_assert!(segment_clear(&fx.known, cc, cf), "{:?} does not see {:?}", cc, cf);
+                prop_assert!((cc.dist2(cf) as f64) <= r2 + 1e-9);
+            }
+        }
+        // Completeness: every frontier to cover is credited exactly once.
+        let mut credited: Vec<u32> = got.iter().flat_map(|(_, f)| f.iter().copied()).collect();
+        credited.sort_unstable();
+        let mut front = fx.memory.coverage.frontiers().to_vec();
+        front.sort_unstable();
+        prop_assert_eq!(&credited, &front);
+        // Equal to the slow greedy, candidate by candidate.
+        prop_assert_eq!(&got, &oracle(&fx, robot as u32));
+        let chosen: Vec<u32> = got.iter().map(|(c, _)| *c).collect();
+        prop_assert_eq!(out.cells(), &chosen[..]);
+    }
+}

@@ -1,0 +1,271 @@
+//! Faigl & Kulich's MA: optimal cluster assignment (against brute force over all
+//! permutations of the cost matrix), goals from the robot's own cluster, team semantics,
+//! determinism per seed.
+
+use explore::FrontierUpkeep;
+use explore::Reachability;
+use explore::assign::AssignerKind;
+use explore::candidates::{CandidateKind, CandidateSet};
+use explore::decision::{DecisionCtx, Goal, GoalLists, Memory, Planner};
+use grid::{Cell, Grid, Occ};
+use proptest::prelude::*;
+use rand::SeedableRng;
+use rand_pcg::Pcg64Mcg;
+use sense::{KnownGrid, LosSensor};
+
+struct Fixture {
+    known: Grid<Occ>,
+    upkeep: FrontierUpkeep,
+    planner: Planner,
+    lists: GoalLists,
+    rng: Pcg64Mcg,
+    belief: KnownGrid,
+    sensor: LosSensor,
+    memory: Memory,
+    robots: Vec<u32>,
+    deciding: Vec<bool>,
+    goals: Vec<Option<u32>>,
+    range: f64,
+}
+
+impl Fixture {
+    fn new(known: Grid<Occ>, robots: Vec<u32>, range: f64, seed: u64) -> Self {
+        let (w, h) = (known.width(), known.height());
+        let mut upkeep = FrontierUpkeep::new(w, h, 0.0);
+        upkeep.rebuild(&known);
+        let m = robots.len();
+        Self {
+            planner: Planner::new(w, h, m),
+            lists: GoalLists::new(w * h),
+            rng: Pcg64Mcg::seed_from_u64(seed),
+            belief: KnownGrid::new(w, h),
+            sensor: LosSensor::new(range).expect("valid range"),
+            memory: Memory::default(),
+            deciding: vec![true; m],
+            goals: vec![None; m],
+            robots,
+            range,
+            known,
+            upkeep,
+        }
+    }
+
+    fn ctx(&mut self) -> DecisionCtx<'_> {
+        self.planner.invalidate();
+        DecisionCtx {
+            known: &self.known,
+            upkeep: &mut self.upkeep,
+            planner: &mut self.planner,
+            robots: &self.robots,
+            deciding: &self.deciding,
+            goals: &self.goals,
+            lists: &self.lists,
+            resolution: 0.2,
+            sensor_range_cells: self.range,
+            rng: &mut self.rng,
+            belief: &self.belief,
+            sensor: &self.sensor,
+            memory: &mut self.memory,
+        }
+    }
+}
+
+/// A random known map: obstacles, a band of unknown on the right, unknown specks.
+fn random_known(w: usize, h: usize, bits: &[u8], cut: usize) -> Grid<Occ> {
+    let mut g = Grid::new(w, h, Occ::Free);
+    for i in 0..w * h {
+        let (x, b) = (i % w, bits[i % bits.len()]);
+        g[i] = if x >= cut || b < 5 {
+            Occ::Unknown
+        } else if b < 22 {
+            Occ::Occupied
+        } else {
+            Occ::Free
+        };
+    }
+    g
+}
+
+/// The lowest cell of the largest traversable component.
+fn largest_component_cell(known: &Grid<Occ>, up: &FrontierUpkeep) -> Option<usize> {
+    let (w, h) = (known.width(), known.height());
+    let mut seen = vec![false; w * h];
+    let mut best: Option<(usize, usize)> = None;
+    let mut r = Reachability::new(w, h);
+    for i in 0..w * h {
+        if seen[i] || !up.is_traversable(known, i) {
+            continue;
+        }
+        r.compute(i, |j| up.is_traversable(known, j));
+        for &c in r.settled() {
+            seen[c as usize] = true;
+        }
+        let size = r.settled().len();
+        if best.is_none_or(|(s, _)| size > s) {
+            best = Some((size, i));
+        }
+    }
+    best.map(|(_, i)| i)
+}
+
+fn decide(fx: &mut Fixture, kind: CandidateKind) -> (CandidateSet, Vec<Option<Goal>>) {
+    let n = fx.known.len();
+    let m = fx.robots.len();
+    let mut cands = CandidateSet::new(n);
+    let mut out = vec![None; m];
+    let mut ctx = fx.ctx();
+    kind.generate(&mut ctx, &mut cands);
+    AssignerKind::Mtsp.assign(&mut ctx, &cands, &mut out);
+    (cands, out)
+}
+
+/// Smallest total over all injective maps of the smaller side into the larger.
+fn brute_force(rows: usize, cols: usize, cost: &[f64]) -> f64 {
+    fn rec(i: usize, rows: usize, cols: usize, cost: &[f64], used: &mut Vec<bool>) -> f64 {
+        if i == rows {
+            return 0.0;
+        }
+        let mut best = f64::INFINITY;
+        for j in 0..cols {
+            if !used[j] {
+                used[j] = true;
+                best = best.min(cost[i * cols + j] + rec(i + 1, rows, cols, cost, used));
+                used[j] = false;
+            }
+        }
+        best
+    }
+    if rows <= cols {
+        rec(0, rows, cols, cost, &mut vec![false; cols])
+    } else {
+        let t: Vec<f64> = (0..cols * rows)
+            .map(|k| cost[(k % rows) * cols + k / rows])
+            .collect();
+        rec(0, cols, rows, &t, &mut vec![false; rows])
+    }
+}
+
+#[test]
+fn corridor_worked_example() {
+    // A corridor unknown at both ends; robot 0 near the left end, robot 1 near the right:
+    // each takes the frontier on its side.
+    let (w, h) = (30, 3);
+    let mut g = Grid::new(w, h, Occ::Occupied);
+    for x in 0..w as i32 {
+        g.set(
+            Cell::new(x, 1),
+            if x == 0 || x == 29 {
+                Occ::Unknown
+            } else {
+                Occ::Free
+            },
+        );
+    }
+    let r0 = g.index(Cell::new(5, 1)) as u32;
+    let r1 = g.index(Cell::new(24, 1)) as u32;
+    let mut fx = Fixture::new(g, vec![r0, r1], 3.0, 1);
+    let (_, out) = decide(&mut fx, CandidateKind::AllFrontiers);
+    let cell = |o: Option<Goal>| {
+        let c = o.expect("a goal").cell as i32;
+        Cell::new(c % w as i32, c / w as i32)
+    };
+    assert_eq!(cell(out[0]), Cell::new(1, 1));
+    assert_eq!(cell(out[1]), Cell::new(28, 1));
+    assert_eq!(out[0].map(|g| g.cost), Some(4.0));
+    // Robot 1 keeps its goal; robot 0 decides alone: the right frontier is taken.
+    fx.deciding = vec![true, false];
+    fx.goals = vec![None, Some(out[1].expect("goal").cell)];
+    let (_, out2) = decide(&mut fx, CandidateKind::AllFrontiers);
+    assert_eq!(cell(out2[0]), Cell::new(1, 1));
+    assert_eq!(out2[1], None);
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    #[test]
+    fn assignment_is_optimal_and_goals_are_sound(
+        bits in prop::collection::vec(0u8..100, 37),
+        cut in 6usize..18,
+        m in 1usize..5,
+        keep in 0usize..5,
+        seed in 0u64..100,
+        cc in any::<bool>(),
+    ) {
+        let (w, h) = (20, 20);
+        let known = random_known(w, h, &bits, cut);
+        let mut up = FrontierUpkeep::new(w, h, 0.0);
+        up.rebuild(&known);
+        let Some(start) = largest_component_cell(&known, &up) else {
+            return Ok(());
+        };
+        let mut reach = Reachability::new(w, h);
+        reach.compute(start, |i| up.is_traversable(&known, i));
+        let settled = reach.settled().to_vec();
+        let robots: Vec<u32> = (0..m).map(|k| settled[(k * 7919) % settled.len()]).collect();
+        let kind = if cc { CandidateKind::Coverage } else { CandidateKind::AllFrontiers };
+        let mut fx = Fixture::new(known.clone(), robots.clone(), 4.0, seed);
+        // Robot `keep` (if any) keeps a goal chosen in a first decision.
+        let (_, first) = decide(&mut fx, kind);
+        if keep < m {
+            fx.deciding[keep] = false;
+            fx.goals[keep] = first[keep].map(|g| g.cell);
+        }
+        let (cands, out) = decide(&mut fx, kind);
+        let st = &fx.memory.mtsp;
+        let part = st.participants().to_vec();
+        let (cost, k) = st.cost_matrix();
+        let np = part.len();
+        if k > 0 {
+            let total: f64 = st
+                .assignment()
+                .enumerate()
+                .filter_map(|(p, j)| j.map(|j| cost[p * k + j]))
+                .sum();
+            prop_assert!((total - brute_force(np, k, cost)).abs() < 1e-6 * total.max(1.0));
+            prop_assert_eq!(st.assignment().filter(|j| j.is_some()).count(), np.min(k));
+        }
+        let taken: Vec<u32> = (0..m).filter(|&r| !fx.deciding[r]).filter_map(|r| fx.goals[r]).collect();
+        let assignment: Vec<Option<usize>> = st.assignment().collect();
+        for r in 0..m {
+            if !fx.deciding[r] {
+                prop_assert_eq!(out[r], None);
+                continue;
+            }
+            let mut rr = Reachability::new(w, h);
+            rr.compute(robots[r] as usize, |i| up.is_traversable(&known, i));
+            let reachable_free = cands.cells().iter().any(|&c| !taken.contains(&c) && rr.cost(c as usize).is_some());
+            match out[r] {
+                Some(g) => {
+                    prop_assert!(cands.contains(g.cell as usize));
+                    prop_assert_eq!(rr.cost(g.cell as usize), Some(g.cost));
+                    if reachable_free {
+                        prop_assert!(!taken.contains(&g.cell));
+                    }
+                    // From the robot's own cluster when it reaches a goal of it.
+                    if let Some(p) = part.iter().position(|&q| q == r)
+                        && let Some(j) = assignment[p]
+                    {
+                        let cl: Vec<u32> = st
+                            .cluster(j)
+                            .iter()
+                            .map(|&gi| st.goals()[gi as usize])
+                            .collect();
+                        if cl.iter().any(|&c| rr.cost(c as usize).is_some()) {
+                            prop_assert!(cl.contains(&g.cell), "goal outside the robot's cluster");
+                        }
+                    }
+                }
+                None => prop_assert!(!cands.cells().iter().any(|&c| rr.cost(c as usize).is_some())),
+            }
+        }
+        // Deterministic per seed.
+        let mut fx2 = Fixture::new(known, robots, 4.0, seed);
+        let (_, first2) = decide(&mut fx2, kind);
+        if keep < m {
+            fx2.deciding[keep] = false;
+            fx2.goals[keep] = first2[keep].map(|g| g.cell);
+        }
+        prop_assert_eq!(decide(&mut fx2, kind).1, out);
+    }
+}

@@ -1,0 +1,406 @@
+//! Room segmentation on hand-built maps, against brute-force oracles.
+
+use explore::segment::score::score;
+use explore::segment::skeleton::is_simple;
+use explore::segment::{NONE, Rule, Segmenter, State, segment};
+use grid::components::{Connectivity, label};
+use grid::{Grid, Occ};
+use proptest::prelude::*;
+
+/// A `w × h` map of walls.
+fn walls(w: usize, h: usize) -> Grid<Occ> {
+    Grid::new(w, h, Occ::Occupied)
+}
+
+/// Make the rectangle `[x0, x1] × [y0, y1]` (inclusive) free.
+fn carve(g: &mut Grid<Occ>, x0: usize, y0: usize, x1: usize, y1: usize) {
+    let w = g.width();
+    for y in y0..=y1 {
+        for x in x0..=x1 {
+            g.data_mut()[y * w + x] = Occ::Free;
+        }
+    }
+}
+
+/// Two rooms side by side, `side` cells square, joined by a door `door` cells wide.
+fn two_rooms(side: usize, door: usize) -> Grid<Occ> {
+    let (w, h) = (2 * side + 3, side + 2);
+    let mut g = walls(w, h);
+    carve(&mut g, 1, 1, side, side);
+    carve(&mut g, side + 2, 1, 2 * side + 1, side);
+    let mid = side / 2;
+    carve(&mut g, side + 1, mid, side + 1, mid + door - 1);
+    g
+}
+
+#[test]
+fn two_rooms_joined_by_a_door_give_two_segments_split_at_the_door() {
+    for (side, door) in [(12, 2), (20, 3), (40, 6), (30, 4)] {
+        for rule in Rule::ALL {
+            let g = two_rooms(side, door);
+            let seg = segment(&g, rule);
+            let what = format!("side {side} door {door} rule {}", rule.name());
+            assert_eq!(seg.count, 2, "{what}");
+            let w = g.width();
+            let left = seg.labels[w + 1];
+            let right = seg.labels[w + 2 * side + 1];
+            assert_ne!(left, right, "{what}");
+            for y in 1..=side {
+                for x in 1..=side {
+                    assert_eq!(seg.labels[y * w + x], left, "{what}: ({x},{y})");
+                    let xr = x + side + 1;
+                    assert_eq!(seg.labels[y * w + xr], right, "{what}: ({xr},{y})");
+                }
+            }
+            // the split is at the door
+            let mid = side / 2;
+            assert!(
+                seg.critical.iter().any(|c| {
+                    let (x, y) = (c.cell as usize % w, c.cell as usize / w);
+                    x.abs_diff(side + 1) <= 1 && y + 1 >= mid && y <= mid + door
+                }),
+                "{what}: critical points {:?}",
+                seg.critical
+            );
+        }
+    }
+}
+
+#[test]
+fn a_long_corridor_is_one_segment() {
+    for (len, width) in [(120, 6), (200, 3), (80, 10)] {
+        let mut g = walls(len + 2, width + 2);
+        carve(&mut g, 1, 1, len, width);
+        for rule in Rule::ALL {
+            let seg = segment(&g, rule);
+            assert_eq!(
+                seg.count,
+                1,
+                "corridor {len} x {width}, rule {}",
+                rule.name()
+            );
+        }
+    }
+}
+
+/// A corridor with `n` rooms on each side, each with a door to the corridor.
+fn hospital_wing(n: usize, room: usize, depth: usize, corridor: usize, door: usize) -> Grid<Occ> {
+    let w = n * (room + 1) + 1;
+    let h = 2 * depth + corridor + 4;
+    let mut g = walls(w, h);
+    let cy0 = depth + 2;
+    carve(&mut g, 1, cy0, w - 2, cy0 + corridor - 1);
+    for k in 0..n {
+        let x0 = 1 + k * (room + 1);
+        let x1 = x0 + room - 1;
+        carve(&mut g, x0, 1, x1, depth);
+        let below = cy0 + corridor + 1;
+        carve(&mut g, x0, below, x1, below + depth - 1);
+        let dx = x0 + (room - door) / 2 + k % 2;
+        carve(&mut g, dx, depth + 1, dx + door - 1, depth + 1);
+        carve(&mut g, dx, below - 1, dx + door - 1, below - 1);
+    }
+    g
+}
+
+#[test]
+fn a_corridor_with_doors_is_not_shattered_and_every_room_is_its_own_segment() {
+    for (n, room, depth, corridor, door) in [(6, 16, 20, 10, 5), (5, 7, 9, 4, 2), (8, 12, 14, 8, 4)]
+    {
+        let g = hospital_wing(n, room, depth, corridor, door);
+        let what = format!("wing {n} rooms of {room} x {depth}, corridor {corridor}, door {door}");
+        let seg = segment(&g, Rule::Holz);
+        let w = g.width();
+        let cy0 = depth + 2;
+        let corr = seg.labels[cy0 * w + 1];
+        for y in cy0..cy0 + corridor {
+            for x in 1..w - 1 {
+                assert_eq!(
+                    seg.labels[y * w + x],
+                    corr,
+                    "{what}: corridor cell ({x},{y})"
+                );
+            }
+        }
+        let mut seen = vec![corr];
+        for k in 0..n {
+            let x0 = 1 + k * (room + 1);
+            for y0 in [1, cy0 + corridor + 1] {
+                let l = seg.labels[y0 * w + x0];
+                assert!(
+                    !seen.contains(&l),
+                    "{what}: room {k} at y {y0} shares label {l}"
+                );
+                seen.push(l);
+                for y in y0..y0 + depth {
+                    for x in x0..x0 + room {
+                        assert_eq!(seg.labels[y * w + x], l, "{what}: room cell ({x},{y})");
+                    }
+                }
+            }
+        }
+        assert_eq!(seg.count as usize, 2 * n + 1, "{what}");
+    }
+}
+
+#[test]
+fn segmentation_is_deterministic_and_buffers_do_not_leak_between_maps() {
+    let a = hospital_wing(5, 12, 14, 8, 4);
+    let b = two_rooms(20, 3);
+    let fresh = segment(&a, Rule::Holz);
+    assert_eq!(segment(&a, Rule::Holz), fresh);
+    let mut s = Segmenter::new();
+    s.run(&a, Rule::Thrun);
+    s.run(&b, Rule::Holz);
+    assert_eq!(s.run(&a, Rule::Holz), &fresh);
+}
+
+#[test]
+fn the_cache_recomputes_or_patches_as_documented() {
+    let mut g = hospital_wing(5, 12, 14, 8, 4);
+    let mut state = State::new();
+    let first = state.update(&g, Rule::Holz).clone();
+    assert_eq!(first, segment(&g, Rule::Holz));
+    assert_eq!(state.full_runs(), 1);
+    // no change: nothing recomputed
+    state.update(&g, Rule::Holz);
+    assert_eq!((state.full_runs(), state.patches()), (1, 0));
+    // a few cells change: patched, new free cells get the label of what they connect to
+    let w = g.width();
+    let cell = 15 * w + 3; // inside the first lower room? pick a wall cell next to a room
+    let wall = (1..w * g.height())
+        .find(|&i| g.data()[i] == Occ::Occupied && i > cell && g.data()[i - 1] == Occ::Free)
+        .expect("a wall beside free space");
+    g.data_mut()[wall] = Occ::Free;
+    let patched = state.update(&g, Rule::Holz).clone();
+    assert_eq!((state.full_runs(), state.patches()), (1, 1));
+    assert_eq!(patched.labels[wall], patched.labels[wall - 1]);
+    for i in 0..g.len() {
+        if i != wall {
+            assert_eq!(patched.labels[i], first.labels[i]);
+        }
+    }
+    // a new rule: recomputed
+    state.update(&g, Rule::Thrun);
+    assert_eq!(state.full_runs(), 2);
+    // a big change: recomputed
+    let free = g.data().iter().filter(|c| c.is_free()).count();
+    let mut k = 0;
+    for i in 0..g.len() {
+        if g.data()[i] == Occ::Free && k * 20 < free {
+            g.data_mut()[i] = Occ::Unknown;
+            k += 1;
+        }
+    }
+    let again = state.update(&g, Rule::Thrun).clone();
+    assert_eq!(state.full_runs(), 3);
+    assert_eq!(again, segment(&g, Rule::Thrun));
+}
+
+#[test]
+fn unknown_cells_are_not_segmented() {
+    let mut g = two_rooms(20, 3);
+    let w = g.width();
+    for y in 0..g.height() {
+        for x in 25..w {
+            g.data_mut()[y * w + x] = Occ::Unknown;
+        }
+    }
+    let seg = segment(&g, Rule::Holz);
+    for (i, c) in g.data().iter().enumerate() {
+        assert_eq!(seg.labels[i] == NONE, !c.is_free());
+    }
+}
+
+/// Brute-force simple-point test: removing the centre keeps one 8-component of the set in
+/// the neighbourhood, and the complement's 4-components touching the centre are one.
+fn simple_oracle(mask: u8) -> bool {
+    const RING: [(i32, i32); 8] = [
+        (1, 0),
+        (1, -1),
+        (0, -1),
+        (-1, -1),
+        (-1, 0),
+        (-1, 1),
+        (0, 1),
+        (1, 1),
+    ];
+    let on = |x: i32, y: i32| -> bool {
+        if x == 0 && y == 0 {
+            return false;
+        }
+        let k = RING.iter().position(|&p| p == (x, y)).expect("ring");
+        mask >> k & 1 == 1
+    };
+    // 8-components of the set among the 8 neighbours
+    let cells: Vec<(i32, i32)> = RING.iter().copied().filter(|&(x, y)| on(x, y)).collect();
+    if cells.is_empty() {
+        return false;
+    }
+    let comps = |pts: &[(i32, i32)], adj: &dyn Fn((i32, i32), (i32, i32)) -> bool| -> usize {
+        let mut seen = vec![false; pts.len()];
+        let mut n = 0;
+        for s in 0..pts.len() {
+            if seen[s] {
+                continue;
+            }
+            n += 1;
+            let mut stack = vec![s];
+            seen[s] = true;
+            while let Some(a) = stack.pop() {
+                for b in 0..pts.len() {
+                    if !seen[b] && adj(pts[a], pts[b]) {
+                        seen[b] = true;
+                        stack.push(b);
+                    }
+                }
+            }
+        }
+        n
+    };
+    let adj8 = |a: (i32, i32), b: (i32, i32)| (a.0 - b.0).abs() <= 1 && (a.1 - b.1).abs() <= 1;
+    let adj4 = |a: (i32, i32), b: (i32, i32)| (a.0 - b.0).abs() + (a.1 - b.1).abs() == 1;
+    if comps(&cells, &adj8) != 1 {
+        return false;
+    }
+    // the background neighbours 4-adjacent to the centre lie in one 4-component of the
+    // background within the neighbourhood
+    let bg: Vec<(i32, i32)> = RING.iter().copied().filter(|&(x, y)| !on(x, y)).collect();
+    let mut seen = vec![false; bg.len()];
+    let mut touching = 0;
+    for s in 0..bg.len() {
+        if seen[s] {
+            continue;
+        }
+        let mut comp = vec![s];
+        seen[s] = true;
+        let mut k = 0;
+        while k < comp.len() {
+            let a = comp[k];
+            k += 1;
+            for b in 0..bg.len() {
+                if !seen[b] && adj4(bg[a], bg[b]) {
+                    seen[b] = true;
+                    comp.push(b);
+                }
+            }
+        }
+        if comp.iter().any(|&c| adj4(bg[c], (0, 0))) {
+            touching += 1;
+        }
+    }
+    touching == 1
+}
+
+#[test]
+fn the_simple_point_table_matches_a_brute_force_oracle() {
+    for m in 0..=255u8 {
+        assert_eq!(is_simple(m), simple_oracle(m), "mask {m:08b}");
+    }
+}
+
+fn pair_count_ari(a: &[u32], b: &[u32]) -> f64 {
+    let (mut n11, mut n10, mut n01, mut n00) = (0f64, 0f64, 0f64, 0f64);
+    for i in 0..a.len() {
+        for j in i + 1..a.len() {
+            match (a[i] == a[j], b[i] == b[j]) {
+                (true, true) => n11 += 1.0,
+                (true, false) => n10 += 1.0,
+                (false, true) => n01 += 1.0,
+                (false, false) => n00 += 1.0,
+            }
+        }
+    }
+    let den = (n11 + n01) * (n01 + n00) + (n11 + n10) * (n10 + n00);
+    if den == 0.0 {
+        return if n10 == 0.0 && n01 == 0.0 { 1.0 } else { 0.0 };
+    }
+    2.0 * (n11 * n00 - n01 * n10) / den
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(128))]
+
+    #[test]
+    fn ari_matches_the_brute_force_pair_count(
+        pairs in proptest::collection::vec((0u32..4, 1u32..5), 2..40)
+    ) {
+        let seg: Vec<u32> = pairs.iter().map(|p| p.0).collect();
+        let truth: Vec<u32> = pairs.iter().map(|p| p.1).collect();
+        let s = score(&seg, &truth);
+        let oracle = pair_count_ari(&seg, &truth);
+        prop_assert!((s.ari - oracle).abs() < 1e-9, "ari {} oracle {}", s.ari, oracle);
+    }
+
+    #[test]
+    fn precision_and_recall_match_a_brute_force_count(
+        pairs in proptest::collection::vec((0u32..4, 1u32..5), 1..60)
+    ) {
+        let seg: Vec<u32> = pairs.iter().map(|p| p.0).collect();
+        let truth: Vec<u32> = pairs.iter().map(|p| p.1).collect();
+        let s = score(&seg, &truth);
+        let mut matched = 0;
+        let mut segs = std::collections::BTreeSet::new();
+        let mut rooms = std::collections::BTreeSet::new();
+        for (&a, &b) in seg.iter().zip(&truth) {
+            segs.insert(a);
+            rooms.insert(b);
+        }
+        for &r in &rooms {
+            let size_r = truth.iter().filter(|&&t| t == r).count() as f64;
+            for &g in &segs {
+                let size_g = seg.iter().filter(|&&t| t == g).count() as f64;
+                let both = seg.iter().zip(&truth).filter(|(a, b)| **a == g && **b == r).count() as f64;
+                if both >= 0.8 * size_r && both >= 0.8 * size_g {
+                    matched += 1;
+                }
+            }
+        }
+        prop_assert_eq!(s.matched, matched);
+        prop_assert!((s.recall - matched as f64 / rooms.len() as f64).abs() < 1e-12);
+        prop_assert!((s.precision - matched as f64 / segs.len() as f64).abs() < 1e-12);
+    }
+
+    #[test]
+    fn segments_partition_free_space_into_connected_pieces(
+        rects in proptest::collection::vec((1usize..22, 1usize..22, 1usize..10, 1usize..10), 1..8),
+        noise in proptest::collection::vec(0usize..576, 0..20),
+        rule in 0usize..3,
+    ) {
+        let (w, h) = (24, 24);
+        let mut g = walls(w, h);
+        for &(x, y, rw, rh) in &rects {
+            carve(&mut g, x, y, (x + rw).min(w - 2), (y + rh).min(h - 2));
+        }
+        for &i in &noise {
+            g.data_mut()[i] = Occ::Unknown;
+        }
+        let rule = Rule::ALL[rule];
+        let mut s = Segmenter::new();
+        let seg = s.run(&g, rule).clone();
+        // skeleton inside free space, one skeleton component per free component (8-connected)
+        let free = |i: usize| g.data()[i].is_free();
+        let (_, free_comps) = label(w, h, free, Connectivity::Eight);
+        let on = |i: usize| s.skeleton.contains(i);
+        let (_, skel_comps) = label(w, h, on, Connectivity::Eight);
+        prop_assert_eq!(free_comps, skel_comps);
+        for i in 0..w * h {
+            prop_assert!(!s.skeleton.contains(i) || free(i));
+        }
+        // every free cell labelled, every label used, every segment connected
+        let mut used = vec![false; seg.count as usize];
+        for i in 0..w * h {
+            prop_assert_eq!(seg.labels[i] == NONE, !free(i));
+            if seg.labels[i] != NONE {
+                prop_assert!(seg.labels[i] < seg.count);
+                used[seg.labels[i] as usize] = true;
+            }
+        }
+        prop_assert!(used.iter().all(|&u| u));
+        for l in 0..seg.count {
+            // 8-connected: a diagonal step may pass beside a cell of another segment
+            let (_, c) = label(w, h, |i| seg.labels[i] == l, Connectivity::Eight);
+            prop_assert_eq!(c, 1, "segment {} in {} pieces", l, c);
+        }
+    }
+}

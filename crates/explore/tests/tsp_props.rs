@@ -1,0 +1,161 @@
+//! Open TSP routes against Held–Karp (exact dynamic programme) for n ≤ 12, on Euclidean
+//! instances and on path distances of small random grids.
+
+use explore::Reachability;
+use explore::tsp::{OpenTsp, route_cost};
+use proptest::prelude::*;
+
+/// Held–Karp for the open route from node 0 through all nodes of the `n × n` matrix.
+fn held_karp(n: usize, d: &[f64]) -> f64 {
+    if n <= 1 {
+        return 0.0;
+    }
+    let m = n - 1; // nodes 1..n as bits 0..m
+    let full = 1usize << m;
+    let mut dp = vec![f64::INFINITY; full * m];
+    for j in 0..m {
+        dp[(1 << j) * m + j] = d[j + 1];
+    }
+    for mask in 1..full {
+        for j in 0..m {
+            let v = dp[mask * m + j];
+            if mask & (1 << j) == 0 || !v.is_finite() {
+                continue;
+            }
+            for k in 0..m {
+                if mask & (1 << k) == 0 {
+                    let nm = mask | (1 << k);
+                    let c = v + d[(j + 1) * n + k + 1];
+                    if c < dp[nm * m + k] {
+                        dp[nm * m + k] = c;
+                    }
+                }
+            }
+        }
+    }
+    (0..m)
+        .map(|j| dp[(full - 1) * m + j])
+        .fold(f64::INFINITY, f64::min)
+}
+
+fn euclid(points: &[(f64, f64)]) -> Vec<f64> {
+    let n = points.len();
+    let mut d = vec![0.0; n * n];
+    for a in 0..n {
+        for b in 0..n {
+            d[a * n + b] = (points[a].0 - points[b].0).hypot(points[a].1 - points[b].1);
+        }
+    }
+    d
+}
+
+fn check_route(n: usize, route: &[u32]) {
+    assert_eq!(route.len(), n);
+    if n > 0 {
+        assert_eq!(route[0], 0, "route starts at node 0");
+    }
+    let mut seen = vec![false; n];
+    for &v in route {
+        assert!(!seen[v as usize], "node {v} twice");
+        seen[v as usize] = true;
+    }
+}
+
+#[test]
+fn worked_example_nearest_neighbour_is_improved() {
+    // From (5, 0), nearest neighbour goes left first (14.30); the optimum sweeps right to
+    // (9, 0) first and comes back: 4 + √5 + √10 + 4 = 13.398.
+    let pts = [(5.0, 0.0), (4.0, 0.0), (0.0, 0.0), (7.0, 1.0), (9.0, 0.0)];
+    let d = euclid(&pts);
+    let mut t = OpenTsp::new();
+    let cost = t.solve(5, &d);
+    let best = 8.0 + 5f64.sqrt() + 10f64.sqrt();
+    assert!((held_karp(5, &d) - best).abs() < 1e-12);
+    assert!((cost - best).abs() < 1e-12, "cost {cost}");
+    assert_eq!(t.route(), &[0, 4, 3, 1, 2]);
+    // Trivial sizes.
+    assert_eq!(t.solve(0, &[]), 0.0);
+    assert!(t.route().is_empty());
+    assert_eq!(t.solve(1, &[0.0]), 0.0);
+    assert_eq!(t.route(), &[0]);
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(256))]
+
+    #[test]
+    fn within_one_percent_of_held_karp_euclidean(
+        pts in prop::collection::vec((0.0..100.0f64, 0.0..100.0f64), 1..=12)
+    ) {
+        let n = pts.len();
+        let d = euclid(&pts);
+        let mut t = OpenTsp::new();
+        let cost = t.solve(n, &d);
+        check_route(n, t.route());
+        prop_assert!((cost - route_cost(n, &d, t.route())).abs() < 1e-9);
+        let opt = held_karp(n, &d);
+        prop_assert!(cost >= opt - 1e-9, "below the optimum: {} < {}", cost, opt);
+        prop_assert!(cost <= opt * 1.01 + 1e-9, "route {} vs optimum {}", cost, opt);
+    }
+
+    #[test]
+    fn within_one_percent_of_held_karp_on_grid_paths(
+        walls in prop::collection::vec(prop::bool::weighted(0.25), 16 * 16),
+        picks in prop::collection::vec(0usize..256, 2..=12),
+    ) {
+        // Path distances on a 16 × 16 grid with random walls; nodes are distinct free cells
+        // reachable from the first one.
+        let (w, h) = (16, 16);
+        let passable = |i: usize| !walls[i];
+        let mut nodes: Vec<usize> = Vec::new();
+        let mut r0 = Reachability::new(w, h);
+        for &p in &picks {
+            if !passable(p) || nodes.contains(&p) {
+                continue;
+            }
+            if let Some(&s) = nodes.first() {
+                if r0.cost(p).is_none() {
+                    continue;
+                }
+                let _ = s;
+            } else {
+                r0.compute(p, passable);
+            }
+            nodes.push(p);
+        }
+        let n = nodes.len();
+        let mut d = vec![0.0; n * n];
+        let mut r = Reachability::new(w, h);
+        for a in 0..n {
+            r.compute(nodes[a], passable);
+            for b in 0..n {
+                d[a * n + b] = r.cost(nodes[b]).expect("same component");
+            }
+        }
+        let mut t = OpenTsp::new();
+        let cost = t.solve(n, &d);
+        check_route(n, t.route());
+        let opt = held_karp(n, &d);
+        prop_assert!(cost >= opt - 1e-9);
+        prop_assert!(cost <= opt * 1.01 + 1e-9, "route {} vs optimum {}", cost, opt);
+    }
+
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(32))]
+
+    #[test]
+    fn deterministic(pts in prop::collection::vec((0.0..50.0f64, 0.0..50.0f64), 1..32)) {
+        let n = pts.len();
+        let d = euclid(&pts);
+        let mut a = OpenTsp::new();
+        let mut b = OpenTsp::new();
+        let ca = a.solve(n, &d);
+        b.solve(3.min(n), &euclid(&pts[..3.min(n)])); // dirty buffers first
+        let cb = b.solve(n, &d);
+        check_route(n, a.route());
+        prop_assert_eq!(a.route(), b.route());
+        prop_assert_eq!(ca, cb);
+    }
+}

@@ -1,0 +1,174 @@
+//! The benchmark for the offline optimal search: an indoor map of 350 × 250 units
+//! (a generated 35 m × 25 m office at 0.1 m, so one unit = 0.1 m as in the paper), solved at
+//! cell size 4 with r = 30 units, G = 0.85 (the paper: 0.33 s, ~2,000 nodes), from ten start
+//! cells, footprint and los sensors, clustered boundary cells (the paper's Table 1 setting).
+//!
+//! `cargo bench -p optimal --bench office` prints one line per start and sensor (first
+//! `FRONTIER_OPT_STARTS` starts, default 3; time limit `FRONTIER_OPT_SECONDS`, default 5;
+//! weight `FRONTIER_OPT_WEIGHT`; goal `FRONTIER_OPT_GOAL`), then runs criterion on a
+//! 120 × 100-unit office that the search finishes. `FRONTIER_OPT_HARD=1` instead runs the
+//! hard setting once per heuristic (cell size 1, r = 20, G = 0.95) under a time limit of
+//! `FRONTIER_OPT_SECONDS` (default 60) and prints the bounds reached.
+
+use std::time::Duration;
+
+use criterion::Criterion;
+use grid::{Cell, GridMap};
+use optimal::{ActionSet, Config, HeuristicKind, coarsen_problem, solve};
+use sense::SensorSpec;
+use world::{EnvKind, EnvSpec};
+
+fn office() -> GridMap {
+    world::generate(&EnvSpec {
+        kind: EnvKind::Office,
+        seed: 1,
+        size_m: Some((35.0, 25.0)),
+        resolution: Some(0.1),
+    })
+    .expect("generate office")
+    .map
+}
+
+/// Ten start cells: the free cells nearest to a 5 × 2 lattice over the map.
+fn starts(map: &GridMap) -> Vec<Cell> {
+    let (w, h) = (map.width() as i32, map.height() as i32);
+    let mut out = Vec::new();
+    for j in 0..2 {
+        for i in 0..5 {
+            let target = Cell::new(w * (2 * i + 1) / 10, h * (2 * j + 1) / 4);
+            let best = map
+                .cells
+                .cells()
+                .filter(|&c| map.cells.get(c).is_free())
+                .min_by_key(|&c| (c.dist2(target), c.y, c.x))
+                .expect("a free cell");
+            out.push(best);
+        }
+    }
+    out
+}
+
+fn env_or<T: std::str::FromStr>(name: &str, default: T) -> T {
+    std::env::var(name)
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(default)
+}
+
+fn config(goal: f64) -> Config {
+    Config {
+        goal,
+        actions: ActionSet::Clusters { min_size: 1 },
+        heuristic: HeuristicKind::Landmarks,
+        weight: env_or("FRONTIER_OPT_WEIGHT", 1.0),
+        time_limit: Some(Duration::from_secs_f64(env_or("FRONTIER_OPT_SECONDS", 5.0))),
+        ..Config::default()
+    }
+}
+
+fn easy(map: &GridMap, c: &mut Criterion) {
+    let mut starts = starts(map);
+    starts.truncate(env_or("FRONTIER_OPT_STARTS", 3));
+    for sensor in ["footprint:r=3", "los:r=3"] {
+        let spec: SensorSpec = sensor.parse().expect("sensor");
+        let (mut total_s, mut total_nodes) = (0.0, 0);
+        for (k, &s) in starts.iter().enumerate() {
+            let co = coarsen_problem(map, 4, s, &spec).expect("problem");
+            let out =
+                solve(&co.problem, &config(env_or("FRONTIER_OPT_GOAL", 0.85))).expect("solve");
+            total_s += out.stats.seconds;
+            total_nodes += out.stats.expanded;
+            println!(
+                "cell 4, {sensor}, G 0.85, start {k} {s}: {} length {:.1} units (optimal >= {:.1}), {} expanded, {} stored, {:.4} s",
+                out.status.as_str(),
+                out.upper_bound * 4.0,
+                out.lower_bound * 4.0,
+                out.stats.expanded,
+                out.stats.stored,
+                out.stats.seconds
+            );
+        }
+        println!(
+            "cell 4, {sensor}, G 0.85: mean {:.4} s, {:.0} nodes expanded",
+            total_s / starts.len() as f64,
+            total_nodes as f64 / starts.len() as f64
+        );
+    }
+    // Criterion on a problem that finishes: a 12 m x 10 m office (120 x 100 units).
+    let small = world::generate(&EnvSpec {
+        kind: EnvKind::Office,
+        seed: 0,
+        size_m: Some((12.0, 10.0)),
+        resolution: Some(0.1),
+    })
+    .expect("generate office")
+    .map;
+    let centre = Cell::new(60, 50);
+    let s = small
+        .cells
+        .cells()
+        .filter(|&c| small.cells.get(c).is_free())
+        .min_by_key(|&c| (c.dist2(centre), c.y, c.x))
+        .expect("a free cell");
+    for sensor in ["footprint:r=3", "los:r=3"] {
+        let spec: SensorSpec = sensor.parse().expect("sensor");
+        let co = coarsen_problem(&small, 4, s, &spec).expect("problem");
+        let mut cfg = config(0.85);
+        cfg.time_limit = None;
+        cfg.weight = 1.0;
+        let out = solve(&co.problem, &cfg).expect("solve");
+        println!(
+            "small office 120x100 units, cell 4, {sensor}, G 0.85: {} length {:.1} units, {} expanded",
+            out.status.as_str(),
+            out.upper_bound * 4.0,
+            out.stats.expanded
+        );
+        c.bench_function(
+            &format!("optimal small office cell 4 {sensor} G 0.85"),
+            |b| b.iter(|| solve(&co.problem, &cfg).expect("solve")),
+        );
+    }
+}
+
+fn hard(map: &GridMap) {
+    let secs: u64 = std::env::var("FRONTIER_OPT_SECONDS")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(60);
+    let spec: SensorSpec = "footprint:r=2".parse().expect("sensor");
+    let s = starts(map)[0];
+    let co = coarsen_problem(map, 1, s, &spec).expect("problem");
+    let mut cfg = config(0.95);
+    cfg.time_limit = Some(Duration::from_secs(secs));
+    cfg.max_bytes = 2 << 30;
+    let out = solve(&co.problem, &cfg).expect("solve");
+    println!(
+        "cell 1, footprint r 20, G 0.95, start {s}: {} [{:.1}, {:.1}] units, {} expanded, {} stored, {} MB, {:.1} s: {}",
+        out.status.as_str(),
+        out.lower_bound,
+        out.upper_bound,
+        out.stats.expanded,
+        out.stats.stored,
+        out.stats.bytes >> 20,
+        out.stats.seconds,
+        out.message
+    );
+}
+
+fn main() {
+    if std::env::args().any(|a| a == "--list") {
+        println!("office: bench");
+        return;
+    }
+    let map = office();
+    if std::env::var("FRONTIER_OPT_HARD").is_ok() {
+        hard(&map);
+        return;
+    }
+    let mut c = Criterion::default()
+        .configure_from_args()
+        .warm_up_time(Duration::from_secs(1))
+        .measurement_time(Duration::from_secs(3));
+    easy(&map, &mut c);
+    c.final_summary();
+}

@@ -1,0 +1,215 @@
+//! The actions of a state (Quattrini Li et al., "Formulation of the Search Problem" and the
+//! "Clustering boundary cells" / "Eliminating small clusters" speed-ups).
+//!
+//! From (q, M) the robot may move to a reachable free cell of M on the boundary between
+//! perceived and unperceived space, or only to cluster representatives: boundary cells are
+//! grouped into 8-connected clusters and each cluster is represented by its cell nearest
+//! (Euclidean) to the cluster's centroid, ties to the lowest flat index; clusters with fewer
+//! than k cells can be dropped.
+//!
+//! Deviation: a boundary cell is a perceived free cell with an *unperceived target* among
+//! its 8 neighbours (the paper's "unknown" also counts unperceived wall cells). Walls do not
+//! count for the goal; cells next to unseen wall only would add actions that are no better
+//! viewpoints than any other free cell. [`ActionSet::All`] (every reachable perceived cell)
+//! is offered beyond the paper: it makes the search exact over all position sequences.
+
+use crate::heuristic::has;
+use crate::problem::{NOT_TARGET, Problem};
+
+/// Which cells a state may move to.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ActionSet {
+    /// Every boundary cell (the paper's basic formulation).
+    Boundary,
+    /// One representative per 8-connected cluster of boundary cells, dropping clusters of
+    /// fewer than `min_size` cells (1 keeps all).
+    Clusters {
+        /// The paper's k.
+        min_size: usize,
+    },
+    /// Every reachable perceived cell (exact over all position sequences; slow).
+    All,
+}
+
+/// Scratch for computing actions without allocating per state.
+pub(crate) struct ActionScratch {
+    mark: Vec<u32>,
+    epoch: u32,
+    stack: Vec<u32>,
+    cluster: Vec<u32>,
+    members: Vec<u32>,
+}
+
+impl ActionScratch {
+    /// Scratch for a grid of `n` cells.
+    pub(crate) fn new(n: usize) -> Self {
+        Self {
+            mark: vec![0; n],
+            epoch: 0,
+            stack: Vec::new(),
+            cluster: Vec::new(),
+            members: Vec::new(),
+        }
+    }
+}
+
+/// Whether perceived free cell `i` has an unperceived target among its 8 neighbours.
+#[inline]
+pub(crate) fn is_boundary(problem: &Problem, bits: &[u64], i: usize) -> bool {
+    let cells = problem.cells();
+    let (w, h) = (cells.width(), cells.height());
+    let (x, y) = (i % w, i / w);
+    for dy in -1i64..=1 {
+        for dx in -1i64..=1 {
+            if dx == 0 && dy == 0 {
+                continue;
+            }
+            let (nx, ny) = (x as i64 + dx, y as i64 + dy);
+            if nx < 0 || ny < 0 || nx >= w as i64 || ny >= h as i64 {
+                continue;
+            }
+            let t = problem.target_index(ny as usize * w + nx as usize);
+            if t != NOT_TARGET && !has(bits, t) {
+                return true;
+            }
+        }
+    }
+    false
+}
+
+/// Fill `out` with the candidate positions among `settled` (the reachable perceived cells,
+/// in settling order) for action set `set`; `here` (the robot's cell) is never a candidate.
+pub(crate) fn candidates(
+    problem: &Problem,
+    bits: &[u64],
+    settled: &[u32],
+    here: u32,
+    set: ActionSet,
+    scratch: &mut ActionScratch,
+    out: &mut Vec<u32>,
+) {
+    out.clear();
+    match set {
+        ActionSet::All => out.extend(settled.iter().copied().filter(|&i| i != here)),
+        ActionSet::Boundary => out.extend(
+            settled
+                .iter()
+                .copied()
+                .filter(|&i| i != here && is_boundary(problem, bits, i as usize)),
+        ),
+        ActionSet::Clusters { min_size } => {
+            scratch.epoch = scratch.epoch.wrapping_add(1);
+            if scratch.epoch == 0 {
+                scratch.mark.fill(0);
+                scratch.epoch = 1;
+            }
+            let e = scratch.epoch;
+            // Mark boundary cells with e, visited ones with e + 1... use two epochs.
+            let boundary_epoch = e;
+            for &i in settled {
+                if is_boundary(problem, bits, i as usize) {
+                    scratch.mark[i as usize] = boundary_epoch;
+                }
+            }
+            scratch.epoch = scratch.epoch.wrapping_add(1);
+            if scratch.epoch == 0 {
+                // Extremely rare wrap: restart with fresh marks.
+                scratch.mark.fill(0);
+                scratch.epoch = 2;
+                for &i in settled {
+                    if is_boundary(problem, bits, i as usize) {
+                        scratch.mark[i as usize] = 1;
+                    }
+                }
+                return candidates_clusters(problem, settled, here, min_size, 1, 2, scratch, out);
+            }
+            let visited = scratch.epoch;
+            candidates_clusters(
+                problem,
+                settled,
+                here,
+                min_size,
+                boundary_epoch,
+                visited,
+                scratch,
+                out,
+            );
+        }
+    }
+}
+
+#[allow(clippy::too_many_arguments)]
+fn candidates_clusters(
+    problem: &Problem,
+    settled: &[u32],
+    here: u32,
+    min_size: usize,
+    boundary: u32,
+    visited: u32,
+    scratch: &mut ActionScratch,
+    out: &mut Vec<u32>,
+) {
+    let cells = problem.cells();
+    let (w, h) = (cells.width(), cells.height());
+    // Seeds in increasing flat index for a deterministic cluster order.
+    let mut seeds = std::mem::take(&mut scratch.cluster);
+    seeds.clear();
+    seeds.extend(
+        settled
+            .iter()
+            .copied()
+            .filter(|&i| scratch.mark[i as usize] == boundary),
+    );
+    seeds.sort_unstable();
+    let mut members = std::mem::take(&mut scratch.members);
+    for &s in &seeds {
+        if scratch.mark[s as usize] != boundary {
+            continue;
+        }
+        members.clear();
+        scratch.mark[s as usize] = visited;
+        scratch.stack.clear();
+        scratch.stack.push(s);
+        while let Some(i) = scratch.stack.pop() {
+            members.push(i);
+            let (x, y) = ((i as usize % w) as i64, (i as usize / w) as i64);
+            for dy in -1i64..=1 {
+                for dx in -1i64..=1 {
+                    let (nx, ny) = (x + dx, y + dy);
+                    if nx < 0 || ny < 0 || nx >= w as i64 || ny >= h as i64 {
+                        continue;
+                    }
+                    let j = ny as usize * w + nx as usize;
+                    if scratch.mark[j] == boundary {
+                        scratch.mark[j] = visited;
+                        scratch.stack.push(j as u32);
+                    }
+                }
+            }
+        }
+        if members.len() < min_size.max(1) {
+            continue;
+        }
+        let (mut sx, mut sy) = (0.0, 0.0);
+        for &i in &members {
+            sx += (i as usize % w) as f64;
+            sy += (i as usize / w) as f64;
+        }
+        let m = members.len() as f64;
+        let (cx, cy) = (sx / m, sy / m);
+        let mut best = (f64::INFINITY, u32::MAX);
+        for &i in &members {
+            let dx = (i as usize % w) as f64 - cx;
+            let dy = (i as usize / w) as f64 - cy;
+            let d = dx * dx + dy * dy;
+            if d < best.0 || (d == best.0 && i < best.1) {
+                best = (d, i);
+            }
+        }
+        if best.1 != here {
+            out.push(best.1);
+        }
+    }
+    scratch.cluster = seeds;
+    scratch.members = members;
+}

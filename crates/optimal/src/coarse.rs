@@ -1,0 +1,100 @@
+//! Solving on a coarser grid: the paper's cell sizes 1, 2 and 4 (its Table 1).
+//!
+//! The map is coarsened with [`grid::resample::coarsen`] (a coarse cell is free only if all
+//! the cells it covers are free), the start moves to the coarse cell holding it, and the
+//! sensor range is converted at the coarse resolution. Deviation: if the coarse cell of the
+//! start is not free (a wall fell into its block), the start moves to the nearest free
+//! coarse cell (Euclidean, ties to the lowest flat index); [`Coarsened::start_moved`] says so.
+
+use grid::{Cell, GridMap};
+use sense::SensorSpec;
+
+use crate::error::OptimalError;
+use crate::problem::{Problem, SensorModel};
+
+/// A problem posed on a coarsened map.
+#[derive(Clone, Debug)]
+pub struct Coarsened {
+    /// The coarse map.
+    pub map: GridMap,
+    /// The factor (cells of the original map per coarse cell side).
+    pub factor: usize,
+    /// The problem on the coarse map.
+    pub problem: Problem,
+    /// Whether the start had to move to a neighbouring free coarse cell.
+    pub start_moved: bool,
+}
+
+impl Coarsened {
+    /// The original-map cell at the centre of coarse cell `c`, clamped to the map.
+    pub fn to_fine(&self, c: Cell, fine_width: usize, fine_height: usize) -> Cell {
+        let f = self.factor as i32;
+        Cell::new(
+            (c.x * f + f / 2).min(fine_width as i32 - 1),
+            (c.y * f + f / 2).min(fine_height as i32 - 1),
+        )
+    }
+
+    /// Metres per coarse cell.
+    pub fn resolution(&self) -> f64 {
+        self.map.resolution
+    }
+}
+
+/// Pose the problem of `map` from `start` with `sensor` on cells `factor` times larger.
+pub fn coarsen_problem(
+    map: &GridMap,
+    factor: usize,
+    start: Cell,
+    sensor: &SensorSpec,
+) -> Result<Coarsened, OptimalError> {
+    if factor == 0 || factor > 64 {
+        return Err(OptimalError::BadParameter {
+            field: "cell size",
+            expected: "a coarsening factor in 1..=64",
+            found: factor.to_string(),
+        });
+    }
+    if !map.cells.contains(start) {
+        return Err(OptimalError::BadStart {
+            cell: start,
+            why: format!("outside the {}x{} map", map.width(), map.height()),
+        });
+    }
+    if !map.cells.get(start).is_free() {
+        return Err(OptimalError::BadStart {
+            cell: start,
+            why: "not a free cell".into(),
+        });
+    }
+    let coarse = grid::resample::coarsen(map, factor);
+    let f = factor as i32;
+    let c0 = Cell::new(start.x / f, start.y / f);
+    let mut best = None;
+    if coarse.cells.get(c0).is_free() {
+        best = Some(c0);
+    } else {
+        let mut bd = i64::MAX;
+        for (i, &o) in coarse.cells.data().iter().enumerate() {
+            let c = coarse.cells.cell(i);
+            if o.is_free() && c.dist2(c0) < bd {
+                bd = c.dist2(c0);
+                best = Some(c);
+            }
+        }
+    }
+    let Some(s) = best else {
+        return Err(OptimalError::BadStart {
+            cell: start,
+            why: format!("the map coarsened by {factor} has no free cell"),
+        });
+    };
+    let model = SensorModel::from_spec(sensor, coarse.resolution)?;
+    let problem = Problem::new(&coarse.cells, s, model)?;
+    Ok(Coarsened {
+        map: coarse,
+        factor,
+        problem,
+        start_moved: s != c0,
+    })
+}

@@ -1,0 +1,237 @@
+//! The offline exploration problem of Quattrini Li, Amigoni & Basilico (2012), "Optimal
+//! Exploration Problem": a known grid, a start cell, a 360° sensor of range r; find the
+//! shortest sequence of sensing positions that perceives the free cells.
+//!
+//! What is set up once here: the cells reachable from the start (8-connected, no corner
+//! squeezing), the *target* cells E_f the goal test counts, and each position's visible
+//! targets.
+//!
+//! Deviation: the paper's E_f is every free cell of the map. Here E_f is the free cells some
+//! reachable position can perceive — with `los`, exactly the reachable free cells (a clear
+//! segment crosses only free cells and never squeezes through a vertex, so its crossed cells
+//! form a legal path; and every free cell sees itself); with `footprint`, the free cells
+//! within r of a reachable cell. Free cells no position can perceive would make every goal
+//! test fail; they are reported in [`Problem::unperceivable`].
+
+use grid::edt::edt_squared;
+use grid::{Cell, Grid, Occ};
+use sense::{FootprintSensor, LosSensor, Observation, Pose, Sensor, SensorSpec};
+
+use crate::dijkstra::Dijkstra;
+use crate::error::OptimalError;
+
+/// Marks a cell that is not a target.
+pub const NOT_TARGET: u32 = u32::MAX;
+
+/// The two sensors of the paper, with their range in cells.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum SensorModel {
+    /// The paper's laser: a cell is seen iff the segment between the centres is ≤ r long,
+    /// crosses only free cells and never squeezes between two blocked cells sharing a vertex.
+    Los(f64),
+    /// The paper's footprint speed-up: every cell whose centre is within r, through walls.
+    Footprint(f64),
+}
+
+impl SensorModel {
+    /// The model of a sensor spec on a map of `resolution` m/cell (`lidar` is refused: the
+    /// offline search needs a 360° sensor).
+    pub fn from_spec(spec: &SensorSpec, resolution: f64) -> Result<Self, OptimalError> {
+        if !(resolution.is_finite() && resolution > 0.0) {
+            return Err(OptimalError::BadParameter {
+                field: "resolution",
+                expected: "a positive number of metres per cell",
+                found: resolution.to_string(),
+            });
+        }
+        let r = spec.range_cells(resolution);
+        match spec {
+            SensorSpec::Los { .. } => Ok(SensorModel::Los(r)),
+            SensorSpec::Footprint { .. } => Ok(SensorModel::Footprint(r)),
+            SensorSpec::Lidar { .. } => Err(OptimalError::Sensor(
+                "the optimal search supports los and footprint (360° sensors), not lidar".into(),
+            )),
+        }
+    }
+
+    /// The range in cells.
+    pub fn range(self) -> f64 {
+        match self {
+            SensorModel::Los(r) | SensorModel::Footprint(r) => r,
+        }
+    }
+
+    /// Whether the sensor sees through walls.
+    pub fn through_walls(self) -> bool {
+        matches!(self, SensorModel::Footprint(_))
+    }
+}
+
+/// The built sensor behind a [`SensorModel`].
+#[derive(Clone, Debug)]
+enum Built {
+    Los(LosSensor),
+    Footprint(FootprintSensor),
+}
+
+/// A posed problem: ground truth, start, sensor, reachable cells and targets.
+#[derive(Clone, Debug)]
+pub struct Problem {
+    cells: Grid<Occ>,
+    start: u32,
+    model: SensorModel,
+    sensor: Built,
+    reach: Vec<bool>,
+    reach_count: usize,
+    tidx: Vec<u32>,
+    targets: Vec<u32>,
+    unperceivable: usize,
+}
+
+impl Problem {
+    /// Pose the problem on `cells` (ground truth; only `Free` is free) from `start`.
+    pub fn new(cells: &Grid<Occ>, start: Cell, model: SensorModel) -> Result<Self, OptimalError> {
+        let r = model.range();
+        if !(r.is_finite() && r > 0.0) {
+            return Err(OptimalError::BadParameter {
+                field: "sensor range",
+                expected: "a positive number of cells",
+                found: r.to_string(),
+            });
+        }
+        let Some(s) = cells.checked_index(start) else {
+            return Err(OptimalError::BadStart {
+                cell: start,
+                why: format!("outside the {}x{} map", cells.width(), cells.height()),
+            });
+        };
+        if !cells[s].is_free() {
+            return Err(OptimalError::BadStart {
+                cell: start,
+                why: "not a free cell".into(),
+            });
+        }
+        let sensor = match model {
+            SensorModel::Los(r) => {
+                Built::Los(LosSensor::new(r).map_err(|e| OptimalError::Sensor(e.to_string()))?)
+            }
+            SensorModel::Footprint(r) => Built::Footprint(
+                FootprintSensor::new(r).map_err(|e| OptimalError::Sensor(e.to_string()))?,
+            ),
+        };
+        let (w, h) = (cells.width(), cells.height());
+        let data = cells.data();
+        let mut dij = Dijkstra::new(w, h);
+        dij.run(s, |i| data[i].is_free());
+        let mut reach = vec![false; w * h];
+        for &i in dij.settled() {
+            reach[i as usize] = true;
+        }
+        let reach_count = dij.settled().len();
+        let perceivable: Vec<bool> = match model {
+            // Los: exactly the reachable free cells (module doc).
+            SensorModel::Los(_) => reach.clone(),
+            SensorModel::Footprint(r) => {
+                let d2 = edt_squared(w, h, |i| reach[i]);
+                (0..w * h)
+                    .map(|i| data[i].is_free() && d2[i] <= r * r)
+                    .collect()
+            }
+        };
+        let mut tidx = vec![NOT_TARGET; w * h];
+        let mut targets = Vec::new();
+        let mut unperceivable = 0;
+        for i in 0..w * h {
+            if perceivable[i] {
+                tidx[i] = targets.len() as u32;
+                targets.push(i as u32);
+            } else if data[i].is_free() {
+                unperceivable += 1;
+            }
+        }
+        Ok(Self {
+            cells: cells.clone(),
+            start: s as u32,
+            model,
+            sensor,
+            reach,
+            reach_count,
+            tidx,
+            targets,
+            unperceivable,
+        })
+    }
+
+    /// The ground truth.
+    pub fn cells(&self) -> &Grid<Occ> {
+        &self.cells
+    }
+
+    /// Flat index of the start cell.
+    pub fn start(&self) -> u32 {
+        self.start
+    }
+
+    /// The sensor model.
+    pub fn model(&self) -> SensorModel {
+        self.model
+    }
+
+    /// Whether flat cell `i` is free and reachable from the start.
+    #[inline]
+    pub fn reachable(&self, i: usize) -> bool {
+        self.reach[i]
+    }
+
+    /// Number of reachable cells.
+    pub fn reachable_count(&self) -> usize {
+        self.reach_count
+    }
+
+    /// Target index of flat cell `i`, or [`NOT_TARGET`].
+    #[inline]
+    pub fn target_index(&self, i: usize) -> u32 {
+        self.tidx[i]
+    }
+
+    /// Flat cells of the targets E_f, by target index (row-major order).
+    pub fn targets(&self) -> &[u32] {
+        &self.targets
+    }
+
+    /// Free cells no reachable position can perceive (left out of E_f).
+    pub fn unperceivable(&self) -> usize {
+        self.unperceivable
+    }
+
+    /// Number of targets that must be perceived for coverage goal `g` in (0, 1]:
+    /// `ceil(g · |E_f|)` (computed with a small tolerance so that g = 0.85 of 100 is 85).
+    pub fn needed(&self, g: f64) -> usize {
+        let n = self.targets.len() as f64;
+        let need = (g * n - 1e-9).ceil().max(0.0) as usize;
+        need.min(self.targets.len())
+    }
+
+    /// Append to `out` the target indices perceived from flat cell `pos` (each once);
+    /// `obs` is scratch for the footprint scan.
+    pub fn seen_targets(&self, pos: u32, obs: &mut Observation, out: &mut Vec<u32>) {
+        let origin = self.cells.cell(pos as usize);
+        match &self.sensor {
+            Built::Los(s) => s.for_each_seen(&self.cells, origin, |i, _| {
+                let t = self.tidx[i as usize];
+                if t != NOT_TARGET {
+                    out.push(t);
+                }
+            }),
+            Built::Footprint(s) => {
+                s.scan(&self.cells, Pose::new(origin, 0.0), obs);
+                for &(i, _) in &obs.cells {
+                    let t = self.tidx[i as usize];
+                    if t != NOT_TARGET {
+                        out.push(t);
+                    }
+                }
+            }
+        }
+    }
+}

@@ -1,0 +1,864 @@
+//! A* over exploration states (Quattrini Li, Amigoni & Basilico 2012, "Solution of the
+//! Search Problem"), with weighted A*, limits and bounds.
+//!
+//! A state is (robot cell, set of perceived targets); the set is a bitset and the state is
+//! hashed with Zobrist keys (one random 64-bit key per target and per cell, XOR-ed), so a
+//! child's key costs one XOR per newly perceived target. Duplicates are confirmed by
+//! comparing the bitsets, and a duplicate reached more cheaply is re-opened, so the search
+//! stays optimal with admissible but inconsistent heuristics.
+//!
+//! Beyond the paper:
+//! - An incumbent from the start: a greedy completion (always to the nearest action that
+//!   perceives something new) gives an upper bound U; children with g + h ≥ U are pruned.
+//!   When the search stops, the greedy completion of the most advanced open state may
+//!   improve U.
+//! - Weighted A* (f = g + w·h): the returned length is ≤ w × optimal, and the reported lower
+//!   bound is max(U / w, min over open states of g + h).
+//! - Limits on expanded nodes, bytes of stored states and wall time: the search stops
+//!   cleanly with the best lower and upper bounds. Stored bytes (nodes, bitsets, queue,
+//!   hash table, caches) are counted before every allocation that grows, so a budget is a
+//!   hard cap on the search's own memory, never an OOM kill.
+//! - Actions that perceive nothing new are skipped: from (q, M) a move to p with M
+//!   unchanged is dominated by moving on directly (triangle inequality inside the same M).
+
+use std::cmp::Reverse;
+use std::collections::{BinaryHeap, HashMap};
+use std::hash::{BuildHasherDefault, Hasher};
+use std::time::{Duration, Instant};
+
+use grid::Cell;
+use sense::Observation;
+
+use crate::actions::{ActionScratch, ActionSet, candidates};
+use crate::dijkstra::Dijkstra;
+use crate::error::OptimalError;
+use crate::heuristic::{Heuristic, HeuristicKind, has};
+use crate::problem::Problem;
+
+/// Tolerance for comparing path lengths (sums of 1 and √2).
+pub const EPS: f64 = 1e-9;
+
+/// How to search.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Config {
+    /// Coverage goal G in (0, 1]: the fraction of targets to perceive.
+    pub goal: f64,
+    /// The actions of a state.
+    pub actions: ActionSet,
+    /// The lower bound guiding the search.
+    pub heuristic: HeuristicKind,
+    /// Weight w ≥ 1 of weighted A* (1 = optimal).
+    pub weight: f64,
+    /// Number of landmarks for [`HeuristicKind::Landmarks`].
+    pub landmarks: usize,
+    /// Stop after expanding this many states.
+    pub max_nodes: u64,
+    /// Stop before the search's own memory exceeds this many bytes.
+    pub max_bytes: usize,
+    /// Stop after this much wall time.
+    pub time_limit: Option<Duration>,
+}
+
+impl Default for Config {
+    fn default() -> Self {
+        Self {
+            goal: 1.0,
+            actions: ActionSet::Boundary,
+            heuristic: HeuristicKind::Landmarks,
+            weight: 1.0,
+            landmarks: 32,
+            max_nodes: 50_000_000,
+            max_bytes: 1 << 30,
+            time_limit: None,
+        }
+    }
+}
+
+/// How the search ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Status {
+    /// The solution is optimal for the action set (w = 1, admissible heuristic).
+    Optimal,
+    /// The solution is at most `weight` × optimal (weighted A*).
+    WithinBound,
+    /// The heuristic is not admissible: a solution, without a guarantee.
+    Unproven,
+    /// A limit was hit; bounds are reported (the solution, if any, is the best found).
+    Stopped,
+    /// No sequence of actions reaches the goal (e.g. small clusters were dropped).
+    NoSolution,
+}
+
+impl Status {
+    /// The stable name, as printed in JSON.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Status::Optimal => "optimal",
+            Status::WithinBound => "within bound",
+            Status::Unproven => "unproven",
+            Status::Stopped => "stopped",
+            Status::NoSolution => "no solution",
+        }
+    }
+}
+
+/// Which limit stopped the search.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum StopReason {
+    /// [`Config::max_nodes`].
+    NodeLimit,
+    /// [`Config::max_bytes`].
+    MemoryLimit,
+    /// [`Config::time_limit`].
+    TimeLimit,
+}
+
+impl StopReason {
+    /// The stable name.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            StopReason::NodeLimit => "node limit",
+            StopReason::MemoryLimit => "memory limit",
+            StopReason::TimeLimit => "time limit",
+        }
+    }
+}
+
+/// An exploration path.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Solution {
+    /// The sensing positions q0 (the start), q1, ..., qn.
+    pub positions: Vec<Cell>,
+    /// Every cell travelled, start first (consecutive cells are 8-neighbours).
+    pub path: Vec<Cell>,
+    /// Length in cells (straight 1, diagonal √2).
+    pub length: f64,
+    /// Targets perceived at the end.
+    pub perceived: usize,
+}
+
+/// Counters of a search.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Stats {
+    /// States expanded.
+    pub expanded: u64,
+    /// Child states generated (before duplicate detection and pruning).
+    pub generated: u64,
+    /// Children that were duplicates of stored states.
+    pub duplicates: u64,
+    /// Stored states re-opened with a lower cost.
+    pub reopened: u64,
+    /// Children pruned by the upper bound.
+    pub pruned: u64,
+    /// States stored.
+    pub stored: u64,
+    /// Peak bytes counted against the budget.
+    pub bytes: usize,
+    /// Wall time in seconds.
+    pub seconds: f64,
+    /// Landmarks used by the heuristic.
+    pub landmarks: usize,
+}
+
+/// The result of [`solve`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct Outcome {
+    /// How the search ended.
+    pub status: Status,
+    /// The limit that stopped it, if one did.
+    pub stop: Option<StopReason>,
+    /// The best solution found.
+    pub solution: Option<Solution>,
+    /// Proven lower bound on the optimal length (cells); 0 if the heuristic is inadmissible.
+    pub lower_bound: f64,
+    /// Length of the best solution found (cells), `∞` if none.
+    pub upper_bound: f64,
+    /// Number of targets |E_f|.
+    pub targets: usize,
+    /// Targets the goal test needs.
+    pub needed: usize,
+    /// Counters.
+    pub stats: Stats,
+    /// A one-line human summary of how it ended.
+    pub message: String,
+}
+
+/// Identity hasher for Zobrist keys (already uniformly random).
+#[derive(Default)]
+struct KeyHasher(u64);
+
+impl Hasher for KeyHasher {
+    fn finish(&self) -> u64 {
+        self.0
+    }
+    fn write(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.0 = (self.0 << 8 | u64::from(b)).wrapping_mul(0x9E37_79B9_7F4A_7C15);
+        }
+    }
+    fn write_u64(&mut self, v: u64) {
+        self.0 = v;
+    }
+}
+
+/// splitmix64: the fixed stream of Zobrist keys.
+fn splitmix(state: &mut u64) -> u64 {
+    *state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
+    let mut z = *state;
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    z ^ (z >> 31)
+}
+
+const NONE: u32 = u32::MAX;
+
+#[derive(Clone, Copy, Debug)]
+struct Node {
+    pos: u32,
+    parent: u32,
+    g: f64,
+    h: f64,
+    key: u64,
+    count: u32,
+    next_same: u32,
+    closed: bool,
+}
+
+/// Min-heap entry: (priority bits, deeper first, id, g bits).
+type Entry = Reverse<(u64, u64, u32, u64)>;
+
+fn entry(f: f64, g: f64, id: u32) -> Entry {
+    Reverse((f.to_bits(), u64::MAX - g.to_bits(), id, g.to_bits()))
+}
+
+/// Each cell's perceived targets, computed once on first use.
+struct VisCache {
+    off: Vec<u32>,
+    len: Vec<u32>,
+    data: Vec<u32>,
+    obs: Observation,
+}
+
+impl VisCache {
+    fn new(n: usize) -> Self {
+        Self {
+            off: vec![NONE; n],
+            len: vec![0; n],
+            data: Vec::new(),
+            obs: Observation::new(),
+        }
+    }
+
+    fn get(&mut self, problem: &Problem, pos: u32) -> (usize, usize) {
+        let p = pos as usize;
+        if self.off[p] == NONE {
+            let start = self.data.len();
+            problem.seen_targets(pos, &mut self.obs, &mut self.data);
+            self.off[p] = start as u32;
+            self.len[p] = (self.data.len() - start) as u32;
+        }
+        (self.off[p] as usize, self.len[p] as usize)
+    }
+
+    fn bytes(&self) -> usize {
+        self.off.len() * 8 + self.data.capacity() * 4
+    }
+}
+
+/// The search's state and buffers.
+struct Engine<'p> {
+    problem: &'p Problem,
+    cfg: Config,
+    words: usize,
+    need: usize,
+    heur: Heuristic,
+    vis: VisCache,
+    dij: Dijkstra,
+    scratch: ActionScratch,
+    zt: Vec<u64>,
+    zpos: Vec<u64>,
+    nodes: Vec<Node>,
+    bits: Vec<u64>,
+    table: HashMap<u64, u32, BuildHasherDefault<KeyHasher>>,
+    open: BinaryHeap<Entry>,
+    cur: Vec<u64>,
+    child: Vec<u64>,
+    cands: Vec<u32>,
+    fresh: Vec<u32>,
+    inc_cost: f64,
+    inc_positions: Vec<u32>,
+    stats: Stats,
+    fixed_bytes: usize,
+}
+
+impl<'p> Engine<'p> {
+    fn new(problem: &'p Problem, cfg: &Config) -> Self {
+        let n = problem.cells().len();
+        let nt = problem.targets().len();
+        let words = nt.div_ceil(64).max(1);
+        let mut seed = 0x0005_EED0_F0B7_14A1_u64;
+        let zt = (0..nt).map(|_| splitmix(&mut seed)).collect();
+        let zpos = (0..n).map(|_| splitmix(&mut seed)).collect();
+        let heur = Heuristic::new(
+            problem,
+            cfg.heuristic,
+            cfg.goal,
+            cfg.landmarks,
+            cfg.max_bytes / 4,
+        );
+        Self {
+            problem,
+            cfg: cfg.clone(),
+            words,
+            need: problem.needed(cfg.goal),
+            heur,
+            vis: VisCache::new(n),
+            dij: Dijkstra::new(problem.cells().width(), problem.cells().height()),
+            scratch: ActionScratch::new(n),
+            zt,
+            zpos,
+            nodes: Vec::new(),
+            bits: Vec::new(),
+            table: HashMap::default(),
+            open: BinaryHeap::new(),
+            cur: vec![0; words],
+            child: vec![0; words],
+            cands: Vec::new(),
+            fresh: Vec::new(),
+            inc_cost: f64::INFINITY,
+            inc_positions: Vec::new(),
+            stats: Stats::default(),
+            // Dijkstra (≈ 41 B/cell), action marks, Zobrist keys, the problem's arrays.
+            fixed_bytes: n * (41 + 4 + 8 + 12) + nt * 12,
+        }
+    }
+
+    /// Bytes counted against the budget if `extra_nodes` more states were stored.
+    fn bytes_with(&self, extra_nodes: usize) -> usize {
+        let per_node = std::mem::size_of::<Node>() + self.words * 8 + 32 + 16;
+        let nodes = self.nodes.capacity().max(self.nodes.len() + extra_nodes);
+        let bits = self
+            .bits
+            .capacity()
+            .max((self.nodes.len() + extra_nodes) * self.words);
+        nodes * (per_node - self.words * 8)
+            + bits * 8
+            + self.open.capacity() * 32
+            + self.table.capacity() * 16
+            + self.heur.bytes()
+            + self.vis.bytes()
+            + self.fixed_bytes
+    }
+
+    /// Grow storage for one more state if the budget allows (growth by 1.5×, checked first).
+    fn reserve_one(&mut self) -> bool {
+        let len = self.nodes.len();
+        if len < self.nodes.capacity()
+            && (len + 1) * self.words <= self.bits.capacity()
+            && self.open.len() < self.open.capacity()
+            && self.table.len() < self.table.capacity()
+        {
+            return true;
+        }
+        let grow = (len / 2).max(1024);
+        let projected = self.bytes_with(grow)
+            + grow * 48
+            + (self.table.capacity().max(len + grow) - self.table.capacity()) * 16;
+        if projected > self.cfg.max_bytes {
+            return false;
+        }
+        if len == self.nodes.capacity() {
+            self.nodes.reserve_exact(grow);
+        }
+        if (len + 1) * self.words > self.bits.capacity() {
+            self.bits.reserve_exact(grow * self.words);
+        }
+        if self.open.len() == self.open.capacity() {
+            self.open.reserve_exact(grow);
+        }
+        if self.table.len() == self.table.capacity() {
+            self.table.reserve(grow);
+        }
+        self.stats.bytes = self.stats.bytes.max(self.bytes_with(0));
+        true
+    }
+
+    fn node_bits(&self, id: u32) -> &[u64] {
+        let s = id as usize * self.words;
+        &self.bits[s..s + self.words]
+    }
+
+    fn positions_of(&self, mut id: u32) -> Vec<u32> {
+        let mut out = Vec::new();
+        while id != NONE {
+            out.push(self.nodes[id as usize].pos);
+            id = self.nodes[id as usize].parent;
+        }
+        out.reverse();
+        out
+    }
+
+    fn passable<'a>(problem: &'a Problem, bits: &'a [u64]) -> impl Fn(usize) -> bool + 'a {
+        move |i| {
+            problem.reachable(i) && {
+                let t = problem.target_index(i);
+                has(bits, t)
+            }
+        }
+    }
+
+    /// Complete greedily from (pos, bits, count): repeatedly move to the nearest action
+    /// that perceives something new. Returns the added cost and appends the positions.
+    fn greedy(
+        &mut self,
+        mut pos: u32,
+        bits: &[u64],
+        mut count: usize,
+        out: &mut Vec<u32>,
+    ) -> Option<f64> {
+        let mut cur = bits.to_vec();
+        let mut cost = 0.0;
+        while count < self.need {
+            self.dij
+                .run(pos as usize, Self::passable(self.problem, &cur));
+            candidates(
+                self.problem,
+                &cur,
+                self.dij.settled(),
+                pos,
+                self.cfg.actions,
+                &mut self.scratch,
+                &mut self.cands,
+            );
+            let mut best: Option<(f64, u32)> = None;
+            for k in 0..self.cands.len() {
+                let a = self.cands[k];
+                let d = self.dij.dist(a as usize);
+                if best.is_some_and(|(bd, bi)| (d, a) >= (bd, bi)) {
+                    continue;
+                }
+                let (o, l) = self.vis.get(self.problem, a);
+                if self.vis.data[o..o + l].iter().any(|&t| !has(&cur, t)) {
+                    best = Some((d, a));
+                }
+            }
+            let (d, a) = best?;
+            let (o, l) = self.vis.get(self.problem, a);
+            for &t in &self.vis.data[o..o + l] {
+                if !has(&cur, t) {
+                    cur[(t >> 6) as usize] |= 1 << (t & 63);
+                    count += 1;
+                }
+            }
+            cost += d;
+            pos = a;
+            out.push(a);
+        }
+        Some(cost)
+    }
+
+    /// Try to improve the incumbent with a greedy completion of stored state `id`.
+    fn improve_from(&mut self, id: u32) {
+        let n = self.nodes[id as usize];
+        let bits = self.node_bits(id).to_vec();
+        let mut tail = Vec::new();
+        if let Some(c) = self.greedy(n.pos, &bits, n.count as usize, &mut tail)
+            && n.g + c < self.inc_cost - EPS
+        {
+            self.inc_cost = n.g + c;
+            let mut p = self.positions_of(id);
+            p.extend(tail);
+            self.inc_positions = p;
+        }
+    }
+
+    fn run(&mut self, started: Instant) -> Outcome {
+        let problem = self.problem;
+        let start = problem.start();
+        // Root.
+        let (o, l) = self.vis.get(problem, start);
+        let mut key = self.zpos[start as usize];
+        let mut count = 0usize;
+        for k in o..o + l {
+            let t = self.vis.data[k];
+            if !has(&self.cur, t) {
+                self.cur[(t >> 6) as usize] |= 1 << (t & 63);
+                key ^= self.zt[t as usize];
+                count += 1;
+            }
+        }
+        let admissible = self
+            .cfg
+            .heuristic
+            .admissible(problem.model(), self.cfg.goal);
+        let w = self.cfg.weight;
+        if count >= self.need {
+            self.inc_cost = 0.0;
+            self.inc_positions = vec![start];
+            return self.finish(Status::Optimal, None, 0.0, started);
+        }
+        let cur = self.cur.clone();
+        let h0 = self.heur.eval(problem, start, &cur, count);
+        self.reserve_one();
+        self.nodes.push(Node {
+            pos: start,
+            parent: NONE,
+            g: 0.0,
+            h: h0,
+            key,
+            count: count as u32,
+            next_same: NONE,
+            closed: false,
+        });
+        self.bits.extend_from_slice(&cur);
+        self.table.insert(key, 0);
+        self.open.push(entry(w * h0, 0.0, 0));
+        self.stats.stored = 1;
+        self.improve_from(0);
+        let mut stop = None;
+        let mut popped_lb = f64::INFINITY;
+        while let Some(Reverse((fbits, _, id, gbits))) = self.open.pop() {
+            let node = self.nodes[id as usize];
+            if node.closed || gbits != node.g.to_bits() {
+                continue;
+            }
+            let f = f64::from_bits(fbits);
+            if f >= self.inc_cost - EPS {
+                // Every open state is at least as long as the incumbent (weighted: w ×).
+                popped_lb = node.g + node.h;
+                self.open.push(entry(f, node.g, id));
+                break;
+            }
+            if self.stats.expanded >= self.cfg.max_nodes {
+                stop = Some(StopReason::NodeLimit);
+            } else if self.stats.expanded.is_multiple_of(64)
+                && self.cfg.time_limit.is_some_and(|t| started.elapsed() >= t)
+            {
+                stop = Some(StopReason::TimeLimit);
+            }
+            if stop.is_some() {
+                self.open.push(entry(f, node.g, id));
+                break;
+            }
+            self.nodes[id as usize].closed = true;
+            self.stats.expanded += 1;
+            if !self.expand(id) {
+                stop = Some(StopReason::MemoryLimit);
+                self.nodes[id as usize].closed = false;
+                self.open.push(entry(f, node.g, id));
+                break;
+            }
+        }
+        // Lower bound: min over open states of g + h (valid with an admissible h).
+        let mut lb = popped_lb;
+        for Reverse((_, _, id, gbits)) in self.open.iter() {
+            let n = &self.nodes[*id as usize];
+            if !n.closed && *gbits == n.g.to_bits() {
+                lb = lb.min(n.g + n.h);
+            }
+        }
+        if stop.is_some() {
+            // Try to tighten the upper bound from the most advanced open state.
+            let mut best: Option<(u32, f64, u32)> = None;
+            for Reverse((_, _, id, gbits)) in self.open.iter() {
+                let n = &self.nodes[*id as usize];
+                if n.closed || *gbits != n.g.to_bits() {
+                    continue;
+                }
+                let better = match best {
+                    None => true,
+                    Some((c, f, i)) => (Reverse(n.count), n.g + n.h, *id) < (Reverse(c), f, i),
+                };
+                if better {
+                    best = Some((n.count, n.g + n.h, *id));
+                }
+            }
+            if let Some((_, _, id)) = best {
+                self.improve_from(id);
+            }
+        }
+        if !admissible {
+            lb = 0.0;
+        } else if stop.is_none() && self.inc_cost.is_finite() {
+            lb = lb.max(self.inc_cost / w);
+        }
+        let lb = lb.min(self.inc_cost).max(0.0);
+        let status = match (stop, self.inc_cost.is_finite()) {
+            (Some(_), _) => Status::Stopped,
+            (None, false) => Status::NoSolution,
+            (None, true) if !admissible => Status::Unproven,
+            (None, true) if w > 1.0 => Status::WithinBound,
+            (None, true) => Status::Optimal,
+        };
+        self.finish(status, stop, lb, started)
+    }
+
+    /// Expand state `id`; false if the memory budget ran out.
+    fn expand(&mut self, id: u32) -> bool {
+        let problem = self.problem;
+        let node = self.nodes[id as usize];
+        let s = id as usize * self.words;
+        self.cur.copy_from_slice(&self.bits[s..s + self.words]);
+        self.dij
+            .run(node.pos as usize, Self::passable(problem, &self.cur));
+        candidates(
+            problem,
+            &self.cur,
+            self.dij.settled(),
+            node.pos,
+            self.cfg.actions,
+            &mut self.scratch,
+            &mut self.cands,
+        );
+        let w = self.cfg.weight;
+        for k in 0..self.cands.len() {
+            let a = self.cands[k];
+            let g2 = node.g + self.dij.dist(a as usize);
+            if g2 >= self.inc_cost - EPS {
+                self.stats.pruned += 1;
+                continue;
+            }
+            let (o, l) = self.vis.get(problem, a);
+            self.fresh.clear();
+            for &t in &self.vis.data[o..o + l] {
+                if !has(&self.cur, t) {
+                    self.fresh.push(t);
+                }
+            }
+            if self.fresh.is_empty() {
+                continue;
+            }
+            self.stats.generated += 1;
+            let count2 = node.count as usize + self.fresh.len();
+            if count2 >= self.need {
+                self.inc_cost = g2;
+                let mut p = self.positions_of(id);
+                p.push(a);
+                self.inc_positions = p;
+                continue;
+            }
+            self.child.copy_from_slice(&self.cur);
+            let mut key2 = node.key ^ self.zpos[node.pos as usize] ^ self.zpos[a as usize];
+            for &t in &self.fresh {
+                self.child[(t >> 6) as usize] |= 1 << (t & 63);
+                key2 ^= self.zt[t as usize];
+            }
+            let h = self.heur.eval(problem, a, &self.child, count2);
+            if g2 + h >= self.inc_cost - EPS {
+                self.stats.pruned += 1;
+                continue;
+            }
+            // Duplicate detection.
+            let head = self.table.get(&key2).copied().unwrap_or(NONE);
+            let mut dup = NONE;
+            let mut j = head;
+            while j != NONE {
+                let n = &self.nodes[j as usize];
+                if n.pos == a && n.key == key2 && self.node_bits(j) == &self.child[..] {
+                    dup = j;
+                    break;
+                }
+                j = n.next_same;
+            }
+            if dup != NONE {
+                self.stats.duplicates += 1;
+                let n = &mut self.nodes[dup as usize];
+                if g2 < n.g - EPS {
+                    if n.closed {
+                        self.stats.reopened += 1;
+                    }
+                    n.g = g2;
+                    n.parent = id;
+                    n.closed = false;
+                    let f = g2 + w * n.h;
+                    self.open.push(entry(f, g2, dup));
+                }
+                continue;
+            }
+            if !self.reserve_one() {
+                return false;
+            }
+            let nid = self.nodes.len() as u32;
+            self.nodes.push(Node {
+                pos: a,
+                parent: id,
+                g: g2,
+                h,
+                key: key2,
+                count: count2 as u32,
+                next_same: head,
+                closed: false,
+            });
+            self.bits.extend_from_slice(&self.child);
+            self.table.insert(key2, nid);
+            self.open.push(entry(g2 + w * h, g2, nid));
+            self.stats.stored += 1;
+        }
+        self.stats.bytes = self.stats.bytes.max(self.bytes_with(0));
+        true
+    }
+
+    fn finish(
+        &mut self,
+        status: Status,
+        stop: Option<StopReason>,
+        lb: f64,
+        started: Instant,
+    ) -> Outcome {
+        let problem = self.problem;
+        let solution = if self.inc_cost.is_finite() {
+            let cells: Vec<Cell> = self
+                .inc_positions
+                .iter()
+                .map(|&p| problem.cells().cell(p as usize))
+                .collect();
+            // The positions come from the search itself; re-walking them cannot fail.
+            walk(problem, &cells).ok()
+        } else {
+            None
+        };
+        self.stats.seconds = started.elapsed().as_secs_f64();
+        self.stats.landmarks = self.heur.landmark_count();
+        self.stats.bytes = self.stats.bytes.max(self.bytes_with(0));
+        let ub = self.inc_cost;
+        let message = match status {
+            Status::Optimal => format!("optimal: length {ub:.3} cells"),
+            Status::WithinBound => format!(
+                "weighted A* (w = {}): length {ub:.3} cells, optimal ≥ {lb:.3}",
+                self.cfg.weight
+            ),
+            Status::Unproven => format!(
+                "length {ub:.3} cells; heuristic {} is not admissible here, no guarantee",
+                self.cfg.heuristic.name()
+            ),
+            Status::Stopped => format!(
+                "stopped by the {} after {} expansions: optimal length in [{lb:.3}, {}]",
+                stop.map_or("limit", StopReason::as_str),
+                self.stats.expanded,
+                if ub.is_finite() {
+                    format!("{ub:.3}")
+                } else {
+                    "∞".into()
+                }
+            ),
+            Status::NoSolution => {
+                "no sequence of actions reaches the goal with this action set".into()
+            }
+        };
+        Outcome {
+            status,
+            stop,
+            solution,
+            lower_bound: lb,
+            upper_bound: ub,
+            targets: problem.targets().len(),
+            needed: self.need,
+            stats: self.stats,
+            message,
+        }
+    }
+}
+
+/// Re-walk a position sequence with time-discrete perception: each leg is a shortest path
+/// inside the free cells perceived so far. Errors if a position is not reachable that way.
+pub fn walk(problem: &Problem, positions: &[Cell]) -> Result<Solution, String> {
+    let cells = problem.cells();
+    let nt = problem.targets().len();
+    let mut bits = vec![0u64; nt.div_ceil(64).max(1)];
+    let mut count = 0;
+    let mut obs = Observation::new();
+    let mut seen = Vec::new();
+    let mut dij = Dijkstra::new(cells.width(), cells.height());
+    let mut path: Vec<u32> = Vec::new();
+    let mut length = 0.0;
+    let Some(&first) = positions.first() else {
+        return Err("no positions".into());
+    };
+    if cells.checked_index(first) != Some(problem.start() as usize) {
+        return Err(format!("the sequence starts at {first}, not at the start"));
+    }
+    for (k, &p) in positions.iter().enumerate() {
+        let Some(pi) = cells.checked_index(p) else {
+            return Err(format!("position {k} {p} is outside the map"));
+        };
+        if k > 0 {
+            let from = path[path.len() - 1] as usize;
+            dij.run(from, Engine::passable(problem, &bits));
+            let d = dij.dist(pi);
+            if !d.is_finite() || (pi != from && !Engine::passable(problem, &bits)(pi)) {
+                return Err(format!(
+                    "position {k} {p} is not reachable inside the perceived free space"
+                ));
+            }
+            length += d;
+            let at = path.len();
+            dij.path_to(pi, &mut path);
+            path.remove(at); // the leg's first cell is the previous position
+        } else {
+            path.push(pi as u32);
+        }
+        seen.clear();
+        problem.seen_targets(pi as u32, &mut obs, &mut seen);
+        for &t in &seen {
+            if !has(&bits, t) {
+                bits[(t >> 6) as usize] |= 1 << (t & 63);
+                count += 1;
+            }
+        }
+    }
+    Ok(Solution {
+        positions: positions.to_vec(),
+        path: path.iter().map(|&i| cells.cell(i as usize)).collect(),
+        length,
+        perceived: count,
+    })
+}
+
+/// Solve `problem` with `cfg`: the shortest sequence of sensing positions (for the action
+/// set) whose perceptions cover the goal fraction of the targets, or bounds when a limit
+/// stops the search first.
+pub fn solve(problem: &Problem, cfg: &Config) -> Result<Outcome, OptimalError> {
+    if !(cfg.goal > 0.0 && cfg.goal <= 1.0) {
+        return Err(OptimalError::BadParameter {
+            field: "goal",
+            expected: "a coverage fraction in (0, 1]",
+            found: cfg.goal.to_string(),
+        });
+    }
+    if !(cfg.weight.is_finite() && cfg.weight >= 1.0) {
+        return Err(OptimalError::BadParameter {
+            field: "weight",
+            expected: "a finite weight ≥ 1",
+            found: cfg.weight.to_string(),
+        });
+    }
+    if cfg.landmarks > 4096 {
+        return Err(OptimalError::BadParameter {
+            field: "landmarks",
+            expected: "at most 4096 landmarks",
+            found: cfg.landmarks.to_string(),
+        });
+    }
+    let started = Instant::now();
+    let mut engine = Engine::new(problem, cfg);
+    Ok(engine.run(started))
+}
+
+/// The heuristic's value for the robot at `pos` having perceived the targets in `perceived`
+/// (indexed like [`Problem::targets`]); for tests and diagnostics.
+pub fn heuristic_value(problem: &Problem, cfg: &Config, pos: Cell, perceived: &[bool]) -> f64 {
+    let nt = problem.targets().len();
+    let mut bits = vec![0u64; nt.div_ceil(64).max(1)];
+    let mut count = 0;
+    for (t, &p) in perceived.iter().enumerate().take(nt) {
+        if p {
+            bits[t >> 6] |= 1 << (t & 63);
+            count += 1;
+        }
+    }
+    let mut h = Heuristic::new(problem, cfg.heuristic, cfg.goal, cfg.landmarks, usize::MAX);
+    match problem.cells().checked_index(pos) {
+        Some(p) => h.eval(problem, p as u32, &bits, count),
+        None => 0.0,
+    }
+}

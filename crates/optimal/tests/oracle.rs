@@ -1,0 +1,411 @@
+//! The A* search against an exhaustive uniform-cost search written independently from the
+//! problem statement (slow visibility from `sense::los_visible`, Floyd–Warshall paths in the
+//! perceived free space, states as `(cell, Vec<bool>)` in a `BTreeMap`), on tiny random maps.
+
+#![allow(clippy::needless_range_loop)] // Floyd–Warshall reads best with indices.
+
+use std::collections::{BTreeMap, BTreeSet};
+
+use grid::{Cell, Grid, Occ};
+use optimal::{ActionSet, Config, HeuristicKind, Problem, SensorModel, Status, heuristic_value};
+use proptest::prelude::*;
+
+const TOL: f64 = 1e-7;
+
+/// Whether a step from `a` to neighbour `b` is legal when `ok` says which cells are passable.
+fn legal(map: &Grid<Occ>, ok: &dyn Fn(Cell) -> bool, a: Cell, b: Cell) -> bool {
+    if !a.is_neighbour8(b) || !map.contains(b) || !ok(b) {
+        return false;
+    }
+    if a.x != b.x && a.y != b.y {
+        let s1 = Cell::new(b.x, a.y);
+        let s2 = Cell::new(a.x, b.y);
+        return (map.contains(s1) && ok(s1)) || (map.contains(s2) && ok(s2));
+    }
+    true
+}
+
+/// All-pairs shortest paths (Floyd–Warshall) over cells where `ok` holds.
+fn all_pairs(map: &Grid<Occ>, ok: &dyn Fn(Cell) -> bool) -> Vec<Vec<f64>> {
+    let n = map.len();
+    let mut d = vec![vec![f64::INFINITY; n]; n];
+    for i in 0..n {
+        let a = map.cell(i);
+        if !ok(a) {
+            continue;
+        }
+        d[i][i] = 0.0;
+        for j in 0..n {
+            let b = map.cell(j);
+            if legal(map, ok, a, b) {
+                d[i][j] = if a.x != b.x && a.y != b.y {
+                    std::f64::consts::SQRT_2
+                } else {
+                    1.0
+                };
+            }
+        }
+    }
+    for k in 0..n {
+        for i in 0..n {
+            for j in 0..n {
+                if d[i][k] + d[k][j] < d[i][j] {
+                    d[i][j] = d[i][k] + d[k][j];
+                }
+            }
+        }
+    }
+    d
+}
+
+/// The problem in plain terms: targets and what each cell sees.
+struct Plain {
+    map: Grid<Occ>,
+    targets: Vec<usize>,
+    /// `sees[p]` = target positions (indices into `targets`) seen from cell p.
+    sees: Vec<Vec<usize>>,
+    reach: Vec<bool>,
+}
+
+fn plain(map: &Grid<Occ>, start: Cell, model: SensorModel) -> Plain {
+    let n = map.len();
+    let free = |c: Cell| map.try_get(c).is_some_and(|o| o.is_free());
+    let full = all_pairs(map, &free);
+    let s = map.index(start);
+    let reach: Vec<bool> = (0..n).map(|i| full[s][i].is_finite()).collect();
+    let seen = |p: Cell, t: Cell| match model {
+        SensorModel::Los(r) => sense::los_visible(map, p, t, r),
+        SensorModel::Footprint(r) => (p.dist2(t) as f64) <= r * r,
+    };
+    let targets: Vec<usize> = (0..n)
+        .filter(|&t| map[t].is_free() && (0..n).any(|p| reach[p] && seen(map.cell(p), map.cell(t))))
+        .collect();
+    let sees = (0..n)
+        .map(|p| {
+            (0..targets.len())
+                .filter(|&k| reach[p] && seen(map.cell(p), map.cell(targets[k])))
+                .collect()
+        })
+        .collect();
+    Plain {
+        map: map.clone(),
+        targets,
+        sees,
+        reach,
+    }
+}
+
+/// Cells the robot may go to from `pos` with `perceived` (indexed like `targets`).
+fn actions(pl: &Plain, perceived: &[bool], set: ActionSet) -> (Vec<usize>, Vec<Vec<f64>>) {
+    let map = &pl.map;
+    let known_free = |c: Cell| {
+        map.checked_index(c).is_some_and(|i| {
+            pl.reach[i]
+                && pl
+                    .targets
+                    .iter()
+                    .position(|&t| t == i)
+                    .is_some_and(|k| perceived[k])
+        })
+    };
+    let d = all_pairs(map, &known_free);
+    let unperceived_target = |c: Cell| {
+        map.checked_index(c).is_some_and(|i| {
+            pl.targets
+                .iter()
+                .position(|&t| t == i)
+                .is_some_and(|k| !perceived[k])
+        })
+    };
+    let boundary = |i: usize| {
+        let c = map.cell(i);
+        grid::NEIGHBOURS8
+            .iter()
+            .any(|&(dx, dy)| unperceived_target(c.offset(dx, dy)))
+    };
+    let cells: Vec<usize> = (0..map.len())
+        .filter(|&i| known_free(map.cell(i)))
+        .filter(|&i| match set {
+            ActionSet::All => true,
+            _ => boundary(i),
+        })
+        .collect();
+    (cells, d)
+}
+
+/// Exhaustive uniform-cost search from (pos, perceived); `None` if the goal is unreachable.
+fn oracle(
+    pl: &Plain,
+    pos: usize,
+    perceived: Vec<bool>,
+    need: usize,
+    set: ActionSet,
+) -> Option<f64> {
+    assert!(!matches!(set, ActionSet::Clusters { .. }));
+    let mut best: BTreeMap<(usize, Vec<bool>), f64> = BTreeMap::new();
+    // Priority queue as an ordered set of (cost bits, state).
+    let mut open: BTreeSet<(u64, usize, Vec<bool>)> = BTreeSet::new();
+    best.insert((pos, perceived.clone()), 0.0);
+    open.insert((0f64.to_bits(), pos, perceived));
+    while let Some((cbits, p, m)) = open.pop_first() {
+        let c = f64::from_bits(cbits);
+        if best.get(&(p, m.clone())).is_some_and(|&b| b < c) {
+            continue;
+        }
+        if m.iter().filter(|&&b| b).count() >= need {
+            return Some(c);
+        }
+        let (cands, d) = actions(pl, &m, set);
+        for q in cands {
+            let step = d[p][q];
+            if !step.is_finite() {
+                continue;
+            }
+            let mut m2 = m.clone();
+            for &k in &pl.sees[q] {
+                m2[k] = true;
+            }
+            let c2 = c + step;
+            let key = (q, m2.clone());
+            if best.get(&key).is_none_or(|&b| c2 < b - 1e-12) {
+                best.insert(key, c2);
+                open.insert((c2.to_bits(), q, m2));
+            }
+        }
+    }
+    None
+}
+
+fn initial(pl: &Plain, start: usize) -> Vec<bool> {
+    let mut m = vec![false; pl.targets.len()];
+    for &k in &pl.sees[start] {
+        m[k] = true;
+    }
+    m
+}
+
+fn arb_case() -> impl Strategy<Value = (Grid<Occ>, Cell, SensorModel, f64)> {
+    (
+        2usize..=6,
+        2usize..=5,
+        0u32..=35,
+        any::<bool>(),
+        0usize..6,
+        0usize..3,
+    )
+        .prop_flat_map(|(w, h, density, fp, ri, gi)| {
+            proptest::collection::vec(0u32..100, w * h).prop_flat_map(move |rolls| {
+                let data: Vec<Occ> = rolls
+                    .iter()
+                    .map(|&r| {
+                        if r < density {
+                            Occ::Occupied
+                        } else {
+                            Occ::Free
+                        }
+                    })
+                    .collect();
+                let map = Grid::from_vec(w, h, data).expect("w*h");
+                let free: Vec<usize> = (0..w * h).filter(|&i| map[i].is_free()).collect();
+                let r = [1.0, 1.5, 2.0, 2.3, 3.0, 1.2][ri];
+                let model = if fp {
+                    SensorModel::Footprint(r)
+                } else {
+                    SensorModel::Los(r)
+                };
+                let g = [1.0, 0.9, 0.7][gi];
+                let n = free.len().max(1);
+                (0..n).prop_map(move |k| {
+                    let mut map = map.clone();
+                    let start = if free.is_empty() {
+                        map[0] = Occ::Free;
+                        map.cell(0)
+                    } else {
+                        map.cell(free[k])
+                    };
+                    (map, start, model, g)
+                })
+            })
+        })
+}
+
+fn cfg(goal: f64, actions: ActionSet, heuristic: HeuristicKind) -> Config {
+    Config {
+        goal,
+        actions,
+        heuristic,
+        landmarks: 4,
+        ..Config::default()
+    }
+}
+
+/// Independent check of a returned path: legal steps through perceived free cells,
+/// sensing only at the positions, length as reported, goal met.
+fn check_solution(pl: &Plain, start: Cell, sol: &optimal::Solution, need: usize) {
+    let map = &pl.map;
+    let mut m = initial(pl, map.index(start));
+    assert_eq!(sol.positions[0], start);
+    assert_eq!(sol.path[0], start);
+    let mut len = 0.0;
+    let mut next = 1;
+    for w in sol.path.windows(2) {
+        let (a, b) = (w[0], w[1]);
+        let known_free = |c: Cell| {
+            map.checked_index(c).is_some_and(|i| {
+                pl.reach[i]
+                    && pl
+                        .targets
+                        .iter()
+                        .position(|&t| t == i)
+                        .is_some_and(|k| m[k])
+            })
+        };
+        assert!(legal(map, &known_free, a, b), "illegal step {a} -> {b}");
+        len += if a.x != b.x && a.y != b.y {
+            std::f64::consts::SQRT_2
+        } else {
+            1.0
+        };
+        if next < sol.positions.len() && b == sol.positions[next] {
+            for &k in &pl.sees[map.index(b)] {
+                m[k] = true;
+            }
+            next += 1;
+        }
+    }
+    assert_eq!(next, sol.positions.len(), "path misses positions");
+    assert!(
+        (len - sol.length).abs() < TOL,
+        "length {len} vs {}",
+        sol.length
+    );
+    let got = m.iter().filter(|&&b| b).count();
+    assert!(got >= need, "perceived {got} < {need}");
+    assert_eq!(got, sol.perceived);
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(160))]
+
+    /// Boundary actions (the paper) and all actions (exact): A* = exhaustive search.
+    #[test]
+    fn astar_matches_exhaustive_search((map, start, model, g) in arb_case(), all in any::<bool>(), hk in 0usize..3) {
+        let set = if all { ActionSet::All } else { ActionSet::Boundary };
+        let heuristic = [HeuristicKind::Zero, HeuristicKind::Paper, HeuristicKind::Landmarks][hk];
+        let problem = Problem::new(&map, start, model).expect("valid problem");
+        let pl = plain(&map, start, model);
+        prop_assert_eq!(problem.targets().len(), pl.targets.len());
+        let need = problem.needed(g);
+        let s = map.index(start);
+        let expected = oracle(&pl, s, initial(&pl, s), need, set);
+        let out = optimal::solve(&problem, &cfg(g, set, heuristic)).expect("solve");
+        match expected {
+            None => prop_assert_eq!(out.status, Status::NoSolution),
+            Some(opt) => {
+                prop_assert_eq!(out.status, Status::Optimal, "{}", out.message);
+                prop_assert!((out.upper_bound - opt).abs() < TOL, "A* {} vs oracle {}", out.upper_bound, opt);
+                prop_assert!((out.lower_bound - opt).abs() < TOL);
+                let sol = out.solution.expect("a solution");
+                check_solution(&pl, start, &sol, need);
+                if g == 1.0 {
+                    prop_assert_eq!(sol.perceived, pl.targets.len());
+                }
+            }
+        }
+    }
+
+    /// Heuristics never exceed the exact cost-to-go over all position sequences, on every
+    /// state the exhaustive search reaches in its first steps.
+    #[test]
+    fn heuristics_are_admissible((map, start, model, g) in arb_case()) {
+        let problem = Problem::new(&map, start, model).expect("valid problem");
+        let pl = plain(&map, start, model);
+        let need = problem.needed(g);
+        let s = map.index(start);
+        // A few states: the root and its children under All actions.
+        let m0 = initial(&pl, s);
+        let mut states = vec![(s, m0.clone())];
+        let (cands, _) = actions(&pl, &m0, ActionSet::All);
+        for q in cands.into_iter().take(6) {
+            let mut m = m0.clone();
+            for &k in &pl.sees[q] { m[k] = true; }
+            states.push((q, m));
+        }
+        for (p, m) in states {
+            let Some(exact) = oracle(&pl, p, m.clone(), need, ActionSet::All) else { continue };
+            for hk in [HeuristicKind::Paper, HeuristicKind::Landmarks] {
+                let h = heuristic_value(&problem, &cfg(g, ActionSet::All, hk), map.cell(p), &m);
+                prop_assert!(h <= exact + TOL, "{:?} h = {} > h* = {} at {}", hk, h, exact, map.cell(p));
+            }
+        }
+    }
+
+    /// Weighted A* stays within its bound, clusters never beat the boundary optimum.
+    #[test]
+    fn weighted_and_clusters_are_bounded((map, start, model, g) in arb_case()) {
+        let problem = Problem::new(&map, start, model).expect("valid problem");
+        let exact = optimal::solve(&problem, &cfg(g, ActionSet::Boundary, HeuristicKind::Landmarks)).expect("solve");
+        if exact.status != Status::Optimal { return Ok(()); }
+        let mut c = cfg(g, ActionSet::Boundary, HeuristicKind::Landmarks);
+        c.weight = 1.5;
+        let w = optimal::solve(&problem, &c).expect("solve");
+        prop_assert!(w.upper_bound <= 1.5 * exact.upper_bound + TOL);
+        prop_assert!(w.lower_bound <= exact.upper_bound + TOL);
+        let cl = optimal::solve(&problem, &cfg(g, ActionSet::Clusters { min_size: 1 }, HeuristicKind::Landmarks)).expect("solve");
+        if let Some(sol) = &cl.solution {
+            prop_assert!(sol.length >= exact.upper_bound - TOL);
+            let pl = plain(&map, start, model);
+            check_solution(&pl, start, sol, problem.needed(g));
+        }
+    }
+}
+
+/// A worked example: a 1-wide corridor of 12 cells, `los` r = 3 from the left end. The
+/// boundary formulation must stop next to the unseen part each time (0 → 3 → 6 → 9: 9
+/// cells); over all positions the last stop can be cell 8, which already sees cell 11 (8
+/// cells) — the paper's "end of a corridor" remark.
+#[test]
+fn corridor_worked_example() {
+    let map = Grid::new(12, 1, Occ::Free);
+    let p = Problem::new(&map, Cell::new(0, 0), SensorModel::Los(3.0)).expect("valid");
+    let out = optimal::solve(&p, &Config::default()).expect("solve");
+    assert_eq!(out.status, Status::Optimal);
+    assert!((out.upper_bound - 9.0).abs() < TOL, "{}", out.upper_bound);
+    let cells: Vec<i32> = out
+        .solution
+        .expect("solution")
+        .positions
+        .iter()
+        .map(|c| c.x)
+        .collect();
+    assert_eq!(cells, vec![0, 3, 6, 9]);
+    let all =
+        optimal::solve(&p, &cfg(1.0, ActionSet::All, HeuristicKind::Landmarks)).expect("solve");
+    assert!((all.upper_bound - 8.0).abs() < TOL, "{}", all.upper_bound);
+}
+
+/// The limits stop the search with bounds that bracket the optimum.
+#[test]
+fn node_limit_gives_bracketing_bounds() {
+    let mut map = Grid::new(14, 9, Occ::Free);
+    for y in 0..7 {
+        map.set(Cell::new(4, y), Occ::Occupied);
+        map.set(Cell::new(9, 8 - y), Occ::Occupied);
+    }
+    let p = Problem::new(&map, Cell::new(0, 0), SensorModel::Los(2.5)).expect("valid");
+    let full =
+        optimal::solve(&p, &cfg(1.0, ActionSet::Boundary, HeuristicKind::Paper)).expect("solve");
+    assert_eq!(full.status, Status::Optimal);
+    let mut c = cfg(1.0, ActionSet::Boundary, HeuristicKind::Paper);
+    c.max_nodes = 3;
+    let cut = optimal::solve(&p, &c).expect("solve");
+    assert_eq!(cut.status, Status::Stopped);
+    assert!(cut.lower_bound <= full.upper_bound + TOL);
+    assert!(cut.upper_bound >= full.upper_bound - TOL);
+    assert!(cut.solution.is_some(), "the greedy incumbent is kept");
+    let mut c = cfg(1.0, ActionSet::Boundary, HeuristicKind::Paper);
+    c.max_bytes = 1 << 16;
+    let mem = optimal::solve(&p, &c).expect("solve");
+    assert!(matches!(mem.status, Status::Stopped | Status::Optimal));
+    assert!(mem.stats.bytes <= 1 << 16 || mem.status == Status::Optimal);
+}
