@@ -581,7 +581,9 @@ impl Team<'_> {
             self.decide(robots, &[r]);
         } else if let (Some(fraction), AssignerKind::DtUtility { lambda }) =
             (replan.utility_drop, self.cfg.strategy.assigner)
-            && robots[r].moves_since_decision.is_multiple_of(DT_RECHECK_MOVES)
+            && robots[r]
+                .moves_since_decision
+                .is_multiple_of(DT_RECHECK_MOVES)
             && {
                 let pose = Pose {
                     cell: self.truth.cells.cell(goal as usize),
