@@ -3,108 +3,14 @@
 
 use explore::Reachability;
 use explore::candidates::{CandidateKind, CandidateSet};
-use explore::decision::{DecisionCtx, GoalLists, Memory, Planner};
 use explore::{FrontierUpkeep, frontiers_from_scratch};
 use grid::{Cell, Grid, Occ};
 use proptest::prelude::*;
-use rand::SeedableRng;
-use rand_pcg::Pcg64Mcg;
-use sense::{KnownGrid, LosSensor, los_visible, segment_clear};
+use sense::{los_visible, segment_clear};
 
-struct Fixture {
-    known: Grid<Occ>,
-    upkeep: FrontierUpkeep,
-    planner: Planner,
-    lists: GoalLists,
-    rng: Pcg64Mcg,
-    belief: KnownGrid,
-    sensor: LosSensor,
-    memory: Memory,
-    robots: Vec<u32>,
-    deciding: Vec<bool>,
-    goals: Vec<Option<u32>>,
-    range: f64,
-}
-
-impl Fixture {
-    fn new(known: Grid<Occ>, robots: Vec<u32>, range: f64, seed: u64) -> Self {
-        let (w, h) = (known.width(), known.height());
-        let mut upkeep = FrontierUpkeep::new(w, h, 0.0);
-        upkeep.rebuild(&known);
-        let m = robots.len();
-        Self {
-            planner: Planner::new(w, h, m),
-            lists: GoalLists::new(w * h),
-            rng: Pcg64Mcg::seed_from_u64(seed),
-            belief: KnownGrid::new(w, h),
-            sensor: LosSensor::new(range).expect("valid range"),
-            memory: Memory::default(),
-            deciding: vec![true; m],
-            goals: vec![None; m],
-            robots,
-            range,
-            known,
-            upkeep,
-        }
-    }
-
-    fn ctx(&mut self) -> DecisionCtx<'_> {
-        self.planner.invalidate();
-        DecisionCtx {
-            known: &self.known,
-            upkeep: &mut self.upkeep,
-            planner: &mut self.planner,
-            robots: &self.robots,
-            deciding: &self.deciding,
-            goals: &self.goals,
-            lists: &self.lists,
-            resolution: 0.2,
-            sensor_range_cells: self.range,
-            rng: &mut self.rng,
-            belief: &self.belief,
-            sensor: &self.sensor,
-            memory: &mut self.memory,
-        }
-    }
-}
-
-/// A random known map: obstacles, a band of unknown on the right, unknown specks.
-fn random_known(w: usize, h: usize, bits: &[u8], cut: usize) -> Grid<Occ> {
-    let mut g = Grid::new(w, h, Occ::Free);
-    for i in 0..w * h {
-        let (x, b) = (i % w, bits[i % bits.len()]);
-        g[i] = if x >= cut || b < 5 {
-            Occ::Unknown
-        } else if b < 22 {
-            Occ::Occupied
-        } else {
-            Occ::Free
-        };
-    }
-    g
-}
-
-/// The lowest cell of the largest traversable component.
-fn largest_component_cell(known: &Grid<Occ>, up: &FrontierUpkeep) -> Option<usize> {
-    let (w, h) = (known.width(), known.height());
-    let mut seen = vec![false; w * h];
-    let mut best: Option<(usize, usize)> = None;
-    let mut r = Reachability::new(w, h);
-    for i in 0..w * h {
-        if seen[i] || !up.is_traversable(known, i) {
-            continue;
-        }
-        r.compute(i, |j| up.is_traversable(known, j));
-        for &c in r.settled() {
-            seen[c as usize] = true;
-        }
-        let size = r.settled().len();
-        if best.is_none_or(|(s, _)| size > s) {
-            best = Some((size, i));
-        }
-    }
-    best.map(|(_, i)| i)
-}
+mod common;
+#[allow(unused_imports)]
+use common::*;
 
 /// The slow Algorithm 1: every eligible cell against every frontier by `los_visible`.
 fn oracle(fx: &Fixture, robot: u32) -> Vec<(u32, Vec<u32>)> {
