@@ -84,3 +84,45 @@ pub const NEIGHBOURS4: [(i32, i32); 4] = [(1, 0), (0, 1), (-1, 0), (0, -1)];
 pub fn step_cost(dx: i32, dy: i32) -> f64 {
     if dx != 0 && dy != 0 { SQRT2 } else { 1.0 }
 }
+
+/// Call `f(j, step)` for every allowed move from cell `i` of a `width × height` grid to a
+/// passable neighbour `j`, applying the no-corner-squeezing rule.
+#[inline]
+pub fn for_each_move(
+    width: usize,
+    height: usize,
+    i: usize,
+    passable: &impl Fn(usize) -> bool,
+    mut f: impl FnMut(usize, f64),
+) {
+    let (x, y) = (i % width, i / width);
+    let (left, right, up, down) = (x > 0, x + 1 < width, y > 0, y + 1 < height);
+    let pr = right && passable(i + 1);
+    let pd = down && passable(i + width);
+    let pl = left && passable(i - 1);
+    let pu = up && passable(i - width);
+    if pr {
+        f(i + 1, 1.0);
+    }
+    if pd {
+        f(i + width, 1.0);
+    }
+    if pl {
+        f(i - 1, 1.0);
+    }
+    if pu {
+        f(i - width, 1.0);
+    }
+    if right && down && (pr || pd) && passable(i + width + 1) {
+        f(i + width + 1, SQRT2);
+    }
+    if left && down && (pl || pd) && passable(i + width - 1) {
+        f(i + width - 1, SQRT2);
+    }
+    if left && up && (pl || pu) && passable(i - width - 1) {
+        f(i - width - 1, SQRT2);
+    }
+    if right && up && (pr || pu) && passable(i - width + 1) {
+        f(i - width + 1, SQRT2);
+    }
+}

@@ -20,6 +20,6 @@ pub mod io;
 pub mod occ;
 pub mod resample;
 
-pub use cell::{Cell, NEIGHBOURS4, NEIGHBOURS8, SQRT2, step_cost};
+pub use cell::{Cell, NEIGHBOURS4, NEIGHBOURS8, SQRT2, for_each_move, step_cost};
 pub use grid::Grid;
 pub use occ::{GridMap, Occ};

@@ -6,7 +6,7 @@
 //! forbidden iff both orthogonal cells it passes between are not passable (no squeezing
 //! between two blocked cells sharing a vertex). Ties in the queue are broken by flat index.
 
-use grid::SQRT2;
+use grid::for_each_move;
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
 
@@ -22,47 +22,6 @@ pub struct Dijkstra {
     epoch: u32,
     heap: BinaryHeap<Reverse<(u64, u32)>>,
     settled: Vec<u32>,
-}
-
-/// Call `f(j, step)` for every allowed move from `i` to a passable neighbour `j`.
-#[inline]
-pub fn for_each_move(
-    width: usize,
-    height: usize,
-    i: usize,
-    passable: &impl Fn(usize) -> bool,
-    mut f: impl FnMut(usize, f64),
-) {
-    let (x, y) = (i % width, i / width);
-    let (left, right, up, down) = (x > 0, x + 1 < width, y > 0, y + 1 < height);
-    let pr = right && passable(i + 1);
-    let pd = down && passable(i + width);
-    let pl = left && passable(i - 1);
-    let pu = up && passable(i - width);
-    if pr {
-        f(i + 1, 1.0);
-    }
-    if pd {
-        f(i + width, 1.0);
-    }
-    if pl {
-        f(i - 1, 1.0);
-    }
-    if pu {
-        f(i - width, 1.0);
-    }
-    if right && down && (pr || pd) && passable(i + width + 1) {
-        f(i + width + 1, SQRT2);
-    }
-    if left && down && (pl || pd) && passable(i + width - 1) {
-        f(i + width - 1, SQRT2);
-    }
-    if left && up && (pl || pu) && passable(i - width - 1) {
-        f(i - width - 1, SQRT2);
-    }
-    if right && up && (pr || pu) && passable(i - width + 1) {
-        f(i - width + 1, SQRT2);
-    }
 }
 
 impl Dijkstra {

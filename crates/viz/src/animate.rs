@@ -144,26 +144,8 @@ impl Geometry {
         }
     }
 
-    fn line(&self, buf: &mut [u8], (mut x0, mut y0): (i64, i64), (x1, y1): (i64, i64), c: u8) {
-        let dx = (x1 - x0).abs();
-        let dy = -(y1 - y0).abs();
-        let (sx, sy) = (if x0 < x1 { 1 } else { -1 }, if y0 < y1 { 1 } else { -1 });
-        let mut err = dx + dy;
-        loop {
-            self.put(buf, x0, y0, c);
-            if x0 == x1 && y0 == y1 {
-                break;
-            }
-            let e2 = 2 * err;
-            if e2 >= dy {
-                err += dy;
-                x0 += sx;
-            }
-            if e2 <= dx {
-                err += dx;
-                y0 += sy;
-            }
-        }
+    fn line(&self, buf: &mut [u8], p0: (i64, i64), p1: (i64, i64), c: u8) {
+        crate::bresenham(p0, p1, |x, y| self.put(buf, x, y, c));
     }
 }
 

@@ -126,13 +126,11 @@ fn put(img: &mut RgbImage, x: i64, y: i64, colour: [u8; 3]) {
     }
 }
 
-/// A Bresenham line, two pixels thick when `thick`.
-fn line(
-    img: &mut RgbImage,
+/// Call `f(x, y)` for every pixel of the Bresenham line from `(x0, y0)` to `(x1, y1)`.
+pub(crate) fn bresenham(
     (mut x0, mut y0): (i64, i64),
     (x1, y1): (i64, i64),
-    colour: [u8; 3],
-    thick: bool,
+    mut f: impl FnMut(i64, i64),
 ) {
     let dx = (x1 - x0).abs();
     let dy = -(y1 - y0).abs();
@@ -140,11 +138,7 @@ fn line(
     let sy = if y0 < y1 { 1 } else { -1 };
     let mut err = dx + dy;
     loop {
-        put(img, x0, y0, colour);
-        if thick {
-            put(img, x0 + 1, y0, colour);
-            put(img, x0, y0 + 1, colour);
-        }
+        f(x0, y0);
         if x0 == x1 && y0 == y1 {
             break;
         }
@@ -158,6 +152,17 @@ fn line(
             y0 += sy;
         }
     }
+}
+
+/// A line, two pixels thick when `thick`.
+fn line(img: &mut RgbImage, p0: (i64, i64), p1: (i64, i64), colour: [u8; 3], thick: bool) {
+    bresenham(p0, p1, |x, y| {
+        put(img, x, y, colour);
+        if thick {
+            put(img, x + 1, y, colour);
+            put(img, x, y + 1, colour);
+        }
+    });
 }
 
 fn ring(img: &mut RgbImage, (cx, cy): (i64, i64), r: i64, colour: [u8; 3]) {

@@ -1,9 +1,10 @@
 //! A* between two cells with the octile heuristic (admissible and consistent for 8-connected
 //! motion with costs 1 and √2), on generation-stamped buffers that are reused across calls.
 
-use super::{HeapEntry, entry, for_each_move};
+use super::{HeapEntry, entry};
 use crate::upkeep::next_gen;
 use grid::SQRT2;
+use grid::for_each_move;
 use std::collections::BinaryHeap;
 
 /// A* search buffers for a `width × height` grid.

@@ -5,8 +5,9 @@
 //! O(map) memory, and the heap and the settled list keep their capacity: in steady state a
 //! search allocates nothing and touches only the cells it labels.
 
-use super::{HeapEntry, entry, for_each_move};
+use super::{HeapEntry, entry};
 use crate::upkeep::next_gen;
+use grid::for_each_move;
 use std::collections::BinaryHeap;
 
 /// Dijkstra over passable cells from one start: cost and predecessor per cell, path extraction.
