@@ -53,7 +53,7 @@ pub struct ExploreArgs {
     /// Stop after this many cell moves of the whole team.
     #[arg(long, default_value_t = 10_000_000)]
     pub max_moves: u64,
-    /// Write final.png, map.png and trace.json into this directory.
+    /// Write final.png, map.png, belief.yaml + belief.pgm (the map built, ROS format) and trace.json into this directory.
     #[arg(long)]
     pub out: Option<PathBuf>,
     /// Write an animated GIF of the run.
@@ -145,6 +145,14 @@ pub fn run(a: ExploreArgs) -> Result<()> {
         viz::map_picture(&truth.map.cells)
             .save(&map_png)
             .with_context(|| format!("writing {}", map_png.display()))?;
+        let belief = dir.join("belief.yaml");
+        let built = grid::GridMap {
+            cells: result.belief.clone(),
+            resolution: truth.map.resolution,
+            origin: truth.map.origin,
+        };
+        grid::io::save_map(&built, &belief)
+            .with_context(|| format!("writing {}", belief.display()))?;
         let trace = dir.join("trace.json");
         let text = serde_json::to_string(&report::trace_json(&truth, &cfg, &result))?;
         std::fs::write(&trace, text).with_context(|| format!("writing {}", trace.display()))?;

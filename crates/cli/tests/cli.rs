@@ -102,6 +102,12 @@ fn explore_writes_pictures_and_trace() {
         serde_json::from_str(&std::fs::read_to_string(out.join("trace.json")).unwrap()).unwrap();
     assert_eq!(trace["strategy"], "yamauchi");
     assert!(trace["trails"][0].as_array().unwrap().len() > 10);
+    // the map the robot built, as ROS map_server YAML + PGM: the maze fully explored
+    let belief = out.join("belief.yaml");
+    let info: serde_json::Value =
+        serde_json::from_str(&ok(&["map", "info", belief.to_str().unwrap(), "--json"])).unwrap();
+    assert!(info["free"].as_u64().unwrap() > 100, "{info}");
+    assert_eq!(info["resolution"], 0.5, "{info}");
 }
 
 #[test]
@@ -185,7 +191,7 @@ fn demo_prints_a_table() {
 #[test]
 fn errors_name_the_flag_and_what_was_found() {
     assert!(err(&["explore", "--strategy", "nearestt"]).contains(
-        "--strategy: unknown strategy 'nearestt': expected yamauchi, cf, cf-rr, cf-rr-seg, random, dt"
+        "--strategy: unknown strategy 'nearestt': expected yamauchi, cf, cf-rr, cf-rr-seg, cf-rr-seg-any, random, dt"
     ));
     let e = err(&["explore", "--sensor", "lidar:r=x"]);
     assert!(

@@ -7,7 +7,8 @@
 //! | `cf` | Holz et al. 2010 | all frontier cells | nearest by path | on arrival | continuous |
 //! | `cf-rr` | Holz et al. 2010 | all frontier cells | nearest by path | on arrival, or when the target stops being a frontier | continuous |
 //! | `random` | Holz et al. 2010 (RF) | all frontier cells | uniform over reachable ones | on arrival | continuous |
-//! | `cf-rr-seg` | Holz et al. 2010 | all frontier cells | nearest in the robot's segment first | as `cf-rr` | continuous |
+//! | `cf-rr-seg` | Holz et al. 2010 | all frontier cells | nearest in the robot's segment first when that segment is room-like (≤ 2 neighbouring segments; see `assign::segment_first`) | as `cf-rr` | continuous |
+//! | `cf-rr-seg-any` | Holz et al. 2010, literal | all frontier cells | nearest in the robot's segment first, corridors included | as `cf-rr` | continuous |
 //! | `dt`, `dt500` | González-Baños & Latombe, Holz §3.2 | 100 / 500 samples near frontiers | max I·exp(−0.2 L) | on arrival | continuous |
 //! | `dt-rr` | beyond the paper | as `dt` | as `dt` | also when the target's utility halves | continuous |
 //! | `nearest`, `greedy`, `greedy-utility`, `minpos` | seed 002 | all frontier cells | as named | on arrival (per robot) | continuous |
@@ -100,6 +101,10 @@ pub const PRESETS: &[(&str, &str)] = &[
         "Holz et al. 2010: closest frontier in the robot's own room segment first, with RR",
     ),
     (
+        "cf-rr-seg-any",
+        "the same with the literal rule: own segment first in corridors too",
+    ),
+    (
         "random",
         "Holz et al. 2010: random frontier cell (baseline)",
     ),
@@ -137,7 +142,7 @@ pub const PRESETS: &[(&str, &str)] = &[
 /// Error for a strategy name that is not a preset.
 #[derive(Debug, thiserror::Error)]
 #[error(
-    "unknown strategy '{found}': expected yamauchi, cf, cf-rr, cf-rr-seg, random, dt, dt500, dt-rr, nearest, greedy, greedy-utility, minpos, or <assigner>-<candidates> with an assigner of nearest, greedy, ia, ga, greedy-utility, minpos, ha, ma, sga and candidates af, centroids, rfe, cc"
+    "unknown strategy '{found}': expected yamauchi, cf, cf-rr, cf-rr-seg, cf-rr-seg-any, random, dt, dt500, dt-rr, nearest, greedy, greedy-utility, minpos, or <assigner>-<candidates> with an assigner of nearest, greedy, ia, ga, greedy-utility, minpos, ha, ma, sga and candidates af, centroids, rfe, cc"
 )]
 pub struct UnknownStrategy {
     /// The name given.
@@ -213,6 +218,16 @@ impl Strategy {
                 CandidateKind::AllFrontiers,
                 AssignerKind::SegmentFirst {
                     rule: crate::segment::Rule::Holz,
+                    max_neighbours: Some(crate::assign::segment_first::ROOM_MAX_NEIGHBOURS),
+                },
+                rr,
+                SensingMode::Continuous,
+            ),
+            "cf-rr-seg-any" => (
+                CandidateKind::AllFrontiers,
+                AssignerKind::SegmentFirst {
+                    rule: crate::segment::Rule::Holz,
+                    max_neighbours: None,
                 },
                 rr,
                 SensingMode::Continuous,

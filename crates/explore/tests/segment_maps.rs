@@ -404,3 +404,94 @@ proptest! {
         }
     }
 }
+
+/// Brute force: the set of 4-adjacent label pairs, counted per segment.
+fn neighbour_oracle(seg: &explore::segment::Segmentation) -> Vec<u32> {
+    let mut pairs = std::collections::BTreeSet::new();
+    let (w, h) = (seg.width, seg.height);
+    for y in 0..h {
+        for x in 0..w {
+            let a = seg.labels[y * w + x];
+            for (nx, ny) in [(x + 1, y), (x, y + 1)] {
+                if nx < w && ny < h {
+                    let b = seg.labels[ny * w + nx];
+                    if a != NONE && b != NONE && a != b {
+                        pairs.insert((a.min(b), a.max(b)));
+                    }
+                }
+            }
+        }
+    }
+    let mut out = vec![0; seg.count as usize];
+    for (a, b) in pairs {
+        out[a as usize] += 1;
+        out[b as usize] += 1;
+    }
+    out
+}
+
+#[test]
+fn a_corridor_touches_every_room_and_each_room_only_the_corridor() {
+    let (n, room, depth, corridor, door) = (5, 12, 14, 8, 4);
+    let g = hospital_wing(n, room, depth, corridor, door);
+    let seg = segment(&g, Rule::Holz);
+    let (mut keys, mut counts) = (Vec::new(), Vec::new());
+    seg.neighbour_counts(&mut keys, &mut counts);
+    let corr = seg.labels[(depth + 2) * g.width() + 1] as usize;
+    for (s, &c) in counts.iter().enumerate() {
+        let want = if s == corr { 2 * n as u32 } else { 1 };
+        assert_eq!(c, want, "segment {s}");
+    }
+    assert_eq!(counts, neighbour_oracle(&seg));
+    let mut state = State::new();
+    state.update(&g, Rule::Holz);
+    assert_eq!(state.neighbours(corr as u32), 2 * n as u32);
+}
+
+proptest! {
+    #[test]
+    fn neighbour_counts_equal_the_brute_force_pairs(
+        w in 2usize..12, h in 2usize..12, count in 1u32..6,
+        raw in proptest::collection::vec(0u32..7, 144),
+    ) {
+        let labels: Vec<u32> = (0..w * h)
+            .map(|i| if raw[i] >= count { NONE } else { raw[i] })
+            .collect();
+        let seg = explore::segment::Segmentation {
+            width: w, height: h, labels, count, critical: Vec::new(),
+        };
+        let (mut keys, mut counts) = (Vec::new(), Vec::new());
+        seg.neighbour_counts(&mut keys, &mut counts);
+        prop_assert_eq!(counts, neighbour_oracle(&seg));
+    }
+}
+
+#[test]
+fn patched_neighbour_counts_equal_a_fresh_count_of_the_patched_labels() {
+    let mut g = hospital_wing(5, 12, 14, 8, 4);
+    let w = g.width();
+    let mut state = State::new();
+    state.update(&g, Rule::Holz);
+    let (mut keys, mut counts) = (Vec::new(), Vec::new());
+    // open the side walls between neighbouring upper rooms one cell at a time: each opening
+    // joins two rooms that did not touch before
+    let mut opened = 0;
+    for i in w..g.len() - w {
+        if g.data()[i] == Occ::Occupied
+            && i % w > 0
+            && i % w + 1 < w
+            && g.data()[i - 1].is_free()
+            && g.data()[i + 1].is_free()
+            && i / w < 10
+        {
+            g.data_mut()[i] = Occ::Free;
+            opened += 1;
+            let seg = state.update(&g, Rule::Holz).clone();
+            seg.neighbour_counts(&mut keys, &mut counts);
+            for (s, &c) in counts.iter().enumerate() {
+                assert_eq!(state.neighbours(s as u32), c, "after opening cell {i}");
+            }
+        }
+    }
+    assert!(opened >= 4 && state.patches() >= 4, "{opened} openings");
+}

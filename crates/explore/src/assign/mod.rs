@@ -55,6 +55,9 @@ pub enum AssignerKind {
     SegmentFirst {
         /// Critical-point rule of the segmentation.
         rule: crate::segment::Rule,
+        /// Prefer the own segment only when it touches at most this many others (room-like);
+        /// `None`: always (the literal rule).
+        max_neighbours: Option<u32>,
     },
 }
 
@@ -79,9 +82,10 @@ impl AssignerKind {
             AssignerKind::Mtsp => mtsp::assign(ctx, candidates, out),
             AssignerKind::Sga => sga::assign(ctx, candidates, out),
             AssignerKind::DtUtility { lambda } => utility::assign(ctx, candidates, lambda, out),
-            AssignerKind::SegmentFirst { rule } => {
-                segment_first::assign(ctx, candidates, rule, out)
-            }
+            AssignerKind::SegmentFirst {
+                rule,
+                max_neighbours,
+            } => segment_first::assign(ctx, candidates, rule, max_neighbours, out),
         }
     }
 }

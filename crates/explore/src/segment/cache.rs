@@ -10,6 +10,10 @@
 //! newly free cells take the label of the labelled free cell they connect to (a breadth-first
 //! growth from the old labels, in index order), so that new frontier cells have a segment.
 //! Newly free cells that connect to no labelled cell stay unlabelled until the next full run.
+//!
+//! The state also keeps each segment's neighbouring segments ([`State::neighbours`]) for
+//! Seg's room preference: found by a scan with every full run, and extended by the pairs the
+//! patched cells create (work proportional to the change).
 
 use std::collections::VecDeque;
 
@@ -33,6 +37,8 @@ pub struct State {
     drift: usize,
     changed: Vec<u32>,
     queue: VecDeque<u32>,
+    keys: Vec<u64>,
+    degrees: Vec<u32>,
     full_runs: usize,
     patches: usize,
 }
@@ -65,11 +71,53 @@ impl State {
             let limit = ((REFRESH_FRACTION * self.free_at_full as f64) as usize).max(1);
             if self.drift < limit {
                 self.patch(known);
+                self.patch_neighbours();
                 return self.segmenter.result();
             }
         }
         self.full(known, rule);
+        let seg = self.segmenter.result();
+        seg.neighbour_pairs(&mut self.keys);
+        count_pairs(&self.keys, seg.count, &mut self.degrees);
         self.segmenter.result()
+    }
+
+    /// How many other segments segment `s` of the current segmentation touches.
+    pub fn neighbours(&self, s: u32) -> u32 {
+        self.degrees.get(s as usize).copied().unwrap_or(0)
+    }
+
+    /// Add the segment pairs that the patched cells create (pairs are only added between
+    /// full runs: a cell that stops being free leaves its pairs until the next full run).
+    fn patch_neighbours(&mut self) {
+        let seg = self.segmenter.result();
+        let (w, n) = (seg.width, seg.labels.len());
+        let before = self.keys.len();
+        for &c in &self.changed {
+            let i = c as usize;
+            let a = seg.labels[i];
+            if a == NONE {
+                continue;
+            }
+            let x = i % w;
+            let around = [
+                (x + 1 < w).then(|| i + 1),
+                (x > 0).then(|| i - 1),
+                (i + w < n).then(|| i + w),
+                i.checked_sub(w),
+            ];
+            for j in around.into_iter().flatten() {
+                let b = seg.labels[j];
+                if b != NONE && b != a {
+                    self.keys.push(super::pair_key(a, b));
+                }
+            }
+        }
+        if self.keys.len() > before {
+            self.keys.sort_unstable();
+            self.keys.dedup();
+            count_pairs(&self.keys, seg.count, &mut self.degrees);
+        }
     }
 
     /// The segmentation as of the last update.
@@ -153,6 +201,19 @@ impl State {
                     labels[j] = labels[i];
                     self.queue.push_back(j as u32);
                 }
+            }
+        }
+    }
+}
+
+/// Per-segment counts of the sorted, deduplicated pair keys `keys` into `out`.
+fn count_pairs(keys: &[u64], count: u32, out: &mut Vec<u32>) {
+    out.clear();
+    out.resize(count as usize, 0);
+    for &k in keys {
+        for s in [(k >> 32) as usize, (k & 0xffff_ffff) as usize] {
+            if let Some(c) = out.get_mut(s) {
+                *c += 1;
             }
         }
     }

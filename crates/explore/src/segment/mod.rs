@@ -99,6 +99,44 @@ impl Segmentation {
         self.labels.get(i).copied().filter(|&l| l != NONE)
     }
 
+    /// How many other segments each segment touches (through 4-adjacent free cells), into
+    /// `out` (one entry per segment); `keys` is scratch reused between calls.
+    ///
+    /// A room has one or two neighbours (its doors), a corridor or hall many: this is what
+    /// Seg's room preference reads ([`crate::assign::segment_first`]).
+    pub fn neighbour_counts(&self, keys: &mut Vec<u64>, out: &mut Vec<u32>) {
+        self.neighbour_pairs(keys);
+        out.clear();
+        out.resize(self.count as usize, 0);
+        for &k in keys.iter() {
+            out[(k >> 32) as usize] += 1;
+            out[(k & 0xffff_ffff) as usize] += 1;
+        }
+    }
+
+    /// The pairs of segments that touch (4-adjacent free cells), as sorted, deduplicated
+    /// keys `min << 32 | max`, into `keys`.
+    pub fn neighbour_pairs(&self, keys: &mut Vec<u64>) {
+        keys.clear();
+        let (w, n) = (self.width, self.labels.len());
+        for i in 0..n {
+            let a = self.labels[i];
+            if a == NONE {
+                continue;
+            }
+            let right = (i % w + 1 < w).then(|| i + 1);
+            let down = (i + w < n).then(|| i + w);
+            for j in [right, down].into_iter().flatten() {
+                let b = self.labels[j];
+                if b != NONE && b != a {
+                    keys.push(pair_key(a, b));
+                }
+            }
+        }
+        keys.sort_unstable();
+        keys.dedup();
+    }
+
     /// Number of cells of each segment.
     pub fn sizes(&self) -> Vec<usize> {
         let mut s = vec![0; self.count as usize];
@@ -109,6 +147,11 @@ impl Segmentation {
         }
         s
     }
+}
+
+/// The key of the unordered segment pair `{a, b}`.
+pub(crate) fn pair_key(a: u32, b: u32) -> u64 {
+    (u64::from(a.min(b)) << 32) | u64::from(a.max(b))
 }
 
 /// All buffers of the segmentation pipeline, reused across calls.
