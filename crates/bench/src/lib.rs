@@ -9,6 +9,7 @@
 #![warn(missing_docs)]
 
 pub mod built;
+pub mod competitive;
 pub mod error;
 pub mod plan;
 pub mod plots;

@@ -57,6 +57,8 @@ pub struct Plan {
     pub trials: Vec<Trial>,
     /// Strategies left out because they are not built yet, with the reason.
     pub skipped: Vec<String>,
+    /// Settings of the optimal offline paths, when the study computes competitive ratios.
+    pub optimal: Option<crate::competitive::OptimalSpec>,
 }
 
 /// One environment of the study.
@@ -190,8 +192,12 @@ impl Plan {
     /// of one fingerprint only, so a changed scenario cannot silently mix with old results.
     pub fn fingerprint(&self) -> String {
         let c = &self.common;
+        let optimal = self
+            .optimal
+            .as_ref()
+            .map_or(String::new(), |o| format!(" optimal=[{}]", o.fingerprint()));
         format!(
-            "seed={} speed={} clearance={} goal={:?} max_moves={} belief={} sensing={}",
+            "seed={} speed={} clearance={} goal={:?} max_moves={} belief={} sensing={}{optimal}",
             self.master_seed,
             c.speed,
             c.clearance_m,
@@ -583,6 +589,11 @@ fn resolve(src: &Source, f: ScenarioFile, unbuilt: Unbuilt) -> Result<Plan, Benc
             }
         }
     }
+    let optimal = f
+        .optimal
+        .as_ref()
+        .map(|o| optimal_spec(src, o))
+        .transpose()?;
     Ok(Plan {
         name,
         description: f.description.clone().unwrap_or_default(),
@@ -593,7 +604,49 @@ fn resolve(src: &Source, f: ScenarioFile, unbuilt: Unbuilt) -> Result<Plan, Benc
         common,
         trials,
         skipped,
+        optimal,
     })
+}
+
+/// Check the `[optimal]` table.
+fn optimal_spec(
+    src: &Source,
+    o: &toml::Spanned<crate::scenario::OptimalEntry>,
+) -> Result<crate::competitive::OptimalSpec, BenchError> {
+    let e = o.get_ref();
+    let mut spec = crate::competitive::OptimalSpec::default();
+    if let Some(v) = &e.cell_size {
+        let n = nonneg(src, v, "optimal.cell_size", 1)?;
+        if n > 64 {
+            return Err(src.error(
+                span_of(v),
+                "optimal.cell_size",
+                format!("expected a coarsening factor in 1..=64, found {n}"),
+            ));
+        }
+        spec.cell_size = n as usize;
+    }
+    if let Some(v) = &e.min_cluster {
+        spec.min_cluster = Some(nonneg(src, v, "optimal.min_cluster", 1)? as usize);
+    }
+    if let Some(v) = &e.weight {
+        let w = *v.get_ref();
+        if !(w.is_finite() && w >= 1.0) {
+            return Err(src.error(
+                span_of(v),
+                "optimal.weight",
+                format!("expected a number >= 1, found {w}"),
+            ));
+        }
+        spec.weight = w;
+    }
+    if let Some(v) = &e.max_nodes {
+        spec.max_nodes = nonneg(src, v, "optimal.max_nodes", 1)?;
+    }
+    if let Some(v) = &e.memory_mb {
+        spec.memory_mb = nonneg(src, v, "optimal.memory_mb", 1)? as usize;
+    }
+    Ok(spec)
 }
 
 /// Load or generate the environments of `[[env]]` number `i`.

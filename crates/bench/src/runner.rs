@@ -135,6 +135,7 @@ pub fn run(plan: &Plan, db: &Path, opts: &RunOptions) -> Result<RunSummary, Benc
     } else {
         ProgressBar::hidden()
     };
+    let optimal_cache = crate::competitive::Cache::new(store.optimal_paths()?);
     let store = Mutex::new(store);
     let failed = Mutex::new(Vec::new());
     let fatal: Mutex<Option<BenchError>> = Mutex::new(None);
@@ -151,21 +152,26 @@ pub fn run(plan: &Plan, db: &Path, opts: &RunOptions) -> Result<RunSummary, Benc
             let wall_s = t0.elapsed().as_secs_f64();
             let message = match outcome {
                 Ok(Ok(result)) => {
-                    let r = row(plan, t, &result, wall_s);
-                    let inserted = store
-                        .lock()
-                        .map_err(|e| BenchError::Other(e.to_string()))
-                        .and_then(|s| s.insert(&r));
-                    match inserted {
-                        Ok(_) => {
-                            ran.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-                            None
-                        }
-                        Err(e) => {
-                            if let Ok(mut f) = fatal.lock() {
-                                f.get_or_insert(e);
+                    let mut r = row(plan, t, &result, wall_s);
+                    match with_optimal(plan, t, &result, &optimal_cache, &store, &mut r) {
+                        Err(e) => Some(e.to_string()),
+                        Ok(()) => {
+                            let inserted = store
+                                .lock()
+                                .map_err(|e| BenchError::Other(e.to_string()))
+                                .and_then(|s| s.insert(&r));
+                            match inserted {
+                                Ok(_) => {
+                                    ran.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                                    None
+                                }
+                                Err(e) => {
+                                    if let Ok(mut f) = fatal.lock() {
+                                        f.get_or_insert(e);
+                                    }
+                                    None
+                                }
                             }
-                            None
                         }
                     }
                 }
@@ -202,6 +208,46 @@ pub fn run(plan: &Plan, db: &Path, opts: &RunOptions) -> Result<RunSummary, Benc
     summary.ran = ran.into_inner();
     summary.wall_s = started.elapsed().as_secs_f64();
     Ok(summary)
+}
+
+/// Fill the optimal-path columns of `r` (studies with `[optimal]`, single robots with a 360°
+/// sensor): the path from the trial's start is taken from `cache` or solved and stored.
+fn with_optimal(
+    plan: &Plan,
+    t: &Trial,
+    result: &RunResult,
+    cache: &crate::competitive::Cache,
+    store: &Mutex<Store>,
+    r: &mut TrialRow,
+) -> Result<(), BenchError> {
+    let Some(spec) = &plan.optimal else {
+        return Ok(());
+    };
+    let v = &plan.variants[t.variant];
+    let (Some(&start), true) = (
+        result.starts.first(),
+        crate::competitive::OptimalSpec::applies(&v.sensor, v.robots),
+    ) else {
+        return Ok(());
+    };
+    let env = &plan.envs[t.env];
+    let goal = plan.common.coverage_goal.unwrap_or(1.0);
+    let key = crate::competitive::key(&env.name, &v.sensor, start, goal, spec);
+    let (path, solved) = cache.get_or_solve(&key, || {
+        crate::competitive::solve_path(&env.map, start, &v.sensor, goal, spec)
+    });
+    let path = path.map_err(|e| BenchError::Other(format!("{}: {e}", t.key)))?;
+    if solved {
+        store
+            .lock()
+            .map_err(|e| BenchError::Other(e.to_string()))?
+            .put_optimal(&key, &path)?;
+    }
+    r.optimal_m = path.length_m;
+    r.optimal_lower_m = Some(path.lower_m);
+    r.optimal_proven = Some(path.optimal);
+    r.ratio = path.ratio(r.total_path);
+    Ok(())
 }
 
 /// The ground truth of `env` as a PNG picture.
@@ -273,5 +319,9 @@ pub fn row(plan: &Plan, t: &Trial, result: &RunResult, wall_s: f64) -> TrialRow 
             .unwrap_or_default(),
         version: VERSION.to_string(),
         wall_s,
+        optimal_m: None,
+        optimal_lower_m: None,
+        optimal_proven: None,
+        ratio: None,
     }
 }

@@ -27,6 +27,13 @@
 //!
 //! [[env]]
 //! map = "maps/lab.yaml"         # relative to the scenario file
+//!
+//! [optimal]                     # optional: optimal offline paths and competitive ratios
+//! cell_size = 1                 # coarsening factor
+//! min_cluster = 1               # cluster representatives only (omit: every boundary cell)
+//! weight = 1.0                  # weighted A* (1 = optimal)
+//! max_nodes = 2000000           # expansion budget (never wall time: results stay exact)
+//! memory_mb = 1024
 //! ```
 //!
 //! Unknown keys are rejected by serde (`deny_unknown_fields`) and toml reports the line and
@@ -84,6 +91,24 @@ pub struct ScenarioFile {
     pub belief: Option<Spanned<String>>,
     /// Sensing mode: continuous or on-arrival (default: each strategy's).
     pub sensing: Option<Spanned<String>>,
+    /// Give single-robot trials the optimal offline path and their competitive ratio.
+    pub optimal: Option<Spanned<OptimalEntry>>,
+}
+
+/// The `[optimal]` table: settings of the optimal offline search (Quattrini Li et al. 2012).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct OptimalEntry {
+    /// Coarsening factor of the map (the paper's cell sizes 1, 2, 4; default 1).
+    pub cell_size: Option<Spanned<i64>>,
+    /// Search cluster representatives only, dropping clusters smaller than this.
+    pub min_cluster: Option<Spanned<i64>>,
+    /// Weight of weighted A* (default 1: optimal).
+    pub weight: Option<Spanned<f64>>,
+    /// Expansion budget (default 2,000,000).
+    pub max_nodes: Option<Spanned<i64>>,
+    /// Memory budget of one search in MiB (default 1024).
+    pub memory_mb: Option<Spanned<i64>>,
 }
 
 /// One `[[env]]` table: a built-in kind or a map file.

@@ -16,7 +16,7 @@ use serde::Serialize;
 use crate::error::BenchError;
 
 /// Version of the table layout; databases of another version are refused.
-pub const SCHEMA_VERSION: &str = "1";
+pub const SCHEMA_VERSION: &str = "2";
 
 /// One finished trial, as stored (and as exported to CSV, column for column).
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -93,12 +93,22 @@ pub struct TrialRow {
     pub version: String,
     /// Wall-clock seconds of the trial (the only column that differs between equal runs).
     pub wall_s: f64,
+    /// Best offline exploration path found from the same start, metres (studies with
+    /// `[optimal]`; see [`crate::competitive`]).
+    pub optimal_m: Option<f64>,
+    /// Proven lower bound on the optimal offline path, metres.
+    pub optimal_lower_m: Option<f64>,
+    /// Whether `optimal_m` is proven optimal.
+    pub optimal_proven: Option<bool>,
+    /// Competitive ratio: total path over `optimal_m`.
+    pub ratio: Option<f64>,
 }
 
 const COLUMNS: &str = "key, scenario, env, env_kind, env_seed, map_file, resolution, width, height, \
 strategy, preset, s_max, sensor, belief, sensing, robots, start_variant, trial, seed, starts, \
 clearance, speed, coverage_goal, max_moves, path_lengths, max_path, total_path, time_s, coverage, \
-decisions, moves, reason, reachable_cells, coverage_curve, version, wall_s";
+decisions, moves, reason, reachable_cells, coverage_curve, version, wall_s, optimal_m, \
+optimal_lower_m, optimal_proven, ratio";
 
 const CREATE: &str = "
 CREATE TABLE IF NOT EXISTS meta (key TEXT PRIMARY KEY, value TEXT NOT NULL);
@@ -115,8 +125,11 @@ CREATE TABLE IF NOT EXISTS trials (
     total_path REAL NOT NULL, time_s REAL NOT NULL, coverage REAL NOT NULL,
     decisions INTEGER NOT NULL, moves INTEGER NOT NULL, reason TEXT NOT NULL,
     reachable_cells INTEGER NOT NULL, coverage_curve TEXT NOT NULL, version TEXT NOT NULL,
-    wall_s REAL NOT NULL
-);";
+    wall_s REAL NOT NULL, optimal_m REAL, optimal_lower_m REAL, optimal_proven INTEGER,
+    ratio REAL
+);
+CREATE TABLE IF NOT EXISTS optimal (key TEXT PRIMARY KEY, length_m REAL, lower_m REAL NOT NULL,
+    proven INTEGER NOT NULL, expanded INTEGER NOT NULL, wall_s REAL NOT NULL);";
 
 /// A picture of one environment of the study, kept in the database for reports.
 #[derive(Clone, Debug, PartialEq)]
@@ -245,7 +258,7 @@ impl Store {
         let mut st = self
             .conn
             .prepare_cached(&format!(
-                "INSERT OR IGNORE INTO trials ({COLUMNS}) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14, ?15, ?16, ?17, ?18, ?19, ?20, ?21, ?22, ?23, ?24, ?25, ?26, ?27, ?28, ?29, ?30, ?31, ?32, ?33, ?34, ?35, ?36)"
+                "INSERT OR IGNORE INTO trials ({COLUMNS}) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14, ?15, ?16, ?17, ?18, ?19, ?20, ?21, ?22, ?23, ?24, ?25, ?26, ?27, ?28, ?29, ?30, ?31, ?32, ?33, ?34, ?35, ?36, ?37, ?38, ?39, ?40)"
             ))
             .map_err(BenchError::sql(&self.path))?;
         st.execute(params![
@@ -285,6 +298,10 @@ impl Store {
             r.coverage_curve,
             r.version,
             r.wall_s,
+            r.optimal_m,
+            r.optimal_lower_m,
+            r.optimal_proven,
+            r.ratio,
         ])
         .map(|n| n == 1)
         .map_err(BenchError::sql(&self.path))
@@ -299,6 +316,50 @@ impl Store {
             )
             .map(|_| ())
             .map_err(BenchError::sql(&self.path))
+    }
+
+    /// Store the optimal path of `key` (see [`crate::competitive::key`]), committed at once.
+    pub fn put_optimal(
+        &self,
+        key: &str,
+        p: &crate::competitive::OptimalPath,
+    ) -> Result<(), BenchError> {
+        self.conn
+            .execute(
+                "INSERT OR IGNORE INTO optimal (key, length_m, lower_m, proven, expanded, wall_s) VALUES (?1, ?2, ?3, ?4, ?5, ?6)",
+                params![key, p.length_m, p.lower_m, p.optimal, p.expanded as i64, p.wall_s],
+            )
+            .map(|_| ())
+            .map_err(BenchError::sql(&self.path))
+    }
+
+    /// Every stored optimal path, by key.
+    pub fn optimal_paths(
+        &self,
+    ) -> Result<Vec<(String, crate::competitive::OptimalPath)>, BenchError> {
+        let mut st = self
+            .conn
+            .prepare(
+                "SELECT key, length_m, lower_m, proven, expanded, wall_s FROM optimal ORDER BY key",
+            )
+            .map_err(BenchError::sql(&self.path))?;
+        let rows = st
+            .query_map([], |r| {
+                Ok((
+                    r.get::<_, String>(0)?,
+                    crate::competitive::OptimalPath {
+                        length_m: r.get(1)?,
+                        lower_m: r.get(2)?,
+                        optimal: r.get(3)?,
+                        expanded: r.get::<_, i64>(4)? as u64,
+                        wall_s: r.get(5)?,
+                    },
+                ))
+            })
+            .map_err(BenchError::sql(&self.path))?
+            .collect::<Result<Vec<_>, _>>()
+            .map_err(BenchError::sql(&self.path))?;
+        Ok(rows)
     }
 
     /// The stored environment pictures, ordered by name.
@@ -368,6 +429,10 @@ impl Store {
                     coverage_curve: r.get(33)?,
                     version: r.get(34)?,
                     wall_s: r.get(35)?,
+                    optimal_m: r.get(36)?,
+                    optimal_lower_m: r.get(37)?,
+                    optimal_proven: r.get(38)?,
+                    ratio: r.get(39)?,
                 })
             })
             .map_err(BenchError::sql(&self.path))?
@@ -395,9 +460,13 @@ impl Store {
                 .map_err(|e| BenchError::Other(format!("merging {}: {e}", input.display())))?;
             let rows = other.rows()?;
             let envs = other.envs()?;
+            let paths = other.optimal_paths()?;
             drop(other);
             for e in &envs {
                 self.put_env(e)?;
+            }
+            for (k, p) in &paths {
+                self.put_optimal(k, p)?;
             }
             let tx = self
                 .conn
