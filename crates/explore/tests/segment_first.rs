@@ -65,30 +65,28 @@ fn wing() -> Grid<Occ> {
     g
 }
 
-fn decide(known: &Grid<Occ>, robot: (usize, usize), max_neighbours: Option<u32>) -> Goal {
+/// The goal `assigner` gives a robot standing at `robot` (all frontier cells as candidates).
+fn goal_of(known: &Grid<Occ>, robot: (usize, usize), assigner: AssignerKind) -> Goal {
     let w = known.width();
     let mut f = Fixture::new(known.clone(), vec![(robot.1 * w + robot.0) as u32], 5.0, 1);
     let mut cands = CandidateSet::new(known.len());
     let mut out = vec![None];
     let mut ctx = f.ctx();
     CandidateKind::AllFrontiers.generate(&mut ctx, &mut cands);
-    AssignerKind::SegmentFirst {
-        rule: Rule::Holz,
-        max_neighbours,
-    }
-    .assign(&mut ctx, &cands, &mut out);
+    assigner.assign(&mut ctx, &cands, &mut out);
     out[0].expect("a goal")
 }
 
+fn decide(known: &Grid<Occ>, robot: (usize, usize), max_neighbours: Option<u32>) -> Goal {
+    let seg = AssignerKind::SegmentFirst {
+        rule: Rule::Holz,
+        max_neighbours,
+    };
+    goal_of(known, robot, seg)
+}
+
 fn nearest(known: &Grid<Occ>, robot: (usize, usize)) -> Goal {
-    let w = known.width();
-    let mut f = Fixture::new(known.clone(), vec![(robot.1 * w + robot.0) as u32], 5.0, 1);
-    let mut cands = CandidateSet::new(known.len());
-    let mut out = vec![None];
-    let mut ctx = f.ctx();
-    CandidateKind::AllFrontiers.generate(&mut ctx, &mut cands);
-    AssignerKind::Nearest.assign(&mut ctx, &cands, &mut out);
-    out[0].expect("a goal")
+    goal_of(known, robot, AssignerKind::Nearest)
 }
 
 fn xy(known: &Grid<Occ>, g: Goal) -> (usize, usize) {
