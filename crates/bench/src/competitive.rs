@@ -9,6 +9,11 @@
 //! ratio is stored against it (a lower bound on the true ratio) together with the proven
 //! lower bound (from which an upper bound on the ratio follows).
 //!
+//! With `min_cluster` (the paper's clustering speed-up) the actions are cluster
+//! representatives, and "optimal" means optimal for that action set: a valid exploration
+//! path no shorter than the optimum over all boundary cells, so the ratio is then a lower
+//! bound on the ratio against the unrestricted optimum.
+//!
 //! Only node and memory budgets stop the search here, never wall time, so that results are
 //! the same on every machine and at every thread count. Optimal paths are computed once per
 //! (environment, sensor, start, settings) and kept in the `optimal` table of the store, so

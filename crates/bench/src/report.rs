@@ -12,6 +12,7 @@
 //! start variants are shared, else compared unpaired (Mann–Whitney U). Per (environment,
 //! sensor) with several robot counts, mean time vs robot count is drawn (the multi-robot
 //! study's Figures 2–3). The summary at the end counts +/=/- over all settings (Table I).
+//! Studies with optimal offline paths also get each strategy's competitive ratio.
 
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
@@ -163,6 +164,14 @@ fn build(
             let id = slug(&format!("{e}-{sensor}-m{robots}"));
             blocks.push(Block::Heading(3, name.clone()));
             blocks.push(summary_table(by_strategy));
+            if let Some((header, body)) = crate::competitive::ratio_table(by_strategy) {
+                blocks.push(Block::Para(
+                    "Competitive ratio (Quattrini Li et al. 2012): path length over the optimal \
+                     offline path from the same start with the same sensor."
+                        .into(),
+                ));
+                blocks.push(Block::Table(header, body));
+            }
             let labels: Vec<String> = by_strategy.keys().cloned().collect();
             let data: Vec<Vec<f64>> = by_strategy
                 .values()

@@ -127,6 +127,14 @@ fn single_robot_trials_carry_the_optimal_path_and_their_ratio() {
         .map(|r| (r.strategy.clone(), vec![r]))
         .collect();
     assert!(bench::competitive::ratio_table(&none).is_none());
+    // the report shows it
+    let out = dir.path().join("report");
+    bench::report::write(&db, &out, &bench::report::ReportOptions::default()).unwrap();
+    let md = std::fs::read_to_string(out.join("report.md")).unwrap();
+    assert!(
+        md.contains("Competitive ratio") && md.contains("ratio mean ± sd"),
+        "{md}"
+    );
     // and the results do not depend on the thread count
     let db1 = dir.path().join("b.sqlite");
     run(&p, &db1, 1);
