@@ -9,6 +9,17 @@
 //! then by the lower candidate index. Utilities are compared as `ln I − λL`, which orders
 //! them the same way without underflowing for long paths.
 //!
+//! Lazy gains (exact): when the generator left gains unevaluated ([`State::is_lazy`]), a
+//! robot visits the candidates in order of path cost (then index) and evaluates a gain
+//! only while `ln I_max − λL` could still beat the best `ln I − λL` found; the first
+//! candidate it cannot beat ends the visit, since every later one is no nearer. `I_max` is
+//! an upper bound on any scan's gain: each touched cell drops at most 1 bit (binary
+//! entropy ≤ 1), and a scan of range R cells touches only cells whose centres lie within
+//! R + √2/2 of the origin's centre; their unit squares are disjoint and lie in the disc of
+//! radius R + √2, so there are at most π(R + √2)² of them (we use R + 2). The visit order
+//! and the tie rule (greater utility, then lower cost, then lower index) make the choice the
+//! one the full evaluation makes.
+//!
 //! A team is not coordinated (the paper is single-robot): every deciding robot takes its
 //! own best, and robots may choose the same pose.
 //!
@@ -34,6 +45,19 @@ pub fn assign(
     let mut st = std::mem::take(&mut ctx.memory.dt);
     if !st.aligned_with(candidates) {
         evaluate_all(ctx, candidates, &mut st);
+    }
+    if st.is_lazy() {
+        for r in (0..m).filter(|&r| ctx.deciding[r]) {
+            ctx.planner.full(r, ctx.robots[r], ctx.known, ctx.upkeep);
+        }
+        let bound = (std::f64::consts::PI * (ctx.sensor_range_cells.max(0.0) + 2.0).powi(2)).ln();
+        for (r, slot) in out.iter_mut().enumerate().take(m) {
+            if ctx.deciding[r] {
+                *slot = best_lazy(ctx, &mut st, r, lambda * ctx.resolution, bound);
+            }
+        }
+        ctx.memory.dt = st;
+        return;
     }
     for (r, slot) in out.iter_mut().enumerate().take(m) {
         if !ctx.deciding[r] {
@@ -84,6 +108,55 @@ fn best(
     best.map(|(_, g)| g)
 }
 
+/// Robot `r`'s best candidate when some gains are not evaluated (module doc): candidates in
+/// order of cost, evaluated while `ln_bound − λL` can still beat the best; gain 0 is skipped.
+fn best_lazy(
+    ctx: &DecisionCtx<'_>,
+    st: &mut State,
+    r: usize,
+    lambda_per_cell: f64,
+    ln_bound: f64,
+) -> Option<Goal> {
+    let planner = &*ctx.planner;
+    let reach = planner.map(r);
+    let mut order = std::mem::take(&mut st.order);
+    order.clear();
+    order.extend(
+        st.cells
+            .iter()
+            .enumerate()
+            .filter_map(|(k, &c)| reach.cost(c as usize).map(|l| (l, k as u32))),
+    );
+    order.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+    let mut best: Option<(f64, Goal)> = None;
+    for &(l, k) in &order {
+        if let Some((s, _)) = best
+            && ln_bound - lambda_per_cell * l < s
+        {
+            break;
+        }
+        let k = k as usize;
+        let by = planner.map(st.reachers[k] as usize);
+        let gain = st.gain(k, ctx.sensor, ctx.belief, by);
+        if gain <= 0.0 {
+            continue;
+        }
+        let score = gain.ln() - lambda_per_cell * l;
+        // visited by (cost, index): an equal score never replaces the best
+        if best.is_none_or(|(s, _)| score > s) {
+            best = Some((
+                score,
+                Goal {
+                    cell: st.cells[k],
+                    cost: l,
+                },
+            ));
+        }
+    }
+    st.order = order;
+    best.map(|(_, g)| g)
+}
+
 /// Evaluate the gain of every candidate into `st` (for candidates the decision-theoretic
 /// generator did not make), with the arrival heading of the first deciding robot that
 /// reaches each.
@@ -91,6 +164,7 @@ fn evaluate_all(ctx: &mut DecisionCtx<'_>, candidates: &CandidateSet, st: &mut S
     st.gains.clear();
     st.cells.clear();
     st.headings.clear();
+    st.reachers.clear();
     let m = ctx.robots.len();
     for r in (0..m).filter(|&r| ctx.deciding[r]) {
         ctx.planner.full(r, ctx.robots[r], ctx.known, ctx.upkeep);
@@ -100,13 +174,9 @@ fn evaluate_all(ctx: &mut DecisionCtx<'_>, candidates: &CandidateSet, st: &mut S
         let reacher = (0..m).find(|&r| ctx.deciding[r] && planner.map(r).is_settled(c as usize));
         match reacher {
             Some(r) => {
-                st.record(ctx.sensor, ctx.belief, planner.map(r), c);
+                st.record(ctx.sensor, ctx.belief, planner.map(r), r, c);
             }
-            None => {
-                st.cells.push(c);
-                st.gains.push(0.0);
-                st.headings.push(0.0);
-            }
+            None => st.push(c, 0.0, 0.0, 0),
         }
     }
 }

@@ -12,6 +12,14 @@
 //! deterministic. `I(p)` is stored in [`State::gains`], aligned with the candidate set's
 //! order, for the utility assigner.
 //!
+//! Lazy gains (speed, same decisions): the samples are evaluated in draw order only until
+//! the first one with a positive gain; the others are stored with gain `NaN` ("not yet
+//! evaluated") and the utility assigner evaluates them in order of path cost only while one
+//! could still beat the best utility found (see [`crate::assign::utility`]). A sample that
+//! turns out to have gain 0 is then skipped, as if it had not been kept. The choice is the
+//! one the full evaluation would make; the candidate set may include drawn samples whose gain
+//! is 0 but was never evaluated.
+//!
 //! Heading: a lidar's gain depends on where it looks. We use the heading the robot will
 //! have on arrival — the direction of the last step of its planned path to the sample, from
 //! the same reachability map the loop takes the path from (for a team: the lowest-index
@@ -36,12 +44,16 @@ use crate::plan::Reachability;
 
 /// Samples, their gains and the buffers kept across decisions.
 pub struct State {
-    /// `I(p)` in bits of each candidate, aligned with [`cells`](Self::cells).
+    /// `I(p)` in bits of each candidate, aligned with [`cells`](Self::cells); `NaN` for a
+    /// sample not evaluated yet ([`State::gain`] evaluates it).
     pub gains: Vec<f64>,
     /// The candidates the gains belong to, in the candidate set's order.
     pub cells: Vec<u32>,
-    /// The heading (radians, grid coordinates) each gain was evaluated with.
+    /// The heading (radians, grid coordinates) each gain was evaluated with (`NaN` while
+    /// the gain is not evaluated).
     pub headings: Vec<f64>,
+    /// The robot whose reachability map gives each candidate's arrival heading.
+    pub reachers: Vec<u32>,
     /// The simulated update of the gain ([`InverseModel::IDEAL`] unless the loop sets the
     /// belief's own model, see [`InverseModel::for_belief`]).
     pub model: InverseModel,
@@ -50,6 +62,8 @@ pub struct State {
     /// Buffers of the gain evaluation (shared with the utility assigner).
     pub scratch: GainScratch,
     eligible: Vec<u32>,
+    /// Visit order of the lazy utility assigner: (cost, candidate index).
+    pub(crate) order: Vec<(f64, u32)>,
     near: Grid<f64>,
     edt: EdtScratch,
     path: Vec<u32>,
@@ -61,10 +75,12 @@ impl Default for State {
             gains: Vec::new(),
             cells: Vec::new(),
             headings: Vec::new(),
+            reachers: Vec::new(),
             model: InverseModel::IDEAL,
             fell_back: false,
             scratch: GainScratch::new(),
             eligible: Vec::new(),
+            order: Vec::new(),
             near: Grid::new(0, 0, f64::INFINITY),
             edt: EdtScratch::new(),
             path: Vec::new(),
@@ -78,7 +94,30 @@ impl State {
         self.gains.clear();
         self.cells.clear();
         self.headings.clear();
+        self.reachers.clear();
         self.fell_back = false;
+    }
+
+    /// Whether some candidate's gain is not evaluated yet.
+    pub fn is_lazy(&self) -> bool {
+        self.gains.iter().any(|g| g.is_nan())
+    }
+
+    /// The gain of candidate `k`, evaluating it (on arrival along `reach`, the map of robot
+    /// [`reachers`](Self::reachers)`[k]`) if it is not evaluated yet.
+    pub fn gain(
+        &mut self,
+        k: usize,
+        sensor: &dyn Sensor,
+        belief: &dyn Belief,
+        reach: &Reachability,
+    ) -> f64 {
+        if self.gains[k].is_nan() {
+            let (gain, heading) = self.evaluate(sensor, belief, reach, self.cells[k]);
+            self.gains[k] = gain;
+            self.headings[k] = heading;
+        }
+        self.gains[k]
     }
 
     /// Whether the stored gains belong to exactly these candidates.
@@ -93,13 +132,20 @@ impl State {
         sensor: &dyn Sensor,
         belief: &dyn Belief,
         reach: &Reachability,
+        robot: usize,
         cell: u32,
     ) -> f64 {
         let (gain, heading) = self.evaluate(sensor, belief, reach, cell);
+        self.push(cell, gain, heading, robot);
+        gain
+    }
+
+    /// Append a candidate.
+    pub(crate) fn push(&mut self, cell: u32, gain: f64, heading: f64, robot: usize) {
         self.cells.push(cell);
         self.gains.push(gain);
         self.headings.push(heading);
-        gain
+        self.reachers.push(robot as u32);
     }
 
     /// `(I(p), heading)` of `cell` on arrival along `reach`'s path.
@@ -218,26 +264,34 @@ fn fill(ctx: &mut DecisionCtx<'_>, n: usize, out: &mut CandidateSet, st: &mut St
         }
     }
 
-    // Partial Fisher–Yates: n draws without replacement; those with a gain are kept.
+    // Partial Fisher–Yates: n draws without replacement. Gains are evaluated in draw order
+    // until the first positive one (samples of gain 0 before it are dropped); the rest wait
+    // for the utility assigner (module doc).
     let len = st.eligible.len();
-    let mut kept = 0;
-    for k in 0..len.min(n) {
+    let draws = len.min(n);
+    for k in 0..draws {
         let j = ctx.rng.random_range(k..len);
         st.eligible.swap(k, j);
+    }
+    let mut found = false;
+    for k in 0..draws {
         let c = st.eligible[k];
         let Some(r) = reacher(c as usize) else {
             continue;
         };
+        if found {
+            out.insert(c);
+            st.push(c, f64::NAN, f64::NAN, r);
+            continue;
+        }
         let (gain, heading) = st.evaluate(ctx.sensor, ctx.belief, planner.map(r), c);
         if gain > 0.0 {
             out.insert(c);
-            st.cells.push(c);
-            st.gains.push(gain);
-            st.headings.push(heading);
-            kept += 1;
+            st.push(c, gain, heading, r);
+            found = true;
         }
     }
-    if kept > 0 {
+    if found {
         return;
     }
     // Fallback: the reachable, unlisted frontier cells themselves.
@@ -248,7 +302,7 @@ fn fill(ctx: &mut DecisionCtx<'_>, n: usize, out: &mut CandidateSet, st: &mut St
         }
         if let Some(r) = reacher(c as usize) {
             out.insert(c);
-            st.record(ctx.sensor, ctx.belief, planner.map(r), c);
+            st.record(ctx.sensor, ctx.belief, planner.map(r), r, c);
         }
     }
 }
