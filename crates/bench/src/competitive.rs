@@ -74,7 +74,11 @@ impl OptimalSpec {
 
     /// Whether a trial with this sensor and team size gets an optimal path.
     pub fn applies(sensor: &SensorSpec, robots: usize) -> bool {
-        robots == 1 && !matches!(sensor, SensorSpec::Lidar { .. })
+        robots == 1
+            && matches!(
+                sensor,
+                SensorSpec::Los { .. } | SensorSpec::Footprint { .. }
+            )
     }
 }
 

@@ -13,6 +13,7 @@ pub mod competitive;
 pub mod error;
 pub mod plan;
 pub mod plots;
+pub mod replays;
 pub mod report;
 pub mod runner;
 pub mod scenario;

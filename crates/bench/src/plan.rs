@@ -174,7 +174,12 @@ impl Plan {
         let env = &self.envs[t.env];
         let mut cfg = RunConfig::new(v.strategy.clone());
         cfg.sensor = v.sensor;
-        cfg.belief = self.common.belief;
+        // Sonar adds graded evidence: it always builds Yamauchi's evidence grid.
+        cfg.belief = if v.sensor.sonar_mode().is_some() {
+            sense::BeliefKind::Evidence
+        } else {
+            self.common.belief
+        };
         cfg.sensing = self.common.sensing;
         cfg.robots = v.robots;
         cfg.clearance_m = self.common.clearance_m;

@@ -1,6 +1,8 @@
 //! `frontier bench report`: tables, tests and charts of a results database, written as
 //! `report.md` (with `plots/*.svg` and `envs/*.png` beside it) and a self-contained
-//! `report.html` (charts inline as SVG, pictures as data URIs; no network needed).
+//! `report.html` (charts inline as SVG, pictures as data URIs; no network needed). Each
+//! environment picture links to `replays/<env>.html`, the replay page of one of its runs
+//! (see [`crate::replays`]).
 //!
 //! A *setting* is (environment, sensor, robot count). Per setting and strategy the report
 //! gives n, the share of complete runs, L (the longest path of one robot — the path length
@@ -44,7 +46,8 @@ enum Block {
     Para(String),
     Table(Vec<String>, Vec<Vec<String>>),
     Svg(String, String),
-    Png(String, Vec<u8>),
+    /// Environment picture: name, PNG, and the replay page it links to, if any.
+    Png(String, Vec<u8>, Option<String>),
 }
 
 /// (environment, sensor, robots).
@@ -68,17 +71,38 @@ pub fn write(
     let scenario = store.meta("scenario")?.unwrap_or_default();
     let fingerprint = store.meta("fingerprint")?.unwrap_or_default();
     drop(store);
-    let blocks = build(&scenario, &fingerprint, &rows, &envs, opts)?;
+    let mut blocks = build(&scenario, &fingerprint, &rows, &envs, opts)?;
     std::fs::create_dir_all(out.join("plots")).map_err(BenchError::io(out))?;
     std::fs::create_dir_all(out.join("envs")).map_err(BenchError::io(out))?;
     let mut files = Vec::new();
+    // One replay page per environment picture, re-run from a stored trial.
+    for b in &mut blocks {
+        let Block::Png(name, _, link) = b else {
+            continue;
+        };
+        let Some(pic) = envs.iter().find(|e| slug(&e.name) == *name) else {
+            continue;
+        };
+        let Some(row) = crate::replays::representative(&rows, &pic.name) else {
+            continue;
+        };
+        let page = crate::replays::replay_page(pic, row)?;
+        std::fs::create_dir_all(out.join("replays")).map_err(BenchError::io(out))?;
+        let rel = format!("replays/{name}.html");
+        let path = out.join(&rel);
+        std::fs::write(&path, page).map_err(BenchError::io(&path))?;
+        files.push(path);
+        *link = Some(rel);
+    }
     for b in &blocks {
         let (path, bytes) = match b {
             Block::Svg(name, svg) => (
                 out.join("plots").join(format!("{name}.svg")),
                 svg.as_bytes(),
             ),
-            Block::Png(name, png) => (out.join("envs").join(format!("{name}.png")), png.as_slice()),
+            Block::Png(name, png, _) => {
+                (out.join("envs").join(format!("{name}.png")), png.as_slice())
+            }
             _ => continue,
         };
         std::fs::write(&path, bytes).map_err(BenchError::io(&path))?;
@@ -157,7 +181,7 @@ fn build(
                 "{} x {} cells at {} m per cell.",
                 p.width, p.height, p.resolution
             )));
-            blocks.push(Block::Png(slug(env), p.png.clone()));
+            blocks.push(Block::Png(slug(env), p.png.clone(), None));
         }
         for ((e, sensor, robots), by_strategy) in settings.iter().filter(|(k, _)| &k.0 == env) {
             let name = format!("{e} · {sensor} · {robots} robot(s)");
@@ -481,8 +505,14 @@ fn markdown(blocks: &[Block]) -> String {
             Block::Svg(name, _) => {
                 let _ = writeln!(s, "![{name}](plots/{name}.svg)\n");
             }
-            Block::Png(name, _) => {
+            Block::Png(name, _, None) => {
                 let _ = writeln!(s, "![{name}](envs/{name}.png)\n");
+            }
+            Block::Png(name, _, Some(link)) => {
+                let _ = writeln!(
+                    s,
+                    "[![{name}](envs/{name}.png)]({link}) (click the picture for a replay of one run)\n"
+                );
             }
         }
     }
@@ -557,13 +587,26 @@ td:first-child,th:first-child{{text-align:left}}th{{background:#eee}}img.env{{im
                 let body = svg.find("<svg").map_or(svg.as_str(), |i| &svg[i..]);
                 let _ = writeln!(s, "<div>{body}</div>");
             }
-            Block::Png(name, png) => {
-                let _ = writeln!(
-                    s,
+            Block::Png(name, png, link) => {
+                let img = format!(
                     "<img class=\"env\" alt=\"{}\" src=\"data:image/png;base64,{}\">",
                     escape(name),
                     base64(png)
                 );
+                match link {
+                    Some(l) => {
+                        let _ = writeln!(
+                            s,
+                            "<a href=\"{}\" title=\"replay of one run\">{img}</a> \
+                             <p><a href=\"{}\">replay of one run</a></p>",
+                            escape(l),
+                            escape(l)
+                        );
+                    }
+                    None => {
+                        let _ = writeln!(s, "{img}");
+                    }
+                }
             }
         }
     }

@@ -221,9 +221,9 @@ fn bad_scenarios_name_file_line_and_key() {
             "unknown strategy 'nope'",
         ),
         (
-            ("sensors = [\"los:r=3c\"]", "sensors = [\"laser:r=3\"]"),
+            ("sensors = [\"los:r=3c\"]", "sensors = [\"radar:r=3\"]"),
             "tiny.toml:5: key `sensors[0]`",
-            "laser",
+            "radar",
         ),
         (
             ("robots = [1, 2]", "robots = [1, 0]"),
@@ -316,5 +316,49 @@ fn suites_resolve() {
         }
         let p = bench::suites::plan(name).unwrap();
         assert!(!p.trials.is_empty(), "{name}");
+    }
+}
+
+#[test]
+fn report_links_each_environment_to_a_replay_of_one_of_its_runs() {
+    let dir = tempfile::tempdir().unwrap();
+    let db = dir.path().join("a.sqlite");
+    let plan = plan();
+    bench::runner::run(&plan, &db, &opts(2)).unwrap();
+    let out = dir.path().join("report");
+    bench::report::write(&db, &out, &bench::report::ReportOptions::default()).unwrap();
+    let md = std::fs::read_to_string(out.join("report.md")).unwrap();
+    let html = std::fs::read_to_string(out.join("report.html")).unwrap();
+    let store = Store::open_raw(&db).unwrap();
+    let pictures = store.envs().unwrap();
+    let all = store.rows().unwrap();
+    assert_eq!(pictures.len(), plan.envs.len());
+    for env in &plan.envs {
+        let name = &env.name;
+        let page = out.join("replays").join(format!("{name}.html"));
+        let text = std::fs::read_to_string(&page).unwrap();
+        assert!(text.contains("<script") && !text.contains("src=\"http"));
+        assert!(
+            md.contains(&format!(
+                "[![{name}](envs/{name}.png)](replays/{name}.html)"
+            )),
+            "{md}"
+        );
+        assert!(html.contains(&format!("<a href=\"replays/{name}.html\"")));
+        // The picture gives back the ground truth, and the re-run is the stored trial.
+        let pic = pictures.iter().find(|p| &p.name == name).unwrap();
+        let truth = bench::replays::truth_from_picture(pic).unwrap();
+        assert!(truth.cells == env.map.cells, "{name}: truth from picture");
+        let row = bench::replays::representative(&all, name).unwrap();
+        assert_eq!(row.strategy, "cf");
+        assert_eq!((row.start_variant, row.trial, row.robots), (0, 0, 1));
+        let result = sim::run(&truth, &bench::replays::config_of(row).unwrap()).unwrap();
+        assert!(result.trace.is_some());
+        let stored: Vec<f64> = serde_json::from_str(&row.path_lengths).unwrap();
+        let lengths: Vec<f64> = result.path_length_m.clone();
+        assert_eq!(lengths.len(), stored.len());
+        for (a, b) in lengths.iter().zip(&stored) {
+            assert!((a - b).abs() < 1e-6, "{name}: {a} vs stored {b}");
+        }
     }
 }

@@ -4,7 +4,7 @@ use std::path::PathBuf;
 
 use anyhow::{Context, Result, bail};
 use clap::Args;
-use grid::GridMap;
+use grid::{Grid, GridMap, Occ};
 use world::{EnvKind, EnvSpec};
 
 /// Where the ground truth comes from: a built-in environment or a map file.
@@ -30,6 +30,14 @@ pub struct MapSource {
     /// Seed of the generated environment (default: --seed).
     #[arg(long)]
     pub env_seed: Option<u64>,
+    /// Furnish a generated office or hospital with tables and chairs off the laser plane
+    /// (Yamauchi): planar sensors miss them, sonar hears them, the robot's body bumps into them.
+    #[arg(long)]
+    pub clutter: bool,
+    /// Off-plane obstacles of a map: an image or map file of the same size whose occupied
+    /// cells are obstacles a planar laser misses (read like --map, with its --resolution).
+    #[arg(long)]
+    pub clutter_map: Option<PathBuf>,
 }
 
 /// A loaded or generated ground truth with the name runs report.
@@ -38,6 +46,8 @@ pub struct Truth {
     pub name: String,
     /// The map.
     pub map: GridMap,
+    /// Obstacles off the laser plane (same size as the map), if any.
+    pub clutter: Option<Grid<bool>>,
 }
 
 /// Parse "R" or "RX,RY" (metres per cell).
@@ -101,7 +111,14 @@ impl MapSource {
                 .file_stem()
                 .map(|s| s.to_string_lossy().into_owned())
                 .unwrap_or_else(|| "map".into());
-            return Ok(Truth { name, map });
+            if self.clutter {
+                bail!(
+                    "--clutter furnishes generated environments (--env); for a map file give \
+                     its off-plane obstacles with --clutter-map FILE"
+                );
+            }
+            let clutter = self.load_clutter(&map, &opts)?;
+            return Ok(Truth { name, map, clutter });
         }
         let kind: EnvKind = self
             .env
@@ -123,9 +140,53 @@ impl MapSource {
             resolution,
         };
         let env = world::generate(&spec).with_context(|| format!("generating {kind}"))?;
+        let opts = grid::io::LoadOptions {
+            resolution: Some((env.map.resolution, env.map.resolution)),
+            border: false,
+        };
+        let clutter = if self.clutter {
+            if env.rooms.is_none() {
+                bail!("--clutter: {kind} has no rooms to furnish; use office or hospital");
+            }
+            let params = world::clutter::ClutterParams::default();
+            Some(world::clutter::furnish(&env, spec.seed, &params))
+        } else {
+            self.load_clutter(&env.map, &opts)?
+        };
         Ok(Truth {
             name: env.name.clone(),
             map: env.map,
+            clutter,
         })
+    }
+
+    /// The --clutter-map layer for `map`, if given: its occupied cells, checked to be the
+    /// map's size.
+    fn load_clutter(
+        &self,
+        map: &GridMap,
+        opts: &grid::io::LoadOptions,
+    ) -> Result<Option<Grid<bool>>> {
+        let Some(path) = &self.clutter_map else {
+            return Ok(None);
+        };
+        let layer = grid::io::load_map(path, opts)?;
+        if (layer.width(), layer.height()) != (map.width(), map.height()) {
+            bail!(
+                "--clutter-map {}: expected the map's size {}x{} cells, found {}x{}",
+                path.display(),
+                map.width(),
+                map.height(),
+                layer.width(),
+                layer.height()
+            );
+        }
+        let cells = layer
+            .cells
+            .data()
+            .iter()
+            .map(|&c| c == Occ::Occupied)
+            .collect();
+        Ok(Grid::from_vec(map.width(), map.height(), cells))
     }
 }

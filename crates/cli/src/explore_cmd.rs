@@ -28,9 +28,9 @@ pub struct ExploreArgs {
     /// Sensor, e.g. los:r=5, footprint:r=3, lidar:r=8,fov=180,res=1 (metres; cells with suffix c).
     #[arg(long, default_value = "los:r=5")]
     pub sensor: String,
-    /// Belief map: known, reflection, evidence.
-    #[arg(long, default_value = "known")]
-    pub belief: String,
+    /// Belief map: known, reflection, evidence (default: known; evidence with sonar).
+    #[arg(long)]
+    pub belief: Option<String>,
     /// Sensing mode: continuous or on-arrival (default: the strategy's).
     #[arg(long)]
     pub sensing: Option<String>,
@@ -77,10 +77,11 @@ pub fn config(a: &ExploreArgs, truth: &Truth) -> Result<RunConfig> {
         .sensor
         .parse()
         .map_err(|e| anyhow::anyhow!("--sensor: {e}"))?;
-    let belief: BeliefKind = a
-        .belief
-        .parse()
-        .map_err(|e| anyhow::anyhow!("--belief: {e}"))?;
+    let belief: BeliefKind = match a.belief.as_deref() {
+        Some(b) => b.parse().map_err(|e| anyhow::anyhow!("--belief: {e}"))?,
+        None if sensor.sonar_mode().is_some() => BeliefKind::Evidence,
+        None => BeliefKind::Known,
+    };
     let sensing = a
         .sensing
         .as_deref()
@@ -109,6 +110,7 @@ pub fn config(a: &ExploreArgs, truth: &Truth) -> Result<RunConfig> {
     cfg.coverage_goal = a.goal;
     cfg.max_moves = a.max_moves;
     cfg.record_trace = a.out.is_some() || a.gif.is_some() || a.html.is_some();
+    cfg.clutter = truth.clutter.clone();
     if let Some(s) = &a.start {
         let first = parse_cell(s, "--start")?;
         if !truth.map.cells.contains(first) {

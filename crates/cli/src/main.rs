@@ -14,6 +14,7 @@ mod map_cmd;
 mod optimal_cmd;
 mod report;
 mod segment_cmd;
+mod sensors_cmd;
 
 use clap::{Parser, Subcommand};
 
@@ -44,6 +45,9 @@ enum Command {
     Segment(Box<segment_cmd::SegmentArgs>),
     /// Offline optimal exploration path (Quattrini Li et al. 2012) and competitive ratios.
     Optimal(Box<optimal_cmd::OptimalArgs>),
+    /// Compare sonar, laser and laser-limited sonar on offices furnished with clutter off
+    /// the laser plane (Yamauchi 1997): map accuracy, phantom frontiers, coverage, path.
+    Sensors(sensors_cmd::SensorsArgs),
     /// Run, merge, export and report benchmark studies (scenario files or built-in suites).
     Bench(Box<bench_cmd::BenchArgs>),
     /// List strategies, environments and sensors.
@@ -60,6 +64,7 @@ fn main() {
         Command::Segment(a) => segment_cmd::run(*a),
         Command::Optimal(a) => optimal_cmd::run(*a),
         Command::Bench(a) => bench_cmd::run(*a),
+        Command::Sensors(a) => sensors_cmd::run(a),
         Command::List => {
             list();
             Ok(())
@@ -82,5 +87,12 @@ fn list() {
     println!("  los:r=5                   360° line of sight (Quattrini Li et al.'s laser)");
     println!("  footprint:r=5             every cell within r, through walls");
     println!("  lidar:r=8,fov=180,res=1   beams over a field of view (Holz: 180°, 1°)");
+    println!("  sonar                     Yamauchi's ring of 16 sonars, 25° cones, 10 ft (r=...)");
+    println!("  laser-limited-sonar       the sonar ring, each reading capped by the planar laser");
+    println!(
+        "  laser                     planar laser, 360° at 1°, 10 ft (= lidar:r=3.048,fov=360)"
+    );
+    println!("  (sonar needs --belief evidence, the default with it; --clutter adds furniture");
+    println!("   off the laser plane to generated offices and hospitals)");
     println!("\nbelief maps (--belief): known (ternary), reflection (Holz), evidence (Yamauchi)");
 }

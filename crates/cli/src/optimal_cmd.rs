@@ -102,8 +102,11 @@ pub fn run(a: OptimalArgs) -> Result<()> {
         .sensor
         .parse()
         .map_err(|e| anyhow::anyhow!("--sensor: {e}"))?;
-    if matches!(spec, SensorSpec::Lidar { .. }) {
-        bail!("--sensor: the optimal search needs a 360° sensor: los:r=R or footprint:r=R");
+    if matches!(spec, SensorSpec::Lidar { .. } | SensorSpec::Sonar { .. }) {
+        bail!(
+            "--sensor: the optimal search needs an ideal 360° sensor: los:r=R or footprint:r=R, \
+             found {spec}"
+        );
     }
     let heuristic: HeuristicKind = a
         .heuristic

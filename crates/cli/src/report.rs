@@ -75,7 +75,23 @@ pub fn summary_json(truth: &Truth, cfg: &RunConfig, r: &RunResult, timing: bool)
             "decide": ms(r.times.decide_s),
             "total": ms(r.times.total_s),
         },
+        "map": audit_json(r),
         "coverage_curve": downsample(&r.coverage_curve, 100),
+    })
+}
+
+/// The map built against the ground truth ([`sim::MapAudit`]).
+pub fn audit_json(r: &RunResult) -> Value {
+    let a = &r.audit;
+    json!({
+        "accuracy": round(a.accuracy, 6),
+        "false_free_cells": a.false_free_cells,
+        "clutter_cells": a.clutter_cells,
+        "clutter_mapped": a.clutter_mapped,
+        "phantom_frontier_regions": a.phantom_regions,
+        "phantom_frontier_regions_per_decision": round(a.phantom_regions_mean(r.decisions), 4),
+        "phantom_frontier_regions_max": a.phantom_regions_max,
+        "phantom_goals": a.phantom_goals,
     })
 }
 
@@ -137,6 +153,26 @@ pub fn summary_text(truth: &Truth, cfg: &RunConfig, r: &RunResult) -> String {
             r.time_s
         );
     }
+    let a = &r.audit;
+    s += &format!(
+        "map: {:.2} % of the building's cells right · {} phantom free cells",
+        a.accuracy * 100.0,
+        a.false_free_cells
+    );
+    if a.clutter_cells > 0 {
+        s += &format!(
+            " · {} of {} off-plane clutter cells mapped",
+            a.clutter_mapped, a.clutter_cells
+        );
+    }
+    if a.phantom_regions > 0 {
+        s += &format!(
+            " · {:.2} phantom frontier regions per decision, {} goals on phantoms",
+            a.phantom_regions_mean(r.decisions),
+            a.phantom_goals
+        );
+    }
+    s += "\n";
     s += &format!(
         "{} decisions, {} moves · wall time {:.0} ms (sense {:.0}, frontier upkeep {:.0}, decide {:.0})\n",
         r.decisions,

@@ -222,3 +222,84 @@ fn malformed_map_file_is_a_named_error() {
     let e = err(&["map", "info", map.to_str().unwrap()]);
     assert!(e.contains("bad.map") && e.contains("line 5"), "{e}");
 }
+
+#[test]
+fn sonar_in_a_furnished_office_reports_the_map_audit() {
+    let base = [
+        "explore",
+        "--env",
+        "office",
+        "--size",
+        "12x10",
+        "--resolution",
+        "0.1",
+        "--clutter",
+        "--strategy",
+        "yamauchi",
+        "--json",
+        "--no-timing",
+    ];
+    let run = |sensor: &str| -> serde_json::Value {
+        let mut args = base.to_vec();
+        args.extend(["--sensor", sensor]);
+        serde_json::from_str(&ok(&args)).expect("json")
+    };
+    let sonar = run("laser-limited-sonar");
+    assert_eq!(
+        sonar["belief"], "evidence",
+        "sonar builds the evidence grid"
+    );
+    assert_eq!(sonar["sensor"], "laser-limited-sonar:r=3.048");
+    let laser = run("laser");
+    assert_eq!(laser["sensor"], "lidar:r=3.048,fov=360,res=1");
+    for v in [&sonar, &laser] {
+        let map = &v["map"];
+        assert!(map["clutter_cells"].as_u64().unwrap() > 0, "{map}");
+        let acc = map["accuracy"].as_f64().unwrap();
+        assert!(acc > 0.0 && acc <= 1.0, "{map}");
+    }
+    // The laser misses the tables; the sonar hears them.
+    assert!(
+        sonar["map"]["clutter_mapped"].as_u64() > laser["map"]["clutter_mapped"].as_u64(),
+        "{} vs {}",
+        sonar["map"],
+        laser["map"]
+    );
+}
+
+#[test]
+fn clutter_flags_are_checked() {
+    let e = err(&["explore", "--env", "cave", "--clutter"]);
+    assert!(e.contains("--clutter") && e.contains("cave"), "{e}");
+    let e = err(&["explore", "--sensor", "sonar", "--belief", "known"]);
+    assert!(e.contains("--belief") && e.contains("evidence"), "{e}");
+    let dir = tempfile::tempdir().unwrap();
+    let layer = dir.path().join("tables.txt");
+    std::fs::write(&layer, "###\n#.#\n###\n").unwrap();
+    let e = err(&[
+        "explore",
+        "--env",
+        "office",
+        "--clutter-map",
+        layer.to_str().unwrap(),
+    ]);
+    assert!(
+        e.contains("tables.txt") && e.contains("expected the map's size"),
+        "{e}"
+    );
+}
+
+#[test]
+fn sensors_compares_the_three_setups() {
+    let out = ok(&["sensors", "--seeds", "1", "--size", "12x10", "--json"]);
+    let v: serde_json::Value = serde_json::from_str(&out).expect("json");
+    let sensors = v["sensors"].as_array().unwrap();
+    let names: Vec<&str> = sensors
+        .iter()
+        .map(|s| s["sensor"].as_str().unwrap())
+        .collect();
+    assert_eq!(names, ["sonar", "laser", "laser-limited-sonar"]);
+    for s in sensors {
+        assert_eq!(s["runs"], 1);
+    }
+}

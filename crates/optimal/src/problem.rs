@@ -51,6 +51,9 @@ impl SensorModel {
             SensorSpec::Lidar { .. } => Err(OptimalError::Sensor(
                 "the optimal search supports los and footprint (360° sensors), not lidar".into(),
             )),
+            SensorSpec::Sonar { .. } => Err(OptimalError::Sensor(
+                "the optimal search supports los and footprint (ideal sensors), not sonar".into(),
+            )),
         }
     }
 

@@ -16,7 +16,9 @@ pub enum SenseError {
         found: String,
     },
     /// A sensor spec names a kind that does not exist.
-    #[error("sensor '{spec}': unknown kind '{kind}': expected one of los, footprint, lidar")]
+    #[error(
+        "sensor '{spec}': unknown kind '{kind}': expected one of los, footprint, lidar, sonar, laser-limited-sonar, laser"
+    )]
     UnknownKind {
         /// The whole spec as written.
         spec: String,
@@ -86,6 +88,9 @@ pub enum SenseError {
         /// The value given.
         found: f64,
     },
+    /// A sonar parameter is out of bounds.
+    #[error(transparent)]
+    BadSonar(#[from] crate::sonar::SonarError),
     /// A belief-map kind does not exist.
     #[error("belief map '{0}': expected one of known, reflection, evidence")]
     UnknownBelief(String),

@@ -13,6 +13,10 @@
 //!   speed-up.
 //! - [`LidarSensor`] (`lidar:r=8,fov=180,res=1`): Holz et al.'s planar scanner, beams
 //!   traced with Amanatides & Woo's grid traversal.
+//! - [`SonarSensor`]: Yamauchi's ring of 16 sonar transducers with specular reflections,
+//!   off-plane obstacles, a cone-shaped inverse model for the [`EvidenceGrid`] and
+//!   laser-limited sonar ([`sonar`]). It fires with a caller's RNG (range noise) and
+//!   integrates graded evidence, so it is driven directly rather than through [`Sensor`].
 //!
 //! Information gain ([`gain`]): the expected entropy drop of a predicted scan on a belief
 //! ([`Sensor::predict`]), for decision-theoretic exploration.
@@ -36,6 +40,7 @@ pub mod los;
 pub mod ray_template;
 pub mod segment;
 pub mod sensor;
+pub mod sonar;
 pub mod spec;
 
 pub use belief::{Belief, BeliefKind, EvidenceGrid, KnownGrid, ReflectionMap};
@@ -47,4 +52,5 @@ pub use los::LosSensor;
 pub use ray_template::{LosTemplate, MAX_TEMPLATE_RANGE_CELLS};
 pub use segment::{los_visible, segment_clear};
 pub use sensor::{Observation, Pose, Sensor};
-pub use spec::{Range, SensorSpec};
+pub use sonar::{SonarError, SonarMode, SonarParams, SonarReading, SonarSensor};
+pub use spec::{Range, SensorSpec, YAMAUCHI_RANGE};

@@ -1,10 +1,20 @@
 //! Sensor specs: the textual description of a sensor (`los:r=5`, `footprint:r=3`,
-//! `lidar:r=8,fov=180,res=1`, `los:r=4c`) and how it is turned into a [`Sensor`].
+//! `lidar:r=8,fov=180,res=1`, `los:r=4c`, `sonar`, `laser-limited-sonar`, `laser`) and how
+//! it is turned into a [`Sensor`].
 //!
 //! Ranges are in metres, or in cells with a `c` suffix (`r=4c`, as in the multi-robot
 //! study's 4-cell sensor). Angles are in degrees. Lidar defaults: `fov=180`, `res=1`
 //! (Holz et al.'s scanner). Kinds and keys are lower-case; whitespace around items is
 //! ignored. `Display` writes the canonical form, which parses back to the same spec.
+//!
+//! Yamauchi's sensor presets (his robot's 10 ft usable sonar range is the default `r` of
+//! all three):
+//! - `sonar[:r=R]`: the ring of 16 sonar transducers alone ([`crate::sonar`]);
+//! - `laser-limited-sonar[:r=R]`: the ring, each reading capped by the planar laser;
+//! - `laser[:r=R]`: the planar laser alone, swept over 360° at 1° — the same as
+//!   `lidar:r=R,fov=360,res=1`, which is its canonical form.
+//!
+//! The sonar kinds need the evidence-grid belief (they add graded evidence).
 
 use std::fmt;
 use std::str::FromStr;
@@ -14,6 +24,7 @@ use crate::footprint::FootprintSensor;
 use crate::lidar::{LidarSensor, MIN_LIDAR_RES_DEG};
 use crate::los::LosSensor;
 use crate::sensor::Sensor;
+use crate::sonar::{SonarMode, SonarParams, SonarSensor};
 
 /// A sensor range: metres (converted with the map's resolution) or cells.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -65,14 +76,26 @@ pub enum SensorSpec {
         /// Angular resolution in degrees, in [0.01, 360].
         res_deg: f64,
     },
+    /// Yamauchi's ring of sonar transducers ([`SonarSensor`]), alone or laser-limited.
+    Sonar {
+        /// Range.
+        r: Range,
+        /// Whether each reading is capped by the planar laser (`laser-limited-sonar`).
+        laser_limited: bool,
+    },
 }
+
+/// The default range of Yamauchi's presets: his sonar's usable 10 ft.
+pub const YAMAUCHI_RANGE: Range = Range::Metres(crate::sonar::DEFAULT_RANGE_M);
 
 const EXPECT_RANGE: &str = "a positive number of metres (or cells with suffix c)";
 const EXPECT_FOV: &str = "a field of view in (0, 360] degrees";
 const EXPECT_RES: &str = "an angular resolution in [0.01, 360] degrees";
 
 impl SensorSpec {
-    /// Build the sensor for a map of `resolution` metres per cell.
+    /// Build the sensor for a map of `resolution` metres per cell. For the sonar kinds this
+    /// is the planar 360° laser of the same range (what laser-limiting and predicted scans
+    /// use); the ring itself comes from [`SensorSpec::sonar`].
     pub fn build(&self, resolution: f64) -> Result<Box<dyn Sensor>, SenseError> {
         if !(resolution.is_finite() && resolution > 0.0) {
             return Err(SenseError::BadResolution(resolution));
@@ -84,7 +107,36 @@ impl SensorSpec {
             SensorSpec::Lidar {
                 fov_deg, res_deg, ..
             } => Box::new(LidarSensor::new(r, fov_deg, res_deg)?),
+            SensorSpec::Sonar { .. } => Box::new(LidarSensor::new(r, 360.0, 1.0)?),
         })
+    }
+
+    /// Which sonar ring this is, if it is one.
+    pub fn sonar_mode(&self) -> Option<SonarMode> {
+        match *self {
+            SensorSpec::Sonar { laser_limited, .. } => Some(if laser_limited {
+                SonarMode::LaserLimited
+            } else {
+                SonarMode::Sonar
+            }),
+            _ => None,
+        }
+    }
+
+    /// The sonar ring of a sonar kind for a map of `resolution` metres per cell (Yamauchi's
+    /// parameters, [`SonarParams::yamauchi`], with this spec's range); `None` for the others.
+    pub fn sonar(&self, resolution: f64) -> Option<Result<SonarSensor, SenseError>> {
+        let SensorSpec::Sonar { r, .. } = *self else {
+            return None;
+        };
+        if !(resolution.is_finite() && resolution > 0.0) {
+            return Some(Err(SenseError::BadResolution(resolution)));
+        }
+        let params = SonarParams {
+            range: r.cells(resolution),
+            ..SonarParams::yamauchi(resolution)
+        };
+        Some(SonarSensor::new(params).map_err(SenseError::from))
     }
 
     /// The 360° version of this sensor (for a sweep on arrival): a lidar with `fov=360`;
@@ -108,7 +160,10 @@ impl SensorSpec {
     /// The range as written.
     pub fn range(&self) -> Range {
         match *self {
-            SensorSpec::Los { r } | SensorSpec::Footprint { r } | SensorSpec::Lidar { r, .. } => r,
+            SensorSpec::Los { r }
+            | SensorSpec::Footprint { r }
+            | SensorSpec::Lidar { r, .. }
+            | SensorSpec::Sonar { r, .. } => r,
         }
     }
 }
@@ -125,6 +180,14 @@ impl fmt::Display for SensorSpec {
             } => {
                 write!(f, "lidar:r={r},fov={fov_deg},res={res_deg}")
             }
+            SensorSpec::Sonar {
+                r,
+                laser_limited: false,
+            } => write!(f, "sonar:r={r}"),
+            SensorSpec::Sonar {
+                r,
+                laser_limited: true,
+            } => write!(f, "laser-limited-sonar:r={r}"),
         }
     }
 }
@@ -156,7 +219,7 @@ impl FromStr for SensorSpec {
             None => (spec.trim(), None),
         };
         let valid: &'static str = match kind {
-            "los" | "footprint" => "r",
+            "los" | "footprint" | "sonar" | "laser-limited-sonar" | "laser" => "r",
             "lidar" => "r, fov, res",
             _ => {
                 return Err(SenseError::UnknownKind {
@@ -211,14 +274,30 @@ impl FromStr for SensorSpec {
             }
             given.push(key);
         }
-        let r = r.ok_or(SenseError::MissingKey {
-            spec: spec.into(),
-            key: "r",
-            expected: EXPECT_RANGE,
-        })?;
+        let yamauchi = matches!(kind, "sonar" | "laser-limited-sonar" | "laser");
+        let r = match r {
+            Some(r) => r,
+            None if yamauchi => YAMAUCHI_RANGE,
+            None => {
+                return Err(SenseError::MissingKey {
+                    spec: spec.into(),
+                    key: "r",
+                    expected: EXPECT_RANGE,
+                });
+            }
+        };
         Ok(match kind {
             "los" => SensorSpec::Los { r },
             "footprint" => SensorSpec::Footprint { r },
+            "sonar" | "laser-limited-sonar" => SensorSpec::Sonar {
+                r,
+                laser_limited: kind == "laser-limited-sonar",
+            },
+            "laser" => SensorSpec::Lidar {
+                r,
+                fov_deg: 360.0,
+                res_deg: 1.0,
+            },
             _ => SensorSpec::Lidar {
                 r,
                 fov_deg,
@@ -289,8 +368,9 @@ mod tests {
              (or cells with suffix c), found \"x\""
         );
         assert_eq!(
-            msg("sonar:r=3"),
-            "sensor 'sonar:r=3': unknown kind 'sonar': expected one of los, footprint, lidar"
+            msg("radar:r=3"),
+            "sensor 'radar:r=3': unknown kind 'radar': expected one of los, footprint, lidar, \
+             sonar, laser-limited-sonar, laser"
         );
         assert_eq!(
             msg("los:r=3,fov=90"),
@@ -342,6 +422,8 @@ mod tests {
             "los:r=4c",
             "footprint:r=0.25",
             "lidar:r=8,fov=180,res=1",
+            "sonar:r=3.048",
+            "laser-limited-sonar:r=2",
         ] {
             let spec = parse(s).expect("valid");
             assert_eq!(spec.to_string(), s);
@@ -381,5 +463,50 @@ mod tests {
             Err(SenseError::BadRange { .. })
         ));
         assert!(parse("footprint:r=3").expect("valid").build(0.5).is_ok());
+    }
+
+    #[test]
+    fn yamauchi_presets() {
+        let ten_ft = Range::Metres(crate::sonar::DEFAULT_RANGE_M);
+        assert_eq!(
+            parse("sonar"),
+            Ok(SensorSpec::Sonar {
+                r: ten_ft,
+                laser_limited: false
+            })
+        );
+        assert_eq!(
+            parse("laser-limited-sonar:r=2"),
+            Ok(SensorSpec::Sonar {
+                r: Range::Metres(2.0),
+                laser_limited: true
+            })
+        );
+        assert_eq!(
+            parse("laser"),
+            Ok(SensorSpec::Lidar {
+                r: ten_ft,
+                fov_deg: 360.0,
+                res_deg: 1.0
+            })
+        );
+        assert_eq!(parse("sonar").unwrap().sonar_mode(), Some(SonarMode::Sonar));
+        assert_eq!(
+            parse("laser-limited-sonar").unwrap().sonar_mode(),
+            Some(SonarMode::LaserLimited)
+        );
+        assert_eq!(parse("laser").unwrap().sonar_mode(), None);
+        assert!(parse("laser").unwrap().sonar(0.1).is_none());
+        let ring = parse("sonar:r=2").unwrap().sonar(0.1).unwrap().unwrap();
+        assert!((ring.params().range - 20.0).abs() < 1e-9);
+        // The planar laser beside the ring: 360°, same range.
+        let laser = parse("sonar:r=2").unwrap().build(0.1).unwrap();
+        assert!(laser.is_omnidirectional());
+        assert!((laser.range_cells() - 20.0).abs() < 1e-9);
+        assert!(matches!(
+            parse("sonar:fov=30"),
+            Err(SenseError::UnknownKey { .. })
+        ));
+        assert!(parse("sonar").unwrap().sonar(0.0).unwrap().is_err());
     }
 }

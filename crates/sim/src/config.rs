@@ -1,7 +1,7 @@
 //! What one run is: strategy, sensor, belief, team, motion and limits.
 
 use explore::strategy::{SensingMode, Strategy};
-use grid::Cell;
+use grid::{Cell, Grid};
 use sense::{BeliefKind, SensorSpec};
 
 /// A fully resolved run: everything but the map.
@@ -32,6 +32,9 @@ pub struct RunConfig {
     pub max_moves: u64,
     /// Keep a per-step trace (trails, goals, frontier counts) for pictures.
     pub record_trace: bool,
+    /// Obstacles off the laser plane (same size as the map, true = obstacle): planar
+    /// sensors miss them, sonar hears them and the robot's body is stopped by them.
+    pub clutter: Option<Grid<bool>>,
 }
 
 impl RunConfig {
@@ -52,6 +55,7 @@ impl RunConfig {
             coverage_goal: None,
             max_moves: 10_000_000,
             record_trace: false,
+            clutter: None,
         }
     }
 

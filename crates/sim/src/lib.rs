@@ -19,5 +19,5 @@ pub mod seed;
 pub mod truth;
 
 pub use config::{RunConfig, SimError};
-pub use metrics::{EndReason, PhaseTimes, RunResult, Trace, TraceEvent, TraceGoal};
+pub use metrics::{EndReason, MapAudit, PhaseTimes, RunResult, Trace, TraceEvent, TraceGoal};
 pub use run::run;

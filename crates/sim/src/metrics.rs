@@ -89,6 +89,40 @@ pub struct Trace {
     /// Goal candidates of each decision (not recorded when the candidates are all frontier
     /// cells, which the frontier layer shows): (events before it, candidate cells).
     pub candidates: Vec<(u32, Vec<u32>)>,
+    /// Snapshots of the segmentation of segmenting strategies, taken after decisions that
+    /// changed it, at most [`MAX_SEGMENT_SNAPSHOTS`] spread over the run.
+    pub segments: Vec<SegmentSnapshot>,
+    /// Segmentation counters (full runs, patches) at the last decision seen.
+    pub segment_counters: (usize, usize),
+    /// Changed segmentations seen so far.
+    pub segment_changes: usize,
+    /// Every how many changed segmentations one is kept (doubles when the cap is hit).
+    pub segment_stride: usize,
+}
+
+/// At most this many segmentation snapshots are kept in a trace.
+pub const MAX_SEGMENT_SNAPSHOTS: usize = 100;
+
+/// The segmentation as it was after a decision, labels run-length encoded.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct SegmentSnapshot {
+    /// Number of events before the decision.
+    pub event: u32,
+    /// Whether the segmentation was recomputed whole (else patched) since the last decision.
+    pub full: bool,
+    /// (label, run length) pairs in cell order; label `u32::MAX` = not segmented.
+    pub runs: Vec<(u32, u32)>,
+}
+
+impl SegmentSnapshot {
+    /// The label of every cell.
+    pub fn labels(&self) -> Vec<u32> {
+        let mut out = Vec::new();
+        for &(label, n) in &self.runs {
+            out.extend(std::iter::repeat_n(label, n as usize));
+        }
+        out
+    }
 }
 
 impl Trace {
@@ -102,6 +136,50 @@ impl Trace {
             }
         }
         trails
+    }
+
+    /// After a decision (after `event` events): keep a snapshot of the segmentation `labels`
+    /// if the segmenter's counters (`full_runs`, `patches`) moved since the last decision.
+    /// Only every `segment_stride`-th change is kept; when [`MAX_SEGMENT_SNAPSHOTS`] are
+    /// held, every other one is dropped and the stride doubles, so the snapshots stay
+    /// spread over the whole run.
+    pub fn record_segments(
+        &mut self,
+        event: u32,
+        full_runs: usize,
+        patches: usize,
+        labels: &[u32],
+    ) {
+        let before = self.segment_counters;
+        if (full_runs, patches) == before || labels.is_empty() {
+            return;
+        }
+        self.segment_counters = (full_runs, patches);
+        let stride = self.segment_stride.max(1);
+        self.segment_changes += 1;
+        if !(self.segment_changes - 1).is_multiple_of(stride) {
+            return;
+        }
+        let mut runs: Vec<(u32, u32)> = Vec::new();
+        for &l in labels {
+            match runs.last_mut() {
+                Some((last, n)) if *last == l => *n += 1,
+                _ => runs.push((l, 1)),
+            }
+        }
+        self.segments.push(SegmentSnapshot {
+            event,
+            full: full_runs != before.0,
+            runs,
+        });
+        if self.segments.len() >= MAX_SEGMENT_SNAPSHOTS {
+            let mut k = 0;
+            self.segments.retain(|_| {
+                k += 1;
+                k % 2 == 1
+            });
+            self.segment_stride = stride * 2;
+        }
     }
 
     /// The belief changes made by event `k`.
@@ -147,8 +225,48 @@ pub struct RunResult {
     /// Open frontier cells left at the end: frontier cells not on the visited or inaccessible
     /// lists (none when complete).
     pub frontiers_left: Vec<u32>,
+    /// The map built against the ground truth.
+    pub audit: MapAudit,
     /// The per-step trace, when asked for.
     pub trace: Option<Trace>,
+}
+
+/// How the map a run built compares with the ground truth — what Yamauchi's sonar, its
+/// specular reflections and furniture off the laser plane put at risk.
+///
+/// The *building* is every cell that is free or occupied in the ground truth (cells
+/// outside the map's world are not counted), with off-plane clutter counted occupied: a
+/// table is an obstacle for the robot whether or not its laser sees it.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MapAudit {
+    /// Share of the building's cells whose final believed class equals the ground truth's
+    /// (a cell never seen counts as wrong).
+    pub accuracy: f64,
+    /// Cells believed free at the end that are not free in the ground truth (phantom open
+    /// space: walls erased by specular reflections, space outside the building, tables).
+    pub false_free_cells: usize,
+    /// Off-plane clutter cells believed occupied at the end.
+    pub clutter_mapped: usize,
+    /// Off-plane clutter cells in the ground truth.
+    pub clutter_cells: usize,
+    /// Phantom frontier regions — 8-connected frontier regions with a cell that is not free
+    /// in the ground truth — summed over the decisions of the run.
+    pub phantom_regions: u64,
+    /// The most phantom frontier regions at one decision.
+    pub phantom_regions_max: u64,
+    /// Goals chosen on cells that are not free in the ground truth.
+    pub phantom_goals: u64,
+}
+
+impl MapAudit {
+    /// Phantom frontier regions per decision, on average.
+    pub fn phantom_regions_mean(&self, decisions: u64) -> f64 {
+        if decisions == 0 {
+            0.0
+        } else {
+            self.phantom_regions as f64 / decisions as f64
+        }
+    }
 }
 
 impl RunResult {

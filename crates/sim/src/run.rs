@@ -8,6 +8,13 @@
 //!
 //! Robots are points on cells and may pass through each other (neither multi-robot paper
 //! models inter-robot collisions).
+//!
+//! With a sonar ring (Yamauchi 1997) the belief can show free space that is not (specular
+//! reflections) and the truth can hold obstacles off the laser plane; a robot whose next
+//! cell is an obstacle in the truth bumps: it stops for [`BUMP_S`] seconds, senses again,
+//! marks the cell occupied in its belief and re-plans. Yamauchi's no-progress rule then
+//! puts a goal that is not approached for its time limit on the inaccessible list, also
+//! across such re-plans.
 
 use std::time::Instant;
 
@@ -18,13 +25,21 @@ use explore::strategy::SensingMode;
 
 /// `dt-rr` re-evaluates its target's utility every this many moves (one predicted scan).
 const DT_RECHECK_MOVES: u32 = 5;
+
+/// Seconds a robot loses when its body meets an obstacle (stop, sense again).
+pub const BUMP_S: f64 = 1.0;
+
+/// Yamauchi's no-progress limit (the `yamauchi` preset's), applied to every strategy when
+/// the map can be wrong about where the robot can go (sonar, off-plane clutter): without
+/// it, a goal behind an obstacle the map does not show would be chased forever.
+pub const IMPERFECT_NO_PROGRESS_S: f64 = 30.0;
 use explore::upkeep::FrontierUpkeep;
-use grid::{Cell, GridMap, Occ, step_cost};
+use grid::{Cell, Grid, GridMap, Occ, step_cost};
 use rand_pcg::Pcg64Mcg;
-use sense::{Belief, Observation, Pose, Sensor};
+use sense::{Belief, Observation, Pose, Sensor, SonarMode, SonarReading, SonarSensor};
 
 use crate::config::{RunConfig, SimError};
-use crate::metrics::{EndReason, PhaseTimes, RunResult, Trace, TraceEvent, TraceGoal};
+use crate::metrics::{EndReason, MapAudit, PhaseTimes, RunResult, Trace, TraceEvent, TraceGoal};
 use crate::{seed, truth};
 
 /// One robot's state.
@@ -41,10 +56,12 @@ struct Robot {
     goal: Option<u32>,
     moves_since_decision: u32,
     /// Remaining path cost to the goal, its lowest value so far, and the clock then
-    /// (Yamauchi's no-progress rule).
+    /// (Yamauchi's no-progress rule), for the goal `progress_goal`: a new decision for the
+    /// same goal keeps them, so a detour is no progress.
     remaining: f64,
     best_remaining: f64,
     progress_clock: f64,
+    progress_goal: Option<u32>,
     /// No goal was found at its last decision.
     idle: bool,
     /// `dt-rr`: the target's utility at decision time and the heading it was scored with.
@@ -67,6 +84,21 @@ struct Team<'a> {
     rng: Pcg64Mcg,
     obs: Observation,
     changed: Vec<u32>,
+    /// The no-progress limit in seconds: the strategy's, or [`IMPERFECT_NO_PROGRESS_S`] when
+    /// the robot can meet what its map does not show (sonar, off-plane clutter).
+    no_progress_s: Option<f64>,
+    /// Whether the belief can hold cells that are not free in truth (sonar, clutter, or a
+    /// probabilistic belief): then phantom frontier regions are counted at every decision.
+    audit_phantoms: bool,
+    regions_buf: Vec<explore::frontier::Region>,
+    audit: MapAudit,
+    /// Where the robot's body can be, when off-plane clutter makes it differ from the plane.
+    body: Option<Grid<Occ>>,
+    /// The sonar ring, its noise stream and reading buffers (when sensing with sonar).
+    sonar: Option<SonarSensor>,
+    sonar_rng: Pcg64Mcg,
+    readings: Vec<SonarReading>,
+    laser_hits: Vec<u32>,
     /// Ground-truth reachable cells, and which of them are known free.
     reachable: Vec<bool>,
     counted: Vec<bool>,
@@ -96,12 +128,25 @@ pub fn run(truth: &GridMap, cfg: &RunConfig) -> Result<RunResult, SimError> {
     validate(cfg)?;
     let res = truth.resolution;
     let cells = &truth.cells;
+    let (w, h) = (cells.width(), cells.height());
+    if let Some(c) = &cfg.clutter
+        && (c.width(), c.height()) != (w, h)
+    {
+        return Err(SimError::BadParameter {
+            field: "clutter",
+            expected: "a layer of the map's size",
+            found: format!("{}x{} for a {w}x{h} map", c.width(), c.height()),
+        });
+    }
+    // Where the robot's body can be: the plane's free cells less the off-plane clutter.
+    let body = cfg.clutter.as_ref().map(|c| truth::with_clutter(cells, c));
     let clearance_cells = cfg.clearance_m / res;
-    let trav_truth = truth::traversable(cells, clearance_cells);
+    let cells_for_body = body.as_ref().unwrap_or(cells);
+    let trav_truth = truth::traversable(cells_for_body, clearance_cells);
     let starts: Vec<Cell> = if cfg.starts.is_empty() {
         let mut rng = seed::rng(cfg.seed, "start");
-        let first = truth::random_start(cells, &trav_truth, &mut rng, cfg.clearance_m)?;
-        truth::team_starts(cells, &trav_truth, first, cfg.robots)?
+        let first = truth::random_start(cells_for_body, &trav_truth, &mut rng, cfg.clearance_m)?;
+        truth::team_starts(cells_for_body, &trav_truth, first, cfg.robots)?
     } else {
         if cfg.starts.len() != cfg.robots {
             return Err(SimError::BadParameter {
@@ -111,17 +156,17 @@ pub fn run(truth: &GridMap, cfg: &RunConfig) -> Result<RunResult, SimError> {
             });
         }
         for &s in &cfg.starts {
-            truth::check_start(cells, &trav_truth, s)?;
+            truth::check_start(cells_for_body, &trav_truth, s)?;
         }
         cfg.starts.clone()
     };
-    let reachable = truth::reachable_from(cells, &trav_truth, cells.index(starts[0]));
+    let reachable = truth::reachable_from(cells_for_body, &trav_truth, cells.index(starts[0]));
     let reachable_cells = reachable.iter().filter(|&&r| r).count();
     drop(trav_truth);
 
     let sensor = cfg.sensor.build(res)?;
     let sweep = cfg.sensor.sweep().build(res)?;
-    let (w, h) = (cells.width(), cells.height());
+    let sonar = cfg.sensor.sonar(res).transpose()?;
     let m = cfg.robots;
     let mut team = Team {
         truth,
@@ -142,6 +187,22 @@ pub fn run(truth: &GridMap, cfg: &RunConfig) -> Result<RunResult, SimError> {
         rng: seed::rng(cfg.seed, "strategy"),
         obs: Observation::new(),
         changed: Vec::new(),
+        no_progress_s: cfg
+            .strategy
+            .replan
+            .no_progress_s
+            .or((cfg.clutter.is_some() || cfg.sensor.sonar_mode().is_some())
+                .then_some(IMPERFECT_NO_PROGRESS_S)),
+        audit_phantoms: cfg.clutter.is_some()
+            || cfg.sensor.sonar_mode().is_some()
+            || cfg.belief != sense::BeliefKind::Known,
+        regions_buf: Vec::new(),
+        audit: MapAudit::default(),
+        body,
+        sonar,
+        sonar_rng: seed::rng(cfg.seed, "sonar"),
+        readings: Vec::with_capacity(sense::sonar::TRANSDUCERS),
+        laser_hits: Vec::new(),
         counted: vec![false; cells.len()],
         reachable,
         covered: 0,
@@ -178,6 +239,7 @@ pub fn run(truth: &GridMap, cfg: &RunConfig) -> Result<RunResult, SimError> {
             remaining: f64::INFINITY,
             best_remaining: f64::INFINITY,
             progress_clock: 0.0,
+            progress_goal: None,
             idle: false,
             utility0: 0.0,
             heading0: 0.0,
@@ -233,6 +295,7 @@ pub fn run(truth: &GridMap, cfg: &RunConfig) -> Result<RunResult, SimError> {
         f.sort_unstable();
         f
     };
+    team.final_audit();
     team.times.total_s = started.elapsed().as_secs_f64();
     let path_length_m: Vec<f64> = robots.iter().map(|r| r.dist_cells * res).collect();
     let time_s = robots
@@ -254,6 +317,7 @@ pub fn run(truth: &GridMap, cfg: &RunConfig) -> Result<RunResult, SimError> {
         times: team.times,
         belief: team.belief.known().clone(),
         frontiers_left,
+        audit: team.audit,
         trace: team.trace,
     })
 }
@@ -268,6 +332,13 @@ fn validate(cfg: &RunConfig) -> Result<(), SimError> {
     };
     if cfg.robots == 0 {
         return bad("--robots", "at least 1", cfg.robots.to_string());
+    }
+    if cfg.sensor.sonar_mode().is_some() && cfg.belief != sense::BeliefKind::Evidence {
+        return bad(
+            "--belief",
+            "evidence with a sonar sensor",
+            cfg.belief.to_string(),
+        );
     }
     if !(cfg.speed.is_finite() && cfg.speed > 0.0) {
         return bad(
@@ -304,10 +375,42 @@ impl Team<'_> {
     /// coverage up to date.
     fn sense(&mut self, pose: Pose, sweep: bool) {
         let t0 = Instant::now();
-        let sensor = if sweep { &self.sweep } else { &self.sensor };
-        sensor.scan(&self.truth.cells, pose, &mut self.obs);
         self.changed.clear();
-        self.belief.integrate(&self.obs, &mut self.changed);
+        if let Some(sonar) = &self.sonar {
+            let plane = &self.truth.cells;
+            sonar.fire(
+                plane,
+                self.cfg.clutter.as_ref(),
+                pose,
+                &mut self.sonar_rng,
+                &mut self.readings,
+            );
+            self.laser_hits.clear();
+            if self.cfg.sensor.sonar_mode() == Some(SonarMode::LaserLimited) {
+                sonar.limit_by_laser(plane, pose.cell, &mut self.readings, &mut self.laser_hits);
+            }
+            let evidence = self
+                .belief
+                .evidence_mut()
+                .expect("validated: sonar runs with the evidence belief");
+            sonar.integrate(
+                pose.cell,
+                &self.readings,
+                &self.laser_hits,
+                evidence,
+                &mut self.changed,
+            );
+        } else {
+            let sensor = if sweep { &self.sweep } else { &self.sensor };
+            sensor.scan(&self.truth.cells, pose, &mut self.obs);
+            self.belief.integrate(&self.obs, &mut self.changed);
+        }
+        self.times.sense_s += t0.elapsed().as_secs_f64();
+        self.absorb_changes();
+    }
+
+    /// Bring frontiers, trace and coverage up to date with the cells in `changed`.
+    fn absorb_changes(&mut self) {
         let t1 = Instant::now();
         let known = self.belief.known();
         self.upkeep.update(known, &self.changed);
@@ -335,8 +438,90 @@ impl Team<'_> {
             let cov = self.coverage();
             self.curve.push((self.total_dist_cells, cov));
         }
-        self.times.sense_s += (t1 - t0).as_secs_f64();
         self.times.upkeep_s += (t2 - t1).as_secs_f64();
+    }
+
+    /// Whether cell `i` is free in the ground truth (where the robot's body can be).
+    fn truly_free(&self, i: usize) -> bool {
+        self.body.as_ref().unwrap_or(&self.truth.cells)[i] == Occ::Free
+    }
+
+    /// Fill the map-accuracy part of the audit from the final belief.
+    fn final_audit(&mut self) {
+        let known = self.belief.known();
+        let plane = &self.truth.cells;
+        let body = self.body.as_ref().unwrap_or(plane);
+        let (mut building, mut right, mut false_free, mut clutter, mut mapped) = (0, 0, 0, 0, 0);
+        for i in 0..plane.len() {
+            let truth = body[i];
+            if known[i] == Occ::Free && truth != Occ::Free {
+                false_free += 1;
+            }
+            if plane[i] == Occ::Free && truth == Occ::Occupied {
+                clutter += 1;
+                mapped += usize::from(known[i] == Occ::Occupied);
+            }
+            if truth != Occ::Unknown {
+                building += 1;
+                right += usize::from(known[i] == truth);
+            }
+        }
+        self.audit.accuracy = if building == 0 {
+            1.0
+        } else {
+            right as f64 / building as f64
+        };
+        self.audit.false_free_cells = false_free;
+        self.audit.clutter_cells = clutter;
+        self.audit.clutter_mapped = mapped;
+    }
+
+    /// Count the frontier regions with a cell that is not free in the ground truth.
+    fn count_phantoms(&mut self) {
+        let mut regions = std::mem::take(&mut self.regions_buf);
+        self.upkeep
+            .regions(self.truth.cells.width(), 1, &mut regions);
+        let phantoms = regions
+            .iter()
+            .filter(|g| g.cells.iter().any(|&c| !self.truly_free(c as usize)))
+            .count() as u64;
+        self.regions_buf = regions;
+        self.audit.phantom_regions += phantoms;
+        self.audit.phantom_regions_max = self.audit.phantom_regions_max.max(phantoms);
+    }
+
+    /// Robot `r`'s body met an obstacle in `blocked` (a cell its belief showed traversable):
+    /// it stops for [`BUMP_S`], senses again, marks the cell occupied and re-plans; a goal
+    /// not approached for the no-progress limit goes on the inaccessible list.
+    fn bump(&mut self, robots: &mut [Robot], r: usize, blocked: u32) {
+        robots[r].clock += BUMP_S;
+        let pose = Pose {
+            cell: self.truth.cells.cell(robots[r].cell as usize),
+            heading: robots[r].heading,
+        };
+        self.sense(pose, false);
+        self.changed.clear();
+        self.belief
+            .pin_occupied(blocked as usize, &mut self.changed);
+        self.absorb_changes();
+        self.record(robots, r);
+        self.give_up_if_stuck(robots, r);
+        self.decide(robots, &[r]);
+    }
+
+    /// Yamauchi's no-progress rule: if robot `r`'s goal has not come closer for the limit,
+    /// put it on the inaccessible list and drop it (the caller decides again). Returns
+    /// whether it did.
+    fn give_up_if_stuck(&mut self, robots: &mut [Robot], r: usize) -> bool {
+        let (Some(goal), Some(limit)) = (robots[r].goal, self.no_progress_s) else {
+            return false;
+        };
+        if robots[r].clock - robots[r].progress_clock <= limit {
+            return false;
+        }
+        self.lists.mark_inaccessible(goal);
+        robots[r].goal = None;
+        true
     }
 
     /// Close the trace's current event: robot `r` is where it is, with the changes sensed
@@ -416,11 +601,31 @@ impl Team<'_> {
             t.candidates
                 .push((t.events.len() as u32, self.candidates.cells().to_vec()));
         }
+        let seg = &self.memory.segments;
+        if let Some(t) = self.trace.as_mut()
+            && seg.full_runs() + seg.patches() > 0
+        {
+            t.record_segments(
+                t.events.len() as u32,
+                seg.full_runs(),
+                seg.patches(),
+                &seg.segmentation().labels,
+            );
+        }
+        if self.audit_phantoms {
+            self.count_phantoms();
+        }
         for r in 0..m {
             if !self.deciding[r] {
                 continue;
             }
             self.decisions += 1;
+            if self.audit_phantoms
+                && let Some(goal) = self.out[r]
+                && !self.truly_free(goal.cell as usize)
+            {
+                self.audit.phantom_goals += 1;
+            }
             let robot = &mut robots[r];
             robot.moves_since_decision = 0;
             robot.path.clear();
@@ -451,8 +656,13 @@ impl Team<'_> {
                             lambda,
                         );
                     }
-                    robot.best_remaining = goal.cost;
-                    robot.progress_clock = robot.clock;
+                    if robot.progress_goal == Some(goal.cell) {
+                        robot.best_remaining = robot.best_remaining.min(goal.cost);
+                    } else {
+                        robot.best_remaining = goal.cost;
+                        robot.progress_clock = robot.clock;
+                        robot.progress_goal = Some(goal.cell);
+                    }
                 }
                 _ => {
                     robot.goal = None;
@@ -543,6 +753,11 @@ impl Team<'_> {
             self.decide(robots, &[r]);
             return;
         }
+        let blocked = self.body.as_ref().unwrap_or(&self.truth.cells)[next as usize] != Occ::Free;
+        if blocked {
+            self.bump(robots, r, next);
+            return;
+        }
         let cells = &self.truth.cells;
         let (a, b) = (
             cells.cell(robots[r].cell as usize),
@@ -574,6 +789,16 @@ impl Team<'_> {
         self.record(robots, r);
         let goal = robots[r].goal.expect("a moving robot has a goal");
         let replan = self.cfg.strategy.replan;
+        if next != goal && self.no_progress_s.is_some() {
+            let robot = &mut robots[r];
+            if robot.remaining < robot.best_remaining - 1e-9 {
+                robot.best_remaining = robot.remaining;
+                robot.progress_clock = robot.clock;
+            } else if self.give_up_if_stuck(robots, r) {
+                self.decide(robots, &[r]);
+                return;
+            }
+        }
         if next == goal {
             self.arrive(robots, r);
         } else if replan.recheck && !self.is_open_frontier(goal) {
@@ -610,16 +835,6 @@ impl Team<'_> {
             let all = std::mem::take(&mut self.all);
             self.decide(robots, &all);
             self.all = all;
-        } else if let Some(limit) = replan.no_progress_s {
-            let robot = &mut robots[r];
-            if robot.remaining < robot.best_remaining - 1e-9 {
-                robot.best_remaining = robot.remaining;
-                robot.progress_clock = robot.clock;
-            } else if robot.clock - robot.progress_clock > limit {
-                self.lists.mark_inaccessible(goal);
-                robots[r].goal = None;
-                self.decide(robots, &[r]);
-            }
         }
     }
 }

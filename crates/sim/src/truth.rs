@@ -18,6 +18,18 @@ pub fn traversable(truth: &Grid<Occ>, clearance_cells: f64) -> Vec<bool> {
         .collect()
 }
 
+/// The plane `truth` with every cell of `clutter` (obstacles off the sensor plane, same
+/// size) made occupied: where the robot's body can be.
+pub fn with_clutter(truth: &Grid<Occ>, clutter: &Grid<bool>) -> Grid<Occ> {
+    let mut out = truth.clone();
+    for i in 0..out.len() {
+        if clutter[i] {
+            out[i] = Occ::Occupied;
+        }
+    }
+    out
+}
+
 /// The cells reachable from `start` over `trav` (8-connected, no corner squeezing).
 pub fn reachable_from(truth: &Grid<Occ>, trav: &[bool], start: usize) -> Vec<bool> {
     let mut cells = Vec::new();

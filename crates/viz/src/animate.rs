@@ -44,6 +44,8 @@ const GOAL: u8 = 7;
 const ROBOT0: u8 = 8;
 const START: u8 = 16;
 const NONE: u8 = 255;
+/// First palette index of the segment tints.
+const SEG0: u8 = 32;
 
 fn palette() -> Vec<u8> {
     let mut p: Vec<[u8; 3]> = vec![
@@ -58,7 +60,14 @@ fn palette() -> Vec<u8> {
     ];
     p.extend(crate::ROBOT_COLOURS);
     p.push([0, 150, 0]);
-    p.resize(32, [0, 0, 0]);
+    p.resize(SEG0 as usize, [0, 0, 0]);
+    // Segments: each colour at 35 % over known-free white.
+    p.extend(
+        crate::SEGMENT_COLOURS
+            .iter()
+            .map(|c| c.map(|v| (255.0 * 0.65 + f64::from(v) * 0.35).round() as u8)),
+    );
+    p.resize(64, [0, 0, 0]);
     p.concat()
 }
 
@@ -192,6 +201,8 @@ pub fn animate_gif(
         let mut next_goal = 0usize;
         let mut candidates: &[u32] = &[];
         let mut next_candidates = 0usize;
+        let mut segments: Option<Vec<u32>> = None;
+        let mut next_segments = 0usize;
         let mut buf = vec![0u8; (g.width * g.height) as usize];
         let frames = frame_events(trace.events.len(), opts.max_frames);
         let mut done = 0usize;
@@ -223,13 +234,24 @@ pub fn animate_gif(
                     candidates = &trace.candidates[next_candidates].1;
                     next_candidates += 1;
                 }
+                while next_segments < trace.segments.len()
+                    && trace.segments[next_segments].event as usize <= done
+                {
+                    segments = Some(trace.segments[next_segments].labels());
+                    next_segments += 1;
+                }
             }
             // Base layer: belief over faint truth.
             for y in 0..h {
                 for x in 0..w {
                     let i = y * w + x;
                     let c = match (known[i], cells[i]) {
-                        (Occ::Free, _) => FREE,
+                        (Occ::Free, _) => match segments.as_ref().and_then(|l| l.get(i)) {
+                            Some(&l) if l != u32::MAX => {
+                                SEG0 + (l as usize % crate::SEGMENT_COLOURS.len()) as u8
+                            }
+                            _ => FREE,
+                        },
                         (Occ::Occupied, _) => OCCUPIED,
                         (Occ::Unknown, Occ::Free) => UNKNOWN_FREE,
                         (Occ::Unknown, Occ::Occupied) => UNKNOWN_OCCUPIED,

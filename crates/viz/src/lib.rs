@@ -29,6 +29,34 @@ use grid::{Cell, Grid, GridMap, Occ};
 use image::{Rgb, RgbImage};
 use sim::RunResult;
 
+/// Colours of segments (label modulo the list), in the GIF and the replay page.
+pub const SEGMENT_COLOURS: [[u8; 3]; 24] = [
+    [31, 119, 180],
+    [255, 127, 14],
+    [44, 160, 44],
+    [214, 39, 40],
+    [148, 103, 189],
+    [140, 86, 75],
+    [227, 119, 194],
+    [127, 127, 127],
+    [188, 189, 34],
+    [23, 190, 207],
+    [57, 59, 121],
+    [173, 73, 74],
+    [99, 121, 57],
+    [206, 109, 189],
+    [140, 162, 82],
+    [231, 186, 82],
+    [107, 110, 207],
+    [165, 81, 148],
+    [82, 84, 163],
+    [189, 158, 57],
+    [132, 60, 57],
+    [214, 97, 107],
+    [156, 158, 222],
+    [181, 207, 107],
+];
+
 /// Colours of the robots' trajectories, cycled for larger teams.
 pub const ROBOT_COLOURS: [[u8; 3]; 8] = [
     [31, 119, 180],

@@ -56,6 +56,16 @@ pub fn replay_html(
         candidate_cells.extend_from_slice(cs);
         candidate_ends.push(candidate_cells.len() as u32);
     }
+    let seg_events: Vec<u32> = trace.segments.iter().map(|x| x.event).collect();
+    let mut seg_ends = Vec::with_capacity(trace.segments.len());
+    let mut seg_runs = Vec::new();
+    for snap in &trace.segments {
+        for &(label, n) in &snap.runs {
+            seg_runs.push(label);
+            seg_runs.push(n);
+        }
+        seg_ends.push(seg_runs.len() as u32 / 2);
+    }
     let data = json!({
         "title": title,
         "meta": meta,
@@ -79,6 +89,10 @@ pub fn replay_html(
         "candEvent": b64_u32(candidate_events.into_iter()),
         "candEnds": b64_u32(candidate_ends.into_iter()),
         "candCells": b64_u32(candidate_cells.into_iter()),
+        "segEvent": b64_u32(seg_events.into_iter()),
+        "segEnds": b64_u32(seg_ends.into_iter()),
+        "segRuns": b64_u32(seg_runs.into_iter()),
+        "segColours": crate::SEGMENT_COLOURS,
         "colours": crate::ROBOT_COLOURS,
     });
     // `</` cannot appear in the JSON of numbers, base64 and our names, but escape it anyway

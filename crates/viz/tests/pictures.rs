@@ -91,3 +91,69 @@ fn replay_page_is_self_contained_and_carries_the_run() {
     let trace = r.trace.as_ref().unwrap();
     assert!(page.contains(&format!("\"robots\":{}", trace.robots)));
 }
+
+/// The frames of a GIF, as palette indices.
+fn gif_frames(bytes: &[u8]) -> Vec<Vec<u8>> {
+    let mut decoder = gif::DecodeOptions::new();
+    decoder.set_color_output(gif::ColorOutput::Indexed);
+    let mut d = decoder.read_info(bytes).unwrap();
+    let mut out = Vec::new();
+    while let Some(f) = d.read_next_frame().unwrap() {
+        out.push(f.buffer.to_vec());
+    }
+    out
+}
+
+#[test]
+fn segmentation_runs_record_segments_and_show_them() {
+    let env = world::generate(&EnvSpec {
+        kind: EnvKind::Office,
+        seed: 1,
+        size_m: None,
+        resolution: None,
+    })
+    .unwrap();
+    let mut cfg = RunConfig::new(Strategy::preset("cf-rr-seg").unwrap());
+    cfg.record_trace = true;
+    let r = sim::run(&env.map, &cfg).unwrap();
+    let trace = r.trace.as_ref().unwrap();
+    assert!(!trace.segments.is_empty());
+    assert!(trace.segments.len() <= sim::metrics::MAX_SEGMENT_SNAPSHOTS);
+    assert!(trace.segments.windows(2).all(|w| w[0].event <= w[1].event));
+    // Labels only on cells known free in the belief rebuilt at the snapshot's event.
+    let n = env.map.cells.len();
+    let mut known = vec![grid::Occ::Unknown; n];
+    let mut done = 0usize;
+    for snap in &trace.segments {
+        while done < snap.event as usize {
+            for &(c, s) in trace.changes_of(done) {
+                known[c as usize] = s;
+            }
+            done += 1;
+        }
+        let labels = snap.labels();
+        assert_eq!(labels.len(), n);
+        assert!(labels.iter().any(|&l| l != u32::MAX));
+        for (i, &l) in labels.iter().enumerate() {
+            assert!(l == u32::MAX || known[i] == grid::Occ::Free, "cell {i}");
+        }
+    }
+    // The GIF shows them: the same run without snapshots draws different frames.
+    let opts = GifOptions {
+        max_frames: 20,
+        max_side: 300,
+        delay_cs: 5,
+    };
+    let with = gif_frames(&animate_gif(&env.map, &r, &opts).unwrap());
+    let mut plain = r.clone();
+    plain.trace.as_mut().unwrap().segments.clear();
+    let without = gif_frames(&animate_gif(&env.map, &plain, &opts).unwrap());
+    assert_eq!(with.len(), without.len());
+    assert_ne!(with.last(), without.last());
+    // The replay page carries them, with the layer toggle.
+    let html = viz::replay::replay_html(&env.map, &r, "seg", "cf-rr-seg").unwrap();
+    assert!(html.contains("id=\"l-segments\"") && html.contains("\"segRuns\":\""));
+    assert!(!html.contains("\"segRuns\":\"\""));
+    let plain_html = viz::replay::replay_html(&env.map, &plain, "seg", "cf-rr-seg").unwrap();
+    assert!(plain_html.contains("\"segRuns\":\"\""));
+}

@@ -33,6 +33,7 @@
 #![warn(missing_docs)]
 
 pub mod cave;
+pub mod clutter;
 pub mod empty;
 pub mod error;
 pub mod finish;

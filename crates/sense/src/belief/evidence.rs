@@ -11,7 +11,7 @@
 
 use grid::{Grid, Occ};
 
-use super::{Belief, set_class};
+use super::{Belief, Pins, set_class};
 use crate::error::SenseError;
 use crate::sensor::Observation;
 
@@ -36,6 +36,7 @@ pub struct EvidenceGrid {
     l_free: f64,
     l_max: f64,
     known: Grid<Occ>,
+    pins: Pins,
 }
 
 impl EvidenceGrid {
@@ -47,6 +48,7 @@ impl EvidenceGrid {
             l_free: logit(P_MISS),
             l_max: logit(P_CLAMP),
             known: Grid::new(width, height, Occ::Unknown),
+            pins: Pins::default(),
         }
     }
 
@@ -82,6 +84,38 @@ impl EvidenceGrid {
         self.log_odds.get(i).copied().unwrap_or(0.0)
     }
 
+    /// The log-odds a full-weight Occupied observation adds (`ln(p_hit / (1 − p_hit))`).
+    pub fn l_occ(&self) -> f64 {
+        self.l_occ
+    }
+
+    /// The log-odds a full-weight Free observation adds (`ln(p_miss / (1 − p_miss))`, < 0).
+    pub fn l_free(&self) -> f64 {
+        self.l_free
+    }
+
+    /// Add graded evidence: `delta` log-odds to each listed cell (clamped as in
+    /// [`Belief::integrate`]); push the index of every cell whose class changed.
+    ///
+    /// For inverse sensor models that weigh cells (the sonar cone). Indices outside the map
+    /// are ignored; callers merge duplicates first, so that each index is pushed at most
+    /// once per call.
+    pub fn add_evidence(&mut self, deltas: &[(u32, f64)], changed: &mut Vec<u32>) {
+        let n = self.known.len();
+        for &(i, delta) in deltas {
+            let i = i as usize;
+            if i >= n || !delta.is_finite() {
+                continue;
+            }
+            if self.pins.holds(i) {
+                continue;
+            }
+            let l = (self.log_odds[i] + delta).clamp(-self.l_max, self.l_max);
+            self.log_odds[i] = l;
+            set_class(&mut self.known, i, Self::classify(l), changed);
+        }
+    }
+
     /// The class of a log-odds value.
     pub fn classify(l: f64) -> Occ {
         if l < -EPS_LOG_ODDS {
@@ -107,6 +141,9 @@ impl Belief for EvidenceGrid {
                 Occ::Free => self.l_free,
                 Occ::Unknown => continue,
             };
+            if self.pins.holds(i) {
+                continue;
+            }
             let l = (self.log_odds[i] + delta).clamp(-self.l_max, self.l_max);
             self.log_odds[i] = l;
             set_class(&mut self.known, i, Self::classify(l), changed);
@@ -119,5 +156,17 @@ impl Belief for EvidenceGrid {
 
     fn p_occupied(&self, i: usize) -> f64 {
         1.0 / (1.0 + (-self.log_odds(i)).exp())
+    }
+
+    fn pin_occupied(&mut self, i: usize, changed: &mut Vec<u32>) {
+        if i < self.known.len() {
+            self.pins.pin(i);
+            self.log_odds[i] = self.l_max;
+            set_class(&mut self.known, i, Occ::Occupied, changed);
+        }
+    }
+
+    fn evidence_mut(&mut self) -> Option<&mut EvidenceGrid> {
+        Some(self)
     }
 }

@@ -2,7 +2,7 @@
 
 use grid::{Grid, Occ};
 
-use super::{Belief, set_class};
+use super::{Belief, Pins, set_class};
 use crate::sensor::Observation;
 
 /// A ternary map: each cell is Unknown until observed, then takes the state of its
@@ -10,6 +10,7 @@ use crate::sensor::Observation;
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct KnownGrid {
     known: Grid<Occ>,
+    pins: Pins,
 }
 
 impl KnownGrid {
@@ -17,6 +18,7 @@ impl KnownGrid {
     pub fn new(width: usize, height: usize) -> Self {
         Self {
             known: Grid::new(width, height, Occ::Unknown),
+            pins: Pins::default(),
         }
     }
 }
@@ -26,9 +28,16 @@ impl Belief for KnownGrid {
         let n = self.known.len();
         for &(i, o) in &obs.cells {
             let i = i as usize;
-            if i < n && o != Occ::Unknown {
+            if i < n && o != Occ::Unknown && !self.pins.holds(i) {
                 set_class(&mut self.known, i, o, changed);
             }
+        }
+    }
+
+    fn pin_occupied(&mut self, i: usize, changed: &mut Vec<u32>) {
+        if i < self.known.len() {
+            self.pins.pin(i);
+            set_class(&mut self.known, i, Occ::Occupied, changed);
         }
     }
 

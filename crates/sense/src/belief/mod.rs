@@ -34,6 +34,17 @@ pub trait Belief: Send {
     fn known(&self) -> &Grid<Occ>;
     /// Probability that cell i is occupied (0.5 if unknown) — for entropy-based information gain.
     fn p_occupied(&self, i: usize) -> f64;
+    /// Pin cell `i` occupied for good: the robot's body met an obstacle there, and contact
+    /// is certain, so no later observation changes it (an ideal planar sensor would see the
+    /// free plane below a table again at once, a sonar cone that heard nothing would paint
+    /// it free). Pushes `i` to `changed` if its class changed; an index outside the map is
+    /// ignored.
+    fn pin_occupied(&mut self, i: usize, changed: &mut Vec<u32>);
+    /// The log-odds evidence grid behind this belief, if it is one (for sensors that add
+    /// graded evidence, such as the sonar cone); `None` for the other models.
+    fn evidence_mut(&mut self) -> Option<&mut EvidenceGrid> {
+        None
+    }
 }
 
 /// The belief-map models, by name: `known`, `reflection`, `evidence`.
@@ -78,6 +89,26 @@ impl FromStr for BeliefKind {
             "reflection" => Ok(BeliefKind::Reflection),
             "evidence" => Ok(BeliefKind::Evidence),
             _ => Err(SenseError::UnknownBelief(s.into())),
+        }
+    }
+}
+
+/// Cells pinned occupied by contact ([`Belief::pin_occupied`]), sorted; empty in most runs,
+/// so the check on every observed cell costs one comparison.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub(crate) struct Pins(Vec<u32>);
+
+impl Pins {
+    /// Whether cell `i` is pinned.
+    #[inline]
+    pub(crate) fn holds(&self, i: usize) -> bool {
+        !self.0.is_empty() && self.0.binary_search(&(i as u32)).is_ok()
+    }
+
+    /// Pin cell `i`.
+    pub(crate) fn pin(&mut self, i: usize) {
+        if let Err(k) = self.0.binary_search(&(i as u32)) {
+            self.0.insert(k, i as u32);
         }
     }
 }

@@ -7,7 +7,7 @@
 
 use grid::{Grid, Occ};
 
-use super::{Belief, set_class};
+use super::{Belief, Pins, set_class};
 use crate::error::SenseError;
 use crate::sensor::Observation;
 
@@ -21,6 +21,7 @@ pub struct ReflectionMap {
     misses: Vec<u32>,
     p_free: f64,
     known: Grid<Occ>,
+    pins: Pins,
 }
 
 impl ReflectionMap {
@@ -31,6 +32,7 @@ impl ReflectionMap {
             misses: vec![0; width * height],
             p_free: P_FREE,
             known: Grid::new(width, height, Occ::Unknown),
+            pins: Pins::default(),
         }
     }
 
@@ -81,7 +83,7 @@ impl Belief for ReflectionMap {
         let n = self.known.len();
         for &(i, o) in &obs.cells {
             let i = i as usize;
-            if i >= n {
+            if i >= n || self.pins.holds(i) {
                 continue;
             }
             match o {
@@ -94,13 +96,22 @@ impl Belief for ReflectionMap {
         }
     }
 
+    fn pin_occupied(&mut self, i: usize, changed: &mut Vec<u32>) {
+        if i < self.known.len() {
+            self.pins.pin(i);
+            set_class(&mut self.known, i, Occ::Occupied, changed);
+        }
+    }
+
     fn known(&self) -> &Grid<Occ> {
         &self.known
     }
 
     fn p_occupied(&self, i: usize) -> f64 {
         let (h, m) = (self.hits(i), self.misses(i));
-        if h + m == 0 {
+        if self.pins.holds(i) {
+            1.0
+        } else if h + m == 0 {
             0.5
         } else {
             f64::from(h) / (f64::from(h) + f64::from(m))

@@ -1,0 +1,136 @@
+//! The robot's body and Yamauchi's sonar in the loop: furniture the laser misses stops the
+//! robot, which marks it occupied and re-plans; goals behind it end on the inaccessible
+//! list instead of being retried forever, and the run still ends; sonar and laser-limited
+//! sonar explore a cluttered office without ever entering an obstacle.
+
+use explore::strategy::Strategy;
+use grid::{Cell, Grid, GridMap, Occ};
+use sense::SonarMode;
+use sense::{BeliefKind, Range, SensorSpec};
+use sim::{EndReason, RunConfig, RunResult};
+use world::clutter::{ClutterParams, furnish};
+use world::{EnvKind, EnvSpec};
+
+/// A 40 × 20 walled room at 0.2 m per cell, split by a two-cell-thick table row at columns
+/// 20–21 that the laser sees through.
+fn split_room() -> (GridMap, Grid<bool>) {
+    let (w, h) = (40, 20);
+    let mut cells = Grid::new(w, h, Occ::Free);
+    let mut clutter = Grid::new(w, h, false);
+    for y in 0..h as i32 {
+        for x in 0..w as i32 {
+            if x == 0 || y == 0 || x == w as i32 - 1 || y == h as i32 - 1 {
+                cells.set(Cell::new(x, y), Occ::Occupied);
+            } else if x == 20 || x == 21 {
+                clutter.set(Cell::new(x, y), true);
+            }
+        }
+    }
+    (GridMap::new(cells, 0.2), clutter)
+}
+
+fn never_inside(map: &GridMap, clutter: &Grid<bool>, r: &RunResult) {
+    let trace = r.trace.as_ref().expect("trace");
+    for trail in trace.trails() {
+        for c in trail {
+            let i = c as usize;
+            assert!(
+                map.cells[i] == Occ::Free && !clutter[i],
+                "robot entered blocked cell {}",
+                map.cells.cell(i)
+            );
+        }
+    }
+}
+
+#[test]
+fn furniture_the_laser_misses_stops_the_body_and_the_run_ends() {
+    let (map, clutter) = split_room();
+    for preset in ["cf", "yamauchi"] {
+        let mut cfg = RunConfig::new(Strategy::preset(preset).expect("preset"));
+        cfg.sensor = SensorSpec::Los {
+            r: Range::Metres(1.5),
+        };
+        cfg.starts = vec![Cell::new(5, 10)];
+        cfg.clutter = Some(clutter.clone());
+        cfg.record_trace = true;
+        cfg.max_moves = 100_000;
+        let r = sim::run(&map, &cfg).expect("run");
+        assert_ne!(r.reason, EndReason::StepLimit, "{preset}: retried forever");
+        // The far side is behind the table: not reachable, so not in the coverage's
+        // denominator; the near side (columns 1–19, rows 1–18) is all explored.
+        assert_eq!(r.reachable_cells, 19 * 18, "{preset}");
+        assert_eq!(r.coverage, 1.0, "{preset}");
+        assert!(
+            r.audit.clutter_mapped > 0,
+            "{preset}: bumps mapped the table"
+        );
+        never_inside(&map, &clutter, &r);
+        // The laser shows the table row free; only the body's bumps can have marked it, and
+        // the robot got no further, so every cell of the first table column is occupied.
+        for y in 1..19 {
+            let i = map.cells.index(Cell::new(20, y));
+            assert_eq!(r.belief[i], Occ::Occupied, "{preset}: (20, {y})");
+        }
+    }
+}
+
+#[test]
+fn without_clutter_the_body_never_bumps() {
+    let (map, _) = split_room();
+    let mut cfg = RunConfig::new(Strategy::preset("cf").expect("preset"));
+    cfg.starts = vec![Cell::new(5, 10)];
+    let r = sim::run(&map, &cfg).expect("run");
+    assert_eq!(r.reason, EndReason::Complete);
+    assert_eq!(r.coverage, 1.0);
+}
+
+#[test]
+fn sonar_needs_the_evidence_belief() {
+    let (map, _) = split_room();
+    let mut cfg = RunConfig::new(Strategy::preset("cf").expect("preset"));
+    cfg.sensor = "sonar".parse().expect("spec");
+    let e = sim::run(&map, &cfg).expect_err("known belief with sonar");
+    assert!(e.to_string().contains("--belief"), "{e}");
+}
+
+#[test]
+fn sonar_explores_a_cluttered_office_and_the_run_ends() {
+    let env = world::generate(
+        &EnvSpec::new(EnvKind::Office, 2)
+            .with_size(12.0, 10.0)
+            .with_resolution(0.1),
+    )
+    .expect("office");
+    let clutter = furnish(&env, 2, &ClutterParams::default());
+    assert!(clutter.data().iter().any(|&c| c));
+    for (mode, preset) in [
+        (SonarMode::Sonar, "cf"),
+        (SonarMode::LaserLimited, "cf"),
+        (SonarMode::LaserLimited, "yamauchi"),
+    ] {
+        let mut cfg = RunConfig::new(Strategy::preset(preset).expect("preset"));
+        cfg.belief = BeliefKind::Evidence;
+        cfg.sensor = SensorSpec::Sonar {
+            r: sense::YAMAUCHI_RANGE,
+            laser_limited: mode == SonarMode::LaserLimited,
+        };
+        cfg.clutter = Some(clutter.clone());
+        cfg.seed = 4;
+        cfg.record_trace = true;
+        cfg.max_moves = 200_000;
+        let r = sim::run(&env.map, &cfg).expect("run");
+        assert_ne!(r.reason, EndReason::StepLimit, "{mode:?} {preset}");
+        assert!(
+            r.coverage > 0.5,
+            "{mode:?} {preset}: coverage {}",
+            r.coverage
+        );
+        never_inside(&env.map, &clutter, &r);
+        let again = sim::run(&env.map, &cfg).expect("run");
+        assert_eq!(
+            again.path_length_m, r.path_length_m,
+            "deterministic per seed"
+        );
+    }
+}
