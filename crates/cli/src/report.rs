@@ -91,6 +91,7 @@ pub fn audit_json(r: &RunResult) -> Value {
         "phantom_frontier_regions": a.phantom_regions,
         "phantom_frontier_regions_per_decision": round(a.phantom_regions_mean(r.decisions), 4),
         "phantom_frontier_regions_max": a.phantom_regions_max,
+        "phantom_frontier_share": round(a.phantom_share(), 6),
         "phantom_goals": a.phantom_goals,
     })
 }

@@ -125,6 +125,7 @@ pub fn run(a: SensorsArgs) -> Result<()> {
                     "complete": row.complete,
                     "accuracy": row.accuracy,
                     "phantom_regions_per_decision": row.phantom_regions,
+                    "phantom_region_share": row.phantom_share,
                     "phantom_goals": row.phantom_goals,
                     "false_free_cells": row.false_free,
                     "clutter_mapped": row.clutter_mapped,
@@ -153,10 +154,11 @@ pub fn run(a: SensorsArgs) -> Result<()> {
         a.resolution, strategy.name, a.seeds
     );
     println!(
-        "{:<22}{:>16}{:>18}{:>14}{:>16}{:>16}{:>18}{:>16}",
+        "{:<22}{:>14}{:>17}{:>17}{:>15}{:>15}{:>15}{:>14}{:>16}",
         "sensor",
         "map right %",
         "phantom regions",
+        "phantom share %",
         "phantom goals",
         "phantom free",
         "clutter map %",
@@ -165,10 +167,11 @@ pub fn run(a: SensorsArgs) -> Result<()> {
     );
     for (name, row) in names.iter().zip(&rows) {
         println!(
-            "{:<22}{:>16}{:>18}{:>14}{:>16}{:>16}{:>18}{:>16}",
+            "{:<22}{:>14}{:>17}{:>17}{:>15}{:>15}{:>15}{:>14}{:>16}",
             name,
             pm(row.accuracy, 100.0, 1),
             pm(row.phantom_regions, 1.0, 2),
+            pm(row.phantom_share, 100.0, 1),
             pm(row.phantom_goals, 1.0, 1),
             pm(row.false_free, 1.0, 0),
             pm(row.clutter_mapped, 100.0, 1),
@@ -178,7 +181,9 @@ pub fn run(a: SensorsArgs) -> Result<()> {
     }
     println!(
         "\nphantom regions: frontier regions with a cell that is not free in truth, per \
-         decision; phantom free: cells believed free that are not (walls erased, tables)"
+         decision, and their share of all frontier regions; phantom goals: goals chosen on \
+         such cells; phantom free: cells believed free at the end that are not (walls \
+         erased, tables, outside)"
     );
     Ok(())
 }
@@ -189,6 +194,7 @@ struct Row {
     complete: usize,
     accuracy: (f64, f64),
     phantom_regions: (f64, f64),
+    phantom_share: (f64, f64),
     phantom_goals: (f64, f64),
     false_free: (f64, f64),
     clutter_mapped: (f64, f64),
@@ -204,6 +210,7 @@ impl Row {
             complete: rs.iter().filter(|r| r.complete()).count(),
             accuracy: stat(&|r| r.audit.accuracy),
             phantom_regions: stat(&|r| r.audit.phantom_regions_mean(r.decisions)),
+            phantom_share: stat(&|r| r.audit.phantom_share()),
             phantom_goals: stat(&|r| r.audit.phantom_goals as f64),
             false_free: stat(&|r| r.audit.false_free_cells as f64),
             clutter_mapped: stat(&|r| {

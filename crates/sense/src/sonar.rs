@@ -62,8 +62,11 @@ pub const TRANSDUCERS: usize = 16;
 pub const DEFAULT_RANGE_M: f64 = 3.048;
 /// Default cone width in degrees.
 pub const DEFAULT_CONE_DEG: f64 = 25.0;
-/// Default incidence threshold in degrees from the surface normal.
-pub const DEFAULT_INCIDENCE_DEG: f64 = 60.0;
+/// Default incidence threshold in degrees from the surface normal, per ray of the cone: a
+/// flat wall is heard when its normal is within about 32° (20° plus half the cone) of the
+/// transducer's axis, as smooth office walls return a wide-beam sonar's pulse only near
+/// perpendicular incidence; beyond that the pulse glances off (specular reflection).
+pub const DEFAULT_INCIDENCE_DEG: f64 = 20.0;
 /// Default standard deviation of the range noise in metres.
 pub const DEFAULT_NOISE_M: f64 = 0.03;
 
@@ -108,7 +111,7 @@ pub struct SonarParams {
 
 impl SonarParams {
     /// Yamauchi's sonar on a map of `resolution` metres per cell: 10 ft range, 25° cone,
-    /// 60° incidence threshold, 3 cm noise, an occupied arc one cell deep, max-range
+    /// 20° incidence threshold, 3 cm noise, an occupied arc one cell deep, max-range
     /// readings mark free space.
     pub fn yamauchi(resolution: f64) -> Self {
         Self {
@@ -137,6 +140,8 @@ pub struct SonarReading {
 #[derive(Clone, Debug)]
 pub struct SonarSensor {
     params: SonarParams,
+    /// Per-cell evidence of one integration, reused (no allocation per scan).
+    deltas: Vec<(u32, f64)>,
     /// Ray offsets from the axis across the cone, in radians.
     offsets: Vec<f64>,
     cos_incidence: f64,
@@ -196,6 +201,7 @@ impl SonarSensor {
             .collect();
         Ok(Self {
             params,
+            deltas: Vec::new(),
             offsets,
             cos_incidence: params.incidence_deg.to_radians().cos(),
         })
@@ -332,7 +338,7 @@ impl SonarSensor {
     /// for each cell in `occupied` (laser hits), to `belief`; push every cell whose class
     /// changed to `changed` (once each).
     pub fn integrate(
-        &self,
+        &mut self,
         origin: Cell,
         readings: &[SonarReading],
         occupied: &[u32],
@@ -347,7 +353,9 @@ impl SonarSensor {
         let (l_occ, l_free) = (belief.l_occ(), belief.l_free());
         let half = self.params.cone_deg.to_radians() / 2.0;
         let band = self.params.band;
-        let mut deltas: Vec<(u32, f64)> = vec![(origin_i as u32, l_free)];
+        let mut deltas = std::mem::take(&mut self.deltas);
+        deltas.clear();
+        deltas.push((origin_i as u32, l_free));
         deltas.extend(occupied.iter().map(|&i| (i, l_occ)));
         for r in readings {
             let reach = if r.echo {
@@ -357,10 +365,10 @@ impl SonarSensor {
             } else {
                 continue;
             };
-            let ext = reach.ceil() as i64;
             let (ox, oy) = (i64::from(origin.x), i64::from(origin.y));
-            for y in (oy - ext).max(0)..=(oy + ext).min(h - 1) {
-                for x in (ox - ext).max(0)..=(ox + ext).min(w - 1) {
+            let (x0, x1, y0, y1) = sector_box(r.axis, half, reach);
+            for y in (oy + y0).max(0)..=(oy + y1).min(h - 1) {
+                for x in (ox + x0).max(0)..=(ox + x1).min(w - 1) {
                     let (dx, dy) = ((x - ox) as f64, (y - oy) as f64);
                     let d = (dx * dx + dy * dy).sqrt();
                     if d < 0.5 || d >= reach {
@@ -391,15 +399,20 @@ impl SonarSensor {
                 }
             }
         }
+        // Sum the contributions per cell in place (sorted by cell, merged).
         deltas.sort_unstable_by_key(|&(i, _)| i);
-        let mut merged: Vec<(u32, f64)> = Vec::with_capacity(deltas.len());
-        for (i, d) in deltas {
-            match merged.last_mut() {
-                Some((j, acc)) if *j == i => *acc += d,
-                _ => merged.push((i, d)),
+        let mut n = 0;
+        for k in 0..deltas.len() {
+            if n > 0 && deltas[n - 1].0 == deltas[k].0 {
+                deltas[n - 1].1 += deltas[k].1;
+            } else {
+                deltas[n] = deltas[k];
+                n += 1;
             }
         }
-        belief.add_evidence(&merged, changed);
+        deltas.truncate(n);
+        belief.add_evidence(&deltas, changed);
+        self.deltas = deltas;
     }
 }
 
@@ -439,6 +452,34 @@ fn strike(
             return Some(Strike { t, i, x_side, step });
         }
     }
+}
+
+/// The cell offsets `(x_min, x_max, y_min, y_max)` bounding the circular sector of radius
+/// `reach` around `axis` ± `half` (radians): its two edge ends, the apex, and the
+/// points at the compass directions the sector spans.
+fn sector_box(axis: f64, half: f64, reach: f64) -> (i64, i64, i64, i64) {
+    let (mut x0, mut x1, mut y0, mut y1) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
+    let mut take = |a: f64| {
+        let (sy, sx) = a.sin_cos();
+        x0 = x0.min(reach * sx);
+        x1 = x1.max(reach * sx);
+        y0 = y0.min(reach * sy);
+        y1 = y1.max(reach * sy);
+    };
+    take(axis - half);
+    take(axis + half);
+    for k in 0..4 {
+        let compass = f64::from(k) * std::f64::consts::FRAC_PI_2;
+        if wrap(compass - axis).abs() <= half {
+            take(compass);
+        }
+    }
+    (
+        x0.floor() as i64 - 1,
+        x1.ceil() as i64 + 1,
+        y0.floor() as i64 - 1,
+        y1.ceil() as i64 + 1,
+    )
 }
 
 /// An angle wrapped to (−π, π].
@@ -486,6 +527,24 @@ mod tests {
             },
         ] {
             assert!(SonarSensor::new(p).is_err());
+        }
+    }
+
+    #[test]
+    fn sector_boxes_hold_their_sectors() {
+        // Every point of a sampled sector lies in its box.
+        for k in 0..64 {
+            let axis = f64::from(k) * 0.1 - 3.0;
+            let half = 12.5f64.to_radians();
+            let (x0, x1, y0, y1) = sector_box(axis, half, 20.0);
+            for i in 0..=20 {
+                for j in 0..=20 {
+                    let a = axis - half + 2.0 * half * f64::from(i) / 20.0;
+                    let d = 20.0 * f64::from(j) / 20.0;
+                    let (x, y) = (d * a.cos(), d * a.sin());
+                    assert!(x >= x0 as f64 && x <= x1 as f64 && y >= y0 as f64 && y <= y1 as f64);
+                }
+            }
         }
     }
 

@@ -76,7 +76,7 @@ fn a_wall_head_on_is_heard_at_its_distance() {
 fn a_wall_at_a_grazing_angle_is_not_heard() {
     let plane = wall_at_y20();
     // Axis 10° below the wall's direction: every ray of the 25° cone meets the wall at
-    // 67.5°–92.5° from its normal, beyond the 60° threshold.
+    // 67.5°–92.5° from its normal, beyond the 20° threshold.
     let heading = 10f64.to_radians();
     let r = fire(
         &exact_sonar(),
@@ -135,7 +135,7 @@ fn a_table_is_invisible_to_the_laser_and_heard_by_sonar() {
     laser_map.integrate(&obs, &mut Vec::new());
     assert_eq!(laser_map.known()[table], Occ::Free);
 
-    let sonar = exact_sonar();
+    let mut sonar = exact_sonar();
     let r = fire(&sonar, &plane, Some(&clutter), pose);
     assert!(r[0].echo && (r[0].range - 7.5).abs() < 1e-9, "{:?}", r[0]);
     let mut belief = EvidenceGrid::new(40, 30);
@@ -154,7 +154,7 @@ fn a_table_is_invisible_to_the_laser_and_heard_by_sonar() {
 #[test]
 fn the_cone_model_marks_free_space_then_the_wall() {
     let plane = wall_at_x20();
-    let sonar = exact_sonar();
+    let mut sonar = exact_sonar();
     let pose = Pose::new(Cell::new(10, 15), 0.0);
     let r = fire(&sonar, &plane, None, pose);
     let mut belief = EvidenceGrid::new(40, 30);
@@ -184,7 +184,7 @@ fn the_cone_model_marks_free_space_then_the_wall() {
 #[test]
 fn specular_max_range_paints_phantom_space_that_the_laser_limits() {
     let plane = wall_at_y20();
-    let sonar = exact_sonar();
+    let mut sonar = exact_sonar();
     let pose = Pose::new(Cell::new(5, 15), 10f64.to_radians());
     let behind_wall = plane.index(Cell::new(30, 21)); // on the axis, just past the wall
     let r = fire(&sonar, &plane, None, pose);

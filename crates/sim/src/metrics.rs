@@ -252,6 +252,9 @@ pub struct MapAudit {
     /// Phantom frontier regions — 8-connected frontier regions with a cell that is not free
     /// in the ground truth — summed over the decisions of the run.
     pub phantom_regions: u64,
+    /// All frontier regions, summed over the decisions of the run (when phantoms are
+    /// counted: with sonar, clutter or a probabilistic belief).
+    pub frontier_regions: u64,
     /// The most phantom frontier regions at one decision.
     pub phantom_regions_max: u64,
     /// Goals chosen on cells that are not free in the ground truth.
@@ -259,6 +262,15 @@ pub struct MapAudit {
 }
 
 impl MapAudit {
+    /// The share of frontier regions that were phantoms, over all decisions (0 if none).
+    pub fn phantom_share(&self) -> f64 {
+        if self.frontier_regions == 0 {
+            0.0
+        } else {
+            self.phantom_regions as f64 / self.frontier_regions as f64
+        }
+    }
+
     /// Phantom frontier regions per decision, on average.
     pub fn phantom_regions_mean(&self, decisions: u64) -> f64 {
         if decisions == 0 {

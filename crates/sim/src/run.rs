@@ -376,7 +376,7 @@ impl Team<'_> {
     fn sense(&mut self, pose: Pose, sweep: bool) {
         let t0 = Instant::now();
         self.changed.clear();
-        if let Some(sonar) = &self.sonar {
+        if let Some(sonar) = &mut self.sonar {
             let plane = &self.truth.cells;
             sonar.fire(
                 plane,
@@ -485,6 +485,7 @@ impl Team<'_> {
             .iter()
             .filter(|g| g.cells.iter().any(|&c| !self.truly_free(c as usize)))
             .count() as u64;
+        self.audit.frontier_regions += regions.len() as u64;
         self.regions_buf = regions;
         self.audit.phantom_regions += phantoms;
         self.audit.phantom_regions_max = self.audit.phantom_regions_max.max(phantoms);

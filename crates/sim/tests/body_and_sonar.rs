@@ -134,3 +134,58 @@ fn sonar_explores_a_cluttered_office_and_the_run_ends() {
         );
     }
 }
+
+/// Summed over a few furnished offices: (phantom regions, all regions, clutter mapped,
+/// phantom free cells) of a sensor.
+fn audit_over_seeds(sensor: &str) -> (u64, u64, usize, usize) {
+    let mut sums = (0, 0, 0, 0);
+    for seed in 0..3 {
+        let env = world::generate(
+            &EnvSpec::new(EnvKind::Office, seed)
+                .with_size(12.0, 10.0)
+                .with_resolution(0.1),
+        )
+        .expect("office");
+        let mut cfg = RunConfig::new(Strategy::preset("yamauchi").expect("preset"));
+        cfg.belief = BeliefKind::Evidence;
+        cfg.sensor = sensor.parse().expect("spec");
+        cfg.clutter = Some(furnish(&env, seed, &ClutterParams::default()));
+        cfg.seed = seed;
+        let r = sim::run(&env.map, &cfg).expect("run");
+        assert_ne!(r.reason, EndReason::StepLimit, "{sensor} seed {seed}");
+        sums.0 += r.audit.phantom_regions;
+        sums.1 += r.audit.frontier_regions;
+        sums.2 += r.audit.clutter_mapped;
+        sums.3 += r.audit.false_free_cells;
+    }
+    sums
+}
+
+#[test]
+fn laser_limiting_removes_phantoms_and_sonar_maps_the_tables() {
+    let sonar = audit_over_seeds("sonar");
+    let limited = audit_over_seeds("laser-limited-sonar");
+    let laser = audit_over_seeds("laser");
+    let share = |s: (u64, u64, usize, usize)| s.0 as f64 / s.1.max(1) as f64;
+    // Specular reflections: sonar alone is mostly chasing phantoms; the laser cap removes
+    // a large part of them and of the phantom open space.
+    assert!(
+        share(limited) < 0.75 * share(sonar),
+        "phantom share {} vs {}",
+        share(limited),
+        share(sonar)
+    );
+    assert!(
+        limited.3 < sonar.3,
+        "phantom free {} vs {}",
+        limited.3,
+        sonar.3
+    );
+    // The tables: the laser alone misses them, laser-limited sonar maps them.
+    assert!(
+        limited.2 > 3 * laser.2,
+        "clutter {} vs {}",
+        limited.2,
+        laser.2
+    );
+}
