@@ -55,6 +55,14 @@ test("replay page plays, scrubs to the end and agrees with the JSON summary", as
     assert.equal(Number(await page.textContent("#event")), events);
     // Layers toggle without errors.
     for (const id of ["#l-truth", "#l-belief", "#l-frontiers", "#l-trails"]) { await page.click(id); await page.click(id); }
+    // Segmenting strategies carry a segments layer, shown by default; others disable it.
+    const segmenting = summary.strategy.includes("seg");
+    assert.equal(await page.isDisabled("#l-segments"), !segmenting, "segments layer availability");
+    if (segmenting) {
+      assert.ok(await page.isChecked("#l-segments"), "segments shown");
+      assert.ok(await page.isVisible("#seg-legend"), "segments in the legend");
+      await page.click("#l-segments"); await page.click("#l-segments");
+    }
 
     await page.screenshot({ path: process.env.SCREENSHOT || "replay.png" });
     assert.deepEqual(errors, [], "no script errors");

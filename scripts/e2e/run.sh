@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # End-to-end test of the replay page in a real headless browser.
 # Installs Debian's chromium (if missing) and playwright-core (npm, pinned), writes a replay
-# of a two-robot run and of a single-robot run, and checks each page against the run's JSON
+# of a single-robot run, a two-robot run and a segmenting run, and checks each page against the run's JSON
 # summary. Screenshots go to target/e2e/.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
@@ -20,4 +20,5 @@ run() {
 }
 run hospital --env hospital --seed 2 --strategy cf-rr
 run office-team --env office --seed 1 --strategy cf-rr --robots 2
+run office-seg --env office --seed 1 --strategy cf-rr-seg
 echo "screenshots in $out/"

@@ -50,6 +50,20 @@ pub struct Truth {
     pub clutter: Option<Grid<bool>>,
 }
 
+impl Truth {
+    /// This truth, for a command that reads only the sensor plane (`command`): off-plane
+    /// clutter is an error there rather than silently ignored.
+    pub fn plane_only(self, command: &str) -> Result<Truth> {
+        if self.clutter.is_some() {
+            bail!(
+                "--clutter / --clutter-map: {command} reads only the sensor plane; off-plane \
+                 clutter applies to explore"
+            );
+        }
+        Ok(self)
+    }
+}
+
 /// Parse "R" or "RX,RY" (metres per cell).
 pub fn parse_resolution(s: &str) -> Result<(f64, f64)> {
     let parse = |p: &str| -> Result<f64> {

@@ -96,7 +96,7 @@ fn default_start(map: &grid::GridMap) -> Option<Cell> {
 
 /// Run `frontier optimal`.
 pub fn run(a: OptimalArgs) -> Result<()> {
-    let truth = a.source.resolve(a.seed)?;
+    let truth = a.source.resolve(a.seed)?.plane_only("optimal")?;
     let map = &truth.map;
     let spec: SensorSpec = a
         .sensor

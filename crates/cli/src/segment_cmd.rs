@@ -53,7 +53,7 @@ pub fn run(a: SegmentArgs) -> Result<()> {
     if a.truth.is_some() && a.source.map.is_none() {
         bail!("--truth goes with --map; a generated office or hospital has its own rooms");
     }
-    let truth = a.source.resolve(a.seed)?;
+    let truth = a.source.resolve(a.seed)?.plane_only("segment")?;
     let rooms = match &a.truth {
         Some(path) => Some(truth_rooms(path, &a.source, &truth.map)?),
         None if a.source.map.is_none() => generated_rooms(&a.source, a.seed)?,

@@ -271,6 +271,8 @@ fn sonar_in_a_furnished_office_reports_the_map_audit() {
 fn clutter_flags_are_checked() {
     let e = err(&["explore", "--env", "cave", "--clutter"]);
     assert!(e.contains("--clutter") && e.contains("cave"), "{e}");
+    let e = err(&["segment", "--env", "office", "--clutter"]);
+    assert!(e.contains("segment reads only the sensor plane"), "{e}");
     let e = err(&["explore", "--sensor", "sonar", "--belief", "known"]);
     assert!(e.contains("--belief") && e.contains("evidence"), "{e}");
     let dir = tempfile::tempdir().unwrap();
