@@ -227,6 +227,8 @@ pub struct RunResult {
     pub frontiers_left: Vec<u32>,
     /// The map built against the ground truth.
     pub audit: MapAudit,
+    /// The run's obstacles off the laser plane (the configured layer), for pictures.
+    pub clutter: Option<Grid<bool>>,
     /// The per-step trace, when asked for.
     pub trace: Option<Trace>,
 }

@@ -318,6 +318,7 @@ pub fn run(truth: &GridMap, cfg: &RunConfig) -> Result<RunResult, SimError> {
         belief: team.belief.known().clone(),
         frontiers_left,
         audit: team.audit,
+        clutter: cfg.clutter.clone(),
         trace: team.trace,
     })
 }

@@ -33,6 +33,8 @@ impl Default for GifOptions {
 }
 
 // Palette indices.
+use crate::{CLUTTER_MAPPED, CLUTTER_MISSED, CLUTTER_UNKNOWN};
+
 const UNKNOWN_FREE: u8 = 0;
 const UNKNOWN_OCCUPIED: u8 = 1;
 const OUTSIDE: u8 = 2;
@@ -43,6 +45,8 @@ const CANDIDATE: u8 = 6;
 const GOAL: u8 = 7;
 const ROBOT0: u8 = 8;
 const START: u8 = 16;
+/// Off-plane clutter: unseen, believed free, believed occupied (as in the final picture).
+const CLUTTER0: u8 = 17;
 const NONE: u8 = 255;
 /// First palette index of the segment tints.
 const SEG0: u8 = 32;
@@ -60,6 +64,7 @@ fn palette() -> Vec<u8> {
     ];
     p.extend(crate::ROBOT_COLOURS);
     p.push([0, 150, 0]);
+    p.extend([CLUTTER_UNKNOWN, CLUTTER_MISSED, CLUTTER_MAPPED]);
     p.resize(SEG0 as usize, [0, 0, 0]);
     // Segments: each colour at 35 % over known-free white.
     p.extend(
@@ -256,6 +261,10 @@ pub fn animate_gif(
                         (Occ::Unknown, Occ::Free) => UNKNOWN_FREE,
                         (Occ::Unknown, Occ::Occupied) => UNKNOWN_OCCUPIED,
                         (Occ::Unknown, Occ::Unknown) => OUTSIDE,
+                    };
+                    let c = match &result.clutter {
+                        Some(cl) if cl[i] => CLUTTER0 + known[i] as u8,
+                        _ => c,
                     };
                     if g.down > 1 {
                         // Sample: the cell at the block's corner, obstacles winning.

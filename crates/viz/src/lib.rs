@@ -75,6 +75,20 @@ const UNKNOWN_OUTSIDE: [u8; 3] = [205, 205, 205];
 const KNOWN_FREE: [u8; 3] = [255, 255, 255];
 const KNOWN_OCCUPIED: [u8; 3] = [25, 25, 25];
 const FRONTIER: [u8; 3] = [220, 30, 30];
+/// Off-plane clutter (tables, chairs): not yet seen, believed free (the laser missed it),
+/// believed occupied (sonar or the robot's body found it).
+const CLUTTER_UNKNOWN: [u8; 3] = [226, 206, 178];
+const CLUTTER_MISSED: [u8; 3] = [246, 178, 90];
+const CLUTTER_MAPPED: [u8; 3] = [120, 72, 30];
+
+/// The colour of an off-plane clutter cell believed `belief`.
+fn clutter_colour(belief: Occ) -> [u8; 3] {
+    match belief {
+        Occ::Unknown => CLUTTER_UNKNOWN,
+        Occ::Free => CLUTTER_MISSED,
+        Occ::Occupied => CLUTTER_MAPPED,
+    }
+}
 
 /// The whole-number scale at which a `width × height` map is drawn: at least 1, and
 /// enough for the longer side to reach about 600 pixels.
@@ -99,7 +113,9 @@ pub fn map_picture(map: &Grid<Occ>) -> RgbImage {
 }
 
 /// Draw the end of a run: truth (faint), belief, frontiers left, trajectories, starts, ends.
-/// Trajectories need the run's trace; without it only starts and ends are marked.
+/// Trajectories need the run's trace; without it only starts and ends are marked. Off-plane
+/// clutter is drawn in its own colours: tan where unseen, orange where believed free (the
+/// laser missed it), brown where believed occupied.
 pub fn final_picture(truth: &GridMap, result: &RunResult) -> RgbImage {
     let cells = &truth.cells;
     let s = scale_for(cells.width(), cells.height());
@@ -111,6 +127,10 @@ pub fn final_picture(truth: &GridMap, result: &RunResult) -> RgbImage {
             (Occ::Unknown, Occ::Free) => UNKNOWN_FREE,
             (Occ::Unknown, Occ::Occupied) => UNKNOWN_OCCUPIED,
             (Occ::Unknown, Occ::Unknown) => UNKNOWN_OUTSIDE,
+        };
+        let colour = match &result.clutter {
+            Some(c) if c[i] => clutter_colour(result.belief[i]),
+            _ => colour,
         };
         fill_cell(&mut img, cells.cell(i), s, colour);
     }

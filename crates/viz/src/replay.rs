@@ -5,7 +5,7 @@
 
 use base64::Engine;
 use base64::engine::general_purpose::STANDARD;
-use grid::{GridMap, Occ};
+use grid::GridMap;
 use serde_json::json;
 use sim::RunResult;
 
@@ -23,8 +23,9 @@ fn b64_f64(v: impl Iterator<Item = f64>) -> String {
     STANDARD.encode(bytes)
 }
 
-/// Run-length encoding of the ground truth: (run length << 2 | class) per run.
-fn rle(cells: &[Occ]) -> Vec<u32> {
+/// Run-length encoding of the ground truth: (run length << 2 | class) per run; class 0
+/// outside, 1 free, 2 occupied, 3 off-plane clutter.
+fn rle(cells: &[u32]) -> Vec<u32> {
     let mut out = Vec::new();
     let mut i = 0;
     while i < cells.len() {
@@ -33,7 +34,7 @@ fn rle(cells: &[Occ]) -> Vec<u32> {
         while i + n < cells.len() && cells[i + n] == v && n < (1 << 29) {
             n += 1;
         }
-        out.push(((n as u32) << 2) | v as u32);
+        out.push(((n as u32) << 2) | v);
         i += n;
     }
     out
@@ -66,6 +67,12 @@ pub fn replay_html(
         }
         seg_ends.push(seg_runs.len() as u32 / 2);
     }
+    let truth_classes: Vec<u32> = (0..cells.len())
+        .map(|i| match &result.clutter {
+            Some(c) if c[i] => 3,
+            _ => cells[i] as u32,
+        })
+        .collect();
     let data = json!({
         "title": title,
         "meta": meta,
@@ -74,7 +81,8 @@ pub fn replay_html(
         "resolution": truth.resolution,
         "robots": trace.robots,
         "starts": trace.starts,
-        "truth": STANDARD.encode(rle(cells.data()).iter().flat_map(|v| v.to_le_bytes()).collect::<Vec<u8>>()),
+        "truth": STANDARD.encode(rle(&truth_classes).iter().flat_map(|v| v.to_le_bytes()).collect::<Vec<u8>>()),
+        "clutter": result.clutter.as_ref().is_some_and(|c| c.data().iter().any(|&v| v)),
         "changes": b64_u32(trace.changes.iter().map(|&(c, s)| (c << 2) | s as u32)),
         "changeEnds": b64_u32(trace.change_ends.iter().copied()),
         "evRobot": b64_u32(trace.events.iter().map(|e| e.robot)),

@@ -157,3 +157,62 @@ fn segmentation_runs_record_segments_and_show_them() {
     let plain_html = viz::replay::replay_html(&env.map, &plain, "seg", "cf-rr-seg").unwrap();
     assert!(plain_html.contains("\"segRuns\":\"\""));
 }
+
+#[test]
+fn furniture_off_the_laser_plane_is_drawn_in_every_picture() {
+    let env = world::generate(&EnvSpec {
+        kind: EnvKind::Office,
+        seed: 2,
+        size_m: Some((12.0, 10.0)),
+        resolution: Some(0.1),
+    })
+    .unwrap();
+    let clutter = world::clutter::furnish(&env, 2, &world::clutter::ClutterParams::default());
+    let mut cfg = RunConfig::new(Strategy::preset("cf").unwrap());
+    cfg.record_trace = true;
+    cfg.clutter = Some(clutter.clone());
+    let r = sim::run(&env.map, &cfg).unwrap();
+    assert_eq!(r.clutter.as_ref(), Some(&clutter));
+    // The laser plane's sensor misses the tables: believed free there, drawn orange; a
+    // table cell the body bumped into is believed occupied, drawn brown.
+    let img = viz::final_picture(&env.map, &r);
+    let s = viz::scale_for(env.map.width(), env.map.height());
+    let colour_of = |i: usize| {
+        let c = env.map.cells.cell(i);
+        img.get_pixel(c.x as u32 * s, c.y as u32 * s).0
+    };
+    let tables: Vec<usize> = (0..clutter.len()).filter(|&i| clutter[i]).collect();
+    assert!(!tables.is_empty());
+    for &i in &tables {
+        let want = match r.belief[i] {
+            grid::Occ::Free => [246, 178, 90],
+            grid::Occ::Occupied => [120, 72, 30],
+            grid::Occ::Unknown => [226, 206, 178],
+        };
+        if !r.frontiers_left.contains(&(i as u32)) {
+            assert_eq!(colour_of(i), want, "cell {i}");
+        }
+    }
+    assert!(tables.iter().any(|&i| r.belief[i] == grid::Occ::Free));
+    // The GIF has the clutter colours in its palette and uses them.
+    let opts = GifOptions {
+        max_frames: 5,
+        max_side: 240,
+        delay_cs: 5,
+    };
+    let frames = gif_frames(&animate_gif(&env.map, &r, &opts).unwrap());
+    assert!(
+        frames
+            .last()
+            .unwrap()
+            .iter()
+            .any(|&p| (17..20).contains(&p))
+    );
+    // The replay page marks them as truth class 3 and shows the legend.
+    let html = viz::replay::replay_html(&env.map, &r, "office", "cf").unwrap();
+    assert!(html.contains("\"clutter\":true"));
+    let mut plain = r.clone();
+    plain.clutter = None;
+    let html = viz::replay::replay_html(&env.map, &plain, "office", "cf").unwrap();
+    assert!(html.contains("\"clutter\":false"));
+}
