@@ -10,12 +10,6 @@
 //! the ideal sensors of a simulation a small region is real unexplored space (a narrow
 //! passage, a wall seen at a grazing angle), and without the fallback the robot would stop
 //! with reachable space unexplored.
-//!
-//! Deviation: when no region of the minimum size has a reachable, unvisited cell, the
-//! smaller regions are taken too. Yamauchi's filter is there to ignore sensor noise; with
-//! the ideal sensors of a simulation a small region is real unexplored space (a narrow
-//! passage, a wall seen at a grazing angle), and without the fallback the robot would stop
-//! with reachable space unexplored.
 
 use super::CandidateSet;
 use crate::decision::DecisionCtx;
