@@ -84,6 +84,9 @@ struct Team<'a> {
     rng: Pcg64Mcg,
     obs: Observation,
     changed: Vec<u32>,
+    /// Whether cells the robots stand on are pinned free (sonar, clutter: the map can be
+    /// wrong where the robot has been).
+    pin_trail: bool,
     /// The no-progress limit in seconds: the strategy's, or [`IMPERFECT_NO_PROGRESS_S`] when
     /// the robot can meet what its map does not show (sonar, off-plane clutter).
     no_progress_s: Option<f64>,
@@ -187,6 +190,7 @@ pub fn run(truth: &GridMap, cfg: &RunConfig) -> Result<RunResult, SimError> {
         rng: seed::rng(cfg.seed, "strategy"),
         obs: Observation::new(),
         changed: Vec::new(),
+        pin_trail: cfg.clutter.is_some() || cfg.sensor.sonar_mode().is_some(),
         no_progress_s: cfg
             .strategy
             .replan
@@ -252,6 +256,7 @@ pub fn run(truth: &GridMap, cfg: &RunConfig) -> Result<RunResult, SimError> {
             heading: 0.0,
         };
         team.sense(pose, true);
+        team.pin_free(robots[r].cell);
         team.record(&robots, r);
     }
     let all: Vec<usize> = (0..m).collect();
@@ -442,6 +447,18 @@ impl Team<'_> {
         self.times.upkeep_s += (t2 - t1).as_secs_f64();
     }
 
+    /// Under imperfect sensing, pin a cell the robot's body stands on free in the belief:
+    /// the body was there, so no sonar arc may close the way back (sensing has run).
+    fn pin_free(&mut self, cell: u32) {
+        if self.pin_trail && !self.belief.is_pinned(cell as usize) {
+            self.changed.clear();
+            self.belief.pin(cell as usize, Occ::Free, &mut self.changed);
+            if !self.changed.is_empty() {
+                self.absorb_changes();
+            }
+        }
+    }
+
     /// Whether cell `i` is free in the ground truth (where the robot's body can be).
     fn truly_free(&self, i: usize) -> bool {
         self.body.as_ref().unwrap_or(&self.truth.cells)[i] == Occ::Free
@@ -492,10 +509,11 @@ impl Team<'_> {
         self.audit.phantom_regions_max = self.audit.phantom_regions_max.max(phantoms);
     }
 
-    /// Robot `r`'s body met an obstacle in `blocked` (a cell its belief showed traversable):
-    /// it stops for [`BUMP_S`], senses again, marks the cell occupied and re-plans; a goal
+    /// Robot `r`'s body met obstacles in `blocked` (its next cell, or the two cells beside a
+    /// diagonal step, which its belief showed passable):
+    /// it stops for [`BUMP_S`], senses again, pins those cells occupied and re-plans; a goal
     /// not approached for the no-progress limit goes on the inaccessible list.
-    fn bump(&mut self, robots: &mut [Robot], r: usize, blocked: u32) {
+    fn bump(&mut self, robots: &mut [Robot], r: usize, blocked: &[u32]) {
         robots[r].clock += BUMP_S;
         let pose = Pose {
             cell: self.truth.cells.cell(robots[r].cell as usize),
@@ -503,8 +521,10 @@ impl Team<'_> {
         };
         self.sense(pose, false);
         self.changed.clear();
-        self.belief
-            .pin_occupied(blocked as usize, &mut self.changed);
+        for &i in blocked {
+            self.belief
+                .pin(i as usize, Occ::Occupied, &mut self.changed);
+        }
         self.absorb_changes();
         self.record(robots, r);
         self.give_up_if_stuck(robots, r);
@@ -755,10 +775,23 @@ impl Team<'_> {
             self.decide(robots, &[r]);
             return;
         }
-        let blocked = self.body.as_ref().unwrap_or(&self.truth.cells)[next as usize] != Occ::Free;
-        if blocked {
-            self.bump(robots, r, next);
+        // The body meets what the map does not show: the next cell, or both cells beside a
+        // diagonal step (a corner it cannot squeeze through).
+        let body = self.body.as_ref().unwrap_or(&self.truth.cells);
+        if body[next as usize] != Occ::Free {
+            self.bump(robots, r, &[next]);
             return;
+        }
+        let (a, b) = (body.cell(robots[r].cell as usize), body.cell(next as usize));
+        if a.x != b.x && a.y != b.y {
+            let beside = [
+                body.index(Cell::new(b.x, a.y)) as u32,
+                body.index(Cell::new(a.x, b.y)) as u32,
+            ];
+            if beside.iter().all(|&i| body[i as usize] != Occ::Free) {
+                self.bump(robots, r, &beside);
+                return;
+            }
         }
         let cells = &self.truth.cells;
         let (a, b) = (
@@ -787,6 +820,20 @@ impl Team<'_> {
                 },
                 false,
             );
+        }
+        self.pin_free(next);
+        if dx != 0 && dy != 0 {
+            // A diagonal step passed beside a free orthogonal cell (no corner squeezing):
+            // pin it too, so that the way back stays a legal path in the belief.
+            let cells = &self.truth.cells;
+            let body = self.body.as_ref().unwrap_or(cells);
+            let beside = [Cell::new(a.x + dx, a.y), Cell::new(a.x, a.y + dy)]
+                .into_iter()
+                .map(|c| cells.index(c))
+                .find(|&i| body[i] == Occ::Free);
+            if let Some(i) = beside {
+                self.pin_free(i as u32);
+            }
         }
         self.record(robots, r);
         let goal = robots[r].goal.expect("a moving robot has a goal");

@@ -158,12 +158,20 @@ impl Belief for EvidenceGrid {
         1.0 / (1.0 + (-self.log_odds(i)).exp())
     }
 
-    fn pin_occupied(&mut self, i: usize, changed: &mut Vec<u32>) {
-        if i < self.known.len() {
+    fn pin(&mut self, i: usize, class: Occ, changed: &mut Vec<u32>) {
+        if i < self.known.len() && class != Occ::Unknown {
             self.pins.pin(i);
-            self.log_odds[i] = self.l_max;
-            set_class(&mut self.known, i, Occ::Occupied, changed);
+            self.log_odds[i] = if class == Occ::Free {
+                -self.l_max
+            } else {
+                self.l_max
+            };
+            set_class(&mut self.known, i, class, changed);
         }
+    }
+
+    fn is_pinned(&self, i: usize) -> bool {
+        self.pins.holds(i)
     }
 
     fn evidence_mut(&mut self) -> Option<&mut EvidenceGrid> {

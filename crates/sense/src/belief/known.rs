@@ -34,11 +34,15 @@ impl Belief for KnownGrid {
         }
     }
 
-    fn pin_occupied(&mut self, i: usize, changed: &mut Vec<u32>) {
-        if i < self.known.len() {
+    fn pin(&mut self, i: usize, class: Occ, changed: &mut Vec<u32>) {
+        if i < self.known.len() && class != Occ::Unknown {
             self.pins.pin(i);
-            set_class(&mut self.known, i, Occ::Occupied, changed);
+            set_class(&mut self.known, i, class, changed);
         }
+    }
+
+    fn is_pinned(&self, i: usize) -> bool {
+        self.pins.holds(i)
     }
 
     fn known(&self) -> &Grid<Occ> {

@@ -34,12 +34,15 @@ pub trait Belief: Send {
     fn known(&self) -> &Grid<Occ>;
     /// Probability that cell i is occupied (0.5 if unknown) — for entropy-based information gain.
     fn p_occupied(&self, i: usize) -> f64;
-    /// Pin cell `i` occupied for good: the robot's body met an obstacle there, and contact
-    /// is certain, so no later observation changes it (an ideal planar sensor would see the
-    /// free plane below a table again at once, a sonar cone that heard nothing would paint
-    /// it free). Pushes `i` to `changed` if its class changed; an index outside the map is
+    /// Pin cell `i` to `class` (Free or Occupied) for good: the robot's body was there, or
+    /// met an obstacle there, and contact is certain, so no later observation changes it (a
+    /// sonar cone's arc would otherwise close a corridor the robot has just driven through,
+    /// an ideal planar sensor would see the free plane below a table again at once). Pushes
+    /// `i` to `changed` if its class changed; an index outside the map, or `Unknown`, is
     /// ignored.
-    fn pin_occupied(&mut self, i: usize, changed: &mut Vec<u32>);
+    fn pin(&mut self, i: usize, class: Occ, changed: &mut Vec<u32>);
+    /// Whether cell `i` is pinned.
+    fn is_pinned(&self, i: usize) -> bool;
     /// The log-odds evidence grid behind this belief, if it is one (for sensors that add
     /// graded evidence, such as the sonar cone); `None` for the other models.
     fn evidence_mut(&mut self) -> Option<&mut EvidenceGrid> {
@@ -93,7 +96,7 @@ impl FromStr for BeliefKind {
     }
 }
 
-/// Cells pinned occupied by contact ([`Belief::pin_occupied`]), sorted; empty in most runs,
+/// Cells pinned by contact ([`Belief::pin`]), sorted; empty in most runs,
 /// so the check on every observed cell costs one comparison.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub(crate) struct Pins(Vec<u32>);

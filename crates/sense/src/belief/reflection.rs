@@ -96,11 +96,15 @@ impl Belief for ReflectionMap {
         }
     }
 
-    fn pin_occupied(&mut self, i: usize, changed: &mut Vec<u32>) {
-        if i < self.known.len() {
+    fn pin(&mut self, i: usize, class: Occ, changed: &mut Vec<u32>) {
+        if i < self.known.len() && class != Occ::Unknown {
             self.pins.pin(i);
-            set_class(&mut self.known, i, Occ::Occupied, changed);
+            set_class(&mut self.known, i, class, changed);
         }
+    }
+
+    fn is_pinned(&self, i: usize) -> bool {
+        self.pins.holds(i)
     }
 
     fn known(&self) -> &Grid<Occ> {
@@ -110,7 +114,11 @@ impl Belief for ReflectionMap {
     fn p_occupied(&self, i: usize) -> f64 {
         let (h, m) = (self.hits(i), self.misses(i));
         if self.pins.holds(i) {
-            1.0
+            if self.known[i] == Occ::Occupied {
+                1.0
+            } else {
+                0.0
+            }
         } else if h + m == 0 {
             0.5
         } else {
