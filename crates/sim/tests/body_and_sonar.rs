@@ -29,16 +29,31 @@ fn split_room() -> (GridMap, Grid<bool>) {
     (GridMap::new(cells, 0.2), clutter)
 }
 
+/// The robot never entered an obstacle of the plane or the clutter, nor squeezed between
+/// two of them through a corner.
 fn never_inside(map: &GridMap, clutter: &Grid<bool>, r: &RunResult) {
     let trace = r.trace.as_ref().expect("trace");
+    let blocked = |c: Cell| {
+        let i = map.cells.index(c);
+        map.cells[i] != Occ::Free || clutter[i]
+    };
     for trail in trace.trails() {
-        for c in trail {
-            let i = c as usize;
+        for c in &trail {
+            let i = *c as usize;
             assert!(
                 map.cells[i] == Occ::Free && !clutter[i],
                 "robot entered blocked cell {}",
                 map.cells.cell(i)
             );
+        }
+        for w in trail.windows(2) {
+            let (a, b) = (map.cells.cell(w[0] as usize), map.cells.cell(w[1] as usize));
+            if a.x != b.x && a.y != b.y {
+                assert!(
+                    !(blocked(Cell::new(b.x, a.y)) && blocked(Cell::new(a.x, b.y))),
+                    "robot squeezed through a corner from {a} to {b}"
+                );
+            }
         }
     }
 }
@@ -188,4 +203,37 @@ fn laser_limiting_removes_phantoms_and_sonar_maps_the_tables() {
         limited.2,
         laser.2
     );
+}
+
+/// A room split by a barrier whose upper half is wall (column 5) and lower half is
+/// furniture the laser misses (column 6): in the belief the diagonal step from (5, 4) to
+/// (6, 3) passes beside a free-looking cell, but the body cannot squeeze through that
+/// corner, so the far side stays out of reach.
+#[test]
+fn the_body_cannot_squeeze_through_a_corner_the_map_shows_open() {
+    let (w, h) = (14, 9);
+    let mut cells = Grid::new(w, h, Occ::Free);
+    let mut clutter = Grid::new(w, h, false);
+    for y in 0..h as i32 {
+        for x in 0..w as i32 {
+            if x == 0 || y == 0 || x == w as i32 - 1 || y == h as i32 - 1 || (x == 5 && y <= 3) {
+                cells.set(Cell::new(x, y), Occ::Occupied);
+            } else if x == 6 && y >= 4 {
+                clutter.set(Cell::new(x, y), true);
+            }
+        }
+    }
+    let map = GridMap::new(cells, 0.2);
+    for start in [Cell::new(2, 6), Cell::new(4, 5), Cell::new(5, 7)] {
+        let mut cfg = RunConfig::new(Strategy::preset("cf").expect("preset"));
+        cfg.sensor = SensorSpec::Los {
+            r: Range::Metres(1.0),
+        };
+        cfg.starts = vec![start];
+        cfg.clutter = Some(clutter.clone());
+        cfg.record_trace = true;
+        let r = sim::run(&map, &cfg).expect("run");
+        never_inside(&map, &clutter, &r);
+        assert_ne!(r.reason, EndReason::StepLimit);
+    }
 }
