@@ -180,3 +180,45 @@ fn out_of_range_and_unknown_entries_are_ignored() {
         assert!(b.known().data().iter().all(|c| c.is_unknown()));
     }
 }
+
+proptest! {
+    /// Pinned cells keep their pinned class whatever is observed after, in every model;
+    /// the other cells behave as without pins, and `changed` still lists exactly the cells
+    /// whose class changed.
+    #[test]
+    fn pinned_cells_never_change(steps in arb_observations(), pins in proptest::collection::btree_map(0u32..(W * H) as u32, any::<bool>(), 0..6)) {
+        for kind in [BeliefKind::Known, BeliefKind::Reflection, BeliefKind::Evidence] {
+            let mut pinned = kind.build(W, H);
+            let mut free = kind.build(W, H);
+            for (&i, &occ) in &pins {
+                let class = if occ { Occ::Occupied } else { Occ::Free };
+                let before = pinned.known()[i as usize];
+                let mut changed = Vec::new();
+                pinned.pin(i as usize, class, &mut changed);
+                prop_assert_eq!(changed.len(), usize::from(before != class));
+                prop_assert!(pinned.is_pinned(i as usize));
+            }
+            for o in &steps {
+                let before = pinned.known().clone();
+                let mut changed = Vec::new();
+                pinned.integrate(o, &mut changed);
+                free.integrate(o, &mut Vec::new());
+                let mut want: Vec<u32> = (0..(W * H) as u32)
+                    .filter(|&i| before[i as usize] != pinned.known()[i as usize])
+                    .collect();
+                changed.sort_unstable();
+                want.sort_unstable();
+                prop_assert_eq!(changed, want);
+                for i in 0..W * H {
+                    match pins.get(&(i as u32)) {
+                        Some(&occ) => prop_assert_eq!(
+                            pinned.known()[i],
+                            if occ { Occ::Occupied } else { Occ::Free }
+                        ),
+                        None => prop_assert_eq!(pinned.known()[i], free.known()[i]),
+                    }
+                }
+            }
+        }
+    }
+}
