@@ -159,14 +159,12 @@ impl Belief for EvidenceGrid {
     }
 
     fn pin(&mut self, i: usize, class: Occ, changed: &mut Vec<u32>) {
-        if i < self.known.len() && class != Occ::Unknown {
-            self.pins.pin(i);
+        if self.pins.pin(&mut self.known, i, class, changed) {
             self.log_odds[i] = if class == Occ::Free {
                 -self.l_max
             } else {
                 self.l_max
             };
-            set_class(&mut self.known, i, class, changed);
         }
     }
 

@@ -35,10 +35,7 @@ impl Belief for KnownGrid {
     }
 
     fn pin(&mut self, i: usize, class: Occ, changed: &mut Vec<u32>) {
-        if i < self.known.len() && class != Occ::Unknown {
-            self.pins.pin(i);
-            set_class(&mut self.known, i, class, changed);
-        }
+        self.pins.pin(&mut self.known, i, class, changed);
     }
 
     fn is_pinned(&self, i: usize) -> bool {

@@ -108,11 +108,24 @@ impl Pins {
         !self.0.is_empty() && self.0.binary_search(&(i as u32)).is_ok()
     }
 
-    /// Pin cell `i`.
-    pub(crate) fn pin(&mut self, i: usize) {
+    /// Pin cell `i` of `known` to `class` (Free or Occupied; anything else, or an index
+    /// outside the map, is ignored), pushing `i` to `changed` if its class changed; returns
+    /// whether it pinned.
+    pub(crate) fn pin(
+        &mut self,
+        known: &mut Grid<Occ>,
+        i: usize,
+        class: Occ,
+        changed: &mut Vec<u32>,
+    ) -> bool {
+        if i >= known.len() || class == Occ::Unknown {
+            return false;
+        }
         if let Err(k) = self.0.binary_search(&(i as u32)) {
             self.0.insert(k, i as u32);
         }
+        set_class(known, i, class, changed);
+        true
     }
 }
 
