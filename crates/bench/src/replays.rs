@@ -5,7 +5,7 @@
 //! read back from the environment's stored picture (drawn by [`viz::map_picture`] at a
 //! whole-number scale), so map-file environments need not be found again.
 
-use grid::{Cell, Grid, GridMap, Occ};
+use grid::{Cell, GridMap};
 use sim::RunConfig;
 
 use crate::error::BenchError;
@@ -25,32 +25,20 @@ pub fn representative<'a>(rows: &'a [TrialRow], env: &str) -> Option<&'a TrialRo
     })
 }
 
-/// The ground truth drawn in `pic` (free white, occupied black, anything else outside).
+/// The ground truth drawn in `pic` ([`viz::map_from_picture`]).
 pub fn truth_from_picture(pic: &EnvPicture) -> Result<GridMap, BenchError> {
     let bad = |why: String| BenchError::Other(format!("picture of {}: {why}", pic.name));
     let img = image::load_from_memory(&pic.png)
         .map_err(|e| bad(e.to_string()))?
         .to_rgb8();
     let (w, h) = (pic.width as usize, pic.height as usize);
-    let s = viz::scale_for(w, h);
-    if img.width() != w as u32 * s || img.height() != h as u32 * s {
-        return Err(bad(format!(
-            "{}x{} pixels do not match {w}x{h} cells",
+    let cells = viz::map_from_picture(&img, w, h).ok_or_else(|| {
+        bad(format!(
+            "{}x{} pixels do not draw {w}x{h} cells",
             img.width(),
             img.height()
-        )));
-    }
-    let mut data = Vec::with_capacity(w * h);
-    for y in 0..h as u32 {
-        for x in 0..w as u32 {
-            data.push(match img.get_pixel(x * s, y * s).0 {
-                [255, 255, 255] => Occ::Free,
-                [25, 25, 25] => Occ::Occupied,
-                _ => Occ::Unknown,
-            });
-        }
-    }
-    let cells = Grid::from_vec(w, h, data).ok_or_else(|| bad("size".into()))?;
+        ))
+    })?;
     Ok(GridMap {
         cells,
         resolution: pic.resolution,

@@ -35,7 +35,9 @@
 //! (Moravec & Elfes' angular fall-off), and then:
 //!
 //! - echo, `d + ½ ≤ ρ` (wholly nearer than the surface): `w · l_free`;
-//! - echo, `ρ − ½ < d < ρ + band + ½` (the arc the echo may come from): `w · l_occ`;
+//! - echo, `ρ − ½ < d < ρ + band + ½` (the arc the echo may come from):
+//!   `w · l_occ · min(1, 2p)`, `p` the cell's occupancy before this scan (Elfes: the echo
+//!   came from some cell of the arc, less likely from one already believed empty);
 //! - max range, `d + ½ ≤ range` and [`SonarParams::max_range_free`]: `w · l_free`
 //!   (the sonar heard nothing, so the cone is taken as empty — the source of Yamauchi's
 //!   phantom open space); otherwise nothing.

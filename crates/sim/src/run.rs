@@ -10,11 +10,12 @@
 //! models inter-robot collisions).
 //!
 //! With a sonar ring (Yamauchi 1997) the belief can show free space that is not (specular
-//! reflections) and the truth can hold obstacles off the laser plane; a robot whose next
-//! cell is an obstacle in the truth bumps: it stops for [`BUMP_S`] seconds, senses again,
-//! marks the cell occupied in its belief and re-plans. Yamauchi's no-progress rule then
-//! puts a goal that is not approached for its time limit on the inaccessible list, also
-//! across such re-plans.
+//! reflections) and the truth can hold obstacles off the laser plane (*imperfect sensing*).
+//! A robot whose next cell is an obstacle in the truth, or whose diagonal step passes a
+//! corner it cannot squeeze through, bumps: it stops for [`BUMP_S`] seconds, senses again,
+//! pins those cells occupied in its belief and re-plans; the cells it stands on are pinned
+//! free. Yamauchi's no-progress rule then puts a goal that is not approached for its time
+//! limit on the inaccessible list, also across such re-plans.
 
 use std::time::Instant;
 
@@ -84,15 +85,14 @@ struct Team<'a> {
     rng: Pcg64Mcg,
     obs: Observation,
     changed: Vec<u32>,
-    /// Whether cells the robots stand on are pinned free (sonar, clutter: the map can be
-    /// wrong where the robot has been).
-    pin_trail: bool,
-    /// The no-progress limit in seconds: the strategy's, or [`IMPERFECT_NO_PROGRESS_S`] when
-    /// the robot can meet what its map does not show (sonar, off-plane clutter).
+    /// Imperfect sensing (sonar, off-plane clutter): the map can be wrong about where the
+    /// robot can go. Then the cells it stands on are pinned free, phantom frontier regions
+    /// are counted at every decision (ideal sensors never show a non-free cell free, so
+    /// there are none otherwise), and every strategy gets a no-progress limit.
+    imperfect: bool,
+    /// The no-progress limit in seconds: the strategy's, or [`IMPERFECT_NO_PROGRESS_S`]
+    /// under imperfect sensing.
     no_progress_s: Option<f64>,
-    /// Whether the belief can hold cells that are not free in truth (sonar, clutter, or a
-    /// probabilistic belief): then phantom frontier regions are counted at every decision.
-    audit_phantoms: bool,
     regions_buf: Vec<explore::frontier::Region>,
     audit: MapAudit,
     /// Where the robot's body can be, when off-plane clutter makes it differ from the plane.
@@ -170,6 +170,7 @@ pub fn run(truth: &GridMap, cfg: &RunConfig) -> Result<RunResult, SimError> {
     let sensor = cfg.sensor.build(res)?;
     let sweep = cfg.sensor.sweep().build(res)?;
     let sonar = cfg.sensor.sonar(res).transpose()?;
+    let imperfect = sonar.is_some() || cfg.clutter.is_some();
     let m = cfg.robots;
     let mut team = Team {
         truth,
@@ -190,16 +191,12 @@ pub fn run(truth: &GridMap, cfg: &RunConfig) -> Result<RunResult, SimError> {
         rng: seed::rng(cfg.seed, "strategy"),
         obs: Observation::new(),
         changed: Vec::new(),
-        pin_trail: cfg.clutter.is_some() || cfg.sensor.sonar_mode().is_some(),
+        imperfect,
         no_progress_s: cfg
             .strategy
             .replan
             .no_progress_s
-            .or((cfg.clutter.is_some() || cfg.sensor.sonar_mode().is_some())
-                .then_some(IMPERFECT_NO_PROGRESS_S)),
-        audit_phantoms: cfg.clutter.is_some()
-            || cfg.sensor.sonar_mode().is_some()
-            || cfg.belief != sense::BeliefKind::Known,
+            .or(imperfect.then_some(IMPERFECT_NO_PROGRESS_S)),
         regions_buf: Vec::new(),
         audit: MapAudit::default(),
         body,
@@ -450,7 +447,7 @@ impl Team<'_> {
     /// Under imperfect sensing, pin a cell the robot's body stands on free in the belief:
     /// the body was there, so no sonar arc may close the way back (sensing has run).
     fn pin_free(&mut self, cell: u32) {
-        if self.pin_trail && !self.belief.is_pinned(cell as usize) {
+        if self.imperfect && !self.belief.is_pinned(cell as usize) {
             self.changed.clear();
             self.belief.pin(cell as usize, Occ::Free, &mut self.changed);
             if !self.changed.is_empty() {
@@ -459,16 +456,21 @@ impl Team<'_> {
         }
     }
 
+    /// The ground truth where the robot's body can be: the plane, less any clutter.
+    fn body(&self) -> &Grid<Occ> {
+        self.body.as_ref().unwrap_or(&self.truth.cells)
+    }
+
     /// Whether cell `i` is free in the ground truth (where the robot's body can be).
     fn truly_free(&self, i: usize) -> bool {
-        self.body.as_ref().unwrap_or(&self.truth.cells)[i] == Occ::Free
+        self.body()[i] == Occ::Free
     }
 
     /// Fill the map-accuracy part of the audit from the final belief.
     fn final_audit(&mut self) {
         let known = self.belief.known();
         let plane = &self.truth.cells;
-        let body = self.body.as_ref().unwrap_or(plane);
+        let body = self.body();
         let (mut building, mut right, mut false_free, mut clutter, mut mapped) = (0, 0, 0, 0, 0);
         for i in 0..plane.len() {
             let truth = body[i];
@@ -634,7 +636,7 @@ impl Team<'_> {
                 &seg.segmentation().labels,
             );
         }
-        if self.audit_phantoms {
+        if self.imperfect {
             self.count_phantoms();
         }
         for r in 0..m {
@@ -642,7 +644,7 @@ impl Team<'_> {
                 continue;
             }
             self.decisions += 1;
-            if self.audit_phantoms
+            if self.imperfect
                 && let Some(goal) = self.out[r]
                 && !self.truly_free(goal.cell as usize)
             {
@@ -777,27 +779,25 @@ impl Team<'_> {
         }
         // The body meets what the map does not show: the next cell, or both cells beside a
         // diagonal step (a corner it cannot squeeze through).
-        let body = self.body.as_ref().unwrap_or(&self.truth.cells);
+        let body = self.body();
         if body[next as usize] != Occ::Free {
             self.bump(robots, r, &[next]);
             return;
         }
         let (a, b) = (body.cell(robots[r].cell as usize), body.cell(next as usize));
+        // A free cell beside a diagonal step: the body passed it (pinned free below).
+        let mut passed_beside = None;
         if a.x != b.x && a.y != b.y {
             let beside = [
                 body.index(Cell::new(b.x, a.y)) as u32,
                 body.index(Cell::new(a.x, b.y)) as u32,
             ];
-            if beside.iter().all(|&i| body[i as usize] != Occ::Free) {
+            passed_beside = beside.into_iter().find(|&i| body[i as usize] == Occ::Free);
+            if passed_beside.is_none() {
                 self.bump(robots, r, &beside);
                 return;
             }
         }
-        let cells = &self.truth.cells;
-        let (a, b) = (
-            cells.cell(robots[r].cell as usize),
-            cells.cell(next as usize),
-        );
         let (dx, dy) = (b.x - a.x, b.y - a.y);
         let len = step_cost(dx, dy);
         {
@@ -822,18 +822,9 @@ impl Team<'_> {
             );
         }
         self.pin_free(next);
-        if dx != 0 && dy != 0 {
-            // A diagonal step passed beside a free orthogonal cell (no corner squeezing):
-            // pin it too, so that the way back stays a legal path in the belief.
-            let cells = &self.truth.cells;
-            let body = self.body.as_ref().unwrap_or(cells);
-            let beside = [Cell::new(a.x + dx, a.y), Cell::new(a.x, a.y + dy)]
-                .into_iter()
-                .map(|c| cells.index(c))
-                .find(|&i| body[i] == Occ::Free);
-            if let Some(i) = beside {
-                self.pin_free(i as u32);
-            }
+        if let Some(i) = passed_beside {
+            // So that the way back stays a legal (unsqueezed) path in the belief.
+            self.pin_free(i);
         }
         self.record(robots, r);
         let goal = robots[r].goal.expect("a moving robot has a goal");

@@ -112,6 +112,27 @@ pub fn map_picture(map: &Grid<Occ>) -> RgbImage {
     img
 }
 
+/// Read back a map drawn by [`map_picture`] as `width × height` cells: free where the
+/// cell's pixels are free white, occupied where occupied black, unknown otherwise; `None`
+/// if the picture is not of that size at [`scale_for`]'s scale.
+pub fn map_from_picture(img: &RgbImage, width: usize, height: usize) -> Option<Grid<Occ>> {
+    let s = scale_for(width, height);
+    if img.width() != width as u32 * s || img.height() != height as u32 * s {
+        return None;
+    }
+    let mut data = Vec::with_capacity(width * height);
+    for y in 0..height as u32 {
+        for x in 0..width as u32 {
+            data.push(match img.get_pixel(x * s, y * s).0 {
+                KNOWN_FREE => Occ::Free,
+                KNOWN_OCCUPIED => Occ::Occupied,
+                _ => Occ::Unknown,
+            });
+        }
+    }
+    Grid::from_vec(width, height, data)
+}
+
 /// Draw the end of a run: truth (faint), belief, frontiers left, trajectories, starts, ends.
 /// Trajectories need the run's trace; without it only starts and ends are marked. Off-plane
 /// clutter is drawn in its own colours: tan where unseen, orange where believed free (the
