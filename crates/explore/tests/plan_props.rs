@@ -1,6 +1,7 @@
 //! Planners against slow oracles on random small maps: Dijkstra == Bellman–Ford (with the
 //! no-corner-squeezing rule), `nearest` finds a goal of minimal cost, A* == Dijkstra, and
-//! extracted paths are valid 8-connected paths whose step costs sum to the reported cost.
+//! extracted paths are valid 8-connected paths whose step costs sum to the reported cost;
+//! the bucket queue settles exactly what a binary heap on (cost, index) settles.
 
 use explore::{AStar, Reachability};
 use grid::SQRT2;
@@ -83,6 +84,45 @@ fn check_path(
         }
     }
     Ok(total)
+}
+
+/// Textbook Dijkstra with a binary heap on (cost bits, index) over the same moves: costs,
+/// predecessors and settled order, for the bucket queue to match bit for bit.
+fn heap_dijkstra(
+    w: usize,
+    h: usize,
+    pass: &[bool],
+    start: usize,
+    is_goal: impl Fn(usize) -> bool,
+) -> (Vec<f64>, Vec<usize>, Vec<usize>) {
+    use std::cmp::Reverse;
+    let n = w * h;
+    let (mut cost, mut pred, mut done) =
+        (vec![f64::INFINITY; n], vec![usize::MAX; n], vec![false; n]);
+    let mut order = Vec::new();
+    let mut heap = std::collections::BinaryHeap::new();
+    cost[start] = 0.0;
+    pred[start] = start;
+    heap.push(Reverse((0f64.to_bits(), start)));
+    while let Some(Reverse((_, i))) = heap.pop() {
+        if done[i] {
+            continue;
+        }
+        done[i] = true;
+        order.push(i);
+        if is_goal(i) {
+            break;
+        }
+        grid::for_each_move(w, h, i, &|j| pass[j], |j, step| {
+            let c = cost[i] + step;
+            if !done[j] && c < cost[j] {
+                cost[j] = c;
+                pred[j] = i;
+                heap.push(Reverse((c.to_bits(), j)));
+            }
+        });
+    }
+    (cost, pred, order)
 }
 
 fn map() -> impl Strategy<Value = (usize, usize, Vec<bool>)> {
@@ -176,6 +216,37 @@ proptest! {
                 prop_assert_eq!(n_settled, r.settled().len());
             }
         }
+    }
+
+    #[test]
+    fn bucket_queue_is_the_heap_bit_for_bit(
+        (w, h, pass) in map(),
+        s in any::<prop::sample::Index>(),
+        goal in any::<prop::sample::Index>(),
+    ) {
+        let (start, goal) = (s.index(w * h), goal.index(w * h));
+        let mut r = Reachability::new(w, h);
+        let mut path = Vec::new();
+        // full map: every cost and predecessor is the heap's, bit for bit
+        r.compute(start, |i| pass[i]);
+        let (cost, pred, order) = heap_dijkstra(w, h, &pass, start, |_| false);
+        let mut settled = r.settled().iter().map(|&c| c as usize).collect::<Vec<_>>();
+        settled.sort_unstable();
+        let mut want = order.clone();
+        want.sort_unstable();
+        prop_assert_eq!(settled, want);
+        for &i in &order {
+            prop_assert_eq!(r.cost(i).map(f64::to_bits), Some(cost[i].to_bits()));
+            prop_assert!(r.path_to(i, &mut path));
+            let p = if path.len() > 1 { path[path.len() - 2] as usize } else { i };
+            prop_assert_eq!(p, pred[i], "predecessor of {}", i);
+        }
+        // nearest: the same goal, the same cells settled in the same order
+        let got = r.nearest(start, |i| pass[i], |i| i == goal || i % 7 == 3);
+        let (_, _, order) = heap_dijkstra(w, h, &pass, start, |i| i == goal || i % 7 == 3);
+        let found = order.last().copied().filter(|&i| i == goal || i % 7 == 3);
+        prop_assert_eq!(got, found);
+        prop_assert_eq!(r.settled().iter().map(|&c| c as usize).collect::<Vec<_>>(), order);
     }
 
     #[test]

@@ -1,14 +1,24 @@
 //! Holz et al.'s reachability map: Dijkstra from the robot's cell with no goal, and the same
 //! search stopping at the first settled goal cell (the nearest frontier, Yamauchi 1997).
 //!
+//! The priority queue is a bucket queue (Dial's algorithm with buckets one cell-step wide):
+//! bucket k holds the cells whose cost lies in [k, k + 1). Every step costs at least 1, so a
+//! cell settled from bucket k only labels cells in buckets k + 1 and k + 2, and when bucket k
+//! is reached every cost in it is final: the search is exact, not an approximation, and
+//! three buckets used in turn hold the whole wavefront. This replaces a binary heap and makes
+//! a full map about twice as fast. Within a bucket cells are taken in the order (cost, index),
+//! so the cells settle in exactly the order a heap on (cost, index) gives, ties included, and
+//! every cost, predecessor and goal found is the heap's.
+//!
 //! Costs and predecessors live in generation-stamped arrays, so a new search does not clear
-//! O(map) memory, and the heap and the settled list keep their capacity: in steady state a
+//! O(map) memory, and the buckets and the settled list keep their capacity: in steady state a
 //! search allocates nothing and touches only the cells it labels.
 
-use super::{HeapEntry, entry};
 use crate::upkeep::next_gen;
 use grid::for_each_move;
-use std::collections::BinaryHeap;
+
+/// Buckets in use at once: a step costs at most √2 < 2, so labels reach two buckets ahead.
+const BUCKETS: usize = 3;
 
 /// Dijkstra over passable cells from one start: cost and predecessor per cell, path extraction.
 #[derive(Clone, Debug)]
@@ -24,7 +34,11 @@ pub struct Reachability {
     /// `done[i] == epoch` iff cell `i` was settled in the current search.
     done: Vec<u32>,
     epoch: u32,
-    heap: BinaryHeap<HeapEntry>,
+    /// Bucket `k % BUCKETS` holds the cells labelled with a cost in `[k, k + 1)` (and stale
+    /// entries of cells labelled again more cheaply, skipped when met).
+    buckets: [Vec<u32>; BUCKETS],
+    /// The live cells of the bucket being settled, as `(cost bits, cell)`, sorted.
+    order: Vec<(u64, u32)>,
     settled: Vec<u32>,
     start: Option<usize>,
 }
@@ -41,7 +55,8 @@ impl Reachability {
             labelled: vec![0; n],
             done: vec![0; n],
             epoch: 0,
-            heap: BinaryHeap::new(),
+            buckets: Default::default(),
+            order: Vec::new(),
             settled: Vec::new(),
             start: None,
         }
@@ -76,7 +91,9 @@ impl Reachability {
             // the labelled stamps were just cleared (first search or wrap-around): clear `done`
             self.done.fill(0);
         }
-        self.heap.clear();
+        for b in &mut self.buckets {
+            b.clear();
+        }
         self.settled.clear();
         if start >= self.cost.len() {
             self.start = None;
@@ -87,40 +104,62 @@ impl Reachability {
         self.labelled[start] = epoch;
         self.cost[start] = 0.0;
         self.pred[start] = start as u32;
-        self.heap.push(entry(0.0, start));
+        self.buckets[0].push(start as u32);
         let (w, h) = (self.width, self.height);
-        while let Some(std::cmp::Reverse((_, i))) = self.heap.pop() {
-            let i = i as usize;
-            if self.done[i] == epoch {
+        let mut k = 0usize;
+        loop {
+            let slot = k % BUCKETS;
+            if self.buckets[slot].is_empty() {
+                if self.buckets.iter().all(Vec::is_empty) {
+                    return None;
+                }
+                k += 1;
                 continue;
             }
-            self.done[i] = epoch;
-            self.settled.push(i as u32);
-            if is_goal(i) {
-                return Some(i);
+            // Every cost in bucket k is final: take its live cells in (cost, index) order.
+            self.order.clear();
+            for &i in &self.buckets[slot] {
+                let iu = i as usize;
+                if self.done[iu] != epoch {
+                    debug_assert_eq!(self.cost[iu] as usize, k);
+                    self.order.push((self.cost[iu].to_bits(), i));
+                }
             }
-            let ci = self.cost[i];
-            let (cost, pred, labelled, done, heap) = (
+            self.buckets[slot].clear();
+            self.order.sort_unstable();
+            self.order.dedup();
+            let (cost, pred, labelled, done, buckets, order, settled) = (
                 &mut self.cost,
                 &mut self.pred,
                 &mut self.labelled,
-                &self.done,
-                &mut self.heap,
+                &mut self.done,
+                &mut self.buckets,
+                &self.order,
+                &mut self.settled,
             );
-            for_each_move(w, h, i, passable, |j, step| {
-                if done[j] == epoch {
-                    return;
+            for &(_, i) in order {
+                let i = i as usize;
+                done[i] = epoch;
+                settled.push(i as u32);
+                if is_goal(i) {
+                    return Some(i);
                 }
-                let c = ci + step;
-                if labelled[j] != epoch || c < cost[j] {
-                    labelled[j] = epoch;
-                    cost[j] = c;
-                    pred[j] = i as u32;
-                    heap.push(entry(c, j));
-                }
-            });
+                let ci = cost[i];
+                for_each_move(w, h, i, passable, |j, step| {
+                    if done[j] == epoch {
+                        return;
+                    }
+                    let c = ci + step;
+                    if labelled[j] != epoch || c < cost[j] {
+                        labelled[j] = epoch;
+                        cost[j] = c;
+                        pred[j] = i as u32;
+                        buckets[c as usize % BUCKETS].push(j as u32);
+                    }
+                });
+            }
+            k += 1;
         }
-        None
     }
 
     /// Whether cell `i` was settled by the last search (its cost is final).
