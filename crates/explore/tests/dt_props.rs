@@ -3,7 +3,9 @@
 //! once evaluated, equals a fresh evaluation; when few cells are eligible, every eligible
 //! cell with a gain is a candidate; the fallback takes the frontier cells; the choice (with
 //! lazily evaluated gains) maximises the utility over all candidates evaluated afresh; λ = 0
-//! picks the greatest gain, a huge λ the nearest; runs are deterministic.
+//! picks the greatest gain, a huge λ the nearest; runs are deterministic; the uncertain-cell
+//! counts match a brute-force count, and no scan's gain exceeds the count of its square (the
+//! bound that lets the utility assigner skip candidates).
 
 use explore::FrontierUpkeep;
 use explore::Reachability;
@@ -159,6 +161,33 @@ fn fresh_gain(fx: &Fixture, reach: &Reachability, cell: u32) -> f64 {
 
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(128))]
+
+    #[test]
+    fn uncertain_counts_bound_every_scan(
+        g in belief_grid(), k in 0usize..300, los in any::<bool>(), r in 1.0f64..6.0,
+        heading in -3.2f64..3.2, rect in (0usize..20, 0usize..20, 0usize..20, 0usize..20),
+    ) {
+        let fx_robot = free_cell(&g, k).unwrap_or(0);
+        let fx = Fixture::new(&g, vec![fx_robot], sensor(los, r), 0);
+        let mut uc = utility::UncertainCounts::default();
+        uc.build(&fx.belief);
+        let (w, h) = (g.width(), g.height());
+        let uncertain = |x: usize, y: usize| g[y * w + x] == Occ::Unknown;
+        let (x0, y0, x1, y1) = rect;
+        let brute = (y0..y1.min(h)).flat_map(|y| (x0..x1.min(w)).map(move |x| (x, y)))
+            .filter(|&(x, y)| uncertain(x, y)).count() as u32;
+        prop_assert_eq!(uc.count(x0, y0, x1, y1), brute);
+        // the square of half-side ⌊R⌋ + 1 around a cell holds every cell a scan touches
+        let c = g.cell(k % g.len());
+        let (x, y) = (c.x as usize, c.y as usize);
+        let half = fx.sensor.range_cells() as usize + 1;
+        let bound = uc.count(x.saturating_sub(half), y.saturating_sub(half), x + half + 1, y + half + 1);
+        let gain = information_gain(
+            fx.sensor.as_ref(), &fx.belief, &InverseModel::IDEAL, Pose { cell: c, heading },
+            &mut GainScratch::new(),
+        );
+        prop_assert!(gain <= f64::from(bound), "gain {} > bound {}", gain, bound);
+    }
 
     #[test]
     fn samples_match_brute_force(

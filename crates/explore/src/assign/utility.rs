@@ -10,15 +10,18 @@
 //! them the same way without underflowing for long paths.
 //!
 //! Lazy gains (exact): when the generator left gains unevaluated ([`State::is_lazy`]), a
-//! robot visits the candidates in order of path cost (then index) and evaluates a gain
-//! only while `ln I_max − λL` could still beat the best `ln I − λL` found; the first
-//! candidate it cannot beat ends the visit, since every later one is no nearer. `I_max` is
-//! an upper bound on any scan's gain: each touched cell drops at most 1 bit (binary
-//! entropy ≤ 1), and a scan of range R cells touches only cells whose centres lie within
-//! R + √2/2 of the origin's centre; their unit squares are disjoint and lie in the disc of
-//! radius R + √2, so there are at most π(R + √2)² of them (we use R + 2). The visit order
-//! and the tie rule (greater utility, then lower cost, then lower index) make the choice the
-//! one the full evaluation makes.
+//! robot visits the candidates in order of an upper bound on their utility,
+//! `ln B(p) − λL(p)`, and evaluates gains only while the next bound could still beat the
+//! best `ln I − λL` found. `B(p)` bounds the gain of any scan from `p`: each touched cell
+//! drops at most 1 bit (binary entropy ≤ 1) and only uncertain cells (0 < p < 1) drop at
+//! all; a scan of range R cells touches only cells whose centres lie within R + √2/2 of the
+//! origin's centre. So `B(p)` is the number of uncertain cells in the square of half-side
+//! R + 1 around `p` (a summed-area table of the belief, [`UncertainCounts`], built once
+//! per decision), capped by π(R + 2)², which bounds the cells in the disc. A candidate
+//! whose square holds no uncertain cell has gain 0 and is never evaluated. The tie rule
+//! (greater utility, then lower cost, then lower index) is applied to the candidates
+//! evaluated, and every one not evaluated is strictly worse than the choice, so the choice
+//! is the one the full evaluation makes.
 //!
 //! A team is not coordinated (the paper is single-robot): every deciding robot takes its
 //! own best, and robots may choose the same pose.
@@ -50,12 +53,21 @@ pub fn assign(
         for r in (0..m).filter(|&r| ctx.deciding[r]) {
             ctx.planner.full(r, ctx.robots[r], ctx.known, ctx.upkeep);
         }
-        let bound = (std::f64::consts::PI * (ctx.sensor_range_cells.max(0.0) + 2.0).powi(2)).ln();
+        let range = ctx.sensor_range_cells.max(0.0);
+        let disc = std::f64::consts::PI * (range + 2.0).powi(2);
+        let mut uncertain = std::mem::take(&mut st.uncertain);
+        uncertain.build(ctx.belief);
+        let bounds = GainBounds {
+            uncertain: &uncertain,
+            half_side: range as usize + 1,
+            disc,
+        };
         for (r, slot) in out.iter_mut().enumerate().take(m) {
             if ctx.deciding[r] {
-                *slot = best_lazy(ctx, &mut st, r, lambda * ctx.resolution, bound);
+                *slot = best_lazy(ctx, &mut st, r, lambda * ctx.resolution, &bounds);
             }
         }
+        st.uncertain = uncertain;
         ctx.memory.dt = st;
         return;
     }
@@ -109,52 +121,123 @@ fn best(
 }
 
 /// Robot `r`'s best candidate when some gains are not evaluated (module doc): candidates in
-/// order of cost, evaluated while `ln_bound − λL` can still beat the best; gain 0 is skipped.
+/// order of their utility bound, evaluated while the bound can still beat the best; gain 0
+/// is skipped.
 fn best_lazy(
     ctx: &DecisionCtx<'_>,
     st: &mut State,
     r: usize,
     lambda_per_cell: f64,
-    ln_bound: f64,
+    bounds: &GainBounds<'_>,
 ) -> Option<Goal> {
     let planner = &*ctx.planner;
     let reach = planner.map(r);
+    let width = ctx.known.width();
     let mut order = std::mem::take(&mut st.order);
     order.clear();
-    order.extend(
-        st.cells
-            .iter()
-            .enumerate()
-            .filter_map(|(k, &c)| reach.cost(c as usize).map(|l| (l, k as u32))),
-    );
-    order.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-    let mut best: Option<(f64, Goal)> = None;
-    for &(l, k) in &order {
-        if let Some((s, _)) = best
-            && ln_bound - lambda_per_cell * l < s
-        {
+    order.extend(st.cells.iter().enumerate().filter_map(|(k, &c)| {
+        let l = reach.cost(c as usize)?;
+        let b = bounds.of(c as usize % width, c as usize / width);
+        // No uncertain cell in reach of a scan from there: its gain is 0.
+        (b > 0.0).then(|| (b.ln() - lambda_per_cell * l, l, k as u32))
+    }));
+    order.sort_by(|a, b| {
+        b.0.total_cmp(&a.0)
+            .then(a.1.total_cmp(&b.1))
+            .then(a.2.cmp(&b.2))
+    });
+    let mut best: Option<(f64, f64, u32)> = None;
+    for &(ub, l, k) in &order {
+        if best.is_some_and(|(s, _, _)| ub < s) {
             break;
         }
-        let k = k as usize;
-        let by = planner.map(st.reachers[k] as usize);
-        let gain = st.gain(k, ctx.sensor, ctx.belief, by);
+        let by = planner.map(st.reachers[k as usize] as usize);
+        let gain = st.gain(k as usize, ctx.sensor, ctx.belief, by);
         if gain <= 0.0 {
             continue;
         }
         let score = gain.ln() - lambda_per_cell * l;
-        // visited by (cost, index): an equal score never replaces the best
-        if best.is_none_or(|(s, _)| score > s) {
-            best = Some((
-                score,
-                Goal {
-                    cell: st.cells[k],
-                    cost: l,
-                },
-            ));
+        let better = best.is_none_or(|(s, bl, bk)| match score.total_cmp(&s) {
+            Ordering::Greater => true,
+            Ordering::Less => false,
+            Ordering::Equal => (l, k) < (bl, bk),
+        });
+        if better {
+            best = Some((score, l, k));
         }
     }
     st.order = order;
-    best.map(|(_, g)| g)
+    best.map(|(_, l, k)| Goal {
+        cell: st.cells[k as usize],
+        cost: l,
+    })
+}
+
+/// The number of uncertain cells (0 < p(occupied) < 1) in any axis-aligned rectangle of the
+/// belief, from a summed-area table rebuilt per decision (buffers kept).
+#[derive(Clone, Debug, Default)]
+pub struct UncertainCounts {
+    width: usize,
+    height: usize,
+    /// `sat[y · (width + 1) + x]`: uncertain cells with column < x and row < y.
+    sat: Vec<u32>,
+}
+
+impl UncertainCounts {
+    /// Rebuild the table for `belief`.
+    pub fn build(&mut self, belief: &dyn Belief) {
+        let known = belief.known();
+        let (w, h) = (known.width(), known.height());
+        self.width = w;
+        self.height = h;
+        self.sat.clear();
+        self.sat.resize((w + 1) * (h + 1), 0);
+        for y in 0..h {
+            let mut row = 0u32;
+            for x in 0..w {
+                let p = belief.p_occupied(y * w + x);
+                row += u32::from(p > 0.0 && p < 1.0);
+                self.sat[(y + 1) * (w + 1) + x + 1] = self.sat[y * (w + 1) + x + 1] + row;
+            }
+        }
+    }
+
+    /// Uncertain cells with column in `x0..x1` and row in `y0..y1` (clipped to the map).
+    pub fn count(&self, x0: usize, y0: usize, x1: usize, y1: usize) -> u32 {
+        let (x1, y1) = (x1.min(self.width), y1.min(self.height));
+        if x0 >= x1 || y0 >= y1 {
+            return 0;
+        }
+        let s = |x: usize, y: usize| self.sat[y * (self.width + 1) + x];
+        s(x1, y1) + s(x0, y0) - s(x0, y1) - s(x1, y0)
+    }
+}
+
+/// Upper bounds on the gain of a scan from a cell (module doc).
+struct GainBounds<'a> {
+    uncertain: &'a UncertainCounts,
+    /// Half-side of the square around the origin holding every cell a scan can touch.
+    half_side: usize,
+    /// π(R + 2)²: at most this many cells of a scan.
+    disc: f64,
+}
+
+impl GainBounds<'_> {
+    /// A bound on the gain of any scan from cell `(x, y)`.
+    fn of(&self, x: usize, y: usize) -> f64 {
+        let h = self.half_side;
+        let n = self.uncertain.count(
+            x.saturating_sub(h),
+            y.saturating_sub(h),
+            x + h + 1,
+            y + h + 1,
+        );
+        if n == 0 {
+            return 0.0;
+        }
+        // A sum of at most n drops of at most 1 bit each, with room for rounding.
+        (f64::from(n) * (1.0 + 1e-12) + 1e-9).min(self.disc)
+    }
 }
 
 /// Evaluate the gain of every candidate into `st` (for candidates the decision-theoretic

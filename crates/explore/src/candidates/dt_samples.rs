@@ -62,8 +62,10 @@ pub struct State {
     /// Buffers of the gain evaluation (shared with the utility assigner).
     pub scratch: GainScratch,
     eligible: Vec<u32>,
-    /// Visit order of the lazy utility assigner: (cost, candidate index).
-    pub(crate) order: Vec<(f64, u32)>,
+    /// Visit order of the lazy utility assigner: (bound on the utility, cost, candidate index).
+    pub(crate) order: Vec<(f64, f64, u32)>,
+    /// Uncertain cells per square, the lazy utility assigner's per-candidate gain bound.
+    pub(crate) uncertain: crate::assign::utility::UncertainCounts,
     near: Grid<f64>,
     edt: EdtScratch,
     path: Vec<u32>,
@@ -81,6 +83,7 @@ impl Default for State {
             scratch: GainScratch::new(),
             eligible: Vec::new(),
             order: Vec::new(),
+            uncertain: Default::default(),
             near: Grid::new(0, 0, f64::INFINITY),
             edt: EdtScratch::new(),
             path: Vec::new(),
