@@ -8,8 +8,10 @@
 //! stays optimal with admissible but inconsistent heuristics.
 //!
 //! Beyond the paper:
-//! - An incumbent from the start: a greedy completion (always to the nearest action that
-//!   perceives something new) gives an upper bound U; children with g + h ≥ U are pruned.
+//! - An incumbent from the start: the better of two greedy completions (always to the
+//!   nearest action that perceives something new; always to the action that perceives the
+//!   most new targets per unit of path) gives an upper bound U; children with g + h ≥ U are
+//!   pruned.
 //!   When the search stops, the greedy completion of the most advanced open state may
 //!   improve U.
 //! - Weighted A* (f = g + w·h): the returned length is ≤ w × optimal, and the reported lower
@@ -408,12 +410,15 @@ impl<'p> Engine<'p> {
     }
 
     /// Complete greedily from (pos, bits, count): repeatedly move to the nearest action
-    /// that perceives something new. Returns the added cost and appends the positions.
+    /// that perceives something new or, with `rate`, to the action that perceives the most
+    /// new targets per unit of path (`new / (d + 1)`, ties to the nearer, then the lower
+    /// cell). Returns the added cost and appends the positions.
     fn greedy(
         &mut self,
         mut pos: u32,
         bits: &[u64],
         mut count: usize,
+        rate: bool,
         out: &mut Vec<u32>,
     ) -> Option<f64> {
         let mut cur = bits.to_vec();
@@ -431,9 +436,27 @@ impl<'p> Engine<'p> {
                 &mut self.cands,
             );
             let mut best: Option<(f64, u32)> = None;
+            let mut best_rate = 0.0;
             for k in 0..self.cands.len() {
                 let a = self.cands[k];
                 let d = self.dij.dist(a as usize);
+                if rate {
+                    let (o, l) = self.vis.get(self.problem, a);
+                    let new = self.vis.data[o..o + l]
+                        .iter()
+                        .filter(|&&t| !has(&cur, t))
+                        .count();
+                    let r = new as f64 / (d + 1.0);
+                    if new > 0
+                        && (best.is_none()
+                            || r > best_rate
+                            || (r == best_rate && best.is_some_and(|b| (d, a) < b)))
+                    {
+                        best = Some((d, a));
+                        best_rate = r;
+                    }
+                    continue;
+                }
                 if best.is_some_and(|(bd, bi)| (d, a) >= (bd, bi)) {
                     continue;
                 }
@@ -457,18 +480,21 @@ impl<'p> Engine<'p> {
         Some(cost)
     }
 
-    /// Try to improve the incumbent with a greedy completion of stored state `id`.
+    /// Try to improve the incumbent with the greedy completions (nearest, then by rate) of
+    /// stored state `id`.
     fn improve_from(&mut self, id: u32) {
         let n = self.nodes[id as usize];
         let bits = self.node_bits(id).to_vec();
-        let mut tail = Vec::new();
-        if let Some(c) = self.greedy(n.pos, &bits, n.count as usize, &mut tail)
-            && n.g + c < self.inc_cost - EPS
-        {
-            self.inc_cost = n.g + c;
-            let mut p = self.positions_of(id);
-            p.extend(tail);
-            self.inc_positions = p;
+        for rate in [false, true] {
+            let mut tail = Vec::new();
+            if let Some(c) = self.greedy(n.pos, &bits, n.count as usize, rate, &mut tail)
+                && n.g + c < self.inc_cost - EPS
+            {
+                self.inc_cost = n.g + c;
+                let mut p = self.positions_of(id);
+                p.extend(tail);
+                self.inc_positions = p;
+            }
         }
     }
 
