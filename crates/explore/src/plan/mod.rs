@@ -1,10 +1,11 @@
-//! Grid planning: Holz et al.'s reachability map (Dijkstra with no goal), the nearest-goal
-//! Dijkstra that stops at the first settled goal (Yamauchi's nearest frontier), and A*.
+//! Grid planning: Holz et al.'s reachability map (Dijkstra with no goal, on a bucket queue),
+//! the nearest-goal Dijkstra that stops at the first settled goal (Yamauchi's nearest
+//! frontier), and A* (on a binary heap).
 //!
 //! Motion everywhere: 8-connected, straight step 1, diagonal √2; a diagonal step is forbidden
 //! iff BOTH orthogonal cells it passes between fail `passable` ("no corner squeezing"). The start
 //! cell is always allowed; every other cell on a path must pass `passable`. Ties are broken by
-//! flat index: the priority-queue key is `(cost, index)`.
+//! flat index: the priority is `(cost, index)` (the bucket queue gives the same results).
 
 pub mod astar;
 pub mod reachability;
