@@ -82,6 +82,18 @@ pub fn parse_resolution(s: &str) -> Result<(f64, f64)> {
     }
 }
 
+/// Parse a comma-separated list given to `flag`, each item trimmed and parsed by `item`;
+/// an item's error is reported under the flag's name.
+pub fn parse_list<T, E: std::fmt::Display>(
+    s: &str,
+    flag: &str,
+    item: impl Fn(&str) -> std::result::Result<T, E>,
+) -> Result<Vec<T>> {
+    s.split(',')
+        .map(|x| item(x.trim()).map_err(|e| anyhow::anyhow!("{flag}: {e}")))
+        .collect()
+}
+
 /// Parse "WxH" in metres.
 pub fn parse_size(s: &str) -> Result<(f64, f64)> {
     let err = || anyhow::anyhow!("--size: expected WxH in metres (e.g. 25x20), found '{s}'");

@@ -15,6 +15,8 @@ use sense::SensorSpec;
 use sim::{RunConfig, RunResult};
 use world::{EnvKind, EnvSpec};
 
+use crate::args::parse_list;
+
 /// Flags of `frontier demo`.
 #[derive(Args, Clone, Debug)]
 pub struct DemoArgs {
@@ -58,20 +60,8 @@ pub fn run(a: DemoArgs) -> Result<()> {
     if a.seeds == 0 {
         bail!("--seeds: expected at least 1, found 0");
     }
-    let kinds: Vec<EnvKind> = a
-        .envs
-        .split(',')
-        .map(|s| {
-            s.trim()
-                .parse::<EnvKind>()
-                .map_err(|e| anyhow::anyhow!("--envs: {e}"))
-        })
-        .collect::<Result<_>>()?;
-    let strategies: Vec<Strategy> = a
-        .strategies
-        .split(',')
-        .map(|s| Strategy::preset(s.trim()).map_err(|e| anyhow::anyhow!("--strategies: {e}")))
-        .collect::<Result<_>>()?;
+    let kinds: Vec<EnvKind> = parse_list(&a.envs, "--envs", str::parse)?;
+    let strategies = parse_list(&a.strategies, "--strategies", Strategy::preset)?;
     let sensor: SensorSpec = a
         .sensor
         .parse()

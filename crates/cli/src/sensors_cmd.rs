@@ -17,7 +17,7 @@ use sim::{RunConfig, RunResult};
 use world::clutter::{ClutterParams, furnish};
 use world::{EnvKind, EnvSpec};
 
-use crate::args::parse_size;
+use crate::args::{parse_list, parse_size};
 use crate::demo::mean_sd;
 
 /// Flags of `frontier sensors`.
@@ -62,15 +62,7 @@ pub fn run(a: SensorsArgs) -> Result<()> {
         bail!("--env: expected a kind with rooms to furnish (office, hospital), found {kind}");
     }
     let strategy = Strategy::preset(&a.strategy).map_err(|e| anyhow::anyhow!("--strategy: {e}"))?;
-    let sensors: Vec<SensorSpec> = a
-        .sensors
-        .split(',')
-        .map(|s| {
-            s.trim()
-                .parse::<SensorSpec>()
-                .map_err(|e| anyhow::anyhow!("--sensors: {e}"))
-        })
-        .collect::<Result<_>>()?;
+    let sensors: Vec<SensorSpec> = parse_list(&a.sensors, "--sensors", str::parse)?;
     let names: Vec<&str> = a.sensors.split(',').map(str::trim).collect();
     let size_m = a.size.as_deref().map(parse_size).transpose()?;
     let envs: Vec<(world::Environment, grid::Grid<bool>)> = (0..a.seeds)

@@ -125,6 +125,33 @@ fn heap_dijkstra(
     (cost, pred, order)
 }
 
+/// The last search of `r` settled the cells the heap settled (`order`), each with the heap's
+/// cost bit for bit and the heap's predecessor on its path.
+fn same_as_heap(
+    r: &Reachability,
+    cost: &[f64],
+    pred: &[usize],
+    order: &[usize],
+) -> Result<(), TestCaseError> {
+    let mut settled = r.settled().iter().map(|&c| c as usize).collect::<Vec<_>>();
+    settled.sort_unstable();
+    let mut want = order.to_vec();
+    want.sort_unstable();
+    prop_assert_eq!(settled, want);
+    let mut path = Vec::new();
+    for &i in order {
+        prop_assert_eq!(r.cost(i).map(f64::to_bits), Some(cost[i].to_bits()));
+        prop_assert!(r.path_to(i, &mut path));
+        let p = if path.len() > 1 {
+            path[path.len() - 2] as usize
+        } else {
+            i
+        };
+        prop_assert_eq!(p, pred[i], "predecessor of {}", i);
+    }
+    Ok(())
+}
+
 fn map() -> impl Strategy<Value = (usize, usize, Vec<bool>)> {
     (1usize..20, 1usize..20, 0.4f64..0.95).prop_flat_map(|(w, h, p)| {
         (
@@ -226,40 +253,19 @@ proptest! {
     ) {
         let (start, goal) = (s.index(w * h), goal.index(w * h));
         let mut r = Reachability::new(w, h);
-        let mut path = Vec::new();
         // full map: every cost and predecessor is the heap's, bit for bit
         r.compute(start, |i| pass[i]);
         let (cost, pred, order) = heap_dijkstra(w, h, &pass, start, |_| false);
-        let mut settled = r.settled().iter().map(|&c| c as usize).collect::<Vec<_>>();
-        settled.sort_unstable();
-        let mut want = order.clone();
-        want.sort_unstable();
-        prop_assert_eq!(settled, want);
-        for &i in &order {
-            prop_assert_eq!(r.cost(i).map(f64::to_bits), Some(cost[i].to_bits()));
-            prop_assert!(r.path_to(i, &mut path));
-            let p = if path.len() > 1 { path[path.len() - 2] as usize } else { i };
-            prop_assert_eq!(p, pred[i], "predecessor of {}", i);
-        }
+        same_as_heap(&r, &cost, &pred, &order)?;
         // nearest: the same goal, the same cells settled (the goal last), the same paths
         let got = r.nearest(start, |i| pass[i], |i| i == goal || i % 7 == 3);
         let (cost, pred, order) = heap_dijkstra(w, h, &pass, start, |i| i == goal || i % 7 == 3);
         let found = order.last().copied().filter(|&i| i == goal || i % 7 == 3);
         prop_assert_eq!(got, found);
-        let mut settled = r.settled().iter().map(|&c| c as usize).collect::<Vec<_>>();
         if found.is_some() {
-            prop_assert_eq!(settled.last(), order.last());
+            prop_assert_eq!(r.settled().last().map(|&c| c as usize), order.last().copied());
         }
-        settled.sort_unstable();
-        let mut want = order.clone();
-        want.sort_unstable();
-        prop_assert_eq!(settled, want);
-        for &i in &order {
-            prop_assert_eq!(r.cost(i).map(f64::to_bits), Some(cost[i].to_bits()));
-            prop_assert!(r.path_to(i, &mut path));
-            let p = if path.len() > 1 { path[path.len() - 2] as usize } else { i };
-            prop_assert_eq!(p, pred[i], "predecessor of {} after nearest", i);
-        }
+        same_as_heap(&r, &cost, &pred, &order)?;
     }
 
     #[test]

@@ -6,6 +6,11 @@ use viz::animate::{GifOptions, animate_gif, frame_events};
 use world::{EnvKind, EnvSpec};
 
 fn run(kind: EnvKind, robots: usize) -> (grid::GridMap, sim::RunResult) {
+    run_preset(kind, "cf-rr", robots)
+}
+
+/// A traced run of `preset` with `robots` robots on the default environment of `kind`, seed 1.
+fn run_preset(kind: EnvKind, preset: &str, robots: usize) -> (grid::GridMap, sim::RunResult) {
     let env = world::generate(&EnvSpec {
         kind,
         seed: 1,
@@ -13,7 +18,7 @@ fn run(kind: EnvKind, robots: usize) -> (grid::GridMap, sim::RunResult) {
         resolution: None,
     })
     .unwrap();
-    let mut cfg = RunConfig::new(Strategy::preset("cf-rr").unwrap());
+    let mut cfg = RunConfig::new(Strategy::preset(preset).unwrap());
     cfg.record_trace = true;
     cfg.robots = robots;
     let r = sim::run(&env.map, &cfg).unwrap();
@@ -44,18 +49,9 @@ fn gif_has_the_frames_and_size_asked_for() {
 
 #[test]
 fn large_maps_are_downscaled() {
-    let env = world::generate(&EnvSpec {
-        kind: EnvKind::Cave,
-        seed: 1,
-        size_m: None,
-        resolution: None,
-    })
-    .unwrap();
-    let mut cfg = RunConfig::new(Strategy::preset("cf").unwrap());
-    cfg.record_trace = true;
-    let r = sim::run(&env.map, &cfg).unwrap();
+    let (map, r) = run_preset(EnvKind::Cave, "cf", 1);
     let bytes = animate_gif(
-        &env.map,
+        &map,
         &r,
         &GifOptions {
             max_frames: 3,
@@ -106,22 +102,13 @@ fn gif_frames(bytes: &[u8]) -> Vec<Vec<u8>> {
 
 #[test]
 fn segmentation_runs_record_segments_and_show_them() {
-    let env = world::generate(&EnvSpec {
-        kind: EnvKind::Office,
-        seed: 1,
-        size_m: None,
-        resolution: None,
-    })
-    .unwrap();
-    let mut cfg = RunConfig::new(Strategy::preset("cf-rr-seg").unwrap());
-    cfg.record_trace = true;
-    let r = sim::run(&env.map, &cfg).unwrap();
+    let (map, r) = run_preset(EnvKind::Office, "cf-rr-seg", 1);
     let trace = r.trace.as_ref().unwrap();
     assert!(!trace.segments.is_empty());
     assert!(trace.segments.len() <= sim::metrics::MAX_SEGMENT_SNAPSHOTS);
     assert!(trace.segments.windows(2).all(|w| w[0].event <= w[1].event));
     // Labels only on cells known free in the belief rebuilt at the snapshot's event.
-    let n = env.map.cells.len();
+    let n = map.cells.len();
     let mut known = vec![grid::Occ::Unknown; n];
     let mut done = 0usize;
     for snap in &trace.segments {
@@ -144,17 +131,17 @@ fn segmentation_runs_record_segments_and_show_them() {
         max_side: 300,
         delay_cs: 5,
     };
-    let with = gif_frames(&animate_gif(&env.map, &r, &opts).unwrap());
+    let with = gif_frames(&animate_gif(&map, &r, &opts).unwrap());
     let mut plain = r.clone();
     plain.trace.as_mut().unwrap().segments.clear();
-    let without = gif_frames(&animate_gif(&env.map, &plain, &opts).unwrap());
+    let without = gif_frames(&animate_gif(&map, &plain, &opts).unwrap());
     assert_eq!(with.len(), without.len());
     assert_ne!(with.last(), without.last());
     // The replay page carries them, with the layer toggle.
-    let html = viz::replay::replay_html(&env.map, &r, "seg", "cf-rr-seg").unwrap();
+    let html = viz::replay::replay_html(&map, &r, "seg", "cf-rr-seg").unwrap();
     assert!(html.contains("id=\"l-segments\"") && html.contains("\"segRuns\":\""));
     assert!(!html.contains("\"segRuns\":\"\""));
-    let plain_html = viz::replay::replay_html(&env.map, &plain, "seg", "cf-rr-seg").unwrap();
+    let plain_html = viz::replay::replay_html(&map, &plain, "seg", "cf-rr-seg").unwrap();
     assert!(plain_html.contains("\"segRuns\":\"\""));
 }
 
