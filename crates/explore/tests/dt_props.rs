@@ -148,7 +148,7 @@ fn fresh_gain(fx: &Fixture, reach: &Reachability, cell: u32) -> f64 {
     let heading = if fx.sensor.is_omnidirectional() {
         0.0
     } else {
-        arrival_heading(known, reach, cell, &mut Vec::new())
+        arrival_heading(known, reach, cell)
     };
     information_gain(
         fx.sensor.as_ref(),

@@ -148,6 +148,8 @@ fn same_as_heap(
             i
         };
         prop_assert_eq!(p, pred[i], "predecessor of {}", i);
+        // `predecessor` is the path's last step (none at the start).
+        prop_assert_eq!(r.predecessor(i), (p != i).then_some(p));
     }
     Ok(())
 }

@@ -68,7 +68,6 @@ pub struct State {
     pub(crate) uncertain: crate::assign::utility::UncertainCounts,
     near: Grid<f64>,
     edt: EdtScratch,
-    path: Vec<u32>,
 }
 
 impl Default for State {
@@ -86,7 +85,6 @@ impl Default for State {
             uncertain: Default::default(),
             near: Grid::new(0, 0, f64::INFINITY),
             edt: EdtScratch::new(),
-            path: Vec::new(),
         }
     }
 }
@@ -163,7 +161,7 @@ impl State {
         let heading = if sensor.is_omnidirectional() {
             0.0
         } else {
-            arrival_heading(known, reach, cell, &mut self.path)
+            arrival_heading(known, reach, cell)
         };
         let pose = Pose::new(known.cell(cell as usize), heading);
         let gain = information_gain(sensor, belief, &self.model, pose, &mut self.scratch);
@@ -177,11 +175,10 @@ pub fn arrival_heading(
     known: &Grid<grid::Occ>,
     reach: &Reachability,
     cell: u32,
-    path: &mut Vec<u32>,
 ) -> f64 {
     let at = known.cell(cell as usize);
-    if reach.path_to(cell as usize, path) && path.len() >= 2 {
-        let from = known.cell(path[path.len() - 2] as usize);
+    if let Some(from) = reach.predecessor(cell as usize) {
+        let from = known.cell(from);
         return f64::from(at.y - from.y).atan2(f64::from(at.x - from.x));
     }
     let (mut sx, mut sy) = (0.0, 0.0);

@@ -231,8 +231,12 @@ impl Reachability {
         true
     }
 
-    /// The heap's predecessor of settled cell `j` (not the start).
-    fn predecessor(&self, j: usize) -> Option<usize> {
+    /// The cell before settled cell `j` on [`path_to`](Self::path_to)'s path (the heap's
+    /// predecessor); `None` for the start and for cells not settled by the last search.
+    pub fn predecessor(&self, j: usize) -> Option<usize> {
+        if !self.is_settled(j) || Some(j) == self.start {
+            return None;
+        }
         let (w, h) = (self.width as i64, self.height as i64);
         let (x, y) = ((j % self.width) as i64, (j / self.width) as i64);
         // A cell known passable in the last search: labelled (every labelled cell but the
