@@ -13,7 +13,8 @@
 //!   order. Free cells are reported Free; the first non-free cell (Occupied or ground-truth
 //!   Unknown) is reported Occupied and ends the beam; leaving the grid ends it unreported.
 //! - The sensor's own cell is always reported; if it is non-free, nothing else is seen.
-//! - Cells crossed by several beams are reported once (the observation is sorted by index).
+//! - Cells crossed by several beams are reported once (the observation is sorted by index:
+//!   beams mark a bitmap of the box in range, read row by row, so no sort is needed).
 //! - A predicted scan ([`Sensor::predict`]) traces the same beams on a belief, passing
 //!   through Unknown cells too; it reports cells unsorted and with repeats.
 
@@ -94,7 +95,7 @@ impl LidarSensor {
 }
 
 impl LidarSensor {
-    /// Trace every beam from `pose` in `grid`: `seen(flat index, state)` for each cell a beam
+    /// Trace every beam from `pose` in `grid`: `seen(flat index, x, y, state)` for each cell a beam
     /// enters within range, in beam order (cells may repeat across beams). A beam passes
     /// through cells whose state is `transparent` and ends at (after reporting) the first
     /// other one; leaving the grid ends it unreported. The sensor's own cell is reported
@@ -105,13 +106,18 @@ impl LidarSensor {
         grid: &Grid<Occ>,
         pose: Pose,
         transparent: impl Fn(Occ) -> bool,
-        mut seen: impl FnMut(usize, Occ),
+        mut seen: impl FnMut(usize, i64, i64, Occ),
     ) {
         let Some(origin) = grid.checked_index(pose.cell) else {
             return;
         };
         let data = grid.data();
-        seen(origin, data[origin]);
+        seen(
+            origin,
+            i64::from(pose.cell.x),
+            i64::from(pose.cell.y),
+            data[origin],
+        );
         if !transparent(data[origin]) {
             return;
         }
@@ -143,9 +149,78 @@ impl LidarSensor {
                     break;
                 }
                 let i = (y * w + x) as usize;
-                seen(i, data[i]);
+                seen(i, x, y, data[i]);
                 if !transparent(data[i]) {
                     break;
+                }
+            }
+        }
+    }
+}
+
+thread_local! {
+    /// The cells a scan has seen, one bit per cell of its [`Window`] (kept per thread so that
+    /// a scan allocates nothing once it has run).
+    static SEEN: std::cell::RefCell<Vec<u64>> = const { std::cell::RefCell::new(Vec::new()) };
+}
+
+/// The box of cells a scan can reach, as a bitmap of whole 64-bit words per row: marking a
+/// cell is a bit set, and reading the rows in order lists the seen cells by flat index,
+/// each once, with no sort.
+struct Window {
+    /// Columns and rows of the box in the grid, inclusive lower and exclusive upper bounds.
+    x0: i64,
+    y0: i64,
+    y1: i64,
+    /// Words per row of the bitmap.
+    words: usize,
+    /// Grid width.
+    width: usize,
+}
+
+impl Window {
+    /// The box of cells within `range` cells (plus one for rounding) of `cell`, clipped to
+    /// the grid; `None` if `cell` is outside it.
+    fn around(grid: &Grid<Occ>, cell: grid::Cell, range: f64) -> Option<Self> {
+        grid.checked_index(cell)?;
+        let (w, h) = (grid.width() as i64, grid.height() as i64);
+        // A beam enters cells at a distance < range, so their columns and rows are within
+        // range + ½ of the origin's.
+        let reach = (range.ceil() + 1.0).min((w + h) as f64) as i64;
+        let (cx, cy) = (i64::from(cell.x), i64::from(cell.y));
+        let (x0, x1) = ((cx - reach).max(0), (cx + reach + 1).min(w));
+        let (y0, y1) = ((cy - reach).max(0), (cy + reach + 1).min(h));
+        Some(Self {
+            x0,
+            y0,
+            y1,
+            words: ((x1 - x0) as usize).div_ceil(64),
+            width: grid.width(),
+        })
+    }
+
+    /// Size `bits` for this box, all clear.
+    fn reset(&self, bits: &mut Vec<u64>) {
+        bits.clear();
+        bits.resize(self.words * (self.y1 - self.y0) as usize, 0);
+    }
+
+    /// Mark cell `(x, y)` of the grid, which lies in the box.
+    #[inline]
+    fn mark(&self, bits: &mut [u64], x: i64, y: i64) {
+        let (lx, ly) = ((x - self.x0) as usize, (y - self.y0) as usize);
+        bits[ly * self.words + lx / 64] |= 1 << (lx % 64);
+    }
+
+    /// Every marked cell's flat index, in increasing order.
+    fn drain(&self, bits: &[u64], mut f: impl FnMut(usize)) {
+        for (ly, row) in bits.chunks_exact(self.words).enumerate() {
+            let base = (self.y0 as usize + ly) * self.width + self.x0 as usize;
+            for (k, &word) in row.iter().enumerate() {
+                let mut word = word;
+                while word != 0 {
+                    f(base + k * 64 + word.trailing_zeros() as usize);
+                    word &= word - 1;
                 }
             }
         }
@@ -156,15 +231,21 @@ impl Sensor for LidarSensor {
     fn scan(&self, truth: &Grid<Occ>, pose: Pose, out: &mut Observation) {
         out.clear();
         out.origin = pose.cell;
-        let cells = &mut out.cells;
-        self.trace(
-            truth,
-            pose,
-            |s| s == Occ::Free,
-            |i, s| cells.push((i as u32, observed(s))),
-        );
-        out.cells.sort_unstable_by_key(|&(i, _)| i);
-        out.cells.dedup_by_key(|&mut (i, _)| i);
+        let Some(window) = Window::around(truth, pose.cell, self.range) else {
+            return;
+        };
+        SEEN.with(|bits| {
+            let mut bits = bits.borrow_mut();
+            window.reset(&mut bits);
+            self.trace(
+                truth,
+                pose,
+                |s| s == Occ::Free,
+                |_, x, y, _| window.mark(&mut bits, x, y),
+            );
+            let data = truth.data();
+            window.drain(&bits, |i| out.cells.push((i as u32, observed(data[i]))));
+        });
     }
 
     fn range_cells(&self) -> f64 {
@@ -179,7 +260,7 @@ impl Sensor for LidarSensor {
     /// sort: callers deduplicate with a mark buffer).
     fn predict(&self, known: &Grid<Occ>, pose: Pose, out: &mut Vec<u32>) {
         out.clear();
-        self.trace(known, pose, predicted_transparent, |i, _| {
+        self.trace(known, pose, predicted_transparent, |i, _, _, _| {
             out.push(i as u32)
         });
     }

@@ -27,7 +27,7 @@ proptest! {
     #[test]
     fn lidar_reports_only_the_truth(
         truth in arb_map(),
-        r in 0.0f64..12.0,
+        r in prop_oneof![0.0f64..12.0, 20.0f64..100.0],
         fov in prop_oneof![Just(360.0), Just(180.0), 1.0f64..360.0],
         res in prop_oneof![Just(1.0), 0.5f64..20.0],
         heading in -7.0f64..7.0,
@@ -83,6 +83,16 @@ proptest! {
         if truth[truth.index(o)] != Occ::Free {
             prop_assert_eq!(obs.cells.len(), 1);
         }
+        // Exactly the beams' cells, sorted and deduplicated: a predicted scan traces the
+        // same beams, and with the world's Unknown cells made Occupied it stops where the
+        // scan stops.
+        let opaque = truth.map(|&s| if s == Occ::Free { Occ::Free } else { Occ::Occupied });
+        let mut beams = Vec::new();
+        sensor.predict(&opaque, Pose::new(o, heading), &mut beams);
+        beams.sort_unstable();
+        beams.dedup();
+        let want: Vec<(u32, Occ)> = beams.iter().map(|&i| (i, opaque[i as usize])).collect();
+        prop_assert_eq!(&obs.cells, &want);
     }
 }
 

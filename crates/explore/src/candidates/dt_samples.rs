@@ -171,11 +171,7 @@ impl State {
 
 /// The heading on arrival at `cell` along `reach`'s shortest path: the direction of its last
 /// step; at the start itself, towards the mean of its Unknown 8-neighbours (0 if none).
-pub fn arrival_heading(
-    known: &Grid<grid::Occ>,
-    reach: &Reachability,
-    cell: u32,
-) -> f64 {
+pub fn arrival_heading(known: &Grid<grid::Occ>, reach: &Reachability, cell: u32) -> f64 {
     let at = known.cell(cell as usize);
     if let Some(from) = reach.predecessor(cell as usize) {
         let from = known.cell(from);
