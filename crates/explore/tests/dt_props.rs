@@ -4,8 +4,9 @@
 //! cell with a gain is a candidate; the fallback takes the frontier cells; the choice (with
 //! lazily evaluated gains) maximises the utility over all candidates evaluated afresh; λ = 0
 //! picks the greatest gain, a huge λ the nearest; runs are deterministic; the uncertain-cell
-//! counts match a brute-force count, and no scan's gain exceeds the count of its square (the
-//! bound that lets the utility assigner skip candidates).
+//! counts match a brute-force count, and no scan's gain exceeds the count of its square nor
+//! that of its disc, cut to the half-plane ahead for a field of view up to 180° (the bounds
+//! that let the utility assigner skip candidates).
 
 use explore::FrontierUpkeep;
 use explore::Reachability;
@@ -187,6 +188,20 @@ proptest! {
             &mut GainScratch::new(),
         );
         prop_assert!(gain <= f64::from(bound), "gain {} > bound {}", gain, bound);
+        // the disc (cut to the half-plane ahead for a field of view up to 180°) bounds it too
+        let disc = utility::GainBound::new(fx.sensor.range_cells(), fx.sensor.field_of_view_deg());
+        let b = disc.of(&uc, x, y, heading);
+        prop_assert!(gain <= b, "gain {} > disc bound {}", gain, b);
+        prop_assert!(b <= f64::from(bound) * (1.0 + 1e-12) + 1e-9, "disc {} looser than square {}", b, bound);
+        for fov in [30.0, 90.0, 180.0, 181.0, 270.0] {
+            let lidar = LidarSensor::new(r, fov, 3.0).expect("lidar");
+            let gain = information_gain(
+                &lidar, &fx.belief, &InverseModel::IDEAL, Pose { cell: c, heading },
+                &mut GainScratch::new(),
+            );
+            let b = utility::GainBound::new(r, fov).of(&uc, x, y, heading);
+            prop_assert!(gain <= b, "fov {}: gain {} > bound {}", fov, gain, b);
+        }
     }
 
     #[test]

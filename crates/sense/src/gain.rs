@@ -19,6 +19,8 @@
 //! Deviation: Holz et al. simulate one scan with one outcome; we take the expectation over
 //! each cell's two outcomes, which needs no guess of what the unknown cells hold.
 
+use grid::Occ;
+
 use crate::belief::{Belief, BeliefKind};
 use crate::sensor::{Pose, Sensor};
 
@@ -102,6 +104,8 @@ pub struct GainScratch {
     touched: Vec<u32>,
     mark: Vec<u32>,
     generation: u32,
+    /// Whether `touched` holds each cell once (the ternary path leaves repeats).
+    deduplicated: bool,
     /// The drop of a cell at p = ½ under the model last used, cached with that model.
     half: Option<(InverseModel, f64)>,
 }
@@ -127,7 +131,20 @@ impl GainScratch {
     }
 
     /// The cells of the last predicted scan, deduplicated, in scan order.
-    pub fn touched(&self) -> &[u32] {
+    pub fn touched(&mut self) -> &[u32] {
+        if !self.deduplicated {
+            // The gain's ternary path marked only Unknown cells: deduplicate afresh.
+            self.next_round(self.mark.len());
+            let generation = self.generation;
+            let mark = &mut self.mark;
+            self.touched.retain(|&i| {
+                let m = &mut mark[i as usize];
+                let first = *m != generation;
+                *m = generation;
+                first
+            });
+            self.deduplicated = true;
+        }
         &self.touched
     }
 }
@@ -156,6 +173,25 @@ pub fn information_gain(
     };
     sensor.predict(known, pose, &mut scratch.touched);
     let generation = scratch.generation;
+    if belief.is_ternary() {
+        // Only Unknown cells drop (by `half` each): count each once, leave the rest.
+        let data = known.data();
+        let mut unknown = 0u32;
+        for &i in &scratch.touched {
+            let i = i as usize;
+            if data.get(i) == Some(&Occ::Unknown) && scratch.mark[i] != generation {
+                scratch.mark[i] = generation;
+                unknown += 1;
+            }
+        }
+        scratch.deduplicated = false;
+        // Summed one by one, as the general path does, so the bits agree.
+        let mut gain = 0.0;
+        for _ in 0..unknown {
+            gain += half;
+        }
+        return gain;
+    }
     let mut gain = 0.0;
     let mut unique = 0;
     for k in 0..scratch.touched.len() {
@@ -179,6 +215,7 @@ pub fn information_gain(
         };
     }
     scratch.touched.truncate(unique);
+    scratch.deduplicated = true;
     gain
 }
 

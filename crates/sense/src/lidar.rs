@@ -256,6 +256,10 @@ impl Sensor for LidarSensor {
         self.fov_deg >= 360.0
     }
 
+    fn field_of_view_deg(&self) -> f64 {
+        self.fov_deg
+    }
+
     /// The beams of [`scan`](Sensor::scan) on the belief, unsorted and with repeats (no
     /// sort: callers deduplicate with a mark buffer).
     fn predict(&self, known: &Grid<Occ>, pose: Pose, out: &mut Vec<u32>) {

@@ -15,10 +15,12 @@
 //! best `ln I − λL` found. `B(p)` bounds the gain of any scan from `p`: each touched cell
 //! drops at most 1 bit (binary entropy ≤ 1) and only uncertain cells (0 < p < 1) drop at
 //! all; a scan of range R cells touches only cells whose centres lie within R + √2/2 of the
-//! origin's centre. So `B(p)` is the number of uncertain cells in the square of half-side
-//! R + 1 around `p` (a summed-area table of the belief, [`UncertainCounts`], built once
-//! per decision), capped by π(R + 2)², which bounds the cells in the disc. A candidate
-//! whose square holds no uncertain cell has gain 0 and is never evaluated. The tie rule
+//! origin's, and a scan whose field of view is at most 180° only cells whose centres lie at
+//! most √2/2 behind the line through the origin across its heading (the arrival heading the
+//! gain will be evaluated with). So `B(p)` is the number of uncertain cells in that disc, or
+//! half-disc, summed row by row from a summed-area table of the belief
+//! ([`UncertainCounts`], built once per decision); an evaluated gain is its own bound. A
+//! candidate whose disc holds no uncertain cell has gain 0 and is never evaluated. The tie rule
 //! (greater utility, then lower cost, then lower index) is applied to the candidates
 //! evaluated, and every one not evaluated is strictly worse than the choice, so the choice
 //! is the one the full evaluation makes.
@@ -34,7 +36,7 @@ use std::cmp::Ordering;
 use sense::{Belief, Pose, Sensor, information_gain};
 
 use crate::candidates::CandidateSet;
-use crate::candidates::dt_samples::State;
+use crate::candidates::dt_samples::{State, arrival_heading};
 use crate::decision::{DecisionCtx, Goal};
 
 /// Each deciding robot takes the reachable candidate of greatest `I·exp(−λ·L)`.
@@ -53,21 +55,17 @@ pub fn assign(
         for r in (0..m).filter(|&r| ctx.deciding[r]) {
             ctx.planner.full(r, ctx.robots[r], ctx.known, ctx.upkeep);
         }
-        let range = ctx.sensor_range_cells.max(0.0);
-        let disc = std::f64::consts::PI * (range + 2.0).powi(2);
         let mut uncertain = std::mem::take(&mut st.uncertain);
         uncertain.build(ctx.belief);
-        let bounds = GainBounds {
-            uncertain: &uncertain,
-            half_side: range as usize + 1,
-            disc,
-        };
+        let mut bound = std::mem::take(&mut st.bound);
+        bound.set(ctx.sensor_range_cells, ctx.sensor.field_of_view_deg());
         for (r, slot) in out.iter_mut().enumerate().take(m) {
             if ctx.deciding[r] {
-                *slot = best_lazy(ctx, &mut st, r, lambda * ctx.resolution, &bounds);
+                *slot = best_lazy(ctx, &mut st, r, lambda * ctx.resolution, &uncertain, &bound);
             }
         }
         st.uncertain = uncertain;
+        st.bound = bound;
         ctx.memory.dt = st;
         return;
     }
@@ -128,16 +126,29 @@ fn best_lazy(
     st: &mut State,
     r: usize,
     lambda_per_cell: f64,
-    bounds: &GainBounds<'_>,
+    uncertain: &UncertainCounts,
+    bound: &GainBound,
 ) -> Option<Goal> {
     let planner = &*ctx.planner;
     let reach = planner.map(r);
     let width = ctx.known.width();
+    let omni = ctx.sensor.is_omnidirectional();
     let mut order = std::mem::take(&mut st.order);
     order.clear();
     order.extend(st.cells.iter().enumerate().filter_map(|(k, &c)| {
         let l = reach.cost(c as usize)?;
-        let b = bounds.of(c as usize % width, c as usize / width);
+        let b = if st.gains[k].is_nan() {
+            // The heading the gain will be evaluated with (State::gain).
+            let heading = if omni {
+                0.0
+            } else {
+                let by = planner.map(st.reachers[k] as usize);
+                arrival_heading(ctx.known, by, c)
+            };
+            bound.of(uncertain, c as usize % width, c as usize / width, heading)
+        } else {
+            st.gains[k]
+        };
         // No uncertain cell in reach of a scan from there: its gain is 0.
         (b > 0.0).then(|| (b.ln() - lambda_per_cell * l, l, k as u32))
     }));
@@ -192,11 +203,18 @@ impl UncertainCounts {
         self.height = h;
         self.sat.clear();
         self.sat.resize((w + 1) * (h + 1), 0);
+        let ternary = belief.is_ternary();
+        let data = known.data();
         for y in 0..h {
             let mut row = 0u32;
             for x in 0..w {
-                let p = belief.p_occupied(y * w + x);
-                row += u32::from(p > 0.0 && p < 1.0);
+                let i = y * w + x;
+                row += u32::from(if ternary {
+                    data[i] == grid::Occ::Unknown
+                } else {
+                    let p = belief.p_occupied(i);
+                    p > 0.0 && p < 1.0
+                });
                 self.sat[(y + 1) * (w + 1) + x + 1] = self.sat[y * (w + 1) + x + 1] + row;
             }
         }
@@ -213,30 +231,84 @@ impl UncertainCounts {
     }
 }
 
-/// Upper bounds on the gain of a scan from a cell (module doc).
-struct GainBounds<'a> {
-    uncertain: &'a UncertainCounts,
-    /// Half-side of the square around the origin holding every cell a scan can touch.
-    half_side: usize,
-    /// π(R + 2)²: at most this many cells of a scan.
-    disc: f64,
+/// An upper bound on the gain of any scan from a cell (module doc): the uncertain cells whose
+/// centres lie within `R + √2/2` of the origin's (row by row, from the counts' table), and
+/// for a field of view of at most 180° only those not more than √2/2 behind the line
+/// through the origin across the heading.
+#[derive(Clone, Debug, Default)]
+pub struct GainBound {
+    /// Half-width of the disc's row at each row offset `0..=reach`.
+    half_widths: Vec<i64>,
+    /// Whether the field of view is at most 180° (the half-plane cut applies).
+    forward_only: bool,
 }
 
-impl GainBounds<'_> {
-    /// A bound on the gain of any scan from cell `(x, y)`.
-    fn of(&self, x: usize, y: usize) -> f64 {
-        let h = self.half_side;
-        let n = self.uncertain.count(
-            x.saturating_sub(h),
-            y.saturating_sub(h),
-            x + h + 1,
-            y + h + 1,
+/// How far behind the line across the heading a touched cell's centre can lie: the half
+/// diagonal of a cell, plus room for rounding.
+const BEHIND: f64 = std::f64::consts::FRAC_1_SQRT_2 + 1e-6;
+
+impl GainBound {
+    /// The bound for a sensor of range `range` cells and field of view `fov_deg` degrees.
+    pub fn new(range: f64, fov_deg: f64) -> Self {
+        let mut b = Self::default();
+        b.set(range, fov_deg);
+        b
+    }
+
+    /// Re-target to a sensor of range `range` cells and field of view `fov_deg` (keeps buffers).
+    pub fn set(&mut self, range: f64, fov_deg: f64) {
+        // A touched cell is entered by a ray at a distance < R, so its centre is within
+        // R + √2/2 of the origin's.
+        let rho = range.max(0.0) + BEHIND;
+        let reach = rho.floor() as i64;
+        self.half_widths.clear();
+        self.half_widths.extend(
+            (0..=reach)
+                .map(|dy| ((rho * rho - (dy * dy) as f64).max(0.0).sqrt() + 1e-9).floor() as i64),
         );
+        self.forward_only = fov_deg <= 180.0;
+    }
+
+    /// The bound for a scan from `(x, y)` looking along `heading` (radians; ignored unless
+    /// the field of view is at most 180°).
+    pub fn of(&self, counts: &UncertainCounts, x: usize, y: usize, heading: f64) -> f64 {
+        let (w, h) = (counts.width as i64, counts.height as i64);
+        let (x, y) = (x as i64, y as i64);
+        let (hx, hy) = if self.forward_only {
+            (heading.cos(), heading.sin())
+        } else {
+            (0.0, 0.0)
+        };
+        let reach = self.half_widths.len() as i64 - 1;
+        let mut n = 0u32;
+        for dy in -reach..=reach {
+            let row = y + dy;
+            if row < 0 || row >= h {
+                continue;
+            }
+            let hw = self.half_widths[dy.unsigned_abs() as usize];
+            let (mut lo, mut hi) = (-hw, hw);
+            if self.forward_only {
+                // Keep dx with hx·dx + hy·dy ≥ −BEHIND, widened by a cell for rounding.
+                let q = -BEHIND - hy * dy as f64;
+                if hx > 1e-9 {
+                    lo = lo.max((q / hx).ceil() as i64 - 1);
+                } else if hx < -1e-9 {
+                    hi = hi.min((q / hx).floor() as i64 + 1);
+                } else if q > 1e-6 {
+                    continue;
+                }
+            }
+            let (x0, x1) = ((x + lo).max(0), (x + hi + 1).min(w));
+            if x0 < x1 {
+                n += counts.count(x0 as usize, row as usize, x1 as usize, row as usize + 1);
+            }
+        }
         if n == 0 {
             return 0.0;
         }
         // A sum of at most n drops of at most 1 bit each, with room for rounding.
-        (f64::from(n) * (1.0 + 1e-12) + 1e-9).min(self.disc)
+        f64::from(n) * (1.0 + 1e-12) + 1e-9
     }
 }
 

@@ -66,6 +66,8 @@ pub struct State {
     pub(crate) order: Vec<(f64, f64, u32)>,
     /// Uncertain cells per square, the lazy utility assigner's per-candidate gain bound.
     pub(crate) uncertain: crate::assign::utility::UncertainCounts,
+    /// The per-candidate gain bound over those counts.
+    pub(crate) bound: crate::assign::utility::GainBound,
     near: Grid<f64>,
     edt: EdtScratch,
 }
@@ -83,6 +85,7 @@ impl Default for State {
             eligible: Vec::new(),
             order: Vec::new(),
             uncertain: Default::default(),
+            bound: Default::default(),
             near: Grid::new(0, 0, f64::INFINITY),
             edt: EdtScratch::new(),
         }

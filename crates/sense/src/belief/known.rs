@@ -46,6 +46,10 @@ impl Belief for KnownGrid {
         &self.known
     }
 
+    fn is_ternary(&self) -> bool {
+        true
+    }
+
     fn p_occupied(&self, i: usize) -> f64 {
         match self.known.data().get(i) {
             Some(Occ::Free) => 0.0,

@@ -34,6 +34,11 @@ pub trait Belief: Send {
     fn known(&self) -> &Grid<Occ>;
     /// Probability that cell i is occupied (0.5 if unknown) — for entropy-based information gain.
     fn p_occupied(&self, i: usize) -> f64;
+    /// Whether `p_occupied` is exactly 0 for Free, 1 for Occupied and ½ for Unknown cells of
+    /// [`known`](Self::known) (so the class alone gives it); false unless a model says so.
+    fn is_ternary(&self) -> bool {
+        false
+    }
     /// Pin cell `i` to `class` (Free or Occupied) for good: the robot's body was there, or
     /// met an obstacle there, and contact is certain, so no later observation changes it (a
     /// sonar cone's arc would otherwise close a corridor the robot has just driven through,
