@@ -96,6 +96,16 @@ impl Sensor for FootprintSensor {
         out.clear();
         self.for_each_in_range(known, pose, |i| out.push(i as u32));
     }
+
+    fn predict_unknown(&self, known: &Grid<Occ>, pose: Pose, out: &mut Vec<u32>) {
+        out.clear();
+        let data = known.data();
+        self.for_each_in_range(known, pose, |i| {
+            if data[i] == Occ::Unknown {
+                out.push(i as u32);
+            }
+        });
+    }
 }
 
 #[cfg(test)]

@@ -19,8 +19,6 @@
 //! Deviation: Holz et al. simulate one scan with one outcome; we take the expectation over
 //! each cell's two outcomes, which needs no guess of what the unknown cells hold.
 
-use grid::Occ;
-
 use crate::belief::{Belief, BeliefKind};
 use crate::sensor::{Pose, Sensor};
 
@@ -104,8 +102,6 @@ pub struct GainScratch {
     touched: Vec<u32>,
     mark: Vec<u32>,
     generation: u32,
-    /// Whether `touched` holds each cell once (the ternary path leaves repeats).
-    deduplicated: bool,
     /// The drop of a cell at p = ½ under the model last used, cached with that model.
     half: Option<(InverseModel, f64)>,
 }
@@ -130,21 +126,9 @@ impl GainScratch {
         }
     }
 
-    /// The cells of the last predicted scan, deduplicated, in scan order.
-    pub fn touched(&mut self) -> &[u32] {
-        if !self.deduplicated {
-            // The gain's ternary path marked only Unknown cells: deduplicate afresh.
-            self.next_round(self.mark.len());
-            let generation = self.generation;
-            let mark = &mut self.mark;
-            self.touched.retain(|&i| {
-                let m = &mut mark[i as usize];
-                let first = *m != generation;
-                *m = generation;
-                first
-            });
-            self.deduplicated = true;
-        }
+    /// The uncertain cells (0 < p < 1) the last predicted scan touched, each once, in scan
+    /// order: the cells its gain sums over.
+    pub fn touched(&self) -> &[u32] {
         &self.touched
     }
 }
@@ -153,7 +137,9 @@ impl GainScratch {
 /// of the cells that `sensor` would observe from `pose` on `belief` (each counted once).
 ///
 /// On the ternary known grid with [`InverseModel::IDEAL`] this is the number of Unknown
-/// cells the predicted scan touches. Allocates nothing once `scratch` has the map's size.
+/// cells the predicted scan touches; for a ternary belief only the scan's Unknown cells
+/// are listed ([`Sensor::predict_unknown`]). Allocates nothing once `scratch` has the
+/// map's size.
 pub fn information_gain(
     sensor: &dyn Sensor,
     belief: &dyn Belief,
@@ -171,27 +157,14 @@ pub fn information_gain(
             d
         }
     };
-    sensor.predict(known, pose, &mut scratch.touched);
-    let generation = scratch.generation;
-    if belief.is_ternary() {
-        // Only Unknown cells drop (by `half` each): count each once, leave the rest.
-        let data = known.data();
-        let mut unknown = 0u32;
-        for &i in &scratch.touched {
-            let i = i as usize;
-            if data.get(i) == Some(&Occ::Unknown) && scratch.mark[i] != generation {
-                scratch.mark[i] = generation;
-                unknown += 1;
-            }
-        }
-        scratch.deduplicated = false;
-        // Summed one by one, as the general path does, so the bits agree.
-        let mut gain = 0.0;
-        for _ in 0..unknown {
-            gain += half;
-        }
-        return gain;
+    let ternary = belief.is_ternary();
+    if ternary {
+        // Only Unknown cells are uncertain (p = ½): the others need not be listed.
+        sensor.predict_unknown(known, pose, &mut scratch.touched);
+    } else {
+        sensor.predict(known, pose, &mut scratch.touched);
     }
+    let generation = scratch.generation;
     let mut gain = 0.0;
     let mut unique = 0;
     for k in 0..scratch.touched.len() {
@@ -203,19 +176,19 @@ pub fn information_gain(
             continue;
         }
         *m = generation;
-        scratch.touched[unique] = i as u32;
-        unique += 1;
-        let p = belief.p_occupied(i);
-        gain += if p == 0.5 {
+        let p = if ternary { 0.5 } else { belief.p_occupied(i) };
+        let drop = if p == 0.5 {
             half
         } else if p <= 0.0 || p >= 1.0 {
-            0.0
+            continue;
         } else {
             model.expected_drop(p)
         };
+        gain += drop;
+        scratch.touched[unique] = i as u32;
+        unique += 1;
     }
     scratch.touched.truncate(unique);
-    scratch.deduplicated = true;
     gain
 }
 

@@ -268,6 +268,15 @@ impl Sensor for LidarSensor {
             out.push(i as u32)
         });
     }
+
+    fn predict_unknown(&self, known: &Grid<Occ>, pose: Pose, out: &mut Vec<u32>) {
+        out.clear();
+        self.trace(known, pose, predicted_transparent, |i, _, _, s| {
+            if s == Occ::Unknown {
+                out.push(i as u32);
+            }
+        });
+    }
 }
 
 #[cfg(test)]

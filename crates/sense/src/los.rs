@@ -150,6 +150,15 @@ impl Sensor for LosSensor {
         out.clear();
         self.for_each_through(known, pose.cell, predicted_transparent, |i, _| out.push(i));
     }
+
+    fn predict_unknown(&self, known: &Grid<Occ>, pose: Pose, out: &mut Vec<u32>) {
+        out.clear();
+        self.for_each_through(known, pose.cell, predicted_transparent, |i, s| {
+            if s == Occ::Unknown {
+                out.push(i);
+            }
+        });
+    }
 }
 
 #[cfg(test)]

@@ -91,6 +91,15 @@ pub trait Sensor: Send + Sync {
         out.clear();
         out.extend(obs.cells.iter().map(|&(i, _)| i));
     }
+
+    /// Like [`predict`](Self::predict), but only the cells that are Unknown in `known`
+    /// (indices may repeat): all a ternary belief's information gain needs. The default
+    /// filters `predict`; the built-in sensors skip the others as they walk.
+    fn predict_unknown(&self, known: &Grid<Occ>, pose: Pose, out: &mut Vec<u32>) {
+        self.predict(known, pose, out);
+        let data = known.data();
+        out.retain(|&i| data.get(i as usize) == Some(&Occ::Unknown));
+    }
 }
 
 /// Whether a belief cell lets a predicted ray through: everything but known Occupied.

@@ -59,6 +59,19 @@ fn predicted_set(s: &dyn Sensor, g: &Grid<Occ>, pose: Pose) -> BTreeSet<u32> {
     out.into_iter().collect()
 }
 
+/// A sensor's Unknown-only prediction lists exactly its prediction's Unknown cells.
+fn unknown_only_matches(s: &dyn Sensor, g: &Grid<Occ>, pose: Pose) -> Result<(), TestCaseError> {
+    let mut only = Vec::new();
+    s.predict_unknown(g, pose, &mut only);
+    let only: BTreeSet<u32> = only.into_iter().collect();
+    let want: BTreeSet<u32> = predicted_set(s, g, pose)
+        .into_iter()
+        .filter(|&i| g[i as usize] == Occ::Unknown)
+        .collect();
+    prop_assert_eq!(only, want);
+    Ok(())
+}
+
 /// Binary entropy in bits, written out independently of the crate.
 fn h(p: f64) -> f64 {
     if p <= 0.0 || p >= 1.0 {
@@ -98,10 +111,13 @@ proptest! {
         let mut scratch = GainScratch::new();
         let gain = information_gain(&s, &b, &InverseModel::IDEAL, pose, &mut scratch);
         prop_assert_eq!(gain, unknown as f64);
-        // The scratch reports each touched cell once.
+        // The scratch reports each touched uncertain (Unknown) cell once.
         let touched: BTreeSet<u32> = scratch.touched().iter().copied().collect();
         prop_assert_eq!(touched.len(), scratch.touched().len());
-        prop_assert_eq!(touched, want);
+        let want_unknown: BTreeSet<u32> =
+            want.iter().copied().filter(|&i| g[i as usize] == Occ::Unknown).collect();
+        prop_assert_eq!(touched, want_unknown);
+        unknown_only_matches(&s, &g, pose)?;
     }
 
     #[test]
@@ -120,6 +136,7 @@ proptest! {
         let unknown = want.iter().filter(|&&i| g[i as usize] == Occ::Unknown).count();
         let gain = information_gain(&s, &known_grid(&g), &InverseModel::IDEAL, pose, &mut GainScratch::new());
         prop_assert_eq!(gain, unknown as f64);
+        unknown_only_matches(&s, &g, pose)?;
     }
 
     #[test]
@@ -131,6 +148,7 @@ proptest! {
             .map(|c| g.index(c) as u32)
             .collect();
         prop_assert_eq!(predicted_set(&s, &g, Pose::new(o, 0.0)), want);
+        unknown_only_matches(&s, &g, Pose::new(o, 0.0))?;
     }
 
     #[test]
