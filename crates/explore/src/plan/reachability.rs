@@ -21,23 +21,68 @@
 //! and the buckets and the settled list keep their capacity: in steady state a search
 //! allocates nothing and touches only the cells it labels.
 
-use crate::upkeep::next_gen;
-use grid::{SQRT2, for_each_move};
+use grid::SQRT2;
 
 /// Buckets in use at once: a step costs at most √2 < 2, so labels reach two buckets ahead.
 const BUCKETS: usize = 3;
+
+/// Largest search epoch: the state keeps it above two flag bits.
+const MAX_EPOCH: u32 = u32::MAX >> 2;
+/// State flag: the cell is settled (its cost is final).
+const DONE: u32 = 1;
+/// State flag: the cell is impassable (only the start is ever both this and labelled).
+const BLOCKED: u32 = 2;
+
+/// A cell's cost and state, side by side so that one cache line holds both.
+#[derive(Clone, Copy, Debug, Default)]
+struct Slot {
+    /// Tentative or final cost if labelled in the current search.
+    cost: f64,
+    /// `epoch << 2 | flags` if the search of that epoch met the cell (labelled it, or found
+    /// it impassable); anything older means not met.
+    state: u32,
+}
+
+/// Meet cell `j` at cost `c` from a settled neighbour: label it (or lower its label) if it
+/// is passable and not settled; its passability is looked up once per search and kept.
+/// Returns whether `j` is passable.
+#[inline(always)]
+fn visit(
+    cells: &mut [Slot],
+    buckets: &mut [Vec<u32>; BUCKETS],
+    base: u32,
+    passable: &impl Fn(usize) -> bool,
+    j: usize,
+    c: f64,
+) -> bool {
+    let cell = &mut cells[j];
+    let s = cell.state;
+    if s & !(DONE | BLOCKED) == base {
+        if s & BLOCKED != 0 {
+            return false;
+        }
+        if s & DONE == 0 && c < cell.cost {
+            cell.cost = c;
+            buckets[c as usize % BUCKETS].push(j as u32);
+        }
+        true
+    } else if passable(j) {
+        *cell = Slot { cost: c, state: base };
+        buckets[c as usize % BUCKETS].push(j as u32);
+        true
+    } else {
+        cell.state = base | BLOCKED;
+        false
+    }
+}
 
 /// Dijkstra over passable cells from one start: cost per cell, path extraction.
 #[derive(Clone, Debug)]
 pub struct Reachability {
     width: usize,
     height: usize,
-    /// Tentative or final cost of a cell labelled in the current epoch.
-    cost: Vec<f64>,
-    /// `labelled[i] == epoch` iff cell `i` has a cost in the current search.
-    labelled: Vec<u32>,
-    /// `done[i] == epoch` iff cell `i` was settled in the current search.
-    done: Vec<u32>,
+    /// Per cell: its cost and its state in the current search (see [`Slot`]).
+    cells: Vec<Slot>,
     epoch: u32,
     /// Bucket `k % BUCKETS` holds the cells labelled with a cost in `[k, k + 1)` (and stale
     /// entries of cells labelled again more cheaply, skipped when met).
@@ -46,9 +91,6 @@ pub struct Reachability {
     order: Vec<(u64, u32)>,
     settled: Vec<u32>,
     start: Option<usize>,
-    /// Whether the start is itself passable (it is always left, but a diagonal step may pass
-    /// beside it only if it is passable).
-    start_passable: bool,
 }
 
 impl Reachability {
@@ -58,15 +100,12 @@ impl Reachability {
         Self {
             width,
             height,
-            cost: vec![0.0; n],
-            labelled: vec![0; n],
-            done: vec![0; n],
+            cells: vec![Slot::default(); n],
             epoch: 0,
             buckets: Default::default(),
             order: Vec::new(),
             settled: Vec::new(),
             start: None,
-            start_passable: false,
         }
     }
 
@@ -94,24 +133,30 @@ impl Reachability {
         passable: &impl Fn(usize) -> bool,
         is_goal: Option<impl Fn(usize) -> bool>,
     ) -> Option<usize> {
-        self.epoch = next_gen(self.epoch, &mut self.labelled);
-        if self.epoch == 1 {
-            // the labelled stamps were just cleared (first search or wrap-around): clear `done`
-            self.done.fill(0);
-        }
+        self.epoch = if self.epoch >= MAX_EPOCH {
+            for c in &mut self.cells {
+                c.state = 0;
+            }
+            1
+        } else {
+            self.epoch + 1
+        };
         for b in &mut self.buckets {
             b.clear();
         }
         self.settled.clear();
-        if start >= self.cost.len() {
+        if start >= self.cells.len() {
             self.start = None;
             return None;
         }
         self.start = Some(start);
-        self.start_passable = passable(start);
-        let epoch = self.epoch;
-        self.labelled[start] = epoch;
-        self.cost[start] = 0.0;
+        let base = self.epoch << 2;
+        // The start is always left, but a diagonal step may pass beside it only if it is
+        // passable: an impassable start is labelled and marked impassable.
+        self.cells[start] = Slot {
+            cost: 0.0,
+            state: if passable(start) { base } else { base | BLOCKED },
+        };
         self.buckets[0].push(start as u32);
         let (w, h) = (self.width, self.height);
         let mut k = 0usize;
@@ -128,23 +173,24 @@ impl Reachability {
             // Every cost in bucket k is final. A goal among them ends the search at the
             // first goal in (cost, index) order, settling what a heap settles before it.
             if let Some(is_goal) = &is_goal {
+                let cells = &self.cells;
                 let goal = bucket
                     .iter()
                     .map(|&i| i as usize)
-                    .filter(|&i| self.done[i] != epoch && is_goal(i))
-                    .min_by(|&a, &b| self.cost[a].total_cmp(&self.cost[b]).then(a.cmp(&b)));
+                    .filter(|&i| cells[i].state & DONE == 0 && is_goal(i))
+                    .min_by(|&a, &b| cells[a].cost.total_cmp(&cells[b].cost).then(a.cmp(&b)));
                 if let Some(goal) = goal {
                     self.order.clear();
                     for &i in &bucket {
-                        let iu = i as usize;
-                        if self.done[iu] != epoch {
-                            self.order.push((self.cost[iu].to_bits(), i));
+                        let c = &self.cells[i as usize];
+                        if c.state & DONE == 0 {
+                            self.order.push((c.cost.to_bits(), i));
                         }
                     }
                     self.order.sort_unstable();
                     self.order.dedup();
                     for &(_, i) in &self.order {
-                        self.done[i as usize] = epoch;
+                        self.cells[i as usize].state |= DONE;
                         self.settled.push(i);
                         if i as usize == goal {
                             break;
@@ -155,33 +201,36 @@ impl Reachability {
                     return Some(goal);
                 }
             }
-            let (cost, labelled, done, buckets, settled) = (
-                &mut self.cost,
-                &mut self.labelled,
-                &mut self.done,
-                &mut self.buckets,
-                &mut self.settled,
-            );
-            for &i in &bucket {
-                let i = i as usize;
-                if done[i] == epoch {
+            let (cells, buckets, settled) = (&mut self.cells, &mut self.buckets, &mut self.settled);
+            for &iu in &bucket {
+                let i = iu as usize;
+                let Slot { cost: ci, state } = cells[i];
+                if state & DONE != 0 {
                     continue; // labelled again more cheaply, or listed twice
                 }
-                debug_assert_eq!(cost[i] as usize, k);
-                done[i] = epoch;
-                settled.push(i as u32);
-                let ci = cost[i];
-                for_each_move(w, h, i, passable, |j, step| {
-                    if done[j] == epoch {
-                        return;
-                    }
-                    let c = ci + step;
-                    if labelled[j] != epoch || c < cost[j] {
-                        labelled[j] = epoch;
-                        cost[j] = c;
-                        buckets[c as usize % BUCKETS].push(j as u32);
-                    }
-                });
+                debug_assert_eq!(ci as usize, k);
+                cells[i].state = state | DONE;
+                settled.push(iu);
+                let (x, y) = (i % w, i / w);
+                let (left, right, up, down) = (x > 0, x + 1 < w, y > 0, y + 1 < h);
+                let c1 = ci + 1.0;
+                let pr = right && visit(cells, buckets, base, passable, i + 1, c1);
+                let pd = down && visit(cells, buckets, base, passable, i + w, c1);
+                let pl = left && visit(cells, buckets, base, passable, i - 1, c1);
+                let pu = up && visit(cells, buckets, base, passable, i - w, c1);
+                let c2 = ci + SQRT2;
+                if right && down && (pr || pd) {
+                    visit(cells, buckets, base, passable, i + w + 1, c2);
+                }
+                if left && down && (pl || pd) {
+                    visit(cells, buckets, base, passable, i + w - 1, c2);
+                }
+                if left && up && (pl || pu) {
+                    visit(cells, buckets, base, passable, i - w - 1, c2);
+                }
+                if right && up && (pr || pu) {
+                    visit(cells, buckets, base, passable, i - w + 1, c2);
+                }
             }
             bucket.clear();
             self.buckets[slot] = bucket;
@@ -192,14 +241,18 @@ impl Reachability {
     /// Whether cell `i` was settled by the last search (its cost is final).
     #[inline]
     pub fn is_settled(&self, i: usize) -> bool {
-        self.done.get(i) == Some(&self.epoch) && self.epoch != 0
+        self.epoch != 0
+            && self
+                .cells
+                .get(i)
+                .is_some_and(|c| c.state & !BLOCKED == (self.epoch << 2 | DONE))
     }
 
     /// Shortest-path cost in cells from the start to a settled cell (after `compute`: every
     /// reachable cell); `None` for cells not settled by the last search.
     #[inline]
     pub fn cost(&self, i: usize) -> Option<f64> {
-        self.is_settled(i).then(|| self.cost[i])
+        self.is_settled(i).then(|| self.cells[i].cost)
     }
 
     /// Write the shortest path start..=goal (inclusive) to `out`; false (and `out` empty) if
@@ -239,12 +292,10 @@ impl Reachability {
         }
         let (w, h) = (self.width as i64, self.height as i64);
         let (x, y) = ((j % self.width) as i64, (j / self.width) as i64);
-        // A cell known passable in the last search: labelled (every labelled cell but the
-        // start passed `passable`); beside a settled cell, an unlabelled one is impassable.
-        let open = |i: usize| {
-            self.labelled[i] == self.epoch && (Some(i) != self.start || self.start_passable)
-        };
-        let cj = self.cost[j];
+        // A cell known passable in the last search: met and not found impassable (beside a
+        // settled cell, every cell was met).
+        let open = |i: usize| self.cells[i].state & !DONE == self.epoch << 2;
+        let cj = self.cells[j].cost;
         let mut best: Option<(f64, usize)> = None;
         for dy in -1i64..=1 {
             for dx in -1i64..=1 {
@@ -265,7 +316,7 @@ impl Reachability {
                 } else {
                     1.0
                 };
-                let cu = self.cost[u];
+                let cu = self.cells[u].cost;
                 if cu + step == cj && best.is_none_or(|(bc, bu)| (cu, u) < (bc, bu)) {
                     best = Some((cu, u));
                 }
