@@ -21,58 +21,84 @@
 //! and the buckets and the settled list keep their capacity: in steady state a search
 //! allocates nothing and touches only the cells it labels.
 
+use crate::upkeep::next_gen;
 use grid::SQRT2;
 
 /// Buckets in use at once: a step costs at most √2 < 2, so labels reach two buckets ahead.
 const BUCKETS: usize = 3;
 
-/// Largest search epoch: the state keeps it above two flag bits.
-const MAX_EPOCH: u32 = u32::MAX >> 2;
+/// State flag: the search met the cell (labelled it, or found it impassable).
+const MET: u8 = 1;
 /// State flag: the cell is settled (its cost is final).
-const DONE: u32 = 1;
+const DONE: u8 = 2;
 /// State flag: the cell is impassable (only the start is ever both this and labelled).
-const BLOCKED: u32 = 2;
+const BLOCKED: u8 = 4;
 
-/// A cell's cost and state, side by side so that one cache line holds both.
-#[derive(Clone, Copy, Debug, Default)]
-struct Slot {
-    /// Tentative or final cost if labelled in the current search.
-    cost: f64,
-    /// `epoch << 2 | flags` if the search of that epoch met the cell (labelled it, or found
-    /// it impassable); anything older means not met.
-    state: u32,
+/// The per-cell arrays are stored in tiles of `TILE × TILE` cells (`TILE = 1 << TILE_SHIFT`),
+/// one tile after the other by rows of tiles, each tile row-major.
+const TILE_SHIFT: u32 = 4;
+const TILE: usize = 1 << TILE_SHIFT;
+const TILE_MASK: usize = TILE - 1;
+/// Cells per tile.
+const TILE_CELLS: usize = TILE * TILE;
+
+/// A bucket entry: a cell's column and row.
+type Entry = (u32, u32);
+
+/// The slot of the cell in column `x`, row `y`, with `tile_row` slots per row of tiles.
+#[inline(always)]
+fn slot_xy(tile_row: usize, x: usize, y: usize) -> usize {
+    (y >> TILE_SHIFT) * tile_row
+        + ((x >> TILE_SHIFT) << (2 * TILE_SHIFT))
+        + ((y & TILE_MASK) << TILE_SHIFT)
+        + (x & TILE_MASK)
 }
 
-/// Meet cell `j` at cost `c` from a settled neighbour: label it (or lower its label) if it
-/// is passable and not settled; its passability is looked up once per search and kept.
-/// Returns whether `j` is passable.
-#[inline(always)]
-fn visit(
-    cells: &mut [Slot],
-    buckets: &mut [Vec<u32>; BUCKETS],
-    base: u32,
-    passable: &impl Fn(usize) -> bool,
-    j: usize,
-    c: f64,
-) -> bool {
-    let cell = &mut cells[j];
-    let s = cell.state;
-    if s & !(DONE | BLOCKED) == base {
-        if s & BLOCKED != 0 {
-            return false;
+/// The per-cell arrays of a running search.
+struct Wave<'a> {
+    epoch: u32,
+    tile_epoch: &'a mut [u32],
+    state: &'a mut [u8],
+    cost: &'a mut [f64],
+    buckets: &'a mut [Vec<Entry>; BUCKETS],
+}
+
+impl Wave<'_> {
+    /// Meet cell `j` (column and row `xy`, slot `q`) at cost `c` from a settled neighbour:
+    /// label it (or lower its label) if it is passable and not settled; its passability is
+    /// looked up once per search and kept. Returns whether `j` is passable.
+    #[inline(always)]
+    fn visit(
+        &mut self,
+        passable: &impl Fn(usize) -> bool,
+        (q, j, xy): (usize, usize, Entry),
+        c: f64,
+    ) -> bool {
+        let t = q >> (2 * TILE_SHIFT);
+        if self.tile_epoch[t] != self.epoch {
+            // first cell of this tile met in this search: forget the older states
+            self.tile_epoch[t] = self.epoch;
+            self.state[t * TILE_CELLS..(t + 1) * TILE_CELLS].fill(0);
         }
-        if s & DONE == 0 && c < cell.cost {
-            cell.cost = c;
-            buckets[c as usize % BUCKETS].push(j as u32);
+        let s = self.state[q];
+        if s & MET != 0 {
+            if s & BLOCKED != 0 {
+                return false;
+            }
+            if s & DONE == 0 && c < self.cost[q] {
+                self.cost[q] = c;
+                self.buckets[c as usize % BUCKETS].push(xy);
+            }
+            true
+        } else if passable(j) {
+            self.state[q] = MET;
+            self.cost[q] = c;
+            self.buckets[c as usize % BUCKETS].push(xy);
+            true
+        } else {
+            self.state[q] = MET | BLOCKED;
+            false
         }
-        true
-    } else if passable(j) {
-        *cell = Slot { cost: c, state: base };
-        buckets[c as usize % BUCKETS].push(j as u32);
-        true
-    } else {
-        cell.state = base | BLOCKED;
-        false
     }
 }
 
@@ -81,12 +107,19 @@ fn visit(
 pub struct Reachability {
     width: usize,
     height: usize,
-    /// Per cell: its cost and its state in the current search (see [`Slot`]).
-    cells: Vec<Slot>,
+    /// Tiles per row of tiles.
+    tiles_x: usize,
+    /// Per tile: the last search that met one of its cells; the tile's states are valid
+    /// only if it is the current one (older ones mean "not met").
+    tile_epoch: Vec<u32>,
+    /// Per cell (by slot, see [`slot_xy`]): flags [`MET`], [`DONE`], [`BLOCKED`].
+    state: Vec<u8>,
+    /// Per cell (by slot): tentative or final cost if labelled in the current search.
+    cost: Vec<f64>,
     epoch: u32,
     /// Bucket `k % BUCKETS` holds the cells labelled with a cost in `[k, k + 1)` (and stale
     /// entries of cells labelled again more cheaply, skipped when met).
-    buckets: [Vec<u32>; BUCKETS],
+    buckets: [Vec<Entry>; BUCKETS],
     /// The live cells of the bucket where a nearest-goal search ends, as `(cost bits, cell)`.
     order: Vec<(u64, u32)>,
     settled: Vec<u32>,
@@ -96,11 +129,15 @@ pub struct Reachability {
 impl Reachability {
     /// Buffers for searches on a `width × height` grid.
     pub fn new(width: usize, height: usize) -> Self {
-        let n = width * height;
+        let tiles_x = width.div_ceil(TILE);
+        let tiles = tiles_x * height.div_ceil(TILE);
         Self {
             width,
             height,
-            cells: vec![Slot::default(); n],
+            tiles_x,
+            tile_epoch: vec![0; tiles],
+            state: vec![0; tiles * TILE_CELLS],
+            cost: vec![0.0; tiles * TILE_CELLS],
             epoch: 0,
             buckets: Default::default(),
             order: Vec::new(),
@@ -133,126 +170,169 @@ impl Reachability {
         passable: &impl Fn(usize) -> bool,
         is_goal: Option<impl Fn(usize) -> bool>,
     ) -> Option<usize> {
-        self.epoch = if self.epoch >= MAX_EPOCH {
-            for c in &mut self.cells {
-                c.state = 0;
-            }
-            1
-        } else {
-            self.epoch + 1
-        };
+        self.epoch = next_gen(self.epoch, &mut self.tile_epoch);
         for b in &mut self.buckets {
             b.clear();
         }
         self.settled.clear();
-        if start >= self.cells.len() {
+        let (w, h) = (self.width, self.height);
+        if start >= w * h {
             self.start = None;
             return None;
         }
         self.start = Some(start);
-        let base = self.epoch << 2;
+        let tile_row = self.tiles_x * TILE_CELLS;
+        let mut wave = Wave {
+            epoch: self.epoch,
+            tile_epoch: &mut self.tile_epoch,
+            state: &mut self.state,
+            cost: &mut self.cost,
+            buckets: &mut self.buckets,
+        };
         // The start is always left, but a diagonal step may pass beside it only if it is
         // passable: an impassable start is labelled and marked impassable.
-        self.cells[start] = Slot {
-            cost: 0.0,
-            state: if passable(start) { base } else { base | BLOCKED },
-        };
-        self.buckets[0].push(start as u32);
-        let (w, h) = (self.width, self.height);
+        let (x0, y0) = (start % w, start / w);
+        let s0 = slot_xy(tile_row, x0, y0);
+        let t0 = s0 >> (2 * TILE_SHIFT);
+        wave.tile_epoch[t0] = wave.epoch;
+        wave.state[t0 * TILE_CELLS..(t0 + 1) * TILE_CELLS].fill(0);
+        wave.state[s0] = if passable(start) { MET } else { MET | BLOCKED };
+        wave.cost[s0] = 0.0;
+        wave.buckets[0].push((x0 as u32, y0 as u32));
         let mut k = 0usize;
         loop {
             let slot = k % BUCKETS;
-            if self.buckets[slot].is_empty() {
-                if self.buckets.iter().all(Vec::is_empty) {
+            if wave.buckets[slot].is_empty() {
+                if wave.buckets.iter().all(Vec::is_empty) {
                     return None;
                 }
                 k += 1;
                 continue;
             }
-            let mut bucket = std::mem::take(&mut self.buckets[slot]);
+            let mut bucket = std::mem::take(&mut wave.buckets[slot]);
             // Every cost in bucket k is final. A goal among them ends the search at the
             // first goal in (cost, index) order, settling what a heap settles before it.
             if let Some(is_goal) = &is_goal {
-                let cells = &self.cells;
+                // (cost bits, cell) orders as (cost, cell): costs are not negative
+                let live = |&(x, y): &Entry| {
+                    let (x, y) = (x as usize, y as usize);
+                    let q = slot_xy(tile_row, x, y);
+                    (wave.state[q] & DONE == 0).then_some((wave.cost[q].to_bits(), y * w + x))
+                };
                 let goal = bucket
                     .iter()
-                    .map(|&i| i as usize)
-                    .filter(|&i| cells[i].state & DONE == 0 && is_goal(i))
-                    .min_by(|&a, &b| cells[a].cost.total_cmp(&cells[b].cost).then(a.cmp(&b)));
+                    .filter_map(live)
+                    .filter(|&(_, i)| is_goal(i))
+                    .min()
+                    .map(|(_, i)| i);
                 if let Some(goal) = goal {
                     self.order.clear();
-                    for &i in &bucket {
-                        let c = &self.cells[i as usize];
-                        if c.state & DONE == 0 {
-                            self.order.push((c.cost.to_bits(), i));
-                        }
-                    }
+                    self.order
+                        .extend(bucket.iter().filter_map(live).map(|(c, i)| (c, i as u32)));
                     self.order.sort_unstable();
                     self.order.dedup();
                     for &(_, i) in &self.order {
-                        self.cells[i as usize].state |= DONE;
-                        self.settled.push(i);
-                        if i as usize == goal {
+                        let i = i as usize;
+                        wave.state[slot_xy(tile_row, i % w, i / w)] |= DONE;
+                        self.settled.push(i as u32);
+                        if i == goal {
                             break;
                         }
                     }
                     bucket.clear();
-                    self.buckets[slot] = bucket;
+                    wave.buckets[slot] = bucket;
                     return Some(goal);
                 }
             }
-            let (cells, buckets, settled) = (&mut self.cells, &mut self.buckets, &mut self.settled);
-            for &iu in &bucket {
-                let i = iu as usize;
-                let Slot { cost: ci, state } = cells[i];
+            for &(xu, yu) in &bucket {
+                let (x, y) = (xu as usize, yu as usize);
+                let p = slot_xy(tile_row, x, y);
+                let state = wave.state[p];
                 if state & DONE != 0 {
                     continue; // labelled again more cheaply, or listed twice
                 }
+                let ci = wave.cost[p];
                 debug_assert_eq!(ci as usize, k);
-                cells[i].state = state | DONE;
-                settled.push(iu);
-                let (x, y) = (i % w, i / w);
+                wave.state[p] = state | DONE;
+                let i = y * w + x;
+                self.settled.push(i as u32);
                 let (left, right, up, down) = (x > 0, x + 1 < w, y > 0, y + 1 < h);
+                // slot offsets of the steps right, left, down and up (wrapping: negative)
+                let (xm, ym) = (x & TILE_MASK, y & TILE_MASK);
+                let dr = if xm == TILE_MASK {
+                    TILE_CELLS - TILE_MASK
+                } else {
+                    1
+                };
+                let dl = if xm == 0 { TILE_CELLS - TILE_MASK } else { 1 }.wrapping_neg();
+                let dd = if ym == TILE_MASK {
+                    tile_row - TILE_MASK * TILE
+                } else {
+                    TILE
+                };
+                let du = if ym == 0 {
+                    tile_row - TILE_MASK * TILE
+                } else {
+                    TILE
+                }
+                .wrapping_neg();
+                let (sr, sl) = (p.wrapping_add(dr), p.wrapping_add(dl));
+                // the neighbours' columns and rows (wrapping: only used inside the grid)
+                let (xr, xl) = (xu.wrapping_add(1), xu.wrapping_sub(1));
+                let (yd, ya) = (yu.wrapping_add(1), yu.wrapping_sub(1));
                 let c1 = ci + 1.0;
-                let pr = right && visit(cells, buckets, base, passable, i + 1, c1);
-                let pd = down && visit(cells, buckets, base, passable, i + w, c1);
-                let pl = left && visit(cells, buckets, base, passable, i - 1, c1);
-                let pu = up && visit(cells, buckets, base, passable, i - w, c1);
+                let pr = right && wave.visit(passable, (sr, i + 1, (xr, yu)), c1);
+                let pd = down && wave.visit(passable, (p.wrapping_add(dd), i + w, (xu, yd)), c1);
+                let pl = left && wave.visit(passable, (sl, i - 1, (xl, yu)), c1);
+                let pu = up && wave.visit(passable, (p.wrapping_add(du), i - w, (xu, ya)), c1);
                 let c2 = ci + SQRT2;
                 if right && down && (pr || pd) {
-                    visit(cells, buckets, base, passable, i + w + 1, c2);
+                    wave.visit(passable, (sr.wrapping_add(dd), i + w + 1, (xr, yd)), c2);
                 }
                 if left && down && (pl || pd) {
-                    visit(cells, buckets, base, passable, i + w - 1, c2);
+                    wave.visit(passable, (sl.wrapping_add(dd), i + w - 1, (xl, yd)), c2);
                 }
                 if left && up && (pl || pu) {
-                    visit(cells, buckets, base, passable, i - w - 1, c2);
+                    wave.visit(passable, (sl.wrapping_add(du), i - w - 1, (xl, ya)), c2);
                 }
                 if right && up && (pr || pu) {
-                    visit(cells, buckets, base, passable, i - w + 1, c2);
+                    wave.visit(passable, (sr.wrapping_add(du), i - w + 1, (xr, ya)), c2);
                 }
             }
             bucket.clear();
-            self.buckets[slot] = bucket;
+            wave.buckets[slot] = bucket;
             k += 1;
+        }
+    }
+
+    /// The slot of cell `i < width * height`.
+    #[inline]
+    fn slot(&self, i: usize) -> usize {
+        slot_xy(self.tiles_x * TILE_CELLS, i % self.width, i / self.width)
+    }
+
+    /// The state flags of cell `i < width * height` in the last search (none if not met).
+    #[inline]
+    fn state_of(&self, i: usize) -> u8 {
+        let q = self.slot(i);
+        if self.tile_epoch[q >> (2 * TILE_SHIFT)] == self.epoch {
+            self.state[q]
+        } else {
+            0
         }
     }
 
     /// Whether cell `i` was settled by the last search (its cost is final).
     #[inline]
     pub fn is_settled(&self, i: usize) -> bool {
-        self.epoch != 0
-            && self
-                .cells
-                .get(i)
-                .is_some_and(|c| c.state & !BLOCKED == (self.epoch << 2 | DONE))
+        self.epoch != 0 && i < self.width * self.height && self.state_of(i) & DONE != 0
     }
 
     /// Shortest-path cost in cells from the start to a settled cell (after `compute`: every
     /// reachable cell); `None` for cells not settled by the last search.
     #[inline]
     pub fn cost(&self, i: usize) -> Option<f64> {
-        self.is_settled(i).then(|| self.cells[i].cost)
+        self.is_settled(i).then(|| self.cost[self.slot(i)])
     }
 
     /// Write the shortest path start..=goal (inclusive) to `out`; false (and `out` empty) if
@@ -294,8 +374,8 @@ impl Reachability {
         let (x, y) = ((j % self.width) as i64, (j / self.width) as i64);
         // A cell known passable in the last search: met and not found impassable (beside a
         // settled cell, every cell was met).
-        let open = |i: usize| self.cells[i].state & !DONE == self.epoch << 2;
-        let cj = self.cells[j].cost;
+        let open = |i: usize| self.state_of(i) & (MET | BLOCKED) == MET;
+        let cj = self.cost[self.slot(j)];
         let mut best: Option<(f64, usize)> = None;
         for dy in -1i64..=1 {
             for dx in -1i64..=1 {
@@ -316,7 +396,7 @@ impl Reachability {
                 } else {
                     1.0
                 };
-                let cu = self.cells[u].cost;
+                let cu = self.cost[self.slot(u)];
                 if cu + step == cj && best.is_none_or(|(bc, bu)| (cu, u) < (bc, bu)) {
                     best = Some((cu, u));
                 }
