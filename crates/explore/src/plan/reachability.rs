@@ -14,12 +14,22 @@
 //! the same set of settled cells (everything in earlier buckets, then the heap's order).
 //! Predecessors are not stored: [`path_to`](Reachability::path_to) walks back from the goal
 //! and takes, at each cell, the neighbour a heap would have settled first among those that
-//! give the cell its cost (least (cost, index)), which is the heap's predecessor. Against
-//! the heap this makes a full map of 2000 × 2000 cells about 1.7 × as fast.
+//! give the cell its cost (least (cost, index)), which is the heap's predecessor.
 //!
-//! Costs live in generation-stamped arrays, so a new search does not clear O(map) memory,
-//! and the buckets and the settled list keep their capacity: in steady state a search
-//! allocates nothing and touches only the cells it labels.
+//! Memory is what bounds the search, so the per-cell arrays are small and local: a state
+//! byte (met, settled, impassable) and a cost per cell, both stored in 16 × 16 tiles so that
+//! a wavefront going any way touches few cache lines and pages. `passable` is asked once per
+//! cell and search, the answer kept in the state (a labelled cell is passable); the
+//! no-squeezing test of a diagonal step uses the two straight neighbours just looked at. Bucket
+//! entries carry column and row, so a settled cell costs no division. On the bench's
+//! 2000 × 2000 map a full search takes about 0.18–0.24 s, 2.5–3 × less than with three
+//! row-major arrays (costs, labelled and settled stamps) and `passable` asked at each step,
+//! which was itself about 1.7 × as fast as the heap.
+//!
+//! The states are generation-stamped per tile (a tile met first in a search has its states
+//! cleared then), so a new search does not clear O(map) memory, and the buckets and the
+//! settled list keep their capacity: in steady state a search allocates nothing and touches
+//! only the tiles of the cells it meets.
 
 use crate::upkeep::next_gen;
 use grid::SQRT2;
@@ -372,8 +382,8 @@ impl Reachability {
         }
         let (w, h) = (self.width as i64, self.height as i64);
         let (x, y) = ((j % self.width) as i64, (j / self.width) as i64);
-        // A cell known passable in the last search: met and not found impassable (beside a
-        // settled cell, every cell was met).
+        // A cell known passable in the last search: met and not found impassable (the
+        // straight neighbours of a cell settled before the last bucket were all met).
         let open = |i: usize| self.state_of(i) & (MET | BLOCKED) == MET;
         let cj = self.cost[self.slot(j)];
         let mut best: Option<(f64, usize)> = None;
