@@ -87,10 +87,6 @@ impl Sensor for FootprintSensor {
         self.range
     }
 
-    fn is_omnidirectional(&self) -> bool {
-        true
-    }
-
     /// Every cell within range, as in a real scan: walls do not block a footprint.
     fn predict(&self, known: &Grid<Occ>, pose: Pose, out: &mut Vec<u32>) {
         out.clear();

@@ -252,10 +252,6 @@ impl Sensor for LidarSensor {
         self.range
     }
 
-    fn is_omnidirectional(&self) -> bool {
-        self.fov_deg >= 360.0
-    }
-
     fn field_of_view_deg(&self) -> f64 {
         self.fov_deg
     }

@@ -142,10 +142,6 @@ impl Sensor for LosSensor {
         self.template.range()
     }
 
-    fn is_omnidirectional(&self) -> bool {
-        true
-    }
-
     fn predict(&self, known: &Grid<Occ>, pose: Pose, out: &mut Vec<u32>) {
         out.clear();
         self.for_each_through(known, pose.cell, predicted_transparent, |i, _| out.push(i));

@@ -68,12 +68,14 @@ pub trait Sensor: Send + Sync {
     fn scan(&self, truth: &Grid<Occ>, pose: Pose, out: &mut Observation);
     /// The sensor's range in cells.
     fn range_cells(&self) -> f64;
-    /// Whether the sensor sees all around (360°), so that its heading does not matter.
-    fn is_omnidirectional(&self) -> bool;
     /// The field of view in degrees, centred on the heading (360 for sensors that see all
     /// around, the default).
     fn field_of_view_deg(&self) -> f64 {
         360.0
+    }
+    /// Whether the sensor sees all around (360°), so that its heading does not matter.
+    fn is_omnidirectional(&self) -> bool {
+        self.field_of_view_deg() >= 360.0
     }
 
     /// Clears `out`, then fills it with the flat indices of the cells a scan from `pose`

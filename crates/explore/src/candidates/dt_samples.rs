@@ -64,7 +64,7 @@ pub struct State {
     eligible: Vec<u32>,
     /// Visit order of the lazy utility assigner: (bound on the utility, cost, candidate index).
     pub(crate) order: Vec<(f64, f64, u32)>,
-    /// Uncertain cells per square, the lazy utility assigner's per-candidate gain bound.
+    /// Uncertain-cell counts of the belief (a summed-area table) for the gain bound.
     pub(crate) uncertain: crate::assign::utility::UncertainCounts,
     /// The per-candidate gain bound over those counts.
     pub(crate) bound: crate::assign::utility::GainBound,

@@ -74,6 +74,17 @@ struct Wave<'a> {
 }
 
 impl Wave<'_> {
+    /// Make the states of slot `q`'s tile valid for this search: the first time the search
+    /// meets one of its cells, forget the older states.
+    #[inline(always)]
+    fn enter_tile(&mut self, q: usize) {
+        let t = q >> (2 * TILE_SHIFT);
+        if self.tile_epoch[t] != self.epoch {
+            self.tile_epoch[t] = self.epoch;
+            self.state[t * TILE_CELLS..(t + 1) * TILE_CELLS].fill(0);
+        }
+    }
+
     /// Meet cell `j` (column and row `xy`, slot `q`) at cost `c` from a settled neighbour:
     /// label it (or lower its label) if it is passable and not settled; its passability is
     /// looked up once per search and kept. Returns whether `j` is passable.
@@ -84,12 +95,7 @@ impl Wave<'_> {
         (q, j, xy): (usize, usize, Entry),
         c: f64,
     ) -> bool {
-        let t = q >> (2 * TILE_SHIFT);
-        if self.tile_epoch[t] != self.epoch {
-            // first cell of this tile met in this search: forget the older states
-            self.tile_epoch[t] = self.epoch;
-            self.state[t * TILE_CELLS..(t + 1) * TILE_CELLS].fill(0);
-        }
+        self.enter_tile(q);
         let s = self.state[q];
         if s & MET != 0 {
             if s & BLOCKED != 0 {
@@ -203,9 +209,7 @@ impl Reachability {
         // passable: an impassable start is labelled and marked impassable.
         let (x0, y0) = (start % w, start / w);
         let s0 = slot_xy(tile_row, x0, y0);
-        let t0 = s0 >> (2 * TILE_SHIFT);
-        wave.tile_epoch[t0] = wave.epoch;
-        wave.state[t0 * TILE_CELLS..(t0 + 1) * TILE_CELLS].fill(0);
+        wave.enter_tile(s0);
         wave.state[s0] = if passable(start) { MET } else { MET | BLOCKED };
         wave.cost[s0] = 0.0;
         wave.buckets[0].push((x0 as u32, y0 as u32));
