@@ -56,22 +56,12 @@ impl ActionScratch {
 /// Whether perceived free cell `i` has an unperceived target among its 8 neighbours.
 #[inline]
 pub(crate) fn is_boundary(problem: &Problem, bits: &[u64], i: usize) -> bool {
-    let cells = problem.cells();
-    let (w, h) = (cells.width(), cells.height());
-    let (x, y) = (i % w, i / w);
-    for dy in -1i64..=1 {
-        for dx in -1i64..=1 {
-            if dx == 0 && dy == 0 {
-                continue;
-            }
-            let (nx, ny) = (x as i64 + dx, y as i64 + dy);
-            if nx < 0 || ny < 0 || nx >= w as i64 || ny >= h as i64 {
-                continue;
-            }
-            let t = problem.target_index(ny as usize * w + nx as usize);
-            if t != NOT_TARGET && !has(bits, t) {
-                return true;
-            }
+    for &t in problem.neighbour_targets(i) {
+        if t == NOT_TARGET {
+            return false;
+        }
+        if !has(bits, t) {
+            return true;
         }
     }
     false

@@ -31,7 +31,11 @@
 //! be perceived: h = the (s + 1)-th largest b(t) over U. Eq. 2 is kept as
 //! [`HeuristicKind::PaperAsPublished`], flagged inadmissible.
 //!
-//! # `Landmarks` (G = 1): h = max(Paper, MST)
+//! # `Landmarks`: h = max(Paper, coverage rate, MST)
+//! The coverage-rate bound (K more targets at most ρ* per unit of path, proof in
+//! [`crate::coverage_rate`]) holds for every G. The MST bound below only for G = 1.
+//!
+//! ## The MST bound (G = 1)
 //! Landmarks a_1..a_K are reachable targets chosen by farthest-point sampling with their
 //! full-map distance fields; ρ(a) = max_{p∈V(a)} d(a, p) (computed exactly). Order the
 //! landmarks of U by when the robot first perceives them, from positions p_1, p_2, ... in
@@ -45,9 +49,10 @@
 
 use std::collections::HashMap;
 
+use explore::plan::Reachability;
 use grid::Occ;
 
-use crate::dijkstra::Dijkstra;
+use crate::coverage_rate::CoverageRate;
 use crate::problem::{NOT_TARGET, Problem, SensorModel};
 
 /// Which lower bound guides the search.
@@ -60,7 +65,8 @@ pub enum HeuristicKind {
     /// The paper's Eq. 1/2 exactly as printed (path distance − r√2, × max(0, G − |M|/|E_f|));
     /// NOT admissible with the footprint sensor or G < 1.
     PaperAsPublished,
-    /// max(Paper, minimum spanning tree over landmarks); the MST part only for G = 1.
+    /// max(Paper, coverage rate, minimum spanning tree over landmarks); the MST part only
+    /// for G = 1.
     Landmarks,
 }
 
@@ -103,6 +109,12 @@ impl std::str::FromStr for HeuristicKind {
 #[inline]
 pub(crate) fn has(bits: &[u64], t: u32) -> bool {
     bits[(t >> 6) as usize] >> (t & 63) & 1 == 1
+}
+
+/// Path cost to cell `i` in the last search, `∞` if it was not reached.
+#[inline]
+fn dist(reach: &Reachability, i: usize) -> f64 {
+    reach.cost(i).unwrap_or(f64::INFINITY)
 }
 
 /// max{|dx| + |dy| : dx² + dy² ≤ r²} over integer offsets.
@@ -148,7 +160,9 @@ pub(crate) struct Heuristic {
     order_slot: HashMap<u32, u32>,
     orders: Vec<(f64, u32)>,
     cache_cap_bytes: usize,
-    dij: Dijkstra,
+    dij: Reachability,
+    /// The coverage-rate bound.
+    rate: CoverageRate,
     // Landmarks.
     lm_t: Vec<u32>,
     lm_rho: Vec<f64>,
@@ -186,7 +200,8 @@ impl Heuristic {
             order_slot: HashMap::new(),
             orders: Vec::new(),
             cache_cap_bytes,
-            dij: Dijkstra::new(cells.width(), cells.height()),
+            dij: Reachability::new(cells.width(), cells.height()),
+            rate: CoverageRate::new(model),
             lm_t: Vec::new(),
             lm_rho: Vec::new(),
             lm_field: Vec::new(),
@@ -226,9 +241,9 @@ impl Heuristic {
         }
         let mut mind = vec![f64::INFINITY; n];
         // Seed: the start's field, so the first landmark is the farthest target from it.
-        self.dij.run(problem.start() as usize, free);
+        self.dij.compute(problem.start() as usize, free);
         for &i in &reach_targets {
-            mind[i as usize] = self.dij.dist(i as usize);
+            mind[i as usize] = dist(&self.dij, i as usize);
         }
         let mut obs = sense::Observation::new();
         let mut seen = Vec::new();
@@ -244,9 +259,9 @@ impl Heuristic {
             if d <= self.c {
                 break;
             }
-            self.dij.run(a as usize, free);
+            self.dij.compute(a as usize, free);
             let base = self.lm_field.len();
-            self.lm_field.extend((0..n).map(|i| self.dij.dist(i)));
+            self.lm_field.extend((0..n).map(|i| dist(&self.dij, i)));
             for &i in &reach_targets {
                 let m = &mut mind[i as usize];
                 *m = m.min(self.lm_field[base + i as usize]);
@@ -301,14 +316,14 @@ impl Heuristic {
             self.orders[base..].sort_unstable_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)));
         } else {
             let data = cells.data();
-            self.dij.run(pos as usize, |i| data[i] == Occ::Free);
-            // Settled ascending by (distance, index): reversed, a descending order.
-            for &i in self.dij.settled().iter().rev() {
+            self.dij.compute(pos as usize, |i| data[i] == Occ::Free);
+            for &i in self.dij.settled() {
                 let t = problem.target_index(i as usize);
                 if t != NOT_TARGET {
-                    self.orders.push((self.dij.dist(i as usize), t));
+                    self.orders.push((dist(&self.dij, i as usize), t));
                 }
             }
+            self.orders[base..].sort_unstable_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)));
             // Targets the path cannot reach (footprint only) bound nothing: value 0.
             let got = self.orders.len() - base;
             if got < self.n_targets {
@@ -360,10 +375,14 @@ impl Heuristic {
             }
             (v - self.c).max(0.0)
         };
-        if self.kind != HeuristicKind::Landmarks || self.lm_t.is_empty() {
+        if self.kind != HeuristicKind::Landmarks {
             return paper;
         }
-        paper.max(self.mst(problem, pos, bits))
+        let rate = self.rate.bound(self.n_targets - self.skip - count);
+        if self.lm_t.is_empty() {
+            return paper.max(rate);
+        }
+        paper.max(rate).max(self.mst(problem, pos, bits))
     }
 
     /// Prim's MST over {pos} ∪ (landmarks not in `bits`).

@@ -10,8 +10,9 @@
 //! - [`problem`]: the problem, targets, visibility;
 //! - [`actions`]: boundary cells, cluster representatives (with the "drop clusters < k"
 //!   speed-up);
-//! - [`heuristic`]: the paper's bound (with admissibility proofs per sensor) and a stronger
-//!   landmark-MST bound;
+//! - [`heuristic`]: the paper's bound (with admissibility proofs per sensor) and stronger
+//!   ones: a landmark-MST bound and the coverage-rate bound (`coverage_rate`: each unit of
+//!   path uncovers at most ρ* new cells);
 //! - [`search`]: A*, weighted A*, limits and bounds;
 //! - [`coarse`]: solving on a coarsened map (the paper's cell sizes 1, 2, 4).
 //!
@@ -29,7 +30,7 @@
 
 pub mod actions;
 pub mod coarse;
-pub mod dijkstra;
+pub(crate) mod coverage_rate;
 pub mod error;
 pub mod heuristic;
 pub mod problem;

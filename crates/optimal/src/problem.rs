@@ -13,11 +13,11 @@
 //! within r of a reachable cell. Free cells no position can perceive would make every goal
 //! test fail; they are reported in [`Problem::unperceivable`].
 
+use explore::plan::Reachability;
 use grid::edt::edt_squared;
 use grid::{Cell, Grid, Occ};
 use sense::{FootprintSensor, LosSensor, Observation, Pose, Sensor, SensorSpec};
 
-use crate::dijkstra::Dijkstra;
 use crate::error::OptimalError;
 
 /// Marks a cell that is not a target.
@@ -88,6 +88,8 @@ pub struct Problem {
     reach_count: usize,
     tidx: Vec<u32>,
     targets: Vec<u32>,
+    /// Per reachable cell: the target indices of its 8 neighbours, then [`NOT_TARGET`]s.
+    nbr: Vec<[u32; 8]>,
     unperceivable: usize,
 }
 
@@ -124,8 +126,8 @@ impl Problem {
         };
         let (w, h) = (cells.width(), cells.height());
         let data = cells.data();
-        let mut dij = Dijkstra::new(w, h);
-        dij.run(s, |i| data[i].is_free());
+        let mut dij = Reachability::new(w, h);
+        dij.compute(s, |i| data[i].is_free());
         let mut reach = vec![false; w * h];
         for &i in dij.settled() {
             reach[i as usize] = true;
@@ -152,6 +154,27 @@ impl Problem {
                 unperceivable += 1;
             }
         }
+        let mut nbr = vec![[NOT_TARGET; 8]; w * h];
+        for (i, list) in nbr.iter_mut().enumerate() {
+            if !reach[i] {
+                continue;
+            }
+            let (x, y) = ((i % w) as i64, (i / w) as i64);
+            let mut k = 0;
+            for dy in -1i64..=1 {
+                for dx in -1i64..=1 {
+                    let (nx, ny) = (x + dx, y + dy);
+                    if (dx, dy) == (0, 0) || nx < 0 || ny < 0 || nx >= w as i64 || ny >= h as i64 {
+                        continue;
+                    }
+                    let t = tidx[ny as usize * w + nx as usize];
+                    if t != NOT_TARGET {
+                        list[k] = t;
+                        k += 1;
+                    }
+                }
+            }
+        }
         Ok(Self {
             cells: cells.clone(),
             start: s as u32,
@@ -161,6 +184,7 @@ impl Problem {
             reach_count,
             tidx,
             targets,
+            nbr,
             unperceivable,
         })
     }
@@ -189,6 +213,13 @@ impl Problem {
     /// Number of reachable cells.
     pub fn reachable_count(&self) -> usize {
         self.reach_count
+    }
+
+    /// The target indices among the 8 neighbours of reachable cell `i`, padded with
+    /// [`NOT_TARGET`] (all padding for other cells).
+    #[inline]
+    pub(crate) fn neighbour_targets(&self, i: usize) -> &[u32; 8] {
+        &self.nbr[i]
     }
 
     /// Target index of flat cell `i`, or [`NOT_TARGET`].

@@ -32,10 +32,10 @@ use grid::Cell;
 use sense::Observation;
 
 use crate::actions::{ActionScratch, ActionSet, candidates};
-use crate::dijkstra::Dijkstra;
 use crate::error::OptimalError;
 use crate::heuristic::{Heuristic, HeuristicKind, has};
 use crate::problem::Problem;
+use explore::plan::Reachability;
 
 /// Tolerance for comparing path lengths (sums of 1 and √2).
 pub const EPS: f64 = 1e-9;
@@ -275,7 +275,8 @@ struct Engine<'p> {
     need: usize,
     heur: Heuristic,
     vis: VisCache,
-    dij: Dijkstra,
+    /// Shortest paths inside the perceived free space (the step costs).
+    reach: Reachability,
     scratch: ActionScratch,
     zt: Vec<u64>,
     zpos: Vec<u64>,
@@ -315,7 +316,7 @@ impl<'p> Engine<'p> {
             need: problem.needed(cfg.goal),
             heur,
             vis: VisCache::new(n),
-            dij: Dijkstra::new(problem.cells().width(), problem.cells().height()),
+            reach: Reachability::new(problem.cells().width(), problem.cells().height()),
             scratch: ActionScratch::new(n),
             zt,
             zpos,
@@ -424,12 +425,12 @@ impl<'p> Engine<'p> {
         let mut cur = bits.to_vec();
         let mut cost = 0.0;
         while count < self.need {
-            self.dij
-                .run(pos as usize, Self::passable(self.problem, &cur));
+            self.reach
+                .compute(pos as usize, Self::passable(self.problem, &cur));
             candidates(
                 self.problem,
                 &cur,
-                self.dij.settled(),
+                self.reach.settled(),
                 pos,
                 self.cfg.actions,
                 &mut self.scratch,
@@ -439,7 +440,7 @@ impl<'p> Engine<'p> {
             let mut best_rate = 0.0;
             for k in 0..self.cands.len() {
                 let a = self.cands[k];
-                let d = self.dij.dist(a as usize);
+                let d = dist(&self.reach, a as usize);
                 if rate {
                     let (o, l) = self.vis.get(self.problem, a);
                     let new = self.vis.data[o..o + l]
@@ -625,12 +626,12 @@ impl<'p> Engine<'p> {
         let node = self.nodes[id as usize];
         let s = id as usize * self.words;
         self.cur.copy_from_slice(&self.bits[s..s + self.words]);
-        self.dij
-            .run(node.pos as usize, Self::passable(problem, &self.cur));
+        self.reach
+            .compute(node.pos as usize, Self::passable(problem, &self.cur));
         candidates(
             problem,
             &self.cur,
-            self.dij.settled(),
+            self.reach.settled(),
             node.pos,
             self.cfg.actions,
             &mut self.scratch,
@@ -639,7 +640,7 @@ impl<'p> Engine<'p> {
         let w = self.cfg.weight;
         for k in 0..self.cands.len() {
             let a = self.cands[k];
-            let g2 = node.g + self.dij.dist(a as usize);
+            let g2 = node.g + dist(&self.reach, a as usize);
             if g2 >= self.inc_cost - EPS {
                 self.stats.pruned += 1;
                 continue;
@@ -785,6 +786,12 @@ impl<'p> Engine<'p> {
     }
 }
 
+/// Path cost to cell `i` in the last search, `∞` if it was not reached.
+#[inline]
+fn dist(reach: &Reachability, i: usize) -> f64 {
+    reach.cost(i).unwrap_or(f64::INFINITY)
+}
+
 /// Re-walk a position sequence with time-discrete perception: each leg is a shortest path
 /// inside the free cells perceived so far. Errors if a position is not reachable that way.
 pub fn walk(problem: &Problem, positions: &[Cell]) -> Result<Solution, String> {
@@ -794,8 +801,9 @@ pub fn walk(problem: &Problem, positions: &[Cell]) -> Result<Solution, String> {
     let mut count = 0;
     let mut obs = Observation::new();
     let mut seen = Vec::new();
-    let mut dij = Dijkstra::new(cells.width(), cells.height());
+    let mut reach = Reachability::new(cells.width(), cells.height());
     let mut path: Vec<u32> = Vec::new();
+    let mut leg: Vec<u32> = Vec::new();
     let mut length = 0.0;
     let Some(&first) = positions.first() else {
         return Err("no positions".into());
@@ -809,17 +817,16 @@ pub fn walk(problem: &Problem, positions: &[Cell]) -> Result<Solution, String> {
         };
         if k > 0 {
             let from = path[path.len() - 1] as usize;
-            dij.run(from, Engine::passable(problem, &bits));
-            let d = dij.dist(pi);
+            reach.compute(from, Engine::passable(problem, &bits));
+            let d = dist(&reach, pi);
             if !d.is_finite() || (pi != from && !Engine::passable(problem, &bits)(pi)) {
                 return Err(format!(
                     "position {k} {p} is not reachable inside the perceived free space"
                 ));
             }
             length += d;
-            let at = path.len();
-            dij.path_to(pi, &mut path);
-            path.remove(at); // the leg's first cell is the previous position
+            reach.path_to(pi, &mut leg);
+            path.extend_from_slice(&leg[1..]); // the leg's first cell is the previous position
         } else {
             path.push(pi as u32);
         }
