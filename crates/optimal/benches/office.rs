@@ -5,8 +5,9 @@
 //!
 //! `cargo bench -p optimal --bench office` prints one line per start and sensor (first
 //! `FRONTIER_OPT_STARTS` starts, default 3; time limit `FRONTIER_OPT_SECONDS`, default 5;
-//! weight `FRONTIER_OPT_WEIGHT`; goal `FRONTIER_OPT_GOAL`), then runs criterion on a
-//! 120 × 100-unit office that the search finishes. `FRONTIER_OPT_HARD=1` instead runs the
+//! weight `FRONTIER_OPT_WEIGHT`; goal `FRONTIER_OPT_GOAL`), then runs criterion on maps the
+//! search finishes: a 120 × 100-unit office, and 200 × 120-unit cave and potholes maps whose
+//! optimal paths and node counts are of the order of the paper's indoor runs. `FRONTIER_OPT_HARD=1` instead runs the
 //! hard setting once per heuristic (cell size 1, r = 20, G = 0.95) under a time limit of
 //! `FRONTIER_OPT_SECONDS` (default 60) and prints the bounds reached.
 
@@ -94,39 +95,54 @@ fn easy(map: &GridMap, c: &mut Criterion) {
             total_nodes as f64 / starts.len() as f64
         );
     }
-    // Criterion on a problem that finishes: a 12 m x 10 m office (120 x 100 units).
-    let small = world::generate(&EnvSpec {
-        kind: EnvKind::Office,
-        seed: 0,
-        size_m: Some((12.0, 10.0)),
-        resolution: Some(0.1),
-    })
-    .expect("generate office")
-    .map;
-    let centre = Cell::new(60, 50);
-    let s = small
-        .cells
-        .cells()
-        .filter(|&c| small.cells.get(c).is_free())
-        .min_by_key(|&c| (c.dist2(centre), c.y, c.x))
-        .expect("a free cell");
-    for sensor in ["footprint:r=3", "los:r=3"] {
-        let spec: SensorSpec = sensor.parse().expect("sensor");
-        let co = coarsen_problem(&small, 4, s, &spec).expect("problem");
-        let mut cfg = config(0.85);
-        cfg.time_limit = None;
-        cfg.weight = 1.0;
-        let out = solve(&co.problem, &cfg).expect("solve");
-        println!(
-            "small office 120x100 units, cell 4, {sensor}, G 0.85: {} length {:.1} units, {} expanded",
-            out.status.as_str(),
-            out.upper_bound * 4.0,
-            out.stats.expanded
-        );
-        c.bench_function(
-            &format!("optimal small office cell 4 {sensor} G 0.85"),
-            |b| b.iter(|| solve(&co.problem, &cfg).expect("solve")),
-        );
+    // Criterion on problems that finish: a 12 m x 10 m office (120 x 100 units), and 20 m x
+    // 12 m cave and potholes maps (200 x 120 units) whose optimal paths (about 300 and 400
+    // units) and node counts (about 1,400 and 2,500) are of the paper's indoor order.
+    let cases: [(EnvKind, (f64, f64), u64, &[&str]); 3] = [
+        (
+            EnvKind::Office,
+            (12.0, 10.0),
+            0,
+            &["footprint:r=3", "los:r=3"],
+        ),
+        (EnvKind::Cave, (20.0, 12.0), 0, &["footprint:r=3"]),
+        (EnvKind::Potholes, (20.0, 12.0), 0, &["footprint:r=3"]),
+    ];
+    for (kind, size, seed, sensors) in cases {
+        let small = world::generate(&EnvSpec {
+            kind,
+            seed,
+            size_m: Some(size),
+            resolution: Some(0.1),
+        })
+        .expect("generate map")
+        .map;
+        let centre = Cell::new(small.width() as i32 / 2, small.height() as i32 / 2);
+        let s = small
+            .cells
+            .cells()
+            .filter(|&c| small.cells.get(c).is_free())
+            .min_by_key(|&c| (c.dist2(centre), c.y, c.x))
+            .expect("a free cell");
+        let name = format!("{} {}x{} units", kind.name(), small.width(), small.height());
+        for &sensor in sensors {
+            let spec: SensorSpec = sensor.parse().expect("sensor");
+            let co = coarsen_problem(&small, 4, s, &spec).expect("problem");
+            let mut cfg = config(0.85);
+            cfg.time_limit = None;
+            cfg.weight = 1.0;
+            let out = solve(&co.problem, &cfg).expect("solve");
+            println!(
+                "{name}, cell 4, {sensor}, G 0.85: {} length {:.1} units, {} expanded, {:.4} s",
+                out.status.as_str(),
+                out.upper_bound * 4.0,
+                out.stats.expanded,
+                out.stats.seconds
+            );
+            c.bench_function(&format!("optimal {name} cell 4 {sensor} G 0.85"), |b| {
+                b.iter(|| solve(&co.problem, &cfg).expect("solve"))
+            });
+        }
     }
 }
 
