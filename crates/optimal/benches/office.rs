@@ -98,7 +98,7 @@ fn easy(map: &GridMap, c: &mut Criterion) {
     // Criterion on problems that finish: a 12 m x 10 m office (120 x 100 units), and 20 m x
     // 12 m cave and potholes maps (200 x 120 units) whose optimal paths (about 300 and 400
     // units) and node counts (about 1,400 and 2,500) are of the paper's indoor order.
-    let cases: [(EnvKind, (f64, f64), u64, &[&str]); 3] = [
+    let cases: [Case; 3] = [
         (
             EnvKind::Office,
             (12.0, 10.0),
@@ -145,6 +145,9 @@ fn easy(map: &GridMap, c: &mut Criterion) {
         }
     }
 }
+
+/// A map to solve: kind, size in metres, seed, sensors.
+type Case = (EnvKind, (f64, f64), u64, &'static [&'static str]);
 
 fn hard(map: &GridMap) {
     let secs: u64 = std::env::var("FRONTIER_OPT_SECONDS")
