@@ -305,3 +305,99 @@ fn sensors_compares_the_three_setups() {
         assert_eq!(s["runs"], 1);
     }
 }
+
+/// The rows of a results database without the wall times (the only non-deterministic column).
+fn bench_rows(db: &Path) -> Vec<bench::TrialRow> {
+    let store = bench::Store::open_raw(db).expect("open the results database");
+    let mut rows = store.rows().expect("read the rows");
+    for r in &mut rows {
+        r.wall_s = 0.0;
+    }
+    rows
+}
+
+/// A study killed with SIGKILL mid-run keeps every committed trial, its database stays
+/// readable, and re-running the same command finishes with exactly the results of an
+/// uninterrupted run.
+#[cfg(unix)]
+#[test]
+fn bench_killed_with_sigkill_resumes_to_the_uninterrupted_results() {
+    let dir = tempfile::tempdir().unwrap();
+    let scenario = dir.path().join("study.toml");
+    std::fs::write(
+        &scenario,
+        r#"
+name = "killed"
+seed = 7
+robots = [3]
+sensors = ["los:r=4c"]
+strategies = ["random"]
+trials = 24
+
+[[env]]
+kind = "office"
+seeds = [1]
+size = [20, 15]
+resolution = 0.25
+"#,
+    )
+    .unwrap();
+    let s = scenario.to_str().unwrap();
+    let killed = dir.path().join("killed.sqlite");
+    let k = killed.to_str().unwrap();
+    let mut child = Command::new(env!("CARGO_BIN_EXE_frontier"))
+        .args(["bench", s, "--db", k, "-j", "2", "--no-progress"])
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .expect("start frontier bench");
+    // Kill it once a few trials are committed, while the rest are still to run.
+    let started = std::time::Instant::now();
+    loop {
+        assert!(
+            child.try_wait().unwrap().is_none(),
+            "the study finished before it could be killed; make it longer"
+        );
+        if killed.exists() && bench_rows(&killed).len() >= 2 {
+            break;
+        }
+        assert!(
+            started.elapsed() < std::time::Duration::from_secs(120),
+            "no trial committed in two minutes"
+        );
+        std::thread::sleep(std::time::Duration::from_millis(2));
+    }
+    child.kill().expect("SIGKILL");
+    child.wait().unwrap();
+    let kept = bench_rows(&killed);
+    assert!(
+        kept.len() >= 2 && kept.len() < 24,
+        "{} trials kept",
+        kept.len()
+    );
+    // Resume with the same command (one thread this time), and run the study cleanly.
+    let out = frontier(&["bench", s, "--db", k, "-j", "1", "--no-progress"]);
+    let resumed = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "resume failed: {resumed}");
+    assert!(
+        resumed.contains(&format!("{} of 24 trials done before", kept.len())),
+        "{resumed}"
+    );
+    let clean = dir.path().join("clean.sqlite");
+    ok(&[
+        "bench",
+        s,
+        "--db",
+        clean.to_str().unwrap(),
+        "-j",
+        "2",
+        "--no-progress",
+    ]);
+    let (a, b) = (bench_rows(&killed), bench_rows(&clean));
+    assert_eq!(a.len(), 24);
+    assert_eq!(a, b, "resumed after SIGKILL vs uninterrupted");
+    // The trials kept at the kill are unchanged by the resume.
+    for row in &kept {
+        assert!(a.contains(row), "trial {} changed on resume", row.key);
+    }
+}
