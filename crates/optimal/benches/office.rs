@@ -30,20 +30,25 @@ fn office() -> GridMap {
     .map
 }
 
+/// The free cell nearest to `target` (ties: lower row, then column).
+fn nearest_free(map: &GridMap, target: Cell) -> Cell {
+    map.cells
+        .cells()
+        .filter(|&c| map.cells.get(c).is_free())
+        .min_by_key(|&c| (c.dist2(target), c.y, c.x))
+        .expect("a free cell")
+}
+
 /// Ten start cells: the free cells nearest to a 5 × 2 lattice over the map.
 fn starts(map: &GridMap) -> Vec<Cell> {
     let (w, h) = (map.width() as i32, map.height() as i32);
     let mut out = Vec::new();
     for j in 0..2 {
         for i in 0..5 {
-            let target = Cell::new(w * (2 * i + 1) / 10, h * (2 * j + 1) / 4);
-            let best = map
-                .cells
-                .cells()
-                .filter(|&c| map.cells.get(c).is_free())
-                .min_by_key(|&c| (c.dist2(target), c.y, c.x))
-                .expect("a free cell");
-            out.push(best);
+            out.push(nearest_free(
+                map,
+                Cell::new(w * (2 * i + 1) / 10, h * (2 * j + 1) / 4),
+            ));
         }
     }
     out
@@ -118,12 +123,7 @@ fn easy(map: &GridMap, c: &mut Criterion) {
         .expect("generate map")
         .map;
         let centre = Cell::new(small.width() as i32 / 2, small.height() as i32 / 2);
-        let s = small
-            .cells
-            .cells()
-            .filter(|&c| small.cells.get(c).is_free())
-            .min_by_key(|&c| (c.dist2(centre), c.y, c.x))
-            .expect("a free cell");
+        let s = nearest_free(&small, centre);
         let name = format!("{} {}x{} units", kind.name(), small.width(), small.height());
         for &sensor in sensors {
             let spec: SensorSpec = sensor.parse().expect("sensor");
