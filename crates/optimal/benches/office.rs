@@ -19,15 +19,21 @@ use optimal::{ActionSet, Config, HeuristicKind, coarsen_problem, solve};
 use sense::SensorSpec;
 use world::{EnvKind, EnvSpec};
 
-fn office() -> GridMap {
+/// A generated map of `kind`, `size` metres at 0.1 m (one paper unit per cell).
+fn generate(kind: EnvKind, size: (f64, f64), seed: u64) -> GridMap {
     world::generate(&EnvSpec {
-        kind: EnvKind::Office,
-        seed: 1,
-        size_m: Some((35.0, 25.0)),
+        kind,
+        seed,
+        size_m: Some(size),
         resolution: Some(0.1),
     })
-    .expect("generate office")
+    .expect("generate map")
     .map
+}
+
+/// The indoor map: a 35 m × 25 m office (350 × 250 units).
+fn office() -> GridMap {
+    generate(EnvKind::Office, (35.0, 25.0), 1)
 }
 
 /// The free cell nearest to `target` (ties: lower row, then column).
@@ -114,14 +120,7 @@ fn easy(map: &GridMap, c: &mut Criterion) {
         (EnvKind::Potholes, (20.0, 12.0), 0, &["footprint:r=3"]),
     ];
     for (kind, size, seed, sensors) in cases {
-        let small = world::generate(&EnvSpec {
-            kind,
-            seed,
-            size_m: Some(size),
-            resolution: Some(0.1),
-        })
-        .expect("generate map")
-        .map;
+        let small = generate(kind, size, seed);
         let centre = Cell::new(small.width() as i32 / 2, small.height() as i32 / 2);
         let s = nearest_free(&small, centre);
         let name = format!("{} {}x{} units", kind.name(), small.width(), small.height());

@@ -113,7 +113,7 @@ pub(crate) fn has(bits: &[u64], t: u32) -> bool {
 
 /// Path cost to cell `i` in the last search, `∞` if it was not reached.
 #[inline]
-fn dist(reach: &Reachability, i: usize) -> f64 {
+pub(crate) fn dist(reach: &Reachability, i: usize) -> f64 {
     reach.cost(i).unwrap_or(f64::INFINITY)
 }
 
@@ -313,7 +313,6 @@ impl Heuristic {
                     .enumerate()
                     .map(|(t, &i)| (q.dist(cells.cell(i as usize)), t as u32)),
             );
-            self.orders[base..].sort_unstable_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)));
         } else {
             let data = cells.data();
             self.dij.compute(pos as usize, |i| data[i] == Occ::Free);
@@ -323,7 +322,6 @@ impl Heuristic {
                     self.orders.push((dist(&self.dij, i as usize), t));
                 }
             }
-            self.orders[base..].sort_unstable_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)));
             // Targets the path cannot reach (footprint only) bound nothing: value 0.
             let got = self.orders.len() - base;
             if got < self.n_targets {
@@ -338,6 +336,8 @@ impl Heuristic {
                 }
             }
         }
+        // Descending by bound value (ties: lower target first).
+        self.orders[base..].sort_unstable_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)));
         self.order_slot.insert(pos, slot as u32);
         base
     }

@@ -159,20 +159,9 @@ impl Problem {
             if !reach[i] {
                 continue;
             }
-            let (x, y) = ((i % w) as i64, (i / w) as i64);
-            let mut k = 0;
-            for dy in -1i64..=1 {
-                for dx in -1i64..=1 {
-                    let (nx, ny) = (x + dx, y + dy);
-                    if (dx, dy) == (0, 0) || nx < 0 || ny < 0 || nx >= w as i64 || ny >= h as i64 {
-                        continue;
-                    }
-                    let t = tidx[ny as usize * w + nx as usize];
-                    if t != NOT_TARGET {
-                        list[k] = t;
-                        k += 1;
-                    }
-                }
+            let near = cells.neighbours8(i).map(|j| tidx[j]);
+            for (slot, t) in list.iter_mut().zip(near.filter(|&t| t != NOT_TARGET)) {
+                *slot = t;
             }
         }
         Ok(Self {

@@ -33,7 +33,7 @@ use sense::Observation;
 
 use crate::actions::{ActionScratch, ActionSet, candidates};
 use crate::error::OptimalError;
-use crate::heuristic::{Heuristic, HeuristicKind, has};
+use crate::heuristic::{Heuristic, HeuristicKind, dist, has};
 use crate::problem::Problem;
 use explore::plan::Reachability;
 
@@ -801,12 +801,6 @@ impl<'p> Engine<'p> {
             message,
         }
     }
-}
-
-/// Path cost to cell `i` in the last search, `∞` if it was not reached.
-#[inline]
-fn dist(reach: &Reachability, i: usize) -> f64 {
-    reach.cost(i).unwrap_or(f64::INFINITY)
 }
 
 /// Re-walk a position sequence with time-discrete perception: each leg is a shortest path
