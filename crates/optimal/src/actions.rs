@@ -10,7 +10,16 @@
 //! Deviation: a boundary cell is a perceived free cell with an *unperceived target* among
 //! its 8 neighbours (the paper's "unknown" also counts unperceived wall cells). Walls do not
 //! count for the goal; cells next to unseen wall only would add actions that are no better
-//! viewpoints than any other free cell. [`ActionSet::All`] (every reachable perceived cell)
+//! viewpoints than any other free cell.
+//!
+//! Deviation: when no reachable perceived cell is a boundary cell but targets are left (the
+//! footprint sensor sees through walls, so a pocket of free cells behind a wall can be a
+//! target no boundary cell borders), every reachable perceived cell is a candidate. Without
+//! this, such maps had no solution for the boundary and cluster action sets; with it, the
+//! search reaches the goal whenever any position sequence does (if unperceived targets lay
+//! on a path inside the reachable cells, the first of them would border a boundary cell).
+//!
+//! [`ActionSet::All`] (every reachable perceived cell)
 //! is offered beyond the paper: it makes the search exact over all position sequences.
 
 use crate::heuristic::has;
@@ -79,14 +88,19 @@ pub(crate) fn candidates(
     out: &mut Vec<u32>,
 ) {
     out.clear();
-    match set {
-        ActionSet::All => out.extend(settled.iter().copied().filter(|&i| i != here)),
-        ActionSet::Boundary => out.extend(
-            settled
-                .iter()
-                .copied()
-                .filter(|&i| i != here && is_boundary(problem, bits, i as usize)),
-        ),
+    let any_boundary = match set {
+        ActionSet::All => false,
+        ActionSet::Boundary => {
+            out.extend(
+                settled
+                    .iter()
+                    .copied()
+                    .filter(|&i| is_boundary(problem, bits, i as usize)),
+            );
+            let any = !out.is_empty();
+            out.retain(|&i| i != here);
+            any
+        }
         ActionSet::Clusters { min_size } => {
             scratch.epoch = scratch.epoch.wrapping_add(1);
             if scratch.epoch == 0 {
@@ -111,23 +125,32 @@ pub(crate) fn candidates(
                         scratch.mark[i as usize] = 1;
                     }
                 }
-                return candidates_clusters(problem, settled, here, min_size, 1, 2, scratch, out);
+                candidates_clusters(problem, settled, here, min_size, 1, 2, scratch, out)
+            } else {
+                let visited = scratch.epoch;
+                candidates_clusters(
+                    problem,
+                    settled,
+                    here,
+                    min_size,
+                    boundary_epoch,
+                    visited,
+                    scratch,
+                    out,
+                )
             }
-            let visited = scratch.epoch;
-            candidates_clusters(
-                problem,
-                settled,
-                here,
-                min_size,
-                boundary_epoch,
-                visited,
-                scratch,
-                out,
-            );
         }
+    };
+    // No boundary cell at all (targets left only behind walls, seen through them by the
+    // footprint sensor): every reachable perceived cell is a candidate.
+    if !any_boundary {
+        out.clear();
+        out.extend(settled.iter().copied().filter(|&i| i != here));
     }
 }
 
+/// Push the representatives of the clusters of at least `min_size` boundary cells; false if
+/// there is no boundary cell at all.
 #[allow(clippy::too_many_arguments)]
 fn candidates_clusters(
     problem: &Problem,
@@ -138,7 +161,7 @@ fn candidates_clusters(
     visited: u32,
     scratch: &mut ActionScratch,
     out: &mut Vec<u32>,
-) {
+) -> bool {
     let cells = problem.cells();
     let (w, h) = (cells.width(), cells.height());
     // Seeds in increasing flat index for a deterministic cluster order.
@@ -200,6 +223,8 @@ fn candidates_clusters(
             out.push(best.1);
         }
     }
+    let any = !seeds.is_empty();
     scratch.cluster = seeds;
     scratch.members = members;
+    any
 }

@@ -123,13 +123,21 @@ fn actions(pl: &Plain, perceived: &[bool], set: ActionSet) -> (Vec<usize>, Vec<V
             .iter()
             .any(|&(dx, dy)| unperceived_target(c.offset(dx, dy)))
     };
-    let cells: Vec<usize> = (0..map.len())
+    let known: Vec<usize> = (0..map.len())
         .filter(|&i| known_free(map.cell(i)))
+        .collect();
+    let cells: Vec<usize> = known
+        .iter()
+        .copied()
         .filter(|&i| match set {
             ActionSet::All => true,
             _ => boundary(i),
         })
         .collect();
+    // No boundary cell at all (a pocket seen only through a wall): every known free cell.
+    if cells.is_empty() {
+        return (known, d);
+    }
     (cells, d)
 }
 
@@ -298,6 +306,11 @@ proptest! {
         let need = problem.needed(g);
         let s = map.index(start);
         let expected = oracle(&pl, s, initial(&pl, s), need, set);
+        if !all {
+            // The boundary actions are complete: they reach the goal whenever any sequence does.
+            let any = oracle(&pl, s, initial(&pl, s), need, ActionSet::All);
+            prop_assert_eq!(any.is_some(), expected.is_some());
+        }
         let out = optimal::solve(&problem, &cfg(g, set, heuristic)).expect("solve");
         match expected {
             None => prop_assert_eq!(out.status, Status::NoSolution),
@@ -382,6 +395,30 @@ fn corridor_worked_example() {
     let all =
         optimal::solve(&p, &cfg(1.0, ActionSet::All, HeuristicKind::Landmarks)).expect("solve");
     assert!((all.upper_bound - 8.0).abs() < TOL, "{}", all.upper_bound);
+}
+
+/// A pocket behind a wall that only the footprint sensor perceives (through the wall): no
+/// boundary cell borders it, so every reachable perceived cell becomes a candidate and the
+/// robot walks to where the pocket is within range (`. . . . # .`, r = 2, start at 0: the
+/// first position within 2 of cell 5 is cell 3).
+#[test]
+fn footprint_pocket_behind_a_wall_is_reached() {
+    let mut map = Grid::new(6, 1, Occ::Free);
+    map.set(Cell::new(4, 0), Occ::Occupied);
+    let p = Problem::new(&map, Cell::new(0, 0), SensorModel::Footprint(2.0)).expect("valid");
+    assert_eq!(p.targets().len(), 5);
+    for set in [
+        ActionSet::Boundary,
+        ActionSet::Clusters { min_size: 1 },
+        ActionSet::All,
+    ] {
+        let out = optimal::solve(&p, &cfg(1.0, set, HeuristicKind::Landmarks)).expect("solve");
+        assert_eq!(out.status, Status::Optimal, "{set:?}: {}", out.message);
+        assert!((out.upper_bound - 3.0).abs() < TOL, "{set:?}: {}", out.upper_bound);
+        let sol = out.solution.expect("solution");
+        assert_eq!(sol.perceived, 5);
+        assert_eq!(sol.positions.last().map(|c| c.x), Some(3));
+    }
 }
 
 /// The limits stop the search with bounds that bracket the optimum.
