@@ -20,7 +20,11 @@
 //! resumed and sharded studies reuse them.
 //!
 //! Online runs must sense the way the optimum assumes: the suite sets `sensing =
-//! "on-arrival"` (time-discrete perception at chosen positions, 360° sweeps).
+//! "on-arrival"` (time-discrete perception at chosen positions, 360° sweeps). They also stop
+//! at the optimum's goal: with `[optimal]` the coverage goal defaults to 1, so an online
+//! run ends when every reachable free cell is perceived, as the paper measures online
+//! strategies (distance to map the share G), rather than when its last frontier is gone
+//! (often a wall cell not yet seen, which no goal counts).
 
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex, OnceLock};

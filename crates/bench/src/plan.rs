@@ -599,6 +599,13 @@ fn resolve(src: &Source, f: ScenarioFile, unbuilt: Unbuilt) -> Result<Plan, Benc
         .as_ref()
         .map(|o| optimal_spec(src, o))
         .transpose()?;
+    // A competitive ratio compares lengths to the same goal: with `[optimal]`, online runs
+    // stop once the goal's share of the free cells is perceived (all of them by default),
+    // not when the last frontier (often an unseen wall cell) is gone.
+    let mut common = common;
+    if optimal.is_some() && common.coverage_goal.is_none() {
+        common.coverage_goal = Some(1.0);
+    }
     Ok(Plan {
         name,
         description: f.description.clone().unwrap_or_default(),

@@ -28,7 +28,8 @@
 //! [[env]]
 //! map = "maps/lab.yaml"         # relative to the scenario file
 //!
-//! [optimal]                     # optional: optimal offline paths and competitive ratios
+//! [optimal]                     # optional: optimal offline paths and competitive ratios;
+//!                               # online runs then stop at coverage_goal (default 1)
 //! cell_size = 1                 # coarsening factor
 //! min_cluster = 1               # cluster representatives only (omit: every boundary cell)
 //! weight = 1.0                  # weighted A* (1 = optimal)

@@ -171,6 +171,16 @@ pub fn run(a: OptimalArgs) -> Result<()> {
         time_limit,
     };
     let co = coarsen_problem(map, a.cell_size, start, &spec)?;
+    if co.kept_area < KEPT_AREA_WARNING {
+        eprintln!(
+            "warning: --cell-size {}: the coarse map reaches only {:.0}% of the free area \
+             reachable from the start (a coarse cell is free only if all its cells are, so \
+             doors and passages narrower than {} cells close); a smaller --cell-size keeps more",
+            a.cell_size,
+            100.0 * co.kept_area,
+            a.cell_size
+        );
+    }
     let out = solve(&co.problem, &cfg)?;
     let res = co.resolution();
     let optimal_m = out.upper_bound * res;
@@ -183,7 +193,8 @@ pub fn run(a: OptimalArgs) -> Result<()> {
         rc.sensing = Some(SensingMode::OnArrival);
         rc.starts = vec![start];
         rc.seed = a.seed;
-        rc.coverage_goal = (a.goal < 1.0).then_some(a.goal);
+        // The same goal as the optimum: stop once G of the free cells are perceived.
+        rc.coverage_goal = Some(a.goal);
         let r = sim::run(map, &rc).with_context(|| format!("running {name}"))?;
         let length_m = r.path_length_m.first().copied().unwrap_or(0.0);
         compared.push(Compared {
@@ -234,6 +245,9 @@ pub fn run(a: OptimalArgs) -> Result<()> {
     Ok(())
 }
 
+/// Below this share of the reachable free area kept by coarsening, `optimal` warns.
+const KEPT_AREA_WARNING: f64 = 0.5;
+
 fn positions(out: &Outcome) -> Vec<Cell> {
     out.solution
         .as_ref()
@@ -271,6 +285,12 @@ fn print_summary(
         out.needed,
         co.problem.unperceivable()
     );
+    if a.cell_size > 1 {
+        println!(
+            "the coarse map keeps {:.0}% of the free area reachable from the start",
+            100.0 * co.kept_area
+        );
+    }
     println!("{}", out.message);
     if out.upper_bound.is_finite() {
         println!(
@@ -326,6 +346,7 @@ fn to_json(
     json!({
         "map": name,
         "cell_size": a.cell_size,
+        "coarse_kept_area": co.kept_area,
         "resolution_m": res,
         "start": [start.x, start.y],
         "start_moved": co.start_moved,

@@ -401,3 +401,114 @@ resolution = 0.25
         assert!(a.contains(row), "trial {} changed on resume", row.key);
     }
 }
+
+/// Two rooms joined by a one-cell door (MovingAI `.map`), walls all round.
+const TWO_ROOMS: &str = "type octile\nheight 7\nwidth 11\nmap\n@@@@@@@@@@@\n@...@.....@\n\
+@...@.....@\n@.........@\n@...@.....@\n@...@.....@\n@@@@@@@@@@@\n";
+
+#[test]
+fn optimal_on_a_map_file_proves_the_optimum_and_scores_online_strategies() {
+    let dir = tempfile::tempdir().unwrap();
+    let map = dir.path().join("two.map");
+    std::fs::write(&map, TWO_ROOMS).unwrap();
+    let args = [
+        "optimal",
+        "--map",
+        map.to_str().unwrap(),
+        "--resolution",
+        "1",
+        "--start",
+        "1,1",
+        "--sensor",
+        "los:r=3c",
+        "--all-cells",
+        "--compare",
+        "cf,yamauchi",
+        "--json",
+    ];
+    let v: serde_json::Value = serde_json::from_str(&ok(&args)).unwrap();
+    assert_eq!(v["optimal"], true, "{v}");
+    assert_eq!(v["targets"], 41);
+    let length = v["length_m"].as_f64().unwrap();
+    assert!((length - v["lower_bound_m"].as_f64().unwrap()).abs() < 1e-9);
+    assert_eq!(v["positions"][0], serde_json::json!([1, 1]));
+    // Every online strategy perceives the same cells with the same sensor, so none can be
+    // shorter than the optimum over all position sequences; each stops at the same goal.
+    for c in v["compare"].as_array().unwrap() {
+        assert_eq!(c["end"], "goal reached", "{c}");
+        assert_eq!(c["coverage"], 1.0, "{c}");
+        let ratio = c["competitive_ratio"].as_f64().unwrap();
+        assert!(ratio >= 1.0 - 1e-9, "{c}");
+        assert!((ratio * length - c["length_m"].as_f64().unwrap()).abs() < 1e-9);
+    }
+    let again: serde_json::Value = serde_json::from_str(&ok(&args)).unwrap();
+    assert_eq!(again["positions"], v["positions"]);
+    assert_eq!(again["compare"], v["compare"]);
+}
+
+#[test]
+fn optimal_warns_when_coarsening_closes_the_doors() {
+    let dir = tempfile::tempdir().unwrap();
+    let map = dir.path().join("two.map");
+    std::fs::write(&map, TWO_ROOMS).unwrap();
+    let out = frontier(&[
+        "optimal",
+        "--map",
+        map.to_str().unwrap(),
+        "--resolution",
+        "1",
+        "--start",
+        "1,1",
+        "--sensor",
+        "los:r=3c",
+        "--cell-size",
+        "2",
+        "--json",
+    ]);
+    assert!(out.status.success());
+    let e = String::from_utf8(out.stderr).unwrap();
+    assert!(
+        e.contains("warning: --cell-size 2: the coarse map reaches only"),
+        "{e}"
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert!(v["coarse_kept_area"].as_f64().unwrap() < 0.5, "{v}");
+    // The same map at full resolution keeps everything and does not warn.
+    let out = frontier(&[
+        "optimal",
+        "--map",
+        map.to_str().unwrap(),
+        "--resolution",
+        "1",
+        "--start",
+        "1,1",
+        "--sensor",
+        "los:r=3c",
+    ]);
+    assert!(out.status.success());
+    assert!(!String::from_utf8(out.stderr).unwrap().contains("warning"));
+}
+
+#[test]
+fn optimal_flags_are_checked() {
+    let e = err(&["optimal", "--goal", "1.5"]);
+    assert!(
+        e.contains("--goal: expected a coverage fraction in (0, 1], found 1.5"),
+        "{e}"
+    );
+    let e = err(&["optimal", "--sensor", "lidar:r=3"]);
+    assert!(
+        e.contains("--sensor") && e.contains("los:r=R or footprint:r=R"),
+        "{e}"
+    );
+    let e = err(&["optimal", "--cell-size", "0"]);
+    assert!(
+        e.contains("--cell-size: expected a factor in 1..=64, found 0"),
+        "{e}"
+    );
+    let e = err(&["optimal", "--weight", "0.5"]);
+    assert!(
+        e.contains("--weight: expected a number ≥ 1, found 0.5"),
+        "{e}"
+    );
+}

@@ -7,20 +7,22 @@
 //! (Euclidean) to the cluster's centroid, ties to the lowest flat index; clusters with fewer
 //! than k cells can be dropped.
 //!
-//! Deviation: a boundary cell is a perceived free cell with an *unperceived target* among
-//! its 8 neighbours (the paper's "unknown" also counts unperceived wall cells). Walls do not
-//! count for the goal; cells next to unseen wall only would add actions that are no better
-//! viewpoints than any other free cell.
+//! A boundary cell is a perceived free cell with an unperceived cell of any kind among its
+//! 8 neighbours: a free cell, a wall, or a cell no position perceives (the paper's
+//! "unknown"). So the state tracks the perceived walls next to reachable cells as well as
+//! the free cells (the goal counts only free ones). This is also the online frontier (a
+//! known free cell with an unknown 8-neighbour), so every online run with time-discrete
+//! perception is a sequence of boundary actions and cannot be shorter than their optimum.
 //!
-//! Deviation: when no reachable perceived cell is a boundary cell but targets are left (the
-//! footprint sensor sees through walls, so a pocket of free cells behind a wall can be a
-//! target no boundary cell borders), every reachable perceived cell is a candidate. Without
-//! this, such maps had no solution for the boundary and cluster action sets; with it, the
-//! search reaches the goal whenever any position sequence does (if unperceived targets lay
-//! on a path inside the reachable cells, the first of them would border a boundary cell).
+//! Deviation: when no candidate perceives a new free cell but some are left to perceive
+//! (the footprint sensor sees through walls, so a pocket behind a wall is a target no
+//! boundary cell borders), the search offers the next larger set instead (clusters →
+//! boundary cells → every reachable perceived cell, [`ActionSet::wider`]). Then the boundary and cluster actions reach the goal whenever any sequence
+//! does: if unperceived targets lay on a path inside the reachable cells, the first of them
+//! would border a boundary cell that perceives it.
 //!
-//! [`ActionSet::All`] (every reachable perceived cell)
-//! is offered beyond the paper: it makes the search exact over all position sequences.
+//! [`ActionSet::All`] (every reachable perceived cell) is offered beyond the paper: it makes
+//! the search exact over all position sequences.
 
 use crate::heuristic::has;
 use crate::problem::{NOT_TARGET, Problem};
@@ -38,6 +40,19 @@ pub enum ActionSet {
     },
     /// Every reachable perceived cell (exact over all position sequences; slow).
     All,
+}
+
+impl ActionSet {
+    /// The next larger set, offered when no candidate of this one perceives a new target:
+    /// clusters → boundary → all (each state's actions then stay a subset of the next
+    /// set's, so clusters never beat the boundary optimum).
+    pub(crate) fn wider(self) -> Option<ActionSet> {
+        match self {
+            ActionSet::Clusters { .. } => Some(ActionSet::Boundary),
+            ActionSet::Boundary => Some(ActionSet::All),
+            ActionSet::All => None,
+        }
+    }
 }
 
 /// Scratch for computing actions without allocating per state.
@@ -62,10 +77,11 @@ impl ActionScratch {
     }
 }
 
-/// Whether perceived free cell `i` has an unperceived target among its 8 neighbours.
+/// Whether perceived free cell `i` has an unperceived mark (target, wall, ...) among its 8
+/// neighbours.
 #[inline]
 pub(crate) fn is_boundary(problem: &Problem, bits: &[u64], i: usize) -> bool {
-    for &t in problem.neighbour_targets(i) {
+    for &t in problem.neighbour_marks(i) {
         if t == NOT_TARGET {
             return false;
         }
@@ -88,19 +104,14 @@ pub(crate) fn candidates(
     out: &mut Vec<u32>,
 ) {
     out.clear();
-    let any_boundary = match set {
-        ActionSet::All => false,
-        ActionSet::Boundary => {
-            out.extend(
-                settled
-                    .iter()
-                    .copied()
-                    .filter(|&i| is_boundary(problem, bits, i as usize)),
-            );
-            let any = !out.is_empty();
-            out.retain(|&i| i != here);
-            any
-        }
+    match set {
+        ActionSet::All => out.extend(settled.iter().copied().filter(|&i| i != here)),
+        ActionSet::Boundary => out.extend(
+            settled
+                .iter()
+                .copied()
+                .filter(|&i| i != here && is_boundary(problem, bits, i as usize)),
+        ),
         ActionSet::Clusters { min_size } => {
             scratch.epoch = scratch.epoch.wrapping_add(1);
             if scratch.epoch == 0 {
@@ -125,32 +136,23 @@ pub(crate) fn candidates(
                         scratch.mark[i as usize] = 1;
                     }
                 }
-                candidates_clusters(problem, settled, here, min_size, 1, 2, scratch, out)
-            } else {
-                let visited = scratch.epoch;
-                candidates_clusters(
-                    problem,
-                    settled,
-                    here,
-                    min_size,
-                    boundary_epoch,
-                    visited,
-                    scratch,
-                    out,
-                )
+                return candidates_clusters(problem, settled, here, min_size, 1, 2, scratch, out);
             }
+            let visited = scratch.epoch;
+            candidates_clusters(
+                problem,
+                settled,
+                here,
+                min_size,
+                boundary_epoch,
+                visited,
+                scratch,
+                out,
+            );
         }
-    };
-    // No boundary cell at all (targets left only behind walls, seen through them by the
-    // footprint sensor): every reachable perceived cell is a candidate.
-    if !any_boundary {
-        out.clear();
-        out.extend(settled.iter().copied().filter(|&i| i != here));
     }
 }
 
-/// Push the representatives of the clusters of at least `min_size` boundary cells; false if
-/// there is no boundary cell at all.
 #[allow(clippy::too_many_arguments)]
 fn candidates_clusters(
     problem: &Problem,
@@ -161,7 +163,7 @@ fn candidates_clusters(
     visited: u32,
     scratch: &mut ActionScratch,
     out: &mut Vec<u32>,
-) -> bool {
+) {
     let cells = problem.cells();
     let (w, h) = (cells.width(), cells.height());
     // Seeds in increasing flat index for a deterministic cluster order.
@@ -223,8 +225,6 @@ fn candidates_clusters(
             out.push(best.1);
         }
     }
-    let any = !seeds.is_empty();
     scratch.cluster = seeds;
     scratch.members = members;
-    any
 }

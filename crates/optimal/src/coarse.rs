@@ -5,7 +5,13 @@
 //! sensor range is converted at the coarse resolution. Deviation: if the coarse cell of the
 //! start is not free (a wall fell into its block), the start moves to the nearest free
 //! coarse cell (Euclidean, ties to the lowest flat index); [`Coarsened::start_moved`] says so.
+//!
+//! The conservative rule closes doors and passages narrower than a coarse cell (a 1-cell
+//! door of a MovingAI room map vanishes at cell size 2). [`Coarsened::kept_area`] measures
+//! it: the coarse map's free area reachable from the start over the original map's, so a
+//! caller can warn instead of solving a problem that lost most of the map.
 
+use explore::plan::Reachability;
 use grid::{Cell, GridMap};
 use sense::SensorSpec;
 
@@ -23,6 +29,9 @@ pub struct Coarsened {
     pub problem: Problem,
     /// Whether the start had to move to a neighbouring free coarse cell.
     pub start_moved: bool,
+    /// The free area reachable from the start on the coarse map over that on the original
+    /// map (at most 1): well below 1 when coarsening closed doors or narrow passages.
+    pub kept_area: f64,
 }
 
 impl Coarsened {
@@ -91,10 +100,21 @@ pub fn coarsen_problem(
     };
     let model = SensorModel::from_spec(sensor, coarse.resolution)?;
     let problem = Problem::new(&coarse.cells, s, model)?;
+    let kept_area = if factor == 1 {
+        1.0
+    } else {
+        let mut reach = Reachability::new(map.width(), map.height());
+        let data = map.cells.data();
+        reach.compute(map.cells.index(start), |i| data[i].is_free());
+        let fine = reach.settled().len() as f64;
+        let coarse = (problem.reachable_count() * factor * factor) as f64;
+        (coarse / fine).min(1.0)
+    };
     Ok(Coarsened {
         map: coarse,
         factor,
         problem,
         start_moved: s != c0,
+        kept_area,
     })
 }

@@ -88,7 +88,11 @@ pub struct Problem {
     reach_count: usize,
     tidx: Vec<u32>,
     targets: Vec<u32>,
-    /// Per reachable cell: the target indices of its 8 neighbours, then [`NOT_TARGET`]s.
+    /// Per cell: its mark index (a target's index, or |E_f| + k for the k-th other cell
+    /// next to a reachable cell), or [`NOT_TARGET`].
+    midx: Vec<u32>,
+    marks: usize,
+    /// Per reachable cell: the mark indices of its 8 neighbours, then [`NOT_TARGET`]s.
     nbr: Vec<[u32; 8]>,
     unperceivable: usize,
 }
@@ -154,12 +158,22 @@ impl Problem {
                 unperceivable += 1;
             }
         }
+        // Marks: the targets, then every other cell next to a reachable cell (walls, free
+        // cells no position perceives), so the boundary test sees the paper's "unknown".
+        let mut midx = tidx.clone();
+        let mut marks = targets.len();
+        for i in 0..w * h {
+            if midx[i] == NOT_TARGET && cells.neighbours8(i).any(|j| reach[j]) {
+                midx[i] = marks as u32;
+                marks += 1;
+            }
+        }
         let mut nbr = vec![[NOT_TARGET; 8]; w * h];
         for (i, list) in nbr.iter_mut().enumerate() {
             if !reach[i] {
                 continue;
             }
-            let near = cells.neighbours8(i).map(|j| tidx[j]);
+            let near = cells.neighbours8(i).map(|j| midx[j]);
             for (slot, t) in list.iter_mut().zip(near.filter(|&t| t != NOT_TARGET)) {
                 *slot = t;
             }
@@ -173,6 +187,8 @@ impl Problem {
             reach_count,
             tidx,
             targets,
+            midx,
+            marks,
             nbr,
             unperceivable,
         })
@@ -204,11 +220,17 @@ impl Problem {
         self.reach_count
     }
 
-    /// The target indices among the 8 neighbours of reachable cell `i`, padded with
+    /// The mark indices among the 8 neighbours of reachable cell `i`, padded with
     /// [`NOT_TARGET`] (all padding for other cells).
     #[inline]
-    pub(crate) fn neighbour_targets(&self, i: usize) -> &[u32; 8] {
+    pub(crate) fn neighbour_marks(&self, i: usize) -> &[u32; 8] {
         &self.nbr[i]
+    }
+
+    /// Number of marks: the targets (indices `0..|E_f|`), then the other cells next to a
+    /// reachable cell, whose perception the boundary test needs (walls, mostly).
+    pub(crate) fn mark_count(&self) -> usize {
+        self.marks
     }
 
     /// Target index of flat cell `i`, or [`NOT_TARGET`].
@@ -238,10 +260,19 @@ impl Problem {
     /// Append to `out` the target indices perceived from flat cell `pos` (each once);
     /// `obs` is scratch for the footprint scan.
     pub fn seen_targets(&self, pos: u32, obs: &mut Observation, out: &mut Vec<u32>) {
+        self.seen(&self.tidx, pos, obs, out);
+    }
+
+    /// Append to `out` the mark indices perceived from flat cell `pos` (each once).
+    pub(crate) fn seen_marks(&self, pos: u32, obs: &mut Observation, out: &mut Vec<u32>) {
+        self.seen(&self.midx, pos, obs, out);
+    }
+
+    fn seen(&self, index: &[u32], pos: u32, obs: &mut Observation, out: &mut Vec<u32>) {
         let origin = self.cells.cell(pos as usize);
         match &self.sensor {
             Built::Los(s) => s.for_each_seen(&self.cells, origin, |i, _| {
-                let t = self.tidx[i as usize];
+                let t = index[i as usize];
                 if t != NOT_TARGET {
                     out.push(t);
                 }
@@ -249,7 +280,7 @@ impl Problem {
             Built::Footprint(s) => {
                 s.scan(&self.cells, Pose::new(origin, 0.0), obs);
                 for &(i, _) in &obs.cells {
-                    let t = self.tidx[i as usize];
+                    let t = index[i as usize];
                     if t != NOT_TARGET {
                         out.push(t);
                     }

@@ -20,8 +20,9 @@
 //!   cleanly with the best lower and upper bounds. Stored bytes (nodes, bitsets, queue,
 //!   hash table, caches) are counted before every allocation that grows, so a budget is a
 //!   hard cap on the search's own memory, never an OOM kill.
-//! - Actions that perceive nothing new are skipped: from (q, M) a move to p with M
-//!   unchanged is dominated by moving on directly (triangle inequality inside the same M).
+//! - Actions that perceive no new target are skipped: from (q, M) a move to p that adds at
+//!   most walls to M is dominated by moving on directly (triangle inequality inside the
+//!   same perceived free space; perceived walls only remove boundary cells).
 
 use std::cmp::Reverse;
 use std::collections::{BinaryHeap, HashMap};
@@ -240,7 +241,8 @@ fn entry(f: f64, g: f64, id: u32) -> Entry {
     Reverse((f.to_bits(), u64::MAX - g.to_bits(), id, g.to_bits()))
 }
 
-/// Each cell's perceived targets, computed once on first use.
+/// Each cell's perceived marks (targets, then walls next to reachable cells), computed once
+/// on first use.
 struct VisCache {
     off: Vec<u32>,
     len: Vec<u32>,
@@ -262,7 +264,7 @@ impl VisCache {
         let p = pos as usize;
         if self.off[p] == NONE {
             let start = self.data.len();
-            problem.seen_targets(pos, &mut self.obs, &mut self.data);
+            problem.seen_marks(pos, &mut self.obs, &mut self.data);
             self.off[p] = start as u32;
             self.len[p] = (self.data.len() - start) as u32;
         }
@@ -299,15 +301,18 @@ struct Engine<'p> {
     inc_positions: Vec<u32>,
     stats: Stats,
     fixed_bytes: usize,
+    /// Number of targets: marks below it are free cells the goal counts.
+    nt: u32,
 }
 
 impl<'p> Engine<'p> {
     fn new(problem: &'p Problem, cfg: &Config) -> Self {
         let n = problem.cells().len();
         let nt = problem.targets().len();
-        let words = nt.div_ceil(64).max(1);
+        let nm = problem.mark_count();
+        let words = nm.div_ceil(64).max(1);
         let mut seed = 0x0005_EED0_F0B7_14A1_u64;
-        let zt = (0..nt).map(|_| splitmix(&mut seed)).collect();
+        let zt = (0..nm).map(|_| splitmix(&mut seed)).collect();
         let zpos = (0..n).map(|_| splitmix(&mut seed)).collect();
         let heur = Heuristic::new(
             problem,
@@ -339,7 +344,8 @@ impl<'p> Engine<'p> {
             inc_positions: Vec::new(),
             stats: Stats::default(),
             // Dijkstra (≈ 41 B/cell), action marks, Zobrist keys, the problem's arrays.
-            fixed_bytes: n * (41 + 4 + 8 + 12) + nt * 12,
+            fixed_bytes: n * (41 + 4 + 8 + 12) + nm * 12,
+            nt: nt as u32,
         }
     }
 
@@ -418,7 +424,7 @@ impl<'p> Engine<'p> {
     }
 
     /// Complete greedily from (pos, bits, count): repeatedly move to the nearest action
-    /// that perceives something new or, with `rate`, to the action that perceives the most
+    /// that perceives a new target or, with `rate`, to the action that perceives the most
     /// new targets per unit of path (`new / (d + 1)`, ties to the nearer, then the lower
     /// cell). Returns the added cost and appends the positions.
     fn greedy(
@@ -434,51 +440,27 @@ impl<'p> Engine<'p> {
         while count < self.need {
             self.reach
                 .compute(pos as usize, Self::passable(self.problem, &cur));
-            candidates(
-                self.problem,
-                &cur,
-                self.reach.settled(),
-                pos,
-                self.cfg.actions,
-                &mut self.scratch,
-                &mut self.cands,
-            );
-            let mut best: Option<(f64, u32)> = None;
-            let mut best_rate = 0.0;
-            for k in 0..self.cands.len() {
-                let a = self.cands[k];
-                let d = dist(&self.reach, a as usize);
-                if rate {
-                    let (o, l) = self.vis.get(self.problem, a);
-                    let new = self.vis.data[o..o + l]
-                        .iter()
-                        .filter(|&&t| !has(&cur, t))
-                        .count();
-                    let r = new as f64 / (d + 1.0);
-                    if new > 0
-                        && (best.is_none()
-                            || r > best_rate
-                            || (r == best_rate && best.is_some_and(|b| (d, a) < b)))
-                    {
-                        best = Some((d, a));
-                        best_rate = r;
-                    }
-                    continue;
-                }
-                if best.is_some_and(|(bd, bi)| (d, a) >= (bd, bi)) {
-                    continue;
-                }
-                let (o, l) = self.vis.get(self.problem, a);
-                if self.vis.data[o..o + l].iter().any(|&t| !has(&cur, t)) {
-                    best = Some((d, a));
-                }
+            let mut best = None;
+            let mut next = Some(self.cfg.actions);
+            while let Some(set) = next {
+                candidates(
+                    self.problem,
+                    &cur,
+                    self.reach.settled(),
+                    pos,
+                    set,
+                    &mut self.scratch,
+                    &mut self.cands,
+                );
+                best = self.greedy_choice(&cur, rate);
+                next = if best.is_some() { None } else { set.wider() };
             }
             let (d, a) = best?;
             let (o, l) = self.vis.get(self.problem, a);
             for &t in &self.vis.data[o..o + l] {
                 if !has(&cur, t) {
                     cur[(t >> 6) as usize] |= 1 << (t & 63);
-                    count += 1;
+                    count += usize::from(t < self.nt);
                 }
             }
             cost += d;
@@ -486,6 +468,46 @@ impl<'p> Engine<'p> {
             out.push(a);
         }
         Some(cost)
+    }
+
+    /// The greedy step among the candidates: the nearest that perceives a new target or,
+    /// with `rate`, the best new targets per unit of path; `None` if none perceives one.
+    fn greedy_choice(&mut self, cur: &[u64], rate: bool) -> Option<(f64, u32)> {
+        let nt = self.nt;
+        let mut best: Option<(f64, u32)> = None;
+        let mut best_rate = 0.0;
+        for k in 0..self.cands.len() {
+            let a = self.cands[k];
+            let d = dist(&self.reach, a as usize);
+            if rate {
+                let (o, l) = self.vis.get(self.problem, a);
+                let new = self.vis.data[o..o + l]
+                    .iter()
+                    .filter(|&&t| t < nt && !has(cur, t))
+                    .count();
+                let r = new as f64 / (d + 1.0);
+                if new > 0
+                    && (best.is_none()
+                        || r > best_rate
+                        || (r == best_rate && best.is_some_and(|b| (d, a) < b)))
+                {
+                    best = Some((d, a));
+                    best_rate = r;
+                }
+                continue;
+            }
+            if best.is_some_and(|(bd, bi)| (d, a) >= (bd, bi)) {
+                continue;
+            }
+            let (o, l) = self.vis.get(self.problem, a);
+            if self.vis.data[o..o + l]
+                .iter()
+                .any(|&t| t < nt && !has(cur, t))
+            {
+                best = Some((d, a));
+            }
+        }
+        best
     }
 
     /// Try to improve the incumbent with the greedy completions (nearest, then by rate) of
@@ -522,7 +544,7 @@ impl<'p> Engine<'p> {
             if !has(&self.cur, t) {
                 self.cur[(t >> 6) as usize] |= 1 << (t & 63);
                 key ^= self.zt[t as usize];
-                count += 1;
+                count += usize::from(t < self.nt);
             }
         }
         let admissible = self
@@ -645,35 +667,72 @@ impl<'p> Engine<'p> {
         self.cur.copy_from_slice(&self.bits[s..s + self.words]);
         self.reach
             .compute(node.pos as usize, Self::passable(problem, &self.cur));
-        candidates(
-            problem,
-            &self.cur,
-            self.reach.settled(),
-            node.pos,
-            self.cfg.actions,
-            &mut self.scratch,
-            &mut self.cands,
-        );
+        let mut next = Some(self.cfg.actions);
+        while let Some(set) = next {
+            candidates(
+                problem,
+                &self.cur,
+                self.reach.settled(),
+                node.pos,
+                set,
+                &mut self.scratch,
+                &mut self.cands,
+            );
+            // No candidate perceives a new target: offer the next larger set (the
+            // deviation in `actions`).
+            next = match self.children(id, node) {
+                None => return false,
+                Some(useful) => {
+                    if useful {
+                        None
+                    } else {
+                        set.wider()
+                    }
+                }
+            };
+        }
+        self.stats.bytes = self.stats.bytes.max(self.bytes_with(0));
+        true
+    }
+
+    /// Generate the children of state `id` (`node`, bits in `self.cur`) for the candidates
+    /// in `self.cands`: `None` if the memory budget ran out, else whether any candidate
+    /// perceives a new target (pruned or not).
+    fn children(&mut self, id: u32, node: Node) -> Option<bool> {
+        let problem = self.problem;
         let w = self.cfg.weight;
+        let nt = self.nt;
+        let mut useful = false;
         for k in 0..self.cands.len() {
             let a = self.cands[k];
             let g2 = node.g + dist(&self.reach, a as usize);
             if g2 >= self.inc_cost - EPS {
                 self.stats.pruned += 1;
+                if !useful {
+                    let (o, l) = self.vis.get(problem, a);
+                    useful = self.vis.data[o..o + l]
+                        .iter()
+                        .any(|&t| t < nt && !has(&self.cur, t));
+                }
                 continue;
             }
             let (o, l) = self.vis.get(problem, a);
             self.fresh.clear();
+            let mut new_targets = 0;
             for &t in &self.vis.data[o..o + l] {
                 if !has(&self.cur, t) {
                     self.fresh.push(t);
+                    new_targets += usize::from(t < nt);
                 }
             }
-            if self.fresh.is_empty() {
+            // A move that perceives no new target (walls at most) is dominated: the
+            // boundary only shrinks and the perceived free space stays the same.
+            if new_targets == 0 {
                 continue;
             }
+            useful = true;
             self.stats.generated += 1;
-            let count2 = node.count as usize + self.fresh.len();
+            let count2 = node.count as usize + new_targets;
             if count2 >= self.need {
                 self.inc_cost = g2;
                 let mut p = self.positions_of(id);
@@ -720,7 +779,7 @@ impl<'p> Engine<'p> {
                 continue;
             }
             if !self.reserve_one() {
-                return false;
+                return None;
             }
             let nid = self.nodes.len() as u32;
             self.nodes.push(Node {
@@ -738,8 +797,7 @@ impl<'p> Engine<'p> {
             self.open.push(entry(g2 + w * h, g2, nid));
             self.stats.stored += 1;
         }
-        self.stats.bytes = self.stats.bytes.max(self.bytes_with(0));
-        true
+        Some(useful)
     }
 
     fn finish(

@@ -62,7 +62,8 @@ fn all_pairs(map: &Grid<Occ>, ok: &dyn Fn(Cell) -> bool) -> Vec<Vec<f64>> {
 struct Plain {
     map: Grid<Occ>,
     targets: Vec<usize>,
-    /// `sees[p]` = target positions (indices into `targets`) seen from cell p.
+    is_target: Vec<bool>,
+    /// `sees[p]` = every cell (free, wall, target or not) seen from reachable cell p.
     sees: Vec<Vec<usize>>,
     reach: Vec<bool>,
 }
@@ -82,63 +83,64 @@ fn plain(map: &Grid<Occ>, start: Cell, model: SensorModel) -> Plain {
         .collect();
     let sees = (0..n)
         .map(|p| {
-            (0..targets.len())
-                .filter(|&k| reach[p] && seen(map.cell(p), map.cell(targets[k])))
+            (0..n)
+                .filter(|&c| reach[p] && seen(map.cell(p), map.cell(c)))
                 .collect()
         })
         .collect();
+    let mut is_target = vec![false; n];
+    for &t in &targets {
+        is_target[t] = true;
+    }
     Plain {
         map: map.clone(),
         targets,
+        is_target,
         sees,
         reach,
     }
 }
 
-/// Cells the robot may go to from `pos` with `perceived` (indexed like `targets`).
-fn actions(pl: &Plain, perceived: &[bool], set: ActionSet) -> (Vec<usize>, Vec<Vec<f64>>) {
+/// Targets perceived in `perceived` (indexed by cell).
+fn perceived_targets(pl: &Plain, perceived: &[bool]) -> usize {
+    pl.targets.iter().filter(|&&t| perceived[t]).count()
+}
+
+/// The moves from `pos` with `perceived` (indexed by cell) and their costs. A boundary
+/// cell is a perceived reachable free cell with an unperceived 8-neighbour of any kind (the
+/// paper's "unknown"); when no boundary move perceives a new target, every perceived
+/// reachable cell is a move.
+fn actions(pl: &Plain, pos: usize, perceived: &[bool], set: ActionSet) -> Vec<(usize, f64)> {
     let map = &pl.map;
     let known_free = |c: Cell| {
-        map.checked_index(c).is_some_and(|i| {
-            pl.reach[i]
-                && pl
-                    .targets
-                    .iter()
-                    .position(|&t| t == i)
-                    .is_some_and(|k| perceived[k])
-        })
+        map.checked_index(c)
+            .is_some_and(|i| pl.reach[i] && perceived[i])
     };
     let d = all_pairs(map, &known_free);
-    let unperceived_target = |c: Cell| {
-        map.checked_index(c).is_some_and(|i| {
-            pl.targets
-                .iter()
-                .position(|&t| t == i)
-                .is_some_and(|k| !perceived[k])
-        })
-    };
     let boundary = |i: usize| {
         let c = map.cell(i);
-        grid::NEIGHBOURS8
-            .iter()
-            .any(|&(dx, dy)| unperceived_target(c.offset(dx, dy)))
-    };
-    let known: Vec<usize> = (0..map.len())
-        .filter(|&i| known_free(map.cell(i)))
-        .collect();
-    let cells: Vec<usize> = known
-        .iter()
-        .copied()
-        .filter(|&i| match set {
-            ActionSet::All => true,
-            _ => boundary(i),
+        grid::NEIGHBOURS8.iter().any(|&(dx, dy)| {
+            map.checked_index(c.offset(dx, dy))
+                .is_some_and(|j| !perceived[j])
         })
-        .collect();
-    // No boundary cell at all (a pocket seen only through a wall): every known free cell.
-    if cells.is_empty() {
-        return (known, d);
+    };
+    let new_target = |q: usize| pl.sees[q].iter().any(|&c| pl.is_target[c] && !perceived[c]);
+    let moves = |only_boundary: bool| -> Vec<(usize, f64)> {
+        (0..map.len())
+            .filter(|&q| known_free(map.cell(q)) && d[pos][q].is_finite())
+            .filter(|&q| !only_boundary || boundary(q))
+            .map(|q| (q, d[pos][q]))
+            .collect()
+    };
+    if set == ActionSet::All {
+        return moves(false);
     }
-    (cells, d)
+    let b = moves(true);
+    if b.iter().any(|&(q, _)| new_target(q)) {
+        b
+    } else {
+        moves(false)
+    }
 }
 
 /// Exhaustive uniform-cost search from (pos, perceived); `None` if the goal is unreachable.
@@ -160,15 +162,10 @@ fn oracle(
         if best.get(&(p, m.clone())).is_some_and(|&b| b < c) {
             continue;
         }
-        if m.iter().filter(|&&b| b).count() >= need {
+        if perceived_targets(pl, &m) >= need {
             return Some(c);
         }
-        let (cands, d) = actions(pl, &m, set);
-        for q in cands {
-            let step = d[p][q];
-            if !step.is_finite() {
-                continue;
-            }
+        for (q, step) in actions(pl, p, &m, set) {
             let mut m2 = m.clone();
             for &k in &pl.sees[q] {
                 m2[k] = true;
@@ -185,7 +182,7 @@ fn oracle(
 }
 
 fn initial(pl: &Plain, start: usize) -> Vec<bool> {
-    let mut m = vec![false; pl.targets.len()];
+    let mut m = vec![false; pl.map.len()];
     for &k in &pl.sees[start] {
         m[k] = true;
     }
@@ -258,16 +255,7 @@ fn check_solution(pl: &Plain, start: Cell, sol: &optimal::Solution, need: usize)
     let mut next = 1;
     for w in sol.path.windows(2) {
         let (a, b) = (w[0], w[1]);
-        let known_free = |c: Cell| {
-            map.checked_index(c).is_some_and(|i| {
-                pl.reach[i]
-                    && pl
-                        .targets
-                        .iter()
-                        .position(|&t| t == i)
-                        .is_some_and(|k| m[k])
-            })
-        };
+        let known_free = |c: Cell| map.checked_index(c).is_some_and(|i| pl.reach[i] && m[i]);
         assert!(legal(map, &known_free, a, b), "illegal step {a} -> {b}");
         len += if a.x != b.x && a.y != b.y {
             std::f64::consts::SQRT_2
@@ -287,7 +275,7 @@ fn check_solution(pl: &Plain, start: Cell, sol: &optimal::Solution, need: usize)
         "length {len} vs {}",
         sol.length
     );
-    let got = m.iter().filter(|&&b| b).count();
+    let got = perceived_targets(pl, &m);
     assert!(got >= need, "perceived {got} < {need}");
     assert_eq!(got, sol.perceived);
 }
@@ -338,8 +326,7 @@ proptest! {
         // A few states: the root and its children under All actions.
         let m0 = initial(&pl, s);
         let mut states = vec![(s, m0.clone())];
-        let (cands, _) = actions(&pl, &m0, ActionSet::All);
-        for q in cands.into_iter().take(6) {
+        for (q, _) in actions(&pl, s, &m0, ActionSet::All).into_iter().take(6) {
             let mut m = m0.clone();
             for &k in &pl.sees[q] { m[k] = true; }
             states.push((q, m));
@@ -347,7 +334,8 @@ proptest! {
         for (p, m) in states {
             let Some(exact) = oracle(&pl, p, m.clone(), need, ActionSet::All) else { continue };
             for hk in [HeuristicKind::Paper, HeuristicKind::Landmarks] {
-                let h = heuristic_value(&problem, &cfg(g, ActionSet::All, hk), map.cell(p), &m);
+                let by_target: Vec<bool> = pl.targets.iter().map(|&t| m[t]).collect();
+                let h = heuristic_value(&problem, &cfg(g, ActionSet::All, hk), map.cell(p), &by_target);
                 prop_assert!(h <= exact + TOL, "{:?} h = {} > h* = {} at {}", hk, h, exact, map.cell(p));
             }
         }
@@ -414,7 +402,11 @@ fn footprint_pocket_behind_a_wall_is_reached() {
     ] {
         let out = optimal::solve(&p, &cfg(1.0, set, HeuristicKind::Landmarks)).expect("solve");
         assert_eq!(out.status, Status::Optimal, "{set:?}: {}", out.message);
-        assert!((out.upper_bound - 3.0).abs() < TOL, "{set:?}: {}", out.upper_bound);
+        assert!(
+            (out.upper_bound - 3.0).abs() < TOL,
+            "{set:?}: {}",
+            out.upper_bound
+        );
         let sol = out.solution.expect("solution");
         assert_eq!(sol.perceived, 5);
         assert_eq!(sol.positions.last().map(|c| c.x), Some(3));
