@@ -162,9 +162,9 @@ impl Problem {
         // cells no position perceives), so the boundary test sees the paper's "unknown".
         let mut midx = tidx.clone();
         let mut marks = targets.len();
-        for i in 0..w * h {
-            if midx[i] == NOT_TARGET && cells.neighbours8(i).any(|j| reach[j]) {
-                midx[i] = marks as u32;
+        for (i, m) in midx.iter_mut().enumerate() {
+            if *m == NOT_TARGET && cells.neighbours8(i).any(|j| reach[j]) {
+                *m = marks as u32;
                 marks += 1;
             }
         }
