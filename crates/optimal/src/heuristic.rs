@@ -48,6 +48,7 @@
 //! skip any landmark, so the bound is not used there.)
 
 use std::collections::HashMap;
+use std::hash::{BuildHasherDefault, Hasher};
 
 use explore::plan::Reachability;
 use grid::Occ;
@@ -170,6 +171,33 @@ pub(crate) struct Heuristic {
     lm_w: Vec<f64>,
     prim_key: Vec<f64>,
     prim_idx: Vec<usize>,
+    /// MST values by (unperceived-landmark mask, position), with at most 64 landmarks:
+    /// sibling states share most landmark sets, and Prim's O(K²) dominated the search.
+    mst_cache: HashMap<(u64, u32), f64, BuildHasherDefault<MixHasher>>,
+}
+
+/// Entries of the MST cache before it is cleared (≈ 40 bytes each).
+const MST_CACHE_ENTRIES: usize = 1 << 20;
+
+/// Fx-style multiply-rotate hasher for the MST cache's integer keys.
+#[derive(Default)]
+pub(crate) struct MixHasher(u64);
+
+impl Hasher for MixHasher {
+    fn finish(&self) -> u64 {
+        self.0
+    }
+    fn write(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.write_u64(u64::from(b));
+        }
+    }
+    fn write_u64(&mut self, v: u64) {
+        self.0 = (self.0.rotate_left(5) ^ v).wrapping_mul(0x51_7C_C1_B7_27_22_0A_95);
+    }
+    fn write_u32(&mut self, v: u32) {
+        self.write_u64(u64::from(v));
+    }
 }
 
 impl Heuristic {
@@ -208,6 +236,7 @@ impl Heuristic {
             lm_w: Vec::new(),
             prim_key: Vec::new(),
             prim_idx: Vec::new(),
+            mst_cache: HashMap::default(),
         };
         if kind == HeuristicKind::Landmarks && h.skip == 0 && landmarks > 0 {
             h.choose_landmarks(problem, landmarks);
@@ -217,7 +246,10 @@ impl Heuristic {
 
     /// Bytes held by the caches.
     pub(crate) fn bytes(&self) -> usize {
-        self.orders.capacity() * 16 + self.order_slot.len() * 24 + self.lm_field.capacity() * 8
+        self.orders.capacity() * 16
+            + self.order_slot.len() * 24
+            + self.lm_field.capacity() * 8
+            + self.mst_cache.capacity() * 40
     }
 
     /// Number of landmarks in use.
@@ -387,6 +419,29 @@ impl Heuristic {
 
     /// Prim's MST over {pos} ∪ (landmarks not in `bits`).
     fn mst(&mut self, problem: &Problem, pos: u32, bits: &[u64]) -> f64 {
+        let kk = self.lm_t.len();
+        if kk > 64 {
+            return self.prim(problem, pos, bits);
+        }
+        let mut mask = 0u64;
+        for (a, &t) in self.lm_t.iter().enumerate() {
+            if !has(bits, t) {
+                mask |= 1 << a;
+            }
+        }
+        if let Some(&v) = self.mst_cache.get(&(mask, pos)) {
+            return v;
+        }
+        let v = self.prim(problem, pos, bits);
+        if self.mst_cache.len() >= MST_CACHE_ENTRIES {
+            self.mst_cache.clear();
+        }
+        self.mst_cache.insert((mask, pos), v);
+        v
+    }
+
+    /// Prim's MST over {pos} ∪ (landmarks not in `bits`), computed.
+    fn prim(&mut self, problem: &Problem, pos: u32, bits: &[u64]) -> f64 {
         let n = problem.cells().len();
         let kk = self.lm_t.len();
         self.prim_idx.clear();
