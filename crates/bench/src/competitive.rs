@@ -63,11 +63,16 @@ impl Default for OptimalSpec {
     }
 }
 
+/// Revision of the optimal search's definition (actions, goal) in stored keys.
+const SEARCH_REVISION: u32 = 2;
+
 impl OptimalSpec {
-    /// A text naming every setting (part of the study's fingerprint and of cache keys).
+    /// A text naming every setting (part of the study's fingerprint and of cache keys), and
+    /// the search's revision, so that a store resumed after the search changed (v2: the
+    /// paper's boundary with walls) recomputes its optimal paths.
     pub fn fingerprint(&self) -> String {
         format!(
-            "cell={} cluster={} w={} nodes={} mem={}",
+            "search={SEARCH_REVISION} cell={} cluster={} w={} nodes={} mem={}",
             self.cell_size,
             self.min_cluster.map_or("off".into(), |k| k.to_string()),
             self.weight,

@@ -3,8 +3,10 @@
 //! shortest sequence of sensing positions that perceives the free cells.
 //!
 //! What is set up once here: the cells reachable from the start (8-connected, no corner
-//! squeezing), the *target* cells E_f the goal test counts, and each position's visible
-//! targets.
+//! squeezing), the *target* cells E_f the goal test counts, each position's visible
+//! targets, and the *marks*: the targets, then every other cell next to a reachable cell
+//! (walls, free cells nothing perceives), whose perception the paper's boundary test needs
+//! (`actions`).
 //!
 //! Deviation: the paper's E_f is every free cell of the map. Here E_f is the free cells some
 //! reachable position can perceive — with `los`, exactly the reachable free cells (a clear
