@@ -1,11 +1,15 @@
 //! A* over exploration states (Quattrini Li, Amigoni & Basilico 2012, "Solution of the
 //! Search Problem"), with weighted A*, limits and bounds.
 //!
-//! A state is (robot cell, set of perceived targets); the set is a bitset and the state is
-//! hashed with Zobrist keys (one random 64-bit key per target and per cell, XOR-ed), so a
-//! child's key costs one XOR per newly perceived target. Duplicates are confirmed by
-//! comparing the bitsets, and a duplicate reached more cheaply is re-opened, so the search
-//! stays optimal with admissible but inconsistent heuristics.
+//! A state is (robot cell, set of perceived marks: free targets and walls next to reachable
+//! cells). The set is not stored: it is the union of what the positions along the state's
+//! parent chain perceive, rebuilt as a bitset when the state is expanded, so a state costs
+//! about 100 bytes whatever the map size. States are identified by two independent Zobrist
+//! keys (two random 64-bit keys per mark and per cell, XOR-ed; a child's keys cost two
+//! XORs per newly perceived mark): 128 bits, so the chance that two of 10⁹ distinct states
+//! are taken for one is below 10⁻²⁰. A duplicate reached more cheaply is re-opened (its
+//! parent chain changes, its set does not), so the search stays optimal with admissible
+//! but inconsistent heuristics.
 //!
 //! Beyond the paper:
 //! - An incumbent from the start: the better of two greedy completions (always to the
@@ -17,8 +21,8 @@
 //! - Weighted A* (f = g + w·h): the returned length is ≤ w × optimal, and the reported lower
 //!   bound is max(U / w, min over open states of g + h).
 //! - Limits on expanded nodes, bytes of stored states and wall time: the search stops
-//!   cleanly with the best lower and upper bounds. Stored bytes (nodes, bitsets, queue,
-//!   hash table, caches) are counted before every allocation that grows, so a budget is a
+//!   cleanly with the best lower and upper bounds. Stored bytes (nodes, queue, hash
+//!   table, caches) are counted before every allocation that grows, so a budget is a
 //!   hard cap on the search's own memory, never an OOM kill.
 //! - Actions that perceive no new target are skipped: from (q, M) a move to p that adds at
 //!   most walls to M is dominated by moving on directly (triangle inequality inside the
@@ -224,6 +228,8 @@ struct Node {
     g: f64,
     h: f64,
     key: u64,
+    /// The second, independent Zobrist key.
+    check: u64,
     count: u32,
     next_same: u32,
     closed: bool,
@@ -280,17 +286,15 @@ impl VisCache {
 struct Engine<'p> {
     problem: &'p Problem,
     cfg: Config,
-    words: usize,
     need: usize,
     heur: Heuristic,
     vis: VisCache,
     /// Shortest paths inside the perceived free space (the step costs).
     reach: Reachability,
     scratch: ActionScratch,
-    zt: Vec<u64>,
-    zpos: Vec<u64>,
+    zt: Vec<[u64; 2]>,
+    zpos: Vec<[u64; 2]>,
     nodes: Vec<Node>,
-    bits: Vec<u64>,
     table: HashMap<u64, u32, BuildHasherDefault<KeyHasher>>,
     open: BinaryHeap<Entry>,
     cur: Vec<u64>,
@@ -312,8 +316,12 @@ impl<'p> Engine<'p> {
         let nm = problem.mark_count();
         let words = nm.div_ceil(64).max(1);
         let mut seed = 0x0005_EED0_F0B7_14A1_u64;
-        let zt = (0..nm).map(|_| splitmix(&mut seed)).collect();
-        let zpos = (0..n).map(|_| splitmix(&mut seed)).collect();
+        let zt = (0..nm)
+            .map(|_| [splitmix(&mut seed), splitmix(&mut seed)])
+            .collect();
+        let zpos = (0..n)
+            .map(|_| [splitmix(&mut seed), splitmix(&mut seed)])
+            .collect();
         let heur = Heuristic::new(
             problem,
             cfg.heuristic,
@@ -324,7 +332,6 @@ impl<'p> Engine<'p> {
         Self {
             problem,
             cfg: cfg.clone(),
-            words,
             need: problem.needed(cfg.goal),
             heur,
             vis: VisCache::new(n),
@@ -333,7 +340,6 @@ impl<'p> Engine<'p> {
             zt,
             zpos,
             nodes: Vec::new(),
-            bits: Vec::new(),
             table: HashMap::default(),
             open: BinaryHeap::new(),
             cur: vec![0; words],
@@ -344,21 +350,15 @@ impl<'p> Engine<'p> {
             inc_positions: Vec::new(),
             stats: Stats::default(),
             // Dijkstra (≈ 41 B/cell), action marks, Zobrist keys, the problem's arrays.
-            fixed_bytes: n * (41 + 4 + 8 + 12) + nm * 12,
+            fixed_bytes: n * (41 + 4 + 16 + 12) + nm * 20,
             nt: nt as u32,
         }
     }
 
     /// Bytes counted against the budget if `extra_nodes` more states were stored.
     fn bytes_with(&self, extra_nodes: usize) -> usize {
-        let per_node = std::mem::size_of::<Node>() + self.words * 8 + 32 + 16;
         let nodes = self.nodes.capacity().max(self.nodes.len() + extra_nodes);
-        let bits = self
-            .bits
-            .capacity()
-            .max((self.nodes.len() + extra_nodes) * self.words);
-        nodes * (per_node - self.words * 8)
-            + bits * 8
+        nodes * std::mem::size_of::<Node>()
             + self.open.capacity() * 32
             + self.table.capacity() * 16
             + self.heur.bytes()
@@ -370,7 +370,6 @@ impl<'p> Engine<'p> {
     fn reserve_one(&mut self) -> bool {
         let len = self.nodes.len();
         if len < self.nodes.capacity()
-            && (len + 1) * self.words <= self.bits.capacity()
             && self.open.len() < self.open.capacity()
             && self.table.len() < self.table.capacity()
         {
@@ -386,9 +385,6 @@ impl<'p> Engine<'p> {
         if len == self.nodes.capacity() {
             self.nodes.reserve_exact(grow);
         }
-        if (len + 1) * self.words > self.bits.capacity() {
-            self.bits.reserve_exact(grow * self.words);
-        }
         if self.open.len() == self.open.capacity() {
             self.open.reserve_exact(grow);
         }
@@ -399,9 +395,19 @@ impl<'p> Engine<'p> {
         true
     }
 
-    fn node_bits(&self, id: u32) -> &[u64] {
-        let s = id as usize * self.words;
-        &self.bits[s..s + self.words]
+    /// Rebuild the perceived set of state `id` into `self.cur`: the union of what the
+    /// positions along its parent chain perceive.
+    fn load_state(&mut self, id: u32) {
+        self.cur.fill(0);
+        let mut j = id;
+        while j != NONE {
+            let pos = self.nodes[j as usize].pos;
+            let (o, l) = self.vis.get(self.problem, pos);
+            for &t in &self.vis.data[o..o + l] {
+                self.cur[(t >> 6) as usize] |= 1 << (t & 63);
+            }
+            j = self.nodes[j as usize].parent;
+        }
     }
 
     fn positions_of(&self, mut id: u32) -> Vec<u32> {
@@ -514,7 +520,8 @@ impl<'p> Engine<'p> {
     /// stored state `id`.
     fn improve_from(&mut self, id: u32) -> u64 {
         let n = self.nodes[id as usize];
-        let bits = self.node_bits(id).to_vec();
+        self.load_state(id);
+        let bits = self.cur.clone();
         let mut steps = 0;
         for rate in [false, true] {
             let mut tail = Vec::new();
@@ -537,13 +544,14 @@ impl<'p> Engine<'p> {
         let start = problem.start();
         // Root.
         let (o, l) = self.vis.get(problem, start);
-        let mut key = self.zpos[start as usize];
+        let [mut key, mut check] = self.zpos[start as usize];
         let mut count = 0usize;
         for k in o..o + l {
             let t = self.vis.data[k];
             if !has(&self.cur, t) {
                 self.cur[(t >> 6) as usize] |= 1 << (t & 63);
-                key ^= self.zt[t as usize];
+                key ^= self.zt[t as usize][0];
+                check ^= self.zt[t as usize][1];
                 count += usize::from(t < self.nt);
             }
         }
@@ -566,11 +574,11 @@ impl<'p> Engine<'p> {
             g: 0.0,
             h: h0,
             key,
+            check,
             count: count as u32,
             next_same: NONE,
             closed: false,
         });
-        self.bits.extend_from_slice(&cur);
         self.table.insert(key, 0);
         self.open.push(entry(w * h0, 0.0, 0));
         self.stats.stored = 1;
@@ -663,8 +671,7 @@ impl<'p> Engine<'p> {
     fn expand(&mut self, id: u32) -> bool {
         let problem = self.problem;
         let node = self.nodes[id as usize];
-        let s = id as usize * self.words;
-        self.cur.copy_from_slice(&self.bits[s..s + self.words]);
+        self.load_state(id);
         self.reach
             .compute(node.pos as usize, Self::passable(problem, &self.cur));
         let mut next = Some(self.cfg.actions);
@@ -741,10 +748,13 @@ impl<'p> Engine<'p> {
                 continue;
             }
             self.child.copy_from_slice(&self.cur);
-            let mut key2 = node.key ^ self.zpos[node.pos as usize] ^ self.zpos[a as usize];
+            let (zq, za) = (self.zpos[node.pos as usize], self.zpos[a as usize]);
+            let mut key2 = node.key ^ zq[0] ^ za[0];
+            let mut check2 = node.check ^ zq[1] ^ za[1];
             for &t in &self.fresh {
                 self.child[(t >> 6) as usize] |= 1 << (t & 63);
-                key2 ^= self.zt[t as usize];
+                key2 ^= self.zt[t as usize][0];
+                check2 ^= self.zt[t as usize][1];
             }
             let h = self.heur.eval(problem, a, &self.child, count2);
             if g2 + h >= self.inc_cost - EPS {
@@ -757,7 +767,7 @@ impl<'p> Engine<'p> {
             let mut j = head;
             while j != NONE {
                 let n = &self.nodes[j as usize];
-                if n.pos == a && n.key == key2 && self.node_bits(j) == &self.child[..] {
+                if n.pos == a && n.key == key2 && n.check == check2 {
                     dup = j;
                     break;
                 }
@@ -788,11 +798,11 @@ impl<'p> Engine<'p> {
                 g: g2,
                 h,
                 key: key2,
+                check: check2,
                 count: count2 as u32,
                 next_same: head,
                 closed: false,
             });
-            self.bits.extend_from_slice(&self.child);
             self.table.insert(key2, nid);
             self.open.push(entry(g2 + w * h, g2, nid));
             self.stats.stored += 1;
