@@ -406,26 +406,38 @@ resolution = 0.25
 const TWO_ROOMS: &str = "type octile\nheight 7\nwidth 11\nmap\n@@@@@@@@@@@\n@...@.....@\n\
 @...@.....@\n@.........@\n@...@.....@\n@...@.....@\n@@@@@@@@@@@\n";
 
-#[test]
-fn optimal_on_a_map_file_proves_the_optimum_and_scores_online_strategies() {
-    let dir = tempfile::tempdir().unwrap();
-    let map = dir.path().join("two.map");
+/// Write the two-room map into `dir` and return the `optimal` arguments that pose it from
+/// (1, 1) with `los:r=3c`, followed by `extra`.
+fn optimal_on_two_rooms(dir: &Path, extra: &[&str]) -> Vec<String> {
+    let map = dir.join("two.map");
     std::fs::write(&map, TWO_ROOMS).unwrap();
-    let args = [
+    let map = map.to_str().unwrap();
+    let base = [
         "optimal",
         "--map",
-        map.to_str().unwrap(),
+        map,
         "--resolution",
         "1",
         "--start",
         "1,1",
         "--sensor",
         "los:r=3c",
-        "--all-cells",
-        "--compare",
-        "cf,yamauchi",
-        "--json",
     ];
+    base.iter().chain(extra).map(|a| a.to_string()).collect()
+}
+
+fn strs(args: &[String]) -> Vec<&str> {
+    args.iter().map(String::as_str).collect()
+}
+
+#[test]
+fn optimal_on_a_map_file_proves_the_optimum_and_scores_online_strategies() {
+    let dir = tempfile::tempdir().unwrap();
+    let args = optimal_on_two_rooms(
+        dir.path(),
+        &["--all-cells", "--compare", "cf,yamauchi", "--json"],
+    );
+    let args = strs(&args);
     let v: serde_json::Value = serde_json::from_str(&ok(&args)).unwrap();
     assert_eq!(v["optimal"], true, "{v}");
     assert_eq!(v["targets"], 41);
@@ -449,22 +461,10 @@ fn optimal_on_a_map_file_proves_the_optimum_and_scores_online_strategies() {
 #[test]
 fn optimal_warns_when_coarsening_closes_the_doors() {
     let dir = tempfile::tempdir().unwrap();
-    let map = dir.path().join("two.map");
-    std::fs::write(&map, TWO_ROOMS).unwrap();
-    let out = frontier(&[
-        "optimal",
-        "--map",
-        map.to_str().unwrap(),
-        "--resolution",
-        "1",
-        "--start",
-        "1,1",
-        "--sensor",
-        "los:r=3c",
-        "--cell-size",
-        "2",
-        "--json",
-    ]);
+    let out = frontier(&strs(&optimal_on_two_rooms(
+        dir.path(),
+        &["--cell-size", "2", "--json"],
+    )));
     assert!(out.status.success());
     let e = String::from_utf8(out.stderr).unwrap();
     assert!(
@@ -474,17 +474,7 @@ fn optimal_warns_when_coarsening_closes_the_doors() {
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert!(v["coarse_kept_area"].as_f64().unwrap() < 0.5, "{v}");
     // The same map at full resolution keeps everything and does not warn.
-    let out = frontier(&[
-        "optimal",
-        "--map",
-        map.to_str().unwrap(),
-        "--resolution",
-        "1",
-        "--start",
-        "1,1",
-        "--sensor",
-        "los:r=3c",
-    ]);
+    let out = frontier(&strs(&optimal_on_two_rooms(dir.path(), &[])));
     assert!(out.status.success());
     assert!(!String::from_utf8(out.stderr).unwrap().contains("warning"));
 }

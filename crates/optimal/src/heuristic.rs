@@ -112,6 +112,12 @@ pub(crate) fn has(bits: &[u64], t: u32) -> bool {
     bits[(t >> 6) as usize] >> (t & 63) & 1 == 1
 }
 
+/// Add target (or mark) `t` to the bitset.
+#[inline]
+pub(crate) fn set(bits: &mut [u64], t: u32) {
+    bits[(t >> 6) as usize] |= 1 << (t & 63);
+}
+
 /// Path cost to cell `i` in the last search, `∞` if it was not reached.
 #[inline]
 pub(crate) fn dist(reach: &Reachability, i: usize) -> f64 {
@@ -179,7 +185,8 @@ pub(crate) struct Heuristic {
 /// Entries of the MST cache before it is cleared (≈ 40 bytes each).
 const MST_CACHE_ENTRIES: usize = 1 << 20;
 
-/// Fx-style multiply-rotate hasher for the MST cache's integer keys.
+/// Fx-style multiply-rotate hasher for integer keys (the MST cache, the search's table of
+/// Zobrist keys).
 #[derive(Default)]
 pub(crate) struct MixHasher(u64);
 

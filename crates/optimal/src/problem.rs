@@ -88,10 +88,9 @@ pub struct Problem {
     sensor: Built,
     reach: Vec<bool>,
     reach_count: usize,
-    tidx: Vec<u32>,
     targets: Vec<u32>,
-    /// Per cell: its mark index (a target's index, or |E_f| + k for the k-th other cell
-    /// next to a reachable cell), or [`NOT_TARGET`].
+    /// Per cell: its mark index (a target's index below |E_f|, or |E_f| + k for the k-th
+    /// other cell next to a reachable cell), or [`NOT_TARGET`].
     midx: Vec<u32>,
     marks: usize,
     /// Per reachable cell: the mark indices of its 8 neighbours, then [`NOT_TARGET`]s.
@@ -149,12 +148,12 @@ impl Problem {
                     .collect()
             }
         };
-        let mut tidx = vec![NOT_TARGET; w * h];
+        let mut midx = vec![NOT_TARGET; w * h];
         let mut targets = Vec::new();
         let mut unperceivable = 0;
         for i in 0..w * h {
             if perceivable[i] {
-                tidx[i] = targets.len() as u32;
+                midx[i] = targets.len() as u32;
                 targets.push(i as u32);
             } else if data[i].is_free() {
                 unperceivable += 1;
@@ -162,7 +161,6 @@ impl Problem {
         }
         // Marks: the targets, then every other cell next to a reachable cell (walls, free
         // cells no position perceives), so the boundary test sees the paper's "unknown".
-        let mut midx = tidx.clone();
         let mut marks = targets.len();
         for (i, m) in midx.iter_mut().enumerate() {
             if *m == NOT_TARGET && cells.neighbours8(i).any(|j| reach[j]) {
@@ -187,7 +185,6 @@ impl Problem {
             sensor,
             reach,
             reach_count,
-            tidx,
             targets,
             midx,
             marks,
@@ -238,7 +235,12 @@ impl Problem {
     /// Target index of flat cell `i`, or [`NOT_TARGET`].
     #[inline]
     pub fn target_index(&self, i: usize) -> u32 {
-        self.tidx[i]
+        let m = self.midx[i];
+        if (m as usize) < self.targets.len() {
+            m
+        } else {
+            NOT_TARGET
+        }
     }
 
     /// Flat cells of the targets E_f, by target index (row-major order).
@@ -262,28 +264,29 @@ impl Problem {
     /// Append to `out` the target indices perceived from flat cell `pos` (each once);
     /// `obs` is scratch for the footprint scan.
     pub fn seen_targets(&self, pos: u32, obs: &mut Observation, out: &mut Vec<u32>) {
-        self.seen(&self.tidx, pos, obs, out);
+        self.seen(self.targets.len() as u32, pos, obs, out);
     }
 
     /// Append to `out` the mark indices perceived from flat cell `pos` (each once).
     pub(crate) fn seen_marks(&self, pos: u32, obs: &mut Observation, out: &mut Vec<u32>) {
-        self.seen(&self.midx, pos, obs, out);
+        self.seen(NOT_TARGET, pos, obs, out);
     }
 
-    fn seen(&self, index: &[u32], pos: u32, obs: &mut Observation, out: &mut Vec<u32>) {
+    /// Append to `out` the mark indices below `below` perceived from flat cell `pos`.
+    fn seen(&self, below: u32, pos: u32, obs: &mut Observation, out: &mut Vec<u32>) {
         let origin = self.cells.cell(pos as usize);
         match &self.sensor {
             Built::Los(s) => s.for_each_seen(&self.cells, origin, |i, _| {
-                let t = index[i as usize];
-                if t != NOT_TARGET {
+                let t = self.midx[i as usize];
+                if t < below {
                     out.push(t);
                 }
             }),
             Built::Footprint(s) => {
                 s.scan(&self.cells, Pose::new(origin, 0.0), obs);
                 for &(i, _) in &obs.cells {
-                    let t = index[i as usize];
-                    if t != NOT_TARGET {
+                    let t = self.midx[i as usize];
+                    if t < below {
                         out.push(t);
                     }
                 }

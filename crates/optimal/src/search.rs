@@ -30,7 +30,7 @@
 
 use std::cmp::Reverse;
 use std::collections::{BinaryHeap, HashMap};
-use std::hash::{BuildHasherDefault, Hasher};
+use std::hash::BuildHasherDefault;
 use std::time::{Duration, Instant};
 
 use grid::Cell;
@@ -38,7 +38,7 @@ use sense::Observation;
 
 use crate::actions::{ActionScratch, ActionSet, candidates};
 use crate::error::OptimalError;
-use crate::heuristic::{Heuristic, HeuristicKind, dist, has};
+use crate::heuristic::{Heuristic, HeuristicKind, MixHasher, dist, has, set};
 use crate::problem::Problem;
 use explore::plan::Reachability;
 
@@ -192,24 +192,6 @@ pub struct Outcome {
     pub message: String,
 }
 
-/// Identity hasher for Zobrist keys (already uniformly random).
-#[derive(Default)]
-struct KeyHasher(u64);
-
-impl Hasher for KeyHasher {
-    fn finish(&self) -> u64 {
-        self.0
-    }
-    fn write(&mut self, bytes: &[u8]) {
-        for &b in bytes {
-            self.0 = (self.0 << 8 | u64::from(b)).wrapping_mul(0x9E37_79B9_7F4A_7C15);
-        }
-    }
-    fn write_u64(&mut self, v: u64) {
-        self.0 = v;
-    }
-}
-
 /// splitmix64: the fixed stream of Zobrist keys.
 fn splitmix(state: &mut u64) -> u64 {
     *state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
@@ -277,6 +259,12 @@ impl VisCache {
         (self.off[p] as usize, self.len[p] as usize)
     }
 
+    /// Whether position `pos` perceives a target (a mark below `nt`) not in `bits`.
+    fn perceives_new(&mut self, problem: &Problem, pos: u32, bits: &[u64], nt: u32) -> bool {
+        let (o, l) = self.get(problem, pos);
+        self.data[o..o + l].iter().any(|&t| t < nt && !has(bits, t))
+    }
+
     fn bytes(&self) -> usize {
         self.off.len() * 8 + self.data.capacity() * 4
     }
@@ -295,7 +283,7 @@ struct Engine<'p> {
     zt: Vec<[u64; 2]>,
     zpos: Vec<[u64; 2]>,
     nodes: Vec<Node>,
-    table: HashMap<u64, u32, BuildHasherDefault<KeyHasher>>,
+    table: HashMap<u64, u32, BuildHasherDefault<MixHasher>>,
     open: BinaryHeap<Entry>,
     cur: Vec<u64>,
     child: Vec<u64>,
@@ -404,7 +392,7 @@ impl<'p> Engine<'p> {
             let pos = self.nodes[j as usize].pos;
             let (o, l) = self.vis.get(self.problem, pos);
             for &t in &self.vis.data[o..o + l] {
-                self.cur[(t >> 6) as usize] |= 1 << (t & 63);
+                set(&mut self.cur, t);
             }
             j = self.nodes[j as usize].parent;
         }
@@ -448,24 +436,28 @@ impl<'p> Engine<'p> {
                 .compute(pos as usize, Self::passable(self.problem, &cur));
             let mut best = None;
             let mut next = Some(self.cfg.actions);
-            while let Some(set) = next {
+            while let Some(actions) = next {
                 candidates(
                     self.problem,
                     &cur,
                     self.reach.settled(),
                     pos,
-                    set,
+                    actions,
                     &mut self.scratch,
                     &mut self.cands,
                 );
                 best = self.greedy_choice(&cur, rate);
-                next = if best.is_some() { None } else { set.wider() };
+                next = if best.is_some() {
+                    None
+                } else {
+                    actions.wider()
+                };
             }
             let (d, a) = best?;
             let (o, l) = self.vis.get(self.problem, a);
             for &t in &self.vis.data[o..o + l] {
                 if !has(&cur, t) {
-                    cur[(t >> 6) as usize] |= 1 << (t & 63);
+                    set(&mut cur, t);
                     count += usize::from(t < self.nt);
                 }
             }
@@ -505,11 +497,7 @@ impl<'p> Engine<'p> {
             if best.is_some_and(|(bd, bi)| (d, a) >= (bd, bi)) {
                 continue;
             }
-            let (o, l) = self.vis.get(self.problem, a);
-            if self.vis.data[o..o + l]
-                .iter()
-                .any(|&t| t < nt && !has(cur, t))
-            {
+            if self.vis.perceives_new(self.problem, a, cur, nt) {
                 best = Some((d, a));
             }
         }
@@ -549,7 +537,7 @@ impl<'p> Engine<'p> {
         for k in o..o + l {
             let t = self.vis.data[k];
             if !has(&self.cur, t) {
-                self.cur[(t >> 6) as usize] |= 1 << (t & 63);
+                set(&mut self.cur, t);
                 key ^= self.zt[t as usize][0];
                 check ^= self.zt[t as usize][1];
                 count += usize::from(t < self.nt);
@@ -675,13 +663,13 @@ impl<'p> Engine<'p> {
         self.reach
             .compute(node.pos as usize, Self::passable(problem, &self.cur));
         let mut next = Some(self.cfg.actions);
-        while let Some(set) = next {
+        while let Some(actions) = next {
             candidates(
                 problem,
                 &self.cur,
                 self.reach.settled(),
                 node.pos,
-                set,
+                actions,
                 &mut self.scratch,
                 &mut self.cands,
             );
@@ -689,13 +677,8 @@ impl<'p> Engine<'p> {
             // deviation in `actions`).
             next = match self.children(id, node) {
                 None => return false,
-                Some(useful) => {
-                    if useful {
-                        None
-                    } else {
-                        set.wider()
-                    }
-                }
+                Some(true) => None,
+                Some(false) => actions.wider(),
             };
         }
         self.stats.bytes = self.stats.bytes.max(self.bytes_with(0));
@@ -715,12 +698,7 @@ impl<'p> Engine<'p> {
             let g2 = node.g + dist(&self.reach, a as usize);
             if g2 >= self.inc_cost - EPS {
                 self.stats.pruned += 1;
-                if !useful {
-                    let (o, l) = self.vis.get(problem, a);
-                    useful = self.vis.data[o..o + l]
-                        .iter()
-                        .any(|&t| t < nt && !has(&self.cur, t));
-                }
+                useful = useful || self.vis.perceives_new(problem, a, &self.cur, nt);
                 continue;
             }
             let (o, l) = self.vis.get(problem, a);
@@ -752,7 +730,7 @@ impl<'p> Engine<'p> {
             let mut key2 = node.key ^ zq[0] ^ za[0];
             let mut check2 = node.check ^ zq[1] ^ za[1];
             for &t in &self.fresh {
-                self.child[(t >> 6) as usize] |= 1 << (t & 63);
+                set(&mut self.child, t);
                 key2 ^= self.zt[t as usize][0];
                 check2 ^= self.zt[t as usize][1];
             }
@@ -913,7 +891,7 @@ pub fn walk(problem: &Problem, positions: &[Cell]) -> Result<Solution, String> {
         problem.seen_targets(pi as u32, &mut obs, &mut seen);
         for &t in &seen {
             if !has(&bits, t) {
-                bits[(t >> 6) as usize] |= 1 << (t & 63);
+                set(&mut bits, t);
                 count += 1;
             }
         }
@@ -964,7 +942,7 @@ pub fn heuristic_value(problem: &Problem, cfg: &Config, pos: Cell, perceived: &[
     let mut count = 0;
     for (t, &p) in perceived.iter().enumerate().take(nt) {
         if p {
-            bits[t >> 6] |= 1 << (t & 63);
+            set(&mut bits, t as u32);
             count += 1;
         }
     }
