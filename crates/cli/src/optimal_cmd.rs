@@ -85,7 +85,11 @@ struct Compared {
     length_m: f64,
     coverage: f64,
     reason: &'static str,
+    /// The ratio to the best path found: the competitive ratio when that path is optimal,
+    /// else a lower bound on it.
     ratio: Option<f64>,
+    /// The ratio to the proven lower bound: an upper bound on the competitive ratio.
+    ratio_max: Option<f64>,
 }
 
 fn default_start(map: &grid::GridMap) -> Option<Cell> {
@@ -207,6 +211,7 @@ pub fn run(a: OptimalArgs) -> Result<()> {
             } else {
                 None
             },
+            ratio_max: optimal::competitive_ratio(length_m, out.lower_bound * res),
         });
     }
 
@@ -320,14 +325,20 @@ fn print_summary(
         .map(|&c| co.to_fine(c, fine.0, fine.1).to_string())
         .collect();
     println!("positions (map cells): {}", ps.join(" "));
+    let proven = out.status == optimal::Status::Optimal;
     for c in compared {
+        // Without a proven optimum the ratio is only known to lie between the ratios to
+        // the best path found and to the lower bound.
+        let ratio = match (c.ratio, c.ratio_max) {
+            (Some(r), _) if proven => format!("{r:.3}"),
+            (Some(r), Some(m)) => format!("in [{r:.3}, {m:.3}] (optimum not proven)"),
+            (Some(r), None) => format!("≥ {r:.3} (optimum not proven)"),
+            (None, Some(m)) => format!("≤ {m:.3} (no path found)"),
+            (None, None) => "n/a".into(),
+        };
         println!(
-            "{:<10} length {:.2} m, coverage {:.3} ({}), competitive ratio {}",
-            c.name,
-            c.length_m,
-            c.coverage,
-            c.reason,
-            c.ratio.map_or("n/a".into(), |r| format!("{r:.3}"))
+            "{:<10} length {:.2} m, coverage {:.3} ({}), competitive ratio {ratio}",
+            c.name, c.length_m, c.coverage, c.reason,
         );
     }
 }
@@ -381,6 +392,7 @@ fn to_json(
             "coverage": c.coverage,
             "end": c.reason,
             "competitive_ratio": c.ratio,
+            "competitive_ratio_max": c.ratio_max,
         })).collect::<Vec<_>>(),
     })
 }

@@ -452,10 +452,54 @@ fn optimal_on_a_map_file_proves_the_optimum_and_scores_online_strategies() {
         let ratio = c["competitive_ratio"].as_f64().unwrap();
         assert!(ratio >= 1.0 - 1e-9, "{c}");
         assert!((ratio * length - c["length_m"].as_f64().unwrap()).abs() < 1e-9);
+        assert_eq!(c["competitive_ratio_max"], c["competitive_ratio"], "{c}");
     }
     let again: serde_json::Value = serde_json::from_str(&ok(&args)).unwrap();
     assert_eq!(again["positions"], v["positions"]);
     assert_eq!(again["compare"], v["compare"]);
+}
+
+#[test]
+fn optimal_stopped_early_reports_the_ratio_as_an_interval() {
+    let dir = tempfile::tempdir().unwrap();
+    let args = optimal_on_two_rooms(
+        dir.path(),
+        &[
+            "--all-cells",
+            "--heuristic",
+            "zero",
+            "--max-nodes",
+            "3",
+            "--compare",
+            "cf",
+        ],
+    );
+    let text = ok(&strs(&args));
+    assert!(text.contains("optimal: false"), "{text}");
+    assert!(
+        text.contains("competitive ratio in [") && text.contains("(optimum not proven)"),
+        "{text}"
+    );
+    let mut json_args = args.clone();
+    json_args.push("--json".into());
+    let v: serde_json::Value = serde_json::from_str(&ok(&strs(&json_args))).unwrap();
+    assert_eq!(v["optimal"], false, "{v}");
+    let c = &v["compare"][0];
+    let (lo, hi) = (
+        c["competitive_ratio"].as_f64().unwrap(),
+        c["competitive_ratio_max"].as_f64().unwrap(),
+    );
+    // The ratio to the best path found is at most the ratio to the lower bound.
+    assert!(lo < hi, "{c}");
+    let online = c["length_m"].as_f64().unwrap();
+    assert!(
+        (online / v["lower_bound_m"].as_f64().unwrap() - hi).abs() < 1e-9,
+        "{c}"
+    );
+    assert!(
+        (online / v["upper_bound_m"].as_f64().unwrap() - lo).abs() < 1e-9,
+        "{c}"
+    );
 }
 
 #[test]
