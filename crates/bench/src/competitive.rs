@@ -63,8 +63,9 @@ impl Default for OptimalSpec {
     }
 }
 
-/// Revision of the optimal search's definition (actions, goal) in stored keys.
-const SEARCH_REVISION: u32 = 2;
+/// Revision of the optimal search in stored keys: its definition (actions, goal) and its
+/// heuristic, which decides the bounds reached when a node budget stops it.
+const SEARCH_REVISION: u32 = 3;
 
 impl OptimalSpec {
     /// A text naming every setting (part of the study's fingerprint and of cache keys), and

@@ -31,21 +31,26 @@
 //! be perceived: h = the (s + 1)-th largest b(t) over U. Eq. 2 is kept as
 //! [`HeuristicKind::PaperAsPublished`], flagged inadmissible.
 //!
-//! # `Landmarks`: h = max(Paper, coverage rate, MST)
+//! # `Landmarks`: h = max(Paper, coverage rate, landmark path bound)
 //! The coverage-rate bound (K more targets at most ρ* per unit of path, proof in
-//! [`crate::coverage_rate`]) holds for every G. The MST bound below only for G = 1.
+//! [`crate::coverage_rate`]) holds for every G. The landmark bound below only for G = 1.
 //!
-//! ## The MST bound (G = 1)
-//! Landmarks a_1..a_K are reachable targets chosen by farthest-point sampling with their
-//! full-map distance fields; ρ(a) = max_{p∈V(a)} d(a, p) (computed exactly). Order the
-//! landmarks of U by when the robot first perceives them, from positions p_1, p_2, ... in
-//! path order. Then the remaining cost ≥ d(q, p_1) + Σ d(p_i, p_{i+1}) and, by the triangle
-//! inequality, d(q, p_1) ≥ d(q, a_1) − ρ(a_1), d(p_i, p_{i+1}) ≥ d(a_i, a_{i+1}) − ρ(a_i) −
-//! ρ(a_{i+1}). With edge weights w clipped at 0 this is the weight of a Hamiltonian path
-//! from q through the landmarks of U — a spanning tree, so at least the minimum spanning
-//! tree of {q} ∪ (landmarks in U) under w. Admissible. Far-apart landmarks that no single
-//! position sees together are exactly the ones with positive w. (For G < 1 the robot may
-//! skip any landmark, so the bound is not used there.)
+//! ## The landmark path bound (G = 1)
+//! Landmarks a_1..a_K are reachable targets; V(a) is the set of reachable positions that
+//! see a. Order the landmarks of U by when the robot first perceives them, from positions
+//! p_1 ∈ V(a_1), p_2 ∈ V(a_2), ... in path order. Then the remaining cost
+//! ≥ d(q, p_1) + Σ d(p_i, p_{i+1}) ≥ D(q, V(a_1)) + Σ D(V(a_i), V(a_{i+1})), with D the
+//! shortest distance between two sets (one multi-source field per landmark, from V(a)).
+//! That is the weight of a Hamiltonian path from q through the landmarks of U under the
+//! weights w = D, so at least its Held–Karp bound ([`crate::held_karp`]), itself at least
+//! the minimum spanning tree of {q} ∪ (landmarks in U). Admissible. The weights are set
+//! distances, not a metric, so a landmark whose V touches another's only adds free
+//! bridges: landmarks are chosen by farthest-point sampling in D (the next is the target
+//! whose viewpoints are farthest from the start's cell and from every chosen landmark's
+//! viewpoints) until every target's viewpoints touch a landmark's. On maps too large to
+//! keep every V(t), the sampling uses the distance to the target itself and stops within
+//! the sensor's reach. (For G < 1 the robot may skip any landmark, so the bound is not
+//! used there.)
 
 use std::collections::HashMap;
 use std::hash::{BuildHasherDefault, Hasher};
@@ -54,6 +59,7 @@ use explore::plan::Reachability;
 use grid::Occ;
 
 use crate::coverage_rate::CoverageRate;
+use crate::held_karp::PathBound;
 use crate::problem::{NOT_TARGET, Problem, SensorModel};
 
 /// Which lower bound guides the search.
@@ -66,8 +72,8 @@ pub enum HeuristicKind {
     /// The paper's Eq. 1/2 exactly as printed (path distance − r√2, × max(0, G − |M|/|E_f|));
     /// NOT admissible with the footprint sensor or G < 1.
     PaperAsPublished,
-    /// max(Paper, coverage rate, minimum spanning tree over landmarks); the MST part only
-    /// for G = 1.
+    /// max(Paper, coverage rate, Held–Karp bound on a path through landmarks); the
+    /// landmark part only for G = 1.
     Landmarks,
 }
 
@@ -172,20 +178,23 @@ pub(crate) struct Heuristic {
     rate: CoverageRate,
     // Landmarks.
     lm_t: Vec<u32>,
-    lm_rho: Vec<f64>,
     lm_field: Vec<f64>,
     lm_w: Vec<f64>,
     prim_key: Vec<f64>,
     prim_idx: Vec<usize>,
-    /// MST values by (unperceived-landmark mask, position), with at most 64 landmarks:
-    /// sibling states share most landmark sets, and Prim's O(K²) dominated the search.
-    mst_cache: HashMap<(u64, u32), f64, BuildHasherDefault<MixHasher>>,
+    /// The Held–Karp bound's scratch and weight matrix.
+    hk: PathBound,
+    hk_w: Vec<f64>,
+    /// Landmark path bounds by (unperceived-landmark mask, position), with at most 64
+    /// landmarks: sibling states share most landmark sets, and the bound costs O(K²) per
+    /// subgradient step.
+    path_cache: HashMap<(u64, u32), f64, BuildHasherDefault<MixHasher>>,
 }
 
-/// Entries of the MST cache before it is cleared (≈ 40 bytes each).
-const MST_CACHE_ENTRIES: usize = 1 << 20;
+/// Entries of the landmark path cache before it is cleared (≈ 40 bytes each).
+const PATH_CACHE_ENTRIES: usize = 1 << 20;
 
-/// Fx-style multiply-rotate hasher for integer keys (the MST cache, the search's table of
+/// Fx-style multiply-rotate hasher for integer keys (the landmark path cache, the search's table of
 /// Zobrist keys).
 #[derive(Default)]
 pub(crate) struct MixHasher(u64);
@@ -238,12 +247,13 @@ impl Heuristic {
             dij: Reachability::new(cells.width(), cells.height()),
             rate: CoverageRate::new(model),
             lm_t: Vec::new(),
-            lm_rho: Vec::new(),
             lm_field: Vec::new(),
             lm_w: Vec::new(),
             prim_key: Vec::new(),
             prim_idx: Vec::new(),
-            mst_cache: HashMap::default(),
+            hk: PathBound::default(),
+            hk_w: Vec::new(),
+            path_cache: HashMap::default(),
         };
         if kind == HeuristicKind::Landmarks && h.skip == 0 && landmarks > 0 {
             h.choose_landmarks(problem, landmarks);
@@ -256,7 +266,7 @@ impl Heuristic {
         self.orders.capacity() * 16
             + self.order_slot.len() * 24
             + self.lm_field.capacity() * 8
-            + self.mst_cache.capacity() * 40
+            + self.path_cache.capacity() * 40
     }
 
     /// Number of landmarks in use.
@@ -264,11 +274,11 @@ impl Heuristic {
         self.lm_t.len()
     }
 
+    /// Choose up to `k` landmarks and compute their viewpoint fields and edge weights.
     fn choose_landmarks(&mut self, problem: &Problem, k: usize) {
         let cells = problem.cells();
         let n = cells.len();
         let data = cells.data();
-        let free = |i: usize| data[i] == Occ::Free;
         let reach_targets: Vec<u32> = problem
             .targets()
             .iter()
@@ -278,53 +288,55 @@ impl Heuristic {
         if reach_targets.is_empty() {
             return;
         }
-        let mut mind = vec![f64::INFINITY; n];
-        // Seed: the start's field, so the first landmark is the farthest target from it.
-        self.dij.compute(problem.start() as usize, free);
-        for &i in &reach_targets {
-            mind[i as usize] = dist(&self.dij, i as usize);
-        }
-        let mut obs = sense::Observation::new();
-        let mut seen = Vec::new();
-        while self.lm_t.len() < k {
-            let mut best = None;
-            for &i in &reach_targets {
-                let d = mind[i as usize];
-                if best.is_none_or(|(bd, _)| d > bd) {
-                    best = Some((d, i));
-                }
-            }
-            let Some((d, a)) = best else { break };
-            if d <= self.c {
+        let views = Views::new(problem, &reach_targets);
+        // score[j]: how far target reach_targets[j] is from the start and the landmarks
+        // chosen so far (module doc); the next landmark is the farthest.
+        self.dij
+            .compute(problem.start() as usize, |i| data[i] == Occ::Free);
+        let mut field: Vec<f64> = (0..n).map(|i| dist(&self.dij, i)).collect();
+        let mut score = vec![f64::INFINITY; reach_targets.len()];
+        let mut chosen: Vec<usize> = Vec::new();
+        loop {
+            views.lower(&reach_targets, &field, &mut score);
+            if chosen.len() >= k {
                 break;
             }
-            self.dij.compute(a as usize, free);
-            let base = self.lm_field.len();
-            self.lm_field.extend((0..n).map(|i| dist(&self.dij, i)));
-            for &i in &reach_targets {
-                let m = &mut mind[i as usize];
-                *m = m.min(self.lm_field[base + i as usize]);
-            }
-            // ρ(a) = max over reachable positions that see a (symmetric sensors) of d(a, p).
-            seen.clear();
-            problem.seen_targets(a, &mut obs, &mut seen);
-            let mut rho: f64 = 0.0;
-            for &t in &seen {
-                let p = problem.targets()[t as usize] as usize;
-                if problem.reachable(p) {
-                    rho = rho.max(self.lm_field[base + p]);
+            let mut best: Option<(f64, usize)> = None;
+            for (j, &d) in score.iter().enumerate() {
+                if best.is_none_or(|(bd, _)| d > bd) {
+                    best = Some((d, j));
                 }
             }
+            let Some((d, j)) = best else { break };
+            if d <= views.spacing(self.c) {
+                break;
+            }
+            let a = reach_targets[j];
+            let va = views.of(problem, a);
+            set_field(cells, &va, &mut field);
+            self.lm_field.extend_from_slice(&field);
             self.lm_t.push(problem.target_index(a as usize));
-            self.lm_rho.push(rho);
+            chosen.push(j);
         }
         let kk = self.lm_t.len();
         self.lm_w = vec![0.0; kk * kk];
+        for (j, &cj) in chosen.iter().enumerate() {
+            // D(V(a_i), V(a_j)): the field of V(a_i) at the nearest viewpoint of a_j.
+            let vj = views.of(problem, reach_targets[cj]);
+            for i in 0..kk {
+                let f = &self.lm_field[i * n..(i + 1) * n];
+                self.lm_w[i * kk + j] = vj
+                    .iter()
+                    .map(|&p| f[p as usize])
+                    .fold(f64::INFINITY, f64::min);
+            }
+        }
+        // Symmetric up to rounding; keep the smaller so the bound stays valid.
         for i in 0..kk {
-            for j in 0..kk {
-                let bj = problem.targets()[self.lm_t[j] as usize] as usize;
-                let d = self.lm_field[i * n + bj];
-                self.lm_w[i * kk + j] = (d - self.lm_rho[i] - self.lm_rho[j]).max(0.0);
+            for j in i + 1..kk {
+                let m = self.lm_w[i * kk + j].min(self.lm_w[j * kk + i]);
+                self.lm_w[i * kk + j] = m;
+                self.lm_w[j * kk + i] = m;
             }
         }
     }
@@ -421,14 +433,14 @@ impl Heuristic {
         if self.lm_t.is_empty() {
             return paper.max(rate);
         }
-        paper.max(rate).max(self.mst(problem, pos, bits))
+        paper.max(rate).max(self.landmark_path(problem, pos, bits))
     }
 
-    /// Prim's MST over {pos} ∪ (landmarks not in `bits`).
-    fn mst(&mut self, problem: &Problem, pos: u32, bits: &[u64]) -> f64 {
+    /// The landmark path bound from `pos` (cached).
+    fn landmark_path(&mut self, problem: &Problem, pos: u32, bits: &[u64]) -> f64 {
         let kk = self.lm_t.len();
         if kk > 64 {
-            return self.prim(problem, pos, bits);
+            return self.path_bound(problem, pos, bits);
         }
         let mut mask = 0u64;
         for (a, &t) in self.lm_t.iter().enumerate() {
@@ -436,19 +448,20 @@ impl Heuristic {
                 mask |= 1 << a;
             }
         }
-        if let Some(&v) = self.mst_cache.get(&(mask, pos)) {
+        if let Some(&v) = self.path_cache.get(&(mask, pos)) {
             return v;
         }
-        let v = self.prim(problem, pos, bits);
-        if self.mst_cache.len() >= MST_CACHE_ENTRIES {
-            self.mst_cache.clear();
+        let v = self.path_bound(problem, pos, bits);
+        if self.path_cache.len() >= PATH_CACHE_ENTRIES {
+            self.path_cache.clear();
         }
-        self.mst_cache.insert((mask, pos), v);
+        self.path_cache.insert((mask, pos), v);
         v
     }
 
-    /// Prim's MST over {pos} ∪ (landmarks not in `bits`), computed.
-    fn prim(&mut self, problem: &Problem, pos: u32, bits: &[u64]) -> f64 {
+    /// The Held–Karp bound on a path from `pos` through the landmarks not in `bits`
+    /// (at least their MST), computed.
+    fn path_bound(&mut self, problem: &Problem, pos: u32, bits: &[u64]) -> f64 {
         let n = problem.cells().len();
         let kk = self.lm_t.len();
         self.prim_idx.clear();
@@ -456,31 +469,140 @@ impl Heuristic {
         for a in 0..kk {
             if !has(bits, self.lm_t[a]) {
                 self.prim_idx.push(a);
-                let d = self.lm_field[a * n + pos as usize];
-                self.prim_key.push((d - self.lm_rho[a]).max(0.0));
+                self.prim_key.push(self.lm_field[a * n + pos as usize]);
             }
         }
-        let mut total = 0.0;
-        let mut m = self.prim_idx.len();
-        while m > 0 {
-            let mut bi = 0;
-            for i in 1..m {
-                if self.prim_key[i] < self.prim_key[bi] {
-                    bi = i;
-                }
+        // Node 0 is the robot, node i + 1 the i-th unperceived landmark.
+        let m = self.prim_idx.len() + 1;
+        self.hk_w.clear();
+        self.hk_w.resize(m * m, 0.0);
+        for i in 1..m {
+            let a = self.prim_idx[i - 1];
+            self.hk_w[i] = self.prim_key[i - 1];
+            self.hk_w[i * m] = self.prim_key[i - 1];
+            for j in 1..m {
+                self.hk_w[i * m + j] = self.lm_w[a * kk + self.prim_idx[j - 1]];
             }
-            total += self.prim_key[bi];
-            let a = self.prim_idx[bi];
-            m -= 1;
-            self.prim_idx.swap(bi, m);
-            self.prim_key.swap(bi, m);
-            for i in 0..m {
-                let w = self.lm_w[a * kk + self.prim_idx[i]];
-                if w < self.prim_key[i] {
-                    self.prim_key[i] = w;
+        }
+        self.hk.bound(m, &self.hk_w)
+    }
+}
+
+/// Multi-source Dijkstra over the free cells (8-connected, 1 and √2, no corner squeezing,
+/// as [`Reachability`]): `out[i]` = distance from the nearest source, `∞` if none reaches.
+fn set_field(cells: &grid::Grid<Occ>, sources: &[u32], out: &mut [f64]) {
+    use std::cmp::Reverse;
+    use std::collections::BinaryHeap;
+    let (w, h) = (cells.width() as i64, cells.height() as i64);
+    let data = cells.data();
+    let free = |x: i64, y: i64| {
+        x >= 0 && y >= 0 && x < w && y < h && data[(y * w + x) as usize] == Occ::Free
+    };
+    out.fill(f64::INFINITY);
+    let mut heap = BinaryHeap::new();
+    for &s in sources {
+        out[s as usize] = 0.0;
+        heap.push(Reverse((0u64, s)));
+    }
+    while let Some(Reverse((bits, i))) = heap.pop() {
+        let c = f64::from_bits(bits);
+        if c > out[i as usize] {
+            continue;
+        }
+        let (x, y) = (i64::from(i) % w, i64::from(i) / w);
+        for dy in -1..=1i64 {
+            for dx in -1..=1i64 {
+                if (dx, dy) == (0, 0) || !free(x + dx, y + dy) {
+                    continue;
+                }
+                let diagonal = dx != 0 && dy != 0;
+                if diagonal && !free(x + dx, y) && !free(x, y + dy) {
+                    continue;
+                }
+                let j = ((y + dy) * w + x + dx) as usize;
+                let c2 = c + if diagonal { grid::SQRT2 } else { 1.0 };
+                if c2 < out[j] {
+                    out[j] = c2;
+                    heap.push(Reverse((c2.to_bits(), j as u32)));
                 }
             }
         }
-        total
+    }
+}
+
+/// The viewpoints V(t) of the reachable targets (the reachable cells that see t; the
+/// sensors are symmetric), kept when they fit in [`VIEW_ENTRIES`]; else only the landmarks'
+/// are computed, and landmark selection falls back to distances to the target itself.
+struct Views {
+    /// Per reachable target: its range in `data`, when kept.
+    at: Vec<(u32, u32)>,
+    data: Vec<u32>,
+    kept: bool,
+}
+
+/// Most viewpoint entries kept for landmark selection (4 bytes each, during set-up only).
+const VIEW_ENTRIES: usize = 16 << 20;
+
+impl Views {
+    fn new(problem: &Problem, reach_targets: &[u32]) -> Self {
+        let mut v = Self {
+            at: Vec::new(),
+            data: Vec::new(),
+            kept: false,
+        };
+        let r = problem.model().range();
+        let disc = (std::f64::consts::PI * (r + 1.0) * (r + 1.0)) as usize;
+        if reach_targets.len().saturating_mul(disc) > VIEW_ENTRIES {
+            return v;
+        }
+        let mut obs = sense::Observation::new();
+        let mut seen = Vec::new();
+        for &t in reach_targets {
+            seen.clear();
+            problem.seen_targets(t, &mut obs, &mut seen);
+            let start = v.data.len() as u32;
+            v.data.extend(
+                seen.iter()
+                    .map(|&s| problem.targets()[s as usize])
+                    .filter(|&p| problem.reachable(p as usize)),
+            );
+            v.at.push((start, v.data.len() as u32));
+        }
+        v.kept = true;
+        v
+    }
+
+    /// V(t) of the reachable target cell `t`.
+    fn of(&self, problem: &Problem, t: u32) -> Vec<u32> {
+        let mut obs = sense::Observation::new();
+        let mut seen = Vec::new();
+        problem.seen_targets(t, &mut obs, &mut seen);
+        seen.iter()
+            .map(|&s| problem.targets()[s as usize])
+            .filter(|&p| problem.reachable(p as usize))
+            .collect()
+    }
+
+    /// Lower `score[j]` to the distance in `field` from the source set to the nearest
+    /// viewpoint of target `reach_targets[j]` (kept views), or to the target itself.
+    fn lower(&self, reach_targets: &[u32], field: &[f64], score: &mut [f64]) {
+        for (j, &t) in reach_targets.iter().enumerate() {
+            let d = if self.kept {
+                let (a, b) = self.at[j];
+                self.data[a as usize..b as usize]
+                    .iter()
+                    .map(|&p| field[p as usize])
+                    .fold(f64::INFINITY, f64::min)
+            } else {
+                field[t as usize]
+            };
+            score[j] = score[j].min(d);
+        }
+    }
+
+    /// Selection stops once no target is farther than this: 0 with kept views (every
+    /// target's viewpoints touch a landmark's), else `c` (the sensor's reach).
+    fn spacing(&self, c: f64) -> f64 {
+        if self.kept { 0.0 } else { c }
     }
 }

@@ -11,8 +11,8 @@
 //! - [`actions`]: boundary cells, cluster representatives (with the "drop clusters < k"
 //!   speed-up);
 //! - [`heuristic`]: the paper's bound (with admissibility proofs per sensor) and stronger
-//!   ones: a landmark-MST bound and the coverage-rate bound (`coverage_rate`: each unit of
-//!   path uncovers at most ρ* new cells);
+//!   ones: a Held–Karp bound on a path through landmarks (`held_karp`) and the
+//!   coverage-rate bound (`coverage_rate`: each unit of path uncovers at most ρ* new cells);
 //! - [`search`]: A*, weighted A*, limits and bounds;
 //! - [`coarse`]: solving on a coarsened map (the paper's cell sizes 1, 2, 4).
 //!
@@ -32,6 +32,7 @@ pub mod actions;
 pub mod coarse;
 pub(crate) mod coverage_rate;
 pub mod error;
+pub(crate) mod held_karp;
 pub mod heuristic;
 pub mod problem;
 pub mod search;
