@@ -7,7 +7,9 @@
 //! `FRONTIER_OPT_STARTS` starts, default 3; time limit `FRONTIER_OPT_SECONDS`, default 5;
 //! weight `FRONTIER_OPT_WEIGHT`; goal `FRONTIER_OPT_GOAL`), then runs criterion on maps the
 //! search finishes: a 120 × 100-unit office, and 200 × 120-unit cave and potholes maps whose
-//! optimal paths and node counts are of the order of the paper's indoor runs. `FRONTIER_OPT_HARD=1` instead runs the
+//! optimal paths and node counts are of the order of the paper's indoor runs, and the office
+//! with `los` at G = 1 (where the landmark path bound applies). `FRONTIER_OPT_HARD=1`
+//! instead runs the
 //! hard setting once per heuristic (cell size 1, r = 20, G = 0.95) under a time limit of
 //! `FRONTIER_OPT_SECONDS` (default 60) and prints the bounds reached.
 
@@ -109,7 +111,7 @@ fn easy(map: &GridMap, c: &mut Criterion) {
     // Criterion on problems that finish: a 12 m x 10 m office (120 x 100 units), and 20 m x
     // 12 m cave and potholes maps (200 x 120 units) whose optimal paths (about 300 and 400
     // units) and node counts (about 1,400 and 2,500) are of the paper's indoor order.
-    let cases: [Case; 3] = [
+    let cases: [Case; 4] = [
         (
             EnvKind::Office,
             (12.0, 10.0),
@@ -118,27 +120,33 @@ fn easy(map: &GridMap, c: &mut Criterion) {
         ),
         (EnvKind::Cave, (20.0, 12.0), 0, &["footprint:r=3"]),
         (EnvKind::Potholes, (20.0, 12.0), 0, &["footprint:r=3"]),
+        // G = 1, where the landmark path bound applies.
+        (EnvKind::Office, (12.0, 10.0), 0, &["los:r=3 G=1"]),
     ];
     for (kind, size, seed, sensors) in cases {
         let small = generate(kind, size, seed);
         let centre = Cell::new(small.width() as i32 / 2, small.height() as i32 / 2);
         let s = nearest_free(&small, centre);
         let name = format!("{} {}x{} units", kind.name(), small.width(), small.height());
-        for &sensor in sensors {
+        for &case in sensors {
+            let (sensor, goal) = match case.split_once(" G=") {
+                Some((sensor, g)) => (sensor, g.parse().expect("goal")),
+                None => (case, 0.85),
+            };
             let spec: SensorSpec = sensor.parse().expect("sensor");
             let co = coarsen_problem(&small, 4, s, &spec).expect("problem");
-            let mut cfg = config(0.85);
+            let mut cfg = config(goal);
             cfg.time_limit = None;
             cfg.weight = 1.0;
             let out = solve(&co.problem, &cfg).expect("solve");
             println!(
-                "{name}, cell 4, {sensor}, G 0.85: {} length {:.1} units, {} expanded, {:.4} s",
+                "{name}, cell 4, {sensor}, G {goal}: {} length {:.1} units, {} expanded, {:.4} s",
                 out.status.as_str(),
                 out.upper_bound * 4.0,
                 out.stats.expanded,
                 out.stats.seconds
             );
-            c.bench_function(&format!("optimal {name} cell 4 {sensor} G 0.85"), |b| {
+            c.bench_function(&format!("optimal {name} cell 4 {sensor} G {goal}"), |b| {
                 b.iter(|| solve(&co.problem, &cfg).expect("solve"))
             });
         }
