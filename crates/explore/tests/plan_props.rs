@@ -197,6 +197,29 @@ proptest! {
         }
     }
 
+    /// From a set of sources: the distance to the nearest, as the minimum of single-source
+    /// searches.
+    #[test]
+    fn sources_give_the_distance_to_the_nearest((w, h, pass) in map(), picks in proptest::collection::vec(any::<prop::sample::Index>(), 1..5)) {
+        let sources: Vec<usize> = picks.iter().map(|s| s.index(w * h)).collect();
+        let mut want = vec![f64::INFINITY; w * h];
+        for &s in &sources {
+            for (m, d) in want.iter_mut().zip(bellman_ford(w, h, &pass, s)) {
+                *m = m.min(d);
+            }
+        }
+        let mut r = Reachability::new(w, h);
+        r.compute_from(&sources, |i| pass[i]);
+        for (i, &d) in want.iter().enumerate() {
+            match r.cost(i) {
+                None => prop_assert!(d.is_infinite(), "cell {} unreached, want {}", i, d),
+                Some(c) => prop_assert!((c - d).abs() < 1e-9, "cell {}: {} vs {}", i, c, d),
+            }
+        }
+        prop_assert_eq!(r.settled().len(), want.iter().filter(|d| d.is_finite()).count());
+        prop_assert_eq!(r.start(), (sources.len() == 1).then_some(sources[0]));
+    }
+
     #[test]
     fn nearest_finds_a_cheapest_goal(
         (w, h, pass) in map(),

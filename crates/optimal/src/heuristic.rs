@@ -180,8 +180,8 @@ pub(crate) struct Heuristic {
     lm_t: Vec<u32>,
     lm_field: Vec<f64>,
     lm_w: Vec<f64>,
-    prim_key: Vec<f64>,
-    prim_idx: Vec<usize>,
+    /// The unperceived landmarks of the state being bounded.
+    left: Vec<usize>,
     /// The Held–Karp bound's scratch and weight matrix.
     hk: PathBound,
     hk_w: Vec<f64>,
@@ -249,8 +249,7 @@ impl Heuristic {
             lm_t: Vec::new(),
             lm_field: Vec::new(),
             lm_w: Vec::new(),
-            prim_key: Vec::new(),
-            prim_idx: Vec::new(),
+            left: Vec::new(),
             hk: PathBound::default(),
             hk_w: Vec::new(),
             path_cache: HashMap::default(),
@@ -295,7 +294,8 @@ impl Heuristic {
             .compute(problem.start() as usize, |i| data[i] == Occ::Free);
         let mut field: Vec<f64> = (0..n).map(|i| dist(&self.dij, i)).collect();
         let mut score = vec![f64::INFINITY; reach_targets.len()];
-        let mut chosen: Vec<usize> = Vec::new();
+        // V(a) of each chosen landmark.
+        let mut chosen: Vec<Vec<usize>> = Vec::new();
         loop {
             views.lower(&reach_targets, &field, &mut score);
             if chosen.len() >= k {
@@ -312,23 +312,21 @@ impl Heuristic {
                 break;
             }
             let a = reach_targets[j];
-            let va = views.of(problem, a);
-            set_field(cells, &va, &mut field);
+            let va = views.of(problem, j, a);
+            self.dij.compute_from(&va, |i| data[i] == Occ::Free);
+            field.clear();
+            field.extend((0..n).map(|i| dist(&self.dij, i)));
             self.lm_field.extend_from_slice(&field);
             self.lm_t.push(problem.target_index(a as usize));
-            chosen.push(j);
+            chosen.push(va);
         }
         let kk = self.lm_t.len();
         self.lm_w = vec![0.0; kk * kk];
-        for (j, &cj) in chosen.iter().enumerate() {
+        for (j, vj) in chosen.iter().enumerate() {
             // D(V(a_i), V(a_j)): the field of V(a_i) at the nearest viewpoint of a_j.
-            let vj = views.of(problem, reach_targets[cj]);
             for i in 0..kk {
                 let f = &self.lm_field[i * n..(i + 1) * n];
-                self.lm_w[i * kk + j] = vj
-                    .iter()
-                    .map(|&p| f[p as usize])
-                    .fold(f64::INFINITY, f64::min);
+                self.lm_w[i * kk + j] = vj.iter().map(|&p| f[p]).fold(f64::INFINITY, f64::min);
             }
         }
         // Symmetric up to rounding; keep the smaller so the bound stays valid.
@@ -464,69 +462,22 @@ impl Heuristic {
     fn path_bound(&mut self, problem: &Problem, pos: u32, bits: &[u64]) -> f64 {
         let n = problem.cells().len();
         let kk = self.lm_t.len();
-        self.prim_idx.clear();
-        self.prim_key.clear();
-        for a in 0..kk {
-            if !has(bits, self.lm_t[a]) {
-                self.prim_idx.push(a);
-                self.prim_key.push(self.lm_field[a * n + pos as usize]);
-            }
-        }
+        self.left.clear();
+        self.left
+            .extend((0..kk).filter(|&a| !has(bits, self.lm_t[a])));
         // Node 0 is the robot, node i + 1 the i-th unperceived landmark.
-        let m = self.prim_idx.len() + 1;
+        let m = self.left.len() + 1;
         self.hk_w.clear();
         self.hk_w.resize(m * m, 0.0);
-        for i in 1..m {
-            let a = self.prim_idx[i - 1];
-            self.hk_w[i] = self.prim_key[i - 1];
-            self.hk_w[i * m] = self.prim_key[i - 1];
-            for j in 1..m {
-                self.hk_w[i * m + j] = self.lm_w[a * kk + self.prim_idx[j - 1]];
+        for (i, &a) in self.left.iter().enumerate() {
+            let to_robot = self.lm_field[a * n + pos as usize];
+            self.hk_w[i + 1] = to_robot;
+            self.hk_w[(i + 1) * m] = to_robot;
+            for (j, &b) in self.left.iter().enumerate() {
+                self.hk_w[(i + 1) * m + j + 1] = self.lm_w[a * kk + b];
             }
         }
         self.hk.bound(m, &self.hk_w)
-    }
-}
-
-/// Multi-source Dijkstra over the free cells (8-connected, 1 and √2, no corner squeezing,
-/// as [`Reachability`]): `out[i]` = distance from the nearest source, `∞` if none reaches.
-fn set_field(cells: &grid::Grid<Occ>, sources: &[u32], out: &mut [f64]) {
-    use std::cmp::Reverse;
-    use std::collections::BinaryHeap;
-    let (w, h) = (cells.width() as i64, cells.height() as i64);
-    let data = cells.data();
-    let free = |x: i64, y: i64| {
-        x >= 0 && y >= 0 && x < w && y < h && data[(y * w + x) as usize] == Occ::Free
-    };
-    out.fill(f64::INFINITY);
-    let mut heap = BinaryHeap::new();
-    for &s in sources {
-        out[s as usize] = 0.0;
-        heap.push(Reverse((0u64, s)));
-    }
-    while let Some(Reverse((bits, i))) = heap.pop() {
-        let c = f64::from_bits(bits);
-        if c > out[i as usize] {
-            continue;
-        }
-        let (x, y) = (i64::from(i) % w, i64::from(i) / w);
-        for dy in -1..=1i64 {
-            for dx in -1..=1i64 {
-                if (dx, dy) == (0, 0) || !free(x + dx, y + dy) {
-                    continue;
-                }
-                let diagonal = dx != 0 && dy != 0;
-                if diagonal && !free(x + dx, y) && !free(x, y + dy) {
-                    continue;
-                }
-                let j = ((y + dy) * w + x + dx) as usize;
-                let c2 = c + if diagonal { grid::SQRT2 } else { 1.0 };
-                if c2 < out[j] {
-                    out[j] = c2;
-                    heap.push(Reverse((c2.to_bits(), j as u32)));
-                }
-            }
-        }
     }
 }
 
@@ -572,14 +523,21 @@ impl Views {
         v
     }
 
-    /// V(t) of the reachable target cell `t`.
-    fn of(&self, problem: &Problem, t: u32) -> Vec<u32> {
+    /// V(t) of `t = reach_targets[j]` (flat cells).
+    fn of(&self, problem: &Problem, j: usize, t: u32) -> Vec<usize> {
+        if self.kept {
+            let (a, b) = self.at[j];
+            return self.data[a as usize..b as usize]
+                .iter()
+                .map(|&p| p as usize)
+                .collect();
+        }
         let mut obs = sense::Observation::new();
         let mut seen = Vec::new();
         problem.seen_targets(t, &mut obs, &mut seen);
         seen.iter()
-            .map(|&s| problem.targets()[s as usize])
-            .filter(|&p| problem.reachable(p as usize))
+            .map(|&s| problem.targets()[s as usize] as usize)
+            .filter(|&p| problem.reachable(p))
             .collect()
     }
 

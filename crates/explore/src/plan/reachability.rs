@@ -1,5 +1,6 @@
 //! Holz et al.'s reachability map: Dijkstra from the robot's cell with no goal, and the same
-//! search stopping at the first settled goal cell (the nearest frontier, Yamauchi 1997).
+//! search stopping at the first settled goal cell (the nearest frontier, Yamauchi 1997);
+//! also from a set of sources (distance to the nearest one).
 //!
 //! The priority queue is a bucket queue (Dial's algorithm with buckets one cell-step wide):
 //! bucket k holds the cells whose cost lies in [k, k + 1). Every step costs at least 1, so a
@@ -165,7 +166,16 @@ impl Reachability {
     /// Full Dijkstra from `start` over cells where `passable(i)` (the start itself is always
     /// allowed). A start outside the grid gives an empty result.
     pub fn compute(&mut self, start: usize, passable: impl Fn(usize) -> bool) {
-        self.run(start, &passable, None::<fn(usize) -> bool>);
+        self.run(&[start], &passable, None::<fn(usize) -> bool>);
+    }
+
+    /// Full Dijkstra from a set of sources, each left at cost 0 like the start of
+    /// [`compute`](Self::compute) (sources outside the grid are ignored): every cost is the
+    /// distance from the nearest source. With more than one source there is no single
+    /// start, so [`start`](Self::start) is `None` and [`path_to`](Self::path_to) finds no
+    /// path.
+    pub fn compute_from(&mut self, sources: &[usize], passable: impl Fn(usize) -> bool) {
+        self.run(sources, &passable, None::<fn(usize) -> bool>);
     }
 
     /// Dijkstra from `start` that stops at the first settled cell with `is_goal(i)` (which may be
@@ -177,12 +187,12 @@ impl Reachability {
         passable: impl Fn(usize) -> bool,
         is_goal: impl Fn(usize) -> bool,
     ) -> Option<usize> {
-        self.run(start, &passable, Some(is_goal))
+        self.run(&[start], &passable, Some(is_goal))
     }
 
     fn run(
         &mut self,
-        start: usize,
+        starts: &[usize],
         passable: &impl Fn(usize) -> bool,
         is_goal: Option<impl Fn(usize) -> bool>,
     ) -> Option<usize> {
@@ -192,11 +202,10 @@ impl Reachability {
         }
         self.settled.clear();
         let (w, h) = (self.width, self.height);
-        if start >= w * h {
-            self.start = None;
-            return None;
-        }
-        self.start = Some(start);
+        self.start = match starts {
+            &[start] if start < w * h => Some(start),
+            _ => None,
+        };
         let tile_row = self.tiles_x * TILE_CELLS;
         let mut wave = Wave {
             epoch: self.epoch,
@@ -207,12 +216,17 @@ impl Reachability {
         };
         // The start is always left, but a diagonal step may pass beside it only if it is
         // passable: an impassable start is labelled and marked impassable.
-        let (x0, y0) = (start % w, start / w);
-        let s0 = slot_xy(tile_row, x0, y0);
-        wave.enter_tile(s0);
-        wave.state[s0] = if passable(start) { MET } else { MET | BLOCKED };
-        wave.cost[s0] = 0.0;
-        wave.buckets[0].push((x0 as u32, y0 as u32));
+        for &start in starts.iter().filter(|&&s| s < w * h) {
+            let (x0, y0) = (start % w, start / w);
+            let s0 = slot_xy(tile_row, x0, y0);
+            wave.enter_tile(s0);
+            if wave.state[s0] & MET != 0 {
+                continue; // listed twice
+            }
+            wave.state[s0] = if passable(start) { MET } else { MET | BLOCKED };
+            wave.cost[s0] = 0.0;
+            wave.buckets[0].push((x0 as u32, y0 as u32));
+        }
         let mut k = 0usize;
         loop {
             let slot = k % BUCKETS;
