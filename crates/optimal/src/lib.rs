@@ -13,7 +13,7 @@
 //! - [`heuristic`]: the paper's bound (with admissibility proofs per sensor) and stronger
 //!   ones: a Held–Karp bound on a path through landmarks (`held_karp`) and the
 //!   coverage-rate bound (`coverage_rate`: each unit of path uncovers at most ρ* new cells);
-//! - [`search`]: A*, weighted A*, limits and bounds;
+//! - [`search`]: A*, weighted A*, limits and bounds (step costs: `step_cost`);
 //! - [`coarse`]: solving on a coarsened map (the paper's cell sizes 1, 2, 4).
 //!
 //! ```
@@ -36,6 +36,7 @@ pub(crate) mod held_karp;
 pub mod heuristic;
 pub mod problem;
 pub mod search;
+pub(crate) mod step_cost;
 
 pub use actions::ActionSet;
 pub use coarse::{Coarsened, coarsen_problem};

@@ -40,6 +40,7 @@ use crate::actions::{ActionScratch, ActionSet, candidates};
 use crate::error::OptimalError;
 use crate::heuristic::{Heuristic, HeuristicKind, MixHasher, dist, has, set};
 use crate::problem::Problem;
+use crate::step_cost::StepCosts;
 use explore::plan::Reachability;
 
 /// Tolerance for comparing path lengths (sums of 1 and √2).
@@ -278,7 +279,7 @@ struct Engine<'p> {
     heur: Heuristic,
     vis: VisCache,
     /// Shortest paths inside the perceived free space (the step costs).
-    reach: Reachability,
+    reach: StepCosts,
     scratch: ActionScratch,
     zt: Vec<[u64; 2]>,
     zpos: Vec<[u64; 2]>,
@@ -317,13 +318,15 @@ impl<'p> Engine<'p> {
             cfg.landmarks,
             cfg.max_bytes / 4,
         );
+        let reach = StepCosts::new(problem);
+        let reach_bytes = reach.bytes();
         Self {
             problem,
             cfg: cfg.clone(),
             need: problem.needed(cfg.goal),
             heur,
             vis: VisCache::new(n),
-            reach: Reachability::new(problem.cells().width(), problem.cells().height()),
+            reach,
             scratch: ActionScratch::new(n),
             zt,
             zpos,
@@ -337,8 +340,8 @@ impl<'p> Engine<'p> {
             inc_cost: f64::INFINITY,
             inc_positions: Vec::new(),
             stats: Stats::default(),
-            // Dijkstra (≈ 41 B/cell), action marks, Zobrist keys, the problem's arrays.
-            fixed_bytes: n * (41 + 4 + 16 + 12) + nm * 20,
+            // Step costs, action marks, Zobrist keys, the problem's arrays.
+            fixed_bytes: reach_bytes + n * (4 + 16 + 12) + nm * 20,
             nt: nt as u32,
         }
     }
@@ -432,8 +435,7 @@ impl<'p> Engine<'p> {
         let mut cur = bits.to_vec();
         let mut cost = 0.0;
         while count < self.need {
-            self.reach
-                .compute(pos as usize, Self::passable(self.problem, &cur));
+            self.reach.compute(pos, &cur);
             let mut best = None;
             let mut next = Some(self.cfg.actions);
             while let Some(actions) = next {
@@ -476,7 +478,7 @@ impl<'p> Engine<'p> {
         let mut best_rate = 0.0;
         for k in 0..self.cands.len() {
             let a = self.cands[k];
-            let d = dist(&self.reach, a as usize);
+            let d = self.reach.dist(a as usize);
             if rate {
                 let (o, l) = self.vis.get(self.problem, a);
                 let new = self.vis.data[o..o + l]
@@ -660,8 +662,7 @@ impl<'p> Engine<'p> {
         let problem = self.problem;
         let node = self.nodes[id as usize];
         self.load_state(id);
-        self.reach
-            .compute(node.pos as usize, Self::passable(problem, &self.cur));
+        self.reach.compute(node.pos, &self.cur);
         let mut next = Some(self.cfg.actions);
         while let Some(actions) = next {
             candidates(
@@ -695,7 +696,7 @@ impl<'p> Engine<'p> {
         let mut useful = false;
         for k in 0..self.cands.len() {
             let a = self.cands[k];
-            let g2 = node.g + dist(&self.reach, a as usize);
+            let g2 = node.g + self.reach.dist(a as usize);
             if g2 >= self.inc_cost - EPS {
                 self.stats.pruned += 1;
                 useful = useful || self.vis.perceives_new(problem, a, &self.cur, nt);
