@@ -3,6 +3,8 @@
 //! strategies run with the same sensor and on-arrival perception from the same start.
 
 use std::path::PathBuf;
+use std::sync::Once;
+use std::sync::atomic::{AtomicU8, Ordering};
 use std::time::Duration;
 
 use anyhow::{Context, Result, bail};
@@ -10,7 +12,8 @@ use clap::Args;
 use explore::strategy::{SensingMode, Strategy};
 use grid::{Cell, Occ};
 use image::{Rgb, RgbImage};
-use optimal::{ActionSet, Config, HeuristicKind, Outcome, coarsen_problem, solve};
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use optimal::{ActionSet, Config, HeuristicKind, Outcome, Progress, coarsen_problem, solve_with};
 use sense::SensorSpec;
 use serde_json::{Value, json};
 use sim::RunConfig;
@@ -185,8 +188,8 @@ pub fn run(a: OptimalArgs) -> Result<()> {
             a.cell_size
         );
     }
-    let out = solve(&co.problem, &cfg)?;
     let res = co.resolution();
+    let out = solve_watched(&co.problem, &cfg, res)?;
     let optimal_m = out.upper_bound * res;
 
     let mut compared = Vec::new();
@@ -248,6 +251,59 @@ pub fn run(a: OptimalArgs) -> Result<()> {
         }
     }
     Ok(())
+}
+
+/// Ctrl-C state: outside a search it ends the program as usual; during one it stops the
+/// search, which then reports its bounds (a second Ctrl-C ends the program).
+static CTRL_C: AtomicU8 = AtomicU8::new(IDLE);
+const IDLE: u8 = 0;
+const SEARCHING: u8 = 1;
+const INTERRUPTED: u8 = 2;
+
+/// Solve with a progress line on a terminal (states, memory, current bounds in metres) and
+/// Ctrl-C stopping the search cleanly with the best bounds found.
+fn solve_watched(problem: &optimal::Problem, cfg: &Config, res: f64) -> Result<Outcome> {
+    static HANDLER: Once = Once::new();
+    HANDLER.call_once(|| {
+        // Without a handler (e.g. no signal support), Ctrl-C just ends the program.
+        let _ = ctrlc::set_handler(|| {
+            if CTRL_C
+                .compare_exchange(SEARCHING, INTERRUPTED, Ordering::SeqCst, Ordering::SeqCst)
+                .is_err()
+            {
+                std::process::exit(130);
+            }
+        });
+    });
+    let bar = if bench::runner::progress_wanted() {
+        let bar = ProgressBar::with_draw_target(None, ProgressDrawTarget::stderr());
+        if let Ok(style) = ProgressStyle::with_template("{spinner} {elapsed_precise} {msg}") {
+            bar.set_style(style);
+        }
+        bar
+    } else {
+        ProgressBar::hidden()
+    };
+    CTRL_C.store(SEARCHING, Ordering::SeqCst);
+    let out = solve_with(problem, cfg, &mut |p: &Progress| {
+        let ub = if p.upper_bound.is_finite() {
+            format!("{:.2}", p.upper_bound * res)
+        } else {
+            "∞".into()
+        };
+        bar.set_message(format!(
+            "{} expanded, {} stored, {} MiB, optimal in [{:.2}, {ub}] m; Ctrl-C stops here",
+            p.expanded,
+            p.stored,
+            p.bytes >> 20,
+            p.lower_bound * res
+        ));
+        bar.tick();
+        CTRL_C.load(Ordering::SeqCst) != INTERRUPTED
+    });
+    CTRL_C.store(IDLE, Ordering::SeqCst);
+    bar.finish_and_clear();
+    Ok(out?)
 }
 
 /// Below this share of the reachable free area kept by coarsening, `optimal` warns.

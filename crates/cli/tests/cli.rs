@@ -546,3 +546,56 @@ fn optimal_flags_are_checked() {
         "{e}"
     );
 }
+
+/// Ctrl-C during a long optimal search stops it cleanly: the bounds and the best path found
+/// are printed and the program succeeds.
+#[cfg(unix)]
+#[test]
+fn optimal_ctrl_c_stops_the_search_with_its_bounds() {
+    let dir = tempfile::tempdir().unwrap();
+    let map = dir.path().join("open.map");
+    let rows = vec![".".repeat(40); 40].join("\n");
+    std::fs::write(
+        &map,
+        format!("type octile\nheight 40\nwidth 40\nmap\n{rows}\n"),
+    )
+    .unwrap();
+    let child = Command::new(env!("CARGO_BIN_EXE_frontier"))
+        .args([
+            "optimal",
+            "--map",
+            map.to_str().unwrap(),
+            "--resolution",
+            "1",
+        ])
+        .args(["--sensor", "los:r=1.5c", "--json"])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("run frontier");
+    // The problem is set up in milliseconds; the search alone would run for hours.
+    std::thread::sleep(std::time::Duration::from_secs(3));
+    let killed = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .expect("run kill");
+    assert!(killed.success());
+    let out = child.wait_with_output().expect("wait for frontier");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["optimal"], false, "{v}");
+    assert_eq!(v["stop"], "interrupt", "{v}");
+    let (lo, hi) = (
+        v["lower_bound_m"].as_f64().unwrap(),
+        v["upper_bound_m"].as_f64().unwrap(),
+    );
+    assert!(0.0 < lo && lo <= hi, "{v}");
+    assert!(
+        v["positions"].as_array().is_some_and(|p| p.len() > 1),
+        "{v}"
+    );
+}

@@ -44,7 +44,8 @@ pub use error::OptimalError;
 pub use heuristic::HeuristicKind;
 pub use problem::{Problem, SensorModel};
 pub use search::{
-    Config, Outcome, Solution, Stats, Status, StopReason, heuristic_value, solve, walk,
+    Config, Outcome, Progress, Solution, Stats, Status, StopReason, heuristic_value, solve,
+    solve_with, walk,
 };
 
 /// Competitive ratio of an online path: `online_length / optimal_length` (same units);

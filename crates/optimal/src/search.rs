@@ -20,7 +20,8 @@
 //!   improve U.
 //! - Weighted A* (f = g + w·h): the returned length is ≤ w × optimal, and the reported lower
 //!   bound is max(U / w, min over open states of g + h).
-//! - Limits on expanded nodes, bytes of stored states and wall time: the search stops
+//! - Limits on expanded nodes, bytes of stored states and wall time, and an observer
+//!   ([`solve_with`]) shown the progress every 100 ms that may stop the search: it stops
 //!   cleanly with the best lower and upper bounds. Stored bytes (nodes, queue, hash
 //!   table, caches) are counted before every allocation that grows, so a budget is a
 //!   hard cap on the search's own memory, never an OOM kill.
@@ -121,6 +122,8 @@ pub enum StopReason {
     MemoryLimit,
     /// [`Config::time_limit`].
     TimeLimit,
+    /// The observer of [`solve_with`] asked to stop (e.g. the user pressed Ctrl-C).
+    Interrupted,
 }
 
 impl StopReason {
@@ -130,6 +133,7 @@ impl StopReason {
             StopReason::NodeLimit => "node limit",
             StopReason::MemoryLimit => "memory limit",
             StopReason::TimeLimit => "time limit",
+            StopReason::Interrupted => "interrupt",
         }
     }
 }
@@ -192,6 +196,27 @@ pub struct Outcome {
     /// A one-line human summary of how it ended.
     pub message: String,
 }
+
+/// Where a running search stands, as shown to the observer of [`solve_with`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Progress {
+    /// States expanded so far.
+    pub expanded: u64,
+    /// States stored so far.
+    pub stored: u64,
+    /// Bytes counted against the budget so far.
+    pub bytes: usize,
+    /// Proven lower bound on the optimal length so far (cells; 0 without an admissible
+    /// heuristic).
+    pub lower_bound: f64,
+    /// Length of the best solution found so far (cells), `∞` if none.
+    pub upper_bound: f64,
+    /// Wall time so far in seconds.
+    pub seconds: f64,
+}
+
+/// How often a running search shows its progress to the observer.
+const PROGRESS_EVERY: Duration = Duration::from_millis(100);
 
 /// splitmix64: the fixed stream of Zobrist keys.
 fn splitmix(state: &mut u64) -> u64 {
@@ -529,7 +554,7 @@ impl<'p> Engine<'p> {
         steps
     }
 
-    fn run(&mut self, started: Instant) -> Outcome {
+    fn run(&mut self, started: Instant, observe: &mut dyn FnMut(&Progress) -> bool) -> Outcome {
         let problem = self.problem;
         let start = problem.start();
         // Root.
@@ -575,6 +600,12 @@ impl<'p> Engine<'p> {
         self.improve_from(0);
         let mut stop = None;
         let mut popped_lb = f64::INFINITY;
+        // The largest priority popped so far, over w: every popped priority is the least in
+        // the open list then, and the least g + w·h over open states is at most w times the
+        // least g + h, itself a lower bound with an admissible h (some open state lies on an
+        // optimal path with its optimal g while the incumbent is not optimal).
+        let mut running_lb = 0.0f64;
+        let mut next_report = PROGRESS_EVERY;
         while let Some(Reverse((fbits, _, id, gbits))) = self.open.pop() {
             let node = self.nodes[id as usize];
             if node.closed || gbits != node.g.to_bits() {
@@ -587,12 +618,31 @@ impl<'p> Engine<'p> {
                 self.open.push(entry(f, node.g, id));
                 break;
             }
+            running_lb = running_lb.max(f / w);
             if self.stats.expanded >= self.cfg.max_nodes {
                 stop = Some(StopReason::NodeLimit);
-            } else if self.stats.expanded.is_multiple_of(64)
-                && self.cfg.time_limit.is_some_and(|t| started.elapsed() >= t)
-            {
-                stop = Some(StopReason::TimeLimit);
+            } else if self.stats.expanded.is_multiple_of(64) {
+                let elapsed = started.elapsed();
+                if self.cfg.time_limit.is_some_and(|t| elapsed >= t) {
+                    stop = Some(StopReason::TimeLimit);
+                } else if elapsed >= next_report {
+                    next_report = elapsed + PROGRESS_EVERY;
+                    let progress = Progress {
+                        expanded: self.stats.expanded,
+                        stored: self.stats.stored,
+                        bytes: self.stats.bytes,
+                        lower_bound: if admissible {
+                            running_lb.min(self.inc_cost)
+                        } else {
+                            0.0
+                        },
+                        upper_bound: self.inc_cost,
+                        seconds: elapsed.as_secs_f64(),
+                    };
+                    if !observe(&progress) {
+                        stop = Some(StopReason::Interrupted);
+                    }
+                }
             }
             if stop.is_some() {
                 self.open.push(entry(f, node.g, id));
@@ -607,7 +657,8 @@ impl<'p> Engine<'p> {
                 break;
             }
         }
-        // Lower bound: min over open states of g + h (valid with an admissible h).
+        // Lower bound: min over open states of g + h (valid with an admissible h), or the
+        // largest popped priority over w if that is larger.
         let mut lb = popped_lb;
         for Reverse((_, _, id, gbits)) in self.open.iter() {
             let n = &self.nodes[*id as usize];
@@ -615,6 +666,7 @@ impl<'p> Engine<'p> {
                 lb = lb.min(n.g + n.h);
             }
         }
+        lb = lb.max(running_lb);
         if stop.is_some() {
             // Tighten the upper bound by completing the most advanced open states greedily
             // (most targets perceived first, then least g + h): up to IMPROVE_STATES of them,
@@ -909,6 +961,18 @@ pub fn walk(problem: &Problem, positions: &[Cell]) -> Result<Solution, String> {
 /// set) whose perceptions cover the goal fraction of the targets, or bounds when a limit
 /// stops the search first.
 pub fn solve(problem: &Problem, cfg: &Config) -> Result<Outcome, OptimalError> {
+    solve_with(problem, cfg, &mut |_| true)
+}
+
+/// [`solve`], showing `observe` the search's [`Progress`] about every 100 ms of wall time;
+/// when it returns false the search stops as if a limit was hit
+/// ([`StopReason::Interrupted`]), with the best bounds. The observer does not change the
+/// search otherwise: the result is the same as [`solve`]'s unless it asks to stop.
+pub fn solve_with(
+    problem: &Problem,
+    cfg: &Config,
+    observe: &mut dyn FnMut(&Progress) -> bool,
+) -> Result<Outcome, OptimalError> {
     if !(cfg.goal > 0.0 && cfg.goal <= 1.0) {
         return Err(OptimalError::BadParameter {
             field: "goal",
@@ -932,7 +996,7 @@ pub fn solve(problem: &Problem, cfg: &Config) -> Result<Outcome, OptimalError> {
     }
     let started = Instant::now();
     let mut engine = Engine::new(problem, cfg);
-    Ok(engine.run(started))
+    Ok(engine.run(started, observe))
 }
 
 /// The heuristic's value for the robot at `pos` having perceived the targets in `perceived`

@@ -341,6 +341,32 @@ proptest! {
         }
     }
 
+    /// A search stopped after a few expansions (optimal or weighted) brackets the optimum: its
+    /// lower bound (least open g + h, or the largest popped priority over w) is at most the
+    /// optimum, its upper bound at least it.
+    #[test]
+    fn stopped_searches_bracket_the_optimum(
+        (map, start, model, g) in arb_case(),
+        nodes in 1u64..40,
+        weighted in any::<bool>(),
+    ) {
+        let problem = Problem::new(&map, start, model).expect("valid problem");
+        let exact = optimal::solve(&problem, &cfg(g, ActionSet::Boundary, HeuristicKind::Landmarks)).expect("solve");
+        if exact.status != Status::Optimal { return Ok(()); }
+        let mut c = cfg(g, ActionSet::Boundary, HeuristicKind::Landmarks);
+        c.max_nodes = nodes;
+        if weighted {
+            c.weight = 2.0;
+        }
+        let cut = optimal::solve(&problem, &c).expect("solve");
+        prop_assert!(cut.lower_bound <= exact.upper_bound + TOL, "{} > {}", cut.lower_bound, exact.upper_bound);
+        prop_assert!(cut.upper_bound >= exact.upper_bound - TOL);
+        // An observer that never stops the search changes nothing.
+        let mut calls = 0;
+        let seen = optimal::solve_with(&problem, &c, &mut |_| { calls += 1; true }).expect("solve");
+        prop_assert_eq!((seen.lower_bound, seen.upper_bound, seen.stats.expanded), (cut.lower_bound, cut.upper_bound, cut.stats.expanded));
+    }
+
     /// Weighted A* stays within its bound, clusters never beat the boundary optimum.
     #[test]
     fn weighted_and_clusters_are_bounded((map, start, model, g) in arb_case()) {
@@ -411,6 +437,30 @@ fn footprint_pocket_behind_a_wall_is_reached() {
         assert_eq!(sol.perceived, 5);
         assert_eq!(sol.positions.last().map(|c| c.x), Some(3));
     }
+}
+
+/// An observer that asks to stop ends the search cleanly with bounds (as Ctrl-C does in the
+/// CLI), after it was shown the progress at least once.
+#[test]
+fn observer_stops_the_search_with_bounds() {
+    let map = Grid::new(40, 40, Occ::Free);
+    let p = Problem::new(&map, Cell::new(20, 20), SensorModel::Los(1.5)).expect("valid");
+    let mut shown = Vec::new();
+    let out = optimal::solve_with(&p, &Config::default(), &mut |progress| {
+        shown.push(*progress);
+        false
+    })
+    .expect("solve");
+    assert_eq!(out.status, Status::Stopped, "{}", out.message);
+    assert_eq!(out.stop, Some(optimal::StopReason::Interrupted));
+    assert!(out.message.contains("interrupt"), "{}", out.message);
+    assert_eq!(shown.len(), 1);
+    let last = shown[0];
+    assert!(last.expanded > 0 && last.seconds >= 0.1);
+    assert!(last.lower_bound > 0.0 && last.lower_bound <= out.lower_bound + TOL);
+    assert!(out.lower_bound <= out.upper_bound);
+    let sol = out.solution.expect("the best path found");
+    assert_eq!(sol.perceived, p.targets().len());
 }
 
 /// The limits stop the search with bounds that bracket the optimum.
