@@ -285,22 +285,27 @@ fn solve_watched(problem: &optimal::Problem, cfg: &Config, res: f64) -> Result<O
         ProgressBar::hidden()
     };
     CTRL_C.store(SEARCHING, Ordering::SeqCst);
-    let out = solve_with(problem, cfg, &mut |p: &Progress| {
-        let ub = if p.upper_bound.is_finite() {
-            format!("{:.2}", p.upper_bound * res)
-        } else {
-            "∞".into()
-        };
-        bar.set_message(format!(
-            "{} expanded, {} stored, {} MiB, optimal in [{:.2}, {ub}] m; Ctrl-C stops here",
-            p.expanded,
-            p.stored,
-            p.bytes >> 20,
-            p.lower_bound * res
-        ));
-        bar.tick();
-        CTRL_C.load(Ordering::SeqCst) != INTERRUPTED
-    });
+    let out = solve_with(
+        problem,
+        cfg,
+        Duration::from_millis(100),
+        &mut |p: &Progress| {
+            let ub = if p.upper_bound.is_finite() {
+                format!("{:.2}", p.upper_bound * res)
+            } else {
+                "∞".into()
+            };
+            bar.set_message(format!(
+                "{} expanded, {} stored, {} MiB, optimal in [{:.2}, {ub}] m; Ctrl-C stops here",
+                p.expanded,
+                p.stored,
+                p.bytes >> 20,
+                p.lower_bound * res
+            ));
+            bar.tick();
+            CTRL_C.load(Ordering::SeqCst) != INTERRUPTED
+        },
+    );
     CTRL_C.store(IDLE, Ordering::SeqCst);
     bar.finish_and_clear();
     Ok(out?)

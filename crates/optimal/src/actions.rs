@@ -123,41 +123,21 @@ pub(crate) fn candidates(
         ActionSet::Clusters { min_size } => {
             // Clusters group the cells that border unperceived free cells (module doc).
             let nt = problem.targets().len() as u32;
-            scratch.epoch = scratch.epoch.wrapping_add(1);
-            if scratch.epoch == 0 {
+            // Two fresh marks: boundary cells, then cells visited by the cluster fill (all
+            // marks are cleared when the counter would wrap).
+            if scratch.epoch > u32::MAX - 2 {
                 scratch.mark.fill(0);
-                scratch.epoch = 1;
+                scratch.epoch = 0;
             }
-            let e = scratch.epoch;
-            // Mark boundary cells with e, visited ones with e + 1... use two epochs.
-            let boundary_epoch = e;
+            let (boundary, visited) = (scratch.epoch + 1, scratch.epoch + 2);
+            scratch.epoch = visited;
             for &i in settled {
                 if is_boundary(problem, bits, i as usize, nt) {
-                    scratch.mark[i as usize] = boundary_epoch;
+                    scratch.mark[i as usize] = boundary;
                 }
             }
-            scratch.epoch = scratch.epoch.wrapping_add(1);
-            if scratch.epoch == 0 {
-                // Extremely rare wrap: restart with fresh marks.
-                scratch.mark.fill(0);
-                scratch.epoch = 2;
-                for &i in settled {
-                    if is_boundary(problem, bits, i as usize, nt) {
-                        scratch.mark[i as usize] = 1;
-                    }
-                }
-                return candidates_clusters(problem, settled, here, min_size, 1, 2, scratch, out);
-            }
-            let visited = scratch.epoch;
             candidates_clusters(
-                problem,
-                settled,
-                here,
-                min_size,
-                boundary_epoch,
-                visited,
-                scratch,
-                out,
+                problem, settled, here, min_size, boundary, visited, scratch, out,
             );
         }
     }

@@ -21,7 +21,7 @@
 //! - Weighted A* (f = g + w·h): the returned length is ≤ w × optimal, and the reported lower
 //!   bound is max(U / w, min over open states of g + h).
 //! - Limits on expanded nodes, bytes of stored states and wall time, and an observer
-//!   ([`solve_with`]) shown the progress every 100 ms that may stop the search: it stops
+//!   ([`solve_with`]) shown the progress periodically that may stop the search: it stops
 //!   cleanly with the best lower and upper bounds. Stored bytes (nodes, queue, hash
 //!   table, caches) are counted before every allocation that grows, so a budget is a
 //!   hard cap on the search's own memory, never an OOM kill.
@@ -214,9 +214,6 @@ pub struct Progress {
     /// Wall time so far in seconds.
     pub seconds: f64,
 }
-
-/// How often a running search shows its progress to the observer.
-const PROGRESS_EVERY: Duration = Duration::from_millis(100);
 
 /// splitmix64: the fixed stream of Zobrist keys.
 fn splitmix(state: &mut u64) -> u64 {
@@ -554,7 +551,12 @@ impl<'p> Engine<'p> {
         steps
     }
 
-    fn run(&mut self, started: Instant, observe: &mut dyn FnMut(&Progress) -> bool) -> Outcome {
+    fn run(
+        &mut self,
+        started: Instant,
+        every: Duration,
+        observe: &mut dyn FnMut(&Progress) -> bool,
+    ) -> Outcome {
         let problem = self.problem;
         let start = problem.start();
         // Root.
@@ -605,7 +607,7 @@ impl<'p> Engine<'p> {
         // least g + h, itself a lower bound with an admissible h (some open state lies on an
         // optimal path with its optimal g while the incumbent is not optimal).
         let mut running_lb = 0.0f64;
-        let mut next_report = PROGRESS_EVERY;
+        let mut next_report = every;
         while let Some(Reverse((fbits, _, id, gbits))) = self.open.pop() {
             let node = self.nodes[id as usize];
             if node.closed || gbits != node.g.to_bits() {
@@ -626,7 +628,7 @@ impl<'p> Engine<'p> {
                 if self.cfg.time_limit.is_some_and(|t| elapsed >= t) {
                     stop = Some(StopReason::TimeLimit);
                 } else if elapsed >= next_report {
-                    next_report = elapsed + PROGRESS_EVERY;
+                    next_report = elapsed.saturating_add(every);
                     let progress = Progress {
                         expanded: self.stats.expanded,
                         stored: self.stats.stored,
@@ -961,16 +963,17 @@ pub fn walk(problem: &Problem, positions: &[Cell]) -> Result<Solution, String> {
 /// set) whose perceptions cover the goal fraction of the targets, or bounds when a limit
 /// stops the search first.
 pub fn solve(problem: &Problem, cfg: &Config) -> Result<Outcome, OptimalError> {
-    solve_with(problem, cfg, &mut |_| true)
+    solve_with(problem, cfg, Duration::MAX, &mut |_| true)
 }
 
-/// [`solve`], showing `observe` the search's [`Progress`] about every 100 ms of wall time;
-/// when it returns false the search stops as if a limit was hit
+/// [`solve`], showing `observe` the search's [`Progress`] at most once per `every` of wall
+/// time (checked every 64 expansions, so `Duration::ZERO` means every 64 expansions); when it returns false the search stops as if a limit was hit
 /// ([`StopReason::Interrupted`]), with the best bounds. The observer does not change the
 /// search otherwise: the result is the same as [`solve`]'s unless it asks to stop.
 pub fn solve_with(
     problem: &Problem,
     cfg: &Config,
+    every: Duration,
     observe: &mut dyn FnMut(&Progress) -> bool,
 ) -> Result<Outcome, OptimalError> {
     if !(cfg.goal > 0.0 && cfg.goal <= 1.0) {
@@ -996,7 +999,7 @@ pub fn solve_with(
     }
     let started = Instant::now();
     let mut engine = Engine::new(problem, cfg);
-    Ok(engine.run(started, observe))
+    Ok(engine.run(started, every, observe))
 }
 
 /// The heuristic's value for the robot at `pos` having perceived the targets in `perceived`

@@ -65,22 +65,12 @@ impl StepCosts {
             .map(|&i| problem.target_index(i as usize))
             .collect();
         debug_assert!(mark.iter().all(|&t| t != crate::problem::NOT_TARGET));
-        const STEPS: [(i64, i64); 8] = [
-            (1, 0),
-            (0, 1),
-            (-1, 0),
-            (0, -1),
-            (1, 1),
-            (-1, 1),
-            (-1, -1),
-            (1, -1),
-        ];
         let nbr = flat
             .iter()
             .map(|&i| {
                 let (x, y) = (i as i64 % w, i as i64 / w);
-                STEPS.map(|(dx, dy)| {
-                    let (nx, ny) = (x + dx, y + dy);
+                grid::NEIGHBOURS8.map(|(dx, dy)| {
+                    let (nx, ny) = (x + i64::from(dx), y + i64::from(dy));
                     if nx < 0 || ny < 0 || nx >= w || ny >= h {
                         NONE
                     } else {

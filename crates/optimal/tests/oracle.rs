@@ -5,6 +5,7 @@
 #![allow(clippy::needless_range_loop)] // Floyd–Warshall reads best with indices.
 
 use std::collections::{BTreeMap, BTreeSet};
+use std::time::Duration;
 
 use grid::{Cell, Grid, Occ};
 use optimal::{ActionSet, Config, HeuristicKind, Problem, SensorModel, Status, heuristic_value};
@@ -361,10 +362,16 @@ proptest! {
         let cut = optimal::solve(&problem, &c).expect("solve");
         prop_assert!(cut.lower_bound <= exact.upper_bound + TOL, "{} > {}", cut.lower_bound, exact.upper_bound);
         prop_assert!(cut.upper_bound >= exact.upper_bound - TOL);
-        // An observer that never stops the search changes nothing.
-        let mut calls = 0;
-        let seen = optimal::solve_with(&problem, &c, &mut |_| { calls += 1; true }).expect("solve");
+        // An observer shown the progress every 64 expansions that never stops the search
+        // changes nothing, and every running bound it sees brackets the optimum too.
+        let mut shown = Vec::new();
+        let seen = optimal::solve_with(&problem, &c, Duration::ZERO, &mut |p| { shown.push(*p); true }).expect("solve");
         prop_assert_eq!((seen.lower_bound, seen.upper_bound, seen.stats.expanded), (cut.lower_bound, cut.upper_bound, cut.stats.expanded));
+        prop_assert_eq!(shown.len() as u64, cut.stats.expanded.div_ceil(64));
+        for p in &shown {
+            prop_assert!(p.lower_bound <= exact.upper_bound + TOL, "running {} > {}", p.lower_bound, exact.upper_bound);
+            prop_assert!(p.upper_bound >= exact.upper_bound - TOL);
+        }
     }
 
     /// Weighted A* stays within its bound, clusters never beat the boundary optimum.
@@ -446,7 +453,8 @@ fn observer_stops_the_search_with_bounds() {
     let map = Grid::new(40, 40, Occ::Free);
     let p = Problem::new(&map, Cell::new(20, 20), SensorModel::Los(1.5)).expect("valid");
     let mut shown = Vec::new();
-    let out = optimal::solve_with(&p, &Config::default(), &mut |progress| {
+    let every = Duration::from_millis(100);
+    let out = optimal::solve_with(&p, &Config::default(), every, &mut |progress| {
         shown.push(*progress);
         false
     })
