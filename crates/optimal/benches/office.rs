@@ -1,22 +1,31 @@
 //! The benchmark for the offline optimal search: an indoor map of 350 × 250 units
-//! (a generated 35 m × 25 m office at 0.1 m, so one unit = 0.1 m as in the paper), solved at
-//! cell size 4 with r = 30 units, G = 0.85 (the paper: 0.33 s, ~2,000 nodes), from ten start
-//! cells, footprint and los sensors, clustered boundary cells (the paper's Table 1 setting).
+//! solved at cell size 4 with r = 30 units, G = 0.85 (the paper: 0.33 s, ~2,000 nodes), with
+//! the footprint sensor and clustered boundary cells (the paper's Table 1 setting).
 //!
-//! `cargo bench -p optimal --bench office` prints one line per start and sensor (first
-//! `FRONTIER_OPT_STARTS` starts, default 3; time limit `FRONTIER_OPT_SECONDS`, default 5;
-//! weight `FRONTIER_OPT_WEIGHT`; goal `FRONTIER_OPT_GOAL`), then runs criterion on maps the
-//! search finishes: a 120 × 100-unit office, and 200 × 120-unit cave and potholes maps whose
-//! optimal paths and node counts are of the order of the paper's indoor runs, and the office
-//! with `los` at G = 1 (where the landmark path bound applies). `FRONTIER_OPT_HARD=1`
-//! instead runs the
-//! hard setting once per heuristic (cell size 1, r = 20, G = 0.95) under a time limit of
-//! `FRONTIER_OPT_SECONDS` (default 60) and prints the bounds reached.
+//! The paper's indoor map is not published; its text says it has a top corridor and a left
+//! vertical corridor, and its Table 1 gives optimal lengths of about 500–520 units at this
+//! setting. Two maps stand in for it (one unit = one 0.1 m cell):
+//! - the corridor floor ([`corridor_floor`]): an L of two 3 m corridors (top, left) lined
+//!   with 2.5 m × 4 m offices, the rest of the rectangle outside the building. Its optimal
+//!   paths (about 530–720 units) are of the paper's length, so its search is of the paper's
+//!   size; ten starts along the corridors, like the paper's ten initial positions;
+//! - a generated 35 m × 25 m office, whose free space is four times larger (optimal
+//!   lengths of 1,200–2,600 units): a stress case the search does not finish in seconds.
+//!
+//! `cargo bench -p optimal --bench office` prints one line per start (floor: all ten;
+//! office: the first `FRONTIER_OPT_STARTS`, default 3, with footprint and los; time limit
+//! `FRONTIER_OPT_SECONDS`, default 5; weight `FRONTIER_OPT_WEIGHT`; goal
+//! `FRONTIER_OPT_GOAL`), then runs criterion on the corridor floor's ten starts and on maps
+//! the search finishes: a 120 × 100-unit office, and 200 × 120-unit cave and potholes maps,
+//! and the office with `los` at G = 1 (where the landmark path bound applies).
+//! `FRONTIER_OPT_HARD=1` instead runs the hard setting once (cell size 1, r = 20, G = 0.95)
+//! on the 35 m × 25 m office under a time limit of `FRONTIER_OPT_SECONDS` (default 60) and
+//! prints the bounds reached.
 
 use std::time::Duration;
 
 use criterion::Criterion;
-use grid::{Cell, GridMap};
+use grid::{Cell, Grid, GridMap, Occ};
 use optimal::{ActionSet, Config, HeuristicKind, coarsen_problem, solve};
 use sense::SensorSpec;
 use world::{EnvKind, EnvSpec};
@@ -33,9 +42,69 @@ fn generate(kind: EnvKind, size: (f64, f64), seed: u64) -> GridMap {
     .map
 }
 
-/// The indoor map: a 35 m × 25 m office (350 × 250 units).
+/// The stress map: a generated 35 m × 25 m office (350 × 250 units).
 fn office() -> GridMap {
     generate(EnvKind::Office, (35.0, 25.0), 1)
+}
+
+/// Walls' thickness, the corridors' and the offices' sizes of [`corridor_floor`] (units).
+const WALL: usize = 2;
+const CORRIDOR: usize = 30;
+const ROOM_DEPTH: usize = 25;
+const ROOM_WIDTH: usize = 40;
+const DOOR: usize = 10;
+
+/// The paper-sized indoor map, 350 × 250 units at 0.1 m: a top corridor across the
+/// building and a left corridor down it, 3 m wide, with a row of 2.5 m × 4 m offices along
+/// the inner side of each (a 1 m door in the middle of each office's corridor wall); the
+/// rest of the rectangle is outside the building.
+fn corridor_floor() -> GridMap {
+    let (w, h) = (350, 250);
+    let mut cells = Grid::new(w, h, Occ::Occupied);
+    let mut free = |x0: usize, y0: usize, x1: usize, y1: usize| {
+        for y in y0..y1 {
+            for x in x0..x1 {
+                cells.set(Cell::new(x as i32, y as i32), Occ::Free);
+            }
+        }
+    };
+    let inner = WALL + CORRIDOR + WALL;
+    free(WALL, WALL, w - WALL, WALL + CORRIDOR);
+    free(WALL, WALL, WALL + CORRIDOR, h - WALL);
+    let mut x = inner;
+    while x + ROOM_WIDTH <= w - WALL {
+        let door = x + (ROOM_WIDTH - DOOR) / 2;
+        free(x, inner, x + ROOM_WIDTH, inner + ROOM_DEPTH);
+        free(door, inner - WALL, door + DOOR, inner);
+        x += ROOM_WIDTH + WALL;
+    }
+    let mut y = inner + ROOM_DEPTH + WALL;
+    while y + ROOM_WIDTH <= h - WALL {
+        let door = y + (ROOM_WIDTH - DOOR) / 2;
+        free(inner, y, inner + ROOM_DEPTH, y + ROOM_WIDTH);
+        free(inner - WALL, door, inner, door + DOOR);
+        y += ROOM_WIDTH + WALL;
+    }
+    GridMap::new(cells, 0.1)
+}
+
+/// Ten starts evenly spaced along the corridor floor's centre line, from the bottom of the
+/// left corridor up and then along the top corridor.
+fn floor_starts(map: &GridMap) -> Vec<Cell> {
+    let mid = (WALL + CORRIDOR / 2) as i32;
+    let (w, h) = (map.width() as i32, map.height() as i32);
+    let (down, across) = (h - 2 * mid, w - 2 * mid);
+    let total = f64::from(down + across);
+    (0..10)
+        .map(|k| {
+            let s = (total * (k as f64 + 0.5) / 10.0).round() as i32;
+            if s <= down {
+                Cell::new(mid, h - mid - s)
+            } else {
+                Cell::new(mid + s - down, mid)
+            }
+        })
+        .collect()
 }
 
 /// The free cell nearest to `target` (ties: lower row, then column).
@@ -78,6 +147,55 @@ fn config(goal: f64) -> Config {
         time_limit: Some(Duration::from_secs_f64(env_or("FRONTIER_OPT_SECONDS", 5.0))),
         ..Config::default()
     }
+}
+
+/// The corridor floor from its ten starts (the paper's setting), printed per start and on
+/// average; criterion then times all ten.
+fn floor(c: &mut Criterion) {
+    let map = corridor_floor();
+    let spec: SensorSpec = "footprint:r=3".parse().expect("sensor");
+    let problems: Vec<_> = floor_starts(&map)
+        .into_iter()
+        .map(|s| coarsen_problem(&map, 4, s, &spec).expect("problem"))
+        .collect();
+    let mut cfg = config(0.85);
+    cfg.time_limit = None;
+    cfg.weight = 1.0;
+    let (mut secs, mut nodes, mut generated, mut length) = (0.0, 0, 0, 0.0);
+    for (k, co) in problems.iter().enumerate() {
+        let out = solve(&co.problem, &cfg).expect("solve");
+        secs += out.stats.seconds;
+        nodes += out.stats.expanded;
+        generated += out.stats.generated;
+        length += out.upper_bound * 4.0;
+        println!(
+            "corridor floor, cell 4, footprint:r=3, G 0.85, start {k} {}: {} length {:.1} units, {} expanded, {} generated, {:.4} s",
+            floor_starts(&map)[k],
+            out.status.as_str(),
+            out.upper_bound * 4.0,
+            out.stats.expanded,
+            out.stats.generated,
+            out.stats.seconds
+        );
+    }
+    let n = problems.len() as f64;
+    println!(
+        "corridor floor, cell 4, footprint:r=3, G 0.85: mean length {:.1} units, {:.0} expanded, {:.0} generated, {:.4} s",
+        length / n,
+        nodes as f64 / n,
+        generated as f64 / n,
+        secs / n
+    );
+    let mut group = c.benchmark_group("optimal corridor floor");
+    group.sample_size(10);
+    group.bench_function("cell 4 footprint:r=3 G 0.85, ten starts", |b| {
+        b.iter(|| {
+            for co in &problems {
+                solve(&co.problem, &cfg).expect("solve");
+            }
+        })
+    });
+    group.finish();
 }
 
 fn easy(map: &GridMap, c: &mut Criterion) {
@@ -195,6 +313,7 @@ fn main() {
         .configure_from_args()
         .warm_up_time(Duration::from_secs(1))
         .measurement_time(Duration::from_secs(3));
+    floor(&mut c);
     easy(&map, &mut c);
     c.final_summary();
 }
