@@ -154,9 +154,10 @@ fn config(goal: f64) -> Config {
 fn floor(c: &mut Criterion) {
     let map = corridor_floor();
     let spec: SensorSpec = "footprint:r=3".parse().expect("sensor");
-    let problems: Vec<_> = floor_starts(&map)
-        .into_iter()
-        .map(|s| coarsen_problem(&map, 4, s, &spec).expect("problem"))
+    let starts = floor_starts(&map);
+    let problems: Vec<_> = starts
+        .iter()
+        .map(|&s| coarsen_problem(&map, 4, s, &spec).expect("problem"))
         .collect();
     let mut cfg = config(0.85);
     cfg.time_limit = None;
@@ -170,7 +171,7 @@ fn floor(c: &mut Criterion) {
         length += out.upper_bound * 4.0;
         println!(
             "corridor floor, cell 4, footprint:r=3, G 0.85, start {k} {}: {} length {:.1} units, {} expanded, {} generated, {:.4} s",
-            floor_starts(&map)[k],
+            starts[k],
             out.status.as_str(),
             out.upper_bound * 4.0,
             out.stats.expanded,
