@@ -525,26 +525,33 @@ fn optimal_warns_when_coarsening_closes_the_doors() {
 
 #[test]
 fn optimal_flags_are_checked() {
-    let e = err(&["optimal", "--goal", "1.5"]);
-    assert!(
-        e.contains("--goal: expected a coverage fraction in (0, 1], found 1.5"),
-        "{e}"
-    );
-    let e = err(&["optimal", "--sensor", "lidar:r=3"]);
-    assert!(
-        e.contains("--sensor") && e.contains("los:r=R or footprint:r=R"),
-        "{e}"
-    );
-    let e = err(&["optimal", "--cell-size", "0"]);
-    assert!(
-        e.contains("--cell-size: expected a factor in 1..=64, found 0"),
-        "{e}"
-    );
-    let e = err(&["optimal", "--weight", "0.5"]);
-    assert!(
-        e.contains("--weight: expected a number ≥ 1, found 0.5"),
-        "{e}"
-    );
+    let cases: [(&[&str], &[&str]); 4] = [
+        (
+            &["--goal", "1.5"],
+            &["--goal: expected a coverage fraction in (0, 1], found 1.5"],
+        ),
+        (
+            &["--sensor", "lidar:r=3"],
+            &["--sensor", "los:r=R or footprint:r=R"],
+        ),
+        (
+            &["--cell-size", "0"],
+            &["--cell-size: expected a factor in 1..=64, found 0"],
+        ),
+        (
+            &["--weight", "0.5"],
+            &["--weight: expected a number ≥ 1, found 0.5"],
+        ),
+    ];
+    for (flags, wanted) in cases {
+        let args: Vec<&str> = std::iter::once("optimal")
+            .chain(flags.iter().copied())
+            .collect();
+        let e = err(&args);
+        for w in wanted {
+            assert!(e.contains(w), "{flags:?}: {e}");
+        }
+    }
 }
 
 /// Ctrl-C during a long optimal search stops it cleanly: the bounds and the best path found

@@ -433,15 +433,6 @@ impl<'p> Engine<'p> {
         out
     }
 
-    fn passable<'a>(problem: &'a Problem, bits: &'a [u64]) -> impl Fn(usize) -> bool + 'a {
-        move |i| {
-            problem.reachable(i) && {
-                let t = problem.target_index(i);
-                has(bits, t)
-            }
-        }
-    }
-
     /// Complete greedily from (pos, bits, count): repeatedly move to the nearest action
     /// that perceives a new target or, with `rate`, to the action that perceives the most
     /// new targets per unit of path (`new / (d + 1)`, ties to the nearer, then the lower
@@ -904,6 +895,12 @@ impl<'p> Engine<'p> {
     }
 }
 
+/// Whether flat cell `i` is reachable and among the perceived targets `bits`: where [`walk`]
+/// may pass.
+fn perceived_free(problem: &Problem, bits: &[u64]) -> impl Fn(usize) -> bool {
+    move |i| problem.reachable(i) && has(bits, problem.target_index(i))
+}
+
 /// Re-walk a position sequence with time-discrete perception: each leg is a shortest path
 /// inside the free cells perceived so far. Errors if a position is not reachable that way.
 pub fn walk(problem: &Problem, positions: &[Cell]) -> Result<Solution, String> {
@@ -929,9 +926,10 @@ pub fn walk(problem: &Problem, positions: &[Cell]) -> Result<Solution, String> {
         };
         if k > 0 {
             let from = path[path.len() - 1] as usize;
-            reach.compute(from, Engine::passable(problem, &bits));
+            let passable = perceived_free(problem, &bits);
+            reach.compute(from, &passable);
             let d = dist(&reach, pi);
-            if !d.is_finite() || (pi != from && !Engine::passable(problem, &bits)(pi)) {
+            if !d.is_finite() || (pi != from && !passable(pi)) {
                 return Err(format!(
                     "position {k} {p} is not reachable inside the perceived free space"
                 ));
@@ -967,8 +965,9 @@ pub fn solve(problem: &Problem, cfg: &Config) -> Result<Outcome, OptimalError> {
 }
 
 /// [`solve`], showing `observe` the search's [`Progress`] at most once per `every` of wall
-/// time (checked every 64 expansions, so `Duration::ZERO` means every 64 expansions); when it returns false the search stops as if a limit was hit
-/// ([`StopReason::Interrupted`]), with the best bounds. The observer does not change the
+/// time (checked every 64 expansions, so `Duration::ZERO` means every 64 expansions); when
+/// it returns false the search stops as if a limit was hit ([`StopReason::Interrupted`]),
+/// with the best bounds. The observer does not change the
 /// search otherwise: the result is the same as [`solve`]'s unless it asks to stop.
 pub fn solve_with(
     problem: &Problem,
