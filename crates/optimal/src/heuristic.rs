@@ -31,9 +31,11 @@
 //! be perceived: h = the (s + 1)-th largest b(t) over U. Eq. 2 is kept as
 //! [`HeuristicKind::PaperAsPublished`], flagged inadmissible.
 //!
-//! # `Landmarks`: h = max(Paper, coverage rate, landmark path bound)
+//! # `Landmarks`: h = max(Paper, coverage rate, landmark path bound or skip-budget bound)
 //! The coverage-rate bound (K more targets at most ρ* per unit of path, proof in
-//! [`crate::coverage_rate`]) holds for every G. The landmark bound below only for G = 1.
+//! [`crate::coverage_rate`]) holds for every G. The landmark bound below only for G = 1;
+//! for G < 1 the skip-budget bound (the far ends of the map must still be approached, the
+//! budget of unperceived targets shared between them; proof in [`crate::skip_budget`]).
 //!
 //! ## The landmark path bound (G = 1)
 //! Landmarks a_1..a_K are reachable targets; V(a) is the set of reachable positions that
@@ -61,6 +63,7 @@ use grid::Occ;
 use crate::coverage_rate::CoverageRate;
 use crate::held_karp::PathBound;
 use crate::problem::{NOT_TARGET, Problem, SensorModel};
+use crate::skip_budget::SkipBudget;
 
 /// Which lower bound guides the search.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -72,8 +75,8 @@ pub enum HeuristicKind {
     /// The paper's Eq. 1/2 exactly as printed (path distance − r√2, × max(0, G − |M|/|E_f|));
     /// NOT admissible with the footprint sensor or G < 1.
     PaperAsPublished,
-    /// max(Paper, coverage rate, Held–Karp bound on a path through landmarks); the
-    /// landmark part only for G = 1.
+    /// max(Paper, coverage rate, Held–Karp bound on a path through landmarks at G = 1 or
+    /// the skip-budget bound at G < 1).
     Landmarks,
 }
 
@@ -176,6 +179,8 @@ pub(crate) struct Heuristic {
     dij: Reachability,
     /// The coverage-rate bound.
     rate: CoverageRate,
+    /// The skip-budget bound (G < 1 only).
+    far: Option<SkipBudget>,
     // Landmarks.
     lm_t: Vec<u32>,
     lm_field: Vec<f64>,
@@ -233,6 +238,7 @@ impl Heuristic {
             (_, SensorModel::Footprint(_)) => max_euclid_within(r),
         };
         let n_targets = problem.targets().len();
+        let skip = n_targets - problem.needed(goal);
         let cells = problem.cells();
         let mut h = Self {
             kind,
@@ -240,12 +246,13 @@ impl Heuristic {
             goal,
             c,
             n_targets,
-            skip: n_targets - problem.needed(goal),
+            skip,
             order_slot: HashMap::new(),
             orders: Vec::new(),
             cache_cap_bytes,
             dij: Reachability::new(cells.width(), cells.height()),
             rate: CoverageRate::new(model),
+            far: None,
             lm_t: Vec::new(),
             lm_field: Vec::new(),
             lm_w: Vec::new(),
@@ -257,6 +264,9 @@ impl Heuristic {
         if kind == HeuristicKind::Landmarks && h.skip == 0 && landmarks > 0 {
             h.choose_landmarks(problem, landmarks);
         }
+        if kind == HeuristicKind::Landmarks {
+            h.far = SkipBudget::new(problem, h.skip);
+        }
         h
     }
 
@@ -266,6 +276,7 @@ impl Heuristic {
             + self.order_slot.len() * 24
             + self.lm_field.capacity() * 8
             + self.path_cache.capacity() * 40
+            + self.far.as_ref().map_or(0, SkipBudget::bytes)
     }
 
     /// Number of landmarks in use.
@@ -391,8 +402,40 @@ impl Heuristic {
         base
     }
 
+    /// Prepare to bound the children of a new state ([`Heuristic::eval_child`]).
+    pub(crate) fn enter(&mut self) {
+        if let Some(far) = &mut self.far {
+            far.enter();
+        }
+    }
+
     /// The bound for the robot at `pos` having perceived `bits` (`count` targets).
     pub(crate) fn eval(&mut self, problem: &Problem, pos: u32, bits: &[u64], count: usize) -> f64 {
+        self.eval_at(problem, pos, bits, count, None)
+    }
+
+    /// [`Heuristic::eval`] for a child of the state last [`Heuristic::enter`]ed, whose
+    /// perceived set is `parent`: `bits` is `parent` plus what `pos` perceives (parts of
+    /// the bound are shared between siblings).
+    pub(crate) fn eval_child(
+        &mut self,
+        problem: &Problem,
+        pos: u32,
+        bits: &[u64],
+        count: usize,
+        parent: &[u64],
+    ) -> f64 {
+        self.eval_at(problem, pos, bits, count, Some(parent))
+    }
+
+    fn eval_at(
+        &mut self,
+        problem: &Problem,
+        pos: u32,
+        bits: &[u64],
+        count: usize,
+        parent: Option<&[u64]>,
+    ) -> f64 {
         if self.kind == HeuristicKind::Zero || self.n_targets - count <= self.skip {
             return 0.0;
         }
@@ -428,6 +471,9 @@ impl Heuristic {
             return paper;
         }
         let rate = self.rate.bound(self.n_targets - self.skip - count);
+        if let Some(far) = &mut self.far {
+            return far.bound(pos, bits, paper.max(rate), parent);
+        }
         if self.lm_t.is_empty() {
             return paper.max(rate);
         }

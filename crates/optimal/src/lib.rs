@@ -12,7 +12,9 @@
 //!   speed-up);
 //! - [`heuristic`]: the paper's bound (with admissibility proofs per sensor) and stronger
 //!   ones: a Held–Karp bound on a path through landmarks (`held_karp`) and the
-//!   coverage-rate bound (`coverage_rate`: each unit of path uncovers at most ρ* new cells);
+//!   coverage-rate bound (`coverage_rate`: each unit of path uncovers at most ρ* new cells)
+//!   and, for G < 1, the skip-budget bound (`skip_budget`: the map's far ends must still be
+//!   approached, each less closely the more of the budget the others take);
 //! - [`search`]: A*, weighted A*, limits and bounds (step costs: `step_cost`);
 //! - [`coarse`]: solving on a coarsened map (the paper's cell sizes 1, 2, 4).
 //!
@@ -36,6 +38,7 @@ pub(crate) mod held_karp;
 pub mod heuristic;
 pub mod problem;
 pub mod search;
+pub(crate) mod skip_budget;
 pub(crate) mod step_cost;
 
 pub use actions::ActionSet;

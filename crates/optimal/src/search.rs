@@ -708,6 +708,7 @@ impl<'p> Engine<'p> {
         let node = self.nodes[id as usize];
         self.load_state(id);
         self.reach.compute(node.pos, &self.cur);
+        self.heur.enter();
         let mut next = Some(self.cfg.actions);
         while let Some(actions) = next {
             candidates(
@@ -780,7 +781,9 @@ impl<'p> Engine<'p> {
                 key2 ^= self.zt[t as usize][0];
                 check2 ^= self.zt[t as usize][1];
             }
-            let h = self.heur.eval(problem, a, &self.child, count2);
+            let h = self
+                .heur
+                .eval_child(problem, a, &self.child, count2, &self.cur);
             if g2 + h >= self.inc_cost - EPS {
                 self.stats.pruned += 1;
                 continue;
