@@ -172,8 +172,12 @@ pub(crate) struct Heuristic {
     n_targets: usize,
     /// Targets that may stay unperceived at the end.
     skip: usize,
-    /// Per position: targets by bound value, descending (value, target).
+    /// Per position: the `order_len` targets of largest bound value, descending
+    /// (value, target).
     order_slot: HashMap<u32, u32>,
+    /// Entries kept per position: all for the paper's formula as published, else
+    /// 2(s + 1) + [`ORDER_SLACK`] (on a 350 × 250 map at G = 0.95 a twelfth of the targets).
+    order_len: usize,
     orders: Vec<(f64, u32)>,
     cache_cap_bytes: usize,
     dij: Reachability,
@@ -195,6 +199,9 @@ pub(crate) struct Heuristic {
     /// subgradient step.
     path_cache: HashMap<(u64, u32), f64, BuildHasherDefault<MixHasher>>,
 }
+
+/// Entries kept in a position's distance order beyond 2(s + 1).
+const ORDER_SLACK: usize = 256;
 
 /// Entries of the landmark path cache before it is cleared (≈ 40 bytes each).
 const PATH_CACHE_ENTRIES: usize = 1 << 20;
@@ -239,6 +246,11 @@ impl Heuristic {
         };
         let n_targets = problem.targets().len();
         let skip = n_targets - problem.needed(goal);
+        let order_len = if kind == HeuristicKind::PaperAsPublished {
+            n_targets
+        } else {
+            n_targets.min(2 * (skip + 1) + ORDER_SLACK)
+        };
         let cells = problem.cells();
         let mut h = Self {
             kind,
@@ -247,6 +259,7 @@ impl Heuristic {
             c,
             n_targets,
             skip,
+            order_len,
             order_slot: HashMap::new(),
             orders: Vec::new(),
             cache_cap_bytes,
@@ -353,7 +366,7 @@ impl Heuristic {
     /// The distance order of position `pos` (computed on first use).
     fn order(&mut self, problem: &Problem, pos: u32) -> usize {
         if let Some(&s) = self.order_slot.get(&pos) {
-            return s as usize * self.n_targets;
+            return s as usize * self.order_len;
         }
         if self.orders.len() * 16 > self.cache_cap_bytes {
             self.orders.clear();
@@ -396,8 +409,13 @@ impl Heuristic {
                 }
             }
         }
-        // Descending by bound value (ties: lower target first).
-        self.orders[base..].sort_unstable_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)));
+        // Descending by bound value (ties: lower target first), the first `order_len` kept.
+        let desc = |a: &(f64, u32), b: &(f64, u32)| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1));
+        if self.order_len < self.n_targets {
+            self.orders[base..].select_nth_unstable_by(self.order_len - 1, desc);
+            self.orders.truncate(base + self.order_len);
+        }
+        self.orders[base..].sort_unstable_by(desc);
         self.order_slot.insert(pos, slot as u32);
         base
     }
@@ -440,7 +458,7 @@ impl Heuristic {
             return 0.0;
         }
         let base = self.order(problem, pos);
-        let list = &self.orders[base..base + self.n_targets];
+        let list = &self.orders[base..base + self.order_len];
         let paper = if self.kind == HeuristicKind::PaperAsPublished {
             let far = list
                 .iter()
@@ -453,7 +471,8 @@ impl Heuristic {
             };
             ((far - self.c) * factor).max(0.0)
         } else {
-            // The (skip + 1)-th largest bound among unperceived targets.
+            // The (skip + 1)-th largest bound among unperceived targets (0 if the kept part
+            // of the order holds fewer unperceived targets: still a lower bound).
             let mut left = self.skip;
             let mut v = 0.0;
             for &(d, t) in list {
@@ -608,5 +627,83 @@ impl Views {
     /// target's viewpoints touch a landmark's), else `c` (the sensor's reach).
     fn spacing(&self, c: f64) -> f64 {
         if self.kept { 0.0 } else { c }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use grid::{Cell, Grid};
+    use proptest::prelude::*;
+
+    proptest! {
+        /// The order statistic read off a truncated distance order equals the one over all
+        /// unperceived targets when the kept part holds enough of them, and is never above
+        /// it (maps large enough to truncate, both sensors, G = 1 and 0.9).
+        #[test]
+        fn truncated_orders_give_the_order_statistic_or_less(
+            walls in proptest::collection::vec(0u8..8, 24 * 16),
+            seen in proptest::collection::vec(0u8..4, 24 * 16),
+            pos in 0usize..24 * 16,
+            radius in 2.0f64..30.0,
+            fp in any::<bool>(),
+            goal in prop_oneof![Just(1.0), Just(0.9)],
+        ) {
+            let (w, h) = (24, 16);
+            let mut map = Grid::new(w, h, Occ::Free);
+            for (c, &wall) in map.data_mut().iter_mut().zip(&walls) {
+                if wall == 0 {
+                    *c = Occ::Occupied;
+                }
+            }
+            map.data_mut()[0] = Occ::Free;
+            let model = if fp { SensorModel::Footprint(2.0) } else { SensorModel::Los(2.0) };
+            let p = Problem::new(&map, Cell::new(0, 0), model).expect("problem");
+            let reach: Vec<u32> = (0..w * h).filter(|&i| p.reachable(i)).map(|i| i as u32).collect();
+            let pos = reach[pos % reach.len()];
+            let n = p.targets().len();
+            let mut heur = Heuristic::new(&p, HeuristicKind::Paper, goal, 0, 1 << 30);
+            prop_assume!(heur.order_len < n);
+            // Perceived: the targets farther than `radius` from `pos` (so the order's kept
+            // head may hold none unperceived) and a random quarter of the others.
+            let q = p.cells().cell(pos as usize);
+            let mut bits = vec![0u64; p.mark_count().div_ceil(64)];
+            let mut count = 0;
+            for t in 0..n {
+                let c = p.targets()[t] as usize;
+                if seen[c] == 0 || q.dist(p.cells().cell(c)) > radius {
+                    set(&mut bits, t as u32);
+                    count += 1;
+                }
+            }
+            prop_assume!(n - count > heur.skip);
+            let got = heur.eval(&p, pos, &bits, count);
+            // Brute force over every target: its bound value as `order` computes it.
+            let base = heur.order(&p, pos);
+            let kept: Vec<(f64, u32)> = heur.orders[base..base + heur.order_len].to_vec();
+            let cells = p.cells();
+            let mut values: Vec<f64> = if fp {
+                let q = cells.cell(pos as usize);
+                (0..n)
+                    .filter(|&t| !has(&bits, t as u32))
+                    .map(|t| q.dist(cells.cell(p.targets()[t] as usize)))
+                    .collect()
+            } else {
+                let mut dij = Reachability::new(w, h);
+                dij.compute(pos as usize, |i| cells.data()[i] == Occ::Free);
+                (0..n)
+                    .filter(|&t| !has(&bits, t as u32))
+                    .map(|t| dist(&dij, p.targets()[t] as usize))
+                    .map(|d| if d.is_finite() { d } else { 0.0 })
+                    .collect()
+            };
+            values.sort_by(|a, b| b.total_cmp(a));
+            let exact = (values[heur.skip] - heur.c).max(0.0);
+            prop_assert!(got <= exact + 1e-9, "{} > {}", got, exact);
+            let unperceived_kept = kept.iter().filter(|&&(_, t)| !has(&bits, t)).count();
+            if unperceived_kept > heur.skip {
+                prop_assert_eq!(got.to_bits(), exact.to_bits());
+            }
+        }
     }
 }
