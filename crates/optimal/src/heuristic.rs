@@ -134,7 +134,7 @@ pub(crate) fn dist(reach: &Reachability, i: usize) -> f64 {
 }
 
 /// max{|dx| + |dy| : dx² + dy² ≤ r²} over integer offsets.
-fn max_l1_within(r: f64) -> f64 {
+pub(crate) fn max_l1_within(r: f64) -> f64 {
     let reach = r.floor() as i64;
     let mut best = 0;
     for dx in 0..=reach {

@@ -56,10 +56,13 @@ use grid::Occ;
 use sense::Observation;
 
 use crate::heuristic::has;
-use crate::problem::Problem;
+use crate::problem::{Problem, SensorModel};
 
 /// Most far points.
 const MAX_POINTS: usize = 3;
+/// Most cells visited scanning every target's viewpoints at set-up (targets × the sensor's
+/// disc); beyond it the line-of-sight sensor estimates e_a from the target's own distance.
+const SCAN_BUDGET: usize = 1 << 26;
 /// Most (split, order) pairs evaluated per bound and ownership.
 const MAX_WORK: usize = 1024;
 
@@ -87,7 +90,8 @@ pub(crate) struct SkipBudget {
 
 impl SkipBudget {
     /// Set up the bound for `problem` when `skip` targets may stay unperceived; `None` when
-    /// there is no budget (G = 1) or no far point worth a constraint.
+    /// there is no budget (G = 1), no far point worth a constraint, or (footprint sensor)
+    /// too many targets to scan their viewpoints.
     pub(crate) fn new(problem: &Problem, skip: usize) -> Option<Self> {
         if skip == 0 {
             return None;
@@ -138,27 +142,28 @@ impl SkipBudget {
             }
         }
         // e_a(t) for every target and far point; per ownership, each target goes to the
-        // far point with the smallest.
+        // far point with the smallest. On maps too large to scan every target's viewpoints
+        // the line-of-sight sensor uses e_a(t) ≤ d(p_a, t) + c (every viewpoint is within
+        // c of t in path length, `crate::heuristic`'s module doc): counting fewer targets
+        // is still a lower bound. The footprint sensor has no such bound (it sees through
+        // walls), so there the bound is left out.
+        let r = problem.model().range();
+        let disc = (std::f64::consts::PI * (r + 1.0) * (r + 1.0)) as usize;
+        let estimate = if problem.targets().len().saturating_mul(disc) <= SCAN_BUDGET {
+            None
+        } else if let SensorModel::Los(_) = problem.model() {
+            Some(crate::heuristic::max_l1_within(r))
+        } else {
+            return None;
+        };
         let mut owned = vec![Vec::new(); k];
         for (j, o) in owned.iter_mut().enumerate() {
             *o = vec![Vec::new(); j + 1];
         }
-        let mut obs = Observation::new();
-        let mut seen = Vec::new();
-        let targets = problem.targets();
-        let mut e = [f64::NEG_INFINITY; MAX_POINTS];
-        for (t, &cell) in targets.iter().enumerate() {
-            seen.clear();
-            problem.seen_targets(cell, &mut obs, &mut seen);
-            e.fill(f64::NEG_INFINITY);
-            for &s in &seen {
-                let v = targets[s as usize] as usize;
-                if problem.reachable(v) {
-                    for (x, f) in e.iter_mut().zip(&field) {
-                        *x = x.max(f[v]);
-                    }
-                }
-            }
+        for (t, e) in viewpoint_reach(problem, &field, estimate)
+            .iter()
+            .enumerate()
+        {
             if e[0] == f64::NEG_INFINITY {
                 continue; // no viewpoint (not a target of this problem)
             }
@@ -341,6 +346,39 @@ impl SkipBudget {
     }
 }
 
+/// e_a(t) for every target t and far point a (fields `field`): the farthest viewpoint's
+/// distance, scanned, or with `estimate = Some(c)` (line of sight only) d(p_a, t) + c;
+/// `-∞` for a target without a reachable viewpoint.
+fn viewpoint_reach(
+    problem: &Problem,
+    field: &[Vec<f64>],
+    estimate: Option<f64>,
+) -> Vec<[f64; MAX_POINTS]> {
+    let targets = problem.targets();
+    let mut obs = Observation::new();
+    let mut seen = Vec::new();
+    let mut out = vec![[f64::NEG_INFINITY; MAX_POINTS]; targets.len()];
+    for (e, &cell) in out.iter_mut().zip(targets) {
+        if let Some(c) = estimate {
+            for (x, f) in e.iter_mut().zip(field) {
+                *x = f[cell as usize] + c;
+            }
+            continue;
+        }
+        seen.clear();
+        problem.seen_targets(cell, &mut obs, &mut seen);
+        for &s in &seen {
+            let v = targets[s as usize] as usize;
+            if problem.reachable(v) {
+                for (x, f) in e.iter_mut().zip(field) {
+                    *x = x.max(f[v]);
+                }
+            }
+        }
+    }
+    out
+}
+
 /// The path bound at split (i, l, units − i − l) (in steps of `step`, capped at `s`) of
 /// the first `k` far points, whose E_a are `e`.
 #[allow(clippy::too_many_arguments)]
@@ -415,6 +453,43 @@ mod tests {
     }
 
     proptest! {
+        /// The line-of-sight estimate d(p_a, t) + c of the farthest viewpoint's distance is
+        /// never below the scanned one (so it counts no target the scan would not).
+        #[test]
+        fn los_estimate_is_never_below_the_scan(
+            w in 4usize..14,
+            h in 2usize..10,
+            walls in proptest::collection::vec(0u8..4, 140),
+            r in 1.0f64..4.0,
+        ) {
+            let mut map = Grid::new(w, h, Occ::Free);
+            for (c, &wall) in map.data_mut().iter_mut().zip(&walls) {
+                if wall == 0 {
+                    *c = Occ::Occupied;
+                }
+            }
+            map.data_mut()[0] = Occ::Free;
+            let p = Problem::new(&map, Cell::new(0, 0), SensorModel::Los(r)).expect("problem");
+            let data = map.data();
+            let mut dij = Reachability::new(w, h);
+            let field: Vec<Vec<f64>> = (0..w * h)
+                .filter(|&i| p.reachable(i))
+                .take(MAX_POINTS)
+                .map(|i| {
+                    dij.compute(i, |j| data[j] == Occ::Free);
+                    (0..w * h).map(|j| dij.cost(j).unwrap_or(f64::INFINITY)).collect()
+                })
+                .collect();
+            let c = crate::heuristic::max_l1_within(r);
+            let scanned = viewpoint_reach(&p, &field, None);
+            let estimated = viewpoint_reach(&p, &field, Some(c));
+            for (s, e) in scanned.iter().zip(&estimated) {
+                for a in 0..field.len() {
+                    prop_assert!(e[a] >= s[a] - 1e-9, "{} < {}", e[a], s[a]);
+                }
+            }
+        }
+
         /// A child bounded with its parent's lists (reused, or skipped against the floor)
         /// gets exactly the value it gets alone, on random maps, paths, floors and budgets.
         #[test]
