@@ -62,7 +62,8 @@ pub struct OptimalArgs {
     pub weight: f64,
     /// Stop after this many seconds with the best bounds (then a little more: the most
     /// advanced open states are completed greedily, with at most 5% as many path searches as
-    /// states expanded, for a better upper bound).
+    /// states expanded and for at most a tenth of the limit or 1 s, for a better upper
+    /// bound).
     #[arg(long)]
     pub time_limit: Option<f64>,
     /// Stop after expanding this many states.

@@ -64,9 +64,10 @@ pub struct Config {
     pub max_nodes: u64,
     /// Stop before the search's own memory exceeds this many bytes.
     pub max_bytes: usize,
-    /// Stop after this much wall time. A stopped search then completes its most advanced
-    /// open states greedily for a better upper bound, with up to 5% as many shortest-path
-    /// searches as it expanded states.
+    /// Stop after this much wall time (the first greedy completion, for an initial upper
+    /// bound, keeps to it too). A stopped search then completes its most advanced open
+    /// states greedily for a better upper bound, with up to 5% as many shortest-path
+    /// searches as it expanded states, for at most a tenth of the limit (at least 1 s).
     pub time_limit: Option<Duration>,
 }
 
@@ -314,6 +315,8 @@ struct Engine<'p> {
     fresh: Vec<u32>,
     inc_cost: f64,
     inc_positions: Vec<u32>,
+    /// Greedy completions give up at this instant (the time limit, for the first one).
+    deadline: Option<Instant>,
     stats: Stats,
     fixed_bytes: usize,
     /// Number of targets: marks below it are free cells the goal counts.
@@ -361,6 +364,7 @@ impl<'p> Engine<'p> {
             fresh: Vec::new(),
             inc_cost: f64::INFINITY,
             inc_positions: Vec::new(),
+            deadline: None,
             stats: Stats::default(),
             // Step costs, action marks, Zobrist keys, the problem's arrays.
             fixed_bytes: reach_bytes + n * (4 + 16 + 12) + nm * 20,
@@ -448,6 +452,9 @@ impl<'p> Engine<'p> {
         let mut cur = bits.to_vec();
         let mut cost = 0.0;
         while count < self.need {
+            if self.deadline.is_some_and(|d| Instant::now() >= d) {
+                return None;
+            }
             self.reach.compute(pos, &cur);
             let mut best = None;
             let mut next = Some(self.cfg.actions);
@@ -590,7 +597,11 @@ impl<'p> Engine<'p> {
         self.table.insert(key, 0);
         self.open.push(entry(w * h0, 0.0, 0));
         self.stats.stored = 1;
+        // The first greedy completion keeps to the time limit: on a large map with a long
+        // sensor range it can take minutes (a scan per candidate cell).
+        self.deadline = self.cfg.time_limit.map(|t| started + t);
         self.improve_from(0);
+        self.deadline = None;
         let mut stop = None;
         let mut popped_lb = f64::INFINITY;
         // The largest priority popped so far, over w: every popped priority is the least in
@@ -678,6 +689,16 @@ impl<'p> Engine<'p> {
             // The budget counts greedy steps (one shortest-path search each, like an
             // expansion), not time, so a stop by the node limit stays deterministic.
             let mut budget = (self.stats.expanded as f64 * IMPROVE_SHARE) as u64;
+            // Stopped by the clock, they also keep to a short grace (a tenth of the time
+            // limit, at least a second): one completion of a large map can take minutes.
+            self.deadline = match stop {
+                Some(StopReason::TimeLimit) => self
+                    .cfg
+                    .time_limit
+                    .map(|t| Instant::now() + (t / 10).max(Duration::from_secs(1))),
+                Some(StopReason::Interrupted) => Some(Instant::now() + Duration::from_secs(1)),
+                _ => None,
+            };
             for &(_, _, id) in open.iter().take(IMPROVE_STATES) {
                 let steps = self.improve_from(id);
                 budget = budget.saturating_sub(steps);
@@ -685,6 +706,7 @@ impl<'p> Engine<'p> {
                     break;
                 }
             }
+            self.deadline = None;
         }
         if !admissible {
             lb = 0.0;
