@@ -315,7 +315,8 @@ struct Engine<'p> {
     fresh: Vec<u32>,
     inc_cost: f64,
     inc_positions: Vec<u32>,
-    /// Greedy completions give up at this instant (the time limit, for the first one).
+    /// Greedy completions give up at this instant: the time limit for the first one, a
+    /// short grace for those after a stop by the clock; none otherwise.
     deadline: Option<Instant>,
     stats: Stats,
     fixed_bytes: usize,

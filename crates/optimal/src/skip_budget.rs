@@ -225,10 +225,11 @@ impl SkipBudget {
         }
     }
 
-    /// Start bounding the children of a new state (`from_parent`): its E_a are scanned on
-    /// first use. A child reuses its parent's E_a when it perceives nothing of E_a's prefix:
-    /// every target t it perceives has e_a(t) ≥ d(p_a, child), the child being a viewpoint
-    /// of t, so none is in the prefix when d(p_a, child) exceeds the prefix's last e.
+    /// Start bounding the children of a new state (`parent` of [`SkipBudget::bound`]): its
+    /// E_a are scanned on first use. A child reuses its parent's E_a when it perceives
+    /// nothing of E_a's prefix: every target t it perceives has e_a(t) ≥ d(p_a, child), the
+    /// child being a viewpoint of t (with the large-map estimate too: d(p_a, child) ≤
+    /// d(p_a, t) + c), so none is in the prefix when d(p_a, child) exceeds its last e.
     pub(crate) fn enter(&mut self) {
         for ok in self.parent_ok.iter_mut().flatten() {
             *ok = false;
@@ -238,7 +239,7 @@ impl SkipBudget {
     /// The bound for the robot at flat cell `pos` having perceived `bits`, the largest over
     /// the ownerships, or `floor` if that is larger (an ownership stops as soon as one of
     /// its splits gives no more than the best so far).
-    /// With `from_parent`, `bits` is what `pos` perceives added to `parent`, the perceived
+    /// With `Some(parent)`, `bits` is what `pos` perceives added to `parent`, the perceived
     /// set of the state last [`SkipBudget::enter`]ed.
     pub(crate) fn bound(
         &mut self,
