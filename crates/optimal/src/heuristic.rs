@@ -570,22 +570,17 @@ impl Views {
             data: Vec::new(),
             kept: false,
         };
-        let r = problem.model().range();
-        let disc = (std::f64::consts::PI * (r + 1.0) * (r + 1.0)) as usize;
-        if reach_targets.len().saturating_mul(disc) > VIEW_ENTRIES {
+        if reach_targets
+            .len()
+            .saturating_mul(problem.model().disc_cells())
+            > VIEW_ENTRIES
+        {
             return v;
         }
         let mut obs = sense::Observation::new();
-        let mut seen = Vec::new();
         for &t in reach_targets {
-            seen.clear();
-            problem.seen_targets(t, &mut obs, &mut seen);
             let start = v.data.len() as u32;
-            v.data.extend(
-                seen.iter()
-                    .map(|&s| problem.targets()[s as usize])
-                    .filter(|&p| problem.reachable(p as usize)),
-            );
+            problem.viewpoints(t, &mut obs, &mut v.data);
             v.at.push((start, v.data.len() as u32));
         }
         v.kept = true;
@@ -601,13 +596,9 @@ impl Views {
                 .map(|&p| p as usize)
                 .collect();
         }
-        let mut obs = sense::Observation::new();
-        let mut seen = Vec::new();
-        problem.seen_targets(t, &mut obs, &mut seen);
-        seen.iter()
-            .map(|&s| problem.targets()[s as usize] as usize)
-            .filter(|&p| problem.reachable(p))
-            .collect()
+        let mut v = Vec::new();
+        problem.viewpoints(t, &mut sense::Observation::new(), &mut v);
+        v.into_iter().map(|p| p as usize).collect()
     }
 
     /// Lower `score[j]` to the distance in `field` from the source set to the nearest
@@ -637,7 +628,7 @@ impl Views {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use grid::{Cell, Grid};
+    use grid::Cell;
     use proptest::prelude::*;
 
     proptest! {
@@ -654,12 +645,7 @@ mod tests {
             goal in prop_oneof![Just(1.0), Just(0.9)],
         ) {
             let (w, h) = (24, 16);
-            let mut map = Grid::new(w, h, Occ::Free);
-            for (c, &wall) in map.data_mut().iter_mut().zip(&walls) {
-                if wall == 0 {
-                    *c = Occ::Occupied;
-                }
-            }
+            let mut map = crate::walled_map(w, h, &walls);
             map.data_mut()[0] = Occ::Free;
             let model = if fp { SensorModel::Footprint(2.0) } else { SensorModel::Los(2.0) };
             let p = Problem::new(&map, Cell::new(0, 0), model).expect("problem");

@@ -51,6 +51,18 @@ pub use search::{
     solve_with, walk,
 };
 
+/// A `w` × `h` test map with a wall wherever `walls` holds 0 (maps from random bytes).
+#[cfg(test)]
+pub(crate) fn walled_map(w: usize, h: usize, walls: &[u8]) -> grid::Grid<grid::Occ> {
+    let mut map = grid::Grid::new(w, h, grid::Occ::Free);
+    for (c, &wall) in map.data_mut().iter_mut().zip(walls) {
+        if wall == 0 {
+            *c = grid::Occ::Occupied;
+        }
+    }
+    map
+}
+
 /// Competitive ratio of an online path: `online_length / optimal_length` (same units);
 /// `None` if the optimal length is not positive.
 pub fn competitive_ratio(online_length: f64, optimal_length: f64) -> Option<f64> {

@@ -70,6 +70,13 @@ impl SensorModel {
     pub fn through_walls(self) -> bool {
         matches!(self, SensorModel::Footprint(_))
     }
+
+    /// At least the number of cells one position perceives (the disc of radius r + 1), for
+    /// sizing work done once per target.
+    pub(crate) fn disc_cells(self) -> usize {
+        let r = self.range() + 1.0;
+        (std::f64::consts::PI * r * r) as usize
+    }
 }
 
 /// The built sensor behind a [`SensorModel`].
@@ -265,6 +272,23 @@ impl Problem {
     /// `obs` is scratch for the footprint scan.
     pub fn seen_targets(&self, pos: u32, obs: &mut Observation, out: &mut Vec<u32>) {
         self.seen(self.targets.len() as u32, pos, obs, out);
+    }
+
+    /// Append to `out` the viewpoints of flat cell `cell`: the reachable cells that perceive
+    /// it (the sensors are symmetric, so the reachable cells it would perceive), as flat
+    /// cells; `obs` is scratch for the footprint scan.
+    pub(crate) fn viewpoints(&self, cell: u32, obs: &mut Observation, out: &mut Vec<u32>) {
+        let start = out.len();
+        self.seen_targets(cell, obs, out);
+        let mut kept = start;
+        for k in start..out.len() {
+            let p = self.targets[out[k] as usize];
+            if self.reach[p as usize] {
+                out[kept] = p;
+                kept += 1;
+            }
+        }
+        out.truncate(kept);
     }
 
     /// Append to `out` the mark indices perceived from flat cell `pos` (each once).

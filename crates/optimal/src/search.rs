@@ -315,9 +315,6 @@ struct Engine<'p> {
     fresh: Vec<u32>,
     inc_cost: f64,
     inc_positions: Vec<u32>,
-    /// Greedy completions give up at this instant: the time limit for the first one, a
-    /// short grace for those after a stop by the clock; none otherwise.
-    deadline: Option<Instant>,
     stats: Stats,
     fixed_bytes: usize,
     /// Number of targets: marks below it are free cells the goal counts.
@@ -365,7 +362,6 @@ impl<'p> Engine<'p> {
             fresh: Vec::new(),
             inc_cost: f64::INFINITY,
             inc_positions: Vec::new(),
-            deadline: None,
             stats: Stats::default(),
             // Step costs, action marks, Zobrist keys, the problem's arrays.
             fixed_bytes: reach_bytes + n * (4 + 16 + 12) + nm * 20,
@@ -441,19 +437,21 @@ impl<'p> Engine<'p> {
     /// Complete greedily from (pos, bits, count): repeatedly move to the nearest action
     /// that perceives a new target or, with `rate`, to the action that perceives the most
     /// new targets per unit of path (`new / (d + 1)`, ties to the nearer, then the lower
-    /// cell). Returns the added cost and appends the positions.
+    /// cell). Returns the added cost and appends the positions; `None` if no action
+    /// perceives a new target or `deadline` passes first.
     fn greedy(
         &mut self,
         mut pos: u32,
         bits: &[u64],
         mut count: usize,
         rate: bool,
+        deadline: Option<Instant>,
         out: &mut Vec<u32>,
     ) -> Option<f64> {
         let mut cur = bits.to_vec();
         let mut cost = 0.0;
         while count < self.need {
-            if self.deadline.is_some_and(|d| Instant::now() >= d) {
+            if deadline.is_some_and(|d| Instant::now() >= d) {
                 return None;
             }
             self.reach.compute(pos, &cur);
@@ -528,15 +526,15 @@ impl<'p> Engine<'p> {
     }
 
     /// Try to improve the incumbent with the greedy completions (nearest, then by rate) of
-    /// stored state `id`.
-    fn improve_from(&mut self, id: u32) -> u64 {
+    /// stored state `id`, given up at `deadline`.
+    fn improve_from(&mut self, id: u32, deadline: Option<Instant>) -> u64 {
         let n = self.nodes[id as usize];
         self.load_state(id);
         let bits = self.cur.clone();
         let mut steps = 0;
         for rate in [false, true] {
             let mut tail = Vec::new();
-            let done = self.greedy(n.pos, &bits, n.count as usize, rate, &mut tail);
+            let done = self.greedy(n.pos, &bits, n.count as usize, rate, deadline, &mut tail);
             steps += tail.len() as u64 + 1;
             if let Some(c) = done
                 && n.g + c < self.inc_cost - EPS
@@ -600,9 +598,7 @@ impl<'p> Engine<'p> {
         self.stats.stored = 1;
         // The first greedy completion keeps to the time limit: on a large map with a long
         // sensor range it can take minutes (a scan per candidate cell).
-        self.deadline = self.cfg.time_limit.map(|t| started + t);
-        self.improve_from(0);
-        self.deadline = None;
+        self.improve_from(0, self.cfg.time_limit.map(|t| started + t));
         let mut stop = None;
         let mut popped_lb = f64::INFINITY;
         // The largest priority popped so far, over w: every popped priority is the least in
@@ -692,7 +688,7 @@ impl<'p> Engine<'p> {
             let mut budget = (self.stats.expanded as f64 * IMPROVE_SHARE) as u64;
             // Stopped by the clock, they also keep to a short grace (a tenth of the time
             // limit, at least a second): one completion of a large map can take minutes.
-            self.deadline = match stop {
+            let deadline = match stop {
                 Some(StopReason::TimeLimit) => self
                     .cfg
                     .time_limit
@@ -701,13 +697,12 @@ impl<'p> Engine<'p> {
                 _ => None,
             };
             for &(_, _, id) in open.iter().take(IMPROVE_STATES) {
-                let steps = self.improve_from(id);
+                let steps = self.improve_from(id, deadline);
                 budget = budget.saturating_sub(steps);
                 if budget == 0 {
                     break;
                 }
             }
-            self.deadline = None;
         }
         if !admissible {
             lb = 0.0;
@@ -993,8 +988,8 @@ pub fn solve(problem: &Problem, cfg: &Config) -> Result<Outcome, OptimalError> {
 /// [`solve`], showing `observe` the search's [`Progress`] at most once per `every` of wall
 /// time (checked every 64 expansions, so `Duration::ZERO` means every 64 expansions); when
 /// it returns false the search stops as if a limit was hit ([`StopReason::Interrupted`]),
-/// with the best bounds. The observer does not change the
-/// search otherwise: the result is the same as [`solve`]'s unless it asks to stop.
+/// with the best bounds. The observer does not change the search otherwise: the result is
+/// the same as [`solve`]'s unless it asks to stop.
 pub fn solve_with(
     problem: &Problem,
     cfg: &Config,

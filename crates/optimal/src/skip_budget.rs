@@ -148,8 +148,11 @@ impl SkipBudget {
         // is still a lower bound. The footprint sensor has no such bound (it sees through
         // walls), so there the bound is left out.
         let r = problem.model().range();
-        let disc = (std::f64::consts::PI * (r + 1.0) * (r + 1.0)) as usize;
-        let estimate = if problem.targets().len().saturating_mul(disc) <= SCAN_BUDGET {
+        let scan = problem
+            .targets()
+            .len()
+            .saturating_mul(problem.model().disc_cells());
+        let estimate = if scan <= SCAN_BUDGET {
             None
         } else if let SensorModel::Los(_) = problem.model() {
             Some(crate::heuristic::max_l1_within(r))
@@ -367,13 +370,10 @@ fn viewpoint_reach(
             continue;
         }
         seen.clear();
-        problem.seen_targets(cell, &mut obs, &mut seen);
-        for &s in &seen {
-            let v = targets[s as usize] as usize;
-            if problem.reachable(v) {
-                for (x, f) in e.iter_mut().zip(field) {
-                    *x = x.max(f[v]);
-                }
+        problem.viewpoints(cell, &mut obs, &mut seen);
+        for &v in &seen {
+            for (x, f) in e.iter_mut().zip(field) {
+                *x = x.max(f[v as usize]);
             }
         }
     }
@@ -441,7 +441,7 @@ mod tests {
     use super::*;
     use crate::heuristic::set;
     use crate::problem::SensorModel;
-    use grid::{Cell, Grid, Occ};
+    use grid::{Cell, Occ};
     use proptest::prelude::*;
 
     /// Add what flat cell `pos` perceives to `bits`.
@@ -463,12 +463,7 @@ mod tests {
             walls in proptest::collection::vec(0u8..4, 140),
             r in 1.0f64..4.0,
         ) {
-            let mut map = Grid::new(w, h, Occ::Free);
-            for (c, &wall) in map.data_mut().iter_mut().zip(&walls) {
-                if wall == 0 {
-                    *c = Occ::Occupied;
-                }
-            }
+            let mut map = crate::walled_map(w, h, &walls);
             map.data_mut()[0] = Occ::Free;
             let p = Problem::new(&map, Cell::new(0, 0), SensorModel::Los(r)).expect("problem");
             let data = map.data();
@@ -504,12 +499,7 @@ mod tests {
             floor in 0.0f64..20.0,
             fp in any::<bool>(),
         ) {
-            let mut map = Grid::new(w, h, Occ::Free);
-            for (c, &wall) in map.data_mut().iter_mut().zip(&walls) {
-                if wall == 0 {
-                    *c = Occ::Occupied;
-                }
-            }
+            let map = crate::walled_map(w, h, &walls);
             let free: Vec<usize> = (0..w * h).filter(|&i| map.data()[i].is_free()).collect();
             prop_assume!(!free.is_empty());
             let start = free[0];

@@ -237,7 +237,7 @@ mod tests {
     use crate::heuristic::set;
     use crate::problem::SensorModel;
     use explore::plan::Reachability;
-    use grid::{Cell, Grid, Occ};
+    use grid::Cell;
     use proptest::prelude::*;
 
     proptest! {
@@ -251,12 +251,7 @@ mod tests {
             seen in proptest::collection::vec(0u8..5, 144),
             pick in 0usize..144,
         ) {
-            let mut map = Grid::new(w, h, Occ::Free);
-            for (c, &wall) in map.data_mut().iter_mut().zip(&walls) {
-                if wall == 0 {
-                    *c = Occ::Occupied;
-                }
-            }
+            let map = crate::walled_map(w, h, &walls);
             let free: Vec<usize> = (0..w * h).filter(|&i| map.data()[i].is_free()).collect();
             prop_assume!(!free.is_empty());
             let start = free[pick % free.len()];

@@ -190,16 +190,25 @@ fn initial(pl: &Plain, start: usize) -> Vec<bool> {
     m
 }
 
-fn arb_case() -> impl Strategy<Value = (Grid<Occ>, Cell, SensorModel, f64)> {
+/// Random maps of `widths` × `heights` cells, each a wall with probability up to
+/// `max_density` %, a sensor of either kind with a range from `radii`, a goal from `goals`
+/// and a start on a free cell (the first cell, freed, if none is free).
+fn arb_case_in(
+    widths: std::ops::RangeInclusive<usize>,
+    heights: std::ops::RangeInclusive<usize>,
+    max_density: u32,
+    radii: &'static [f64],
+    goals: &'static [f64],
+) -> impl Strategy<Value = (Grid<Occ>, Cell, SensorModel, f64)> {
     (
-        2usize..=6,
-        2usize..=5,
-        0u32..=35,
+        widths,
+        heights,
+        0u32..=max_density,
         any::<bool>(),
-        0usize..6,
-        0usize..3,
+        0..radii.len(),
+        0..goals.len(),
     )
-        .prop_flat_map(|(w, h, density, fp, ri, gi)| {
+        .prop_flat_map(move |(w, h, density, fp, ri, gi)| {
             proptest::collection::vec(0u32..100, w * h).prop_flat_map(move |rolls| {
                 let data: Vec<Occ> = rolls
                     .iter()
@@ -213,13 +222,13 @@ fn arb_case() -> impl Strategy<Value = (Grid<Occ>, Cell, SensorModel, f64)> {
                     .collect();
                 let map = Grid::from_vec(w, h, data).expect("w*h");
                 let free: Vec<usize> = (0..w * h).filter(|&i| map[i].is_free()).collect();
-                let r = [1.0, 1.5, 2.0, 2.3, 3.0, 1.2][ri];
+                let r = radii[ri];
                 let model = if fp {
                     SensorModel::Footprint(r)
                 } else {
                     SensorModel::Los(r)
                 };
-                let g = [1.0, 0.9, 0.7][gi];
+                let g = goals[gi];
                 let n = free.len().max(1);
                 (0..n).prop_map(move |k| {
                     let mut map = map.clone();
@@ -233,6 +242,35 @@ fn arb_case() -> impl Strategy<Value = (Grid<Occ>, Cell, SensorModel, f64)> {
                 })
             })
         })
+}
+
+/// Tiny maps (up to 6 × 5), every goal.
+fn arb_case() -> impl Strategy<Value = (Grid<Occ>, Cell, SensorModel, f64)> {
+    arb_case_in(
+        2..=6,
+        2..=5,
+        35,
+        &[1.0, 1.5, 2.0, 2.3, 3.0, 1.2],
+        &[1.0, 0.9, 0.7],
+    )
+}
+
+/// The root (start cell `s`, what it perceives) and up to `children` of its children under
+/// all actions: states the exhaustive search reaches in its first step.
+fn early_states(pl: &Plain, s: usize, children: usize) -> Vec<(usize, Vec<bool>)> {
+    let m0 = initial(pl, s);
+    let mut states = vec![(s, m0.clone())];
+    for (q, _) in actions(pl, s, &m0, ActionSet::All)
+        .into_iter()
+        .take(children)
+    {
+        let mut m = m0.clone();
+        for &k in &pl.sees[q] {
+            m[k] = true;
+        }
+        states.push((q, m));
+    }
+    states
 }
 
 fn cfg(goal: f64, actions: ActionSet, heuristic: HeuristicKind) -> Config {
@@ -323,16 +361,7 @@ proptest! {
         let problem = Problem::new(&map, start, model).expect("valid problem");
         let pl = plain(&map, start, model);
         let need = problem.needed(g);
-        let s = map.index(start);
-        // A few states: the root and its children under All actions.
-        let m0 = initial(&pl, s);
-        let mut states = vec![(s, m0.clone())];
-        for (q, _) in actions(&pl, s, &m0, ActionSet::All).into_iter().take(6) {
-            let mut m = m0.clone();
-            for &k in &pl.sees[q] { m[k] = true; }
-            states.push((q, m));
-        }
-        for (p, m) in states {
+        for (p, m) in early_states(&pl, map.index(start), 6) {
             let Some(exact) = oracle(&pl, p, m.clone(), need, ActionSet::All) else { continue };
             for hk in [HeuristicKind::Paper, HeuristicKind::Landmarks] {
                 let by_target: Vec<bool> = pl.targets.iter().map(|&t| m[t]).collect();
@@ -397,48 +426,7 @@ proptest! {
 /// Long, thin maps (up to 11 × 2) with short sensors and G < 1, where the skip-budget
 /// bound has far points at both ends.
 fn arb_corridor_case() -> impl Strategy<Value = (Grid<Occ>, Cell, SensorModel, f64)> {
-    (
-        7usize..=11,
-        1usize..=2,
-        0u32..=20,
-        any::<bool>(),
-        0usize..2,
-        0usize..3,
-    )
-        .prop_flat_map(|(w, h, density, fp, ri, gi)| {
-            proptest::collection::vec(0u32..100, w * h).prop_flat_map(move |rolls| {
-                let data: Vec<Occ> = rolls
-                    .iter()
-                    .map(|&r| {
-                        if r < density {
-                            Occ::Occupied
-                        } else {
-                            Occ::Free
-                        }
-                    })
-                    .collect();
-                let map = Grid::from_vec(w, h, data).expect("w*h");
-                let free: Vec<usize> = (0..w * h).filter(|&i| map[i].is_free()).collect();
-                let r = [1.0, 1.5][ri];
-                let model = if fp {
-                    SensorModel::Footprint(r)
-                } else {
-                    SensorModel::Los(r)
-                };
-                let g = [0.9, 0.8, 0.7][gi];
-                let n = free.len().max(1);
-                (0..n).prop_map(move |k| {
-                    let mut map = map.clone();
-                    let start = if free.is_empty() {
-                        map[0] = Occ::Free;
-                        map.cell(0)
-                    } else {
-                        map.cell(free[k])
-                    };
-                    (map, start, model, g)
-                })
-            })
-        })
+    arb_case_in(7..=11, 1..=2, 20, &[1.0, 1.5], &[0.9, 0.8, 0.7])
 }
 
 proptest! {
@@ -453,20 +441,13 @@ proptest! {
         let pl = plain(&map, start, model);
         let need = problem.needed(g);
         let s = map.index(start);
-        let m0 = initial(&pl, s);
-        let mut states = vec![(s, m0.clone())];
-        for (q, _) in actions(&pl, s, &m0, ActionSet::All).into_iter().take(4) {
-            let mut m = m0.clone();
-            for &k in &pl.sees[q] { m[k] = true; }
-            states.push((q, m));
-        }
-        for (p, m) in states {
+        for (p, m) in early_states(&pl, s, 4) {
             let Some(exact) = oracle(&pl, p, m.clone(), need, ActionSet::All) else { continue };
             let by_target: Vec<bool> = pl.targets.iter().map(|&t| m[t]).collect();
             let h = heuristic_value(&problem, &cfg(g, ActionSet::All, HeuristicKind::Landmarks), map.cell(p), &by_target);
             prop_assert!(h <= exact + TOL, "h = {} > h* = {} at {}", h, exact, map.cell(p));
         }
-        let expected = oracle(&pl, s, m0, need, ActionSet::Boundary);
+        let expected = oracle(&pl, s, initial(&pl, s), need, ActionSet::Boundary);
         let out = optimal::solve(&problem, &cfg(g, ActionSet::Boundary, HeuristicKind::Landmarks)).expect("solve");
         match expected {
             None => prop_assert_eq!(out.status, Status::NoSolution),
