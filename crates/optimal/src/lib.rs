@@ -31,6 +31,7 @@
 #![warn(missing_docs)]
 
 pub mod actions;
+pub(crate) mod cluster_rows;
 pub mod coarse;
 pub(crate) mod coverage_rate;
 pub mod error;

@@ -250,6 +250,13 @@ impl Problem {
         }
     }
 
+    /// Mark index of flat cell `i` (a target's index, or |E_f| + k for the other cells next
+    /// to a reachable cell), or [`NOT_TARGET`].
+    #[inline]
+    pub(crate) fn mark_index(&self, i: usize) -> u32 {
+        self.midx[i]
+    }
+
     /// Flat cells of the targets E_f, by target index (row-major order).
     pub fn targets(&self) -> &[u32] {
         &self.targets

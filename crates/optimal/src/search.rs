@@ -38,6 +38,7 @@ use grid::Cell;
 use sense::Observation;
 
 use crate::actions::{ActionScratch, ActionSet, candidates};
+use crate::cluster_rows::ClusterRows;
 use crate::error::OptimalError;
 use crate::heuristic::{Heuristic, HeuristicKind, MixHasher, dist, has, set};
 use crate::problem::Problem;
@@ -260,6 +261,11 @@ struct VisCache {
     len: Vec<u32>,
     data: Vec<u32>,
     obs: Observation,
+    /// Per cell: its perceived marks as (word, bits), of the marks' bitset, then of the
+    /// cluster rows when used.
+    word_off: Vec<u32>,
+    word_len: Vec<[u32; 2]>,
+    word_data: Vec<(u32, u64)>,
 }
 
 impl VisCache {
@@ -269,6 +275,9 @@ impl VisCache {
             len: vec![0; n],
             data: Vec::new(),
             obs: Observation::new(),
+            word_off: Vec::new(),
+            word_len: Vec::new(),
+            word_data: Vec::new(),
         }
     }
 
@@ -283,6 +292,46 @@ impl VisCache {
         (self.off[p] as usize, self.len[p] as usize)
     }
 
+    /// The marks perceived from `pos` as (word, bits) of the marks' bitset and, with
+    /// `rows`, of the cluster rows (computed on first use); `mark_cell` maps a mark to its
+    /// flat cell. Returns the two ranges in `word_data`.
+    fn words(
+        &mut self,
+        problem: &Problem,
+        pos: u32,
+        rows: Option<&ClusterRows>,
+        mark_cell: &[u32],
+    ) -> ((usize, usize), (usize, usize)) {
+        let p = pos as usize;
+        if self.word_off.is_empty() {
+            self.word_off = vec![NONE; self.off.len()];
+        }
+        if self.word_off[p] == NONE {
+            let (o, l) = self.get(problem, pos);
+            let start = self.word_data.len();
+            let marks = &self.data[o..o + l];
+            push_words(
+                &mut self.word_data,
+                marks.iter().map(|&t| (t / 64, 1 << (t % 64))),
+            );
+            let mid = self.word_data.len();
+            if let Some(rows) = rows {
+                push_words(
+                    &mut self.word_data,
+                    marks.iter().map(|&t| {
+                        let (k, b) = rows.locate(mark_cell[t as usize] as usize);
+                        (k as u32, 1 << b)
+                    }),
+                );
+            }
+            self.word_off[p] = start as u32;
+            self.word_len.resize(self.off.len(), [0; 2]);
+            self.word_len[p] = [(mid - start) as u32, (self.word_data.len() - mid) as u32];
+        }
+        let (o, [a, b]) = (self.word_off[p] as usize, self.word_len[p]);
+        ((o, a as usize), (o + a as usize, b as usize))
+    }
+
     /// Whether position `pos` perceives a target (a mark below `nt`) not in `bits`.
     fn perceives_new(&mut self, problem: &Problem, pos: u32, bits: &[u64], nt: u32) -> bool {
         let (o, l) = self.get(problem, pos);
@@ -290,7 +339,74 @@ impl VisCache {
     }
 
     fn bytes(&self) -> usize {
-        self.off.len() * 8 + self.data.capacity() * 4
+        self.off.len() * 8
+            + self.data.capacity() * 4
+            + self.word_off.len() * 12
+            + self.word_data.capacity() * 16
+    }
+}
+
+/// Append `bits` ((word, bit) pairs) to `out` as (word, bits) with one entry per word,
+/// by word.
+fn push_words(out: &mut Vec<(u32, u64)>, bits: impl Iterator<Item = (u32, u64)>) {
+    let start = out.len();
+    out.extend(bits);
+    out[start..].sort_unstable_by_key(|&(k, _)| k);
+    let mut kept = start;
+    for j in start..out.len() {
+        let (k, b) = out[j];
+        if kept > start && out[kept - 1].0 == k {
+            out[kept - 1].1 |= b;
+        } else {
+            out[kept] = (k, b);
+            kept += 1;
+        }
+    }
+    out.truncate(kept);
+}
+
+/// Per position: the full map's step costs from it ([`StepCosts::field`]), computed on
+/// first use and dropped all at once when they outgrow their share of the memory budget.
+struct Fields {
+    slot: Vec<u32>,
+    len: usize,
+    data: Vec<f64>,
+    pred: Vec<u32>,
+    cap_bytes: usize,
+    /// Every mark: all cells passable.
+    all: Vec<u64>,
+}
+
+impl Fields {
+    fn new(n: usize, len: usize, marks: usize, cap_bytes: usize) -> Self {
+        Self {
+            slot: vec![NONE; n],
+            len,
+            data: Vec::new(),
+            pred: Vec::new(),
+            cap_bytes,
+            all: vec![u64::MAX; marks.div_ceil(64).max(1)],
+        }
+    }
+
+    /// The costs from `pos` and the predecessors on shortest paths (by reachable index).
+    fn of(&mut self, steps: &mut StepCosts, pos: u32) -> (&[f64], &[u32]) {
+        let p = pos as usize;
+        if self.slot[p] == NONE {
+            if (self.data.len() + self.len) * 12 > self.cap_bytes {
+                self.data.clear();
+                self.pred.clear();
+                self.slot.fill(NONE);
+            }
+            self.slot[p] = (self.data.len() / self.len.max(1)) as u32;
+            steps.field(pos, &self.all, &mut self.data, &mut self.pred);
+        }
+        let k = self.slot[p] as usize * self.len;
+        (&self.data[k..k + self.len], &self.pred[k..k + self.len])
+    }
+
+    fn bytes(&self) -> usize {
+        self.slot.len() * 4 + self.data.capacity() * 8 + self.pred.capacity() * 4
     }
 }
 
@@ -304,6 +420,12 @@ struct Engine<'p> {
     /// Shortest paths inside the perceived free space (the step costs).
     reach: StepCosts,
     scratch: ActionScratch,
+    /// Cluster actions on bit rows (with [`ActionSet::Clusters`]), the perceived set of the
+    /// loaded state as rows, each mark's flat cell, and the per-position cost fields.
+    rows: Option<ClusterRows>,
+    seen_rows: Vec<u64>,
+    mark_cell: Vec<u32>,
+    fields: Fields,
     zt: Vec<[u64; 2]>,
     zpos: Vec<[u64; 2]>,
     nodes: Vec<Node>,
@@ -312,6 +434,8 @@ struct Engine<'p> {
     cur: Vec<u64>,
     child: Vec<u64>,
     cands: Vec<u32>,
+    /// The step cost to each candidate.
+    cand_dist: Vec<f64>,
     fresh: Vec<u32>,
     inc_cost: f64,
     inc_positions: Vec<u32>,
@@ -343,6 +467,21 @@ impl<'p> Engine<'p> {
         );
         let reach = StepCosts::new(problem);
         let reach_bytes = reach.bytes();
+        let rows =
+            matches!(cfg.actions, ActionSet::Clusters { .. }).then(|| ClusterRows::new(problem));
+        let mut mark_cell = Vec::new();
+        if rows.is_some() {
+            mark_cell = vec![0; nm];
+            for i in 0..n {
+                let m = problem.mark_index(i);
+                if m != crate::problem::NOT_TARGET {
+                    mark_cell[m as usize] = i as u32;
+                }
+            }
+        }
+        let seen_rows = vec![0; rows.as_ref().map_or(0, ClusterRows::words)];
+        let fields = Fields::new(n, reach.len(), nm, cfg.max_bytes / 8);
+        let rows_bytes = rows.as_ref().map_or(0, ClusterRows::bytes);
         Self {
             problem,
             cfg: cfg.clone(),
@@ -351,6 +490,10 @@ impl<'p> Engine<'p> {
             vis: VisCache::new(n),
             reach,
             scratch: ActionScratch::new(n),
+            rows,
+            seen_rows,
+            mark_cell,
+            fields,
             zt,
             zpos,
             nodes: Vec::new(),
@@ -359,12 +502,13 @@ impl<'p> Engine<'p> {
             cur: vec![0; words],
             child: vec![0; words],
             cands: Vec::new(),
+            cand_dist: Vec::new(),
             fresh: Vec::new(),
             inc_cost: f64::INFINITY,
             inc_positions: Vec::new(),
             stats: Stats::default(),
             // Step costs, action marks, Zobrist keys, the problem's arrays.
-            fixed_bytes: reach_bytes + n * (4 + 16 + 12) + nm * 20,
+            fixed_bytes: reach_bytes + rows_bytes + n * (4 + 16 + 12) + nm * 24,
             nt: nt as u32,
         }
     }
@@ -377,6 +521,7 @@ impl<'p> Engine<'p> {
             + self.table.capacity() * 16
             + self.heur.bytes()
             + self.vis.bytes()
+            + self.fields.bytes()
             + self.fixed_bytes
     }
 
@@ -413,12 +558,18 @@ impl<'p> Engine<'p> {
     /// positions along its parent chain perceive.
     fn load_state(&mut self, id: u32) {
         self.cur.fill(0);
+        self.seen_rows.fill(0);
         let mut j = id;
         while j != NONE {
             let pos = self.nodes[j as usize].pos;
-            let (o, l) = self.vis.get(self.problem, pos);
-            for &t in &self.vis.data[o..o + l] {
-                set(&mut self.cur, t);
+            let ((o, l), (ro, rl)) =
+                self.vis
+                    .words(self.problem, pos, self.rows.as_ref(), &self.mark_cell);
+            for &(k, b) in &self.vis.word_data[o..o + l] {
+                self.cur[k as usize] |= b;
+            }
+            for &(k, b) in &self.vis.word_data[ro..ro + rl] {
+                self.seen_rows[k as usize] |= b;
             }
             j = self.nodes[j as usize].parent;
         }
@@ -725,10 +876,40 @@ impl<'p> Engine<'p> {
         let problem = self.problem;
         let node = self.nodes[id as usize];
         self.load_state(id);
-        self.reach.compute(node.pos, &self.cur);
         self.heur.enter();
         let mut next = Some(self.cfg.actions);
+        let mut searched = false;
+        if let (Some(rows), ActionSet::Clusters { min_size }) = (&mut self.rows, self.cfg.actions) {
+            // Clusters on bit rows, step costs from the position's field when a shortest
+            // path of the full map lies inside the perceived space (the search otherwise).
+            rows.candidates(&self.seen_rows, node.pos, min_size, &mut self.cands);
+            self.cand_dist.clear();
+            let (field, pred) = self.fields.of(&mut self.reach, node.pos);
+            for &a in &self.cands {
+                match self.reach.inside(field, pred, node.pos, a, &self.cur) {
+                    Some(d) => self.cand_dist.push(d),
+                    None => break,
+                }
+            }
+            if self.cand_dist.len() < self.cands.len() {
+                self.reach.compute(node.pos, &self.cur);
+                searched = true;
+                self.cand_dist.clear();
+                let reach = &self.reach;
+                self.cand_dist
+                    .extend(self.cands.iter().map(|&a| reach.dist(a as usize)));
+            }
+            next = match self.children(id, node) {
+                None => return false,
+                Some(true) => None,
+                Some(false) => self.cfg.actions.wider(),
+            };
+        }
         while let Some(actions) = next {
+            if !searched {
+                self.reach.compute(node.pos, &self.cur);
+                searched = true;
+            }
             candidates(
                 problem,
                 &self.cur,
@@ -738,6 +919,10 @@ impl<'p> Engine<'p> {
                 &mut self.scratch,
                 &mut self.cands,
             );
+            self.cand_dist.clear();
+            let reach = &self.reach;
+            self.cand_dist
+                .extend(self.cands.iter().map(|&a| reach.dist(a as usize)));
             // No candidate perceives a new target: offer the next larger set (the
             // deviation in `actions`).
             next = match self.children(id, node) {
@@ -760,7 +945,7 @@ impl<'p> Engine<'p> {
         let mut useful = false;
         for k in 0..self.cands.len() {
             let a = self.cands[k];
-            let g2 = node.g + self.reach.dist(a as usize);
+            let g2 = node.g + self.cand_dist[k];
             if g2 >= self.inc_cost - EPS {
                 self.stats.pruned += 1;
                 useful = useful || self.vis.perceives_new(problem, a, &self.cur, nt);
@@ -1038,5 +1223,60 @@ pub fn heuristic_value(problem: &Problem, cfg: &Config, pos: Cell, perceived: &[
     match problem.cells().checked_index(pos) {
         Some(p) => h.eval(problem, p as u32, &bits, count),
         None => 0.0,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::problem::SensorModel;
+    use proptest::prelude::*;
+
+    /// [`solve`] with the cluster actions on bit rows (`fast`) or read off the step costs'
+    /// search for every state.
+    fn solve_as(problem: &Problem, cfg: &Config, fast: bool) -> Outcome {
+        let mut engine = Engine::new(problem, cfg);
+        if !fast {
+            engine.rows = None;
+        }
+        engine.run(Instant::now(), Duration::MAX, &mut |_| true)
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(64))]
+
+        /// Cluster actions on bit rows with step costs from the per-position fields give
+        /// the search's own result: same status, length and expansions, on random maps with
+        /// rooms behind walls (footprint), both sensors, G = 1 and 0.85.
+        #[test]
+        fn bit_row_clusters_search_like_the_step_cost_search(
+            w in 6usize..24,
+            h in 4usize..14,
+            walls in proptest::collection::vec(0u8..6, 24 * 14),
+            pick in 0usize..336,
+            fp in any::<bool>(),
+            full in any::<bool>(),
+            min_size in 1usize..3,
+        ) {
+            let map = crate::walled_map(w, h, &walls);
+            let free: Vec<usize> = (0..w * h).filter(|&i| map.data()[i].is_free()).collect();
+            prop_assume!(!free.is_empty());
+            let start = free[pick % free.len()];
+            let model = if fp { SensorModel::Footprint(2.5) } else { SensorModel::Los(2.5) };
+            let p = Problem::new(&map, map.cell(start), model).expect("problem");
+            let cfg = Config {
+                goal: if full { 1.0 } else { 0.85 },
+                actions: ActionSet::Clusters { min_size },
+                max_nodes: 20_000,
+                ..Config::default()
+            };
+            let fast = solve_as(&p, &cfg, true);
+            let slow = solve_as(&p, &cfg, false);
+            prop_assert_eq!(fast.status, slow.status);
+            prop_assert!((fast.upper_bound - slow.upper_bound).abs() < 1e-9 || fast.upper_bound == slow.upper_bound,
+                "{} vs {}", fast.upper_bound, slow.upper_bound);
+            prop_assert!((fast.lower_bound - slow.lower_bound).abs() < 1e-9, "{} vs {}", fast.lower_bound, slow.lower_bound);
+            prop_assert_eq!(fast.stats.expanded, slow.stats.expanded);
+        }
     }
 }

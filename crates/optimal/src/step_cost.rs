@@ -28,6 +28,12 @@ const DONE: u32 = 1;
 const BLOCKED: u32 = 2;
 /// Largest search number: it is kept above two flag bits.
 const MAX_EPOCH: u32 = u32::MAX >> 2;
+/// Costs closer than this are equal: sums of 1 and √2 along paths of a few thousand steps
+/// carry rounding far below it, and two different such lengths differ by far more.
+const TIE: f64 = 1e-7;
+/// The straight neighbours a diagonal neighbour passes (dr: r, d; dl: l, d; ul: l, u;
+/// ur: r, u), as indices into a cell's neighbour list.
+const DIAGONAL_SIDES: [(usize, usize); 4] = [(0, 1), (2, 1), (2, 3), (0, 3)];
 
 /// What a search knows of a reachable cell, kept together so that meeting a cell touches
 /// one cache line.
@@ -56,6 +62,8 @@ pub(crate) struct StepCosts {
     buckets: [Vec<u32>; BUCKETS],
     /// Flat cells in settling order.
     settled: Vec<u32>,
+    /// The stack of [`StepCosts::inside`].
+    walk: Vec<u32>,
 }
 
 impl StepCosts {
@@ -102,6 +110,7 @@ impl StepCosts {
             epoch: 0,
             buckets: Default::default(),
             settled: Vec::new(),
+            walk: Vec::new(),
         }
     }
 
@@ -210,6 +219,169 @@ impl StepCosts {
         }
     }
 
+    /// Number of reachable cells (the length of a [`StepCosts::field`]).
+    pub(crate) fn len(&self) -> usize {
+        self.flat.len()
+    }
+
+    /// Append to `cost` the costs from reachable cell `start` to every reachable cell in
+    /// the full map (every cell passable), by reachable index, and to `pred` each cell's
+    /// predecessor on one shortest path (`NONE` for the start); `all` is the set of every
+    /// mark.
+    pub(crate) fn field(
+        &mut self,
+        start: u32,
+        all: &[u64],
+        cost: &mut Vec<f64>,
+        pred: &mut Vec<u32>,
+    ) {
+        self.compute(start, all);
+        let tag = self.epoch << 2 | DONE;
+        let base = cost.len();
+        cost.extend(
+            self.slot
+                .iter()
+                .map(|s| if s.tag == tag { s.cost } else { f64::INFINITY }),
+        );
+        let costs = &cost[base..];
+        let s = self.index[start as usize];
+        pred.extend((0..self.flat.len()).map(|u| {
+            let nb = &self.nbr[u];
+            if u as u32 == s || !costs[u].is_finite() {
+                return NONE;
+            }
+            // The neighbour the search labelled it from: cost plus the step, exactly.
+            (0..8)
+                .find(|&k| {
+                    let y = nb[k];
+                    y != NONE && {
+                        let step = if k < 4 { 1.0 } else { grid::SQRT2 };
+                        let (a, b) = DIAGONAL_SIDES[k % 4];
+                        (k < 4 || nb[a] != NONE || nb[b] != NONE)
+                            && (costs[y as usize] + step).to_bits() == costs[u].to_bits()
+                    }
+                })
+                .map_or(NONE, |k| nb[k])
+        }));
+    }
+
+    /// The cost from reachable cell `from` to reachable cell `to` inside the perceived free
+    /// cells `bits` if some shortest path of the full map joins them there, given `field`,
+    /// the full map's costs from `from` ([`StepCosts::field`]); `None` if none does (the
+    /// cost inside may then be larger). Walks back from `to` over the cells whose full-map
+    /// cost is a predecessor's plus the step, perceived, with the step allowed inside the
+    /// perceived cells (a diagonal needs one of its two straight cells perceived): a path
+    /// inside that is as short as the full map's is exactly such a walk. Takes a fresh
+    /// search number, so the costs of the last [`StepCosts::compute`] are gone (its settled
+    /// cells stay).
+    pub(crate) fn inside(
+        &mut self,
+        field: &[f64],
+        pred: &[u32],
+        from: u32,
+        to: u32,
+        bits: &[u64],
+    ) -> Option<f64> {
+        let (s, t) = (self.index[from as usize], self.index[to as usize]);
+        if s == NONE || t == NONE || !field[t as usize].is_finite() {
+            return None;
+        }
+        // First the field's own shortest path: usually perceived all along.
+        if self.tree_path_inside(pred, s, t, bits) {
+            return Some(field[t as usize]);
+        }
+        // A fresh search number marks the cells met by this walk (DONE) and those found
+        // not perceived (BLOCKED).
+        self.epoch += 1;
+        if self.epoch > MAX_EPOCH {
+            for slot in &mut self.slot {
+                slot.tag = 0;
+            }
+            self.epoch = 1;
+        }
+        let tag = self.epoch << 2;
+        self.walk.clear();
+        self.walk.push(t);
+        self.slot[t as usize].tag = tag | DONE;
+        while let Some(x) = self.walk.pop() {
+            if x == s {
+                return Some(field[t as usize]);
+            }
+            let fx = field[x as usize];
+            let nb = self.nbr[x as usize];
+            let mut open = [false; 4];
+            for (k, &y) in nb[..4].iter().enumerate() {
+                open[k] = y == s || self.passable(bits, y, tag);
+            }
+            for (k, &y) in nb.iter().enumerate() {
+                if y == NONE {
+                    continue;
+                }
+                let step = if k < 4 {
+                    1.0
+                } else {
+                    let (a, b) = DIAGONAL_SIDES[k - 4];
+                    if !(open[a] || open[b]) {
+                        continue;
+                    }
+                    grid::SQRT2
+                };
+                if (field[y as usize] + step - fx).abs() > TIE {
+                    continue;
+                }
+                if y != s && !self.passable(bits, y, tag) {
+                    continue;
+                }
+                let slot = &mut self.slot[y as usize];
+                if slot.tag == tag | DONE {
+                    continue;
+                }
+                slot.tag = tag | DONE;
+                self.walk.push(y);
+            }
+        }
+        None
+    }
+
+    /// Whether the path from `s` to `t` along `pred` stays inside the perceived cells
+    /// `bits`, every diagonal step with one of its straight cells perceived.
+    fn tree_path_inside(&self, pred: &[u32], s: u32, t: u32, bits: &[u64]) -> bool {
+        let seen = |u: u32| u != NONE && has(bits, self.slot[u as usize].mark);
+        let mut x = t;
+        while x != s {
+            let y = pred[x as usize];
+            if y == NONE || (y != s && !seen(y)) {
+                return false;
+            }
+            let nb = &self.nbr[x as usize];
+            if let Some(k) = (4..8).find(|&k| nb[k] == y) {
+                let (a, b) = DIAGONAL_SIDES[k - 4];
+                if !(seen(nb[a]) || seen(nb[b]) || nb[a] == s || nb[b] == s) {
+                    return false;
+                }
+            }
+            x = y;
+        }
+        true
+    }
+
+    /// Whether reachable cell `u` is perceived, remembered under `tag` when it is not.
+    #[inline]
+    fn passable(&mut self, bits: &[u64], u: u32, tag: u32) -> bool {
+        if u == NONE {
+            return false;
+        }
+        let slot = &mut self.slot[u as usize];
+        if slot.tag == tag | BLOCKED {
+            return false;
+        }
+        if slot.tag == tag | DONE || has(bits, slot.mark) {
+            return true;
+        }
+        slot.tag = tag | BLOCKED;
+        false
+    }
+
     /// The flat cells settled by the last search, in settling order (the start first).
     pub(crate) fn settled(&self) -> &[u32] {
         &self.settled
@@ -277,6 +449,54 @@ mod tests {
                     prop_assert_eq!(ours.dist(i).to_bits(), g.to_bits(), "cell {} from {}", i, s);
                 }
             }
+        }
+
+        /// `inside` gives the cost inside the perceived cells exactly when it equals the
+        /// full map's, and nothing otherwise, on random maps, perceived sets and cells.
+        #[test]
+        fn inside_is_the_cost_when_a_full_map_shortest_path_is_perceived(
+            w in 2usize..14,
+            h in 2usize..14,
+            walls in proptest::collection::vec(0u8..4, 196),
+            seen in proptest::collection::vec(0u8..6, 196),
+            pick in 0usize..196,
+        ) {
+            let map = crate::walled_map(w, h, &walls);
+            let free: Vec<usize> = (0..w * h).filter(|&i| map.data()[i].is_free()).collect();
+            prop_assume!(!free.is_empty());
+            let start = free[pick % free.len()];
+            let p = Problem::new(&map, Cell::new((start % w) as i32, (start / w) as i32), SensorModel::Los(2.0))
+                .expect("problem");
+            let words = p.mark_count().div_ceil(64).max(1);
+            let mut bits = vec![0u64; words];
+            for (i, &s) in seen.iter().enumerate().take(w * h) {
+                let t = p.target_index(i);
+                if t != crate::problem::NOT_TARGET && (s != 0 || i == start) {
+                    set(&mut bits, t);
+                }
+            }
+            let all = vec![u64::MAX; words];
+            let mut ours = StepCosts::new(&p);
+            let (mut same, mut longer) = (0, 0);
+            for s in (0..w * h).filter(|&i| p.reachable(i) && has(&bits, p.target_index(i))) {
+                let (mut field, mut pred) = (Vec::new(), Vec::new());
+                ours.field(s as u32, &all, &mut field, &mut pred);
+                ours.compute(s as u32, &bits);
+                let costs: Vec<f64> = (0..w * h).map(|i| ours.dist(i)).collect();
+                for t in (0..w * h).filter(|&i| costs[i].is_finite()) {
+                    let full = field[ours.index[t] as usize];
+                    let got = ours.inside(&field, &pred, s as u32, t as u32, &bits);
+                    if (costs[t] - full).abs() < 1e-9 {
+                        same += 1;
+                        prop_assert!(got.is_some_and(|c| (c - costs[t]).abs() < 1e-9), "{} -> {}: {:?} vs {}", s, t, got, costs[t]);
+                    } else {
+                        longer += 1;
+                        prop_assert!(costs[t] > full);
+                        prop_assert_eq!(got, None, "{} -> {}", s, t);
+                    }
+                }
+            }
+            let _ = (same, longer);
         }
     }
 }

@@ -1,0 +1,393 @@
+//! The cluster actions of a state ([`crate::actions`], the paper's "Clustering boundary
+//! cells" speed-up) computed on bit rows instead of from a shortest-path search.
+//!
+//! The clusters need three sets: R, the perceived free cells the robot can reach inside the
+//! perceived space; B, the cells of R next to an unperceived free target; and B's
+//! 8-connected components. [`crate::actions::candidates`] reads R off a Dijkstra that also
+//! prices every cell of R. Here the perceived set is kept as rows of 64-bit words (bit x of
+//! row y is cell (x, y)), and:
+//! - R is a span fill from the robot's cell. A diagonal step is allowed only when one of
+//!   the two straight cells it passes is passable, so 8-connected reachability without
+//!   corner squeezing is 4-connectivity, and a span fill (one run of a row at a time, runs
+//!   found with word operations) is exact;
+//! - B = R ∩ dilate₈(targets \ perceived), a few word operations per row;
+//! - clusters are flood-filled over B's bits in increasing flat index, so they, their
+//!   order and their representatives (the member nearest the centroid, ties to the lowest
+//!   flat index) are exactly those of [`crate::actions::candidates`].
+//!
+//! The step costs to the few representatives then come from [`crate::step_cost`]'s
+//! per-position distance fields. On the corridor floor benchmark a state has a thousand
+//! reachable perceived cells but about five representatives, and the representatives fall
+//! on a few dozen distinct cells over thousands of states.
+
+use crate::problem::Problem;
+
+/// Row-bitset geometry and the per-problem rows: reachable cells and targets.
+pub(crate) struct ClusterRows {
+    /// Cells per row.
+    w: usize,
+    /// Rows.
+    h: usize,
+    /// Words per row.
+    wpr: usize,
+    /// Reachable cells.
+    reach: Vec<u64>,
+    /// Target cells (free cells some reachable position perceives).
+    targets: Vec<u64>,
+    /// Scratch: the passable cells (reachable and perceived) of the state.
+    pass: Vec<u64>,
+    /// Scratch: R, the filled component.
+    filled: Vec<u64>,
+    /// Scratch: unperceived targets, dilated along rows.
+    wide: Vec<u64>,
+    /// Scratch: B, then what is left of it while clusters are taken out.
+    bound: Vec<u64>,
+    /// Scratch: span seeds (row, column).
+    seeds: Vec<(u32, u32)>,
+    /// Scratch: the flood stack and the members of a cluster (flat cells).
+    stack: Vec<u32>,
+    members: Vec<u32>,
+}
+
+impl ClusterRows {
+    /// The rows of `problem`'s map.
+    pub(crate) fn new(problem: &Problem) -> Self {
+        let cells = problem.cells();
+        let (w, h) = (cells.width(), cells.height());
+        let wpr = w.div_ceil(64).max(1);
+        let mut reach = vec![0u64; wpr * h];
+        let mut targets = vec![0u64; wpr * h];
+        for i in 0..w * h {
+            let (x, y) = (i % w, i / w);
+            let (k, b) = (y * wpr + x / 64, x % 64);
+            if problem.reachable(i) {
+                reach[k] |= 1 << b;
+            }
+            if problem.target_index(i) != crate::problem::NOT_TARGET {
+                targets[k] |= 1 << b;
+            }
+        }
+        let n = wpr * h;
+        Self {
+            w,
+            h,
+            wpr,
+            reach,
+            targets,
+            pass: vec![0; n],
+            filled: vec![0; n],
+            wide: vec![0; n],
+            bound: vec![0; n],
+            seeds: Vec::new(),
+            stack: Vec::new(),
+            members: Vec::new(),
+        }
+    }
+
+    /// Words of one row set (`wpr` × `h`).
+    pub(crate) fn words(&self) -> usize {
+        self.wpr * self.h
+    }
+
+    /// The word index and bit of flat cell `i`.
+    #[inline]
+    pub(crate) fn locate(&self, i: usize) -> (usize, u32) {
+        let (x, y) = (i % self.w, i / self.w);
+        (y * self.wpr + x / 64, (x % 64) as u32)
+    }
+
+    /// Bytes held.
+    pub(crate) fn bytes(&self) -> usize {
+        self.reach.len() * 8 * 6 + (self.seeds.capacity() + self.stack.capacity()) * 8
+    }
+
+    /// Fill `out` with the representatives of the clusters of the state whose perceived
+    /// cells are `seen` (rows), the robot at flat cell `here`; clusters of fewer than
+    /// `min_size` cells are dropped and `here` is never a candidate. The same candidates,
+    /// in the same order, as [`crate::actions::candidates`] with
+    /// [`crate::actions::ActionSet::Clusters`].
+    pub(crate) fn candidates(
+        &mut self,
+        seen: &[u64],
+        here: u32,
+        min_size: usize,
+        out: &mut Vec<u32>,
+    ) {
+        out.clear();
+        for ((p, &r), &s) in self.pass.iter_mut().zip(&self.reach).zip(seen) {
+            *p = r & s;
+        }
+        // The robot's own cell is always left (as in the step costs' search).
+        let (k, b) = self.locate(here as usize);
+        self.pass[k] |= 1 << b;
+        let (y0, y1) = self.fill(here as usize);
+        self.boundary(seen, y0, y1);
+        self.clusters(y0, y1, here, min_size, out);
+    }
+
+    /// R: the 4-connected component of passable cells holding flat cell `start`, by span
+    /// filling; returns the first and last rows it touches.
+    fn fill(&mut self, start: usize) -> (usize, usize) {
+        let (w, wpr) = (self.w, self.wpr);
+        self.filled.fill(0);
+        self.seeds.clear();
+        self.seeds.push(((start / w) as u32, (start % w) as u32));
+        let (mut y0, mut y1) = (start / w, start / w);
+        while let Some((y, x)) = self.seeds.pop() {
+            let (y, x) = (y as usize, x as usize);
+            let row = y * wpr;
+            if self.filled[row + x / 64] >> (x % 64) & 1 == 1 {
+                continue;
+            }
+            let pass = &self.pass[row..row + wpr];
+            let (a, b) = (run_start(pass, x), run_end(pass, x));
+            set_range(&mut self.filled[row..row + wpr], a, b);
+            y0 = y0.min(y);
+            y1 = y1.max(y);
+            for ny in [y.wrapping_sub(1), y + 1] {
+                if ny >= self.h {
+                    continue;
+                }
+                let nrow = ny * wpr;
+                for k in a / 64..=b / 64 {
+                    let mut m = self.pass[nrow + k] & !self.filled[nrow + k] & range_mask(k, a, b);
+                    while m != 0 {
+                        let bit = m.trailing_zeros();
+                        self.seeds.push((ny as u32, (k * 64) as u32 + bit));
+                        // Drop the lowest run of m: one seed per run.
+                        m &= m.wrapping_add(1 << bit);
+                    }
+                }
+            }
+        }
+        (y0, y1)
+    }
+
+    /// B = R ∩ dilate₈(targets \ seen) over rows `y0..=y1` (left in `bound`; other rows
+    /// are not read).
+    fn boundary(&mut self, seen: &[u64], y0: usize, y1: usize) {
+        let wpr = self.wpr;
+        // Unperceived targets dilated along their row, for rows y0 - 1 ..= y1 + 1.
+        let lo = y0.saturating_sub(1);
+        let hi = (y1 + 1).min(self.h - 1);
+        for y in lo..=hi {
+            let row = y * wpr;
+            let mut prev = 0u64;
+            for k in 0..wpr {
+                let u = self.targets[row + k] & !seen[row + k];
+                let next = if k + 1 < wpr {
+                    self.targets[row + k + 1] & !seen[row + k + 1]
+                } else {
+                    0
+                };
+                self.wide[row + k] = u | u << 1 | prev >> 63 | u >> 1 | next << 63;
+                prev = u;
+            }
+        }
+        for y in y0..=y1 {
+            let row = y * wpr;
+            for k in 0..wpr {
+                let mut d = self.wide[row + k];
+                if y > 0 {
+                    d |= self.wide[row - wpr + k];
+                }
+                if y + 1 < self.h {
+                    d |= self.wide[row + wpr + k];
+                }
+                self.bound[row + k] = self.filled[row + k] & d;
+            }
+        }
+    }
+
+    /// The representatives of B's 8-connected clusters in rows `y0..=y1`, by increasing
+    /// first flat index (module doc).
+    fn clusters(&mut self, y0: usize, y1: usize, here: u32, min_size: usize, out: &mut Vec<u32>) {
+        let (w, h, wpr) = (self.w, self.h, self.wpr);
+        for y in y0..=y1 {
+            for k in 0..wpr {
+                while self.bound[y * wpr + k] != 0 {
+                    let bit = self.bound[y * wpr + k].trailing_zeros() as usize;
+                    self.bound[y * wpr + k] &= !(1 << bit);
+                    let seed = (y * w + k * 64 + bit) as u32;
+                    self.members.clear();
+                    self.stack.clear();
+                    self.stack.push(seed);
+                    while let Some(i) = self.stack.pop() {
+                        self.members.push(i);
+                        let (x, cy) = ((i as usize % w) as i64, (i as usize / w) as i64);
+                        for dy in -1i64..=1 {
+                            let ny = cy + dy;
+                            if ny < 0 || ny >= h as i64 {
+                                continue;
+                            }
+                            for dx in -1i64..=1 {
+                                let nx = x + dx;
+                                if nx < 0 || nx >= w as i64 {
+                                    continue;
+                                }
+                                let (nx, ny) = (nx as usize, ny as usize);
+                                let word = &mut self.bound[ny * wpr + nx / 64];
+                                let m = 1u64 << (nx % 64);
+                                if *word & m != 0 {
+                                    *word &= !m;
+                                    self.stack.push((ny * w + nx) as u32);
+                                }
+                            }
+                        }
+                    }
+                    if self.members.len() < min_size.max(1) {
+                        continue;
+                    }
+                    let best = representative(&self.members, w);
+                    if best != here {
+                        out.push(best);
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// The member nearest (Euclidean) to the members' centroid, ties to the lowest flat index.
+pub(crate) fn representative(members: &[u32], w: usize) -> u32 {
+    let (mut sx, mut sy) = (0.0, 0.0);
+    for &i in members {
+        sx += (i as usize % w) as f64;
+        sy += (i as usize / w) as f64;
+    }
+    let m = members.len() as f64;
+    let (cx, cy) = (sx / m, sy / m);
+    let mut best = (f64::INFINITY, u32::MAX);
+    for &i in members {
+        let dx = (i as usize % w) as f64 - cx;
+        let dy = (i as usize / w) as f64 - cy;
+        let d = dx * dx + dy * dy;
+        if d < best.0 || (d == best.0 && i < best.1) {
+            best = (d, i);
+        }
+    }
+    best.1
+}
+
+/// Bits `a..=b` of word `k` of a row (columns `64k..64k + 63`).
+#[inline]
+fn range_mask(k: usize, a: usize, b: usize) -> u64 {
+    let lo = a.max(k * 64) - k * 64;
+    let hi = b.min(k * 64 + 63) - k * 64;
+    (u64::MAX >> (63 - hi)) & (u64::MAX << lo)
+}
+
+/// Set bits `a..=b` of a row.
+fn set_range(row: &mut [u64], a: usize, b: usize) {
+    for (k, word) in row.iter_mut().enumerate().take(b / 64 + 1).skip(a / 64) {
+        *word |= range_mask(k, a, b);
+    }
+}
+
+/// The first column of the run of set bits holding column `x` of `row`.
+fn run_start(row: &[u64], x: usize) -> usize {
+    let mut k = x / 64;
+    // Bits at and below x, shifted to the top.
+    let mut word = row[k] << (63 - x % 64);
+    let mut top = x % 64; // column offset in word k of the top bit of `word`
+    loop {
+        let ones = (!word).leading_zeros() as usize; // set bits from the top down
+        if ones <= top {
+            return k * 64 + top + 1 - ones;
+        }
+        if k == 0 {
+            return 0;
+        }
+        k -= 1;
+        word = row[k];
+        top = 63;
+    }
+}
+
+/// The last column of the run of set bits holding column `x` of `row`.
+fn run_end(row: &[u64], x: usize) -> usize {
+    let mut k = x / 64;
+    let mut word = row[k] >> (x % 64);
+    let mut low = x % 64;
+    loop {
+        let ones = (!word).trailing_zeros() as usize;
+        if ones < 64 - low {
+            return k * 64 + low + ones - 1;
+        }
+        if k + 1 == row.len() {
+            return k * 64 + 63;
+        }
+        k += 1;
+        word = row[k];
+        low = 0;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::actions::{ActionScratch, ActionSet, candidates};
+    use crate::heuristic::set;
+    use crate::problem::{NOT_TARGET, SensorModel};
+    use crate::step_cost::StepCosts;
+    use grid::Cell;
+    use proptest::prelude::*;
+
+    #[test]
+    fn runs_across_words() {
+        let row = [u64::MAX << 60, 0b111, 0];
+        assert_eq!(run_start(&row, 66), 60);
+        assert_eq!(run_end(&row, 61), 66);
+        assert_eq!(run_end(&row, 66), 66);
+        assert_eq!(run_start(&row, 60), 60);
+        let full = [u64::MAX, u64::MAX];
+        assert_eq!(run_start(&full, 100), 0);
+        assert_eq!(run_end(&full, 3), 127);
+        assert_eq!(range_mask(1, 60, 70), 0b111_1111);
+        assert_eq!(range_mask(0, 60, 70), 0b1111 << 60);
+    }
+
+    proptest! {
+        /// The same cluster representatives, in the same order, as the candidates read off
+        /// the step costs' search, on random maps (up to 150 columns, so rows span three
+        /// words), perceived sets, robot cells and minimum sizes.
+        #[test]
+        fn same_as_the_search_based_candidates(
+            w in 2usize..150,
+            h in 2usize..10,
+            walls in proptest::collection::vec(0u8..5, 1500),
+            seen in proptest::collection::vec(0u8..4, 1500),
+            pick in 0usize..1500,
+            min_size in 1usize..4,
+            fp in any::<bool>(),
+        ) {
+            let map = crate::walled_map(w, h, &walls);
+            let free: Vec<usize> = (0..w * h).filter(|&i| map.data()[i].is_free()).collect();
+            prop_assume!(!free.is_empty());
+            let start = free[pick % free.len()];
+            let model = if fp { SensorModel::Footprint(1.5) } else { SensorModel::Los(1.5) };
+            let p = Problem::new(&map, Cell::new((start % w) as i32, (start / w) as i32), model)
+                .expect("problem");
+            let mut bits = vec![0u64; p.mark_count().div_ceil(64).max(1)];
+            let mut rows = ClusterRows::new(&p);
+            let mut seen_rows = vec![0u64; rows.words()];
+            for (i, &s) in seen.iter().enumerate().take(w * h) {
+                let t = p.mark_index(i);
+                if t != NOT_TARGET && (s != 0 || i == start) {
+                    set(&mut bits, t);
+                    let (k, b) = rows.locate(i);
+                    seen_rows[k] |= 1 << b;
+                }
+            }
+            let mut steps = StepCosts::new(&p);
+            steps.compute(start as u32, &bits);
+            let mut scratch = ActionScratch::new(w * h);
+            let mut want = Vec::new();
+            let set_ = ActionSet::Clusters { min_size };
+            candidates(&p, &bits, steps.settled(), start as u32, set_, &mut scratch, &mut want);
+            let mut got = Vec::new();
+            rows.candidates(&seen_rows, start as u32, min_size, &mut got);
+            prop_assert_eq!(got, want);
+        }
+    }
+}
