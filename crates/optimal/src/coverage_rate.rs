@@ -65,7 +65,7 @@ impl CoverageRate {
 }
 
 /// The sensor's offsets as row intervals: `rows[dy + reach] = (x0, x1)`, empty as x0 > x1.
-fn offsets(model: SensorModel) -> Vec<(i64, i64)> {
+pub(crate) fn offsets(model: SensorModel) -> Vec<(i64, i64)> {
     let r = model.range();
     let reach = r.floor().max(0.0) as i64;
     let side = (2 * reach + 1) as usize;

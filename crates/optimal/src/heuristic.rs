@@ -31,7 +31,11 @@
 //! be perceived: h = the (s + 1)-th largest b(t) over U. Eq. 2 is kept as
 //! [`HeuristicKind::PaperAsPublished`], flagged inadmissible.
 //!
-//! # `Landmarks`: h = max(Paper, coverage rate, landmark path bound or skip-budget bound)
+//! # `Landmarks`: h = max(order statistic, coverage rate, landmark path bound or skip-budget bound)
+//! The order statistic is `Paper`'s, except that with the footprint sensor each target's
+//! value is D(q, t), the path distance to its nearest viewpoint
+//! ([`crate::viewpoint_distance`]), instead of |q − t| − c: every value is then the exact
+//! cost of perceiving that one target, and walls count.
 //! The coverage-rate bound (K more targets at most ρ* per unit of path, proof in
 //! [`crate::coverage_rate`]) holds for every G. The landmark bound below only for G = 1;
 //! for G < 1 the skip-budget bound (the far ends of the map must still be approached, the
@@ -64,6 +68,8 @@ use crate::coverage_rate::CoverageRate;
 use crate::held_karp::PathBound;
 use crate::problem::{NOT_TARGET, Problem, SensorModel};
 use crate::skip_budget::SkipBudget;
+use crate::step_cost::FieldCache;
+use crate::viewpoint_distance::ViewpointDistance;
 
 /// Which lower bound guides the search.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -182,6 +188,12 @@ pub(crate) struct Heuristic {
     orders: Vec<(f64, u32)>,
     cache_cap_bytes: usize,
     dij: Reachability,
+    /// Per-position path costs in the full map (the orders' distances; the search's step
+    /// costs to cluster representatives).
+    pub(crate) fields: FieldCache,
+    /// With the footprint sensor and [`HeuristicKind::Landmarks`]: orders by the distance
+    /// to the nearest viewpoint ([`crate::viewpoint_distance`]) instead of |q − t| − c.
+    vd: Option<ViewpointDistance>,
     /// The coverage-rate bound.
     rate: CoverageRate,
     /// The skip-budget bound (G < 1 only).
@@ -268,6 +280,12 @@ impl Heuristic {
             orders: Vec::new(),
             cache_cap_bytes,
             dij: Reachability::new(cells.width(), cells.height()),
+            fields: FieldCache::new(problem, cache_cap_bytes / 2),
+            vd: if kind == HeuristicKind::Landmarks && model.through_walls() {
+                ViewpointDistance::new(&crate::coverage_rate::offsets(model))
+            } else {
+                None
+            },
             rate: CoverageRate::new(model),
             far: None,
             lm_t: Vec::new(),
@@ -294,6 +312,8 @@ impl Heuristic {
             + self.lm_field.capacity() * 8
             + self.path_cache.capacity() * 40
             + self.far.as_ref().map_or(0, SkipBudget::bytes)
+            + self.vd.as_ref().map_or(0, ViewpointDistance::bytes)
+            + self.fields.bytes()
     }
 
     /// Number of landmarks in use.
@@ -382,7 +402,16 @@ impl Heuristic {
         let cells = problem.cells();
         let euclid = matches!(self.model, SensorModel::Footprint(_))
             && self.kind != HeuristicKind::PaperAsPublished;
-        if euclid {
+        if let Some(vd) = &mut self.vd {
+            vd.append(problem, self.fields.costs(pos), &mut self.orders);
+            // Every target has a reachable viewpoint; a value that is not finite bounds
+            // nothing.
+            for e in &mut self.orders[base..] {
+                if !e.0.is_finite() {
+                    e.0 = 0.0;
+                }
+            }
+        } else if euclid {
             let q = cells.cell(pos as usize);
             self.orders.extend(
                 targets
@@ -433,12 +462,13 @@ impl Heuristic {
 
     /// The bound for the robot at `pos` having perceived `bits` (`count` targets).
     pub(crate) fn eval(&mut self, problem: &Problem, pos: u32, bits: &[u64], count: usize) -> f64 {
-        self.eval_at(problem, pos, bits, count, None)
+        self.eval_at(problem, pos, bits, count, None, f64::INFINITY)
     }
 
     /// [`Heuristic::eval`] for a child of the state last [`Heuristic::enter`]ed, whose
     /// perceived set is `parent`: `bits` is `parent` plus what `pos` perceives (parts of
-    /// the bound are shared between siblings).
+    /// the bound are shared between siblings). Once a part of the bound reaches `cut` the
+    /// rest is not computed: the value is exact below `cut`, and at least `cut` otherwise.
     pub(crate) fn eval_child(
         &mut self,
         problem: &Problem,
@@ -446,8 +476,9 @@ impl Heuristic {
         bits: &[u64],
         count: usize,
         parent: &[u64],
+        cut: f64,
     ) -> f64 {
-        self.eval_at(problem, pos, bits, count, Some(parent))
+        self.eval_at(problem, pos, bits, count, Some(parent), cut)
     }
 
     fn eval_at(
@@ -457,9 +488,19 @@ impl Heuristic {
         bits: &[u64],
         count: usize,
         parent: Option<&[u64]>,
+        cut: f64,
     ) -> f64 {
         if self.kind == HeuristicKind::Zero || self.n_targets - count <= self.skip {
             return 0.0;
+        }
+        // The coverage-rate bound first: it costs nothing.
+        let rate = if self.kind == HeuristicKind::Landmarks {
+            self.rate.bound(self.n_targets - self.skip - count)
+        } else {
+            0.0
+        };
+        if rate >= cut {
+            return rate;
         }
         let base = self.order(problem, pos);
         let list = &self.orders[base..base + self.order_len];
@@ -488,14 +529,15 @@ impl Heuristic {
                     left -= 1;
                 }
             }
-            (v - self.c).max(0.0)
+            // Viewpoint distances are the bound itself; the others lose the sensor's reach.
+            let reach = if self.vd.is_some() { 0.0 } else { self.c };
+            (v - reach).max(0.0)
         };
-        if self.kind != HeuristicKind::Landmarks {
-            return paper;
+        if self.kind != HeuristicKind::Landmarks || paper.max(rate) >= cut {
+            return paper.max(rate);
         }
-        let rate = self.rate.bound(self.n_targets - self.skip - count);
         if let Some(far) = &mut self.far {
-            return far.bound(pos, bits, paper.max(rate), parent);
+            return far.bound(pos, bits, paper.max(rate), parent, cut);
         }
         if self.lm_t.is_empty() {
             return paper.max(rate);

@@ -41,6 +41,7 @@ pub mod problem;
 pub mod search;
 pub(crate) mod skip_budget;
 pub(crate) mod step_cost;
+pub(crate) mod viewpoint_distance;
 
 pub use actions::ActionSet;
 pub use coarse::{Coarsened, coarsen_problem};

@@ -365,51 +365,6 @@ fn push_words(out: &mut Vec<(u32, u64)>, bits: impl Iterator<Item = (u32, u64)>)
     out.truncate(kept);
 }
 
-/// Per position: the full map's step costs from it ([`StepCosts::field`]), computed on
-/// first use and dropped all at once when they outgrow their share of the memory budget.
-struct Fields {
-    slot: Vec<u32>,
-    len: usize,
-    data: Vec<f64>,
-    pred: Vec<u32>,
-    cap_bytes: usize,
-    /// Every mark: all cells passable.
-    all: Vec<u64>,
-}
-
-impl Fields {
-    fn new(n: usize, len: usize, marks: usize, cap_bytes: usize) -> Self {
-        Self {
-            slot: vec![NONE; n],
-            len,
-            data: Vec::new(),
-            pred: Vec::new(),
-            cap_bytes,
-            all: vec![u64::MAX; marks.div_ceil(64).max(1)],
-        }
-    }
-
-    /// The costs from `pos` and the predecessors on shortest paths (by reachable index).
-    fn of(&mut self, steps: &mut StepCosts, pos: u32) -> (&[f64], &[u32]) {
-        let p = pos as usize;
-        if self.slot[p] == NONE {
-            if (self.data.len() + self.len) * 12 > self.cap_bytes {
-                self.data.clear();
-                self.pred.clear();
-                self.slot.fill(NONE);
-            }
-            self.slot[p] = (self.data.len() / self.len.max(1)) as u32;
-            steps.field(pos, &self.all, &mut self.data, &mut self.pred);
-        }
-        let k = self.slot[p] as usize * self.len;
-        (&self.data[k..k + self.len], &self.pred[k..k + self.len])
-    }
-
-    fn bytes(&self) -> usize {
-        self.slot.len() * 4 + self.data.capacity() * 8 + self.pred.capacity() * 4
-    }
-}
-
 /// The search's state and buffers.
 struct Engine<'p> {
     problem: &'p Problem,
@@ -421,11 +376,10 @@ struct Engine<'p> {
     reach: StepCosts,
     scratch: ActionScratch,
     /// Cluster actions on bit rows (with [`ActionSet::Clusters`]), the perceived set of the
-    /// loaded state as rows, each mark's flat cell, and the per-position cost fields.
+    /// loaded state as rows, and each mark's flat cell.
     rows: Option<ClusterRows>,
     seen_rows: Vec<u64>,
     mark_cell: Vec<u32>,
-    fields: Fields,
     zt: Vec<[u64; 2]>,
     zpos: Vec<[u64; 2]>,
     nodes: Vec<Node>,
@@ -480,7 +434,6 @@ impl<'p> Engine<'p> {
             }
         }
         let seen_rows = vec![0; rows.as_ref().map_or(0, ClusterRows::words)];
-        let fields = Fields::new(n, reach.len(), nm, cfg.max_bytes / 8);
         let rows_bytes = rows.as_ref().map_or(0, ClusterRows::bytes);
         Self {
             problem,
@@ -493,7 +446,6 @@ impl<'p> Engine<'p> {
             rows,
             seen_rows,
             mark_cell,
-            fields,
             zt,
             zpos,
             nodes: Vec::new(),
@@ -521,7 +473,6 @@ impl<'p> Engine<'p> {
             + self.table.capacity() * 16
             + self.heur.bytes()
             + self.vis.bytes()
-            + self.fields.bytes()
             + self.fixed_bytes
     }
 
@@ -884,9 +835,8 @@ impl<'p> Engine<'p> {
             // path of the full map lies inside the perceived space (the search otherwise).
             rows.candidates(&self.seen_rows, node.pos, min_size, &mut self.cands);
             self.cand_dist.clear();
-            let (field, pred) = self.fields.of(&mut self.reach, node.pos);
             for &a in &self.cands {
-                match self.reach.inside(field, pred, node.pos, a, &self.cur) {
+                match self.heur.fields.inside(node.pos, a, &self.cur) {
                     Some(d) => self.cand_dist.push(d),
                     None => break,
                 }
@@ -984,14 +934,7 @@ impl<'p> Engine<'p> {
                 key2 ^= self.zt[t as usize][0];
                 check2 ^= self.zt[t as usize][1];
             }
-            let h = self
-                .heur
-                .eval_child(problem, a, &self.child, count2, &self.cur);
-            if g2 + h >= self.inc_cost - EPS {
-                self.stats.pruned += 1;
-                continue;
-            }
-            // Duplicate detection.
+            // Duplicate detection (a stored state keeps its bound).
             let head = self.table.get(&key2).copied().unwrap_or(NONE);
             let mut dup = NONE;
             let mut j = head;
@@ -1004,8 +947,12 @@ impl<'p> Engine<'p> {
                 j = n.next_same;
             }
             if dup != NONE {
-                self.stats.duplicates += 1;
                 let n = &mut self.nodes[dup as usize];
+                if g2 + n.h >= self.inc_cost - EPS {
+                    self.stats.pruned += 1;
+                    continue;
+                }
+                self.stats.duplicates += 1;
                 if g2 < n.g - EPS {
                     if n.closed {
                         self.stats.reopened += 1;
@@ -1016,6 +963,15 @@ impl<'p> Engine<'p> {
                     let f = g2 + w * n.h;
                     self.open.push(entry(f, g2, dup));
                 }
+                continue;
+            }
+            // Bounds at or beyond the incumbent prune the child: no need to finish them.
+            let cut = self.inc_cost - EPS - g2;
+            let h = self
+                .heur
+                .eval_child(problem, a, &self.child, count2, &self.cur, cut);
+            if g2 + h >= self.inc_cost - EPS {
+                self.stats.pruned += 1;
                 continue;
             }
             if !self.reserve_one() {

@@ -243,19 +243,24 @@ impl SkipBudget {
     /// the ownerships, or `floor` if that is larger (an ownership stops as soon as one of
     /// its splits gives no more than the best so far).
     /// With `Some(parent)`, `bits` is what `pos` perceives added to `parent`, the perceived
-    /// set of the state last [`SkipBudget::enter`]ed.
+    /// set of the state last [`SkipBudget::enter`]ed. Once the value reaches `cut` the other
+    /// ownerships are skipped (it is then at least `cut`, exact below).
     pub(crate) fn bound(
         &mut self,
         pos: u32,
         bits: &[u64],
         floor: f64,
         parent: Option<&[u64]>,
+        cut: f64,
     ) -> f64 {
         let to_robot: [f64; MAX_POINTS] =
             std::array::from_fn(|a| self.field.get(a).map_or(0.0, |f| f[pos as usize]));
         let mut best = floor;
         for j in 0..self.owned.len() {
             best = best.max(self.bound_owned(j, pos, &to_robot, bits, best, parent));
+            if best >= cut {
+                break;
+            }
         }
         best
     }
@@ -517,18 +522,18 @@ mod tests {
             let pos = reach[child % reach.len()];
             let mut bits = parent.clone();
             perceive(&p, pos, &mut bits);
-            let alone = sb.bound(pos, &bits, floor, None);
+            let alone = sb.bound(pos, &bits, floor, None, f64::INFINITY);
             sb.enter();
-            let shared = sb.bound(pos, &bits, floor, Some(&parent));
+            let shared = sb.bound(pos, &bits, floor, Some(&parent), f64::INFINITY);
             prop_assert_eq!(alone.to_bits(), shared.to_bits());
             // Siblings after it share the scanned lists too.
             let other = reach[(child + 1) % reach.len()];
             let mut bits2 = parent.clone();
             perceive(&p, other, &mut bits2);
-            let alone2 = sb.bound(other, &bits2, floor, None);
+            let alone2 = sb.bound(other, &bits2, floor, None, f64::INFINITY);
             sb.enter();
-            sb.bound(pos, &bits, floor, Some(&parent));
-            let shared2 = sb.bound(other, &bits2, floor, Some(&parent));
+            sb.bound(pos, &bits, floor, Some(&parent), f64::INFINITY);
+            let shared2 = sb.bound(other, &bits2, floor, Some(&parent), f64::INFINITY);
             prop_assert_eq!(alone2.to_bits(), shared2.to_bits());
         }
     }

@@ -403,6 +403,83 @@ impl StepCosts {
     }
 }
 
+/// Per position: the full map's step costs from it ([`StepCosts::field`]), computed on
+/// first use and dropped all at once when they outgrow their share of the memory budget.
+/// The heuristic's distance orders and the search's step costs to cluster representatives
+/// ([`FieldCache::inside`]) both read them.
+pub(crate) struct FieldCache {
+    steps: StepCosts,
+    /// Per flat cell: its field's number, or `NONE`.
+    slot: Vec<u32>,
+    len: usize,
+    cost: Vec<f64>,
+    pred: Vec<u32>,
+    cap_bytes: usize,
+    /// Every mark: all cells passable.
+    all: Vec<u64>,
+}
+
+impl FieldCache {
+    /// Fields for `problem`, at most `cap_bytes` of them at once.
+    pub(crate) fn new(problem: &Problem, cap_bytes: usize) -> Self {
+        let steps = StepCosts::new(problem);
+        Self {
+            slot: vec![NONE; problem.cells().len()],
+            len: steps.len(),
+            steps,
+            cost: Vec::new(),
+            pred: Vec::new(),
+            cap_bytes,
+            all: vec![u64::MAX; problem.mark_count().div_ceil(64).max(1)],
+        }
+    }
+
+    /// The offset of the field of reachable flat cell `pos` in `cost` and `pred`.
+    fn of(&mut self, pos: u32) -> usize {
+        let p = pos as usize;
+        if self.slot[p] == NONE {
+            if (self.cost.len() + self.len) * 12 > self.cap_bytes {
+                self.cost.clear();
+                self.pred.clear();
+                self.slot.fill(NONE);
+            }
+            self.slot[p] = (self.cost.len() / self.len.max(1)) as u32;
+            self.steps
+                .field(pos, &self.all, &mut self.cost, &mut self.pred);
+        }
+        self.slot[p] as usize * self.len
+    }
+
+    /// The full map's path costs from reachable flat cell `pos`, by flat cell (∞ off the
+    /// reachable cells).
+    pub(crate) fn costs(&mut self, pos: u32) -> impl Fn(usize) -> f64 + '_ {
+        let base = self.of(pos);
+        let (index, cost) = (&self.steps.index, &self.cost[base..base + self.len]);
+        move |i| match index[i] {
+            NONE => f64::INFINITY,
+            u => cost[u as usize],
+        }
+    }
+
+    /// [`StepCosts::inside`] from `from` to `to` inside the perceived cells `bits`.
+    pub(crate) fn inside(&mut self, from: u32, to: u32, bits: &[u64]) -> Option<f64> {
+        let base = self.of(from);
+        let (cost, pred) = (
+            &self.cost[base..base + self.len],
+            &self.pred[base..base + self.len],
+        );
+        self.steps.inside(cost, pred, from, to, bits)
+    }
+
+    /// Bytes held.
+    pub(crate) fn bytes(&self) -> usize {
+        self.steps.bytes()
+            + self.slot.len() * 4
+            + self.cost.capacity() * 8
+            + self.pred.capacity() * 4
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
