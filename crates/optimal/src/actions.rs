@@ -195,26 +195,32 @@ fn candidates_clusters(
         if members.len() < min_size.max(1) {
             continue;
         }
-        let (mut sx, mut sy) = (0.0, 0.0);
-        for &i in &members {
-            sx += (i as usize % w) as f64;
-            sy += (i as usize / w) as f64;
-        }
-        let m = members.len() as f64;
-        let (cx, cy) = (sx / m, sy / m);
-        let mut best = (f64::INFINITY, u32::MAX);
-        for &i in &members {
-            let dx = (i as usize % w) as f64 - cx;
-            let dy = (i as usize / w) as f64 - cy;
-            let d = dx * dx + dy * dy;
-            if d < best.0 || (d == best.0 && i < best.1) {
-                best = (d, i);
-            }
-        }
-        if best.1 != here {
-            out.push(best.1);
+        let best = representative(&members, w);
+        if best != here {
+            out.push(best);
         }
     }
     scratch.cluster = seeds;
     scratch.members = members;
+}
+
+/// The member nearest (Euclidean) to the members' centroid, ties to the lowest flat index.
+pub(crate) fn representative(members: &[u32], w: usize) -> u32 {
+    let (mut sx, mut sy) = (0.0, 0.0);
+    for &i in members {
+        sx += (i as usize % w) as f64;
+        sy += (i as usize / w) as f64;
+    }
+    let m = members.len() as f64;
+    let (cx, cy) = (sx / m, sy / m);
+    let mut best = (f64::INFINITY, u32::MAX);
+    for &i in members {
+        let dx = (i as usize % w) as f64 - cx;
+        let dy = (i as usize / w) as f64 - cy;
+        let d = dx * dx + dy * dy;
+        if d < best.0 || (d == best.0 && i < best.1) {
+            best = (d, i);
+        }
+    }
+    best.1
 }

@@ -13,7 +13,8 @@
 //! - B = R ∩ dilate₈(targets \ perceived), a few word operations per row;
 //! - clusters are flood-filled over B's bits in increasing flat index, so they, their
 //!   order and their representatives (the member nearest the centroid, ties to the lowest
-//!   flat index) are exactly those of [`crate::actions::candidates`].
+//!   flat index) are exactly those of [`crate::actions::candidates`]; a cluster is taken
+//!   out run by run, so the work is per run of boundary cells, not per cell.
 //!
 //! The step costs to the few representatives then come from [`crate::step_cost`]'s
 //! per-position distance fields. On the corridor floor benchmark a state has a thousand
@@ -44,9 +45,8 @@ pub(crate) struct ClusterRows {
     bound: Vec<u64>,
     /// Scratch: span seeds (row, column).
     seeds: Vec<(u32, u32)>,
-    /// Scratch: the flood stack and the members of a cluster (flat cells).
-    stack: Vec<u32>,
-    members: Vec<u32>,
+    /// Scratch: the runs (row, first column, last column) of the cluster being taken out.
+    runs: Vec<(usize, usize, usize)>,
 }
 
 impl ClusterRows {
@@ -79,8 +79,7 @@ impl ClusterRows {
             wide: vec![0; n],
             bound: vec![0; n],
             seeds: Vec::new(),
-            stack: Vec::new(),
-            members: Vec::new(),
+            runs: Vec::new(),
         }
     }
 
@@ -98,7 +97,7 @@ impl ClusterRows {
 
     /// Bytes held.
     pub(crate) fn bytes(&self) -> usize {
-        self.reach.len() * 8 * 6 + (self.seeds.capacity() + self.stack.capacity()) * 8
+        self.reach.len() * 8 * 6 + self.seeds.capacity() * 8 + self.runs.capacity() * 24
     }
 
     /// Fill `out` with the representatives of the clusters of the state whose perceived
@@ -200,45 +199,40 @@ impl ClusterRows {
     }
 
     /// The representatives of B's 8-connected clusters in rows `y0..=y1`, by increasing
-    /// first flat index (module doc).
+    /// first flat index (module doc). A cluster is taken out run by run: a run of B in one
+    /// row, then the runs of the rows above and below that touch it or its two ends
+    /// diagonally.
     fn clusters(&mut self, y0: usize, y1: usize, here: u32, min_size: usize, out: &mut Vec<u32>) {
-        let (w, h, wpr) = (self.w, self.h, self.wpr);
+        let (w, wpr) = (self.w, self.wpr);
         for y in y0..=y1 {
             for k in 0..wpr {
                 while self.bound[y * wpr + k] != 0 {
-                    let bit = self.bound[y * wpr + k].trailing_zeros() as usize;
-                    self.bound[y * wpr + k] &= !(1 << bit);
-                    let seed = (y * w + k * 64 + bit) as u32;
-                    self.members.clear();
-                    self.stack.clear();
-                    self.stack.push(seed);
-                    while let Some(i) = self.stack.pop() {
-                        self.members.push(i);
-                        let (x, cy) = ((i as usize % w) as i64, (i as usize / w) as i64);
-                        for dy in -1i64..=1 {
-                            let ny = cy + dy;
-                            if ny < 0 || ny >= h as i64 {
+                    let x = k * 64 + self.bound[y * wpr + k].trailing_zeros() as usize;
+                    self.runs.clear();
+                    self.take_run(y, x);
+                    let mut next = 0;
+                    while next < self.runs.len() {
+                        let (ry, a, b) = self.runs[next];
+                        next += 1;
+                        let (lo, hi) = (a.saturating_sub(1), (b + 1).min(w - 1));
+                        for ny in [ry.wrapping_sub(1), ry + 1] {
+                            if ny < y0 || ny > y1 {
                                 continue;
                             }
-                            for dx in -1i64..=1 {
-                                let nx = x + dx;
-                                if nx < 0 || nx >= w as i64 {
-                                    continue;
-                                }
-                                let (nx, ny) = (nx as usize, ny as usize);
-                                let word = &mut self.bound[ny * wpr + nx / 64];
-                                let m = 1u64 << (nx % 64);
-                                if *word & m != 0 {
-                                    *word &= !m;
-                                    self.stack.push((ny * w + nx) as u32);
-                                }
+                            let mut nx = lo;
+                            while let Some(found) =
+                                first_set(&self.bound[ny * wpr..(ny + 1) * wpr], nx, hi)
+                            {
+                                let end = self.take_run(ny, found);
+                                nx = end + 1;
                             }
                         }
                     }
-                    if self.members.len() < min_size.max(1) {
+                    let size: usize = self.runs.iter().map(|&(_, a, b)| b - a + 1).sum();
+                    if size < min_size.max(1) {
                         continue;
                     }
-                    let best = representative(&self.members, w);
+                    let best = nearest_in_runs(&self.runs, size, w);
                     if best != here {
                         out.push(best);
                     }
@@ -246,24 +240,42 @@ impl ClusterRows {
             }
         }
     }
+
+    /// Clear the run of B holding column `x` of row `y`, list it, return its last column.
+    fn take_run(&mut self, y: usize, x: usize) -> usize {
+        let row = &mut self.bound[y * self.wpr..(y + 1) * self.wpr];
+        let (a, b) = (run_start(row, x), run_end(row, x));
+        clear_range(row, a, b);
+        self.runs.push((y, a, b));
+        b
+    }
 }
 
-/// The member nearest (Euclidean) to the members' centroid, ties to the lowest flat index.
-pub(crate) fn representative(members: &[u32], w: usize) -> u32 {
-    let (mut sx, mut sy) = (0.0, 0.0);
-    for &i in members {
-        sx += (i as usize % w) as f64;
-        sy += (i as usize / w) as f64;
+/// The cell of the runs (row, first column, last column) nearest (Euclidean) to their
+/// cells' centroid, ties to the lowest flat index: the same cell as [`crate::actions::representative`]
+/// over the runs' cells, found per run at the column nearest the centroid's.
+fn nearest_in_runs(runs: &[(usize, usize, usize)], size: usize, w: usize) -> u32 {
+    // Sums of integers, exact in f64 as in `crate::actions::representative`.
+    let (mut sx, mut sy) = (0u64, 0u64);
+    for &(y, a, b) in runs {
+        let len = (b - a + 1) as u64;
+        sx += (a + b) as u64 * len / 2;
+        sy += y as u64 * len;
     }
-    let m = members.len() as f64;
-    let (cx, cy) = (sx / m, sy / m);
+    let m = size as f64;
+    let (cx, cy) = (sx as f64 / m, sy as f64 / m);
     let mut best = (f64::INFINITY, u32::MAX);
-    for &i in members {
-        let dx = (i as usize % w) as f64 - cx;
-        let dy = (i as usize / w) as f64 - cy;
-        let d = dx * dx + dy * dy;
-        if d < best.0 || (d == best.0 && i < best.1) {
-            best = (d, i);
+    for &(y, a, b) in runs {
+        let f = cx.floor().clamp(a as f64, b as f64) as usize;
+        let c = cx.ceil().clamp(a as f64, b as f64) as usize;
+        for x in [f, c] {
+            let dx = x as f64 - cx;
+            let dy = y as f64 - cy;
+            let d = dx * dx + dy * dy;
+            let i = (y * w + x) as u32;
+            if d < best.0 || (d == best.0 && i < best.1) {
+                best = (d, i);
+            }
         }
     }
     best.1
@@ -275,6 +287,24 @@ fn range_mask(k: usize, a: usize, b: usize) -> u64 {
     let lo = a.max(k * 64) - k * 64;
     let hi = b.min(k * 64 + 63) - k * 64;
     (u64::MAX >> (63 - hi)) & (u64::MAX << lo)
+}
+
+/// Clear bits `a..=b` of a row.
+fn clear_range(row: &mut [u64], a: usize, b: usize) {
+    for (k, word) in row.iter_mut().enumerate().take(b / 64 + 1).skip(a / 64) {
+        *word &= !range_mask(k, a, b);
+    }
+}
+
+/// The first set column of `row` in `a..=b`, if any.
+fn first_set(row: &[u64], a: usize, b: usize) -> Option<usize> {
+    if a > b {
+        return None;
+    }
+    (a / 64..=b / 64).find_map(|k| {
+        let m = row[k] & range_mask(k, a, b);
+        (m != 0).then(|| k * 64 + m.trailing_zeros() as usize)
+    })
 }
 
 /// Set bits `a..=b` of a row.

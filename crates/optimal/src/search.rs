@@ -379,6 +379,8 @@ struct Engine<'p> {
     /// loaded state as rows, and each mark's flat cell.
     rows: Option<ClusterRows>,
     seen_rows: Vec<u64>,
+    /// The greedy completion's perceived set as cluster rows.
+    greedy_rows: Vec<u64>,
     mark_cell: Vec<u32>,
     zt: Vec<[u64; 2]>,
     zpos: Vec<[u64; 2]>,
@@ -445,6 +447,7 @@ impl<'p> Engine<'p> {
             scratch: ActionScratch::new(n),
             rows,
             seen_rows,
+            greedy_rows: Vec::new(),
             mark_cell,
             zt,
             zpos,
@@ -551,24 +554,22 @@ impl<'p> Engine<'p> {
         out: &mut Vec<u32>,
     ) -> Option<f64> {
         let mut cur = bits.to_vec();
+        let mut rows = std::mem::take(&mut self.greedy_rows);
+        rows.clear();
+        if self.rows.is_some() {
+            self.rows_of(&cur, &mut rows);
+        }
         let mut cost = 0.0;
         while count < self.need {
             if deadline.is_some_and(|d| Instant::now() >= d) {
+                self.greedy_rows = rows;
                 return None;
             }
-            self.reach.compute(pos, &cur);
             let mut best = None;
             let mut next = Some(self.cfg.actions);
+            let mut searched = false;
             while let Some(actions) = next {
-                candidates(
-                    self.problem,
-                    &cur,
-                    self.reach.settled(),
-                    pos,
-                    actions,
-                    &mut self.scratch,
-                    &mut self.cands,
-                );
+                self.actions(pos, &cur, &rows, actions, &mut searched);
                 best = self.greedy_choice(&cur, rate);
                 next = if best.is_some() {
                     None
@@ -576,19 +577,90 @@ impl<'p> Engine<'p> {
                     actions.wider()
                 };
             }
-            let (d, a) = best?;
+            let Some((d, a)) = best else {
+                self.greedy_rows = rows;
+                return None;
+            };
             let (o, l) = self.vis.get(self.problem, a);
             for &t in &self.vis.data[o..o + l] {
                 if !has(&cur, t) {
                     set(&mut cur, t);
                     count += usize::from(t < self.nt);
+                    if let Some(r) = &self.rows {
+                        let (k, b) = r.locate(self.mark_cell[t as usize] as usize);
+                        rows[k] |= 1 << b;
+                    }
                 }
             }
             cost += d;
             pos = a;
             out.push(a);
         }
+        self.greedy_rows = rows;
         Some(cost)
+    }
+
+    /// The perceived marks `bits` as cluster rows, into `out`.
+    fn rows_of(&self, bits: &[u64], out: &mut Vec<u64>) {
+        let Some(r) = &self.rows else { return };
+        out.clear();
+        out.resize(r.words(), 0);
+        for (k, &word) in bits.iter().enumerate() {
+            let mut m = word;
+            while m != 0 {
+                let t = k * 64 + m.trailing_zeros() as usize;
+                m &= m - 1;
+                let (j, b) = r.locate(self.mark_cell[t] as usize);
+                out[j] |= 1 << b;
+            }
+        }
+    }
+
+    /// Fill `cands` and `cand_dist` with the actions `set` of the robot at `pos` having
+    /// perceived the marks `bits` (`rows`: the same as cluster rows, when kept) and their
+    /// step costs. Clusters come off the bit rows, their costs from the per-position
+    /// fields; otherwise (or when a representative's shortest path leaves the perceived
+    /// space) the step costs' search runs, once per state (`searched`).
+    fn actions(
+        &mut self,
+        pos: u32,
+        bits: &[u64],
+        rows: &[u64],
+        set: ActionSet,
+        searched: &mut bool,
+    ) {
+        self.cand_dist.clear();
+        if let (Some(r), ActionSet::Clusters { min_size }) = (&mut self.rows, set) {
+            r.candidates(rows, pos, min_size, &mut self.cands);
+            for &a in &self.cands {
+                match self.heur.fields.inside(pos, a, bits) {
+                    Some(d) => self.cand_dist.push(d),
+                    None => break,
+                }
+            }
+            if self.cand_dist.len() == self.cands.len() {
+                return;
+            }
+            self.cand_dist.clear();
+        }
+        if !*searched {
+            self.reach.compute(pos, bits);
+            *searched = true;
+        }
+        if !matches!(set, ActionSet::Clusters { .. }) || self.rows.is_none() {
+            candidates(
+                self.problem,
+                bits,
+                self.reach.settled(),
+                pos,
+                set,
+                &mut self.scratch,
+                &mut self.cands,
+            );
+        }
+        let reach = &self.reach;
+        self.cand_dist
+            .extend(self.cands.iter().map(|&a| reach.dist(a as usize)));
     }
 
     /// The greedy step among the candidates: the nearest that perceives a new target or,
@@ -599,7 +671,7 @@ impl<'p> Engine<'p> {
         let mut best_rate = 0.0;
         for k in 0..self.cands.len() {
             let a = self.cands[k];
-            let d = self.reach.dist(a as usize);
+            let d = self.cand_dist[k];
             if rate {
                 let (o, l) = self.vis.get(self.problem, a);
                 let new = self.vis.data[o..o + l]
@@ -824,55 +896,16 @@ impl<'p> Engine<'p> {
 
     /// Expand state `id`; false if the memory budget ran out.
     fn expand(&mut self, id: u32) -> bool {
-        let problem = self.problem;
         let node = self.nodes[id as usize];
         self.load_state(id);
         self.heur.enter();
         let mut next = Some(self.cfg.actions);
         let mut searched = false;
-        if let (Some(rows), ActionSet::Clusters { min_size }) = (&mut self.rows, self.cfg.actions) {
-            // Clusters on bit rows, step costs from the position's field when a shortest
-            // path of the full map lies inside the perceived space (the search otherwise).
-            rows.candidates(&self.seen_rows, node.pos, min_size, &mut self.cands);
-            self.cand_dist.clear();
-            for &a in &self.cands {
-                match self.heur.fields.inside(node.pos, a, &self.cur) {
-                    Some(d) => self.cand_dist.push(d),
-                    None => break,
-                }
-            }
-            if self.cand_dist.len() < self.cands.len() {
-                self.reach.compute(node.pos, &self.cur);
-                searched = true;
-                self.cand_dist.clear();
-                let reach = &self.reach;
-                self.cand_dist
-                    .extend(self.cands.iter().map(|&a| reach.dist(a as usize)));
-            }
-            next = match self.children(id, node) {
-                None => return false,
-                Some(true) => None,
-                Some(false) => self.cfg.actions.wider(),
-            };
-        }
         while let Some(actions) = next {
-            if !searched {
-                self.reach.compute(node.pos, &self.cur);
-                searched = true;
-            }
-            candidates(
-                problem,
-                &self.cur,
-                self.reach.settled(),
-                node.pos,
-                actions,
-                &mut self.scratch,
-                &mut self.cands,
-            );
-            self.cand_dist.clear();
-            let reach = &self.reach;
-            self.cand_dist
-                .extend(self.cands.iter().map(|&a| reach.dist(a as usize)));
+            let cur = std::mem::take(&mut self.cur);
+            let rows = std::mem::take(&mut self.seen_rows);
+            self.actions(node.pos, &cur, &rows, actions, &mut searched);
+            (self.cur, self.seen_rows) = (cur, rows);
             // No candidate perceives a new target: offer the next larger set (the
             // deviation in `actions`).
             next = match self.children(id, node) {

@@ -57,6 +57,7 @@ use sense::Observation;
 
 use crate::heuristic::has;
 use crate::problem::{Problem, SensorModel};
+use crate::viewpoint_distance::ViewpointDistance;
 
 /// Most far points.
 const MAX_POINTS: usize = 3;
@@ -90,8 +91,7 @@ pub(crate) struct SkipBudget {
 
 impl SkipBudget {
     /// Set up the bound for `problem` when `skip` targets may stay unperceived; `None` when
-    /// there is no budget (G = 1), no far point worth a constraint, or (footprint sensor)
-    /// too many targets to scan their viewpoints.
+    /// there is no budget (G = 1) or no far point worth a constraint.
     pub(crate) fn new(problem: &Problem, skip: usize) -> Option<Self> {
         if skip == 0 {
             return None;
@@ -145,19 +145,17 @@ impl SkipBudget {
         // far point with the smallest. On maps too large to scan every target's viewpoints
         // the line-of-sight sensor uses e_a(t) ≤ d(p_a, t) + c (every viewpoint is within
         // c of t in path length, `crate::heuristic`'s module doc): counting fewer targets
-        // is still a lower bound. The footprint sensor has no such bound (it sees through
-        // walls), so there the bound is left out.
+        // is still a lower bound. The footprint's farthest viewpoints are a dilation of
+        // each field by its disc (`viewpoint_reach`), cheap on any map.
         let r = problem.model().range();
         let scan = problem
             .targets()
             .len()
             .saturating_mul(problem.model().disc_cells());
-        let estimate = if scan <= SCAN_BUDGET {
-            None
-        } else if let SensorModel::Los(_) = problem.model() {
-            Some(crate::heuristic::max_l1_within(r))
-        } else {
-            return None;
+        // The footprint's viewpoints come from an erosion, cheap on any map.
+        let estimate = match problem.model() {
+            SensorModel::Los(_) if scan > SCAN_BUDGET => Some(crate::heuristic::max_l1_within(r)),
+            _ => None,
         };
         let mut owned = vec![Vec::new(); k];
         for (j, o) in owned.iter_mut().enumerate() {
@@ -364,9 +362,32 @@ fn viewpoint_reach(
     estimate: Option<f64>,
 ) -> Vec<[f64; MAX_POINTS]> {
     let targets = problem.targets();
+    let mut out = vec![[f64::NEG_INFINITY; MAX_POINTS]; targets.len()];
+    // The footprint's viewpoints are the reachable cells of a disc: a dilation of each
+    // field (an erosion of its negation) gives every target's farthest at once.
+    if estimate.is_none()
+        && problem.model().through_walls()
+        && let Some(mut vd) =
+            ViewpointDistance::new(&crate::coverage_rate::offsets(problem.model()))
+    {
+        for (a, f) in field.iter().enumerate() {
+            vd.nearest(problem, |i| -f[i], |t, v| out[t as usize][a] = -v);
+        }
+        return out;
+    }
+    scanned_reach(problem, field, estimate, out)
+}
+
+/// [`viewpoint_reach`] by scanning each target's viewpoints (or with the estimate).
+fn scanned_reach(
+    problem: &Problem,
+    field: &[Vec<f64>],
+    estimate: Option<f64>,
+    mut out: Vec<[f64; MAX_POINTS]>,
+) -> Vec<[f64; MAX_POINTS]> {
+    let targets = problem.targets();
     let mut obs = Observation::new();
     let mut seen = Vec::new();
-    let mut out = vec![[f64::NEG_INFINITY; MAX_POINTS]; targets.len()];
     for (e, &cell) in out.iter_mut().zip(targets) {
         if let Some(c) = estimate {
             for (x, f) in e.iter_mut().zip(field) {
@@ -460,9 +481,10 @@ mod tests {
 
     proptest! {
         /// The line-of-sight estimate d(p_a, t) + c of the farthest viewpoint's distance is
-        /// never below the scanned one (so it counts no target the scan would not).
+        /// never below the scanned one (so it counts no target the scan would not), and the
+        /// footprint's dilation gives exactly its scan's values.
         #[test]
-        fn los_estimate_is_never_below_the_scan(
+        fn farthest_viewpoints_estimated_and_dilated(
             w in 4usize..14,
             h in 2usize..10,
             walls in proptest::collection::vec(0u8..4, 140),
@@ -484,6 +506,11 @@ mod tests {
             let c = crate::heuristic::max_l1_within(r);
             let scanned = viewpoint_reach(&p, &field, None);
             let estimated = viewpoint_reach(&p, &field, Some(c));
+            // The footprint's dilation gives its scan's values exactly.
+            let fp = Problem::new(&map, Cell::new(0, 0), SensorModel::Footprint(r)).expect("problem");
+            let blank = vec![[f64::NEG_INFINITY; MAX_POINTS]; fp.targets().len()];
+            let eroded = viewpoint_reach(&fp, &field, None);
+            prop_assert_eq!(eroded, scanned_reach(&fp, &field, None, blank));
             for (s, e) in scanned.iter().zip(&estimated) {
                 for a in 0..field.len() {
                     prop_assert!(e[a] >= s[a] - 1e-9, "{} < {}", e[a], s[a]);

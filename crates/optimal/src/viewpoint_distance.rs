@@ -61,6 +61,18 @@ impl ViewpointDistance {
         field: impl Fn(usize) -> f64,
         out: &mut Vec<(f64, u32)>,
     ) {
+        self.nearest(problem, field, |t, v| out.push((v, t)));
+    }
+
+    /// Call `emit(t, v)` for every target t of `problem`, in target order, with v the least
+    /// `value` over t's viewpoints (∞ without one). With `value` the negated distances from
+    /// a point, −v is the distance to t's farthest viewpoint.
+    pub(crate) fn nearest(
+        &mut self,
+        problem: &Problem,
+        field: impl Fn(usize) -> f64,
+        mut emit: impl FnMut(u32, f64),
+    ) {
         let cells = problem.cells();
         let (w, h) = (cells.width(), cells.height());
         let n = w * h;
@@ -104,7 +116,7 @@ impl ViewpointDistance {
                     best = best.min(self.h[hw * n + yy as usize * w + x as usize]);
                 }
             }
-            out.push((best, t as u32));
+            emit(t as u32, best);
         }
     }
 
