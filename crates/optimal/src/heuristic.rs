@@ -447,8 +447,14 @@ impl Heuristic {
         if self.order_len < self.n_targets {
             self.orders[base..].select_nth_unstable_by(self.order_len - 1, desc);
             self.orders.truncate(base + self.order_len);
+            self.orders[base..].sort_unstable_by(desc);
+        } else if self.vd.is_some() || euclid {
+            // Listed by target, values ≥ 0 (whose bits order as the numbers do): a stable
+            // sort on the value alone keeps ties by target.
+            self.orders[base..].sort_by_key(|&(v, _)| std::cmp::Reverse(v.to_bits()));
+        } else {
+            self.orders[base..].sort_unstable_by(desc);
         }
-        self.orders[base..].sort_unstable_by(desc);
         self.order_slot.insert(pos, slot as u32);
         base
     }

@@ -26,8 +26,11 @@ pub(crate) struct ViewpointDistance {
     half: Vec<Option<usize>>,
     /// Largest half-width.
     reach: usize,
-    /// H_w for w = 0..=reach, each over the whole map (scratch).
+    /// H_w for w = 0..=reach, each over the whole map (scratch; ∞ outside `span`).
     h: Vec<f64>,
+    /// Per row: the columns where some H_w can be finite (within `reach` of the row's
+    /// reachable cells), set on first use.
+    span: Vec<(usize, usize)>,
 }
 
 impl ViewpointDistance {
@@ -49,6 +52,7 @@ impl ViewpointDistance {
             half,
             reach,
             h: Vec::new(),
+            span: Vec::new(),
         })
     }
 
@@ -77,28 +81,55 @@ impl ViewpointDistance {
         let (w, h) = (cells.width(), cells.height());
         let n = w * h;
         let layers = self.reach + 1;
-        self.h.resize(layers * n, f64::INFINITY);
-        let (first, rest) = self.h.split_at_mut(n);
-        for (i, v) in first.iter_mut().enumerate() {
-            *v = if problem.reachable(i) {
-                field(i)
-            } else {
-                f64::INFINITY
-            };
+        if self.span.len() != h {
+            self.h.clear();
+            self.h.resize(layers * n, f64::INFINITY);
+            self.span = (0..h)
+                .map(|y| {
+                    let reached = (0..w).filter(|&x| problem.reachable(y * w + x));
+                    match (reached.clone().min(), reached.max()) {
+                        (Some(a), Some(b)) => {
+                            (a.saturating_sub(self.reach), (b + self.reach).min(w - 1))
+                        }
+                        _ => (1, 0),
+                    }
+                })
+                .collect();
         }
-        // H_w = min(H_{w−1}, d(x − w), d(x + w)), with d = H_0.
+        let (first, rest) = self.h.split_at_mut(n);
+        for (y, &(a, b)) in self.span.iter().enumerate() {
+            for x in a..=b.min(w - 1) {
+                let i = y * w + x;
+                first[i] = if problem.reachable(i) {
+                    field(i)
+                } else {
+                    f64::INFINITY
+                };
+            }
+        }
+        // H_w = min(H_{w−1}, d(x − w), d(x + w)), with d = H_0, over each row's span.
         let mut prev: &[f64] = first;
         for (k, layer) in rest.chunks_mut(n).enumerate() {
             let wd = k + 1;
-            for ((out, p), d) in layer.chunks_mut(w).zip(prev.chunks(w)).zip(first.chunks(w)) {
-                out.copy_from_slice(p);
-                if wd < w {
-                    for x in wd..w {
-                        out[x] = out[x].min(d[x - wd]);
+            for (y, &(a, b)) in self.span.iter().enumerate() {
+                if a > b {
+                    continue;
+                }
+                let row = y * w;
+                let (out, p, d) = (
+                    &mut layer[row..row + w],
+                    &prev[row..row + w],
+                    &first[row..row + w],
+                );
+                for x in a..=b {
+                    let mut v = p[x];
+                    if x >= wd {
+                        v = v.min(d[x - wd]);
                     }
-                    for x in 0..w - wd {
-                        out[x] = out[x].min(d[x + wd]);
+                    if x + wd < w {
+                        v = v.min(d[x + wd]);
                     }
+                    out[x] = v;
                 }
             }
             prev = layer;
