@@ -186,6 +186,8 @@ pub(crate) struct Heuristic {
     /// a seventh of the targets).
     order_len: usize,
     orders: Vec<(f64, u32)>,
+    /// Scratch of [`sort_desc_stable`].
+    sort_scratch: (Vec<u32>, Vec<(f64, u32)>),
     cache_cap_bytes: usize,
     dij: Reachability,
     /// Per-position path costs in the full map (the orders' distances; the search's step
@@ -278,6 +280,7 @@ impl Heuristic {
             order_len,
             order_slot: HashMap::new(),
             orders: Vec::new(),
+            sort_scratch: Default::default(),
             cache_cap_bytes,
             dij: Reachability::new(cells.width(), cells.height()),
             fields: FieldCache::new(problem, cache_cap_bytes / 2),
@@ -449,9 +452,9 @@ impl Heuristic {
             self.orders.truncate(base + self.order_len);
             self.orders[base..].sort_unstable_by(desc);
         } else if self.vd.is_some() || euclid {
-            // Listed by target, values ≥ 0 (whose bits order as the numbers do): a stable
-            // sort on the value alone keeps ties by target.
-            self.orders[base..].sort_by_key(|&(v, _)| std::cmp::Reverse(v.to_bits()));
+            // Listed by target, values ≥ 0: a stable sort on the value alone keeps ties by
+            // target.
+            sort_desc_stable(&mut self.orders[base..], &mut self.sort_scratch);
         } else {
             self.orders[base..].sort_unstable_by(desc);
         }
@@ -598,6 +601,47 @@ impl Heuristic {
     }
 }
 
+/// Sort `list` (finite values ≥ 0) by value, descending, keeping the order of equal values:
+/// a counting sort on the values' integer parts, then each part sorted alone (a few
+/// entries each, where a comparison sort of the whole list was a tenth of the search).
+fn sort_desc_stable(list: &mut [(f64, u32)], scratch: &mut (Vec<u32>, Vec<(f64, u32)>)) {
+    let (count, out) = scratch;
+    let top = list.iter().fold(0.0f64, |m, &(v, _)| m.max(v));
+    if !(top.is_finite() && top < 1e7) {
+        list.sort_by_key(|&(v, _)| std::cmp::Reverse(v.to_bits()));
+        return;
+    }
+    let buckets = top as usize + 1;
+    // Bucket b holds the values in [b, b + 1); listed from the top bucket down.
+    let key = |v: f64| buckets - 1 - v as usize;
+    count.clear();
+    count.resize(buckets + 1, 0);
+    for &(v, _) in list.iter() {
+        count[key(v) + 1] += 1;
+    }
+    for b in 0..buckets {
+        count[b + 1] += count[b];
+    }
+    out.clear();
+    out.resize(list.len(), (0.0, 0));
+    for &e in list.iter() {
+        let k = key(e.0);
+        out[count[k] as usize] = e;
+        count[k] += 1;
+    }
+    let mut start = 0;
+    while start < out.len() {
+        let k = key(out[start].0);
+        let mut end = start + 1;
+        while end < out.len() && key(out[end].0) == k {
+            end += 1;
+        }
+        out[start..end].sort_by_key(|&(v, _)| std::cmp::Reverse(v.to_bits()));
+        start = end;
+    }
+    list.copy_from_slice(out);
+}
+
 /// The viewpoints V(t) of the reachable targets (the reachable cells that see t; the
 /// sensors are symmetric), kept when they fit in [`VIEW_ENTRIES`]; else only the landmarks'
 /// are computed, and landmark selection falls back to distances to the target itself.
@@ -680,6 +724,23 @@ mod tests {
     use proptest::prelude::*;
 
     proptest! {
+        /// The counting sort gives the stable comparison sort's order.
+        #[test]
+        fn counting_sort_is_the_stable_sort(
+            values in proptest::collection::vec((0u32..50, 0u32..4), 0..300),
+        ) {
+            let list: Vec<(f64, u32)> = values
+                .iter()
+                .enumerate()
+                .map(|(t, &(a, b))| (a as f64 * 0.5 + b as f64 * grid::SQRT2, t as u32))
+                .collect();
+            let mut want = list.clone();
+            want.sort_by(|x, y| y.0.total_cmp(&x.0));
+            let mut got = list;
+            sort_desc_stable(&mut got, &mut Default::default());
+            prop_assert_eq!(got, want);
+        }
+
         /// The order statistic read off a truncated distance order equals the one over all
         /// unperceived targets when the kept part holds enough of them, and is never above
         /// it (orders cut short as on large maps, both sensors, G = 1 and 0.9).

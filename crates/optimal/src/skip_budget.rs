@@ -83,6 +83,10 @@ pub(crate) struct SkipBudget {
     /// Per ownership and far point: E_a[0..=skip] of the state whose children are being
     /// bounded ([`SkipBudget::enter`]).
     parent: Vec<Vec<Vec<f64>>>,
+    /// Per ownership and far point: the targets behind `parent`'s values, and where in the
+    /// list the parent's scan stopped (a child's scan goes on from there).
+    parent_t: Vec<Vec<Vec<u32>>>,
+    parent_end: Vec<Vec<usize>>,
     /// Per ownership and far point: whether `parent` holds the current parent's E_a.
     parent_ok: Vec<Vec<bool>>,
     /// Per ownership: the split (in steps) that last gave the minimum.
@@ -190,6 +194,8 @@ impl SkipBudget {
             hint: vec![(0, 0); k],
             parent_ok: owned.iter().map(|o| vec![false; o.len()]).collect(),
             parent: owned.iter().map(|o| vec![Vec::new(); o.len()]).collect(),
+            parent_t: owned.iter().map(|o| vec![Vec::new(); o.len()]).collect(),
+            parent_end: owned.iter().map(|o| vec![0; o.len()]).collect(),
             owned,
             e: vec![Vec::new(); k],
         })
@@ -209,21 +215,33 @@ impl SkipBudget {
                 .parent
                 .iter()
                 .flatten()
-                .map(|e| e.capacity() * 8)
+                .map(|e| e.capacity() * 12)
                 .sum::<usize>()
     }
 
-    /// E_a[0..=skip] over `list` for the perceived set `bits`.
-    fn scan(list: &[(f64, u32)], bits: &[u64], skip: usize, e: &mut Vec<f64>) {
-        e.clear();
-        for &(x, t) in list {
-            if !has(bits, t) {
+    /// Append to `e` the values of the unperceived targets of `list` from entry `from` on
+    /// (and their targets to `t`, when given) until `e` holds skip + 1: E_a[0..=skip] for
+    /// the perceived set `bits` when both start empty. Returns where the scan stopped.
+    fn scan_from(
+        list: &[(f64, u32)],
+        from: usize,
+        bits: &[u64],
+        skip: usize,
+        e: &mut Vec<f64>,
+        mut t: Option<&mut Vec<u32>>,
+    ) -> usize {
+        for (k, &(x, target)) in list.iter().enumerate().skip(from) {
+            if !has(bits, target) {
                 e.push(x);
+                if let Some(t) = t.as_deref_mut() {
+                    t.push(target);
+                }
                 if e.len() > skip {
-                    break;
+                    return k + 1;
                 }
             }
         }
+        list.len()
     }
 
     /// Start bounding the children of a new state (`parent` of [`SkipBudget::bound`]): its
@@ -295,7 +313,16 @@ impl SkipBudget {
         if let Some(pb) = parent {
             for (a, list) in self.owned[j].iter().enumerate() {
                 if !self.parent_ok[j][a] {
-                    Self::scan(list, pb, s, &mut self.parent[j][a]);
+                    self.parent[j][a].clear();
+                    self.parent_t[j][a].clear();
+                    self.parent_end[j][a] = Self::scan_from(
+                        &list[..],
+                        0,
+                        pb,
+                        s,
+                        &mut self.parent[j][a],
+                        Some(&mut self.parent_t[j][a]),
+                    );
                     self.parent_ok[j][a] = true;
                 }
                 let pe = &self.parent[j][a];
@@ -314,8 +341,26 @@ impl SkipBudget {
             }
         }
         for (a, list) in self.owned[j].iter().enumerate() {
-            if !reuse[a] {
-                Self::scan(list, bits, s, &mut self.e[a]);
+            if reuse[a] {
+                continue;
+            }
+            if parent.is_some() {
+                // The child's unperceived targets are the parent's less what it perceives:
+                // the parent's entries still unperceived, then the list from where the
+                // parent's scan stopped.
+                let e = &mut self.e[a];
+                e.clear();
+                for (&v, &t) in self.parent[j][a].iter().zip(&self.parent_t[j][a]) {
+                    if !has(bits, t) {
+                        e.push(v);
+                    }
+                }
+                if e.len() <= s {
+                    Self::scan_from(list, self.parent_end[j][a], bits, s, e, None);
+                }
+            } else {
+                self.e[a].clear();
+                Self::scan_from(list, 0, bits, s, &mut self.e[a], None);
             }
         }
         let e: [&[f64]; MAX_POINTS] = std::array::from_fn(|a| {

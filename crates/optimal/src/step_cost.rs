@@ -225,43 +225,17 @@ impl StepCosts {
     }
 
     /// Append to `cost` the costs from reachable cell `start` to every reachable cell in
-    /// the full map (every cell passable), by reachable index, and to `pred` each cell's
-    /// predecessor on one shortest path (`NONE` for the start); `all` is the set of every
+    /// the full map (every cell passable), by reachable index; `all` is the set of every
     /// mark.
-    pub(crate) fn field(
-        &mut self,
-        start: u32,
-        all: &[u64],
-        cost: &mut Vec<f64>,
-        pred: &mut Vec<u32>,
-    ) {
+    pub(crate) fn field(&mut self, start: u32, all: &[u64], cost: &mut Vec<f64>) {
         self.compute(start, all);
         let tag = self.epoch << 2 | DONE;
-        let base = cost.len();
-        cost.extend(
-            self.slot
-                .iter()
-                .map(|s| if s.tag == tag { s.cost } else { f64::INFINITY }),
-        );
-        let costs = &cost[base..];
-        let s = self.index[start as usize];
-        pred.extend((0..self.flat.len()).map(|u| {
-            let nb = &self.nbr[u];
-            if u as u32 == s || !costs[u].is_finite() {
-                return NONE;
+        cost.extend(self.slot.iter().map(|s| {
+            if s.tag == tag {
+                s.cost
+            } else {
+                f64::INFINITY
             }
-            // The neighbour the search labelled it from: cost plus the step, exactly.
-            (0..8)
-                .find(|&k| {
-                    let y = nb[k];
-                    y != NONE && {
-                        let step = if k < 4 { 1.0 } else { grid::SQRT2 };
-                        let (a, b) = DIAGONAL_SIDES[k % 4];
-                        (k < 4 || nb[a] != NONE || nb[b] != NONE)
-                            && (costs[y as usize] + step).to_bits() == costs[u].to_bits()
-                    }
-                })
-                .map_or(NONE, |k| nb[k])
         }));
     }
 
@@ -274,20 +248,14 @@ impl StepCosts {
     /// inside that is as short as the full map's is exactly such a walk. Takes a fresh
     /// search number, so the costs of the last [`StepCosts::compute`] are gone (its settled
     /// cells stay).
-    pub(crate) fn inside(
-        &mut self,
-        field: &[f64],
-        pred: &[u32],
-        from: u32,
-        to: u32,
-        bits: &[u64],
-    ) -> Option<f64> {
+    pub(crate) fn inside(&mut self, field: &[f64], from: u32, to: u32, bits: &[u64]) -> Option<f64> {
         let (s, t) = (self.index[from as usize], self.index[to as usize]);
         if s == NONE || t == NONE || !field[t as usize].is_finite() {
             return None;
         }
-        // First the field's own shortest path: usually perceived all along.
-        if self.tree_path_inside(pred, s, t, bits) {
+        // First one walk back, taking the first tied predecessor that is perceived: usually
+        // one shortest path is perceived all along.
+        if self.greedy_walk_inside(field, s, t, bits) {
             return Some(field[t as usize]);
         }
         // A fresh search number marks the cells met by this walk (DONE) and those found
@@ -343,24 +311,31 @@ impl StepCosts {
         None
     }
 
-    /// Whether the path from `s` to `t` along `pred` stays inside the perceived cells
-    /// `bits`, every diagonal step with one of its straight cells perceived.
-    fn tree_path_inside(&self, pred: &[u32], s: u32, t: u32, bits: &[u64]) -> bool {
-        let seen = |u: u32| u != NONE && has(bits, self.slot[u as usize].mark);
+    /// Whether walking back from `t`, always to the first neighbour (straight ones first)
+    /// on a shortest path of `field` that is perceived in `bits` and reached by a step
+    /// allowed inside them, reaches `s`.
+    fn greedy_walk_inside(&self, field: &[f64], s: u32, t: u32, bits: &[u64]) -> bool {
+        let seen = |u: u32| u == s || (u != NONE && has(bits, self.slot[u as usize].mark));
         let mut x = t;
         while x != s {
-            let y = pred[x as usize];
-            if y == NONE || (y != s && !seen(y)) {
-                return false;
-            }
+            let fx = field[x as usize];
             let nb = &self.nbr[x as usize];
-            if let Some(k) = (4..8).find(|&k| nb[k] == y) {
-                let (a, b) = DIAGONAL_SIDES[k - 4];
-                if !(seen(nb[a]) || seen(nb[b]) || nb[a] == s || nb[b] == s) {
+            let next = (0..8).find(|&k| {
+                let y = nb[k];
+                if y == NONE {
                     return false;
                 }
+                let step = if k < 4 { 1.0 } else { grid::SQRT2 };
+                if (field[y as usize] + step - fx).abs() > TIE || !seen(y) {
+                    return false;
+                }
+                let (a, b) = DIAGONAL_SIDES[k % 4];
+                k < 4 || seen(nb[a]) || seen(nb[b])
+            });
+            match next {
+                Some(k) => x = nb[k],
+                None => return false,
             }
-            x = y;
         }
         true
     }
@@ -413,7 +388,6 @@ pub(crate) struct FieldCache {
     slot: Vec<u32>,
     len: usize,
     cost: Vec<f64>,
-    pred: Vec<u32>,
     cap_bytes: usize,
     /// Every mark: all cells passable.
     all: Vec<u64>,
@@ -428,24 +402,21 @@ impl FieldCache {
             len: steps.len(),
             steps,
             cost: Vec::new(),
-            pred: Vec::new(),
             cap_bytes,
             all: vec![u64::MAX; problem.mark_count().div_ceil(64).max(1)],
         }
     }
 
-    /// The offset of the field of reachable flat cell `pos` in `cost` and `pred`.
+    /// The offset of the field of reachable flat cell `pos` in `cost`.
     fn of(&mut self, pos: u32) -> usize {
         let p = pos as usize;
         if self.slot[p] == NONE {
-            if (self.cost.len() + self.len) * 12 > self.cap_bytes {
+            if (self.cost.len() + self.len) * 8 > self.cap_bytes {
                 self.cost.clear();
-                self.pred.clear();
                 self.slot.fill(NONE);
             }
             self.slot[p] = (self.cost.len() / self.len.max(1)) as u32;
-            self.steps
-                .field(pos, &self.all, &mut self.cost, &mut self.pred);
+            self.steps.field(pos, &self.all, &mut self.cost);
         }
         self.slot[p] as usize * self.len
     }
@@ -464,11 +435,8 @@ impl FieldCache {
     /// [`StepCosts::inside`] from `from` to `to` inside the perceived cells `bits`.
     pub(crate) fn inside(&mut self, from: u32, to: u32, bits: &[u64]) -> Option<f64> {
         let base = self.of(from);
-        let (cost, pred) = (
-            &self.cost[base..base + self.len],
-            &self.pred[base..base + self.len],
-        );
-        self.steps.inside(cost, pred, from, to, bits)
+        self.steps
+            .inside(&self.cost[base..base + self.len], from, to, bits)
     }
 
     /// Bytes held.
@@ -476,7 +444,6 @@ impl FieldCache {
         self.steps.bytes()
             + self.slot.len() * 4
             + self.cost.capacity() * 8
-            + self.pred.capacity() * 4
     }
 }
 
@@ -556,13 +523,13 @@ mod tests {
             let mut ours = StepCosts::new(&p);
             let (mut same, mut longer) = (0, 0);
             for s in (0..w * h).filter(|&i| p.reachable(i) && has(&bits, p.target_index(i))) {
-                let (mut field, mut pred) = (Vec::new(), Vec::new());
-                ours.field(s as u32, &all, &mut field, &mut pred);
+                let mut field = Vec::new();
+                ours.field(s as u32, &all, &mut field);
                 ours.compute(s as u32, &bits);
                 let costs: Vec<f64> = (0..w * h).map(|i| ours.dist(i)).collect();
                 for t in (0..w * h).filter(|&i| costs[i].is_finite()) {
                     let full = field[ours.index[t] as usize];
-                    let got = ours.inside(&field, &pred, s as u32, t as u32, &bits);
+                    let got = ours.inside(&field, s as u32, t as u32, &bits);
                     if (costs[t] - full).abs() < 1e-9 {
                         same += 1;
                         prop_assert!(got.is_some_and(|c| (c - costs[t]).abs() < 1e-9), "{} -> {}: {:?} vs {}", s, t, got, costs[t]);
