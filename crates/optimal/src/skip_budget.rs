@@ -89,6 +89,8 @@ pub(crate) struct SkipBudget {
     parent_end: Vec<Vec<usize>>,
     /// Per ownership and far point: whether `parent` holds the current parent's E_a.
     parent_ok: Vec<Vec<bool>>,
+    /// The ownership that last gave the largest value.
+    lead: usize,
     /// Per ownership: the split (in steps) that last gave the minimum.
     hint: Vec<(usize, usize)>,
 }
@@ -192,6 +194,7 @@ impl SkipBudget {
             field,
             between,
             hint: vec![(0, 0); k],
+            lead: 0,
             parent_ok: owned.iter().map(|o| vec![false; o.len()]).collect(),
             parent: owned.iter().map(|o| vec![Vec::new(); o.len()]).collect(),
             parent_t: owned.iter().map(|o| vec![Vec::new(); o.len()]).collect(),
@@ -272,11 +275,23 @@ impl SkipBudget {
         let to_robot: [f64; MAX_POINTS] =
             std::array::from_fn(|a| self.field.get(a).map_or(0.0, |f| f[pos as usize]));
         let mut best = floor;
-        for j in 0..self.owned.len() {
-            best = best.max(self.bound_owned(j, pos, &to_robot, bits, best, parent));
+        // The ownership that gave the last largest value first: its value raises the floor
+        // the others must beat, so they more often stop at once.
+        let n = self.owned.len();
+        let first = self.lead.min(n.saturating_sub(1));
+        let mut lead = None;
+        for j in std::iter::once(first).chain((0..n).filter(|&j| j != first)) {
+            let v = self.bound_owned(j, pos, &to_robot, bits, best, parent);
+            if v > best {
+                best = v;
+                lead = Some(j);
+            }
             if best >= cut {
                 break;
             }
+        }
+        if let Some(j) = lead {
+            self.lead = j;
         }
         best
     }

@@ -230,13 +230,11 @@ impl StepCosts {
     pub(crate) fn field(&mut self, start: u32, all: &[u64], cost: &mut Vec<f64>) {
         self.compute(start, all);
         let tag = self.epoch << 2 | DONE;
-        cost.extend(self.slot.iter().map(|s| {
-            if s.tag == tag {
-                s.cost
-            } else {
-                f64::INFINITY
-            }
-        }));
+        cost.extend(
+            self.slot
+                .iter()
+                .map(|s| if s.tag == tag { s.cost } else { f64::INFINITY }),
+        );
     }
 
     /// The cost from reachable cell `from` to reachable cell `to` inside the perceived free
@@ -248,7 +246,13 @@ impl StepCosts {
     /// inside that is as short as the full map's is exactly such a walk. Takes a fresh
     /// search number, so the costs of the last [`StepCosts::compute`] are gone (its settled
     /// cells stay).
-    pub(crate) fn inside(&mut self, field: &[f64], from: u32, to: u32, bits: &[u64]) -> Option<f64> {
+    pub(crate) fn inside(
+        &mut self,
+        field: &[f64],
+        from: u32,
+        to: u32,
+        bits: &[u64],
+    ) -> Option<f64> {
         let (s, t) = (self.index[from as usize], self.index[to as usize]);
         if s == NONE || t == NONE || !field[t as usize].is_finite() {
             return None;
@@ -441,9 +445,7 @@ impl FieldCache {
 
     /// Bytes held.
     pub(crate) fn bytes(&self) -> usize {
-        self.steps.bytes()
-            + self.slot.len() * 4
-            + self.cost.capacity() * 8
+        self.steps.bytes() + self.slot.len() * 4 + self.cost.capacity() * 8
     }
 }
 
