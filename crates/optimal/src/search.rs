@@ -346,6 +346,19 @@ impl VisCache {
     }
 }
 
+/// The bits of word `word` of a marks' bitset that are targets (marks below `nt`).
+#[inline]
+fn target_bits(word: u32, nt: u32) -> u64 {
+    let first = word * 64;
+    if first + 64 <= nt {
+        u64::MAX
+    } else if first >= nt {
+        0
+    } else {
+        (1u64 << (nt - first)) - 1
+    }
+}
+
 /// Append `bits` ((word, bit) pairs) to `out` as (word, bits) with one entry per word,
 /// by word.
 fn push_words(out: &mut Vec<(u32, u64)>, bits: impl Iterator<Item = (u32, u64)>) {
@@ -390,9 +403,10 @@ struct Engine<'p> {
     cur: Vec<u64>,
     child: Vec<u64>,
     cands: Vec<u32>,
+    /// What a child perceives anew, as (word, bits) of the marks' bitset.
+    fresh_words: Vec<(u32, u64)>,
     /// The step cost to each candidate.
     cand_dist: Vec<f64>,
-    fresh: Vec<u32>,
     inc_cost: f64,
     inc_positions: Vec<u32>,
     stats: Stats,
@@ -457,8 +471,8 @@ impl<'p> Engine<'p> {
             cur: vec![0; words],
             child: vec![0; words],
             cands: Vec::new(),
+            fresh_words: Vec::new(),
             cand_dist: Vec::new(),
-            fresh: Vec::new(),
             inc_cost: f64::INFINITY,
             inc_positions: Vec::new(),
             stats: Stats::default(),
@@ -934,13 +948,17 @@ impl<'p> Engine<'p> {
                 useful = useful || self.vis.perceives_new(problem, a, &self.cur, nt);
                 continue;
             }
-            let (o, l) = self.vis.get(problem, a);
-            self.fresh.clear();
+            // What `a` perceives that the state has not, word by word.
+            let ((o, l), _) = self
+                .vis
+                .words(problem, a, self.rows.as_ref(), &self.mark_cell);
+            self.fresh_words.clear();
             let mut new_targets = 0;
-            for &t in &self.vis.data[o..o + l] {
-                if !has(&self.cur, t) {
-                    self.fresh.push(t);
-                    new_targets += usize::from(t < nt);
+            for &(word, bits) in &self.vis.word_data[o..o + l] {
+                let f = bits & !self.cur[word as usize];
+                if f != 0 {
+                    self.fresh_words.push((word, f));
+                    new_targets += (f & target_bits(word, nt)).count_ones() as usize;
                 }
             }
             // A move that perceives no new target (walls at most) is dominated: the
@@ -962,10 +980,15 @@ impl<'p> Engine<'p> {
             let (zq, za) = (self.zpos[node.pos as usize], self.zpos[a as usize]);
             let mut key2 = node.key ^ zq[0] ^ za[0];
             let mut check2 = node.check ^ zq[1] ^ za[1];
-            for &t in &self.fresh {
-                set(&mut self.child, t);
-                key2 ^= self.zt[t as usize][0];
-                check2 ^= self.zt[t as usize][1];
+            for &(word, f) in &self.fresh_words {
+                self.child[word as usize] |= f;
+                let mut m = f;
+                while m != 0 {
+                    let t = word as usize * 64 + m.trailing_zeros() as usize;
+                    m &= m - 1;
+                    key2 ^= self.zt[t][0];
+                    check2 ^= self.zt[t][1];
+                }
             }
             // Duplicate detection (a stored state keeps its bound).
             let head = self.table.get(&key2).copied().unwrap_or(NONE);
@@ -1122,7 +1145,8 @@ pub fn walk(problem: &Problem, positions: &[Cell]) -> Result<Solution, String> {
         if k > 0 {
             let from = path[path.len() - 1] as usize;
             let passable = perceived_free(problem, &bits);
-            reach.compute(from, &passable);
+            // Settled in the same order as a full search, so the same cost and path.
+            reach.nearest(from, &passable, |i| i == pi);
             let d = dist(&reach, pi);
             if !d.is_finite() || (pi != from && !passable(pi)) {
                 return Err(format!(
