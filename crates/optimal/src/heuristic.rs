@@ -133,6 +133,25 @@ pub(crate) fn set(bits: &mut [u64], t: u32) {
     bits[(t >> 6) as usize] |= 1 << (t & 63);
 }
 
+/// Append `bits` ((word, bit) pairs) to `out` as (word, bits) with one entry per word,
+/// by word.
+pub(crate) fn push_words(out: &mut Vec<(u32, u64)>, bits: impl Iterator<Item = (u32, u64)>) {
+    let start = out.len();
+    out.extend(bits);
+    out[start..].sort_unstable_by_key(|&(k, _)| k);
+    let mut kept = start;
+    for j in start..out.len() {
+        let (k, b) = out[j];
+        if kept > start && out[kept - 1].0 == k {
+            out[kept - 1].1 |= b;
+        } else {
+            out[kept] = (k, b);
+            kept += 1;
+        }
+    }
+    out.truncate(kept);
+}
+
 /// Path cost to cell `i` in the last search, `∞` if it was not reached.
 #[inline]
 pub(crate) fn dist(reach: &Reachability, i: usize) -> f64 {

@@ -40,7 +40,7 @@ use sense::Observation;
 use crate::actions::{ActionScratch, ActionSet, candidates};
 use crate::cluster_rows::ClusterRows;
 use crate::error::OptimalError;
-use crate::heuristic::{Heuristic, HeuristicKind, MixHasher, dist, has, set};
+use crate::heuristic::{Heuristic, HeuristicKind, MixHasher, dist, has, push_words, set};
 use crate::problem::Problem;
 use crate::step_cost::StepCosts;
 use explore::plan::Reachability;
@@ -357,25 +357,6 @@ fn target_bits(word: u32, nt: u32) -> u64 {
     } else {
         (1u64 << (nt - first)) - 1
     }
-}
-
-/// Append `bits` ((word, bit) pairs) to `out` as (word, bits) with one entry per word,
-/// by word.
-fn push_words(out: &mut Vec<(u32, u64)>, bits: impl Iterator<Item = (u32, u64)>) {
-    let start = out.len();
-    out.extend(bits);
-    out[start..].sort_unstable_by_key(|&(k, _)| k);
-    let mut kept = start;
-    for j in start..out.len() {
-        let (k, b) = out[j];
-        if kept > start && out[kept - 1].0 == k {
-            out[kept - 1].1 |= b;
-        } else {
-            out[kept] = (k, b);
-            kept += 1;
-        }
-    }
-    out.truncate(kept);
 }
 
 /// The search's state and buffers.

@@ -16,7 +16,10 @@
 //! 16-byte slot, so meeting a cell reads one cache line instead of three arrays: the whole
 //! search 5–8 % faster on the benchmark's cave, potholes and corridor floor.
 
-use crate::heuristic::has;
+use std::collections::HashMap;
+use std::hash::BuildHasherDefault;
+
+use crate::heuristic::{MixHasher, has, push_words};
 use crate::problem::Problem;
 
 const NONE: u32 = u32::MAX;
@@ -31,6 +34,13 @@ const MAX_EPOCH: u32 = u32::MAX >> 2;
 /// Costs closer than this are equal: sums of 1 and √2 along paths of a few thousand steps
 /// carry rounding far below it, and two different such lengths differ by far more.
 const TIE: f64 = 1e-7;
+/// The first perceived (`seen`) of the two straight cells diagonal neighbour `k` of a cell
+/// with neighbours `nb` passes.
+fn side(nb: &[u32; 8], k: usize, seen: impl Fn(u32) -> bool) -> u32 {
+    let (a, b) = DIAGONAL_SIDES[k - 4];
+    if seen(nb[a]) { nb[a] } else { nb[b] }
+}
+
 /// The straight neighbours a diagonal neighbour passes (dr: r, d; dl: l, d; ul: l, u;
 /// ur: r, u), as indices into a cell's neighbour list.
 const DIAGONAL_SIDES: [(usize, usize); 4] = [(0, 1), (2, 1), (2, 3), (0, 3)];
@@ -64,6 +74,8 @@ pub(crate) struct StepCosts {
     settled: Vec<u32>,
     /// The stack of [`StepCosts::inside`].
     walk: Vec<u32>,
+    /// The marks the last greedy walk back needed perceived ([`StepCosts::walked`]).
+    walked: Vec<u32>,
 }
 
 impl StepCosts {
@@ -111,6 +123,7 @@ impl StepCosts {
             buckets: Default::default(),
             settled: Vec::new(),
             walk: Vec::new(),
+            walked: Vec::new(),
         }
     }
 
@@ -262,6 +275,7 @@ impl StepCosts {
         if self.greedy_walk_inside(field, s, t, bits) {
             return Some(field[t as usize]);
         }
+        self.walked.clear();
         // A fresh search number marks the cells met by this walk (DONE) and those found
         // not perceived (BLOCKED).
         self.epoch += 1;
@@ -318,8 +332,9 @@ impl StepCosts {
     /// Whether walking back from `t`, always to the first neighbour (straight ones first)
     /// on a shortest path of `field` that is perceived in `bits` and reached by a step
     /// allowed inside them, reaches `s`.
-    fn greedy_walk_inside(&self, field: &[f64], s: u32, t: u32, bits: &[u64]) -> bool {
+    fn greedy_walk_inside(&mut self, field: &[f64], s: u32, t: u32, bits: &[u64]) -> bool {
         let seen = |u: u32| u == s || (u != NONE && has(bits, self.slot[u as usize].mark));
+        self.walked.clear();
         let mut x = t;
         while x != s {
             let fx = field[x as usize];
@@ -336,12 +351,25 @@ impl StepCosts {
                 let (a, b) = DIAGONAL_SIDES[k % 4];
                 k < 4 || seen(nb[a]) || seen(nb[b])
             });
-            match next {
-                Some(k) => x = nb[k],
-                None => return false,
+            let Some(k) = next else { return false };
+            let y = nb[k];
+            // What this step needs perceived: the cell, and for a diagonal the first of
+            // its two straight cells that is.
+            for u in [y, if k < 4 { NONE } else { side(nb, k, seen) }] {
+                if u != NONE && u != s {
+                    self.walked.push(self.slot[u as usize].mark);
+                }
             }
+            x = y;
         }
         true
+    }
+
+    /// The marks that [`StepCosts::inside`]'s last walk back needed perceived, when it
+    /// found its path without searching: if a perceived set holds them all, that path is
+    /// inside it too.
+    pub(crate) fn walked(&self) -> &[u32] {
+        &self.walked
     }
 
     /// Whether reachable cell `u` is perceived, remembered under `tag` when it is not.
@@ -395,6 +423,10 @@ pub(crate) struct FieldCache {
     cap_bytes: usize,
     /// Every mark: all cells passable.
     all: Vec<u64>,
+    /// Per (from, to): the marks (as (word, bits)) the last path found inside needed
+    /// perceived; a perceived set that holds them has that path.
+    paths: HashMap<(u32, u32), (u32, u32), BuildHasherDefault<MixHasher>>,
+    path_words: Vec<(u32, u64)>,
 }
 
 impl FieldCache {
@@ -408,6 +440,8 @@ impl FieldCache {
             cost: Vec::new(),
             cap_bytes,
             all: vec![u64::MAX; problem.mark_count().div_ceil(64).max(1)],
+            paths: HashMap::default(),
+            path_words: Vec::new(),
         }
     }
 
@@ -439,13 +473,39 @@ impl FieldCache {
     /// [`StepCosts::inside`] from `from` to `to` inside the perceived cells `bits`.
     pub(crate) fn inside(&mut self, from: u32, to: u32, bits: &[u64]) -> Option<f64> {
         let base = self.of(from);
-        self.steps
-            .inside(&self.cost[base..base + self.len], from, to, bits)
+        let cost = &self.cost[base..base + self.len];
+        // The last path found between the two, if still perceived all along.
+        if let Some(&(o, l)) = self.paths.get(&(from, to))
+            && self.path_words[o as usize..(o + l) as usize]
+                .iter()
+                .all(|&(k, m)| bits[k as usize] & m == m)
+        {
+            return Some(cost[self.steps.index[to as usize] as usize]);
+        }
+        let found = self.steps.inside(cost, from, to, bits);
+        if found.is_some() && !self.steps.walked().is_empty() {
+            if self.path_words.len() * 12 > self.cap_bytes / 8 {
+                self.path_words.clear();
+                self.paths.clear();
+            }
+            let o = self.path_words.len();
+            push_words(
+                &mut self.path_words,
+                self.steps.walked().iter().map(|&t| (t / 64, 1 << (t % 64))),
+            );
+            self.paths
+                .insert((from, to), (o as u32, (self.path_words.len() - o) as u32));
+        }
+        found
     }
 
     /// Bytes held.
     pub(crate) fn bytes(&self) -> usize {
-        self.steps.bytes() + self.slot.len() * 4 + self.cost.capacity() * 8
+        self.steps.bytes()
+            + self.slot.len() * 4
+            + self.cost.capacity() * 8
+            + self.path_words.capacity() * 16
+            + self.paths.capacity() * 20
     }
 }
 
