@@ -604,5 +604,45 @@ mod tests {
             }
             let _ = (same, longer);
         }
+
+        /// The field cache's remembered paths give what a fresh walk gives, whatever
+        /// perceived sets come between (larger, then smaller again), on random maps.
+        #[test]
+        fn remembered_paths_answer_like_a_fresh_walk(
+            w in 2usize..12,
+            h in 2usize..12,
+            walls in proptest::collection::vec(0u8..4, 144),
+            sets in proptest::collection::vec(proptest::collection::vec(0u8..5, 144), 1..5),
+            pick in 0usize..144,
+        ) {
+            let map = crate::walled_map(w, h, &walls);
+            let free: Vec<usize> = (0..w * h).filter(|&i| map.data()[i].is_free()).collect();
+            prop_assume!(!free.is_empty());
+            let start = free[pick % free.len()];
+            let p = Problem::new(&map, Cell::new((start % w) as i32, (start / w) as i32), SensorModel::Los(2.0))
+                .expect("problem");
+            let words = p.mark_count().div_ceil(64).max(1);
+            let all = vec![u64::MAX; words];
+            let mut cache = FieldCache::new(&p, usize::MAX);
+            let mut fresh = StepCosts::new(&p);
+            let reach: Vec<u32> = (0..w * h).filter(|&i| p.reachable(i)).map(|i| i as u32).collect();
+            for seen in &sets {
+                let mut bits = vec![0u64; words];
+                for (i, &s) in seen.iter().enumerate().take(w * h) {
+                    let t = p.target_index(i);
+                    if t != crate::problem::NOT_TARGET && s != 0 {
+                        set(&mut bits, t);
+                    }
+                }
+                for &a in &reach {
+                    for &b in &reach {
+                        let mut field = Vec::new();
+                        fresh.field(a, &all, &mut field);
+                        let want = fresh.inside(&field, a, b, &bits);
+                        prop_assert_eq!(cache.inside(a, b, &bits), want, "{} -> {}", a, b);
+                    }
+                }
+            }
+        }
     }
 }
