@@ -69,6 +69,11 @@ pub struct OptimalArgs {
     /// Stop after expanding this many states.
     #[arg(long, default_value_t = 50_000_000)]
     pub max_nodes: u64,
+    /// Start the best path found from the same problem solved on cells F times larger
+    /// (with a tenth of the limits), mapped back and completed greedily: a better upper
+    /// bound early on large maps whose search stops with bounds (0: off).
+    #[arg(long, default_value_t = 0)]
+    pub coarse_incumbent: usize,
     /// Memory budget of the search in MiB.
     #[arg(long, default_value_t = 1024)]
     pub memory_mb: usize,
@@ -137,6 +142,12 @@ pub fn run(a: OptimalArgs) -> Result<()> {
             a.cell_size
         );
     }
+    if a.coarse_incumbent == 1 || a.coarse_incumbent > 64 {
+        bail!(
+            "--coarse-incumbent: expected 0 (off) or a factor in 2..=64, found {}",
+            a.coarse_incumbent
+        );
+    }
     let time_limit = match a.time_limit {
         None => None,
         Some(s) if s.is_finite() && s > 0.0 => Some(Duration::from_secs_f64(s)),
@@ -177,6 +188,7 @@ pub fn run(a: OptimalArgs) -> Result<()> {
         max_nodes: a.max_nodes,
         max_bytes: a.memory_mb.saturating_mul(1 << 20),
         time_limit,
+        coarse_incumbent: a.coarse_incumbent,
     };
     let co = coarsen_problem(map, a.cell_size, start, &spec)?;
     if co.kept_area < KEPT_AREA_WARNING {

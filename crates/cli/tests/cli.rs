@@ -525,7 +525,7 @@ fn optimal_warns_when_coarsening_closes_the_doors() {
 
 #[test]
 fn optimal_flags_are_checked() {
-    let cases: [(&[&str], &[&str]); 4] = [
+    let cases: [(&[&str], &[&str]); 5] = [
         (
             &["--goal", "1.5"],
             &["--goal: expected a coverage fraction in (0, 1], found 1.5"],
@@ -541,6 +541,10 @@ fn optimal_flags_are_checked() {
         (
             &["--weight", "0.5"],
             &["--weight: expected a number ≥ 1, found 0.5"],
+        ),
+        (
+            &["--coarse-incumbent", "1"],
+            &["--coarse-incumbent: expected 0 (off) or a factor in 2..=64, found 1"],
         ),
     ];
     for (flags, wanted) in cases {

@@ -70,6 +70,15 @@ pub struct Config {
     /// states greedily for a better upper bound, with up to 5% as many shortest-path
     /// searches as it expanded states, for at most a tenth of the limit (at least 1 s).
     pub time_limit: Option<Duration>,
+    /// With a factor f > 1, the first incumbent also comes from the same problem solved on
+    /// cells f times larger (with a tenth of the node and time limits, [`crate::coarse`]):
+    /// in each of its positions' blocks the cell that perceives the most is visited where
+    /// it is reachable inside the perceived space, then the path is completed greedily.
+    /// Only the upper bound changes (and with it what is pruned): for large maps whose
+    /// search will stop with bounds. The coarse path's cells need not be actions of the
+    /// set, so the path returned may be shorter than the set's optimum (never than the
+    /// optimum over all positions).
+    pub coarse_incumbent: usize,
 }
 
 impl Default for Config {
@@ -83,6 +92,7 @@ impl Default for Config {
             max_nodes: 50_000_000,
             max_bytes: 1 << 30,
             time_limit: None,
+            coarse_incumbent: 0,
         }
     }
 }
@@ -90,7 +100,9 @@ impl Default for Config {
 /// How the search ended.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Status {
-    /// The solution is optimal for the action set (w = 1, admissible heuristic).
+    /// No path of the action set is shorter than the solution (w = 1, admissible
+    /// heuristic): the solution is optimal for the set, or shorter still when it came
+    /// from outside the set ([`Config::coarse_incumbent`]).
     Optimal,
     /// The solution is at most `weight` × optimal (weighted A*).
     WithinBound,
@@ -694,6 +706,80 @@ impl<'p> Engine<'p> {
         best
     }
 
+    /// Try to improve the incumbent with the blocks of cells `seed` from the root: in each
+    /// block the perceived cell reachable inside the perceived space that perceives the
+    /// most new targets (ties: the first listed) is visited, if any perceives one; the
+    /// greedy completions (nearest, then by rate) finish the path, given up at `deadline`.
+    fn incumbent_from(&mut self, seed: &[Vec<u32>], deadline: Option<Instant>) {
+        let problem = self.problem;
+        self.load_state(0);
+        let mut bits = self.cur.clone();
+        let mut count = self.nodes[0].count as usize;
+        let mut pos = problem.start();
+        let mut cost = 0.0;
+        let mut positions = vec![pos];
+        for block in seed {
+            if count >= self.need {
+                break;
+            }
+            let mut best: Option<(usize, u32)> = None;
+            for &p in block {
+                let t = problem.target_index(p as usize);
+                if p == pos || t == crate::problem::NOT_TARGET || !has(&bits, t) {
+                    continue;
+                }
+                let (o, l) = self.vis.get(problem, p);
+                let new = self.vis.data[o..o + l]
+                    .iter()
+                    .filter(|&&m| m < self.nt && !has(&bits, m))
+                    .count();
+                if new > 0 && best.is_none_or(|(n, _)| new > n) {
+                    best = Some((new, p));
+                }
+            }
+            let Some((_, p)) = best else { continue };
+            let d = match self.heur.fields.inside(pos, p, &bits) {
+                Some(d) => d,
+                None => {
+                    self.reach.compute(pos, &bits);
+                    self.reach.dist(p as usize)
+                }
+            };
+            if !d.is_finite() {
+                continue;
+            }
+            let (o, l) = self.vis.get(problem, p);
+            for &m in &self.vis.data[o..o + l] {
+                if !has(&bits, m) {
+                    set(&mut bits, m);
+                    count += usize::from(m < self.nt);
+                }
+            }
+            cost += d;
+            pos = p;
+            positions.push(p);
+        }
+        let mut best: Option<(f64, Vec<u32>)> = (count >= self.need).then(|| (0.0, Vec::new()));
+        for rate in [false, true] {
+            if best.is_some() && count >= self.need {
+                break;
+            }
+            let mut tail = Vec::new();
+            if let Some(c) = self.greedy(pos, &bits, count, rate, deadline, &mut tail)
+                && best.as_ref().is_none_or(|(b, _)| c < *b)
+            {
+                best = Some((c, tail));
+            }
+        }
+        if let Some((c, tail)) = best
+            && cost + c < self.inc_cost - EPS
+        {
+            self.inc_cost = cost + c;
+            positions.extend(tail);
+            self.inc_positions = positions;
+        }
+    }
+
     /// Try to improve the incumbent with the greedy completions (nearest, then by rate) of
     /// stored state `id`, given up at `deadline`.
     fn improve_from(&mut self, id: u32, deadline: Option<Instant>) -> u64 {
@@ -768,6 +854,11 @@ impl<'p> Engine<'p> {
         // The first greedy completion keeps to the time limit: on a large map with a long
         // sensor range it can take minutes (a scan per candidate cell).
         self.improve_from(0, self.cfg.time_limit.map(|t| started + t));
+        if self.cfg.coarse_incumbent > 1 {
+            let seed =
+                crate::coarse::coarse_positions(problem, self.cfg.coarse_incumbent, &self.cfg);
+            self.incumbent_from(&seed, self.cfg.time_limit.map(|t| started + t));
+        }
         let mut stop = None;
         let mut popped_lb = f64::INFINITY;
         // The largest priority popped so far, over w: every popped priority is the least in
@@ -1226,6 +1317,10 @@ mod tests {
     use crate::problem::SensorModel;
     use proptest::prelude::*;
 
+    fn seeded_goal(full: bool) -> f64 {
+        if full { 1.0 } else { 0.9 }
+    }
+
     /// [`solve`] with the cluster actions on bit rows (`fast`) or read off the step costs'
     /// search for every state.
     fn solve_as(problem: &Problem, cfg: &Config, fast: bool) -> Outcome {
@@ -1238,6 +1333,49 @@ mod tests {
 
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(64))]
+
+        /// A first incumbent from the coarsened problem changes only the upper bound: a
+        /// search that finishes ends as without it, never longer (the coarse path's cells
+        /// need not be actions of the set, so it may be shorter than the set's optimum), its
+        /// path is valid, and it is never shorter than the optimum over all positions.
+        #[test]
+        fn coarse_incumbent_keeps_the_optimum(
+            w in 6usize..20,
+            h in 4usize..12,
+            walls in proptest::collection::vec(0u8..8, 20 * 12),
+            pick in 0usize..240,
+            fp in any::<bool>(),
+            full in any::<bool>(),
+            factor in 2usize..4,
+        ) {
+            let map = crate::walled_map(w, h, &walls);
+            let free: Vec<usize> = (0..w * h).filter(|&i| map.data()[i].is_free()).collect();
+            prop_assume!(!free.is_empty());
+            let start = free[pick % free.len()];
+            let model = if fp { SensorModel::Footprint(3.0) } else { SensorModel::Los(3.0) };
+            let p = Problem::new(&map, map.cell(start), model).expect("problem");
+            let cfg = Config {
+                goal: if full { 1.0 } else { 0.9 },
+                actions: ActionSet::Clusters { min_size: 1 },
+                max_nodes: 20_000,
+                ..Config::default()
+            };
+            let plain = solve(&p, &cfg).expect("solve");
+            let seeded = solve(&p, &Config { coarse_incumbent: factor, ..cfg }).expect("solve");
+            prop_assert_eq!(plain.status, seeded.status);
+            if plain.status == Status::Optimal {
+                prop_assert!(seeded.upper_bound <= plain.upper_bound + 1e-9,
+                    "{} > {}", seeded.upper_bound, plain.upper_bound);
+                let sol = seeded.solution.expect("solution");
+                let again = walk(&p, &sol.positions).expect("valid path");
+                prop_assert!((again.length - seeded.upper_bound).abs() < 1e-9);
+                prop_assert!(again.perceived >= p.needed(seeded_goal(full)));
+                let all = solve(&p, &Config { actions: ActionSet::All, ..cfg }).expect("solve");
+                if all.status == Status::Optimal {
+                    prop_assert!(seeded.upper_bound >= all.upper_bound - 1e-9);
+                }
+            }
+        }
 
         /// Cluster actions on bit rows with step costs from the per-position fields give
         /// the search's own result: same status, length and bounds, on random maps with
