@@ -9,14 +9,22 @@
 //!
 //! - [`problem`]: the problem, targets, visibility;
 //! - [`actions`]: boundary cells, cluster representatives (with the "drop clusters < k"
-//!   speed-up);
+//!   speed-up); `cluster_rows` computes the same representatives on bit rows, without a
+//!   shortest-path search per state;
 //! - [`heuristic`]: the paper's bound (with admissibility proofs per sensor) and stronger
-//!   ones: a Held–Karp bound on a path through landmarks (`held_karp`) and the
-//!   coverage-rate bound (`coverage_rate`: each unit of path uncovers at most ρ* new cells)
-//!   and, for G < 1, the skip-budget bound (`skip_budget`: the map's far ends must still be
-//!   approached, each less closely the more of the budget the others take);
-//! - [`search`]: A*, weighted A*, limits and bounds (step costs: `step_cost`);
-//! - [`coarse`]: solving on a coarsened map (the paper's cell sizes 1, 2, 4).
+//!   ones: for the footprint sensor the paper's order statistic over each cell's path
+//!   distance to its nearest viewpoint (`viewpoint_distance`), a Held–Karp bound on a path
+//!   through landmarks (`held_karp`) and the coverage-rate bound (`coverage_rate`: each
+//!   unit of path uncovers at most ρ* new cells) and, for G < 1, the skip-budget bound
+//!   (`skip_budget`: the map's far ends must still be approached, each less closely the
+//!   more of the budget the others take);
+//! - [`search`]: A*, weighted A*, limits and bounds (step costs: `step_cost`, from
+//!   per-position distance fields when a shortest path lies inside the perceived space);
+//! - [`coarse`]: solving on a coarsened map (the paper's cell sizes 1, 2, 4), and a first
+//!   incumbent from a coarser map for searches that will stop with bounds.
+//!
+//! The search itself, the bounds and the bit-row and erosion routines are written here:
+//! no crate does A* over exploration states, and the rest is specific to it.
 //!
 //! ```
 //! use grid::{Cell, Grid, Occ};

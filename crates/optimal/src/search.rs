@@ -640,7 +640,12 @@ impl<'p> Engine<'p> {
         if let (Some(r), ActionSet::Clusters { min_size }) = (&mut self.rows, set) {
             r.candidates(rows, pos, min_size, &mut self.cands);
             for &a in &self.cands {
-                match self.heur.fields.inside(pos, a, bits) {
+                let fields = &mut self.heur.fields;
+                // A shortest path of the full map inside, else a search guided by it.
+                match fields
+                    .inside(pos, a, bits)
+                    .or_else(|| fields.guided(pos, a, bits))
+                {
                     Some(d) => self.cand_dist.push(d),
                     None => break,
                 }

@@ -76,6 +76,16 @@ pub(crate) struct StepCosts {
     walk: Vec<u32>,
     /// The marks the last greedy walk back needed perceived ([`StepCosts::walked`]).
     walked: Vec<u32>,
+    /// The open list of [`StepCosts::guided`].
+    heap: std::collections::BinaryHeap<AstarEntry>,
+}
+
+/// An open entry of [`StepCosts::guided`]: least f first, then largest g, then cell.
+type AstarEntry = std::cmp::Reverse<(u64, u64, u32)>;
+
+/// The entry of cell `u` at priority `f` (≥ 0, so its bits order as the number) and cost `g`.
+fn astar_entry(f: f64, g: f64, u: u32) -> AstarEntry {
+    std::cmp::Reverse((f.to_bits(), u64::MAX - g.to_bits(), u))
 }
 
 impl StepCosts {
@@ -124,6 +134,7 @@ impl StepCosts {
             settled: Vec::new(),
             walk: Vec::new(),
             walked: Vec::new(),
+            heap: std::collections::BinaryHeap::new(),
         }
     }
 
@@ -372,6 +383,77 @@ impl StepCosts {
         &self.walked
     }
 
+    /// The cost from reachable cell `from` to reachable cell `to` inside the perceived free
+    /// cells `bits`, by A* from `to` towards `from` guided by `field`, the full map's costs
+    /// from `from` (a consistent lower bound: paths inside are paths of the full map, and
+    /// the steps are symmetric); `None` if `from` cannot be reached inside. For the
+    /// representatives whose shortest paths leave the perceived space: the search stays
+    /// near the detour instead of labelling the whole perceived space. Takes a fresh search
+    /// number, as [`StepCosts::inside`] does.
+    pub(crate) fn guided(
+        &mut self,
+        field: &[f64],
+        from: u32,
+        to: u32,
+        bits: &[u64],
+    ) -> Option<f64> {
+        let (s, t) = (self.index[from as usize], self.index[to as usize]);
+        if s == NONE || t == NONE || !field[t as usize].is_finite() {
+            return None;
+        }
+        self.epoch += 1;
+        if self.epoch > MAX_EPOCH {
+            for slot in &mut self.slot {
+                slot.tag = 0;
+            }
+            self.epoch = 1;
+        }
+        let tag = self.epoch << 2;
+        self.heap.clear();
+        self.slot[t as usize].tag = tag;
+        self.slot[t as usize].cost = 0.0;
+        self.heap.push(astar_entry(field[t as usize], 0.0, t));
+        while let Some(std::cmp::Reverse((_, gbits, x))) = self.heap.pop() {
+            let g = f64::from_bits(u64::MAX - gbits);
+            let slot = &mut self.slot[x as usize];
+            if slot.tag == tag | DONE || g > slot.cost {
+                continue;
+            }
+            slot.tag = tag | DONE;
+            if x == s {
+                return Some(g);
+            }
+            let nb = self.nbr[x as usize];
+            let mut open = [false; 4];
+            for (k, &y) in nb[..4].iter().enumerate() {
+                open[k] = y == s || self.passable(bits, y, tag);
+            }
+            for (k, &y) in nb.iter().enumerate() {
+                let step = if k < 4 {
+                    if !open[k] {
+                        continue;
+                    }
+                    1.0
+                } else {
+                    let (a, b) = DIAGONAL_SIDES[k - 4];
+                    if !(open[a] || open[b]) || !(y == s || self.passable(bits, y, tag)) {
+                        continue;
+                    }
+                    grid::SQRT2
+                };
+                let ng = g + step;
+                let slot = &mut self.slot[y as usize];
+                if slot.tag == tag | DONE || (slot.tag == tag && ng >= slot.cost) {
+                    continue;
+                }
+                slot.tag = tag;
+                slot.cost = ng;
+                self.heap.push(astar_entry(ng + field[y as usize], ng, y));
+            }
+        }
+        None
+    }
+
     /// Whether reachable cell `u` is perceived, remembered under `tag` when it is not.
     #[inline]
     fn passable(&mut self, bits: &[u64], u: u32, tag: u32) -> bool {
@@ -499,6 +581,13 @@ impl FieldCache {
         found
     }
 
+    /// [`StepCosts::guided`] from `from` to `to` inside the perceived cells `bits`.
+    pub(crate) fn guided(&mut self, from: u32, to: u32, bits: &[u64]) -> Option<f64> {
+        let base = self.of(from);
+        self.steps
+            .guided(&self.cost[base..base + self.len], from, to, bits)
+    }
+
     /// Bytes held.
     pub(crate) fn bytes(&self) -> usize {
         self.steps.bytes()
@@ -558,7 +647,8 @@ mod tests {
         }
 
         /// `inside` gives the cost inside the perceived cells exactly when it equals the
-        /// full map's, and nothing otherwise, on random maps, perceived sets and cells.
+        /// full map's, and nothing otherwise, and `guided` always gives it (or that there is
+        /// none), on random maps, perceived sets and cells.
         #[test]
         fn inside_is_the_cost_when_a_full_map_shortest_path_is_perceived(
             w in 2usize..14,
@@ -589,7 +679,15 @@ mod tests {
                 ours.field(s as u32, &all, &mut field);
                 ours.compute(s as u32, &bits);
                 let costs: Vec<f64> = (0..w * h).map(|i| ours.dist(i)).collect();
-                for t in (0..w * h).filter(|&i| costs[i].is_finite()) {
+                for t in (0..w * h).filter(|&i| p.reachable(i) && has(&bits, p.target_index(i))) {
+                    // The guided search finds the cost inside exactly, or that there is none.
+                    let guided = ours.guided(&field, s as u32, t as u32, &bits);
+                    if costs[t].is_finite() {
+                        prop_assert!(guided.is_some_and(|c| (c - costs[t]).abs() < 1e-9), "{} -> {}: {:?} vs {}", s, t, guided, costs[t]);
+                    } else {
+                        prop_assert_eq!(guided, None);
+                        continue;
+                    }
                     let full = field[ours.index[t] as usize];
                     let got = ours.inside(&field, s as u32, t as u32, &bits);
                     if (costs[t] - full).abs() < 1e-9 {
