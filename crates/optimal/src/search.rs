@@ -626,8 +626,9 @@ impl<'p> Engine<'p> {
     /// Fill `cands` and `cand_dist` with the actions `set` of the robot at `pos` having
     /// perceived the marks `bits` (`rows`: the same as cluster rows, when kept) and their
     /// step costs. Clusters come off the bit rows, their costs from the per-position
-    /// fields; otherwise (or when a representative's shortest path leaves the perceived
-    /// space) the step costs' search runs, once per state (`searched`).
+    /// fields (a shortest path of the full map inside the perceived space, else A* guided
+    /// by the field); other action sets (and clusters when no bit rows are kept) come off
+    /// the step costs' search over the perceived space, run once per state (`searched`).
     fn actions(
         &mut self,
         pos: u32,
@@ -743,16 +744,13 @@ impl<'p> Engine<'p> {
                 }
             }
             let Some((_, p)) = best else { continue };
-            let d = match self.heur.fields.inside(pos, p, &bits) {
-                Some(d) => d,
-                None => {
-                    self.reach.compute(pos, &bits);
-                    self.reach.dist(p as usize)
-                }
-            };
-            if !d.is_finite() {
+            let fields = &mut self.heur.fields;
+            let Some(d) = fields
+                .inside(pos, p, &bits)
+                .or_else(|| fields.guided(pos, p, &bits))
+            else {
                 continue;
-            }
+            };
             let (o, l) = self.vis.get(problem, p);
             for &m in &self.vis.data[o..o + l] {
                 if !has(&bits, m) {

@@ -3,18 +3,24 @@
 //! cells perceived so far (straight steps 1, diagonal √2, no squeezing between two blocked
 //! cells sharing a vertex).
 //!
-//! This is the search's inner loop: one full search per expanded state. It is the same
-//! bucket-queue Dijkstra as [`explore::plan::Reachability`] (buckets one step wide, cells of
-//! a bucket taken in labelling order, neighbours met right, down, left, up, then the
-//! diagonals), so it gives the same costs and settles the cells in the same order, but on a
-//! graph built once per problem: only the cells reachable in the full map exist, each with
-//! its 8 neighbours' indices and its mark, and "passable" is one bit test in the state's
-//! perceived set. Written here rather than reused because the generic search asks a closure
-//! per cell and addresses a tiled whole-map layout: on the optimal benchmark's cave this
-//! search is ~17 % faster, the whole search 7–9 % (same session; it is still ~45 % of a
-//! state's time, ~420 cells settled per state). Each cell's cost, flags and mark sit in one
-//! 16-byte slot, so meeting a cell reads one cache line instead of three arrays: the whole
-//! search 5–8 % faster on the benchmark's cave, potholes and corridor floor.
+//! [`StepCosts::compute`] is a search over the whole perceived space: the same bucket-queue
+//! Dijkstra as [`explore::plan::Reachability`] (buckets one step wide, cells of a bucket
+//! taken in labelling order, neighbours met right, down, left, up, then the diagonals), so
+//! it gives the same costs and settles the cells in the same order, but on a graph built
+//! once per problem: only the cells reachable in the full map exist, each with its 8
+//! neighbours' indices and its mark, and "passable" is one bit test in the state's
+//! perceived set; each cell's cost, flags and mark sit in one 16-byte slot. Written here
+//! rather than reused because the generic search asks a closure per cell and addresses a
+//! tiled whole-map layout (~17 % faster on the optimal benchmark's cave).
+//!
+//! With cluster actions a state needs the costs to its five or so representatives only,
+//! and they rarely need that search ([`FieldCache`]): the full map's costs from each
+//! position are computed once; when a shortest path of the full map lies inside the
+//! perceived space, the cost inside is the full map's ([`StepCosts::inside`]: the path last
+//! found between the two is checked first, then a walk back over tied predecessors); when
+//! none does, A* from the representative guided by the robot's field finds it
+//! ([`StepCosts::guided`]). On the corridor floor every representative took the first two;
+//! on the potholes map two thirds of the states need A* for some representative.
 
 use std::collections::HashMap;
 use std::hash::BuildHasherDefault;
