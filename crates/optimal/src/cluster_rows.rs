@@ -360,7 +360,6 @@ mod tests {
     use crate::heuristic::set;
     use crate::problem::{NOT_TARGET, SensorModel};
     use crate::step_cost::StepCosts;
-    use grid::Cell;
     use proptest::prelude::*;
 
     #[test]
@@ -391,13 +390,10 @@ mod tests {
             min_size in 1usize..4,
             fp in any::<bool>(),
         ) {
-            let map = crate::walled_map(w, h, &walls);
-            let free: Vec<usize> = (0..w * h).filter(|&i| map.data()[i].is_free()).collect();
-            prop_assume!(!free.is_empty());
-            let start = free[pick % free.len()];
             let model = if fp { SensorModel::Footprint(1.5) } else { SensorModel::Los(1.5) };
-            let p = Problem::new(&map, Cell::new((start % w) as i32, (start / w) as i32), model)
-                .expect("problem");
+            let case = crate::walled_problem(w, h, &walls, pick, model);
+            prop_assume!(case.is_some());
+            let (p, start) = case.expect("assumed");
             let mut bits = vec![0u64; p.mark_count().div_ceil(64).max(1)];
             let mut rows = ClusterRows::new(&p);
             let mut seen_rows = vec![0u64; rows.words()];

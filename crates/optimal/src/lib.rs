@@ -73,6 +73,37 @@ pub(crate) fn walled_map(w: usize, h: usize, walls: &[u8]) -> grid::Grid<grid::O
     map
 }
 
+/// A problem on a `w` × `h` [`walled_map`] from its `pick`-th free cell (modulo their
+/// number) with `model`, and that start's flat index; `None` without a free cell.
+#[cfg(test)]
+pub(crate) fn walled_problem(
+    w: usize,
+    h: usize,
+    walls: &[u8],
+    pick: usize,
+    model: SensorModel,
+) -> Option<(Problem, usize)> {
+    let map = walled_map(w, h, walls);
+    let free: Vec<usize> = (0..w * h).filter(|&i| map.data()[i].is_free()).collect();
+    let start = *free.get(pick % free.len().max(1))?;
+    let p = Problem::new(&map, map.cell(start), model).expect("a free start");
+    Some((p, start))
+}
+
+/// The marks' bitset of `p` holding the targets at the cells where `seen` is not 0, and
+/// the target at flat cell `keep`.
+#[cfg(test)]
+pub(crate) fn perceived_marks(p: &Problem, seen: &[u8], keep: usize) -> Vec<u64> {
+    let mut bits = vec![0u64; p.mark_count().div_ceil(64).max(1)];
+    for (i, &s) in seen.iter().enumerate().take(p.cells().len()) {
+        let t = p.target_index(i);
+        if t != problem::NOT_TARGET && (s != 0 || i == keep) {
+            heuristic::set(&mut bits, t);
+        }
+    }
+    bits
+}
+
 /// Competitive ratio of an online path: `online_length / optimal_length` (same units);
 /// `None` if the optimal length is not positive.
 pub fn competitive_ratio(online_length: f64, optimal_length: f64) -> Option<f64> {

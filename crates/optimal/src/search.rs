@@ -1351,12 +1351,10 @@ mod tests {
             full in any::<bool>(),
             factor in 2usize..4,
         ) {
-            let map = crate::walled_map(w, h, &walls);
-            let free: Vec<usize> = (0..w * h).filter(|&i| map.data()[i].is_free()).collect();
-            prop_assume!(!free.is_empty());
-            let start = free[pick % free.len()];
             let model = if fp { SensorModel::Footprint(3.0) } else { SensorModel::Los(3.0) };
-            let p = Problem::new(&map, map.cell(start), model).expect("problem");
+            let case = crate::walled_problem(w, h, &walls, pick, model);
+            prop_assume!(case.is_some());
+            let (p, _) = case.expect("assumed");
             let cfg = Config {
                 goal: if full { 1.0 } else { 0.9 },
                 actions: ActionSet::Clusters { min_size: 1 },
@@ -1395,12 +1393,10 @@ mod tests {
             full in any::<bool>(),
             min_size in 1usize..3,
         ) {
-            let map = crate::walled_map(w, h, &walls);
-            let free: Vec<usize> = (0..w * h).filter(|&i| map.data()[i].is_free()).collect();
-            prop_assume!(!free.is_empty());
-            let start = free[pick % free.len()];
             let model = if fp { SensorModel::Footprint(2.5) } else { SensorModel::Los(2.5) };
-            let p = Problem::new(&map, map.cell(start), model).expect("problem");
+            let case = crate::walled_problem(w, h, &walls, pick, model);
+            prop_assume!(case.is_some());
+            let (p, _) = case.expect("assumed");
             let cfg = Config {
                 goal: if full { 1.0 } else { 0.85 },
                 actions: ActionSet::Clusters { min_size },

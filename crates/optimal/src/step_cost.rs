@@ -607,10 +607,8 @@ impl FieldCache {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::heuristic::set;
     use crate::problem::SensorModel;
     use explore::plan::Reachability;
-    use grid::Cell;
     use proptest::prelude::*;
 
     proptest! {
@@ -624,20 +622,11 @@ mod tests {
             seen in proptest::collection::vec(0u8..5, 144),
             pick in 0usize..144,
         ) {
-            let map = crate::walled_map(w, h, &walls);
-            let free: Vec<usize> = (0..w * h).filter(|&i| map.data()[i].is_free()).collect();
-            prop_assume!(!free.is_empty());
-            let start = free[pick % free.len()];
-            let p = Problem::new(&map, Cell::new((start % w) as i32, (start / w) as i32), SensorModel::Los(2.0))
-                .expect("problem");
+            let case = crate::walled_problem(w, h, &walls, pick, SensorModel::Los(2.0));
+            prop_assume!(case.is_some());
+            let (p, start) = case.expect("assumed");
             // A random perceived set of marks (most cells perceived), the start's included.
-            let mut bits = vec![0u64; p.mark_count().div_ceil(64).max(1)];
-            for (i, &s) in seen.iter().enumerate().take(w * h) {
-                let t = p.target_index(i);
-                if t != crate::problem::NOT_TARGET && (s != 0 || i == start) {
-                    set(&mut bits, t);
-                }
-            }
+            let bits = crate::perceived_marks(&p, &seen, start);
             let mut ours = StepCosts::new(&p);
             let mut generic = Reachability::new(w, h);
             // Every reachable cell as a source, so the searches also start next to walls.
@@ -663,20 +652,11 @@ mod tests {
             seen in proptest::collection::vec(0u8..6, 196),
             pick in 0usize..196,
         ) {
-            let map = crate::walled_map(w, h, &walls);
-            let free: Vec<usize> = (0..w * h).filter(|&i| map.data()[i].is_free()).collect();
-            prop_assume!(!free.is_empty());
-            let start = free[pick % free.len()];
-            let p = Problem::new(&map, Cell::new((start % w) as i32, (start / w) as i32), SensorModel::Los(2.0))
-                .expect("problem");
+            let case = crate::walled_problem(w, h, &walls, pick, SensorModel::Los(2.0));
+            prop_assume!(case.is_some());
+            let (p, start) = case.expect("assumed");
             let words = p.mark_count().div_ceil(64).max(1);
-            let mut bits = vec![0u64; words];
-            for (i, &s) in seen.iter().enumerate().take(w * h) {
-                let t = p.target_index(i);
-                if t != crate::problem::NOT_TARGET && (s != 0 || i == start) {
-                    set(&mut bits, t);
-                }
-            }
+            let bits = crate::perceived_marks(&p, &seen, start);
             let all = vec![u64::MAX; words];
             let mut ours = StepCosts::new(&p);
             let (mut same, mut longer) = (0, 0);
@@ -719,25 +699,16 @@ mod tests {
             sets in proptest::collection::vec(proptest::collection::vec(0u8..5, 144), 1..5),
             pick in 0usize..144,
         ) {
-            let map = crate::walled_map(w, h, &walls);
-            let free: Vec<usize> = (0..w * h).filter(|&i| map.data()[i].is_free()).collect();
-            prop_assume!(!free.is_empty());
-            let start = free[pick % free.len()];
-            let p = Problem::new(&map, Cell::new((start % w) as i32, (start / w) as i32), SensorModel::Los(2.0))
-                .expect("problem");
+            let case = crate::walled_problem(w, h, &walls, pick, SensorModel::Los(2.0));
+            prop_assume!(case.is_some());
+            let (p, _) = case.expect("assumed");
             let words = p.mark_count().div_ceil(64).max(1);
             let all = vec![u64::MAX; words];
             let mut cache = FieldCache::new(&p, usize::MAX);
             let mut fresh = StepCosts::new(&p);
             let reach: Vec<u32> = (0..w * h).filter(|&i| p.reachable(i)).map(|i| i as u32).collect();
             for seen in &sets {
-                let mut bits = vec![0u64; words];
-                for (i, &s) in seen.iter().enumerate().take(w * h) {
-                    let t = p.target_index(i);
-                    if t != crate::problem::NOT_TARGET && s != 0 {
-                        set(&mut bits, t);
-                    }
-                }
+                let bits = crate::perceived_marks(&p, seen, usize::MAX);
                 for &a in &reach {
                     for &b in &reach {
                         let mut field = Vec::new();

@@ -162,7 +162,6 @@ mod tests {
     use super::*;
     use crate::problem::SensorModel;
     use explore::plan::Reachability;
-    use grid::Cell;
     use proptest::prelude::*;
     use sense::Observation;
 
@@ -177,12 +176,9 @@ mod tests {
             pick in 0usize..280,
             r in 0.5f64..4.5,
         ) {
-            let map = crate::walled_map(w, h, &walls);
-            let free: Vec<usize> = (0..w * h).filter(|&i| map.data()[i].is_free()).collect();
-            prop_assume!(!free.is_empty());
-            let start = free[pick % free.len()];
-            let p = Problem::new(&map, Cell::new((start % w) as i32, (start / w) as i32), SensorModel::Footprint(r))
-                .expect("problem");
+            let case = crate::walled_problem(w, h, &walls, pick, SensorModel::Footprint(r));
+            prop_assume!(case.is_some());
+            let (p, _) = case.expect("assumed");
             let reach: Vec<usize> = (0..w * h).filter(|&i| p.reachable(i)).collect();
             let q = reach[pick % reach.len()];
             let mut dij = Reachability::new(w, h);
