@@ -64,8 +64,9 @@ impl Default for OptimalSpec {
 }
 
 /// Revision of the optimal search in stored keys: its definition (actions, goal) and its
-/// heuristic, which decides the bounds reached when a node budget stops it.
-const SEARCH_REVISION: u32 = 3;
+/// heuristic, which decides the bounds reached when a node budget stops it (v3: Held–Karp
+/// over viewpoint sets; v4: the footprint's viewpoint distances, field step costs).
+const SEARCH_REVISION: u32 = 4;
 
 impl OptimalSpec {
     /// A text naming every setting (part of the study's fingerprint and of cache keys), and
