@@ -47,6 +47,8 @@ pub(crate) struct ClusterRows {
     seeds: Vec<(u32, u32)>,
     /// Scratch: the runs (row, first column, last column) of the cluster being taken out.
     runs: Vec<(usize, usize, usize)>,
+    /// Per mark (a target, or another cell next to a reachable one): its flat cell.
+    mark_cell: Vec<u32>,
 }
 
 impl ClusterRows {
@@ -57,7 +59,12 @@ impl ClusterRows {
         let wpr = w.div_ceil(64).max(1);
         let mut reach = vec![0u64; wpr * h];
         let mut targets = vec![0u64; wpr * h];
+        let mut mark_cell = vec![0; problem.mark_count()];
         for i in 0..w * h {
+            let m = problem.mark_index(i);
+            if m != crate::problem::NOT_TARGET {
+                mark_cell[m as usize] = i as u32;
+            }
             let (x, y) = (i % w, i / w);
             let (k, b) = (y * wpr + x / 64, x % 64);
             if problem.reachable(i) {
@@ -80,6 +87,7 @@ impl ClusterRows {
             bound: vec![0; n],
             seeds: Vec::new(),
             runs: Vec::new(),
+            mark_cell,
         }
     }
 
@@ -95,9 +103,32 @@ impl ClusterRows {
         (y * self.wpr + x / 64, (x % 64) as u32)
     }
 
+    /// The word index and bit of mark `m`'s cell.
+    #[inline]
+    pub(crate) fn locate_mark(&self, m: u32) -> (usize, u32) {
+        self.locate(self.mark_cell[m as usize] as usize)
+    }
+
+    /// The marks' bitset `marks` as rows, into `out`.
+    pub(crate) fn rows_of(&self, marks: &[u64], out: &mut Vec<u64>) {
+        out.clear();
+        out.resize(self.words(), 0);
+        for (k, &word) in marks.iter().enumerate() {
+            let mut m = word;
+            while m != 0 {
+                let (j, b) = self.locate_mark((k * 64) as u32 + m.trailing_zeros());
+                m &= m - 1;
+                out[j] |= 1 << b;
+            }
+        }
+    }
+
     /// Bytes held.
     pub(crate) fn bytes(&self) -> usize {
-        self.reach.len() * 8 * 6 + self.seeds.capacity() * 8 + self.runs.capacity() * 24
+        self.reach.len() * 8 * 6
+            + self.seeds.capacity() * 8
+            + self.runs.capacity() * 24
+            + self.mark_cell.len() * 4
     }
 
     /// Fill `out` with the representatives of the clusters of the state whose perceived

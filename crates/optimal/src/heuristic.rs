@@ -66,7 +66,7 @@ use grid::Occ;
 
 use crate::coverage_rate::CoverageRate;
 use crate::held_karp::PathBound;
-use crate::problem::{NOT_TARGET, Problem, SensorModel};
+use crate::problem::{Problem, SensorModel};
 use crate::skip_budget::SkipBudget;
 use crate::step_cost::FieldCache;
 use crate::viewpoint_distance::ViewpointDistance;
@@ -442,27 +442,15 @@ impl Heuristic {
                     .map(|(t, &i)| (q.dist(cells.cell(i as usize)), t as u32)),
             );
         } else {
-            let data = cells.data();
-            self.dij.compute(pos as usize, |i| data[i] == Occ::Free);
-            for &i in self.dij.settled() {
-                let t = problem.target_index(i as usize);
-                if t != NOT_TARGET {
-                    self.orders.push((dist(&self.dij, i as usize), t));
-                }
-            }
-            // Targets the path cannot reach (footprint only) bound nothing: value 0.
-            let got = self.orders.len() - base;
-            if got < self.n_targets {
-                let mut present = vec![false; self.n_targets];
-                for &(_, t) in &self.orders[base..] {
-                    present[t as usize] = true;
-                }
-                for (t, &p) in present.iter().enumerate() {
-                    if !p {
-                        self.orders.push((0.0, t as u32));
-                    }
-                }
-            }
+            // Path distances from the position's field, shared with the step costs. Targets
+            // the path cannot reach (footprint only: seen through a wall) bound nothing:
+            // value 0.
+            let costs = self.fields.costs(pos);
+            self.orders
+                .extend(targets.iter().enumerate().map(|(t, &i)| {
+                    let d = costs(i as usize);
+                    (if d.is_finite() { d } else { 0.0 }, t as u32)
+                }));
         }
         // Descending by bound value (ties: lower target first), the first `order_len` kept.
         let desc = |a: &(f64, u32), b: &(f64, u32)| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1));
@@ -470,12 +458,10 @@ impl Heuristic {
             self.orders[base..].select_nth_unstable_by(self.order_len - 1, desc);
             self.orders.truncate(base + self.order_len);
             self.orders[base..].sort_unstable_by(desc);
-        } else if self.vd.is_some() || euclid {
+        } else {
             // Listed by target, values ≥ 0: a stable sort on the value alone keeps ties by
             // target.
             sort_desc_stable(&mut self.orders[base..], &mut self.sort_scratch);
-        } else {
-            self.orders[base..].sort_unstable_by(desc);
         }
         self.order_slot.insert(pos, slot as u32);
         base

@@ -287,8 +287,8 @@ impl VisCache {
             len: vec![0; n],
             data: Vec::new(),
             obs: Observation::new(),
-            word_off: Vec::new(),
-            word_len: Vec::new(),
+            word_off: vec![NONE; n],
+            word_len: vec![[0; 2]; n],
             word_data: Vec::new(),
         }
     }
@@ -305,19 +305,15 @@ impl VisCache {
     }
 
     /// The marks perceived from `pos` as (word, bits) of the marks' bitset and, with
-    /// `rows`, of the cluster rows (computed on first use); `mark_cell` maps a mark to its
-    /// flat cell. Returns the two ranges in `word_data`.
+    /// `rows`, of the cluster rows (computed on first use). Returns the two ranges in
+    /// `word_data`.
     fn words(
         &mut self,
         problem: &Problem,
         pos: u32,
         rows: Option<&ClusterRows>,
-        mark_cell: &[u32],
     ) -> ((usize, usize), (usize, usize)) {
         let p = pos as usize;
-        if self.word_off.is_empty() {
-            self.word_off = vec![NONE; self.off.len()];
-        }
         if self.word_off[p] == NONE {
             let (o, l) = self.get(problem, pos);
             let start = self.word_data.len();
@@ -331,13 +327,12 @@ impl VisCache {
                 push_words(
                     &mut self.word_data,
                     marks.iter().map(|&t| {
-                        let (k, b) = rows.locate(mark_cell[t as usize] as usize);
+                        let (k, b) = rows.locate_mark(t);
                         (k as u32, 1 << b)
                     }),
                 );
             }
             self.word_off[p] = start as u32;
-            self.word_len.resize(self.off.len(), [0; 2]);
             self.word_len[p] = [(mid - start) as u32, (self.word_data.len() - mid) as u32];
         }
         let (o, [a, b]) = (self.word_off[p] as usize, self.word_len[p]);
@@ -381,13 +376,12 @@ struct Engine<'p> {
     /// Shortest paths inside the perceived free space (the step costs).
     reach: StepCosts,
     scratch: ActionScratch,
-    /// Cluster actions on bit rows (with [`ActionSet::Clusters`]), the perceived set of the
-    /// loaded state as rows, and each mark's flat cell.
+    /// Cluster actions on bit rows (with [`ActionSet::Clusters`]), and the perceived set of
+    /// the loaded state as rows.
     rows: Option<ClusterRows>,
     seen_rows: Vec<u64>,
     /// The greedy completion's perceived set as cluster rows.
     greedy_rows: Vec<u64>,
-    mark_cell: Vec<u32>,
     zt: Vec<[u64; 2]>,
     zpos: Vec<[u64; 2]>,
     nodes: Vec<Node>,
@@ -432,16 +426,6 @@ impl<'p> Engine<'p> {
         let reach_bytes = reach.bytes();
         let rows =
             matches!(cfg.actions, ActionSet::Clusters { .. }).then(|| ClusterRows::new(problem));
-        let mut mark_cell = Vec::new();
-        if rows.is_some() {
-            mark_cell = vec![0; nm];
-            for i in 0..n {
-                let m = problem.mark_index(i);
-                if m != crate::problem::NOT_TARGET {
-                    mark_cell[m as usize] = i as u32;
-                }
-            }
-        }
         let seen_rows = vec![0; rows.as_ref().map_or(0, ClusterRows::words)];
         let rows_bytes = rows.as_ref().map_or(0, ClusterRows::bytes);
         Self {
@@ -455,7 +439,6 @@ impl<'p> Engine<'p> {
             rows,
             seen_rows,
             greedy_rows: Vec::new(),
-            mark_cell,
             zt,
             zpos,
             nodes: Vec::new(),
@@ -470,7 +453,7 @@ impl<'p> Engine<'p> {
             inc_positions: Vec::new(),
             stats: Stats::default(),
             // Step costs, action marks, Zobrist keys, the problem's arrays.
-            fixed_bytes: reach_bytes + rows_bytes + n * (4 + 16 + 12) + nm * 24,
+            fixed_bytes: reach_bytes + rows_bytes + n * (4 + 16 + 12) + nm * 20,
             nt: nt as u32,
         }
     }
@@ -523,9 +506,7 @@ impl<'p> Engine<'p> {
         let mut j = id;
         while j != NONE {
             let pos = self.nodes[j as usize].pos;
-            let ((o, l), (ro, rl)) =
-                self.vis
-                    .words(self.problem, pos, self.rows.as_ref(), &self.mark_cell);
+            let ((o, l), (ro, rl)) = self.vis.words(self.problem, pos, self.rows.as_ref());
             for &(k, b) in &self.vis.word_data[o..o + l] {
                 self.cur[k as usize] |= b;
             }
@@ -563,8 +544,8 @@ impl<'p> Engine<'p> {
         let mut cur = bits.to_vec();
         let mut rows = std::mem::take(&mut self.greedy_rows);
         rows.clear();
-        if self.rows.is_some() {
-            self.rows_of(&cur, &mut rows);
+        if let Some(r) = &self.rows {
+            r.rows_of(&cur, &mut rows);
         }
         let mut cost = 0.0;
         while count < self.need {
@@ -588,17 +569,7 @@ impl<'p> Engine<'p> {
                 self.greedy_rows = rows;
                 return None;
             };
-            let (o, l) = self.vis.get(self.problem, a);
-            for &t in &self.vis.data[o..o + l] {
-                if !has(&cur, t) {
-                    set(&mut cur, t);
-                    count += usize::from(t < self.nt);
-                    if let Some(r) = &self.rows {
-                        let (k, b) = r.locate(self.mark_cell[t as usize] as usize);
-                        rows[k] |= 1 << b;
-                    }
-                }
-            }
+            count += self.perceive(a, &mut cur, Some(&mut rows));
             cost += d;
             pos = a;
             out.push(a);
@@ -607,20 +578,23 @@ impl<'p> Engine<'p> {
         Some(cost)
     }
 
-    /// The perceived marks `bits` as cluster rows, into `out`.
-    fn rows_of(&self, bits: &[u64], out: &mut Vec<u64>) {
-        let Some(r) = &self.rows else { return };
-        out.clear();
-        out.resize(r.words(), 0);
-        for (k, &word) in bits.iter().enumerate() {
-            let mut m = word;
-            while m != 0 {
-                let t = k * 64 + m.trailing_zeros() as usize;
-                m &= m - 1;
-                let (j, b) = r.locate(self.mark_cell[t] as usize);
-                out[j] |= 1 << b;
+    /// Add what `pos` perceives to the marks' bitset `bits` and, when cluster rows are kept
+    /// and `rows` is given, to `rows` (the same set as rows); returns the number of new
+    /// targets.
+    fn perceive(&mut self, pos: u32, bits: &mut [u64], mut rows: Option<&mut [u64]>) -> usize {
+        let (o, l) = self.vis.get(self.problem, pos);
+        let mut new = 0;
+        for &t in &self.vis.data[o..o + l] {
+            if !has(bits, t) {
+                set(bits, t);
+                new += usize::from(t < self.nt);
+                if let (Some(r), Some(rows)) = (&self.rows, rows.as_deref_mut()) {
+                    let (k, b) = r.locate_mark(t);
+                    rows[k] |= 1 << b;
+                }
             }
         }
+        new
     }
 
     /// Fill `cands` and `cand_dist` with the actions `set` of the robot at `pos` having
@@ -751,13 +725,7 @@ impl<'p> Engine<'p> {
             else {
                 continue;
             };
-            let (o, l) = self.vis.get(problem, p);
-            for &m in &self.vis.data[o..o + l] {
-                if !has(&bits, m) {
-                    set(&mut bits, m);
-                    count += usize::from(m < self.nt);
-                }
-            }
+            count += self.perceive(p, &mut bits, None);
             cost += d;
             pos = p;
             positions.push(p);
@@ -1024,9 +992,7 @@ impl<'p> Engine<'p> {
                 continue;
             }
             // What `a` perceives that the state has not, word by word.
-            let ((o, l), _) = self
-                .vis
-                .words(problem, a, self.rows.as_ref(), &self.mark_cell);
+            let ((o, l), _) = self.vis.words(problem, a, self.rows.as_ref());
             self.fresh_words.clear();
             let mut new_targets = 0;
             for &(word, bits) in &self.vis.word_data[o..o + l] {
@@ -1320,10 +1286,6 @@ mod tests {
     use crate::problem::SensorModel;
     use proptest::prelude::*;
 
-    fn seeded_goal(full: bool) -> f64 {
-        if full { 1.0 } else { 0.9 }
-    }
-
     /// [`solve`] with the cluster actions on bit rows (`fast`) or read off the step costs'
     /// search for every state.
     fn solve_as(problem: &Problem, cfg: &Config, fast: bool) -> Outcome {
@@ -1370,7 +1332,7 @@ mod tests {
                 let sol = seeded.solution.expect("solution");
                 let again = walk(&p, &sol.positions).expect("valid path");
                 prop_assert!((again.length - seeded.upper_bound).abs() < 1e-9);
-                prop_assert!(again.perceived >= p.needed(seeded_goal(full)));
+                prop_assert!(again.perceived >= p.needed(cfg.goal));
                 let all = solve(&p, &Config { actions: ActionSet::All, ..cfg }).expect("solve");
                 if all.status == Status::Optimal {
                     prop_assert!(seeded.upper_bound >= all.upper_bound - 1e-9);
