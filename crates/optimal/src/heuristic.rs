@@ -64,6 +64,7 @@ use std::hash::{BuildHasherDefault, Hasher};
 use explore::plan::Reachability;
 use grid::Occ;
 
+use crate::block_masks::{BLOCK, BlockMasks};
 use crate::coverage_rate::CoverageRate;
 use crate::held_karp::PathBound;
 use crate::problem::{Problem, SensorModel};
@@ -205,6 +206,8 @@ pub(crate) struct Heuristic {
     /// a seventh of the targets).
     order_len: usize,
     orders: Vec<(f64, u32)>,
+    /// The orders' blocks, `order_len.div_ceil(BLOCK)` per slot.
+    blocks: BlockMasks,
     /// Scratch of [`sort_desc_stable`].
     sort_scratch: (Vec<u32>, Vec<(f64, u32)>),
     cache_cap_bytes: usize,
@@ -299,6 +302,7 @@ impl Heuristic {
             order_len,
             order_slot: HashMap::new(),
             orders: Vec::new(),
+            blocks: BlockMasks::default(),
             sort_scratch: Default::default(),
             cache_cap_bytes,
             dij: Reachability::new(cells.width(), cells.height()),
@@ -330,6 +334,7 @@ impl Heuristic {
     /// Bytes held by the caches.
     pub(crate) fn bytes(&self) -> usize {
         self.orders.capacity() * 16
+            + self.blocks.bytes()
             + self.order_slot.len() * 24
             + self.lm_field.capacity() * 8
             + self.path_cache.capacity() * 40
@@ -417,6 +422,7 @@ impl Heuristic {
         if self.orders.len() * 16 > self.cache_cap_bytes {
             self.orders.clear();
             self.order_slot.clear();
+            self.blocks.clear();
         }
         let slot = self.order_slot.len();
         let base = self.orders.len();
@@ -463,6 +469,8 @@ impl Heuristic {
             // target.
             sort_desc_stable(&mut self.orders[base..], &mut self.sort_scratch);
         }
+        self.blocks
+            .push_list(self.orders[base..].iter().map(|&(_, t)| t));
         self.order_slot.insert(pos, slot as u32);
         base
     }
@@ -532,16 +540,27 @@ impl Heuristic {
         } else {
             // The (skip + 1)-th largest bound among unperceived targets (0 if the kept part
             // of the order holds fewer unperceived targets: still a lower bound).
+            // Counted a block at a time ([`crate::block_masks`]); the block holding it is
+            // then walked entry by entry.
             let mut left = self.skip;
             let mut v = 0.0;
-            for &(d, t) in list {
-                if !has(bits, t) {
-                    if left == 0 {
-                        v = d;
-                        break;
-                    }
-                    left -= 1;
+            let first_block = base / self.order_len * self.order_len.div_ceil(BLOCK);
+            for (b, block) in list.chunks(BLOCK).enumerate() {
+                let open = self.blocks.open(first_block + b, bits);
+                if open <= left {
+                    left -= open;
+                    continue;
                 }
+                for &(d, t) in block {
+                    if !has(bits, t) {
+                        if left == 0 {
+                            v = d;
+                            break;
+                        }
+                        left -= 1;
+                    }
+                }
+                break;
             }
             // Viewpoint distances are the bound itself; the others lose the sensor's reach.
             let reach = if self.vd.is_some() { 0.0 } else { self.c };

@@ -39,6 +39,7 @@
 #![warn(missing_docs)]
 
 pub mod actions;
+pub(crate) mod block_masks;
 pub(crate) mod cluster_rows;
 pub mod coarse;
 pub(crate) mod coverage_rate;

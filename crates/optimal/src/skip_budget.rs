@@ -55,6 +55,7 @@ use explore::plan::Reachability;
 use grid::Occ;
 use sense::Observation;
 
+use crate::block_masks::{BLOCK, BlockMasks};
 use crate::heuristic::has;
 use crate::problem::{Problem, SensorModel};
 use crate::viewpoint_distance::ViewpointDistance;
@@ -78,6 +79,10 @@ pub(crate) struct SkipBudget {
     /// Per ownership (the first 1, 2, 3 far points) and far point: its owned targets
     /// (e_a(t), t), by e ascending.
     owned: Vec<Vec<Vec<(f64, u32)>>>,
+    /// The owned lists' blocks, list after list.
+    blocks: BlockMasks,
+    /// Per ownership and far point: its list's first block in `blocks`.
+    first_block: Vec<Vec<usize>>,
     /// Per far point: E_a[0..=skip] of the state being bounded (scratch).
     e: Vec<Vec<f64>>,
     /// Per ownership and far point: E_a[0..=skip] of the state whose children are being
@@ -186,8 +191,18 @@ impl SkipBudget {
                 }
             }
         }
-        for list in owned.iter_mut().flatten() {
-            list.sort_unstable_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
+        let mut blocks = BlockMasks::default();
+        let mut first_block = Vec::new();
+        let mut next = 0;
+        for o in owned.iter_mut() {
+            let mut firsts = Vec::new();
+            for list in o.iter_mut() {
+                list.sort_unstable_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
+                blocks.push_list(list.iter().map(|&(_, t)| t));
+                firsts.push(next);
+                next += list.len().div_ceil(BLOCK);
+            }
+            first_block.push(firsts);
         }
         Some(Self {
             skip,
@@ -200,6 +215,8 @@ impl SkipBudget {
             parent_t: owned.iter().map(|o| vec![Vec::new(); o.len()]).collect(),
             parent_end: owned.iter().map(|o| vec![0; o.len()]).collect(),
             owned,
+            blocks,
+            first_block,
             e: vec![Vec::new(); k],
         })
     }
@@ -207,6 +224,7 @@ impl SkipBudget {
     /// Bytes held.
     pub(crate) fn bytes(&self) -> usize {
         self.field.iter().map(|f| f.len() * 8).sum::<usize>()
+            + self.blocks.bytes()
             + self
                 .owned
                 .iter()
@@ -227,22 +245,49 @@ impl SkipBudget {
     /// the perceived set `bits` when both start empty. Returns where the scan stopped.
     fn scan_from(
         list: &[(f64, u32)],
+        blocks: (&BlockMasks, usize),
         from: usize,
         bits: &[u64],
         skip: usize,
         e: &mut Vec<f64>,
         mut t: Option<&mut Vec<u32>>,
     ) -> usize {
-        for (k, &(x, target)) in list.iter().enumerate().skip(from) {
-            if !has(bits, target) {
-                e.push(x);
+        // Blocks wholly perceived are passed over with a few popcounts
+        // ([`crate::block_masks`]); the others are walked without branches: every entry is
+        // written at the end and kept only when unperceived (perceived and unperceived
+        // targets interleave, so a branch would mispredict).
+        let want = skip + 1;
+        let mut len = e.len();
+        if len >= want {
+            return from;
+        }
+        e.resize(want, 0.0);
+        if let Some(t) = t.as_deref_mut() {
+            t.resize(want, 0);
+        }
+        let (masks, first) = blocks;
+        let mut k = from;
+        while k < list.len() {
+            if k.is_multiple_of(BLOCK) && masks.open(first + k / BLOCK, bits) == 0 {
+                k += BLOCK;
+                continue;
+            }
+            let end = ((k / BLOCK + 1) * BLOCK).min(list.len());
+            for (i, &(x, target)) in list[..end].iter().enumerate().skip(k) {
+                e[len] = x;
                 if let Some(t) = t.as_deref_mut() {
-                    t.push(target);
+                    t[len] = target;
                 }
-                if e.len() > skip {
-                    return k + 1;
+                len += usize::from(!has(bits, target));
+                if len == want {
+                    return i + 1;
                 }
             }
+            k = end;
+        }
+        e.truncate(len);
+        if let Some(t) = t {
+            t.truncate(len);
         }
         list.len()
     }
@@ -332,6 +377,7 @@ impl SkipBudget {
                     self.parent_t[j][a].clear();
                     self.parent_end[j][a] = Self::scan_from(
                         &list[..],
+                        (&self.blocks, self.first_block[j][a]),
                         0,
                         pb,
                         s,
@@ -365,17 +411,22 @@ impl SkipBudget {
                 // parent's scan stopped.
                 let e = &mut self.e[a];
                 e.clear();
-                for (&v, &t) in self.parent[j][a].iter().zip(&self.parent_t[j][a]) {
-                    if !has(bits, t) {
-                        e.push(v);
-                    }
+                let pe = &self.parent[j][a];
+                e.resize(pe.len(), 0.0);
+                let mut len = 0;
+                for (&v, &t) in pe.iter().zip(&self.parent_t[j][a]) {
+                    e[len] = v;
+                    len += usize::from(!has(bits, t));
                 }
+                e.truncate(len);
                 if e.len() <= s {
-                    Self::scan_from(list, self.parent_end[j][a], bits, s, e, None);
+                    let blocks = (&self.blocks, self.first_block[j][a]);
+                    Self::scan_from(list, blocks, self.parent_end[j][a], bits, s, e, None);
                 }
             } else {
                 self.e[a].clear();
-                Self::scan_from(list, 0, bits, s, &mut self.e[a], None);
+                let blocks = (&self.blocks, self.first_block[j][a]);
+                Self::scan_from(list, blocks, 0, bits, s, &mut self.e[a], None);
             }
         }
         let e: [&[f64]; MAX_POINTS] = std::array::from_fn(|a| {

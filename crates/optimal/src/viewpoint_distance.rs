@@ -31,6 +31,8 @@ pub(crate) struct ViewpointDistance {
     /// Per row: the columns where some H_w can be finite (within `reach` of the row's
     /// reachable cells), set on first use.
     span: Vec<(usize, usize)>,
+    /// Scratch: D along one row.
+    row: Vec<f64>,
 }
 
 impl ViewpointDistance {
@@ -53,6 +55,7 @@ impl ViewpointDistance {
             reach,
             h: Vec::new(),
             span: Vec::new(),
+            row: Vec::new(),
         })
     }
 
@@ -121,7 +124,23 @@ impl ViewpointDistance {
                     &prev[row..row + w],
                     &first[row..row + w],
                 );
-                for x in a..=b {
+                // The columns with both neighbours on the map, without branches (so the
+                // loop vectorises), then the few at either edge.
+                let (lo, hi) = (a.max(wd), b.min(w.saturating_sub(wd + 1)));
+                if lo <= hi {
+                    let (o, pm) = (&mut out[lo..=hi], &p[lo..=hi]);
+                    let (dl, dr) = (&d[lo - wd..=hi - wd], &d[lo + wd..=hi + wd]);
+                    for (((o, &v), &l), &r) in o.iter_mut().zip(pm).zip(dl).zip(dr) {
+                        let m = if l < r { l } else { r };
+                        *o = if m < v { m } else { v };
+                    }
+                }
+                let edges = if lo <= hi {
+                    (a..lo).chain(hi + 1..b + 1)
+                } else {
+                    (a..b + 1).chain(0..0)
+                };
+                for x in edges {
                     let mut v = p[x];
                     if x >= wd {
                         v = v.min(d[x - wd]);
@@ -134,20 +153,29 @@ impl ViewpointDistance {
             }
             prev = layer;
         }
-        let reach = (self.half.len() / 2) as i64;
-        for (t, &i) in problem.targets().iter().enumerate() {
-            let (x, y) = ((i as usize % w) as i64, (i as usize / w) as i64);
-            let mut best = f64::INFINITY;
+        // D over a target's row at once: the minimum over dy of H_{w_dy} on row y + dy, a
+        // branch-free pass per dy (so it vectorises); the targets are listed row by row.
+        let reach = self.half.len() / 2;
+        let targets = problem.targets();
+        self.row.resize(w, f64::INFINITY);
+        let mut k = 0;
+        while k < targets.len() {
+            let y = targets[k] as usize / w;
+            self.row.fill(f64::INFINITY);
             for (j, hw) in self.half.iter().enumerate() {
-                let yy = y + j as i64 - reach;
-                if let Some(hw) = hw
-                    && yy >= 0
-                    && yy < h as i64
-                {
-                    best = best.min(self.h[hw * n + yy as usize * w + x as usize]);
+                let Some(hw) = *hw else { continue };
+                let Some(yy) = (y + j).checked_sub(reach).filter(|&yy| yy < h) else {
+                    continue;
+                };
+                let src = &self.h[hw * n + yy * w..hw * n + yy * w + w];
+                for (r, &v) in self.row.iter_mut().zip(src) {
+                    *r = if v < *r { v } else { *r };
                 }
             }
-            emit(t as u32, best);
+            while let Some(&i) = targets.get(k).filter(|&&i| i as usize / w == y) {
+                emit(k as u32, self.row[i as usize % w]);
+                k += 1;
+            }
         }
     }
 

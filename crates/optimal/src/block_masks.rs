@@ -1,0 +1,116 @@
+//! Counting the unperceived entries of a long target list a block at a time.
+//!
+//! The order statistic ([`crate::heuristic`]) walks a position's targets by descending bound
+//! until it has passed s + 1 unperceived ones: hundreds of entries per bounded state, one bit
+//! test each. Consecutive entries of such a list are near one another on the map, so their
+//! bits fall in a few words of the perceived bitset. Each block of 64 entries is kept here
+//! as its (word, bits) pairs; the unperceived entries of a block are then counted with a
+//! few popcounts, and only the block that holds the answer is walked entry by entry.
+
+/// Entries per block.
+pub(crate) const BLOCK: usize = 64;
+
+/// The blocks of any number of target lists, appended one list after another.
+#[derive(Default)]
+pub(crate) struct BlockMasks {
+    /// Per block: the first of its pairs in `pairs` (one more entry closes the last block).
+    start: Vec<u32>,
+    /// Per block: its targets as (word of the bitset, bits), by word.
+    pairs: Vec<(u32, u64)>,
+    /// Scratch: one block's bits by word (all zero between blocks).
+    acc: Vec<u64>,
+    /// Scratch: the words of `acc` the block touched.
+    touched: Vec<u32>,
+}
+
+impl BlockMasks {
+    /// Forget every list.
+    pub(crate) fn clear(&mut self) {
+        self.start.clear();
+        self.pairs.clear();
+    }
+
+    /// Append the blocks of the list `targets` (its entries in list order); its blocks are
+    /// numbered on from those of the lists before it.
+    pub(crate) fn push_list(&mut self, targets: impl Iterator<Item = u32>) {
+        if self.start.is_empty() {
+            self.start.push(0);
+        }
+        let mut targets = targets.peekable();
+        while targets.peek().is_some() {
+            // Gather the block's bits by word (pairs in first-seen order: order is free).
+            self.touched.clear();
+            for t in targets.by_ref().take(BLOCK) {
+                let word = (t >> 6) as usize;
+                if word >= self.acc.len() {
+                    self.acc.resize(word + 1, 0);
+                }
+                if self.acc[word] == 0 {
+                    self.touched.push(word as u32);
+                }
+                self.acc[word] |= 1u64 << (t & 63);
+            }
+            for &word in &self.touched {
+                self.pairs.push((word, self.acc[word as usize]));
+                self.acc[word as usize] = 0;
+            }
+            self.start.push(self.pairs.len() as u32);
+        }
+    }
+
+    /// Entries of block `b` not set in `bits`.
+    #[inline]
+    pub(crate) fn open(&self, b: usize, bits: &[u64]) -> usize {
+        let (lo, hi) = (self.start[b] as usize, self.start[b + 1] as usize);
+        self.pairs[lo..hi]
+            .iter()
+            .map(|&(word, m)| (m & !bits[word as usize]).count_ones() as usize)
+            .sum()
+    }
+
+    /// Bytes held.
+    pub(crate) fn bytes(&self) -> usize {
+        self.start.capacity() * 4
+            + self.pairs.capacity() * 16
+            + self.acc.capacity() * 8
+            + self.touched.capacity() * 4
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        /// Every block's count equals the bit tests of its entries, over several lists of
+        /// distinct targets in random order and random perceived sets.
+        #[test]
+        fn block_counts_are_the_unperceived_entries(
+            lists in proptest::collection::vec(
+                Just(()).prop_flat_map(|_| {
+                    proptest::sample::subsequence((0u32..500).collect::<Vec<_>>(), 0..300)
+                        .prop_shuffle()
+                }),
+                1..4,
+            ),
+            seen in proptest::collection::vec(any::<u64>(), 8),
+        ) {
+            let mut masks = BlockMasks::default();
+            for list in &lists {
+                masks.push_list(list.iter().copied());
+            }
+            let mut b = 0;
+            for list in &lists {
+                for block in list.chunks(BLOCK) {
+                    let want = block
+                        .iter()
+                        .filter(|&&t| seen[(t >> 6) as usize] >> (t & 63) & 1 == 0)
+                        .count();
+                    prop_assert_eq!(masks.open(b, &seen), want);
+                    b += 1;
+                }
+            }
+        }
+    }
+}
