@@ -327,6 +327,11 @@ impl Heuristic {
         }
         if kind == HeuristicKind::Landmarks {
             h.far = SkipBudget::new(problem, h.skip);
+            if h.vd.is_some()
+                && let Some(far) = &mut h.far
+            {
+                far.without_single_point();
+            }
         }
         h
     }

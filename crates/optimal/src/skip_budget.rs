@@ -31,7 +31,9 @@
 //!
 //! Ownership: the bound is computed for the first far point alone (owning every target),
 //! the first two and the first three (each target owned by the far point with the
-//! smallest e_a(t), ties to the first), and the largest of the three is used: a later far
+//! smallest e_a(t), ties to the first), and the largest of the three is used (the first
+//! alone is left out where the order statistic takes exact viewpoint distances, which
+//! always give at least as much: [`SkipBudget::without_single_point`]): a later far
 //! point can steal the targets that made an earlier one's constraint strong (on a corridor
 //! floor, a middle office steals half of the far corridor end). With the footprint sensor
 //! V(t) crosses walls, and e_a(t) counts the farthest viewpoint in path distance, so the
@@ -96,6 +98,8 @@ pub(crate) struct SkipBudget {
     parent_ok: Vec<Vec<bool>>,
     /// The ownership that last gave the largest value.
     lead: usize,
+    /// The first ownership evaluated ([`SkipBudget::without_single_point`]).
+    from: usize,
     /// Per ownership: the split (in steps) that last gave the minimum.
     hint: Vec<(usize, usize)>,
 }
@@ -210,6 +214,7 @@ impl SkipBudget {
             between,
             hint: vec![(0, 0); k],
             lead: 0,
+            from: 0,
             parent_ok: owned.iter().map(|o| vec![false; o.len()]).collect(),
             parent: owned.iter().map(|o| vec![Vec::new(); o.len()]).collect(),
             parent_t: owned.iter().map(|o| vec![Vec::new(); o.len()]).collect(),
@@ -292,6 +297,16 @@ impl SkipBudget {
         list.len()
     }
 
+    /// Leave out the ownership of the first far point alone, for a caller whose order
+    /// statistic takes each target's exact viewpoint distance D(q, t): it can never give
+    /// more. For every viewpoint v of t, d(q, v) ≥ d(p, q) − d(p, v) ≥ d(p, q) − e(t), so
+    /// D(q, t) ≥ d(p, q) − e(t) for every target, and the (s + 1)-th largest D over U is at
+    /// least d(p, q) minus the (s + 1)-th smallest e over U, which is this ownership's
+    /// bound (its one far point, every target owned, δ ≤ E[s]).
+    pub(crate) fn without_single_point(&mut self) {
+        self.from = 1;
+    }
+
     /// Start bounding the children of a new state (`parent` of [`SkipBudget::bound`]): its
     /// E_a are scanned on first use. A child reuses its parent's E_a when it perceives
     /// nothing of E_a's prefix: every target t it perceives has e_a(t) ≥ d(p_a, child), the
@@ -323,9 +338,12 @@ impl SkipBudget {
         // The ownership that gave the last largest value first: its value raises the floor
         // the others must beat, so they more often stop at once.
         let n = self.owned.len();
-        let first = self.lead.min(n.saturating_sub(1));
+        if n <= self.from {
+            return best;
+        }
+        let first = self.lead.clamp(self.from, n - 1);
         let mut lead = None;
-        for j in std::iter::once(first).chain((0..n).filter(|&j| j != first)) {
+        for j in std::iter::once(first).chain((self.from..n).filter(|&j| j != first)) {
             let v = self.bound_owned(j, pos, &to_robot, bits, best, parent);
             if v > best {
                 best = v;
@@ -627,6 +645,61 @@ mod tests {
                     prop_assert!(e[a] >= s[a] - 1e-9, "{} < {}", e[a], s[a]);
                 }
             }
+        }
+
+        /// With the footprint sensor the first far point's ownership alone never exceeds the
+        /// order statistic over exact viewpoint distances (why
+        /// [`SkipBudget::without_single_point`] may leave it out), on random maps, perceived
+        /// sets, robot cells and budgets.
+        #[test]
+        fn single_point_ownership_is_dominated_by_viewpoint_distances(
+            w in 6usize..16,
+            h in 2usize..10,
+            walls in proptest::collection::vec(0u8..6, 160),
+            stops in proptest::collection::vec(0usize..160, 0..4),
+            robot in 0usize..160,
+            skip in 1usize..12,
+            r in 0.5f64..3.5,
+        ) {
+            let map = crate::walled_map(w, h, &walls);
+            let free: Vec<usize> = (0..w * h).filter(|&i| map.data()[i].is_free()).collect();
+            prop_assume!(!free.is_empty());
+            let start = free[0];
+            let p = Problem::new(
+                &map,
+                Cell::new((start % w) as i32, (start / w) as i32),
+                SensorModel::Footprint(r),
+            )
+            .expect("problem");
+            let reach: Vec<u32> = (0..w * h).filter(|&i| p.reachable(i)).map(|i| i as u32).collect();
+            let skip = skip.min(p.targets().len().saturating_sub(1));
+            let Some(mut sb) = SkipBudget::new(&p, skip) else { return Ok(()) };
+            let mut bits = vec![0u64; p.mark_count().div_ceil(64).max(1)];
+            perceive(&p, start as u32, &mut bits);
+            for &s in &stops {
+                perceive(&p, reach[s % reach.len()], &mut bits);
+            }
+            let q = reach[robot % reach.len()];
+            let to_robot: [f64; MAX_POINTS] =
+                std::array::from_fn(|a| sb.field.get(a).map_or(0.0, |f| f[q as usize]));
+            let single = sb.bound_owned(0, q, &to_robot, &bits, 0.0, None);
+            let mut dij = Reachability::new(w, h);
+            dij.compute(q as usize, |i| p.reachable(i));
+            let mut obs = Observation::new();
+            let mut d: Vec<f64> = (0..p.targets().len() as u32)
+                .filter(|&t| !crate::heuristic::has(&bits, t))
+                .map(|t| {
+                    let mut views = Vec::new();
+                    p.viewpoints(p.targets()[t as usize], &mut obs, &mut views);
+                    views
+                        .iter()
+                        .map(|&v| dij.cost(v as usize).unwrap_or(f64::INFINITY))
+                        .fold(f64::INFINITY, f64::min)
+                })
+                .collect();
+            d.sort_by(|a, b| b.total_cmp(a));
+            let order_statistic = d.get(skip).copied().unwrap_or(0.0);
+            prop_assert!(single <= order_statistic + 1e-9, "{} > {}", single, order_statistic);
         }
 
         /// A child bounded with its parent's lists (reused, or skipped against the floor)
