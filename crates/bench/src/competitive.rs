@@ -65,8 +65,9 @@ impl Default for OptimalSpec {
 
 /// Revision of the optimal search in stored keys: its definition (actions, goal) and its
 /// heuristic, which decides the bounds reached when a node budget stops it (v3: Held–Karp
-/// over viewpoint sets; v4: the footprint's viewpoint distances, field step costs).
-const SEARCH_REVISION: u32 = 4;
+/// over viewpoint sets; v4: the footprint's viewpoint distances, field step costs; v5: the
+/// skip-budget bound with two far points).
+const SEARCH_REVISION: u32 = 5;
 
 impl OptimalSpec {
     /// A text naming every setting (part of the study's fingerprint and of cache keys), and
