@@ -591,6 +591,43 @@ mod tests {
         }
     }
 
+    /// [`budget_case`]'s problem, reachable cells, bound, perceived marks and budget.
+    type BudgetCase = (Problem, Vec<u32>, SkipBudget, Vec<u64>, usize);
+
+    /// A random walled map's problem from its first free cell, its reachable cells, the
+    /// skip-budget bound for `skip` (capped below the target count) and what the start and
+    /// the reachable cells picked by `stops` perceive; `None` without a free cell or a
+    /// bound.
+    fn budget_case(
+        w: usize,
+        h: usize,
+        walls: &[u8],
+        model: SensorModel,
+        stops: &[usize],
+        skip: usize,
+    ) -> Option<BudgetCase> {
+        let map = crate::walled_map(w, h, walls);
+        let start = (0..w * h).find(|&i| map.data()[i].is_free())?;
+        let p = Problem::new(
+            &map,
+            Cell::new((start % w) as i32, (start / w) as i32),
+            model,
+        )
+        .expect("problem");
+        let reach: Vec<u32> = (0..w * h)
+            .filter(|&i| p.reachable(i))
+            .map(|i| i as u32)
+            .collect();
+        let skip = skip.min(p.targets().len().saturating_sub(1));
+        let sb = SkipBudget::new(&p, skip)?;
+        let mut bits = vec![0u64; p.mark_count().div_ceil(64).max(1)];
+        perceive(&p, start as u32, &mut bits);
+        for &s in stops {
+            perceive(&p, reach[s % reach.len()], &mut bits);
+        }
+        Some((p, reach, sb, bits, skip))
+    }
+
     proptest! {
         /// The line-of-sight estimate d(p_a, t) + c of the farthest viewpoint's distance is
         /// never below the scanned one (so it counts no target the scan would not), and the
@@ -644,24 +681,8 @@ mod tests {
             skip in 1usize..12,
             r in 0.5f64..3.5,
         ) {
-            let map = crate::walled_map(w, h, &walls);
-            let free: Vec<usize> = (0..w * h).filter(|&i| map.data()[i].is_free()).collect();
-            prop_assume!(!free.is_empty());
-            let start = free[0];
-            let p = Problem::new(
-                &map,
-                Cell::new((start % w) as i32, (start / w) as i32),
-                SensorModel::Footprint(r),
-            )
-            .expect("problem");
-            let reach: Vec<u32> = (0..w * h).filter(|&i| p.reachable(i)).map(|i| i as u32).collect();
-            let skip = skip.min(p.targets().len().saturating_sub(1));
-            let Some(mut sb) = SkipBudget::new(&p, skip) else { return Ok(()) };
-            let mut bits = vec![0u64; p.mark_count().div_ceil(64).max(1)];
-            perceive(&p, start as u32, &mut bits);
-            for &s in &stops {
-                perceive(&p, reach[s % reach.len()], &mut bits);
-            }
+            let case = budget_case(w, h, &walls, SensorModel::Footprint(r), &stops, skip);
+            let Some((p, reach, mut sb, bits, skip)) = case else { return Ok(()) };
             let q = reach[robot % reach.len()];
             let to_robot: [f64; MAX_POINTS] =
                 std::array::from_fn(|a| sb.field.get(a).map_or(0.0, |f| f[q as usize]));
@@ -698,21 +719,9 @@ mod tests {
             floor in 0.0f64..20.0,
             fp in any::<bool>(),
         ) {
-            let map = crate::walled_map(w, h, &walls);
-            let free: Vec<usize> = (0..w * h).filter(|&i| map.data()[i].is_free()).collect();
-            prop_assume!(!free.is_empty());
-            let start = free[0];
             let model = if fp { SensorModel::Footprint(1.5) } else { SensorModel::Los(2.0) };
-            let p = Problem::new(&map, Cell::new((start % w) as i32, (start / w) as i32), model)
-                .expect("problem");
-            let reach: Vec<u32> = (0..w * h).filter(|&i| p.reachable(i)).map(|i| i as u32).collect();
-            let skip = skip.min(p.targets().len().saturating_sub(1));
-            let Some(mut sb) = SkipBudget::new(&p, skip) else { return Ok(()) };
-            let mut parent = vec![0u64; p.mark_count().div_ceil(64).max(1)];
-            perceive(&p, start as u32, &mut parent);
-            for &s in &stops {
-                perceive(&p, reach[s % reach.len()], &mut parent);
-            }
+            let case = budget_case(w, h, &walls, model, &stops, skip);
+            let Some((p, reach, mut sb, parent, _)) = case else { return Ok(()) };
             let pos = reach[child % reach.len()];
             let mut bits = parent.clone();
             perceive(&p, pos, &mut bits);
