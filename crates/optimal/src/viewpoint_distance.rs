@@ -161,21 +161,25 @@ impl ViewpointDistance {
         let mut k = 0;
         while k < targets.len() {
             let y = targets[k] as usize / w;
-            self.row.fill(f64::INFINITY);
+            // The row's targets, k..end, lie in columns x0..=x1.
+            let end = k + targets[k..].partition_point(|&i| i as usize / w == y);
+            let (x0, x1) = (targets[k] as usize % w, targets[end - 1] as usize % w);
+            let row = &mut self.row[x0..=x1];
+            row.fill(f64::INFINITY);
             for (j, hw) in self.half.iter().enumerate() {
                 let Some(hw) = *hw else { continue };
                 let Some(yy) = (y + j).checked_sub(reach).filter(|&yy| yy < h) else {
                     continue;
                 };
-                let src = &self.h[hw * n + yy * w..hw * n + yy * w + w];
-                for (r, &v) in self.row.iter_mut().zip(src) {
+                let at = hw * n + yy * w;
+                for (r, &v) in row.iter_mut().zip(&self.h[at + x0..=at + x1]) {
                     *r = if v < *r { v } else { *r };
                 }
             }
-            while let Some(&i) = targets.get(k).filter(|&&i| i as usize / w == y) {
-                emit(k as u32, self.row[i as usize % w]);
-                k += 1;
+            for (t, &i) in targets[k..end].iter().enumerate() {
+                emit((k + t) as u32, self.row[i as usize % w]);
             }
+            k = end;
         }
     }
 
