@@ -66,7 +66,7 @@ impl Default for OptimalSpec {
 /// Revision of the optimal search in stored keys: its definition (actions, goal) and its
 /// heuristic, which decides the bounds reached when a node budget stops it (v3: Held–Karp
 /// over viewpoint sets; v4: the footprint's viewpoint distances, field step costs; v5: the
-/// skip-budget bound with two far points).
+/// skip-budget bound with two far points and its direct term).
 const SEARCH_REVISION: u32 = 5;
 
 impl OptimalSpec {
