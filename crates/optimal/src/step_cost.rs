@@ -153,8 +153,9 @@ impl StepCosts {
 
     /// Meet reachable cell `u` at cost `c` from a settled neighbour: label it (or lower its
     /// label) if it is perceived and not settled. Returns whether it is passable.
+    /// With `FULL` every reachable cell is passable (`bits` is not read).
     #[inline(always)]
-    fn visit(&mut self, bits: &[u64], u: u32, c: f64) -> bool {
+    fn visit<const FULL: bool>(&mut self, bits: &[u64], u: u32, c: f64) -> bool {
         if u == NONE {
             return false;
         }
@@ -170,7 +171,7 @@ impl StepCosts {
                 self.buckets[c as usize % BUCKETS].push(u);
             }
             true
-        } else if has(bits, slot.mark) {
+        } else if FULL || has(bits, slot.mark) {
             slot.tag = tag;
             slot.cost = c;
             self.buckets[c as usize % BUCKETS].push(u);
@@ -184,6 +185,12 @@ impl StepCosts {
     /// Costs from reachable cell `start` to every cell reachable inside the perceived free
     /// cells `bits` (a set of marks); the start itself is always left.
     pub(crate) fn compute(&mut self, start: u32, bits: &[u64]) {
+        self.search::<false>(start, bits);
+    }
+
+    /// [`StepCosts::compute`], or with `FULL` over the full map (every reachable cell
+    /// passable, no bit tested, no settling order kept).
+    fn search<const FULL: bool>(&mut self, start: u32, bits: &[u64]) {
         let tag = self.fresh_tag();
         for b in &mut self.buckets {
             b.clear();
@@ -194,7 +201,12 @@ impl StepCosts {
             return;
         }
         let slot = &mut self.slot[s as usize];
-        slot.tag = tag | if has(bits, slot.mark) { 0 } else { BLOCKED };
+        slot.tag = tag
+            | if FULL || has(bits, slot.mark) {
+                0
+            } else {
+                BLOCKED
+            };
         slot.cost = 0.0;
         self.buckets[0].push(s);
         let mut k = 0usize;
@@ -216,25 +228,27 @@ impl StepCosts {
                 }
                 slot.tag |= DONE;
                 let ci = slot.cost;
-                self.settled.push(self.flat[ui]);
+                if !FULL {
+                    self.settled.push(self.flat[ui]);
+                }
                 let [r, d, l, up, dr, dl, ul, ur] = self.nbr[ui];
                 let c1 = ci + 1.0;
-                let pr = self.visit(bits, r, c1);
-                let pd = self.visit(bits, d, c1);
-                let pl = self.visit(bits, l, c1);
-                let pu = self.visit(bits, up, c1);
+                let pr = self.visit::<FULL>(bits, r, c1);
+                let pd = self.visit::<FULL>(bits, d, c1);
+                let pl = self.visit::<FULL>(bits, l, c1);
+                let pu = self.visit::<FULL>(bits, up, c1);
                 let c2 = ci + grid::SQRT2;
                 if pr || pd {
-                    self.visit(bits, dr, c2);
+                    self.visit::<FULL>(bits, dr, c2);
                 }
                 if pl || pd {
-                    self.visit(bits, dl, c2);
+                    self.visit::<FULL>(bits, dl, c2);
                 }
                 if pl || pu {
-                    self.visit(bits, ul, c2);
+                    self.visit::<FULL>(bits, ul, c2);
                 }
                 if pr || pu {
-                    self.visit(bits, ur, c2);
+                    self.visit::<FULL>(bits, ur, c2);
                 }
             }
             bucket.clear();
@@ -249,10 +263,9 @@ impl StepCosts {
     }
 
     /// Append to `cost` the costs from reachable cell `start` to every reachable cell in
-    /// the full map (every cell passable), by reachable index; `all` is the set of every
-    /// mark.
-    pub(crate) fn field(&mut self, start: u32, all: &[u64], cost: &mut Vec<f64>) {
-        self.compute(start, all);
+    /// the full map (every cell passable), by reachable index.
+    pub(crate) fn field(&mut self, start: u32, cost: &mut Vec<f64>) {
+        self.search::<true>(start, &[]);
         let tag = self.epoch << 2 | DONE;
         cost.extend(
             self.slot
@@ -502,8 +515,6 @@ pub(crate) struct FieldCache {
     len: usize,
     cost: Vec<f64>,
     cap_bytes: usize,
-    /// Every mark: all cells passable.
-    all: Vec<u64>,
     /// Per (from, to): the marks (as (word, bits)) the last path found inside needed
     /// perceived; a perceived set that holds them has that path.
     paths: HashMap<(u32, u32), (u32, u32), BuildHasherDefault<MixHasher>>,
@@ -520,7 +531,6 @@ impl FieldCache {
             steps,
             cost: Vec::new(),
             cap_bytes,
-            all: vec![u64::MAX; problem.mark_count().div_ceil(64).max(1)],
             paths: HashMap::default(),
             path_words: Vec::new(),
         }
@@ -535,7 +545,7 @@ impl FieldCache {
                 self.slot.fill(NONE);
             }
             self.slot[p] = (self.cost.len() / self.len.max(1)) as u32;
-            self.steps.field(pos, &self.all, &mut self.cost);
+            self.steps.field(pos, &mut self.cost);
         }
         self.slot[p] as usize * self.len
     }
@@ -654,7 +664,12 @@ mod tests {
             let mut ours = StepCosts::new(&p);
             for s in (0..w * h).filter(|&i| p.reachable(i) && has(&bits, p.target_index(i))) {
                 let mut field = Vec::new();
-                ours.field(s as u32, &all, &mut field);
+                ours.field(s as u32, &mut field);
+                // The full-map field is the search with every mark perceived.
+                ours.compute(s as u32, &all);
+                for (u, &f) in ours.flat.clone().iter().zip(&field) {
+                    prop_assert_eq!(f.to_bits(), ours.dist(*u as usize).to_bits());
+                }
                 ours.compute(s as u32, &bits);
                 let costs: Vec<f64> = (0..w * h).map(|i| ours.dist(i)).collect();
                 for t in (0..w * h).filter(|&i| p.reachable(i) && has(&bits, p.target_index(i))) {
@@ -691,8 +706,6 @@ mod tests {
             let case = crate::walled_problem(w, h, &walls, pick, SensorModel::Los(2.0));
             prop_assume!(case.is_some());
             let (p, _) = case.expect("assumed");
-            let words = p.mark_count().div_ceil(64).max(1);
-            let all = vec![u64::MAX; words];
             let mut cache = FieldCache::new(&p, usize::MAX);
             let mut fresh = StepCosts::new(&p);
             let reach: Vec<u32> = (0..w * h).filter(|&i| p.reachable(i)).map(|i| i as u32).collect();
@@ -701,7 +714,7 @@ mod tests {
                 for &a in &reach {
                     for &b in &reach {
                         let mut field = Vec::new();
-                        fresh.field(a, &all, &mut field);
+                        fresh.field(a, &mut field);
                         let want = fresh.inside(&field, a, b, &bits);
                         prop_assert_eq!(cache.inside(a, b, &bits), want, "{} -> {}", a, b);
                     }
