@@ -571,16 +571,19 @@ fn path(
     to_robot: &[f64; MAX_POINTS],
     delta: &[f64; MAX_POINTS],
 ) -> f64 {
-    let leg = |a: usize, b: usize| (between[a][b] - delta[a] - delta[b]).max(0.0);
-    let first = |a: usize| (to_robot[a] - delta[a]).max(0.0);
-    match k {
-        1 => first(0),
-        // Visiting x_a then x_b costs at least d(q, x_a) + d(x_a, x_b) and, the path being
-        // at least as long as its ends' distance, at least d(q, x_b).
-        _ => (first(0) + leg(0, 1))
-            .max(first(1))
-            .min((first(1) + leg(1, 0)).max(first(0))),
+    // Plain comparisons (no NaN arises: distances are finite, δ may be ∞).
+    let pos = |x: f64| if x > 0.0 { x } else { 0.0 };
+    let (f0, f1) = (pos(to_robot[0] - delta[0]), pos(to_robot[1] - delta[1]));
+    if k == 1 {
+        return f0;
     }
+    // `between` is symmetric. Visiting x_a then x_b costs at least d(q, x_a) + d(x_a, x_b)
+    // and, the path being at least as long as its ends' distance, at least d(q, x_b).
+    let leg = pos(between[0][1] - delta[0] - delta[1]);
+    let (a, b) = (f0 + leg, f1 + leg);
+    let first_0 = if a > f1 { a } else { f1 };
+    let first_1 = if b > f0 { b } else { f0 };
+    if first_0 < first_1 { first_0 } else { first_1 }
 }
 
 #[cfg(test)]
