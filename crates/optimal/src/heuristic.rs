@@ -198,9 +198,11 @@ pub(crate) struct Heuristic {
     n_targets: usize,
     /// Targets that may stay unperceived at the end.
     skip: usize,
-    /// Per position: the `order_len` targets of largest bound value, descending
-    /// (value, target).
-    order_slot: HashMap<u32, u32>,
+    /// Per flat cell: the slot of its order in `orders` (`u32::MAX`: none yet). An order
+    /// is the `order_len` targets of largest bound value, descending (value, target).
+    order_slot: Vec<u32>,
+    /// Orders held.
+    order_count: usize,
     /// Entries kept per position: all for the paper's formula as published, else
     /// 2(s + 1) + [`ORDER_SLACK`] and at least [`ORDER_MIN`] (on a 350 × 250 map at G = 0.95
     /// a seventh of the targets).
@@ -300,7 +302,8 @@ impl Heuristic {
             n_targets,
             skip,
             order_len,
-            order_slot: HashMap::new(),
+            order_slot: vec![u32::MAX; cells.len()],
+            order_count: 0,
             orders: Vec::new(),
             blocks: BlockMasks::default(),
             sort_scratch: Default::default(),
@@ -340,7 +343,7 @@ impl Heuristic {
     pub(crate) fn bytes(&self) -> usize {
         self.orders.capacity() * 16
             + self.blocks.bytes()
-            + self.order_slot.len() * 24
+            + self.order_slot.len() * 4
             + self.lm_field.capacity() * 8
             + self.path_cache.capacity() * 40
             + self.far.as_ref().map_or(0, SkipBudget::bytes)
@@ -421,15 +424,17 @@ impl Heuristic {
 
     /// The distance order of position `pos` (computed on first use).
     fn order(&mut self, problem: &Problem, pos: u32) -> usize {
-        if let Some(&s) = self.order_slot.get(&pos) {
+        let s = self.order_slot[pos as usize];
+        if s != u32::MAX {
             return s as usize * self.order_len;
         }
         if self.orders.len() * 16 > self.cache_cap_bytes {
             self.orders.clear();
-            self.order_slot.clear();
+            self.order_slot.fill(u32::MAX);
+            self.order_count = 0;
             self.blocks.clear();
         }
-        let slot = self.order_slot.len();
+        let slot = self.order_count;
         let base = self.orders.len();
         let targets = problem.targets();
         let cells = problem.cells();
@@ -476,7 +481,8 @@ impl Heuristic {
         }
         self.blocks
             .push_list(self.orders[base..].iter().map(|&(_, t)| t));
-        self.order_slot.insert(pos, slot as u32);
+        self.order_slot[pos as usize] = slot as u32;
+        self.order_count += 1;
         base
     }
 
