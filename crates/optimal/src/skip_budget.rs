@@ -54,11 +54,13 @@
 //!
 //! # Cost
 //! Per bound, each list is scanned up to its (s + 1)-th unperceived target, and the splits
-//! are enumerated until one gives no more than the other bounds already do. Siblings share
-//! their parent's scans: a child perceives only targets it is a viewpoint of, so it cannot
-//! change E_a when it is farther from p_a than E_a's last value, and the parent's E_a at
-//! the last minimising split bound the child's value from above (the child's E_a are no
-//! smaller), which often shows that the child's own scan cannot matter. On the corridor
+//! are enumerated until one gives no more than the other bounds already do (a block of
+//! [`SPLIT_BLOCK`] splits is passed over when the δ at its ends show it cannot beat the best
+//! split so far). Siblings share their parent's scans: a child perceives only targets it
+//! is a viewpoint of, so it cannot change E_a when it is farther from p_a than E_a's last
+//! value, and the parent's E_a at the last minimising split bound the child's value from
+//! above (the child's E_a are no smaller), which often shows that the child's own scan
+//! cannot matter. On the corridor
 //! floor this halves the states expanded; on maps where it never beats the coverage-rate
 //! bound (the benchmark's cave and potholes) it costs about a tenth of the search's time.
 

@@ -14,8 +14,9 @@
 //! S is a union of row intervals [−w_dy, w_dy] (read off the sensor's own scan of an empty
 //! grid), so with H_w(x, y) = min over |dx| ≤ w of d(q, (x + dx, y)), built for w = 0..=r
 //! by H_w = min(H_{w−1}, d shifted by ±w), D(q, t) = min over dy of H_{w_dy}(t + (0, dy)).
-//! That is (r + 1) passes over the map and 2r + 1 reads per target, instead of a scan of
-//! the disc per target. Written here: no crate erodes by an arbitrary row-interval shape.
+//! That is (r + 1) passes over the map, then 2r + 1 passes over each row of targets (one
+//! per row of the footprint, over the row's target columns), all branch-free so that they
+//! vectorise, instead of a scan of the disc per target. Written here: no crate erodes by an arbitrary row-interval shape.
 
 use crate::problem::Problem;
 
