@@ -428,7 +428,7 @@ impl Heuristic {
         if s != u32::MAX {
             return s as usize * self.order_len;
         }
-        if self.orders.len() * 16 > self.cache_cap_bytes {
+        if self.orders.len() * 16 + self.blocks.bytes() > self.cache_cap_bytes {
             self.orders.clear();
             self.order_slot.fill(u32::MAX);
             self.order_count = 0;
@@ -557,7 +557,7 @@ impl Heuristic {
             let mut v = 0.0;
             let first_block = base / self.order_len * self.order_len.div_ceil(BLOCK);
             for (b, block) in list.chunks(BLOCK).enumerate() {
-                let open = self.blocks.open(first_block + b, bits);
+                let open = self.blocks.open(first_block + b, bits, block);
                 if open <= left {
                     left -= open;
                     continue;

@@ -286,11 +286,16 @@ impl SkipBudget {
         let (masks, first) = blocks;
         let mut k = from;
         while k < list.len() {
-            if k.is_multiple_of(BLOCK) && masks.open(first + k / BLOCK, bits) == 0 {
-                k += BLOCK;
+            let end = ((k / BLOCK + 1) * BLOCK).min(list.len());
+            // (A block without pairs would be counted entry by entry: walked at once.)
+            let b = first + k / BLOCK;
+            if k.is_multiple_of(BLOCK)
+                && masks.has_pairs(b)
+                && masks.open(b, bits, &list[k..end]) == 0
+            {
+                k = end;
                 continue;
             }
-            let end = ((k / BLOCK + 1) * BLOCK).min(list.len());
             for (i, &(x, target)) in list[..end].iter().enumerate().skip(k) {
                 e[len] = x;
                 if let Some(t) = t.as_deref_mut() {
