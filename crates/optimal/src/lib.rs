@@ -17,14 +17,15 @@
 //!   through landmarks (`held_karp`) and the coverage-rate bound (`coverage_rate`: each
 //!   unit of path uncovers at most ρ* new cells) and, for G < 1, the skip-budget bound
 //!   (`skip_budget`: the map's far ends must still be approached, each less closely the
-//!   more of the budget the others take);
+//!   more of the budget the others take); long target lists are counted a block of 64 at
+//!   a time (`block_masks`);
 //! - [`search`]: A*, weighted A*, limits and bounds (step costs: `step_cost`, from
 //!   per-position distance fields when a shortest path lies inside the perceived space);
 //! - [`coarse`]: solving on a coarsened map (the paper's cell sizes 1, 2, 4), and a first
 //!   incumbent from a coarser map for searches that will stop with bounds.
 //!
-//! The search itself, the bounds and the bit-row and erosion routines are written here:
-//! no crate does A* over exploration states, and the rest is specific to it.
+//! The search itself, the bounds and the bit-row, block-count and erosion routines are
+//! written here: no crate does A* over exploration states, and the rest is specific to it.
 //!
 //! ```
 //! use grid::{Cell, Grid, Occ};
