@@ -396,6 +396,8 @@ struct Engine<'p> {
     cand_dist: Vec<f64>,
     inc_cost: f64,
     inc_positions: Vec<u32>,
+    /// Whether the incumbent is the coarse map's path (its cells need not be actions).
+    inc_coarse: bool,
     stats: Stats,
     fixed_bytes: usize,
     /// Number of targets: marks below it are free cells the goal counts.
@@ -451,6 +453,7 @@ impl<'p> Engine<'p> {
             cand_dist: Vec::new(),
             inc_cost: f64::INFINITY,
             inc_positions: Vec::new(),
+            inc_coarse: false,
             stats: Stats::default(),
             // Step costs, action marks, Zobrist keys, the problem's arrays.
             fixed_bytes: reach_bytes + rows_bytes + n * (4 + 16 + 12) + nm * 20,
@@ -748,6 +751,7 @@ impl<'p> Engine<'p> {
             self.inc_cost = cost + c;
             positions.extend(tail);
             self.inc_positions = positions;
+            self.inc_coarse = true;
         }
     }
 
@@ -769,6 +773,7 @@ impl<'p> Engine<'p> {
                 let mut p = self.positions_of(id);
                 p.extend(tail);
                 self.inc_positions = p;
+                self.inc_coarse = false;
             }
         }
         steps
@@ -1015,6 +1020,7 @@ impl<'p> Engine<'p> {
                 let mut p = self.positions_of(id);
                 p.push(a);
                 self.inc_positions = p;
+                self.inc_coarse = false;
                 continue;
             }
             self.child.copy_from_slice(&self.cur);
@@ -1117,6 +1123,10 @@ impl<'p> Engine<'p> {
         self.stats.bytes = self.stats.bytes.max(self.bytes_with(0));
         let ub = self.inc_cost;
         let message = match status {
+            Status::Optimal if self.inc_coarse => format!(
+                "optimal: length {ub:.3} cells, the coarse incumbent's path (its positions \
+                 are not all actions of the set; no path of the set is shorter)"
+            ),
             Status::Optimal => format!("optimal: length {ub:.3} cells"),
             Status::WithinBound => format!(
                 "weighted A* (w = {}): length {ub:.3} cells, optimal ≥ {lb:.3}",
@@ -1333,6 +1343,10 @@ mod tests {
                 let again = walk(&p, &sol.positions).expect("valid path");
                 prop_assert!((again.length - seeded.upper_bound).abs() < 1e-9);
                 prop_assert!(again.perceived >= p.needed(cfg.goal));
+                // A path shorter than the set's optimum is the coarse incumbent's, and says so.
+                if seeded.upper_bound < plain.upper_bound - 1e-9 {
+                    prop_assert!(seeded.message.contains("coarse incumbent"), "{}", seeded.message);
+                }
                 let all = solve(&p, &Config { actions: ActionSet::All, ..cfg }).expect("solve");
                 if all.status == Status::Optimal {
                     prop_assert!(seeded.upper_bound >= all.upper_bound - 1e-9);
