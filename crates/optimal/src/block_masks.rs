@@ -9,8 +9,8 @@
 //!
 //! Where a list's neighbours are scattered (rings of equal distance on an open map: 62
 //! words per block on a warehouse map, 11 on the corridor floor), a block of more than
-//! [`MAX_PAIRS`] words keeps no pairs and is counted entry by entry, as before: no slower
-//! and no larger than the list itself.
+//! [`MAX_PAIRS`] words keeps no pairs and is counted entry by entry, as without blocks: no
+//! slower and no larger than the list itself.
 
 /// Entries per block.
 pub(crate) const BLOCK: usize = 64;
@@ -24,7 +24,7 @@ pub(crate) struct BlockMasks {
     /// Per block: the first of its pairs in `pairs` (one more entry closes the last block;
     /// a block without pairs is counted entry by entry).
     start: Vec<u32>,
-    /// Per block: its targets as (word of the bitset, bits), by word.
+    /// Per block: its targets as (word of the bitset, bits), one pair per word touched.
     pairs: Vec<(u32, u64)>,
     /// Scratch: one block's bits by word (all zero between blocks).
     acc: Vec<u64>,
