@@ -12,6 +12,8 @@
 //! [`MAX_PAIRS`] words keeps no pairs and is counted entry by entry, as without blocks: no
 //! slower and no larger than the list itself.
 
+use crate::heuristic::has;
+
 /// Entries per block.
 pub(crate) const BLOCK: usize = 64;
 /// Most (word, bits) pairs a block keeps; a block spread over more words is counted entry
@@ -82,10 +84,7 @@ impl BlockMasks {
     pub(crate) fn open(&self, b: usize, bits: &[u64], entries: &[(f64, u32)]) -> usize {
         let (lo, hi) = (self.start[b] as usize, self.start[b + 1] as usize);
         if lo == hi {
-            return entries
-                .iter()
-                .filter(|&&(_, t)| bits[(t >> 6) as usize] >> (t & 63) & 1 == 0)
-                .count();
+            return entries.iter().filter(|&&(_, t)| !has(bits, t)).count();
         }
         self.pairs[lo..hi]
             .iter()
@@ -133,7 +132,7 @@ mod tests {
                 for block in entries.chunks(BLOCK) {
                     let want = block
                         .iter()
-                        .filter(|&&(_, t)| seen[(t >> 6) as usize] >> (t & 63) & 1 == 0)
+                        .filter(|&&(_, t)| !has(&seen, t))
                         .count();
                     prop_assert_eq!(masks.open(b, &seen, block), want);
                     b += 1;

@@ -201,8 +201,6 @@ pub(crate) struct Heuristic {
     /// Per flat cell: the slot of its order in `orders` (`u32::MAX`: none yet). An order
     /// is the `order_len` targets of largest bound value, descending (value, target).
     order_slot: Vec<u32>,
-    /// Orders held.
-    order_count: usize,
     /// Entries kept per position: all for the paper's formula as published, else
     /// 2(s + 1) + [`ORDER_SLACK`] and at least [`ORDER_MIN`] (on a 350 × 250 map at G = 0.95
     /// a seventh of the targets).
@@ -303,7 +301,6 @@ impl Heuristic {
             skip,
             order_len,
             order_slot: vec![u32::MAX; cells.len()],
-            order_count: 0,
             orders: Vec::new(),
             blocks: BlockMasks::default(),
             sort_scratch: Default::default(),
@@ -431,11 +428,10 @@ impl Heuristic {
         if self.orders.len() * 16 + self.blocks.bytes() > self.cache_cap_bytes {
             self.orders.clear();
             self.order_slot.fill(u32::MAX);
-            self.order_count = 0;
             self.blocks.clear();
         }
-        let slot = self.order_count;
         let base = self.orders.len();
+        let slot = base / self.order_len;
         let targets = problem.targets();
         let cells = problem.cells();
         let euclid = matches!(self.model, SensorModel::Footprint(_))
@@ -482,7 +478,6 @@ impl Heuristic {
         self.blocks
             .push_list(self.orders[base..].iter().map(|&(_, t)| t));
         self.order_slot[pos as usize] = slot as u32;
-        self.order_count += 1;
         base
     }
 

@@ -520,6 +520,14 @@ impl<'p> Engine<'p> {
         }
     }
 
+    /// Make the path through `positions`, of length `cost`, the incumbent; `coarse` when it
+    /// is the coarse map's path.
+    fn set_incumbent(&mut self, cost: f64, positions: Vec<u32>, coarse: bool) {
+        self.inc_cost = cost;
+        self.inc_positions = positions;
+        self.inc_coarse = coarse;
+    }
+
     fn positions_of(&self, mut id: u32) -> Vec<u32> {
         let mut out = Vec::new();
         while id != NONE {
@@ -748,10 +756,8 @@ impl<'p> Engine<'p> {
         if let Some((c, tail)) = best
             && cost + c < self.inc_cost - EPS
         {
-            self.inc_cost = cost + c;
             positions.extend(tail);
-            self.inc_positions = positions;
-            self.inc_coarse = true;
+            self.set_incumbent(cost + c, positions, true);
         }
     }
 
@@ -769,11 +775,9 @@ impl<'p> Engine<'p> {
             if let Some(c) = done
                 && n.g + c < self.inc_cost - EPS
             {
-                self.inc_cost = n.g + c;
                 let mut p = self.positions_of(id);
                 p.extend(tail);
-                self.inc_positions = p;
-                self.inc_coarse = false;
+                self.set_incumbent(n.g + c, p, false);
             }
         }
         steps
@@ -806,8 +810,7 @@ impl<'p> Engine<'p> {
             .admissible(problem.model(), self.cfg.goal);
         let w = self.cfg.weight;
         if count >= self.need {
-            self.inc_cost = 0.0;
-            self.inc_positions = vec![start];
+            self.set_incumbent(0.0, vec![start], false);
             return self.finish(Status::Optimal, None, 0.0, started);
         }
         let cur = self.cur.clone();
@@ -1016,11 +1019,9 @@ impl<'p> Engine<'p> {
             self.stats.generated += 1;
             let count2 = node.count as usize + new_targets;
             if count2 >= self.need {
-                self.inc_cost = g2;
                 let mut p = self.positions_of(id);
                 p.push(a);
-                self.inc_positions = p;
-                self.inc_coarse = false;
+                self.set_incumbent(g2, p, false);
                 continue;
             }
             self.child.copy_from_slice(&self.cur);

@@ -667,8 +667,8 @@ mod tests {
                 ours.field(s as u32, &mut field);
                 // The full-map field is the search with every mark perceived.
                 ours.compute(s as u32, &all);
-                for (u, &f) in ours.flat.clone().iter().zip(&field) {
-                    prop_assert_eq!(f.to_bits(), ours.dist(*u as usize).to_bits());
+                for (u, &f) in field.iter().enumerate() {
+                    prop_assert_eq!(f.to_bits(), ours.dist(ours.flat[u] as usize).to_bits());
                 }
                 ours.compute(s as u32, &bits);
                 let costs: Vec<f64> = (0..w * h).map(|i| ours.dist(i)).collect();

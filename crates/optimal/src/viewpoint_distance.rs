@@ -128,6 +128,8 @@ impl ViewpointDistance {
                 // The columns with both neighbours on the map, without branches (so the
                 // loop vectorises), then the few at either edge.
                 let (lo, hi) = (a.max(wd), b.min(w.saturating_sub(wd + 1)));
+                // (No interior: every column of the span is an edge.)
+                let (lo, hi) = if lo <= hi { (lo, hi) } else { (b + 1, b) };
                 if lo <= hi {
                     let (o, pm) = (&mut out[lo..=hi], &p[lo..=hi]);
                     let (dl, dr) = (&d[lo - wd..=hi - wd], &d[lo + wd..=hi + wd]);
@@ -136,12 +138,7 @@ impl ViewpointDistance {
                         *o = if m < v { m } else { v };
                     }
                 }
-                let edges = if lo <= hi {
-                    (a..lo).chain(hi + 1..b + 1)
-                } else {
-                    (a..b + 1).chain(0..0)
-                };
-                for x in edges {
+                for x in (a..lo).chain(hi + 1..b + 1) {
                     let mut v = p[x];
                     if x >= wd {
                         v = v.min(d[x - wd]);
