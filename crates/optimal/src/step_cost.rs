@@ -84,6 +84,26 @@ pub(crate) struct StepCosts {
     walked: Vec<u32>,
     /// The open list of [`StepCosts::guided`].
     heap: std::collections::BinaryHeap<AstarEntry>,
+    /// The full map's graph on a grid padded by one cell ([`StepCosts::field`]).
+    padded: Padded,
+}
+
+/// The reachable cells on a grid with a one-cell border, for [`StepCosts::field`]: a cell's
+/// neighbours lie at fixed offsets and its allowed moves are one byte, so the full-map
+/// search reads no neighbour lists and keeps no search numbers.
+struct Padded {
+    /// Per reachable cell: its padded cell.
+    cell: Vec<u32>,
+    /// Per padded cell: bit k set when move k (right, down, left, up, down-right,
+    /// down-left, up-left, up-right) leads to a reachable cell, a diagonal only past a
+    /// reachable straight cell (no corner squeezing). 0 off the reachable cells.
+    moves: Vec<u8>,
+    /// Move k's offset in padded cells.
+    offset: [isize; 8],
+    /// Scratch: costs by padded cell.
+    cost: Vec<f64>,
+    /// The costs before a search: ∞ on the reachable cells, −∞ elsewhere.
+    unlabelled: Vec<f64>,
 }
 
 /// An open entry of [`StepCosts::guided`]: least f first, then largest g, then cell.
@@ -116,7 +136,7 @@ impl StepCosts {
             })
             .collect();
         debug_assert!(slot.iter().all(|s| s.mark != crate::problem::NOT_TARGET));
-        let nbr = flat
+        let nbr: Vec<[u32; 8]> = flat
             .iter()
             .map(|&i| {
                 let (x, y) = (i as i64 % w, i as i64 / w);
@@ -130,7 +150,39 @@ impl StepCosts {
                 })
             })
             .collect();
+        let pw = w as usize + 2;
+        let offset = grid::NEIGHBOURS8.map(|(dx, dy)| dy as isize * pw as isize + dx as isize);
+        let pad =
+            |i: u32| ((i as usize / w as usize + 1) * pw + i as usize % w as usize + 1) as u32;
+        let mut moves = vec![0u8; pw * (h as usize + 2)];
+        for (u, nb) in nbr.iter().enumerate() {
+            let [r, d, l, up, ..]: [u32; 8] = *nb;
+            let straight = [r != NONE, d != NONE, l != NONE, up != NONE];
+            let mut m = 0u8;
+            for (k, &v) in nb.iter().enumerate() {
+                let ok = v != NONE
+                    && (k < 4 || {
+                        let (a, b) = DIAGONAL_SIDES[k % 4];
+                        straight[a] || straight[b]
+                    });
+                m |= u8::from(ok) << k;
+            }
+            moves[pad(flat[u]) as usize] = m;
+        }
+        let cell: Vec<u32> = flat.iter().map(|&i| pad(i)).collect();
+        let mut unlabelled = vec![f64::NEG_INFINITY; moves.len()];
+        for &p in &cell {
+            unlabelled[p as usize] = f64::INFINITY;
+        }
+        let padded = Padded {
+            cell,
+            cost: unlabelled.clone(),
+            unlabelled,
+            moves,
+            offset,
+        };
         Self {
+            padded,
             index,
             flat,
             nbr,
@@ -147,15 +199,15 @@ impl StepCosts {
     /// Bytes held.
     pub(crate) fn bytes(&self) -> usize {
         self.index.len() * 4
-            + self.flat.len() * (4 + 32 + std::mem::size_of::<Slot>())
+            + self.flat.len() * (4 + 32 + 4 + std::mem::size_of::<Slot>())
+            + self.padded.moves.len() * (1 + 16)
             + self.settled.capacity() * 4
     }
 
     /// Meet reachable cell `u` at cost `c` from a settled neighbour: label it (or lower its
     /// label) if it is perceived and not settled. Returns whether it is passable.
-    /// With `FULL` every reachable cell is passable (`bits` is not read).
     #[inline(always)]
-    fn visit<const FULL: bool>(&mut self, bits: &[u64], u: u32, c: f64) -> bool {
+    fn visit(&mut self, bits: &[u64], u: u32, c: f64) -> bool {
         if u == NONE {
             return false;
         }
@@ -171,7 +223,7 @@ impl StepCosts {
                 self.buckets[c as usize % BUCKETS].push(u);
             }
             true
-        } else if FULL || has(bits, slot.mark) {
+        } else if has(bits, slot.mark) {
             slot.tag = tag;
             slot.cost = c;
             self.buckets[c as usize % BUCKETS].push(u);
@@ -185,12 +237,6 @@ impl StepCosts {
     /// Costs from reachable cell `start` to every cell reachable inside the perceived free
     /// cells `bits` (a set of marks); the start itself is always left.
     pub(crate) fn compute(&mut self, start: u32, bits: &[u64]) {
-        self.search::<false>(start, bits);
-    }
-
-    /// [`StepCosts::compute`], or with `FULL` over the full map (every reachable cell
-    /// passable, no bit tested, no settling order kept).
-    fn search<const FULL: bool>(&mut self, start: u32, bits: &[u64]) {
         let tag = self.fresh_tag();
         for b in &mut self.buckets {
             b.clear();
@@ -201,12 +247,7 @@ impl StepCosts {
             return;
         }
         let slot = &mut self.slot[s as usize];
-        slot.tag = tag
-            | if FULL || has(bits, slot.mark) {
-                0
-            } else {
-                BLOCKED
-            };
+        slot.tag = tag | if has(bits, slot.mark) { 0 } else { BLOCKED };
         slot.cost = 0.0;
         self.buckets[0].push(s);
         let mut k = 0usize;
@@ -228,27 +269,25 @@ impl StepCosts {
                 }
                 slot.tag |= DONE;
                 let ci = slot.cost;
-                if !FULL {
-                    self.settled.push(self.flat[ui]);
-                }
+                self.settled.push(self.flat[ui]);
                 let [r, d, l, up, dr, dl, ul, ur] = self.nbr[ui];
                 let c1 = ci + 1.0;
-                let pr = self.visit::<FULL>(bits, r, c1);
-                let pd = self.visit::<FULL>(bits, d, c1);
-                let pl = self.visit::<FULL>(bits, l, c1);
-                let pu = self.visit::<FULL>(bits, up, c1);
+                let pr = self.visit(bits, r, c1);
+                let pd = self.visit(bits, d, c1);
+                let pl = self.visit(bits, l, c1);
+                let pu = self.visit(bits, up, c1);
                 let c2 = ci + grid::SQRT2;
                 if pr || pd {
-                    self.visit::<FULL>(bits, dr, c2);
+                    self.visit(bits, dr, c2);
                 }
                 if pl || pd {
-                    self.visit::<FULL>(bits, dl, c2);
+                    self.visit(bits, dl, c2);
                 }
                 if pl || pu {
-                    self.visit::<FULL>(bits, ul, c2);
+                    self.visit(bits, ul, c2);
                 }
                 if pr || pu {
-                    self.visit::<FULL>(bits, ur, c2);
+                    self.visit(bits, ur, c2);
                 }
             }
             bucket.clear();
@@ -263,15 +302,75 @@ impl StepCosts {
     }
 
     /// Append to `cost` the costs from reachable cell `start` to every reachable cell in
-    /// the full map (every cell passable), by reachable index.
+    /// the full map (every cell passable), by reachable index. Dial's buckets of width 1 (no
+    /// step is shorter, so a bucket's cells are final when it is reached) on the padded
+    /// grid: a cell is listed again only when its cost drops to a lower bucket, and an
+    /// entry is skipped when its cell's cost has left its bucket. A cell's cost is the
+    /// least of its neighbours' final costs plus the step whatever the order of the
+    /// search, so the costs are those of [`StepCosts::compute`] with every mark
+    /// perceived, bit for bit.
     pub(crate) fn field(&mut self, start: u32, cost: &mut Vec<f64>) {
-        self.search::<true>(start, &[]);
-        let tag = self.epoch << 2 | DONE;
-        cost.extend(
-            self.slot
-                .iter()
-                .map(|s| if s.tag == tag { s.cost } else { f64::INFINITY }),
-        );
+        let s = self.index[start as usize];
+        if s == NONE {
+            cost.extend(std::iter::repeat_n(f64::INFINITY, self.flat.len()));
+            return;
+        }
+        let Padded {
+            cell,
+            moves,
+            offset,
+            cost: c,
+            unlabelled,
+        } = &mut self.padded;
+        c.copy_from_slice(unlabelled);
+        for b in &mut self.buckets {
+            b.clear();
+        }
+        let s = cell[s as usize];
+        c[s as usize] = 0.0;
+        self.buckets[0].push(s);
+        let mut pending = 1usize;
+        let mut k = 0usize;
+        while pending > 0 {
+            let slot = k % BUCKETS;
+            let mut bucket = std::mem::take(&mut self.buckets[slot]);
+            pending -= bucket.len();
+            for &u in &bucket {
+                let ui = u as usize;
+                let cu = c[ui];
+                if cu as usize != k {
+                    continue; // its cost dropped to a lower bucket
+                }
+                // Cells off the reachable ones hold −∞, so no step lowers them; a diagonal
+                // also needs its bit (no corner squeezing).
+                let m = moves[ui];
+                let buckets = &mut self.buckets;
+                let mut relax = |v: usize, nc: f64, allowed: bool| {
+                    let old = c[v];
+                    if nc < old && allowed {
+                        c[v] = nc;
+                        if !(old.is_finite() && old as usize == nc as usize) {
+                            buckets[nc as usize % BUCKETS].push(v as u32);
+                            pending += 1;
+                        }
+                    }
+                };
+                let (c1, c2) = (cu + 1.0, cu + grid::SQRT2);
+                let at = |j: usize| ui.wrapping_add_signed(offset[j]);
+                relax(at(0), c1, true);
+                relax(at(1), c1, true);
+                relax(at(2), c1, true);
+                relax(at(3), c1, true);
+                relax(at(4), c2, m & 1 << 4 != 0);
+                relax(at(5), c2, m & 1 << 5 != 0);
+                relax(at(6), c2, m & 1 << 6 != 0);
+                relax(at(7), c2, m & 1 << 7 != 0);
+            }
+            bucket.clear();
+            self.buckets[slot] = bucket;
+            k += 1;
+        }
+        cost.extend(cell.iter().map(|&p| c[p as usize]));
     }
 
     /// The cost from reachable cell `from` to reachable cell `to` inside the perceived free
