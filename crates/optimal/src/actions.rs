@@ -206,27 +206,21 @@ fn candidates_clusters(
 
 /// The member nearest (Euclidean) to the members' centroid, ties to the lowest flat index.
 pub(crate) fn representative(members: &[u32], w: usize) -> u32 {
-    let (mut sx, mut sy) = (0u64, 0u64);
+    let (mut sx, mut sy) = (0.0, 0.0);
     for &i in members {
-        sx += (i as usize % w) as u64;
-        sy += (i as usize / w) as u64;
+        sx += (i as usize % w) as f64;
+        sy += (i as usize / w) as f64;
     }
-    let m = members.len() as u64;
-    let mut best = (u128::MAX, u32::MAX);
+    let m = members.len() as f64;
+    let (cx, cy) = (sx / m, sy / m);
+    let mut best = (f64::INFINITY, u32::MAX);
     for &i in members {
-        let d = centroid_distance(i as usize % w, i as usize / w, sx, sy, m);
+        let dx = (i as usize % w) as f64 - cx;
+        let dy = (i as usize / w) as f64 - cy;
+        let d = dx * dx + dy * dy;
         if d < best.0 || (d == best.0 && i < best.1) {
             best = (d, i);
         }
     }
     best.1
-}
-
-/// The squared distance from cell (x, y) to the centroid (sx / m, sy / m) of m cells whose
-/// coordinates sum to (sx, sy), times m²: exact in integers, so ties are ties.
-#[inline]
-pub(crate) fn centroid_distance(x: usize, y: usize, sx: u64, sy: u64, m: u64) -> u128 {
-    let dx = (x as u64 * m).abs_diff(sx) as u128;
-    let dy = (y as u64 * m).abs_diff(sy) as u128;
-    dx * dx + dy * dy
 }

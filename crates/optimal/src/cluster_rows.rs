@@ -284,22 +284,25 @@ impl ClusterRows {
 
 /// The cell of the runs (row, first column, last column) nearest (Euclidean) to their
 /// cells' centroid, ties to the lowest flat index: the same cell as [`crate::actions::representative`]
-/// over the runs' cells, found per run at the columns either side of the centroid's.
+/// over the runs' cells, found per run at the column nearest the centroid's.
 fn nearest_in_runs(runs: &[(usize, usize, usize)], size: usize, w: usize) -> u32 {
+    // Sums of integers, exact in f64 as in `crate::actions::representative`.
     let (mut sx, mut sy) = (0u64, 0u64);
     for &(y, a, b) in runs {
         let len = (b - a + 1) as u64;
         sx += (a + b) as u64 * len / 2;
         sy += y as u64 * len;
     }
-    let m = size as u64;
-    // The centroid's column lies in [below, above].
-    let below = (sx / m) as usize;
-    let above = below + usize::from(sx % m != 0);
-    let mut best = (u128::MAX, u32::MAX);
+    let m = size as f64;
+    let (cx, cy) = (sx as f64 / m, sy as f64 / m);
+    let mut best = (f64::INFINITY, u32::MAX);
     for &(y, a, b) in runs {
-        for x in [below.clamp(a, b), above.clamp(a, b)] {
-            let d = crate::actions::centroid_distance(x, y, sx, sy, m);
+        let f = cx.floor().clamp(a as f64, b as f64) as usize;
+        let c = cx.ceil().clamp(a as f64, b as f64) as usize;
+        for x in [f, c] {
+            let dx = x as f64 - cx;
+            let dy = y as f64 - cy;
+            let d = dx * dx + dy * dy;
             let i = (y * w + x) as u32;
             if d < best.0 || (d == best.0 && i < best.1) {
                 best = (d, i);
