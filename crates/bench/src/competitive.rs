@@ -66,9 +66,8 @@ impl Default for OptimalSpec {
 /// Revision of the optimal search in stored keys: its definition (actions, goal) and its
 /// heuristic, which decides the bounds reached when a node budget stops it (v3: Held–Karp
 /// over viewpoint sets; v4: the footprint's viewpoint distances, field step costs; v5: the
-/// skip-budget bound with two far points and its direct term; v6: cluster representatives
-/// by exact integer distances to the centroid, ties to the lower cell).
-const SEARCH_REVISION: u32 = 6;
+/// skip-budget bound with two far points and its direct term).
+const SEARCH_REVISION: u32 = 5;
 
 impl OptimalSpec {
     /// A text naming every setting (part of the study's fingerprint and of cache keys), and
