@@ -17,7 +17,8 @@
 //! and they rarely need that search ([`FieldCache`]): the full map's costs from each
 //! position are computed once ([`StepCosts::field`]: the same buckets on a grid padded by
 //! one cell, where neighbours lie at fixed offsets and cells off the reachable ones hold
-//! −∞, 2.5 % faster on the corridor floor than the graph search with every cell passable); when a shortest path of the full map lies inside the
+//! −∞, 2.5 % faster on the corridor floor than the graph search with every cell
+//! passable); when a shortest path of the full map lies inside the
 //! perceived space, the cost inside is the full map's ([`StepCosts::inside`]: the path last
 //! found between the two is checked first, then a walk back over tied predecessors); when
 //! none does, A* from the representative guided by the robot's field finds it
