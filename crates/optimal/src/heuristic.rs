@@ -69,7 +69,7 @@ use crate::coverage_rate::CoverageRate;
 use crate::held_karp::PathBound;
 use crate::problem::{Problem, SensorModel};
 use crate::skip_budget::SkipBudget;
-use crate::step_cost::FieldCache;
+use crate::step_cost::{FieldCache, reserve_positions};
 use crate::viewpoint_distance::ViewpointDistance;
 
 /// Which lower bound guides the search.
@@ -251,10 +251,6 @@ const PATH_CACHE_ENTRIES: usize = 1 << 20;
 #[derive(Default)]
 pub(crate) struct MixHasher(u64);
 
-/// Positions whose orders and fields the caches make room for at once (a corridor floor
-/// start visits about 50).
-pub(crate) const RESERVED_POSITIONS: usize = 64;
-
 impl Hasher for MixHasher {
     fn finish(&self) -> u64 {
         self.0
@@ -434,13 +430,13 @@ impl Heuristic {
             self.order_slot.fill(u32::MAX);
             self.blocks.clear();
         }
-        if self.orders.capacity() == 0 {
-            // Room for the first positions at once: growing by copying the whole cache
-            // cost a tenth of the corridor floor's time.
-            let want = self.order_len * RESERVED_POSITIONS + self.n_targets;
-            self.orders
-                .reserve_exact(want.min(self.cache_cap_bytes / 16));
-        }
+        // A full list is appended before it is cut to `order_len`.
+        reserve_positions(
+            &mut self.orders,
+            self.order_len,
+            self.n_targets,
+            self.cache_cap_bytes,
+        );
         let base = self.orders.len();
         let slot = base / self.order_len;
         let targets = problem.targets();
