@@ -27,13 +27,20 @@ pub(crate) struct ViewpointDistance {
     half: Vec<Option<usize>>,
     /// Largest half-width.
     reach: usize,
-    /// H_w for w = 0..=reach, each over the whole map (scratch; ∞ outside `span`).
+    /// H_w for w = 0..=reach along the map row being eroded (scratch; H_0 is ∞ outside
+    /// the row's `span`, the others are written only inside it).
     h: Vec<f64>,
     /// Per row: the columns where some H_w can be finite (within `reach` of the row's
     /// reachable cells), set on first use.
     span: Vec<(usize, usize)>,
-    /// Scratch: D along one row.
-    row: Vec<f64>,
+    /// The rows holding targets: (row, first target, end of its targets, first column,
+    /// last column), set on first use.
+    target_rows: Vec<(usize, usize, usize, usize, usize)>,
+    /// Per row: its entry in `target_rows`, or `usize::MAX`.
+    row_entry: Vec<usize>,
+    /// D over each target row's target columns, gathered map row by map row (scratch,
+    /// row-major like the map).
+    acc: Vec<f64>,
 }
 
 impl ViewpointDistance {
@@ -56,7 +63,9 @@ impl ViewpointDistance {
             reach,
             h: Vec::new(),
             span: Vec::new(),
-            row: Vec::new(),
+            target_rows: Vec::new(),
+            row_entry: Vec::new(),
+            acc: Vec::new(),
         })
     }
 
@@ -72,6 +81,44 @@ impl ViewpointDistance {
         self.nearest(problem, field, |t, v| out.push((v, t)));
     }
 
+    /// The rows' spans and the target rows of `problem`, on first use.
+    fn set_up(&mut self, problem: &Problem) {
+        let cells = problem.cells();
+        let (w, h) = (cells.width(), cells.height());
+        if self.span.len() == h {
+            return;
+        }
+        self.h.clear();
+        self.h.resize((self.reach + 1) * w, f64::INFINITY);
+        self.span = (0..h)
+            .map(|y| {
+                let reached = (0..w).filter(|&x| problem.reachable(y * w + x));
+                match (reached.clone().min(), reached.max()) {
+                    (Some(a), Some(b)) => {
+                        (a.saturating_sub(self.reach), (b + self.reach).min(w - 1))
+                    }
+                    _ => (1, 0),
+                }
+            })
+            .collect();
+        // The targets are listed row by row.
+        let targets = problem.targets();
+        self.target_rows.clear();
+        self.row_entry.clear();
+        self.row_entry.resize(h, usize::MAX);
+        let mut k = 0;
+        while k < targets.len() {
+            let y = targets[k] as usize / w;
+            let end = k + targets[k..].partition_point(|&i| i as usize / w == y);
+            let (x0, x1) = (targets[k] as usize % w, targets[end - 1] as usize % w);
+            self.row_entry[y] = self.target_rows.len();
+            self.target_rows.push((y, k, end, x0, x1));
+            k = end;
+        }
+        self.acc.clear();
+        self.acc.resize(w * h, f64::INFINITY);
+    }
+
     /// Call `emit(t, v)` for every target t of `problem`, in target order, with v the least
     /// `value` over t's viewpoints (∞ without one). With `value` the negated distances from
     /// a point, −v is the distance to t's farthest viewpoint.
@@ -81,109 +128,98 @@ impl ViewpointDistance {
         field: impl Fn(usize) -> f64,
         mut emit: impl FnMut(u32, f64),
     ) {
+        self.set_up(problem);
         let cells = problem.cells();
         let (w, h) = (cells.width(), cells.height());
-        let n = w * h;
-        let layers = self.reach + 1;
-        if self.span.len() != h {
-            self.h.clear();
-            self.h.resize(layers * n, f64::INFINITY);
-            self.span = (0..h)
-                .map(|y| {
-                    let reached = (0..w).filter(|&x| problem.reachable(y * w + x));
-                    match (reached.clone().min(), reached.max()) {
-                        (Some(a), Some(b)) => {
-                            (a.saturating_sub(self.reach), (b + self.reach).min(w - 1))
-                        }
-                        _ => (1, 0),
-                    }
-                })
-                .collect();
+        for &(y, _, _, x0, x1) in &self.target_rows {
+            self.acc[y * w + x0..=y * w + x1].fill(f64::INFINITY);
         }
-        let (first, rest) = self.h.split_at_mut(n);
-        for (y, &(a, b)) in self.span.iter().enumerate() {
-            for x in a..=b.min(w - 1) {
-                let i = y * w + x;
-                first[i] = if problem.reachable(i) {
-                    field(i)
-                } else {
-                    f64::INFINITY
-                };
+        let reach = self.half.len() / 2;
+        // Map row by map row: its layers H_w (kept in `h`, small enough to stay in cache),
+        // each then lowering D on the target row it serves, y = yy − dy for the footprint's
+        // row dy with half-width w. (D is a minimum, so the order does not change it.)
+        for (yy, &(a, b)) in self.span.iter().enumerate() {
+            if a > b {
+                continue;
             }
-        }
-        // H_w = min(H_{w−1}, d(x − w), d(x + w)), with d = H_0, over each row's span.
-        let mut prev: &[f64] = first;
-        for (k, layer) in rest.chunks_mut(n).enumerate() {
-            let wd = k + 1;
-            for (y, &(a, b)) in self.span.iter().enumerate() {
-                if a > b {
-                    continue;
+            // No target row within the footprint's reach: nothing to lower.
+            let (ylo, yhi) = (yy.saturating_sub(reach), (yy + reach).min(h - 1));
+            if self.row_entry[ylo..=yhi].iter().all(|&e| e == usize::MAX) {
+                continue;
+            }
+            let (first, rest) = self.h.split_at_mut(w);
+            first.fill(f64::INFINITY);
+            for (x, d) in first.iter_mut().enumerate().take(b + 1).skip(a) {
+                let i = yy * w + x;
+                if problem.reachable(i) {
+                    *d = field(i);
                 }
-                let row = y * w;
-                let (out, p, d) = (
-                    &mut layer[row..row + w],
-                    &prev[row..row + w],
-                    &first[row..row + w],
-                );
+            }
+            // H_w = min(H_{w−1}, d(x − w), d(x + w)), with d = H_0, over the row's span.
+            let mut prev: &[f64] = first;
+            for (k, out) in rest.chunks_mut(w).enumerate() {
+                let wd = k + 1;
                 // The columns with both neighbours on the map, without branches (so the
                 // loop vectorises), then the few at either edge.
                 let (lo, hi) = (a.max(wd), b.min(w.saturating_sub(wd + 1)));
                 // (No interior: every column of the span is an edge.)
                 let (lo, hi) = if lo <= hi { (lo, hi) } else { (b + 1, b) };
                 if lo <= hi {
-                    let (o, pm) = (&mut out[lo..=hi], &p[lo..=hi]);
-                    let (dl, dr) = (&d[lo - wd..=hi - wd], &d[lo + wd..=hi + wd]);
+                    let (o, pm) = (&mut out[lo..=hi], &prev[lo..=hi]);
+                    let (dl, dr) = (&first[lo - wd..=hi - wd], &first[lo + wd..=hi + wd]);
                     for (((o, &v), &l), &r) in o.iter_mut().zip(pm).zip(dl).zip(dr) {
                         let m = if l < r { l } else { r };
                         *o = if m < v { m } else { v };
                     }
                 }
                 for x in (a..lo).chain(hi + 1..b + 1) {
-                    let mut v = p[x];
+                    let mut v = prev[x];
                     if x >= wd {
-                        v = v.min(d[x - wd]);
+                        v = v.min(first[x - wd]);
                     }
                     if x + wd < w {
-                        v = v.min(d[x + wd]);
+                        v = v.min(first[x + wd]);
                     }
                     out[x] = v;
                 }
+                prev = out;
             }
-            prev = layer;
-        }
-        // D over a target's row at once: the minimum over dy of H_{w_dy} on row y + dy, a
-        // branch-free pass per dy (so it vectorises); the targets are listed row by row.
-        let reach = self.half.len() / 2;
-        let targets = problem.targets();
-        self.row.resize(w, f64::INFINITY);
-        let mut k = 0;
-        while k < targets.len() {
-            let y = targets[k] as usize / w;
-            // The row's targets, k..end, lie in columns x0..=x1.
-            let end = k + targets[k..].partition_point(|&i| i as usize / w == y);
-            let (x0, x1) = (targets[k] as usize % w, targets[end - 1] as usize % w);
-            let row = &mut self.row[x0..=x1];
-            row.fill(f64::INFINITY);
+            // Footprint row dy (index j = dy + reach) with half-width w_dy serves target
+            // row yy − dy, over its target columns inside this row's span (∞ outside).
             for (j, hw) in self.half.iter().enumerate() {
                 let Some(hw) = *hw else { continue };
-                let Some(yy) = (y + j).checked_sub(reach).filter(|&yy| yy < h) else {
+                let Some(y) = (yy + reach).checked_sub(j).filter(|&y| y < h) else {
                     continue;
                 };
-                let at = hw * n + yy * w;
-                for (r, &v) in row.iter_mut().zip(&self.h[at + x0..=at + x1]) {
+                let e = self.row_entry[y];
+                if e == usize::MAX {
+                    continue;
+                }
+                let (_, _, _, x0, x1) = self.target_rows[e];
+                let (c0, c1) = (x0.max(a), x1.min(b));
+                if c0 > c1 {
+                    continue;
+                }
+                let layer = &self.h[hw * w + c0..=hw * w + c1];
+                let row = &mut self.acc[y * w + c0..=y * w + c1];
+                for (r, &v) in row.iter_mut().zip(layer) {
                     *r = if v < *r { v } else { *r };
                 }
             }
+        }
+        let targets = problem.targets();
+        for &(y, k, end, _, _) in &self.target_rows {
             for (t, &i) in targets[k..end].iter().enumerate() {
-                emit((k + t) as u32, self.row[i as usize % w]);
+                emit((k + t) as u32, self.acc[y * w + i as usize % w]);
             }
-            k = end;
         }
     }
 
     /// Bytes held.
     pub(crate) fn bytes(&self) -> usize {
-        self.h.capacity() * 8
+        (self.h.capacity() + self.acc.capacity()) * 8
+            + self.target_rows.capacity() * 40
+            + self.row_entry.capacity() * 8
     }
 }
 
