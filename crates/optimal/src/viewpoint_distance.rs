@@ -14,9 +14,11 @@
 //! S is a union of row intervals [−w_dy, w_dy] (read off the sensor's own scan of an empty
 //! grid), so with H_w(x, y) = min over |dx| ≤ w of d(q, (x + dx, y)), built for w = 0..=r
 //! by H_w = min(H_{w−1}, d shifted by ±w), D(q, t) = min over dy of H_{w_dy}(t + (0, dy)).
-//! That is (r + 1) passes over the map, then 2r + 1 passes over each row of targets (one
-//! per row of the footprint, over the row's target columns), all branch-free so that they
-//! vectorise, instead of a scan of the disc per target. Written here: no crate erodes by an arbitrary row-interval shape.
+//! That is r + 1 passes over each map row, then one pass per row of the footprint over the
+//! target columns of the row it serves, all branch-free so that they vectorise, instead of
+//! a scan of the disc per target. The map is eroded row by row, one row's layers in a
+//! small scratch that stays in cache (whole-map layers were 2.5 % slower on the corridor
+//! floor, their memory being touched afresh per solve). Written here: no crate erodes by an arbitrary row-interval shape.
 
 use crate::problem::Problem;
 
