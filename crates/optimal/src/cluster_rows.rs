@@ -295,14 +295,20 @@ fn nearest_in_runs(runs: &[(usize, usize, usize)], size: usize, w: usize) -> u32
     }
     let m = size as f64;
     let (cx, cy) = (sx as f64 / m, sy as f64 / m);
+    // The centroid's neighbouring columns (cx ≥ 0), clamped into each run in integers.
+    let (fl, ce) = (cx.floor() as usize, cx.ceil() as usize);
     let mut best = (f64::INFINITY, u32::MAX);
     for &(y, a, b) in runs {
-        let f = cx.floor().clamp(a as f64, b as f64) as usize;
-        let c = cx.ceil().clamp(a as f64, b as f64) as usize;
-        for x in [f, c] {
+        let dy = y as f64 - cy;
+        let dy2 = dy * dy;
+        // Every cell of the run is at least dy² away: none can beat or tie the best.
+        if dy2 > best.0 {
+            continue;
+        }
+        let (f, c) = (fl.clamp(a, b), ce.clamp(a, b));
+        for x in [f, c].into_iter().take(if f == c { 1 } else { 2 }) {
             let dx = x as f64 - cx;
-            let dy = y as f64 - cy;
-            let d = dx * dx + dy * dy;
+            let d = dx * dx + dy2;
             let i = (y * w + x) as u32;
             if d < best.0 || (d == best.0 && i < best.1) {
                 best = (d, i);
