@@ -23,6 +23,9 @@
 
 use crate::problem::Problem;
 
+/// A reachable component R as rows, with its first and last rows.
+pub(crate) type Reach<'a> = (&'a [u64], (usize, usize));
+
 /// Row-bitset geometry and the per-problem rows: reachable cells and targets.
 pub(crate) struct ClusterRows {
     /// Cells per row.
@@ -39,6 +42,8 @@ pub(crate) struct ClusterRows {
     pass: Vec<u64>,
     /// Scratch: R, the filled component.
     filled: Vec<u64>,
+    /// R's first and last rows.
+    span: (usize, usize),
     /// Scratch: unperceived targets, dilated along rows.
     wide: Vec<u64>,
     /// Scratch: B, then what is left of it while clusters are taken out.
@@ -83,6 +88,7 @@ impl ClusterRows {
             targets,
             pass: vec![0; n],
             filled: vec![0; n],
+            span: (0, 0),
             wide: vec![0; n],
             bound: vec![0; n],
             seeds: Vec::new(),
@@ -136,33 +142,90 @@ impl ClusterRows {
     /// `min_size` cells are dropped and `here` is never a candidate. The same candidates,
     /// in the same order, as [`crate::actions::candidates`] with
     /// [`crate::actions::ActionSet::Clusters`].
+    ///
+    /// `base`, when given, is R (rows and row range, [`ClusterRows::reach`]) of an
+    /// ancestor of the state whose robot stood at flat cell `from`: the fill then starts
+    /// from it. It lies in this state's R when every position from the ancestor's on is
+    /// perceived here (each ancestor's R is connected, holds the ancestor's cell and the
+    /// next position, a candidate of it; every position perceives its own cell); it is
+    /// used only when `from` is perceived here.
     pub(crate) fn candidates(
         &mut self,
         seen: &[u64],
         here: u32,
         min_size: usize,
+        base: Option<(Reach<'_>, u32)>,
         out: &mut Vec<u32>,
     ) {
         out.clear();
         for ((p, &r), &s) in self.pass.iter_mut().zip(&self.reach).zip(seen) {
             *p = r & s;
         }
+        let base = base.filter(|&(_, from)| {
+            let (k, b) = self.locate(from as usize);
+            self.pass[k] >> b & 1 == 1
+        });
         // The robot's own cell is always left (as in the step costs' search).
         let (k, b) = self.locate(here as usize);
         self.pass[k] |= 1 << b;
-        let (y0, y1) = self.fill(here as usize);
+        let (y0, y1) = self.fill(here as usize, base.map(|(r, _)| r));
+        #[cfg(debug_assertions)]
+        if base.is_some() {
+            let kept = self.filled.clone();
+            let fresh = self.fill(here as usize, None);
+            assert_eq!((y0, y1), fresh, "R's rows from an ancestor");
+            assert!(kept == self.filled, "R from an ancestor");
+        }
+        self.span = (y0, y1);
         self.boundary(seen, y0, y1);
         self.clusters(y0, y1, here, min_size, out);
     }
 
+    /// R (rows and row range) of the last [`ClusterRows::candidates`].
+    pub(crate) fn reach(&self) -> Reach<'_> {
+        (&self.filled, self.span)
+    }
+
     /// R: the 4-connected component of passable cells holding flat cell `start`, by span
-    /// filling; returns the first and last rows it touches.
-    fn fill(&mut self, start: usize) -> (usize, usize) {
+    /// filling, from `base` (a part of it, with its row range) when given; returns the
+    /// first and last rows it touches.
+    fn fill(&mut self, start: usize, base: Option<Reach<'_>>) -> (usize, usize) {
         let (w, wpr) = (self.w, self.wpr);
-        self.filled.fill(0);
         self.seeds.clear();
         self.seeds.push(((start / w) as u32, (start % w) as u32));
         let (mut y0, mut y1) = (start / w, start / w);
+        if let Some((rows, (b0, b1))) = base {
+            self.filled.copy_from_slice(rows);
+            (y0, y1) = (y0.min(b0), y1.max(b1));
+            // One seed per run of passable cells outside the part, next to it.
+            for y in b0.saturating_sub(1)..=(b1 + 1).min(self.h - 1) {
+                let row = y * wpr;
+                for k in 0..wpr {
+                    let f = self.filled[row + k];
+                    let mut near = f << 1 | f >> 1;
+                    if k > 0 {
+                        near |= self.filled[row + k - 1] >> 63;
+                    }
+                    if k + 1 < wpr {
+                        near |= self.filled[row + k + 1] << 63;
+                    }
+                    if y > 0 {
+                        near |= self.filled[row - wpr + k];
+                    }
+                    if y + 1 < self.h {
+                        near |= self.filled[row + wpr + k];
+                    }
+                    let mut m = self.pass[row + k] & !f & near;
+                    while m != 0 {
+                        let bit = m.trailing_zeros();
+                        self.seeds.push((y as u32, (k * 64) as u32 + bit));
+                        m &= m.wrapping_add(1 << bit);
+                    }
+                }
+            }
+        } else {
+            self.filled.fill(0);
+        }
         while let Some((y, x)) = self.seeds.pop() {
             let (y, x) = (y as usize, x as usize);
             let row = y * wpr;
@@ -449,7 +512,7 @@ mod tests {
             let set_ = ActionSet::Clusters { min_size };
             candidates(&p, &bits, steps.settled(), start as u32, set_, &mut scratch, &mut want);
             let mut got = Vec::new();
-            rows.candidates(&seen_rows, start as u32, min_size, &mut got);
+            rows.candidates(&seen_rows, start as u32, min_size, None, &mut got);
             prop_assert_eq!(got, want);
         }
     }

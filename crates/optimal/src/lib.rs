@@ -20,7 +20,9 @@
 //!   more of the budget the others take); long target lists are counted a block of 64 at
 //!   a time (`block_masks`);
 //! - [`search`]: A*, weighted A*, limits and bounds (step costs: `step_cost`, from
-//!   per-position distance fields when a shortest path lies inside the perceived space);
+//!   per-position distance fields when a shortest path lies inside the perceived space;
+//!   `recent`: the last expanded states' perceived sets and reachable components, from
+//!   which their descendants' are rebuilt);
 //! - [`coarse`]: solving on a coarsened map (the paper's cell sizes 1, 2, 4), and a first
 //!   incumbent from a coarser map for searches that will stop with bounds.
 //!
@@ -48,6 +50,7 @@ pub mod error;
 pub(crate) mod held_karp;
 pub mod heuristic;
 pub mod problem;
+pub(crate) mod recent;
 pub mod search;
 pub(crate) mod skip_budget;
 pub(crate) mod step_cost;

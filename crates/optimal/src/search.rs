@@ -42,6 +42,7 @@ use crate::cluster_rows::ClusterRows;
 use crate::error::OptimalError;
 use crate::heuristic::{Heuristic, HeuristicKind, MixHasher, dist, has, push_words, set};
 use crate::problem::Problem;
+use crate::recent::Recent;
 use crate::step_cost::StepCosts;
 use explore::plan::Reachability;
 
@@ -251,13 +252,20 @@ struct Node {
     check: u64,
     count: u32,
     next_same: u32,
+    /// Its slot in [`Recent`] once expanded (valid while the slot holds this state).
+    slot: u32,
     closed: bool,
 }
+
+// The slot fits in what was padding: a state still takes 56 bytes.
+const _: () = assert!(std::mem::size_of::<Node>() == 56);
 
 /// Open states completed greedily for an upper bound when the search stops early.
 const IMPROVE_STATES: usize = 64;
 /// Greedy steps those completions may take, as a share of the states expanded.
 const IMPROVE_SHARE: f64 = 0.05;
+/// Recently expanded states kept for their descendants ([`crate::recent`]).
+const RECENT_STATES: usize = 1024;
 
 /// Min-heap entry: (priority bits, deeper first, id, g bits).
 type Entry = Reverse<(u64, u64, u32, u64)>;
@@ -380,6 +388,8 @@ struct Engine<'p> {
     /// the loaded state as rows.
     rows: Option<ClusterRows>,
     seen_rows: Vec<u64>,
+    /// Recently expanded states' perceived sets and reachable components.
+    recent: Recent,
     /// The greedy completion's perceived set as cluster rows.
     greedy_rows: Vec<u64>,
     zt: Vec<[u64; 2]>,
@@ -430,6 +440,13 @@ impl<'p> Engine<'p> {
             matches!(cfg.actions, ActionSet::Clusters { .. }).then(|| ClusterRows::new(problem));
         let seen_rows = vec![0; rows.as_ref().map_or(0, ClusterRows::words)];
         let rows_bytes = rows.as_ref().map_or(0, ClusterRows::bytes);
+        // The ring of recent states: at most a 64th of the memory budget.
+        let slot_bytes = Recent::slot_bytes(words, seen_rows.len());
+        let recent = Recent::new(
+            RECENT_STATES.min(cfg.max_bytes / 64 / slot_bytes),
+            words,
+            seen_rows.len(),
+        );
         Self {
             problem,
             cfg: cfg.clone(),
@@ -440,6 +457,7 @@ impl<'p> Engine<'p> {
             scratch: ActionScratch::new(n),
             rows,
             seen_rows,
+            recent,
             greedy_rows: Vec::new(),
             zt,
             zpos,
@@ -469,6 +487,7 @@ impl<'p> Engine<'p> {
             + self.table.capacity() * 16
             + self.heur.bytes()
             + self.vis.bytes()
+            + self.recent.bytes()
             + self.fixed_bytes
     }
 
@@ -501,14 +520,24 @@ impl<'p> Engine<'p> {
         true
     }
 
-    /// Rebuild the perceived set of state `id` into `self.cur`: the union of what the
-    /// positions along its parent chain perceive.
-    fn load_state(&mut self, id: u32) {
+    /// Rebuild the perceived set of state `id` into `self.cur` (and `self.seen_rows`): the
+    /// union of what the positions along its parent chain perceive, from its nearest
+    /// ancestor (or itself) still in [`Recent`] on. Returns that state's slot and position.
+    fn load_state(&mut self, id: u32) -> Option<(usize, u32)> {
         self.cur.fill(0);
         self.seen_rows.fill(0);
         let mut j = id;
         while j != NONE {
-            let pos = self.nodes[j as usize].pos;
+            let Node { pos, slot, .. } = self.nodes[j as usize];
+            if let Some(slot) = self.recent.find(j, slot) {
+                for (c, &m) in self.cur.iter_mut().zip(self.recent.marks(slot)) {
+                    *c |= m;
+                }
+                for (c, &m) in self.seen_rows.iter_mut().zip(self.recent.seen_rows(slot)) {
+                    *c |= m;
+                }
+                return Some((slot, pos));
+            }
             let ((o, l), (ro, rl)) = self.vis.words(self.problem, pos, self.rows.as_ref());
             for &(k, b) in &self.vis.word_data[o..o + l] {
                 self.cur[k as usize] |= b;
@@ -518,6 +547,7 @@ impl<'p> Engine<'p> {
             }
             j = self.nodes[j as usize].parent;
         }
+        None
     }
 
     /// Make the path through `positions`, of length `cost`, the incumbent; `coarse` when it
@@ -568,7 +598,7 @@ impl<'p> Engine<'p> {
             let mut next = Some(self.cfg.actions);
             let mut searched = false;
             while let Some(actions) = next {
-                self.actions(pos, &cur, &rows, actions, &mut searched);
+                self.actions(pos, &cur, &rows, actions, &mut searched, None);
                 best = self.greedy_choice(&cur, rate);
                 next = if best.is_some() {
                     None
@@ -614,6 +644,8 @@ impl<'p> Engine<'p> {
     /// fields (a shortest path of the full map inside the perceived space, else A* guided
     /// by the field); other action sets (and clusters when no bit rows are kept) come off
     /// the step costs' search over the perceived space, run once per state (`searched`).
+    /// `base`: the slot in [`Recent`] and the position of an ancestor of the state, whose
+    /// reachable component the clusters' fill starts from.
     fn actions(
         &mut self,
         pos: u32,
@@ -621,10 +653,12 @@ impl<'p> Engine<'p> {
         rows: &[u64],
         set: ActionSet,
         searched: &mut bool,
+        base: Option<(usize, u32)>,
     ) {
         self.cand_dist.clear();
         if let (Some(r), ActionSet::Clusters { min_size }) = (&mut self.rows, set) {
-            r.candidates(rows, pos, min_size, &mut self.cands);
+            let base = base.map(|(slot, from)| (self.recent.reach(slot), from));
+            r.candidates(rows, pos, min_size, base, &mut self.cands);
             for &a in &self.cands {
                 let fields = &mut self.heur.fields;
                 // A shortest path of the full map inside, else a search guided by it.
@@ -825,6 +859,7 @@ impl<'p> Engine<'p> {
             check,
             count: count as u32,
             next_same: NONE,
+            slot: NONE,
             closed: false,
         });
         self.table.insert(key, 0);
@@ -962,14 +997,26 @@ impl<'p> Engine<'p> {
     /// Expand state `id`; false if the memory budget ran out.
     fn expand(&mut self, id: u32) -> bool {
         let node = self.nodes[id as usize];
-        self.load_state(id);
+        let base = self.load_state(id);
         self.heur.enter();
         let mut next = Some(self.cfg.actions);
         let mut searched = false;
+        let mut kept = false;
         while let Some(actions) = next {
             let cur = std::mem::take(&mut self.cur);
             let rows = std::mem::take(&mut self.seen_rows);
-            self.actions(node.pos, &cur, &rows, actions, &mut searched);
+            self.actions(node.pos, &cur, &rows, actions, &mut searched, base);
+            // Keep the state for its descendants, with R when the cluster rows found it.
+            if !kept {
+                kept = true;
+                let reach = match (&self.rows, actions) {
+                    (Some(r), ActionSet::Clusters { .. }) => r.reach(),
+                    _ => (&[][..], (0, 0)),
+                };
+                if reach.0.len() == rows.len() {
+                    self.nodes[id as usize].slot = self.recent.keep(id, &cur, &rows, reach);
+                }
+            }
             (self.cur, self.seen_rows) = (cur, rows);
             // No candidate perceives a new target: offer the next larger set (the
             // deviation in `actions`).
@@ -1091,6 +1138,7 @@ impl<'p> Engine<'p> {
                 check: check2,
                 count: count2 as u32,
                 next_same: head,
+                slot: NONE,
                 closed: false,
             });
             self.table.insert(key2, nid);
