@@ -168,17 +168,42 @@ impl ClusterRows {
         // The robot's own cell is always left (as in the step costs' search).
         let (k, b) = self.locate(here as usize);
         self.pass[k] |= 1 << b;
-        let (y0, y1) = self.fill(here as usize, base.map(|(r, _)| r));
+        // Rows of one or two words (maps up to 128 cells wide, as at the paper's cell
+        // sizes) get code for their width, whose word loops the compiler unrolls.
+        match self.wpr {
+            1 => self.rest::<1>(seen, here, min_size, base.map(|(r, _)| r), out),
+            2 => self.rest::<2>(seen, here, min_size, base.map(|(r, _)| r), out),
+            _ => self.rest::<0>(seen, here, min_size, base.map(|(r, _)| r), out),
+        }
+    }
+
+    /// [`ClusterRows::candidates`] once the passable cells are set, for rows of `W` words
+    /// (0: `self.wpr`, read at run time).
+    fn rest<const W: usize>(
+        &mut self,
+        seen: &[u64],
+        here: u32,
+        min_size: usize,
+        base: Option<Reach<'_>>,
+        out: &mut Vec<u32>,
+    ) {
+        let (y0, y1) = self.fill::<W>(here as usize, base);
         #[cfg(debug_assertions)]
         if base.is_some() {
             let kept = self.filled.clone();
-            let fresh = self.fill(here as usize, None);
+            let fresh = self.fill::<W>(here as usize, None);
             assert_eq!((y0, y1), fresh, "R's rows from an ancestor");
             assert!(kept == self.filled, "R from an ancestor");
         }
         self.span = (y0, y1);
-        self.boundary(seen, y0, y1);
-        self.clusters(y0, y1, here, min_size, out);
+        self.boundary::<W>(seen, y0, y1);
+        self.clusters::<W>(y0, y1, here, min_size, out);
+    }
+
+    /// Words per row: `W`, or `self.wpr` when `W` is 0.
+    #[inline(always)]
+    fn row_words<const W: usize>(&self) -> usize {
+        if W == 0 { self.wpr } else { W }
     }
 
     /// R (rows and row range) of the last [`ClusterRows::candidates`].
@@ -189,8 +214,8 @@ impl ClusterRows {
     /// R: the 4-connected component of passable cells holding flat cell `start`, by span
     /// filling, from `base` (a part of it, with its row range) when given; returns the
     /// first and last rows it touches.
-    fn fill(&mut self, start: usize, base: Option<Reach<'_>>) -> (usize, usize) {
-        let (w, wpr) = (self.w, self.wpr);
+    fn fill<const W: usize>(&mut self, start: usize, base: Option<Reach<'_>>) -> (usize, usize) {
+        let (w, wpr) = (self.w, self.row_words::<W>());
         self.seeds.clear();
         self.seeds.push(((start / w) as u32, (start % w) as u32));
         let (mut y0, mut y1) = (start / w, start / w);
@@ -258,8 +283,8 @@ impl ClusterRows {
 
     /// B = R ∩ dilate₈(targets \ seen) over rows `y0..=y1` (left in `bound`; other rows
     /// are not read).
-    fn boundary(&mut self, seen: &[u64], y0: usize, y1: usize) {
-        let wpr = self.wpr;
+    fn boundary<const W: usize>(&mut self, seen: &[u64], y0: usize, y1: usize) {
+        let wpr = self.row_words::<W>();
         // Unperceived targets dilated along their row, for rows y0 - 1 ..= y1 + 1.
         let lo = y0.saturating_sub(1);
         let hi = (y1 + 1).min(self.h - 1);
@@ -296,14 +321,21 @@ impl ClusterRows {
     /// first flat index (module doc). A cluster is taken out run by run: a run of B in one
     /// row, then the runs of the rows above and below that touch it or its two ends
     /// diagonally.
-    fn clusters(&mut self, y0: usize, y1: usize, here: u32, min_size: usize, out: &mut Vec<u32>) {
-        let (w, wpr) = (self.w, self.wpr);
+    fn clusters<const W: usize>(
+        &mut self,
+        y0: usize,
+        y1: usize,
+        here: u32,
+        min_size: usize,
+        out: &mut Vec<u32>,
+    ) {
+        let (w, wpr) = (self.w, self.row_words::<W>());
         for y in y0..=y1 {
             for k in 0..wpr {
                 while self.bound[y * wpr + k] != 0 {
                     let x = k * 64 + self.bound[y * wpr + k].trailing_zeros() as usize;
                     self.runs.clear();
-                    self.take_run(y, x);
+                    self.take_run::<W>(y, x);
                     let mut next = 0;
                     while next < self.runs.len() {
                         let (ry, a, b) = self.runs[next];
@@ -317,7 +349,7 @@ impl ClusterRows {
                             while let Some(found) =
                                 first_set(&self.bound[ny * wpr..(ny + 1) * wpr], nx, hi)
                             {
-                                let end = self.take_run(ny, found);
+                                let end = self.take_run::<W>(ny, found);
                                 nx = end + 1;
                             }
                         }
@@ -336,8 +368,9 @@ impl ClusterRows {
     }
 
     /// Clear the run of B holding column `x` of row `y`, list it, return its last column.
-    fn take_run(&mut self, y: usize, x: usize) -> usize {
-        let row = &mut self.bound[y * self.wpr..(y + 1) * self.wpr];
+    fn take_run<const W: usize>(&mut self, y: usize, x: usize) -> usize {
+        let wpr = self.row_words::<W>();
+        let row = &mut self.bound[y * wpr..(y + 1) * wpr];
         let (a, b) = (run_start(row, x), run_end(row, x));
         clear_range(row, a, b);
         self.runs.push((y, a, b));
