@@ -512,7 +512,8 @@ mod tests {
     proptest! {
         /// The same cluster representatives, in the same order, as the candidates read off
         /// the step costs' search, on random maps (up to 150 columns, so rows span three
-        /// words), perceived sets, robot cells and minimum sizes.
+        /// words), perceived sets, robot cells and minimum sizes; also when the fill starts
+        /// from R of a smaller perceived set (an ancestor's, the robot at the same cell).
         #[test]
         fn same_as_the_search_based_candidates(
             w in 2usize..150,
@@ -522,6 +523,7 @@ mod tests {
             pick in 0usize..1500,
             min_size in 1usize..4,
             fp in any::<bool>(),
+            earlier in proptest::collection::vec(any::<bool>(), 1500),
         ) {
             let model = if fp { SensorModel::Footprint(1.5) } else { SensorModel::Los(1.5) };
             let case = crate::walled_problem(w, h, &walls, pick, model);
@@ -530,12 +532,16 @@ mod tests {
             let mut bits = vec![0u64; p.mark_count().div_ceil(64).max(1)];
             let mut rows = ClusterRows::new(&p);
             let mut seen_rows = vec![0u64; rows.words()];
+            let mut earlier_rows = vec![0u64; rows.words()];
             for (i, &s) in seen.iter().enumerate().take(w * h) {
                 let t = p.mark_index(i);
                 if t != NOT_TARGET && (s != 0 || i == start) {
                     set(&mut bits, t);
                     let (k, b) = rows.locate(i);
                     seen_rows[k] |= 1 << b;
+                    if earlier[i] || i == start {
+                        earlier_rows[k] |= 1 << b;
+                    }
                 }
             }
             let mut steps = StepCosts::new(&p);
@@ -546,7 +552,14 @@ mod tests {
             candidates(&p, &bits, steps.settled(), start as u32, set_, &mut scratch, &mut want);
             let mut got = Vec::new();
             rows.candidates(&seen_rows, start as u32, min_size, None, &mut got);
-            prop_assert_eq!(got, want);
+            prop_assert_eq!(&got, &want);
+            let fresh = (rows.reach().0.to_vec(), rows.reach().1);
+            let mut ancestor = ClusterRows::new(&p);
+            ancestor.candidates(&earlier_rows, start as u32, min_size, None, &mut got);
+            let base = Some((ancestor.reach(), start as u32));
+            rows.candidates(&seen_rows, start as u32, min_size, base, &mut got);
+            prop_assert_eq!(&got, &want);
+            prop_assert_eq!((rows.reach().0.to_vec(), rows.reach().1), fresh);
         }
     }
 }
