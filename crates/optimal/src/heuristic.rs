@@ -326,7 +326,7 @@ impl Heuristic {
             h.choose_landmarks(problem, landmarks);
         }
         if kind == HeuristicKind::Landmarks {
-            h.far = SkipBudget::new(problem, h.skip);
+            h.far = SkipBudget::new(problem, h.skip, &mut h.fields);
             if h.vd.is_some()
                 && let Some(far) = &mut h.far
             {

@@ -64,13 +64,12 @@
 //! floor this halves the states expanded; on maps where it never beats the coverage-rate
 //! bound (the benchmark's cave and potholes) it costs about a tenth of the search's time.
 
-use explore::plan::Reachability;
-use grid::Occ;
 use sense::Observation;
 
 use crate::block_masks::{BLOCK, BlockMasks};
 use crate::heuristic::has;
 use crate::problem::{Problem, SensorModel};
+use crate::step_cost::FieldCache;
 use crate::viewpoint_distance::ViewpointDistance;
 
 /// Most far points.
@@ -120,23 +119,19 @@ pub(crate) struct SkipBudget {
 impl SkipBudget {
     /// Set up the bound for `problem` when `skip` targets may stay unperceived; `None` when
     /// there is no budget (G = 1) or no far point worth a constraint.
-    pub(crate) fn new(problem: &Problem, skip: usize) -> Option<Self> {
+    pub(crate) fn new(problem: &Problem, skip: usize, fields: &mut FieldCache) -> Option<Self> {
         if skip == 0 {
             return None;
         }
-        let cells = problem.cells();
-        let n = cells.len();
-        let data = cells.data();
-        let mut dij = Reachability::new(cells.width(), cells.height());
-        let free = |i: usize| data[i] == Occ::Free;
-        let costs = |dij: &Reachability| -> Vec<f64> {
-            (0..n)
-                .map(|i| dij.cost(i).unwrap_or(f64::INFINITY))
-                .collect()
+        let n = problem.cells().len();
+        // The full map's path costs from a reachable cell, by flat cell: the search's
+        // per-position fields (the start's is the root's anyway).
+        let costs = |fields: &mut FieldCache, p: usize| -> Vec<f64> {
+            let c = fields.costs(p as u32);
+            (0..n).map(c).collect()
         };
         // Farthest-point sampling from the start.
-        dij.compute(problem.start() as usize, free);
-        let mut nearest = costs(&dij);
+        let mut nearest = costs(fields, problem.start() as usize);
         let mut points = Vec::new();
         let mut field: Vec<Vec<f64>> = Vec::new();
         let reach = problem.model().range();
@@ -151,8 +146,7 @@ impl SkipBudget {
             let Some((_, p)) = best.filter(|&(d, _)| d > 2.0 * reach) else {
                 break;
             };
-            dij.compute(p, free);
-            let f = costs(&dij);
+            let f = costs(fields, p);
             for (m, &x) in nearest.iter_mut().zip(&f) {
                 *m = m.min(x);
             }
@@ -614,6 +608,7 @@ mod tests {
     use super::*;
     use crate::heuristic::set;
     use crate::problem::SensorModel;
+    use explore::plan::Reachability;
     use grid::{Cell, Occ};
     use proptest::prelude::*;
 
@@ -654,7 +649,7 @@ mod tests {
             .map(|i| i as u32)
             .collect();
         let skip = skip.min(p.targets().len().saturating_sub(1));
-        let sb = SkipBudget::new(&p, skip)?;
+        let sb = SkipBudget::new(&p, skip, &mut FieldCache::new(&p, usize::MAX))?;
         let mut bits = vec![0u64; p.mark_count().div_ceil(64).max(1)];
         perceive(&p, start as u32, &mut bits);
         for &s in stops {
