@@ -144,11 +144,12 @@ impl ClusterRows {
     /// [`crate::actions::ActionSet::Clusters`].
     ///
     /// `base`, when given, is R (rows and row range, [`ClusterRows::reach`]) of an
-    /// ancestor of the state whose robot stood at flat cell `from`: the fill then starts
-    /// from it. It lies in this state's R when every position from the ancestor's on is
-    /// perceived here (each ancestor's R is connected, holds the ancestor's cell and the
-    /// next position, a candidate of it; every position perceives its own cell); it is
-    /// used only when `from` is perceived here.
+    /// ancestor of the state, whose robot stood at flat cell `from`: the fill then starts
+    /// from it. It lies in this state's R: the perceived set only grew since, each later
+    /// position was a candidate of the state before it (a perceived cell of that state's
+    /// R, which is connected and holds that state's cell), so every R along the way is
+    /// joined to the next. The ancestor's own cell was passable there by fiat (the robot
+    /// stands on it), so `base` is used only when `from` is perceived here.
     pub(crate) fn candidates(
         &mut self,
         seen: &[u64],

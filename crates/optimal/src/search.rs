@@ -42,7 +42,7 @@ use crate::cluster_rows::ClusterRows;
 use crate::error::OptimalError;
 use crate::heuristic::{Heuristic, HeuristicKind, MixHasher, dist, has, push_words, set};
 use crate::problem::Problem;
-use crate::recent::Recent;
+use crate::recent::{self, Recent};
 use crate::step_cost::StepCosts;
 use explore::plan::Reachability;
 
@@ -859,7 +859,7 @@ impl<'p> Engine<'p> {
             check,
             count: count as u32,
             next_same: NONE,
-            slot: NONE,
+            slot: recent::NONE,
             closed: false,
         });
         self.table.insert(key, 0);
@@ -1138,7 +1138,7 @@ impl<'p> Engine<'p> {
                 check: check2,
                 count: count2 as u32,
                 next_same: head,
-                slot: NONE,
+                slot: recent::NONE,
                 closed: false,
             });
             self.table.insert(key2, nid);
