@@ -228,13 +228,13 @@ impl ClusterRows {
                 let row = y * wpr;
                 for k in 0..wpr {
                     let f = self.filled[row + k];
-                    let mut near = f << 1 | f >> 1;
-                    if k > 0 {
-                        near |= self.filled[row + k - 1] >> 63;
-                    }
-                    if k + 1 < wpr {
-                        near |= self.filled[row + k + 1] << 63;
-                    }
+                    let left = if k > 0 { self.filled[row + k - 1] } else { 0 };
+                    let right = if k + 1 < wpr {
+                        self.filled[row + k + 1]
+                    } else {
+                        0
+                    };
+                    let mut near = spread(f, left, right);
                     if y > 0 {
                         near |= self.filled[row - wpr + k];
                     }
@@ -299,7 +299,7 @@ impl ClusterRows {
                 } else {
                     0
                 };
-                self.wide[row + k] = u | u << 1 | prev >> 63 | u >> 1 | next << 63;
+                self.wide[row + k] = spread(u, prev, next);
                 prev = u;
             }
         }
@@ -413,6 +413,13 @@ fn nearest_in_runs(runs: &[(usize, usize, usize)], size: usize, w: usize) -> u32
         }
     }
     best.1
+}
+
+/// A word of a row widened by one column either way, `left` and `right` the words beside
+/// it (0 past the row's ends).
+#[inline]
+fn spread(word: u64, left: u64, right: u64) -> u64 {
+    word | word << 1 | word >> 1 | left >> 63 | right << 63
 }
 
 /// Bits `a..=b` of word `k` of a row (columns `64k..64k + 63`).

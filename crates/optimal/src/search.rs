@@ -1001,22 +1001,10 @@ impl<'p> Engine<'p> {
         self.heur.enter();
         let mut next = Some(self.cfg.actions);
         let mut searched = false;
-        let mut kept = false;
         while let Some(actions) = next {
             let cur = std::mem::take(&mut self.cur);
             let rows = std::mem::take(&mut self.seen_rows);
             self.actions(node.pos, &cur, &rows, actions, &mut searched, base);
-            // Keep the state for its descendants, with R when the cluster rows found it.
-            if !kept {
-                kept = true;
-                let reach = match (&self.rows, actions) {
-                    (Some(r), ActionSet::Clusters { .. }) => r.reach(),
-                    _ => (&[][..], (0, 0)),
-                };
-                if reach.0.len() == rows.len() {
-                    self.nodes[id as usize].slot = self.recent.keep(id, &cur, &rows, reach);
-                }
-            }
             (self.cur, self.seen_rows) = (cur, rows);
             // No candidate perceives a new target: offer the next larger set (the
             // deviation in `actions`).
@@ -1026,6 +1014,13 @@ impl<'p> Engine<'p> {
                 Some(false) => actions.wider(),
             };
         }
+        // Keep the state for its descendants, with R: cluster rows are kept only with the
+        // cluster actions, whose first set's candidates found R.
+        let reach = self
+            .rows
+            .as_ref()
+            .map_or((&[][..], (0, 0)), ClusterRows::reach);
+        self.nodes[id as usize].slot = self.recent.keep(id, &self.cur, &self.seen_rows, reach);
         self.stats.bytes = self.stats.bytes.max(self.bytes_with(0));
         true
     }
@@ -1350,7 +1345,10 @@ mod tests {
     fn solve_as(problem: &Problem, cfg: &Config, fast: bool) -> Outcome {
         let mut engine = Engine::new(problem, cfg);
         if !fast {
+            // As an engine built without cluster rows: no rows to load or keep either.
             engine.rows = None;
+            engine.seen_rows.clear();
+            engine.recent = Recent::new(RECENT_STATES, engine.cur.len(), 0);
         }
         engine.run(Instant::now(), Duration::MAX, &mut |_| true)
     }
