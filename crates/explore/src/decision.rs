@@ -4,11 +4,15 @@
 //! generated from the belief, then an assigner gives goals to the robots that decide.
 //! Costs come from one reachability map per robot per decision (Holz et al.'s
 //! "path search without goal specification"), computed lazily: a nearest-frontier
-//! query stops at the first candidate it settles and touches only what it must.
+//! query stops at the first candidate it settles, and the team assigners grow each
+//! robot's search bucket by bucket only as far as their rule needs (see
+//! [`crate::assign::costs`]); the questions "reachable at all?" are answered by one flood
+//! fill shared by the robots of a component.
 
 use grid::{Grid, Occ};
 use rand_pcg::Pcg64Mcg;
 
+use crate::plan::component::Component;
 use crate::plan::reachability::Reachability;
 use crate::upkeep::FrontierUpkeep;
 
@@ -19,6 +23,8 @@ enum Extent {
     Stale,
     /// Computed until some goal was settled: costs are valid for settled cells only.
     Partial,
+    /// A resumable search, settled bucket by bucket so far.
+    Growing,
     /// Every reachable cell has its cost.
     Full,
 }
@@ -27,6 +33,10 @@ enum Extent {
 pub struct Planner {
     maps: Vec<Reachability>,
     extent: Vec<Extent>,
+    /// The reachable set of one robot's cell, shared by the robots of its component.
+    component: Component,
+    /// The robot the component was filled from in this decision (`None`: stale).
+    component_of: Option<usize>,
     width: usize,
     height: usize,
 }
@@ -39,6 +49,8 @@ impl Planner {
                 .map(|_| Reachability::new(width, height))
                 .collect(),
             extent: vec![Extent::Stale; robots],
+            component: Component::new(width, height),
+            component_of: None,
             width,
             height,
         }
@@ -57,6 +69,7 @@ impl Planner {
     /// Forget all maps: the belief or the robots moved since they were computed.
     pub fn invalidate(&mut self) {
         self.extent.fill(Extent::Stale);
+        self.component_of = None;
     }
 
     /// Robot `r`'s full reachability map from cell `from` over traversable cells.
@@ -67,11 +80,65 @@ impl Planner {
         known: &Grid<Occ>,
         upkeep: &FrontierUpkeep,
     ) -> &Reachability {
-        if self.extent[r] != Extent::Full {
-            self.maps[r].compute(from as usize, |i| upkeep.is_traversable(known, i));
+        let pass = |i| upkeep.is_traversable(known, i);
+        match self.extent[r] {
+            Extent::Full => {}
+            Extent::Growing => {
+                self.maps[r].advance(usize::MAX, pass);
+            }
+            Extent::Stale | Extent::Partial => self.maps[r].compute(from as usize, pass),
+        }
+        self.extent[r] = Extent::Full;
+        &self.maps[r]
+    }
+
+    /// Grow robot `r`'s search from cell `from` until every cell of cost below
+    /// `through + 1` is settled (a new resumable search if this decision has none yet;
+    /// nothing if its map is full). Returns whether its map is complete.
+    pub fn grow(
+        &mut self,
+        r: usize,
+        from: u32,
+        known: &Grid<Occ>,
+        upkeep: &FrontierUpkeep,
+        through: usize,
+    ) -> bool {
+        let pass = |i| upkeep.is_traversable(known, i);
+        match self.extent[r] {
+            Extent::Full => return true,
+            Extent::Growing => {}
+            Extent::Stale | Extent::Partial => {
+                self.maps[r].begin(from as usize, pass);
+                self.extent[r] = Extent::Growing;
+            }
+        }
+        let done = self.maps[r].advance(through, pass);
+        if done {
             self.extent[r] = Extent::Full;
         }
-        &self.maps[r]
+        done
+    }
+
+    /// The cells robot `r` (at `from`) can reach at all: one flood fill per decision,
+    /// shared by every robot in the same component of passable cells.
+    pub fn component(
+        &mut self,
+        r: usize,
+        from: u32,
+        known: &Grid<Occ>,
+        upkeep: &FrontierUpkeep,
+    ) -> &Component {
+        let pass = |i| upkeep.is_traversable(known, i);
+        let fresh = match self.component_of {
+            Some(q) if q == r => true,
+            Some(_) => self.component.same_from(from as usize, pass),
+            None => false,
+        };
+        if !fresh {
+            self.component.compute(from as usize, pass);
+            self.component_of = Some(r);
+        }
+        &self.component
     }
 
     /// The goal nearest to robot `r` (at `from`) by path, stopping the search as soon as one
@@ -88,6 +155,12 @@ impl Planner {
             self.maps[r].nearest(from as usize, |i| upkeep.is_traversable(known, i), is_goal);
         self.extent[r] = Extent::Partial;
         found.map(|g| g as u32)
+    }
+
+    /// Whether robot `r` has a resumable or full search in this decision (see
+    /// [`grow`](Self::grow)).
+    pub fn is_searching(&self, r: usize) -> bool {
+        matches!(self.extent[r], Extent::Growing | Extent::Full)
     }
 
     /// Robot `r`'s reachability map as last computed (full or partial).

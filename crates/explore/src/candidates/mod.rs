@@ -17,6 +17,8 @@ use crate::decision::DecisionCtx;
 pub struct CandidateSet {
     cells: Vec<u32>,
     mark: Vec<u32>,
+    /// Position of each marked cell in `cells`.
+    index: Vec<u32>,
     generation: u32,
 }
 
@@ -26,6 +28,7 @@ impl CandidateSet {
         Self {
             cells: Vec::new(),
             mark: vec![0; len],
+            index: vec![0; len],
             generation: 1,
         }
     }
@@ -45,6 +48,7 @@ impl CandidateSet {
         let m = &mut self.mark[cell as usize];
         if *m != self.generation {
             *m = self.generation;
+            self.index[cell as usize] = self.cells.len() as u32;
             self.cells.push(cell);
         }
     }
@@ -53,6 +57,12 @@ impl CandidateSet {
     #[inline]
     pub fn contains(&self, cell: usize) -> bool {
         self.mark[cell] == self.generation
+    }
+
+    /// The position of `cell` in [`cells`](Self::cells), if it is a candidate.
+    #[inline]
+    pub fn index_of(&self, cell: usize) -> Option<usize> {
+        self.contains(cell).then(|| self.index[cell] as usize)
     }
 
     /// The candidates, in the order they were added (deterministic).

@@ -1,6 +1,7 @@
 //! Grid planning: Holz et al.'s reachability map (Dijkstra with no goal, on a bucket queue),
 //! the nearest-goal Dijkstra that stops at the first settled goal (Yamauchi's nearest
-//! frontier), and A* (on a binary heap).
+//! frontier), the same search resumed bucket by bucket (costs only as far as a decision
+//! needs them), a flood fill for reachability without costs, and A* (on a binary heap).
 //!
 //! Motion everywhere: 8-connected, straight step 1, diagonal √2; a diagonal step is forbidden
 //! iff BOTH orthogonal cells it passes between fail `passable` ("no corner squeezing"). The start
@@ -8,9 +9,11 @@
 //! flat index: the priority is `(cost, index)` (the bucket queue gives the same results).
 
 pub mod astar;
+pub mod component;
 pub mod reachability;
 
 pub use astar::AStar;
+pub use component::Component;
 pub use reachability::Reachability;
 
 use std::cmp::Reverse;

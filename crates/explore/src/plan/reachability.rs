@@ -141,6 +141,12 @@ pub struct Reachability {
     order: Vec<(u64, u32)>,
     settled: Vec<u32>,
     start: Option<usize>,
+    /// Resumable search ([`begin`](Reachability::begin)): the next bucket to settle, and
+    /// whether every bucket is empty (the search is complete).
+    next: usize,
+    exhausted: bool,
+    /// Whether the last search was started by `begin` (and may be advanced).
+    resumable: bool,
 }
 
 impl Reachability {
@@ -160,6 +166,9 @@ impl Reachability {
             order: Vec::new(),
             settled: Vec::new(),
             start: None,
+            next: 0,
+            exhausted: true,
+            resumable: false,
         }
     }
 
@@ -190,12 +199,118 @@ impl Reachability {
         self.run(&[start], &passable, Some(is_goal))
     }
 
+    /// Start a resumable search from `start` (see [`advance`](Self::advance)): nothing is
+    /// settled until it is advanced. Costs, paths and the settled order are those of
+    /// [`compute`](Self::compute) for every cell settled so far.
+    pub fn begin(&mut self, start: usize, passable: impl Fn(usize) -> bool) {
+        self.init(&[start], &passable);
+        self.resumable = true;
+        if self.buckets.iter().all(Vec::is_empty) {
+            self.exhausted = true;
+        }
+    }
+
+    /// Settle every bucket up to and including bucket `through` of the search started by
+    /// [`begin`](Self::begin): afterwards every cell of cost below `through + 1` is settled
+    /// with its final cost (and nothing beyond the buckets settled). Returns whether the
+    /// search is complete (every reachable cell settled). `passable` must be the one given
+    /// to `begin`. After a search not started by `begin` it does nothing.
+    pub fn advance(&mut self, through: usize, passable: impl Fn(usize) -> bool) -> bool {
+        while self.resumable && !self.exhausted && self.next <= through {
+            let k = self.next;
+            if self.buckets[k % BUCKETS].is_empty() {
+                if self.buckets.iter().all(Vec::is_empty) {
+                    self.exhausted = true;
+                    break;
+                }
+            } else {
+                self.expand(k, &passable);
+            }
+            self.next = k + 1;
+        }
+        self.exhausted
+    }
+
+    /// The first bucket a resumable search has not settled: every cell of cost below it is
+    /// settled (for a complete search, every reachable cell).
+    pub fn next_bucket(&self) -> usize {
+        self.next
+    }
+
+    /// Whether the last search settled every cell it can reach (a full search, or a
+    /// resumable one advanced to its end).
+    pub fn is_complete(&self) -> bool {
+        self.exhausted
+    }
+
     fn run(
         &mut self,
         starts: &[usize],
         passable: &impl Fn(usize) -> bool,
         is_goal: Option<impl Fn(usize) -> bool>,
     ) -> Option<usize> {
+        self.init(starts, passable);
+        let w = self.width;
+        let tile_row = self.tiles_x * TILE_CELLS;
+        let mut k = 0usize;
+        loop {
+            let slot = k % BUCKETS;
+            if self.buckets[slot].is_empty() {
+                if self.buckets.iter().all(Vec::is_empty) {
+                    self.exhausted = true;
+                    self.next = k;
+                    return None;
+                }
+                k += 1;
+                continue;
+            }
+            // Every cost in bucket k is final. A goal among them ends the search at the
+            // first goal in (cost, index) order, settling what a heap settles before it.
+            if let Some(is_goal) = &is_goal {
+                let (state, cost) = (&self.state, &self.cost);
+                // (cost bits, cell) orders as (cost, cell): costs are not negative
+                let live = |&(x, y): &Entry| {
+                    let (x, y) = (x as usize, y as usize);
+                    let q = slot_xy(tile_row, x, y);
+                    (state[q] & DONE == 0).then_some((cost[q].to_bits(), y * w + x))
+                };
+                let goal = self.buckets[slot]
+                    .iter()
+                    .filter_map(live)
+                    .filter(|&(_, i)| is_goal(i))
+                    .min()
+                    .map(|(_, i)| i);
+                if let Some(goal) = goal {
+                    self.order.clear();
+                    self.order.extend(
+                        self.buckets[slot]
+                            .iter()
+                            .filter_map(live)
+                            .map(|(c, i)| (c, i as u32)),
+                    );
+                    self.order.sort_unstable();
+                    self.order.dedup();
+                    for &(_, i) in &self.order {
+                        let i = i as usize;
+                        self.state[slot_xy(tile_row, i % w, i / w)] |= DONE;
+                        self.settled.push(i as u32);
+                        if i == goal {
+                            break;
+                        }
+                    }
+                    self.buckets[slot].clear();
+                    // Not resumable: the goal's bucket is settled only in part.
+                    self.next = k;
+                    return Some(goal);
+                }
+            }
+            self.expand(k, passable);
+            k += 1;
+        }
+    }
+
+    /// Start a new search from `starts` (those inside the grid) with nothing settled.
+    fn init(&mut self, starts: &[usize], passable: &impl Fn(usize) -> bool) {
         self.epoch = next_gen(self.epoch, &mut self.tile_epoch);
         for b in &mut self.buckets {
             b.clear();
@@ -227,110 +342,83 @@ impl Reachability {
             wave.cost[s0] = 0.0;
             wave.buckets[0].push((x0 as u32, y0 as u32));
         }
-        let mut k = 0usize;
-        loop {
-            let slot = k % BUCKETS;
-            if wave.buckets[slot].is_empty() {
-                if wave.buckets.iter().all(Vec::is_empty) {
-                    return None;
-                }
-                k += 1;
-                continue;
+        self.next = 0;
+        self.exhausted = false;
+        self.resumable = false;
+    }
+
+    /// Settle bucket `k`: every cell labelled in it is final; label its neighbours.
+    #[inline]
+    fn expand(&mut self, k: usize, passable: &impl Fn(usize) -> bool) {
+        let (w, h) = (self.width, self.height);
+        let tile_row = self.tiles_x * TILE_CELLS;
+        let slot = k % BUCKETS;
+        let mut bucket = std::mem::take(&mut self.buckets[slot]);
+        let mut wave = Wave {
+            epoch: self.epoch,
+            tile_epoch: &mut self.tile_epoch,
+            state: &mut self.state,
+            cost: &mut self.cost,
+            buckets: &mut self.buckets,
+        };
+        let settled = &mut self.settled;
+        for &(xu, yu) in &bucket {
+            let (x, y) = (xu as usize, yu as usize);
+            let p = slot_xy(tile_row, x, y);
+            let state = wave.state[p];
+            if state & DONE != 0 {
+                continue; // labelled again more cheaply, or listed twice
             }
-            let mut bucket = std::mem::take(&mut wave.buckets[slot]);
-            // Every cost in bucket k is final. A goal among them ends the search at the
-            // first goal in (cost, index) order, settling what a heap settles before it.
-            if let Some(is_goal) = &is_goal {
-                // (cost bits, cell) orders as (cost, cell): costs are not negative
-                let live = |&(x, y): &Entry| {
-                    let (x, y) = (x as usize, y as usize);
-                    let q = slot_xy(tile_row, x, y);
-                    (wave.state[q] & DONE == 0).then_some((wave.cost[q].to_bits(), y * w + x))
-                };
-                let goal = bucket
-                    .iter()
-                    .filter_map(live)
-                    .filter(|&(_, i)| is_goal(i))
-                    .min()
-                    .map(|(_, i)| i);
-                if let Some(goal) = goal {
-                    self.order.clear();
-                    self.order
-                        .extend(bucket.iter().filter_map(live).map(|(c, i)| (c, i as u32)));
-                    self.order.sort_unstable();
-                    self.order.dedup();
-                    for &(_, i) in &self.order {
-                        let i = i as usize;
-                        wave.state[slot_xy(tile_row, i % w, i / w)] |= DONE;
-                        self.settled.push(i as u32);
-                        if i == goal {
-                            break;
-                        }
-                    }
-                    bucket.clear();
-                    wave.buckets[slot] = bucket;
-                    return Some(goal);
-                }
+            let ci = wave.cost[p];
+            debug_assert_eq!(ci as usize, k);
+            wave.state[p] = state | DONE;
+            let i = y * w + x;
+            settled.push(i as u32);
+            let (left, right, up, down) = (x > 0, x + 1 < w, y > 0, y + 1 < h);
+            // slot offsets of the steps right, left, down and up (wrapping: negative)
+            let (xm, ym) = (x & TILE_MASK, y & TILE_MASK);
+            let dr = if xm == TILE_MASK {
+                TILE_CELLS - TILE_MASK
+            } else {
+                1
+            };
+            let dl = if xm == 0 { TILE_CELLS - TILE_MASK } else { 1 }.wrapping_neg();
+            let dd = if ym == TILE_MASK {
+                tile_row - TILE_MASK * TILE
+            } else {
+                TILE
+            };
+            let du = if ym == 0 {
+                tile_row - TILE_MASK * TILE
+            } else {
+                TILE
             }
-            for &(xu, yu) in &bucket {
-                let (x, y) = (xu as usize, yu as usize);
-                let p = slot_xy(tile_row, x, y);
-                let state = wave.state[p];
-                if state & DONE != 0 {
-                    continue; // labelled again more cheaply, or listed twice
-                }
-                let ci = wave.cost[p];
-                debug_assert_eq!(ci as usize, k);
-                wave.state[p] = state | DONE;
-                let i = y * w + x;
-                self.settled.push(i as u32);
-                let (left, right, up, down) = (x > 0, x + 1 < w, y > 0, y + 1 < h);
-                // slot offsets of the steps right, left, down and up (wrapping: negative)
-                let (xm, ym) = (x & TILE_MASK, y & TILE_MASK);
-                let dr = if xm == TILE_MASK {
-                    TILE_CELLS - TILE_MASK
-                } else {
-                    1
-                };
-                let dl = if xm == 0 { TILE_CELLS - TILE_MASK } else { 1 }.wrapping_neg();
-                let dd = if ym == TILE_MASK {
-                    tile_row - TILE_MASK * TILE
-                } else {
-                    TILE
-                };
-                let du = if ym == 0 {
-                    tile_row - TILE_MASK * TILE
-                } else {
-                    TILE
-                }
-                .wrapping_neg();
-                let (sr, sl) = (p.wrapping_add(dr), p.wrapping_add(dl));
-                // the neighbours' columns and rows (wrapping: only used inside the grid)
-                let (xr, xl) = (xu.wrapping_add(1), xu.wrapping_sub(1));
-                let (yd, ya) = (yu.wrapping_add(1), yu.wrapping_sub(1));
-                let c1 = ci + 1.0;
-                let pr = right && wave.visit(passable, (sr, i + 1, (xr, yu)), c1);
-                let pd = down && wave.visit(passable, (p.wrapping_add(dd), i + w, (xu, yd)), c1);
-                let pl = left && wave.visit(passable, (sl, i - 1, (xl, yu)), c1);
-                let pu = up && wave.visit(passable, (p.wrapping_add(du), i - w, (xu, ya)), c1);
-                let c2 = ci + SQRT2;
-                if right && down && (pr || pd) {
-                    wave.visit(passable, (sr.wrapping_add(dd), i + w + 1, (xr, yd)), c2);
-                }
-                if left && down && (pl || pd) {
-                    wave.visit(passable, (sl.wrapping_add(dd), i + w - 1, (xl, yd)), c2);
-                }
-                if left && up && (pl || pu) {
-                    wave.visit(passable, (sl.wrapping_add(du), i - w - 1, (xl, ya)), c2);
-                }
-                if right && up && (pr || pu) {
-                    wave.visit(passable, (sr.wrapping_add(du), i - w + 1, (xr, ya)), c2);
-                }
+            .wrapping_neg();
+            let (sr, sl) = (p.wrapping_add(dr), p.wrapping_add(dl));
+            // the neighbours' columns and rows (wrapping: only used inside the grid)
+            let (xr, xl) = (xu.wrapping_add(1), xu.wrapping_sub(1));
+            let (yd, ya) = (yu.wrapping_add(1), yu.wrapping_sub(1));
+            let c1 = ci + 1.0;
+            let pr = right && wave.visit(passable, (sr, i + 1, (xr, yu)), c1);
+            let pd = down && wave.visit(passable, (p.wrapping_add(dd), i + w, (xu, yd)), c1);
+            let pl = left && wave.visit(passable, (sl, i - 1, (xl, yu)), c1);
+            let pu = up && wave.visit(passable, (p.wrapping_add(du), i - w, (xu, ya)), c1);
+            let c2 = ci + SQRT2;
+            if right && down && (pr || pd) {
+                wave.visit(passable, (sr.wrapping_add(dd), i + w + 1, (xr, yd)), c2);
             }
-            bucket.clear();
-            wave.buckets[slot] = bucket;
-            k += 1;
+            if left && down && (pl || pd) {
+                wave.visit(passable, (sl.wrapping_add(dd), i + w - 1, (xl, yd)), c2);
+            }
+            if left && up && (pl || pu) {
+                wave.visit(passable, (sl.wrapping_add(du), i - w - 1, (xl, ya)), c2);
+            }
+            if right && up && (pr || pu) {
+                wave.visit(passable, (sr.wrapping_add(du), i - w + 1, (xr, ya)), c2);
+            }
         }
+        bucket.clear();
+        self.buckets[slot] = bucket;
     }
 
     /// The slot of cell `i < width * height`.
