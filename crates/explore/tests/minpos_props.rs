@@ -101,10 +101,12 @@ proptest! {
         let brute_rank = |i: usize, j: usize| {
             (0..m).filter(|&k| k != i && d[j * m + k] < d[j * m + i] - TIE_CELLS).count()
         };
-        // The ranks MinPos computes from the robots' own maps equal the brute-force count.
+        // Ranks from the robots' own full maps equal the brute-force count (MinPos grows
+        // the same searches only as far as it needs).
         let mut cost = vec![f64::INFINITY; m * n];
+        let mut reach = Reachability::new(W, H);
         for k in 0..m {
-            let reach = planner.map(k);
+            reach.compute(robots[k] as usize, |i| upkeep.is_traversable(&known, i));
             for (j, &c) in cands.cells().iter().enumerate() {
                 cost[k * n + j] = reach.cost(c as usize).unwrap_or(f64::INFINITY);
                 prop_assert!(

@@ -22,6 +22,7 @@
 //!   found by a search that stops at the first one ([`assign_single`], shared with GA and
 //!   HA); equal-cost ties then go to the goal settled first.
 
+use crate::assign::costs::LazyCosts;
 use crate::candidates::CandidateSet;
 use crate::decision::{DecisionCtx, Goal};
 
@@ -43,15 +44,10 @@ pub struct CostMatrix {
 impl CostMatrix {
     /// Fill the matrix for this decision: one row per deciding robot (per robot if
     /// `all_robots`), one column per candidate; computes each row robot's full
-    /// reachability map once.
+    /// reachability map once. (The assigners grow searches only as far as they need, see
+    /// [`crate::assign::costs`]; the full matrix is their test oracle.)
     pub fn fill(&mut self, ctx: &mut DecisionCtx<'_>, candidates: &CandidateSet, all_robots: bool) {
-        let m = ctx.robots.len();
-        self.rows.clear();
-        self.rows
-            .extend((0..m).filter(|&r| all_robots || ctx.deciding[r]));
-        self.cols.clear();
-        self.cols.extend_from_slice(candidates.cells());
-        self.cost.clear();
+        self.frame(ctx, candidates, all_robots);
         for &r in &self.rows {
             let reach = ctx.planner.full(r, ctx.robots[r], ctx.known, ctx.upkeep);
             self.cost.extend(
@@ -60,6 +56,17 @@ impl CostMatrix {
                     .map(|&c| reach.cost(c as usize).unwrap_or(f64::INFINITY)),
             );
         }
+    }
+
+    /// Rows, columns and taken columns of this decision, with no costs.
+    pub fn frame(&mut self, ctx: &DecisionCtx<'_>, candidates: &CandidateSet, all_robots: bool) {
+        let m = ctx.robots.len();
+        self.rows.clear();
+        self.rows
+            .extend((0..m).filter(|&r| all_robots || ctx.deciding[r]));
+        self.cols.clear();
+        self.cols.extend_from_slice(candidates.cells());
+        self.cost.clear();
         self.taken.clear();
         self.taken.resize(self.cols.len(), false);
         for r in 0..m {
@@ -69,10 +76,7 @@ impl CostMatrix {
             let Some(g) = ctx.goals.get(r).copied().flatten() else {
                 continue;
             };
-            if !candidates.contains(g as usize) {
-                continue;
-            }
-            if let Some(j) = self.cols.iter().position(|&c| c == g) {
+            if let Some(j) = candidates.index_of(g as usize) {
                 self.taken[j] = true;
             }
         }
@@ -120,6 +124,10 @@ pub struct Scratch {
     pub order: Vec<usize>,
     /// Per-assigner extra buffer of reals (utilities, sub-matrix costs).
     pub values: Vec<f64>,
+    /// Pairs found by the robots' searches, grown only as far as needed.
+    pub lazy: LazyCosts,
+    /// Per row: how many of its found pairs were already looked at.
+    pub scan: Vec<usize>,
 }
 
 /// Greedy (IA) on a row-major `rows × cols` cost matrix (`INFINITY` = unreachable):
@@ -213,21 +221,96 @@ pub fn assign_single(
 }
 
 /// Give goals to the deciding robots: greedy on the global cost order.
+///
+/// The searches of the robots still without a goal grow together, one bucket at a time:
+/// once all have settled bucket k, every pair of cost below k + 1 is known and any other
+/// costs more, so the cheapest free pair among the known ones is the matrix rule's next
+/// pick (ties by robot, then candidate order, as in [`solve`]).
 pub fn assign(ctx: &mut DecisionCtx<'_>, candidates: &CandidateSet, out: &mut [Option<Goal>]) {
     if assign_single(ctx, candidates, out) {
         return;
     }
     let mut s = std::mem::take(&mut ctx.memory.greedy_utility.scratch);
-    s.matrix.fill(ctx, candidates, false);
-    let m = &s.matrix;
-    solve(
-        m.rows.len(),
-        m.n_cols(),
-        &m.cost,
-        &m.taken,
-        &mut s.free,
-        &mut s.assigned,
-    );
-    s.matrix.write(&s.assigned, out);
+    lazy_greedy(ctx, candidates, &mut s);
+    write_found(&s, out);
     ctx.memory.greedy_utility.scratch = s;
+}
+
+/// Write each row's goal (`s.assigned`, a column) with its cost from the row's found
+/// pairs; rows without a column get `None`.
+pub(crate) fn write_found(s: &Scratch, out: &mut [Option<Goal>]) {
+    for (i, &r) in s.matrix.rows.iter().enumerate() {
+        let Some(slot) = out.get_mut(r) else {
+            continue;
+        };
+        *slot = s.assigned.get(i).copied().flatten().and_then(|j| {
+            let pair = s.lazy.found(r).iter().find(|p| p.col == j)?;
+            Some(Goal {
+                cell: s.matrix.cols[j],
+                cost: pair.cost,
+            })
+        });
+    }
+}
+
+/// Greedy (IA) on lazily grown searches: `s.assigned[i]` becomes row i's column.
+pub(crate) fn lazy_greedy(ctx: &mut DecisionCtx<'_>, candidates: &CandidateSet, s: &mut Scratch) {
+    s.matrix.frame(ctx, candidates, false);
+    s.lazy.reset(ctx.robots.len());
+    let rows = s.matrix.rows.len();
+    s.free.clear();
+    s.free.extend(s.matrix.taken.iter().map(|&t| !t));
+    s.assigned.clear();
+    s.assigned.resize(rows, None);
+    s.scan.clear();
+    s.scan.resize(rows, 0);
+    let mut left = rows;
+    let mut refilled = false;
+    let mut k = 0usize;
+    while left > 0 {
+        let mut all_done = true;
+        for i in 0..rows {
+            if s.assigned[i].is_none() {
+                all_done &= s.lazy.grow(ctx, candidates, s.matrix.rows[i], k);
+            }
+        }
+        // Every unassigned row's pairs below k + 1 are known: pick while a free one is left.
+        loop {
+            let mut best: Option<(f64, usize, usize)> = None;
+            for i in 0..rows {
+                if s.assigned[i].is_some() {
+                    continue;
+                }
+                for p in &s.lazy.found(s.matrix.rows[i])[s.scan[i]..] {
+                    if s.free[p.col]
+                        && best.is_none_or(|(c, bi, bj)| (p.cost, i, p.col) < (c, bi, bj))
+                    {
+                        best = Some((p.cost, i, p.col));
+                    }
+                }
+            }
+            let Some((_, i, j)) = best else { break };
+            s.assigned[i] = Some(j);
+            s.free[j] = false;
+            left -= 1;
+            refilled = false;
+        }
+        // The pairs looked at are all taken now (and stay so until a refill).
+        for i in 0..rows {
+            s.scan[i] = s.lazy.found(s.matrix.rows[i]).len();
+        }
+        if left == 0 {
+            break;
+        }
+        if all_done {
+            if !refilled && s.free.iter().any(|&f| !f) {
+                s.free.fill(true);
+                refilled = true;
+                s.scan.fill(0);
+                continue;
+            }
+            break;
+        }
+        k += 1;
+    }
 }

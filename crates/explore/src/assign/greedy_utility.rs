@@ -25,11 +25,11 @@
 //!   robots), even when such a goal is not among the candidates;
 //! - utilities may become negative when several chosen goals overlap, as in Burgard et al.;
 //! - ties are broken by robot index, then candidate order;
-//! - cost O(m² n + m n) for m deciding robots and n candidates; no O(n²) step. A single
-//!   deciding robot while no other robot holds a goal (all utilities 1) takes its nearest
-//!   goal by an early-stopping search.
+//! - the robots' searches grow only until the best pair beats every pair not seen yet
+//!   (see [`assign`]); no O(n²) step. A single deciding robot while no other robot holds a
+//!   goal (all utilities 1) takes its nearest goal by an early-stopping search.
 
-use crate::assign::greedy::Scratch;
+use crate::assign::greedy::{self, Scratch};
 use crate::candidates::CandidateSet;
 use crate::decision::{DecisionCtx, Goal};
 
@@ -134,6 +134,12 @@ pub fn solve(
 }
 
 /// Give goals to the deciding robots: greedy on utility minus β × path cost.
+///
+/// The searches of the robots still without a goal grow together, one bucket at a time.
+/// After bucket k every pair not seen costs at least k + 1, so its value is at most
+/// U_max − β (k + 1) (U_max: the largest utility of a free goal); the best known pair is
+/// the matrix rule's pick as soon as its value is above that bound (or every search is
+/// complete). Ties go by robot, then candidate order, as in [`solve`].
 pub fn assign(
     ctx: &mut DecisionCtx<'_>,
     candidates: &CandidateSet,
@@ -149,30 +155,104 @@ pub fn assign(
     }
     let mut st = std::mem::take(&mut ctx.memory.greedy_utility);
     let s = &mut st.scratch;
-    s.matrix.fill(ctx, candidates, false);
+    s.matrix.frame(ctx, candidates, false);
+    s.lazy.reset(m);
     let width = ctx.known.width().max(1);
     let xy = |c: u32| ((c as usize % width) as f64, (c as usize / width) as f64);
     st.positions.clear();
     st.positions.extend(s.matrix.cols.iter().map(|&c| xy(c)));
     st.kept.clear();
-    for (r, g) in ctx.goals.iter().enumerate().take(ctx.robots.len()) {
+    for (r, g) in ctx.goals.iter().enumerate().take(m) {
         if let (false, Some(g)) = (ctx.deciding[r], *g) {
             st.kept.push(xy(g));
         }
     }
-    let m = &s.matrix;
-    solve(
-        m.rows.len(),
-        &m.cost,
-        &st.positions,
-        &st.kept,
-        &m.taken,
-        ctx.sensor_range_cells,
-        beta,
-        &mut s.values,
-        &mut s.free,
-        &mut s.assigned,
-    );
-    s.matrix.write(&s.assigned, out);
+    let rho = ctx.sensor_range_cells;
+    let cols = st.positions.len();
+    let utility = &mut s.values;
+    utility.clear();
+    utility.resize(cols, 1.0);
+    for &p in &st.kept {
+        lower_around(utility, &st.positions, p, rho);
+    }
+    let rows = s.matrix.rows.len();
+    s.free.clear();
+    s.free.extend(s.matrix.taken.iter().map(|&t| !t));
+    s.assigned.clear();
+    s.assigned.resize(rows, None);
+    s.scan.clear();
+    s.scan.resize(rows, 0);
+    let mut left = rows;
+    let mut refilled = false;
+    let mut k = 0usize;
+    // The best known pair (value, row, column) over the pairs looked at, if still valid.
+    let mut best: Option<(f64, usize, usize)> = None;
+    let mut stale = true;
+    let mut u_max = f64::NEG_INFINITY;
+    let better = |v: f64, i: usize, j: usize, b: Option<(f64, usize, usize)>| {
+        b.is_none_or(|(bv, bi, bj)| v > bv || (v == bv && (i, j) < (bi, bj)))
+    };
+    while left > 0 {
+        let mut all_done = true;
+        for i in 0..rows {
+            if s.assigned[i].is_none() {
+                all_done &= s.lazy.grow(ctx, candidates, s.matrix.rows[i], k);
+            }
+        }
+        loop {
+            if stale {
+                best = None;
+                s.scan.fill(0);
+                u_max = (0..cols)
+                    .filter(|&j| s.free[j])
+                    .map(|j| utility[j])
+                    .fold(f64::NEG_INFINITY, f64::max);
+                stale = false;
+            }
+            for i in 0..rows {
+                if s.assigned[i].is_some() {
+                    continue;
+                }
+                let found = s.lazy.found(s.matrix.rows[i]);
+                for p in &found[s.scan[i]..] {
+                    if s.free[p.col] {
+                        let v = utility[p.col] - beta * p.cost;
+                        if better(v, i, p.col, best) {
+                            best = Some((v, i, p.col));
+                        }
+                    }
+                }
+                s.scan[i] = found.len();
+            }
+            let Some((v, i, j)) = best else { break };
+            if !all_done && v <= u_max - beta * (k + 1) as f64 {
+                break; // a pair not seen yet might still be worth more
+            }
+            s.assigned[i] = Some(j);
+            s.free[j] = false;
+            left -= 1;
+            refilled = false;
+            lower_around(utility, &st.positions, st.positions[j], rho);
+            stale = true;
+            if left == 0 {
+                break;
+            }
+        }
+        if left == 0 {
+            break;
+        }
+        if all_done {
+            // every pair is known and none is free for a robot still without a goal
+            if !refilled && s.free.iter().any(|&f| !f) {
+                s.free.fill(true);
+                refilled = true;
+                stale = true;
+                continue;
+            }
+            break;
+        }
+        k += 1;
+    }
+    greedy::write_found(s, out);
     ctx.memory.greedy_utility = st;
 }

@@ -139,22 +139,146 @@ pub fn solve(
 }
 
 /// Give goals to the deciding robots: the assignment of least total path cost.
+///
+/// Each robot's search grows until it has settled k free goals (k = deciding robots) and
+/// finished that bucket: its k cheapest free goals are then known. The solver gets the
+/// union of these columns, with the costs the searches found; a pair no search reached is
+/// offered at the unreachable price. That keeps the optimum of [`solve`]: any optimal
+/// assignment can move each robot into its own k cheapest free goals at no higher cost
+/// (see the module docs), and those pairs are all priced exactly. Only among assignments
+/// of equal total cost may the solver's choice differ from the full matrix's.
 pub fn assign(ctx: &mut DecisionCtx<'_>, candidates: &CandidateSet, out: &mut [Option<Goal>]) {
     if greedy::assign_single(ctx, candidates, out) {
         return;
     }
     let mut st = std::mem::take(&mut ctx.memory.greedy_utility);
-    let s = &mut st.scratch;
-    s.matrix.fill(ctx, candidates, false);
-    let m = &s.matrix;
-    solve(
-        m.rows.len(),
-        m.n_cols(),
-        &m.cost,
-        &m.taken,
-        &mut st.hungarian,
-        &mut s.assigned,
-    );
-    s.matrix.write(&s.assigned, out);
+    lazy_optimal(ctx, candidates, &mut st.scratch, &mut st.hungarian);
+    greedy::write_found(&st.scratch, out);
     ctx.memory.greedy_utility = st;
+}
+
+/// HA on lazily grown searches: `s.assigned[i]` becomes row i's column.
+fn lazy_optimal(
+    ctx: &mut DecisionCtx<'_>,
+    candidates: &CandidateSet,
+    s: &mut greedy::Scratch,
+    buf: &mut Buffers,
+) {
+    s.matrix.frame(ctx, candidates, false);
+    s.lazy.reset(ctx.robots.len());
+    let rows = s.matrix.rows.len();
+    let cols = s.matrix.cols.len();
+    s.assigned.clear();
+    s.assigned.resize(rows, None);
+    if rows == 0 || cols == 0 {
+        return;
+    }
+    let k = rows;
+    let taken = &s.matrix.taken;
+    // Each row's k cheapest free columns, (cost, index) order; if it reaches fewer, the
+    // lowest free columns it cannot reach fill up (as the full matrix's selection does).
+    buf.cols.clear();
+    for i in 0..rows {
+        let r = s.matrix.rows[i];
+        let mut free_found = 0;
+        let mut seen = 0;
+        loop {
+            let done = s.lazy.step(ctx, candidates, r, false);
+            let found = s.lazy.found(r);
+            free_found += found[seen..].iter().filter(|p| !taken[p.col]).count();
+            seen = found.len();
+            if free_found >= k || done {
+                break;
+            }
+        }
+        buf.row.clear();
+        buf.row.extend(
+            s.lazy
+                .found(r)
+                .iter()
+                .enumerate()
+                .filter(|(_, p)| !taken[p.col])
+                .map(|(n, _)| n),
+        );
+        let found = s.lazy.found(r);
+        if buf.row.len() > k {
+            buf.row.select_nth_unstable_by(k - 1, |&a, &b| {
+                let (pa, pb) = (found[a], found[b]);
+                pa.cost.total_cmp(&pb.cost).then(pa.col.cmp(&pb.col))
+            });
+            buf.row.truncate(k);
+        }
+        let own = buf.row.len();
+        buf.cols.extend(buf.row.iter().map(|&n| found[n].col));
+        if own < k {
+            // the search is complete: the other free columns are unreachable for this row
+            s.values.clear();
+            s.values.resize(cols, 0.0);
+            for p in found {
+                s.values[p.col] = 1.0;
+            }
+            buf.cols.extend(
+                (0..cols)
+                    .filter(|&j| !taken[j] && s.values[j] == 0.0)
+                    .take(k - own),
+            );
+        }
+    }
+    buf.cols.sort_unstable();
+    buf.cols.dedup();
+    let n = buf.cols.len();
+    if n == 0 {
+        return;
+    }
+    // Column j of the full problem → its position in the reduced one (+1; 0: absent).
+    s.order.clear();
+    s.order.resize(cols, 0);
+    for (jj, &j) in buf.cols.iter().enumerate() {
+        s.order[j] = jj + 1;
+    }
+    buf.cost.clear();
+    buf.cost.resize(rows * n, f64::INFINITY);
+    let mut max_finite = 0.0f64;
+    for i in 0..rows {
+        for p in s.lazy.found(s.matrix.rows[i]) {
+            let jj = s.order[p.col];
+            if jj > 0 {
+                buf.cost[i * n + jj - 1] = p.cost;
+                max_finite = max_finite.max(p.cost);
+            }
+        }
+    }
+    // Any assignment with one more unreachable pair costs more than one with fewer.
+    let big = (max_finite + 1.0) * (rows as f64 + 1.0);
+    let mut priced = std::mem::take(&mut s.values);
+    priced.clear();
+    priced.extend(
+        buf.cost
+            .iter()
+            .map(|&c| if c.is_finite() { c } else { big }),
+    );
+    match lsap::solve(rows, n, &priced, false) {
+        Ok((r, c)) => {
+            for (&i, &jj) in r.iter().zip(&c) {
+                if buf.cost[i * n + jj].is_finite() {
+                    s.assigned[i] = Some(buf.cols[jj]);
+                }
+            }
+        }
+        Err(_) => greedy::lazy_greedy(ctx, candidates, s),
+    }
+    s.values = priced;
+    // Robots left over take their cheapest reachable goal, taken or not (earliest on ties).
+    for i in 0..rows {
+        if s.assigned[i].is_some() {
+            continue;
+        }
+        s.assigned[i] = s
+            .lazy
+            .found(s.matrix.rows[i])
+            .iter()
+            .map(|p| (p.cost, p.col))
+            .min_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)))
+            .map(|(_, j)| j);
+    }
 }

@@ -3,9 +3,9 @@
 //! For robot i and goal j the rank P_ij is the number of robots strictly closer to goal j
 //! than robot i, by path. Each deciding robot takes the goal of minimal rank, ties broken by
 //! its own cost to it (then by candidate order). Bautin et al. propagate one wavefront per
-//! frontier; paths on the grid are symmetric, so the robots' own reachability maps give the
-//! same distances: one full map per robot (every robot, deciding or not, counts in the
-//! ranks), O(m² n) work for m robots and n candidates, no search per frontier.
+//! frontier; paths on the grid are symmetric, so the robots' own searches give the same
+//! distances, grown only as far as the ranks of the goals looked at need (every robot,
+//! deciding or not, counts in the ranks); no search per frontier.
 //!
 //! Precisions and deviations:
 //! - "strictly closer" means shorter by more than [`TIE_CELLS`]: two paths of equal length
@@ -16,6 +16,7 @@
 //! - robots decide independently, so two deciding robots may pick the same goal, as in the
 //!   paper.
 
+use crate::assign::costs::LazyCosts;
 use crate::candidates::CandidateSet;
 use crate::decision::{DecisionCtx, Goal};
 
@@ -89,33 +90,90 @@ fn best_goal(
 }
 
 /// Give goals to the deciding robots: each the goal where it ranks best.
+///
+/// The deciding robot's search grows bucket by bucket; a goal it settles at cost c is
+/// ranked by growing the other robots' searches just past c − [`TIE_CELLS`] (a robot
+/// closer than that has then settled the goal). Once a goal of rank 0 is found, the
+/// bucket of its cost is finished and the search stops: every goal not settled costs
+/// more. Without a goal of rank 0 the search runs to its end. The result is that of
+/// [`solve`] on the full matrix.
 pub fn assign(ctx: &mut DecisionCtx<'_>, candidates: &CandidateSet, out: &mut [Option<Goal>]) {
     let mut s = std::mem::take(&mut ctx.memory.greedy_utility.scratch);
-    s.matrix.fill(ctx, candidates, true);
-    let m = &s.matrix;
-    s.free.clear();
-    s.free.extend(m.rows.iter().map(|&r| ctx.deciding[r]));
-    solve(
-        m.rows.len(),
-        m.n_cols(),
-        &m.cost,
-        &s.free,
-        &m.taken,
-        &mut s.assigned,
-    );
-    for (i, &r) in m.rows.iter().enumerate() {
+    s.matrix.frame(ctx, candidates, true);
+    s.lazy.reset(ctx.robots.len());
+    let m = ctx.robots.len();
+    for r in 0..m {
         if !ctx.deciding[r] {
             continue;
         }
+        let taken = std::mem::take(&mut s.matrix.taken);
+        let mut best = best_lazy(ctx, candidates, &mut s.lazy, r, |j| !taken[j]);
+        if best.is_none() {
+            best = best_lazy(ctx, candidates, &mut s.lazy, r, |_| true);
+        }
+        s.matrix.taken = taken;
         if let Some(slot) = out.get_mut(r) {
-            *slot = s.assigned[i].and_then(|j| {
-                let cost = m.at(i, j);
-                cost.is_finite().then(|| Goal {
-                    cell: m.cols[j],
-                    cost,
-                })
+            *slot = best.map(|(_, cost, j)| Goal {
+                cell: s.matrix.cols[j],
+                cost,
             });
         }
     }
     ctx.memory.greedy_utility.scratch = s;
+}
+
+/// Robot `r`'s goal of minimal (rank, cost, column) among columns with `allowed(j)`,
+/// growing the searches only as far as needed.
+fn best_lazy(
+    ctx: &mut DecisionCtx<'_>,
+    candidates: &CandidateSet,
+    lazy: &mut LazyCosts,
+    r: usize,
+    allowed: impl Fn(usize) -> bool,
+) -> Option<(usize, f64, usize)> {
+    let m = ctx.robots.len();
+    let mut best: Option<(usize, f64, usize)> = None;
+    let mut seen = 0;
+    loop {
+        let done = lazy.step(ctx, candidates, r, false);
+        let upto = lazy.found(r).len();
+        for n in seen..upto {
+            let p = lazy.found(r)[n];
+            if !allowed(p.col) {
+                continue;
+            }
+            let limit = best.map_or(usize::MAX, |(q, _, _)| q);
+            let threshold = p.cost - TIE_CELLS;
+            let cell = candidates.cells()[p.col] as usize;
+            let mut rank = 0;
+            if threshold > 0.0 {
+                for k in 0..m {
+                    if k == r {
+                        continue;
+                    }
+                    // every cell closer to robot k than the threshold is then settled
+                    lazy.grow(ctx, candidates, k, threshold as usize);
+                    if ctx.planner.map(k).cost(cell).is_some_and(|d| d < threshold) {
+                        rank += 1;
+                        if rank > limit {
+                            break;
+                        }
+                    }
+                }
+            }
+            if best.is_none_or(|(q, c, j)| (rank, p.cost, p.col) < (q, c, j)) {
+                best = Some((rank, p.cost, p.col));
+            }
+        }
+        seen = upto;
+        if done {
+            return best;
+        }
+        // Every goal not settled yet costs at least the next bucket.
+        if let Some((0, c, _)) = best
+            && lazy.next_bucket(ctx, r) as f64 > c
+        {
+            return best;
+        }
+    }
 }

@@ -4,6 +4,7 @@
 //! deciding on its own — which is the uncoordinated "nearest frontier" strategy of the
 //! multi-robot study (seed 002).
 
+pub mod costs;
 pub mod greedy;
 pub mod greedy_utility;
 pub mod hungarian;

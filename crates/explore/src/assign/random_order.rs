@@ -2,7 +2,7 @@
 //!
 //! The deciding robots are put in a random order (a Fisher–Yates shuffle drawn from the
 //! run's seeded stream, so no robot is preferred), and each in turn takes its cheapest goal
-//! not yet assigned. Costs are path lengths from one full reachability map per robot.
+//! not yet assigned. Costs are path lengths in cells.
 //!
 //! Precisions and deviations:
 //! - goals of robots that keep their goal this time count as assigned;
@@ -10,11 +10,13 @@
 //!   (seed 002 Alg. 2) the goal set is then refilled, so that robot takes its cheapest goal
 //!   overall (later robots again prefer goals nobody took since the refill);
 //! - ties between goals of equal cost go to the earlier candidate;
-//! - cost O(m n) for m deciding robots and n candidates; a single deciding robot takes its
-//!   nearest free goal by an early-stopping search ([`greedy::assign_single`]).
+//! - each robot's search grows only until it settles a free goal (see
+//!   [`crate::assign::costs`]); a single deciding robot takes its nearest free goal by an
+//!   early-stopping search ([`greedy::assign_single`]).
 
 use rand::RngExt;
 
+use crate::assign::costs::Pair;
 use crate::assign::greedy;
 use crate::candidates::CandidateSet;
 use crate::decision::{DecisionCtx, Goal};
@@ -68,12 +70,16 @@ fn cheapest_free(row: &[f64], free: &[bool]) -> Option<usize> {
 }
 
 /// Give goals to the deciding robots: in random order, each its cheapest free goal.
+///
+/// Each robot's search grows one bucket at a time until it settles a free goal: the
+/// cheapest free one found in that bucket is its cheapest free goal, as in [`solve`].
 pub fn assign(ctx: &mut DecisionCtx<'_>, candidates: &CandidateSet, out: &mut [Option<Goal>]) {
     if greedy::assign_single(ctx, candidates, out) {
         return;
     }
     let mut s = std::mem::take(&mut ctx.memory.greedy_utility.scratch);
-    s.matrix.fill(ctx, candidates, false);
+    s.matrix.frame(ctx, candidates, false);
+    s.lazy.reset(ctx.robots.len());
     let k = s.matrix.rows.len();
     s.order.clear();
     s.order.extend(0..k);
@@ -81,15 +87,43 @@ pub fn assign(ctx: &mut DecisionCtx<'_>, candidates: &CandidateSet, out: &mut [O
         let j = ctx.rng.random_range(0..=i);
         s.order.swap(i, j);
     }
-    let m = &s.matrix;
-    solve(
-        m.n_cols(),
-        &m.cost,
-        &m.taken,
-        &s.order,
-        &mut s.free,
-        &mut s.assigned,
-    );
-    s.matrix.write(&s.assigned, out);
+    s.free.clear();
+    s.free.extend(s.matrix.taken.iter().map(|&t| !t));
+    s.assigned.clear();
+    s.assigned.resize(k, None);
+    let cheapest = |pairs: &[Pair], free: &[bool]| {
+        pairs
+            .iter()
+            .filter(|p| free[p.col])
+            .map(|p| (p.cost, p.col))
+            .min_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)))
+            .map(|(_, j)| j)
+    };
+    if !s.matrix.cols.is_empty() {
+        for n in 0..k {
+            let i = s.order[n];
+            let r = s.matrix.rows[i];
+            let mut seen = 0;
+            let mut pick = loop {
+                let done = s.lazy.step(ctx, candidates, r, false);
+                let found = s.lazy.found(r);
+                // earlier pairs were all taken, and nothing is freed during this turn
+                let pick = cheapest(&found[seen..], &s.free);
+                seen = found.len();
+                if pick.is_some() || done {
+                    break pick;
+                }
+            };
+            if pick.is_none() && s.free.iter().any(|&f| !f) {
+                s.free.fill(true);
+                pick = cheapest(s.lazy.found(r), &s.free);
+            }
+            if let Some(j) = pick {
+                s.assigned[i] = Some(j);
+                s.free[j] = false;
+            }
+        }
+    }
+    greedy::write_found(&s, out);
     ctx.memory.greedy_utility.scratch = s;
 }

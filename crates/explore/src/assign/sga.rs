@@ -29,6 +29,10 @@
 //! - Team semantics: robots that keep their goal count as having chosen it (their goals are
 //!   penalised first); robots decide in index order; only frontiers the robot can reach are
 //!   considered. The paper re-plans every s_max = 7 steps; the loop does that.
+//! - Costs: a goal outside the robot's cluster needs only to be reachable (one flood fill
+//!   per component); goals in it are priced by the robot's search, grown until every goal
+//!   it has not settled would cost more than the best so far (path + o ≥ path). The
+//!   choice is that of the full cost list.
 
 use crate::candidates::CandidateSet;
 use crate::decision::{DecisionCtx, Goal};
@@ -48,6 +52,7 @@ pub struct State {
     penalty: Vec<f64>,
     label: Vec<u32>,
     cost: Vec<f64>,
+    lazy: crate::assign::costs::LazyCosts,
 }
 
 impl State {
@@ -92,6 +97,7 @@ fn run(
     if candidates.is_empty() {
         return;
     }
+    st.lazy.reset(m);
     let (w, h) = (ctx.known.width(), ctx.known.height());
     let delta = ((w * w + h * h) as f64).sqrt();
     let rho = ctx.sensor_range_cells.max(0.0);
@@ -125,23 +131,54 @@ fn run(
         if !ctx.deciding[r] {
             continue;
         }
-        let reach = ctx.planner.full(r, ctx.robots[r], ctx.known, ctx.upkeep);
         let centre = st.centres[r];
-        let mut best: Option<(f64, usize, f64)> = None; // (cost, index, path length)
+        // Goals outside the robot's cluster: their cost needs no path, only reachability.
+        let comp = ctx
+            .planner
+            .component(r, ctx.robots[r], ctx.known, ctx.upkeep);
+        let mut best: Option<(f64, usize)> = None; // (cost, index)
         for (i, &c) in cells.iter().enumerate() {
-            let Some(path) = reach.cost(c as usize) else {
+            if st.label[i] as usize == r || !comp.contains(c as usize) {
                 continue;
-            };
-            let cost = if st.label[i] as usize == r {
-                path + st.penalty[i]
-            } else {
-                let f = xy(c);
-                delta + (f.0 - centre.0).powi(2) + (f.1 - centre.1).powi(2) + st.penalty[i]
-            };
-            if best.is_none_or(|(b, _, _)| cost < b) {
-                best = Some((cost, i, path));
+            }
+            let f = xy(c);
+            let cost = delta + (f.0 - centre.0).powi(2) + (f.1 - centre.1).powi(2) + st.penalty[i];
+            if best.is_none_or(|(b, _)| cost < b) {
+                best = Some((cost, i));
             }
         }
+        // Goals in it cost their path plus penalty: grow the search until nothing it has
+        // not settled can be cheaper than the best so far.
+        let mut seen = 0;
+        loop {
+            let done = st.lazy.step(ctx, candidates, r, false);
+            let found = st.lazy.found(r);
+            for p in &found[seen..] {
+                if st.label[p.col] as usize != r {
+                    continue;
+                }
+                let cost = p.cost + st.penalty[p.col];
+                if best.is_none_or(|(b, bi)| (cost, p.col) < (b, bi)) {
+                    best = Some((cost, p.col));
+                }
+            }
+            seen = found.len();
+            if done || best.is_some_and(|(b, _)| st.lazy.next_bucket(ctx, r) as f64 > b) {
+                break;
+            }
+        }
+        // The path length of the goal chosen (settled by the search).
+        let best = best.and_then(|(_, i)| {
+            let cell = cells[i] as usize;
+            loop {
+                if let Some(path) = ctx.planner.map(r).cost(cell) {
+                    break Some((0.0, i, path));
+                }
+                if st.lazy.step(ctx, candidates, r, false) {
+                    break ctx.planner.map(r).cost(cell).map(|path| (0.0, i, path));
+                }
+            }
+        });
         if let Some((_, i, path)) = best {
             *slot = Some(Goal {
                 cell: cells[i],

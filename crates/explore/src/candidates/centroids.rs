@@ -42,12 +42,14 @@ fn generate_min(
     let Some(r) = ctx.deciding.iter().position(|&d| d) else {
         return;
     };
-    let reach = ctx.planner.full(r, ctx.robots[r], ctx.known, ctx.upkeep);
+    let reach = ctx
+        .planner
+        .component(r, ctx.robots[r], ctx.known, ctx.upkeep);
     for region in &scratch.regions {
         let (cx, cy) = region.centroid;
         let mut best: Option<(f64, u32)> = None;
         for &c in &region.cells {
-            if ctx.lists.is_excluded(c) || reach.cost(c as usize).is_none() {
+            if ctx.lists.is_excluded(c) || !reach.contains(c as usize) {
                 continue;
             }
             let x = (c as usize % width) as f64;

@@ -130,14 +130,14 @@ fn cover(ctx: &mut DecisionCtx<'_>, st: &mut State) {
 
     let known = ctx.known;
     let lists = ctx.lists;
-    let reach = ctx.planner.full(r, ctx.robots[r], known, ctx.upkeep);
+    let reach = ctx.planner.component(r, ctx.robots[r], known, ctx.upkeep);
     let upkeep = &*ctx.upkeep;
     let sensor = &st.sensor.as_ref().expect("built above").1;
     let origin_of = |c: u32| known.cell(c as usize);
 
     // Lines 2–4: covering cells of every frontier cell.
     for &f in upkeep.frontiers.cells() {
-        if lists.is_excluded(f) || reach.cost(f as usize).is_none() {
+        if lists.is_excluded(f) || !reach.contains(f as usize) {
             continue;
         }
         st.front.push(f);
@@ -160,8 +160,7 @@ fn cover(ctx: &mut DecisionCtx<'_>, st: &mut State) {
                 return;
             }
             stamp[iu] = epoch;
-            if !upkeep.is_traversable(known, iu) || lists.is_excluded(i) || reach.cost(iu).is_none()
-            {
+            if !upkeep.is_traversable(known, iu) || lists.is_excluded(i) || !reach.contains(iu) {
                 cid[iu] = NOT_ELIGIBLE;
                 return;
             }

@@ -91,12 +91,14 @@ fn generate_min(
     let Some(r) = ctx.deciding.iter().position(|&d| d) else {
         return;
     };
-    let reach = ctx.planner.full(r, ctx.robots[r], ctx.known, ctx.upkeep);
+    let reach = ctx
+        .planner
+        .component(r, ctx.robots[r], ctx.known, ctx.upkeep);
     for region in &st.regions {
         st.cells.clear();
         st.points.clear();
         for &c in &region.cells {
-            if !ctx.lists.is_excluded(c) && reach.cost(c as usize).is_some() {
+            if !ctx.lists.is_excluded(c) && reach.contains(c as usize) {
                 st.cells.push(c);
                 st.points.push(xy(c, width));
             }

@@ -1,0 +1,109 @@
+//! Robot → candidate path costs found only as far as a decision needs them.
+//!
+//! The coordinated assigners were written on a full robot × candidate cost matrix, one
+//! complete reachability map per robot per decision. But greedy needs only the pairs
+//! cheaper than the ones it picks, GA and HA a few cheapest goals per robot, MinPos the
+//! robots' distances up to the goal it settles on: each robot's Dijkstra search is
+//! resumable ([`Reachability::begin`](crate::Reachability::begin)) and grown bucket by
+//! bucket (one cell-step of cost per bucket) until the rule can decide. When a search has
+//! settled bucket k, every cell of cost below k + 1 has its final cost, the same bits a full
+//! search gives (each cost is the minimum over final neighbour costs), so a rule that
+//! reasons "every pair not seen yet costs at least k + 1" decides exactly as on the full
+//! matrix. The cost of a decision then follows the area within the chosen goals, not the
+//! map.
+
+use crate::candidates::CandidateSet;
+use crate::decision::DecisionCtx;
+
+/// One robot → candidate pair found by a search: its path cost and the candidate's column
+/// (position in [`CandidateSet::cells`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Pair {
+    /// Path cost in cells.
+    pub cost: f64,
+    /// Candidate column.
+    pub col: usize,
+}
+
+/// Per robot, the candidates its search has settled so far, in the order settled.
+#[derive(Clone, Debug, Default)]
+pub struct LazyCosts {
+    found: Vec<Vec<Pair>>,
+    /// Per robot: how much of its search's settled list has been looked at.
+    scanned: Vec<usize>,
+}
+
+impl LazyCosts {
+    /// Forget the last decision's pairs; ready for `robots` robots.
+    pub fn reset(&mut self, robots: usize) {
+        self.found.resize_with(robots, Vec::new);
+        self.found.truncate(robots);
+        for f in &mut self.found {
+            f.clear();
+        }
+        self.scanned.clear();
+        self.scanned.resize(robots, 0);
+    }
+
+    /// Grow robot `r`'s search through bucket `through` (every cell of cost below
+    /// `through + 1` settled) and record the candidates newly settled. Returns whether its
+    /// search is complete (every pair of robot `r` is then known).
+    pub fn grow(
+        &mut self,
+        ctx: &mut DecisionCtx<'_>,
+        candidates: &CandidateSet,
+        r: usize,
+        through: usize,
+    ) -> bool {
+        let done = ctx
+            .planner
+            .grow(r, ctx.robots[r], ctx.known, ctx.upkeep, through);
+        let map = ctx.planner.map(r);
+        let settled = map.settled();
+        if self.scanned[r] > settled.len() {
+            // the planner restarted this robot's search
+            self.scanned[r] = 0;
+            self.found[r].clear();
+        }
+        for &c in &settled[self.scanned[r]..] {
+            if let Some(col) = candidates.index_of(c as usize) {
+                let cost = map.cost(c as usize).unwrap_or(f64::INFINITY);
+                self.found[r].push(Pair { cost, col });
+            }
+        }
+        self.scanned[r] = settled.len();
+        done
+    }
+
+    /// Grow robot `r`'s search by at least one bucket (to its end if `to_end`). Returns
+    /// whether it is complete.
+    pub fn step(
+        &mut self,
+        ctx: &mut DecisionCtx<'_>,
+        candidates: &CandidateSet,
+        r: usize,
+        to_end: bool,
+    ) -> bool {
+        let through = if to_end {
+            usize::MAX
+        } else {
+            self.next_bucket(ctx, r)
+        };
+        self.grow(ctx, candidates, r, through)
+    }
+
+    /// The first bucket robot `r`'s search has not settled (0 before it starts): every
+    /// pair of robot `r` not found yet costs at least this much, or is unreachable.
+    pub fn next_bucket(&self, ctx: &DecisionCtx<'_>, r: usize) -> usize {
+        if self.scanned[r] == 0 && self.found[r].is_empty() && !ctx.planner.is_searching(r) {
+            0
+        } else {
+            ctx.planner.map(r).next_bucket()
+        }
+    }
+
+    /// The pairs of robot `r` found so far, in the order settled.
+    pub fn found(&self, r: usize) -> &[Pair] {
+        &self.found[r]
+    }
+}
