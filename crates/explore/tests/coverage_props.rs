@@ -164,4 +164,78 @@ proptest! {
         let chosen: Vec<u32> = got.iter().map(|(c, _)| *c).collect();
         prop_assert_eq!(out.cells(), &chosen[..]);
     }
+
+    #[test]
+    fn cover_with_cached_visibility_equals_a_fresh_one(
+        bits in prop::collection::vec(0u8..100, 97),
+        cut in 10usize..40,
+        range in 1.0f64..12.0,
+        rounds in prop::collection::vec(
+            (0usize..40, 0usize..24, 1usize..12, 1usize..8, prop::collection::vec(0u8..100, 7)),
+            1..6,
+        ),
+    ) {
+        // Belief changes in random boxes between decisions; one fixture keeps its cache.
+        let (w, h) = (40, 24);
+        let known = random_known(w, h, &bits, cut);
+        let up = {
+            let mut u = FrontierUpkeep::new(w, h, 0.0);
+            u.rebuild(&known);
+            u
+        };
+        let Some(robot) = largest_component_cell(&known, &up) else {
+            return Ok(());
+        };
+        let mut kept = Fixture::new(known, vec![robot as u32], range, 3);
+        for (x0, y0, bw, bh, pattern) in rounds {
+            let credits = |fx: &mut Fixture| {
+                let mut out = CandidateSet::new(w * h);
+                let mut ctx = fx.ctx();
+                CandidateKind::Coverage.generate(&mut ctx, &mut out);
+                let got: Vec<(u32, Vec<u32>)> = fx
+                    .memory
+                    .coverage
+                    .credits()
+                    .map(|(c, s)| (c, s.to_vec()))
+                    .collect();
+                (got, out.cells().to_vec())
+            };
+            let before = credits(&mut kept);
+            let mut fresh = Fixture::new(kept.known.clone(), kept.robots.clone(), range, 3);
+            prop_assert_eq!(&before, &credits(&mut fresh));
+            // change a box of cells
+            for y in y0..(y0 + bh).min(h) {
+                for x in x0..(x0 + bw).min(w) {
+                    let b = pattern[(x * 3 + y) % pattern.len()];
+                    kept.known[y * w + x] = if b < 20 {
+                        Occ::Unknown
+                    } else if b < 40 {
+                        Occ::Occupied
+                    } else {
+                        Occ::Free
+                    };
+                }
+            }
+            let known = kept.known.clone();
+            kept.upkeep.rebuild(&known);
+            let Some(robot) = largest_component_cell(&kept.known, &kept.upkeep) else {
+                return Ok(());
+            };
+            kept.robots = vec![robot as u32];
+        }
+        let last = {
+            let mut out = CandidateSet::new(w * h);
+            let mut ctx = kept.ctx();
+            CandidateKind::Coverage.generate(&mut ctx, &mut out);
+            out.cells().to_vec()
+        };
+        let mut fresh = Fixture::new(kept.known.clone(), kept.robots.clone(), range, 3);
+        let want = {
+            let mut out = CandidateSet::new(w * h);
+            let mut ctx = fresh.ctx();
+            CandidateKind::Coverage.generate(&mut ctx, &mut out);
+            out.cells().to_vec()
+        };
+        prop_assert_eq!(last, want);
+    }
 }

@@ -31,6 +31,8 @@ use std::collections::BinaryHeap;
 
 use sense::{LosSensor, MAX_TEMPLATE_RANGE_CELLS};
 
+use grid::{Grid, Occ};
+
 use super::CandidateSet;
 use crate::decision::DecisionCtx;
 
@@ -68,6 +70,152 @@ pub struct State {
     chosen: Vec<u32>,
     credit_start: Vec<u32>,
     credit: Vec<u32>,
+    /// Visibility kept across decisions (see [`Visibility`]).
+    vis: Visibility,
+}
+
+/// Side of the square blocks in which belief changes are tracked, in cells.
+const BLOCK: usize = 16;
+
+/// What each frontier cell sees, kept across decisions: the free cells a scan from it
+/// reports (before the per-decision eligibility filter), and the blocks of cells the scan
+/// looked at. A scan's result depends only on the cells it looked at (the cells it
+/// reported, blocking ones included, and the cells beside them that the diagonal squeeze
+/// test reads), so it stays valid until a cell in that box of blocks changes. Changes are
+/// found by comparing the belief with its copy from the last decision, block by block.
+#[derive(Default)]
+struct Visibility {
+    /// The belief at the last decision.
+    prev: Vec<Occ>,
+    /// Per block: the decision that last saw a change in it.
+    changed_at: Vec<u32>,
+    blocks_x: usize,
+    /// Decisions counted from 1.
+    decision: u32,
+    /// Per cell: its entry in `entries`, or `NONE`.
+    slot: Vec<u32>,
+    entries: Vec<Seen>,
+    /// Entries not in use.
+    spare: Vec<u32>,
+    /// Per entry: still a frontier to cover in this decision.
+    used: Vec<u32>,
+}
+
+/// No cache entry.
+const NONE: u32 = u32::MAX;
+
+/// One frontier cell's scan.
+#[derive(Default)]
+struct Seen {
+    cell: u32,
+    /// The decision it was scanned in.
+    made: u32,
+    /// Blocks looked at: columns `bx0..=bx1`, rows `by0..=by1`.
+    bx0: u32,
+    by0: u32,
+    bx1: u32,
+    by1: u32,
+    /// Free cells reported, in scan order.
+    free: Vec<u32>,
+}
+
+impl Visibility {
+    /// Start a decision on `known`: note the blocks changed since the last one.
+    fn start(&mut self, known: &Grid<Occ>) {
+        let (w, h) = (known.width(), known.height());
+        let data = known.data();
+        self.decision += 1;
+        if self.prev.len() != data.len() {
+            self.prev = data.to_vec();
+            self.blocks_x = w.div_ceil(BLOCK);
+            self.changed_at = vec![0; self.blocks_x * h.div_ceil(BLOCK)];
+            self.slot = vec![NONE; data.len()];
+            self.entries.clear();
+            self.spare.clear();
+            self.used.clear();
+            return;
+        }
+        for y in 0..h {
+            let (row, old) = (
+                &data[y * w..(y + 1) * w],
+                &mut self.prev[y * w..(y + 1) * w],
+            );
+            if row == old {
+                continue;
+            }
+            let by = y / BLOCK;
+            for (bx, (a, b)) in row.chunks(BLOCK).zip(old.chunks(BLOCK)).enumerate() {
+                if a != b {
+                    self.changed_at[by * self.blocks_x + bx] = self.decision;
+                }
+            }
+            old.copy_from_slice(row);
+        }
+    }
+
+    /// Whether entry `e` is still what a scan would report.
+    fn valid(&self, e: &Seen) -> bool {
+        (e.by0..=e.by1).all(|by| {
+            let row = by as usize * self.blocks_x;
+            self.changed_at[row + e.bx0 as usize..=row + e.bx1 as usize]
+                .iter()
+                .all(|&c| c < e.made)
+        })
+    }
+
+    /// The entry of frontier cell `f`, scanned again if the belief changed where it looked.
+    fn get(&mut self, f: u32, known: &Grid<Occ>, sensor: &LosSensor) -> u32 {
+        let mut k = self.slot[f as usize];
+        if k != NONE && self.valid(&self.entries[k as usize]) {
+            self.used[k as usize] = self.decision;
+            return k;
+        }
+        if k == NONE {
+            k = self.spare.pop().unwrap_or_else(|| {
+                self.entries.push(Seen::default());
+                self.used.push(0);
+                (self.entries.len() - 1) as u32
+            });
+            self.slot[f as usize] = k;
+        }
+        let w = known.width();
+        let (bw, bh) = (self.blocks_x, self.changed_at.len() / self.blocks_x.max(1));
+        let e = &mut self.entries[k as usize];
+        e.cell = f;
+        e.made = self.decision;
+        e.free.clear();
+        let (fx, fy) = (f as usize % w, f as usize / w);
+        let (mut x0, mut x1, mut y0, mut y1) = (fx, fx, fy, fy);
+        sensor.for_each_seen(known, known.cell(f as usize), |i, s| {
+            let (x, y) = (i as usize % w, i as usize / w);
+            x0 = x0.min(x);
+            x1 = x1.max(x);
+            y0 = y0.min(y);
+            y1 = y1.max(y);
+            if s == Occ::Free {
+                e.free.push(i);
+            }
+        });
+        // one cell more each way: the squeeze test reads the cells beside a diagonal step
+        e.bx0 = (x0.saturating_sub(1) / BLOCK) as u32;
+        e.by0 = (y0.saturating_sub(1) / BLOCK) as u32;
+        e.bx1 = ((x1 + 1) / BLOCK).min(bw - 1) as u32;
+        e.by1 = ((y1 + 1) / BLOCK).min(bh - 1) as u32;
+        self.used[k as usize] = self.decision;
+        k
+    }
+
+    /// Drop the entries of cells that were not frontiers to cover in this decision.
+    fn sweep(&mut self) {
+        for k in 0..self.entries.len() {
+            let cell = self.entries[k].cell as usize;
+            if self.used[k] != self.decision && self.slot.get(cell) == Some(&(k as u32)) {
+                self.slot[cell] = NONE;
+                self.entries[k].free = Vec::new();
+                self.spare.push(k as u32);
+            }
+        }
+    }
 }
 
 impl State {
@@ -133,7 +281,7 @@ fn cover(ctx: &mut DecisionCtx<'_>, st: &mut State) {
     let reach = ctx.planner.component(r, ctx.robots[r], known, ctx.upkeep);
     let upkeep = &*ctx.upkeep;
     let sensor = &st.sensor.as_ref().expect("built above").1;
-    let origin_of = |c: u32| known.cell(c as usize);
+    st.vis.start(known);
 
     // Lines 2–4: covering cells of every frontier cell.
     for &f in upkeep.frontiers.cells() {
@@ -149,7 +297,8 @@ fn cover(ctx: &mut DecisionCtx<'_>, st: &mut State) {
         (&mut st.cands, &mut st.count, &mut st.f_cov, &mut st.f_start);
     for &f in &st.front {
         f_start.push(f_cov.len() as u32);
-        sensor.for_each_seen(known, origin_of(f), |i, _| {
+        let k = st.vis.get(f, known, sensor);
+        for &i in &st.vis.entries[k as usize].free {
             let iu = i as usize;
             if stamp[iu] == epoch {
                 let id = cid[iu];
@@ -157,20 +306,21 @@ fn cover(ctx: &mut DecisionCtx<'_>, st: &mut State) {
                     f_cov.push(id);
                     count[id as usize] += 1;
                 }
-                return;
+                continue;
             }
             stamp[iu] = epoch;
             if !upkeep.is_traversable(known, iu) || lists.is_excluded(i) || !reach.contains(iu) {
                 cid[iu] = NOT_ELIGIBLE;
-                return;
+                continue;
             }
             let id = cands.len() as u32;
             cid[iu] = id;
             cands.push(i);
             count.push(1);
             f_cov.push(id);
-        });
+        }
     }
+    st.vis.sweep();
     f_start.push(f_cov.len() as u32);
 
     // Lines 5–8: the frontiers each covering cell sees (transpose).
