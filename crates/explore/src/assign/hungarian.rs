@@ -140,13 +140,16 @@ pub fn solve(
 
 /// Give goals to the deciding robots: the assignment of least total path cost.
 ///
-/// Each robot's search grows until it has settled k free goals (k = deciding robots) and
-/// finished that bucket: its k cheapest free goals are then known. The solver gets the
-/// union of these columns, with the costs the searches found; a pair no search reached is
-/// offered at the unreachable price. That keeps the optimum of [`solve`]: any optimal
-/// assignment can move each robot into its own k cheapest free goals at no higher cost
-/// (see the module docs), and those pairs are all priced exactly. Only among assignments
-/// of equal total cost may the solver's choice differ from the full matrix's.
+/// The robots' searches grow only until the optimum is certified. A robot whose search
+/// has settled every bucket below L knows its exact cost to every goal it settled, and
+/// that every other goal costs at least L (or is unreachable, once its search is complete).
+/// The solver gets the lower-bound matrix: exact costs where known, L elsewhere (each robot
+/// offered its k cheapest free goals found plus k stand-in columns at its L, which by the
+/// argument of the module docs keeps the optimum). If its optimal assignment uses only
+/// exact costs, it is optimal for the true matrix too (every true cost is at least its
+/// bound); otherwise the searches of the robots given a bound grow (their radius doubles)
+/// and the problem is solved again. Ties between assignments of equal total may be broken
+/// differently from the full matrix's [`solve`].
 pub fn assign(ctx: &mut DecisionCtx<'_>, candidates: &CandidateSet, out: &mut [Option<Goal>]) {
     if greedy::assign_single(ctx, candidates, out) {
         return;
@@ -174,108 +177,115 @@ fn lazy_optimal(
         return;
     }
     let k = rows;
-    let taken = &s.matrix.taken;
-    // Each row's k cheapest free columns, (cost, index) order; if it reaches fewer, the
-    // lowest free columns it cannot reach fill up (as the full matrix's selection does).
-    buf.cols.clear();
-    for i in 0..rows {
-        let r = s.matrix.rows[i];
-        let mut free_found = 0;
-        let mut seen = 0;
-        loop {
-            let done = s.lazy.step(ctx, candidates, r, false);
-            let found = s.lazy.found(r);
-            free_found += found[seen..].iter().filter(|p| !taken[p.col]).count();
-            seen = found.len();
-            if free_found >= k || done {
-                break;
-            }
-        }
-        buf.row.clear();
-        buf.row.extend(
-            s.lazy
-                .found(r)
-                .iter()
-                .enumerate()
-                .filter(|(_, p)| !taken[p.col])
-                .map(|(n, _)| n),
-        );
-        let found = s.lazy.found(r);
-        if buf.row.len() > k {
-            buf.row.select_nth_unstable_by(k - 1, |&a, &b| {
-                let (pa, pb) = (found[a], found[b]);
-                pa.cost.total_cmp(&pb.cost).then(pa.col.cmp(&pb.col))
-            });
-            buf.row.truncate(k);
-        }
-        let own = buf.row.len();
-        buf.cols.extend(buf.row.iter().map(|&n| found[n].col));
-        if own < k {
-            // the search is complete: the other free columns are unreachable for this row
-            s.values.clear();
-            s.values.resize(cols, 0.0);
-            for p in found {
-                s.values[p.col] = 1.0;
-            }
-            buf.cols.extend(
-                (0..cols)
-                    .filter(|&j| !taken[j] && s.values[j] == 0.0)
-                    .take(k - own),
-            );
-        }
-    }
-    buf.cols.sort_unstable();
-    buf.cols.dedup();
-    let n = buf.cols.len();
-    if n == 0 {
-        return;
-    }
     // Column j of the full problem → its position in the reduced one (+1; 0: absent).
     s.order.clear();
     s.order.resize(cols, 0);
-    for (jj, &j) in buf.cols.iter().enumerate() {
-        s.order[j] = jj + 1;
-    }
-    buf.cost.clear();
-    buf.cost.resize(rows * n, f64::INFINITY);
-    let mut max_finite = 0.0f64;
+    // Per row: whether its search is complete.
+    let mut complete = vec![false; rows];
     for i in 0..rows {
-        for p in s.lazy.found(s.matrix.rows[i]) {
-            let jj = s.order[p.col];
-            if jj > 0 {
-                buf.cost[i * n + jj - 1] = p.cost;
-                max_finite = max_finite.max(p.cost);
-            }
-        }
+        complete[i] = s.lazy.step(ctx, candidates, s.matrix.rows[i], false);
     }
-    // Any assignment with one more unreachable pair costs more than one with fewer.
-    let big = (max_finite + 1.0) * (rows as f64 + 1.0);
-    let mut priced = std::mem::take(&mut s.values);
-    priced.clear();
-    priced.extend(
-        buf.cost
-            .iter()
-            .map(|&c| if c.is_finite() { c } else { big }),
-    );
-    match lsap::solve(rows, n, &priced, false) {
-        Ok((r, c)) => {
-            for (&i, &jj) in r.iter().zip(&c) {
-                if buf.cost[i * n + jj].is_finite() {
-                    s.assigned[i] = Some(buf.cols[jj]);
+    loop {
+        let taken = &s.matrix.taken;
+        // Each row's k cheapest free columns found, (cost, index) order.
+        for &j in &buf.cols {
+            s.order[j] = 0;
+        }
+        buf.cols.clear();
+        for i in 0..rows {
+            let found = s.lazy.found(s.matrix.rows[i]);
+            buf.row.clear();
+            buf.row.extend(
+                found
+                    .iter()
+                    .enumerate()
+                    .filter(|(_, p)| !taken[p.col])
+                    .map(|(n, _)| n),
+            );
+            if buf.row.len() > k {
+                buf.row.select_nth_unstable_by(k - 1, |&a, &b| {
+                    let (pa, pb) = (found[a], found[b]);
+                    pa.cost.total_cmp(&pb.cost).then(pa.col.cmp(&pb.col))
+                });
+                buf.row.truncate(k);
+            }
+            buf.cols.extend(buf.row.iter().map(|&n| found[n].col));
+        }
+        buf.cols.sort_unstable();
+        buf.cols.dedup();
+        for (jj, &j) in buf.cols.iter().enumerate() {
+            s.order[j] = jj + 1;
+        }
+        // Exact costs, bounds (the row's next bucket) and unreachable pairs; then k
+        // stand-in columns for the goals no row has offered.
+        let n = buf.cols.len() + k;
+        const UNKNOWN: f64 = f64::NEG_INFINITY;
+        buf.cost.clear();
+        buf.cost.resize(rows * n, UNKNOWN);
+        let mut max_finite = 0.0f64;
+        for i in 0..rows {
+            let r = s.matrix.rows[i];
+            for p in s.lazy.found(r) {
+                let jj = s.order[p.col];
+                if jj > 0 {
+                    buf.cost[i * n + jj - 1] = p.cost;
+                    max_finite = max_finite.max(p.cost);
                 }
             }
+            if !complete[i] {
+                max_finite = max_finite.max(s.lazy.next_bucket(ctx, r) as f64);
+            }
         }
-        Err(_) => greedy::lazy_greedy(ctx, candidates, s),
+        // Any assignment with one more unreachable pair costs more than one with fewer.
+        let big = (max_finite + 1.0) * (rows as f64 + 1.0);
+        s.values.clear();
+        for i in 0..rows {
+            let bound = if complete[i] {
+                big
+            } else {
+                s.lazy.next_bucket(ctx, s.matrix.rows[i]) as f64
+            };
+            for jj in 0..n {
+                let c = buf.cost[i * n + jj];
+                s.values.push(if c == UNKNOWN { bound } else { c });
+            }
+        }
+        let Ok((r, c)) = lsap::solve(rows, n, &s.values, false) else {
+            greedy::lazy_greedy(ctx, candidates, s);
+            return;
+        };
+        // Rows given a bound must look further; otherwise the assignment is optimal.
+        let mut grew = false;
+        for (&i, &jj) in r.iter().zip(&c) {
+            if buf.cost[i * n + jj] == UNKNOWN && !complete[i] {
+                let row = s.matrix.rows[i];
+                let next = s.lazy.next_bucket(ctx, row);
+                complete[i] = s.lazy.grow(ctx, candidates, row, 2 * next + 8);
+                grew = true;
+            }
+        }
+        if grew {
+            continue;
+        }
+        for (&i, &jj) in r.iter().zip(&c) {
+            if jj < buf.cols.len() && buf.cost[i * n + jj] != UNKNOWN {
+                s.assigned[i] = Some(buf.cols[jj]);
+            }
+        }
+        break;
     }
-    s.values = priced;
     // Robots left over take their cheapest reachable goal, taken or not (earliest on ties).
     for i in 0..rows {
         if s.assigned[i].is_some() {
             continue;
         }
+        let r = s.matrix.rows[i];
+        while s.lazy.found(r).is_empty() && !complete[i] {
+            complete[i] = s.lazy.step(ctx, candidates, r, false);
+        }
         s.assigned[i] = s
             .lazy
-            .found(s.matrix.rows[i])
+            .found(r)
             .iter()
             .map(|p| (p.cost, p.col))
             .min_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)))

@@ -95,8 +95,10 @@ fn best_goal(
 /// ranked by growing the other robots' searches just past c − [`TIE_CELLS`] (a robot
 /// closer than that has then settled the goal). Once a goal of rank 0 is found, the
 /// bucket of its cost is finished and the search stops: every goal not settled costs
-/// more. Without a goal of rank 0 the search runs to its end. The result is that of
-/// [`solve`] on the full matrix.
+/// more. Without one, the search stops once every goal it has not settled (costing at
+/// least the next bucket B) has, by the other searches grown to B, at least as many
+/// robots strictly closer as the best rank so far (tried as B doubles). The result is that
+/// of [`solve`] on the full matrix.
 pub fn assign(ctx: &mut DecisionCtx<'_>, candidates: &CandidateSet, out: &mut [Option<Goal>]) {
     let mut s = std::mem::take(&mut ctx.memory.greedy_utility.scratch);
     s.matrix.frame(ctx, candidates, true);
@@ -134,6 +136,8 @@ fn best_lazy(
     let m = ctx.robots.len();
     let mut best: Option<(usize, f64, usize)> = None;
     let mut seen = 0;
+    // The next bound at which to try the rank bound of the goals not settled yet.
+    let mut check = 1;
     loop {
         let done = lazy.step(ctx, candidates, r, false);
         let upto = lazy.found(r).len();
@@ -170,10 +174,50 @@ fn best_lazy(
             return best;
         }
         // Every goal not settled yet costs at least the next bucket.
-        if let Some((0, c, _)) = best
-            && lazy.next_bucket(ctx, r) as f64 > c
-        {
-            return best;
+        let bound = lazy.next_bucket(ctx, r);
+        match best {
+            Some((0, c, _)) if bound as f64 > c => return best,
+            Some((p, c, _)) if bound as f64 > c && bound >= check => {
+                if ranks_at_least(ctx, candidates, lazy, r, bound, p, &allowed) {
+                    return best;
+                }
+                check = 2 * bound;
+            }
+            _ => {}
         }
     }
+}
+
+/// Whether every allowed goal robot `r` has not settled ranks at least `p` for it, when its
+/// search has settled every cell of cost below `bound`: such a goal costs robot `r` at
+/// least `bound`, so every other robot closer to it than `bound` − [`TIE_CELLS`] is strictly
+/// closer than robot `r` (the other searches grow that far to tell).
+fn ranks_at_least(
+    ctx: &mut DecisionCtx<'_>,
+    candidates: &CandidateSet,
+    lazy: &mut LazyCosts,
+    r: usize,
+    bound: usize,
+    p: usize,
+    allowed: &impl Fn(usize) -> bool,
+) -> bool {
+    let m = ctx.robots.len();
+    let threshold = bound as f64 - TIE_CELLS;
+    for k in 0..m {
+        if k != r {
+            lazy.grow(ctx, candidates, k, threshold as usize);
+        }
+    }
+    let planner = &*ctx.planner;
+    candidates.cells().iter().enumerate().all(|(j, &cell)| {
+        let cell = cell as usize;
+        if !allowed(j) || planner.map(r).is_settled(cell) {
+            return true;
+        }
+        let closer = (0..m)
+            .filter(|&k| k != r && planner.map(k).cost(cell).is_some_and(|d| d < threshold))
+            .take(p)
+            .count();
+        closer >= p
+    })
 }
