@@ -137,8 +137,13 @@ fn run(
             .planner
             .component(r, ctx.robots[r], ctx.known, ctx.upkeep);
         let mut best: Option<(f64, usize)> = None; // (cost, index)
+        let mut inside = 0; // reachable goals in the robot's cluster
         for (i, &c) in cells.iter().enumerate() {
-            if st.label[i] as usize == r || !comp.contains(c as usize) {
+            if !comp.contains(c as usize) {
+                continue;
+            }
+            if st.label[i] as usize == r {
+                inside += 1;
                 continue;
             }
             let f = xy(c);
@@ -148,15 +153,16 @@ fn run(
             }
         }
         // Goals in it cost their path plus penalty: grow the search until nothing it has
-        // not settled can be cheaper than the best so far.
+        // not settled can be cheaper than the best so far, or all of them are settled.
         let mut seen = 0;
-        loop {
+        while inside > 0 {
             let done = st.lazy.step(ctx, candidates, r, false);
             let found = st.lazy.found(r);
             for p in &found[seen..] {
                 if st.label[p.col] as usize != r {
                     continue;
                 }
+                inside -= 1;
                 let cost = p.cost + st.penalty[p.col];
                 if best.is_none_or(|(b, bi)| (cost, p.col) < (b, bi)) {
                     best = Some((cost, p.col));
