@@ -352,3 +352,102 @@ proptest! {
         );
     }
 }
+
+/// Two decisions with one planner and one memory, as in a run: the second on another
+/// belief and other robot cells, after `a` (see the regression tests below).
+fn second_decision(
+    a: &mut Case,
+    b: &mut Case,
+    kind: AssignerKind,
+    seed: u64,
+) -> (Vec<Option<Goal>>, Vec<bool>) {
+    let m = a.robots.len();
+    let mut planner = Planner::new(W, H, m);
+    let lists = GoalLists::new(W * H);
+    let belief = sense::KnownGrid::new(W, H);
+    let sensor = sense::LosSensor::new(3.0).expect("sensor");
+    let mut memory = Memory::default();
+    let mut cands = CandidateSet::new(W * H);
+    let mut out = vec![None; m];
+    for c in [a, b] {
+        let mut rng = Pcg64Mcg::seed_from_u64(seed);
+        planner.invalidate();
+        let mut ctx = DecisionCtx {
+            known: &c.known,
+            upkeep: &mut c.upkeep,
+            planner: &mut planner,
+            robots: &c.robots,
+            deciding: &c.deciding,
+            goals: &c.goals,
+            lists: &lists,
+            resolution: 0.5,
+            sensor_range_cells: 3.0,
+            rng: &mut rng,
+            belief: &belief,
+            sensor: &sensor,
+            memory: &mut memory,
+        };
+        CandidateKind::AllFrontiers.generate(&mut ctx, &mut cands);
+        out.fill(None);
+        kind.assign(&mut ctx, &cands, &mut out);
+    }
+    // The loop extracts every goal's path from the planner.
+    let mut path = Vec::new();
+    let paths = out
+        .iter()
+        .enumerate()
+        .map(|(r, g)| g.is_none_or(|g| planner.path(r, g.cell, &mut path)))
+        .collect();
+    (out, paths)
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(100))]
+
+    /// Regression: HA kept the reduced columns of the previous decision (an index past the
+    /// candidates of a later decision with fewer); SGA read the previous decision's search
+    /// of a robot whose cluster held no goal. A second decision must equal a first one.
+    #[test]
+    fn a_second_decision_reuses_no_stale_state(
+        (cells, cut, picks, bits, goal_picks, seed) in inputs(),
+        (cells2, cut2, picks2) in (prop::collection::vec(0u8..10, W * H), 5usize..W, prop::collection::vec(0usize..10_000, 6)),
+    ) {
+        let Some(mut a) = case(&cells, cut, &picks, bits, &goal_picks) else {
+            return Ok(());
+        };
+        let m = a.robots.len();
+        let Some(b) = case(&cells2, cut2, &picks2[..m], bits, &goal_picks) else {
+            return Ok(());
+        };
+        for kind in [
+            AssignerKind::Greedy,
+            AssignerKind::RandomOrderGreedy,
+            AssignerKind::GreedyUtility { beta: 0.3 },
+            AssignerKind::MinPos,
+            AssignerKind::Hungarian,
+            AssignerKind::Sga,
+        ] {
+            let mut b1 = case(&cells2, cut2, &picks2[..m], bits, &goal_picks).expect("as b");
+            let (got, paths) = second_decision(&mut a, &mut b1, kind, seed);
+            prop_assert!(paths.iter().all(|&p| p), "{:?}: a goal without a path", kind);
+            // every goal costs its exact path length from the robot's cell in b
+            let mut full = Reachability::new(W, H);
+            for (r, g) in got.iter().enumerate() {
+                if let Some(g) = g {
+                    full.compute(b.robots[r] as usize, |i| b.upkeep.is_traversable(&b.known, i));
+                    prop_assert_eq!(
+                        Some(g.cost.to_bits()),
+                        full.cost(g.cell as usize).map(f64::to_bits),
+                        "{:?}: cost of robot {}", kind, r
+                    );
+                }
+            }
+            if !matches!(kind, AssignerKind::Sga | AssignerKind::Hungarian) {
+                // (SGA keeps its clusters across decisions; HA may break equal totals apart)
+                let mut b2 = case(&cells2, cut2, &picks2[..m], bits, &goal_picks).expect("as b");
+                let fresh = lazy(&mut b2, kind, seed);
+                prop_assert!(same(&got, &fresh), "{:?}: second {:?} fresh {:?}", kind, got, fresh);
+            }
+        }
+    }
+}

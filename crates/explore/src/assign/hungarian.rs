@@ -180,6 +180,7 @@ fn lazy_optimal(
     // Column j of the full problem → its position in the reduced one (+1; 0: absent).
     s.order.clear();
     s.order.resize(cols, 0);
+    buf.cols.clear();
     // Per row: whether its search is complete.
     let mut complete = vec![false; rows];
     for i in 0..rows {

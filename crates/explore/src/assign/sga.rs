@@ -173,9 +173,11 @@ fn run(
                 break;
             }
         }
-        // The path length of the goal chosen (settled by the search).
+        // The path length of the goal chosen (settled by the search, which may not have
+        // started yet when the robot's cluster holds no goal).
         let best = best.and_then(|(_, i)| {
             let cell = cells[i] as usize;
+            st.lazy.grow(ctx, candidates, r, 0);
             loop {
                 if let Some(path) = ctx.planner.map(r).cost(cell) {
                     break Some((0.0, i, path));
