@@ -161,6 +161,8 @@ pub fn assign(ctx: &mut DecisionCtx<'_>, candidates: &CandidateSet, out: &mut [O
 }
 
 /// HA on lazily grown searches: `s.assigned[i]` becomes row i's column.
+// Row i's state is spread over parallel buffers (rows, completeness, found pairs).
+#[allow(clippy::needless_range_loop)]
 fn lazy_optimal(
     ctx: &mut DecisionCtx<'_>,
     candidates: &CandidateSet,
