@@ -145,7 +145,8 @@ pub fn solve(
 /// that every other goal costs at least L (or is unreachable, once its search is complete).
 /// The solver gets the lower-bound matrix: exact costs where known, L elsewhere (each robot
 /// offered its k cheapest free goals found plus k stand-in columns at its L, which by the
-/// argument of the module docs keeps the optimum). If its optimal assignment uses only
+/// argument of the module docs keeps the optimum; a robot with k free goals found needs no
+/// bound at all). If its optimal assignment uses only
 /// exact costs, it is optimal for the true matrix too (every true cost is at least its
 /// bound); otherwise the searches of the robots given a bound grow (their radius doubles)
 /// and the problem is solved again. Ties between assignments of equal total may be broken
@@ -185,6 +186,7 @@ fn lazy_optimal(
     buf.cols.clear();
     // Per row: whether its search is complete.
     let mut complete = vec![false; rows];
+    let mut enough = vec![false; rows];
     for i in 0..rows {
         complete[i] = s.lazy.step(ctx, candidates, s.matrix.rows[i], false);
     }
@@ -212,6 +214,9 @@ fn lazy_optimal(
                 });
                 buf.row.truncate(k);
             }
+            // k free goals found: its k cheapest are exact, and by the swap argument its
+            // optimal goal is among them, so it needs no bound.
+            enough[i] = buf.row.len() >= k;
             buf.cols.extend(buf.row.iter().map(|&n| found[n].col));
         }
         buf.cols.sort_unstable();
@@ -243,7 +248,7 @@ fn lazy_optimal(
         let big = (max_finite + 1.0) * (rows as f64 + 1.0);
         s.values.clear();
         for i in 0..rows {
-            let bound = if complete[i] {
+            let bound = if complete[i] || enough[i] {
                 big
             } else {
                 s.lazy.next_bucket(ctx, s.matrix.rows[i]) as f64
@@ -260,7 +265,7 @@ fn lazy_optimal(
         // Rows given a bound must look further; otherwise the assignment is optimal.
         let mut grew = false;
         for (&i, &jj) in r.iter().zip(&c) {
-            if buf.cost[i * n + jj] == UNKNOWN && !complete[i] {
+            if buf.cost[i * n + jj] == UNKNOWN && !complete[i] && !enough[i] {
                 let row = s.matrix.rows[i];
                 let next = s.lazy.next_bucket(ctx, row);
                 complete[i] = s.lazy.grow(ctx, candidates, row, 2 * next + 8);
