@@ -39,6 +39,9 @@ struct Case {
     robots: Vec<u32>,
     deciding: Vec<bool>,
     goals: Vec<Option<u32>>,
+    /// Keep only every `sparse`-th frontier cell as a candidate (1: all), like the sparse
+    /// generators (centroids, RFE, CC).
+    sparse: usize,
 }
 
 fn case(
@@ -77,6 +80,7 @@ fn case(
         robots,
         deciding,
         goals,
+        sparse: 1,
     })
 }
 
@@ -110,6 +114,15 @@ fn with_ctx<T>(
         memory: &mut memory,
     };
     CandidateKind::AllFrontiers.generate(&mut ctx, &mut cands);
+    if c.sparse > 1 {
+        let all = cands.cells().to_vec();
+        cands.clear();
+        for (k, &cell) in all.iter().enumerate() {
+            if k % c.sparse == 0 {
+                cands.insert(cell);
+            }
+        }
+    }
     f(&mut ctx, &cands)
 }
 
@@ -294,6 +307,7 @@ proptest! {
         let Some(mut c) = case(&cells, cut, &picks, bits, &goal_picks) else {
             return Ok(());
         };
+        c.sparse = 1 + seed as usize % 6;
         let m = c.robots.len();
         let got = lazy(&mut c, AssignerKind::Hungarian, seed);
         let (want, costs) = with_ctx(&mut c, seed, |ctx, cands| {
