@@ -90,18 +90,30 @@ fn with_ctx<T>(
     seed: u64,
     f: impl FnOnce(&mut DecisionCtx<'_>, &CandidateSet) -> T,
 ) -> T {
-    let m = c.robots.len();
-    let mut planner = Planner::new(W, H, m);
+    let mut planner = Planner::new(W, H, c.robots.len());
+    let mut memory = Memory::default();
+    decide_on(c, &mut planner, &mut memory, seed, f)
+}
+
+/// Run `f` on a decision context for `c` with the given planner and memory (all frontier
+/// cells, or every `c.sparse`-th, as candidates).
+fn decide_on<T>(
+    c: &mut Case,
+    planner: &mut Planner,
+    memory: &mut Memory,
+    seed: u64,
+    f: impl FnOnce(&mut DecisionCtx<'_>, &CandidateSet) -> T,
+) -> T {
     let lists = GoalLists::new(W * H);
     let mut rng = Pcg64Mcg::seed_from_u64(seed);
     let belief = sense::KnownGrid::new(W, H);
     let sensor = sense::LosSensor::new(3.0).expect("sensor");
-    let mut memory = Memory::default();
     let mut cands = CandidateSet::new(W * H);
+    planner.invalidate();
     let mut ctx = DecisionCtx {
         known: &c.known,
         upkeep: &mut c.upkeep,
-        planner: &mut planner,
+        planner,
         robots: &c.robots,
         deciding: &c.deciding,
         goals: &c.goals,
@@ -111,7 +123,7 @@ fn with_ctx<T>(
         rng: &mut rng,
         belief: &belief,
         sensor: &sensor,
-        memory: &mut memory,
+        memory,
     };
     CandidateKind::AllFrontiers.generate(&mut ctx, &mut cands);
     if c.sparse > 1 {
@@ -377,33 +389,14 @@ fn second_decision(
 ) -> (Vec<Option<Goal>>, Vec<bool>) {
     let m = a.robots.len();
     let mut planner = Planner::new(W, H, m);
-    let lists = GoalLists::new(W * H);
-    let belief = sense::KnownGrid::new(W, H);
-    let sensor = sense::LosSensor::new(3.0).expect("sensor");
     let mut memory = Memory::default();
-    let mut cands = CandidateSet::new(W * H);
     let mut out = vec![None; m];
     for c in [a, b] {
-        let mut rng = Pcg64Mcg::seed_from_u64(seed);
-        planner.invalidate();
-        let mut ctx = DecisionCtx {
-            known: &c.known,
-            upkeep: &mut c.upkeep,
-            planner: &mut planner,
-            robots: &c.robots,
-            deciding: &c.deciding,
-            goals: &c.goals,
-            lists: &lists,
-            resolution: 0.5,
-            sensor_range_cells: 3.0,
-            rng: &mut rng,
-            belief: &belief,
-            sensor: &sensor,
-            memory: &mut memory,
-        };
-        CandidateKind::AllFrontiers.generate(&mut ctx, &mut cands);
-        out.fill(None);
-        kind.assign(&mut ctx, &cands, &mut out);
+        out = decide_on(c, &mut planner, &mut memory, seed, |ctx, cands| {
+            let mut out = vec![None; m];
+            kind.assign(ctx, cands, &mut out);
+            out
+        });
     }
     // The loop extracts every goal's path from the planner.
     let mut path = Vec::new();

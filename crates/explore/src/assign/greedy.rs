@@ -130,6 +130,40 @@ pub struct Scratch {
     pub scan: Vec<usize>,
 }
 
+impl Scratch {
+    /// Start a decision on lazily grown searches: rows (every robot if `all_robots`, else
+    /// the deciding ones), columns and taken goals; no pair found yet, every untaken goal
+    /// free, no row assigned.
+    pub fn start(&mut self, ctx: &DecisionCtx<'_>, candidates: &CandidateSet, all_robots: bool) {
+        self.matrix.frame(ctx, candidates, all_robots);
+        self.lazy.reset(ctx.robots.len());
+        let rows = self.matrix.rows.len();
+        self.free.clear();
+        self.free.extend(self.matrix.taken.iter().map(|&t| !t));
+        self.assigned.clear();
+        self.assigned.resize(rows, None);
+        self.scan.clear();
+        self.scan.resize(rows, 0);
+    }
+
+    /// Grow the search of every row without a goal through bucket `k`; whether all of
+    /// them are complete.
+    pub fn grow_unassigned(
+        &mut self,
+        ctx: &mut DecisionCtx<'_>,
+        candidates: &CandidateSet,
+        k: usize,
+    ) -> bool {
+        let mut all_done = true;
+        for (i, &r) in self.matrix.rows.iter().enumerate() {
+            if self.assigned[i].is_none() {
+                all_done &= self.lazy.grow(ctx, candidates, r, k);
+            }
+        }
+        all_done
+    }
+}
+
 /// Greedy (IA) on a row-major `rows × cols` cost matrix (`INFINITY` = unreachable):
 /// `out[i]` becomes the column of row `i`, or `None` when it can reach no goal. Columns with
 /// `taken[j]` start unavailable; `free` is a scratch buffer.
@@ -255,25 +289,13 @@ pub(crate) fn write_found(s: &Scratch, out: &mut [Option<Goal>]) {
 
 /// Greedy (IA) on lazily grown searches: `s.assigned[i]` becomes row i's column.
 pub(crate) fn lazy_greedy(ctx: &mut DecisionCtx<'_>, candidates: &CandidateSet, s: &mut Scratch) {
-    s.matrix.frame(ctx, candidates, false);
-    s.lazy.reset(ctx.robots.len());
+    s.start(ctx, candidates, false);
     let rows = s.matrix.rows.len();
-    s.free.clear();
-    s.free.extend(s.matrix.taken.iter().map(|&t| !t));
-    s.assigned.clear();
-    s.assigned.resize(rows, None);
-    s.scan.clear();
-    s.scan.resize(rows, 0);
     let mut left = rows;
     let mut refilled = false;
     let mut k = 0usize;
     while left > 0 {
-        let mut all_done = true;
-        for i in 0..rows {
-            if s.assigned[i].is_none() {
-                all_done &= s.lazy.grow(ctx, candidates, s.matrix.rows[i], k);
-            }
-        }
+        let all_done = s.grow_unassigned(ctx, candidates, k);
         // Every unassigned row's pairs below k + 1 are known: pick while a free one is left.
         loop {
             let mut best: Option<(f64, usize, usize)> = None;

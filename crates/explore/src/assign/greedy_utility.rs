@@ -155,8 +155,7 @@ pub fn assign(
     }
     let mut st = std::mem::take(&mut ctx.memory.greedy_utility);
     let s = &mut st.scratch;
-    s.matrix.frame(ctx, candidates, false);
-    s.lazy.reset(m);
+    s.start(ctx, candidates, false);
     let width = ctx.known.width().max(1);
     let xy = |c: u32| ((c as usize % width) as f64, (c as usize / width) as f64);
     st.positions.clear();
@@ -169,19 +168,14 @@ pub fn assign(
     }
     let rho = ctx.sensor_range_cells;
     let cols = st.positions.len();
-    let utility = &mut s.values;
+    let mut utility_buf = std::mem::take(&mut s.values);
+    let utility = &mut utility_buf;
     utility.clear();
     utility.resize(cols, 1.0);
     for &p in &st.kept {
         lower_around(utility, &st.positions, p, rho);
     }
     let rows = s.matrix.rows.len();
-    s.free.clear();
-    s.free.extend(s.matrix.taken.iter().map(|&t| !t));
-    s.assigned.clear();
-    s.assigned.resize(rows, None);
-    s.scan.clear();
-    s.scan.resize(rows, 0);
     let mut left = rows;
     let mut refilled = false;
     let mut k = 0usize;
@@ -193,12 +187,7 @@ pub fn assign(
         b.is_none_or(|(bv, bi, bj)| v > bv || (v == bv && (i, j) < (bi, bj)))
     };
     while left > 0 {
-        let mut all_done = true;
-        for i in 0..rows {
-            if s.assigned[i].is_none() {
-                all_done &= s.lazy.grow(ctx, candidates, s.matrix.rows[i], k);
-            }
-        }
+        let all_done = s.grow_unassigned(ctx, candidates, k);
         loop {
             if stale {
                 best = None;
@@ -253,6 +242,7 @@ pub fn assign(
         }
         k += 1;
     }
+    s.values = utility_buf;
     greedy::write_found(s, out);
     ctx.memory.greedy_utility = st;
 }

@@ -170,12 +170,9 @@ fn lazy_optimal(
     s: &mut greedy::Scratch,
     buf: &mut Buffers,
 ) {
-    s.matrix.frame(ctx, candidates, false);
-    s.lazy.reset(ctx.robots.len());
+    s.start(ctx, candidates, false);
     let rows = s.matrix.rows.len();
     let cols = s.matrix.cols.len();
-    s.assigned.clear();
-    s.assigned.resize(rows, None);
     if rows == 0 || cols == 0 {
         return;
     }

@@ -101,8 +101,7 @@ fn best_goal(
 /// of [`solve`] on the full matrix.
 pub fn assign(ctx: &mut DecisionCtx<'_>, candidates: &CandidateSet, out: &mut [Option<Goal>]) {
     let mut s = std::mem::take(&mut ctx.memory.greedy_utility.scratch);
-    s.matrix.frame(ctx, candidates, true);
-    s.lazy.reset(ctx.robots.len());
+    s.start(ctx, candidates, true);
     let m = ctx.robots.len();
     for r in 0..m {
         if !ctx.deciding[r] {

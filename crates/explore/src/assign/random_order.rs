@@ -78,8 +78,7 @@ pub fn assign(ctx: &mut DecisionCtx<'_>, candidates: &CandidateSet, out: &mut [O
         return;
     }
     let mut s = std::mem::take(&mut ctx.memory.greedy_utility.scratch);
-    s.matrix.frame(ctx, candidates, false);
-    s.lazy.reset(ctx.robots.len());
+    s.start(ctx, candidates, false);
     let k = s.matrix.rows.len();
     s.order.clear();
     s.order.extend(0..k);
@@ -87,10 +86,6 @@ pub fn assign(ctx: &mut DecisionCtx<'_>, candidates: &CandidateSet, out: &mut [O
         let j = ctx.rng.random_range(0..=i);
         s.order.swap(i, j);
     }
-    s.free.clear();
-    s.free.extend(s.matrix.taken.iter().map(|&t| !t));
-    s.assigned.clear();
-    s.assigned.resize(k, None);
     let cheapest = |pairs: &[Pair], free: &[bool]| {
         pairs
             .iter()
