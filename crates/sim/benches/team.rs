@@ -2,10 +2,11 @@
 //! generated office of 60 m × 35 m at 0.05 m (1200 × 700 cells), 5 robots, Holz et al.'s
 //! laser (`lidar:r=8,fov=180,res=1`, reflection belief, 0.3 m clearance), run until half
 //! of the reachable space is known. Single-robot `cf` is the yardstick for a decision's
-//! cost (the goal: a team decision ≤ 5× a `cf` decision).
+//! cost (the aim: a team decision within 5× a `cf` decision).
 //!
-//! `cargo bench -p sim --bench team` (criterion, 10 samples a preset); after each preset
-//! the decisions and the share of time spent deciding are printed once.
+//! `cargo bench -p sim --bench team [PRESET ...]` (criterion, 10 samples a preset; the
+//! `ma-*` and `*-cc` presets take a minute or more a run); before each preset's samples its
+//! decisions and the share of time spent deciding are printed once.
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use explore::strategy::Strategy;
@@ -57,7 +58,15 @@ fn bench(c: &mut Criterion) {
     g.sample_size(10)
         .warm_up_time(Duration::from_millis(500))
         .measurement_time(Duration::from_secs(5));
+    // Presets named on the command line (criterion's filters), or all.
+    let wanted: Vec<String> = std::env::args()
+        .skip(1)
+        .filter(|a| !a.starts_with('-'))
+        .collect();
     for preset in PRESETS {
+        if !wanted.is_empty() && !wanted.iter().any(|w| preset.contains(w.as_str())) {
+            continue;
+        }
         let cfg = config(preset);
         let r = sim::run(&map, &cfg).expect("run");
         eprintln!(
