@@ -24,7 +24,7 @@
 //! Deviation: when no candidate perceives a new free cell but some are left to perceive
 //! (the footprint sensor sees through walls, so a pocket behind a wall is a target no
 //! boundary cell borders), the search offers the next larger set instead (clusters →
-//! boundary cells → every reachable perceived cell, [`ActionSet::wider`]). Then the
+//! boundary cells → every reachable perceived cell, `ActionSet::wider`). Then the
 //! boundary and cluster actions reach the goal whenever any sequence does: if unperceived
 //! targets lay on a path inside the reachable cells, the first of them would border a
 //! boundary cell that perceives it.

@@ -34,12 +34,12 @@
 //! # `Landmarks`: h = max(order statistic, coverage rate, landmark path bound or skip-budget bound)
 //! The order statistic is `Paper`'s, except that with the footprint sensor each target's
 //! value is D(q, t), the path distance to its nearest viewpoint
-//! ([`crate::viewpoint_distance`]), instead of |q − t| − c: every value is then the exact
+//! (`viewpoint_distance`), instead of |q − t| − c: every value is then the exact
 //! cost of perceiving that one target, and walls count.
 //! The coverage-rate bound (K more targets at most ρ* per unit of path, proof in
-//! [`crate::coverage_rate`]) holds for every G. The landmark bound below only for G = 1;
+//! `coverage_rate`) holds for every G. The landmark bound below only for G = 1;
 //! for G < 1 the skip-budget bound (the far ends of the map must still be approached, the
-//! budget of unperceived targets shared between them; proof in [`crate::skip_budget`]).
+//! budget of unperceived targets shared between them; proof in `skip_budget`).
 //!
 //! ## The landmark path bound (G = 1)
 //! Landmarks a_1..a_K are reachable targets; V(a) is the set of reachable positions that
@@ -48,7 +48,7 @@
 //! ≥ d(q, p_1) + Σ d(p_i, p_{i+1}) ≥ D(q, V(a_1)) + Σ D(V(a_i), V(a_{i+1})), with D the
 //! shortest distance between two sets (one multi-source field per landmark, from V(a)).
 //! That is the weight of a Hamiltonian path from q through the landmarks of U under the
-//! weights w = D, so at least its Held–Karp bound ([`crate::held_karp`]), itself at least
+//! weights w = D, so at least its Held–Karp bound (`held_karp`), itself at least
 //! the minimum spanning tree of {q} ∪ (landmarks in U). Admissible. The weights are set
 //! distances, not a metric, so a landmark whose V touches another's only adds free
 //! bridges: landmarks are chosen by farthest-point sampling in D (the next is the target
@@ -216,7 +216,7 @@ pub(crate) struct Heuristic {
     /// costs to cluster representatives).
     pub(crate) fields: FieldCache,
     /// With the footprint sensor and [`HeuristicKind::Landmarks`]: orders by the distance
-    /// to the nearest viewpoint ([`crate::viewpoint_distance`]) instead of |q − t| − c.
+    /// to the nearest viewpoint (`viewpoint_distance`) instead of |q − t| − c.
     vd: Option<ViewpointDistance>,
     /// The coverage-rate bound.
     rate: CoverageRate,

@@ -1,6 +1,6 @@
 //! `sim`: the one exploration loop of frontier, for one robot or a team.
 //!
-//! Every strategy of the five papers runs through [`run`]: robots sense the ground truth,
+//! Every strategy of the five papers runs through [`run()`]: robots sense the ground truth,
 //! integrate what they see into one shared belief map, keep the frontier cells up to date
 //! incrementally, decide goals with the strategy's (candidate generator, assigner,
 //! re-plan policy) triple, and move cell by cell along 8-connected shortest paths at speed
