@@ -150,7 +150,10 @@ pub fn run(a: OptimalArgs) -> Result<()> {
     }
     let time_limit = match a.time_limit {
         None => None,
-        Some(s) if s.is_finite() && s > 0.0 => Some(Duration::from_secs_f64(s)),
+        // A limit beyond what a Duration holds (about 5.8e11 years) is no limit.
+        Some(s) if s.is_finite() && s > 0.0 => {
+            Some(Duration::try_from_secs_f64(s).unwrap_or(Duration::MAX))
+        }
         Some(s) => bail!("--time-limit: expected a positive number of seconds, found {s}"),
     };
     let start = match &a.start {

@@ -459,6 +459,18 @@ fn optimal_on_a_map_file_proves_the_optimum_and_scores_online_strategies() {
     assert_eq!(again["compare"], v["compare"]);
 }
 
+/// Regression: a time limit too large for a `Duration` (or for an `Instant` plus it)
+/// panicked; it is no limit.
+#[test]
+fn optimal_time_limit_overflow_is_no_limit() {
+    let dir = tempfile::tempdir().unwrap();
+    for limit in ["1e19", "1e300"] {
+        let args = optimal_on_two_rooms(dir.path(), &["--time-limit", limit, "--json"]);
+        let v: serde_json::Value = serde_json::from_str(&ok(&strs(&args))).unwrap();
+        assert_eq!(v["optimal"], true, "{limit}: {v}");
+    }
+}
+
 #[test]
 fn optimal_stopped_early_reports_the_ratio_as_an_interval() {
     let dir = tempfile::tempdir().unwrap();

@@ -867,11 +867,13 @@ impl<'p> Engine<'p> {
         self.stats.stored = 1;
         // The first greedy completion keeps to the time limit: on a large map with a long
         // sensor range it can take minutes (a scan per candidate cell).
-        self.improve_from(0, self.cfg.time_limit.map(|t| started + t));
+        // (a deadline past what an Instant can hold is none)
+        let deadline = self.cfg.time_limit.and_then(|t| started.checked_add(t));
+        self.improve_from(0, deadline);
         if self.cfg.coarse_incumbent > 1 {
             let seed =
                 crate::coarse::coarse_positions(problem, self.cfg.coarse_incumbent, &self.cfg);
-            self.incumbent_from(&seed, self.cfg.time_limit.map(|t| started + t));
+            self.incumbent_from(&seed, deadline);
         }
         let mut stop = None;
         let mut popped_lb = f64::INFINITY;
@@ -966,7 +968,7 @@ impl<'p> Engine<'p> {
                 Some(StopReason::TimeLimit) => self
                     .cfg
                     .time_limit
-                    .map(|t| Instant::now() + (t / 10).max(Duration::from_secs(1))),
+                    .and_then(|t| Instant::now().checked_add((t / 10).max(Duration::from_secs(1)))),
                 Some(StopReason::Interrupted) => Some(Instant::now() + Duration::from_secs(1)),
                 _ => None,
             };
