@@ -190,7 +190,7 @@ pub fn run(plan: &Plan, db: &Path, opts: &RunOptions) -> Result<RunSummary, Benc
             bar.inc(1);
         })
     };
-    match opts.threads {
+    match worker_threads(opts.threads, pending.len()) {
         Some(n) => rayon::ThreadPoolBuilder::new()
             .num_threads(n)
             .build()
@@ -208,6 +208,12 @@ pub fn run(plan: &Plan, db: &Path, opts: &RunOptions) -> Result<RunSummary, Benc
     summary.ran = ran.into_inner();
     summary.wall_s = started.elapsed().as_secs_f64();
     Ok(summary)
+}
+
+/// Worker threads for `pending` trials when `requested` were asked for: never more than
+/// there are trials (so `-j 10000` for 6 trials starts 6), at least one.
+pub fn worker_threads(requested: Option<usize>, pending: usize) -> Option<usize> {
+    requested.map(|n| n.min(pending).max(1))
 }
 
 /// Fill the optimal-path columns of `r` (studies with `[optimal]`, single robots with a 360°
@@ -323,5 +329,19 @@ pub fn row(plan: &Plan, t: &Trial, result: &RunResult, wall_s: f64) -> TrialRow 
         optimal_lower_m: None,
         optimal_proven: None,
         ratio: None,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::worker_threads;
+
+    /// Regression: `-j 10000` started 10,000 threads for 6 trials.
+    #[test]
+    fn thousands_of_threads_are_capped_by_the_trials() {
+        assert_eq!(worker_threads(Some(10_000), 6), Some(6));
+        assert_eq!(worker_threads(Some(2), 6), Some(2));
+        assert_eq!(worker_threads(Some(4), 0), Some(1));
+        assert_eq!(worker_threads(None, 6), None);
     }
 }

@@ -38,7 +38,7 @@ pub struct RunArgs {
     /// Results database; re-running with the same database resumes (default: NAME.sqlite).
     #[arg(long)]
     pub db: Option<PathBuf>,
-    /// Worker threads (default: one per core).
+    /// Worker threads (default: one per core; never more than the trials to run).
     #[arg(long, short = 'j')]
     pub threads: Option<usize>,
     /// Run only shard I of N (1-based, e.g. 3/8), for job arrays.
