@@ -610,3 +610,29 @@ fn error_kind_is_matchable() {
     ));
     assert_eq!(e.path, Path::new("<memory>"));
 }
+
+/// Regression: a few hundred bytes of nested aliases ("billion laughs") made the YAML
+/// loader expand them to gigabytes and abort; aliases and oversized files are refused.
+#[test]
+fn yaml_billion_laughs_is_refused() {
+    let p = Path::new("laughs.yaml");
+    let mut text = String::from(
+        "a: &a [\"lol\",\"lol\",\"lol\",\"lol\",\"lol\",\"lol\",\"lol\",\"lol\",\"lol\"]\n",
+    );
+    for (prev, name) in "abcdefghi".chars().zip("bcdefghij".chars()) {
+        let refs = vec![format!("*{prev}"); 9].join(",");
+        text.push_str(&format!("{name}: &{name} [{refs}]\n"));
+    }
+    text.push_str(GOOD_YAML);
+    assert!(text.len() < 1000);
+    let started = std::time::Instant::now();
+    let e = msg(parse_ros_yaml_meta(&text, p));
+    assert!(
+        e.starts_with("laughs.yaml: YAML syntax error: expected plain fields, found 81 alias(es)"),
+        "{e}"
+    );
+    assert!(started.elapsed().as_secs() < 5);
+    let big = format!("{GOOD_YAML}# {}\n", "x".repeat(grid::io::MAX_YAML_BYTES));
+    let e = msg(parse_ros_yaml_meta(&big, p));
+    assert!(e.contains("at most 65536 bytes"), "{e}");
+}

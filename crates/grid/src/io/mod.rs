@@ -31,7 +31,9 @@ pub use movingai::{parse_movingai, to_movingai};
 pub use pgm::{encode_pgm, parse_pgm};
 pub use png::{encode_png, parse_png};
 pub use raster::{Raster, Thresholds};
-pub use ros::{RosMapMeta, RosMode, parse_ros_yaml, parse_ros_yaml_meta, to_ros_yaml};
+pub use ros::{
+    MAX_YAML_BYTES, RosMapMeta, RosMode, parse_ros_yaml, parse_ros_yaml_meta, to_ros_yaml,
+};
 
 use crate::grid::Grid;
 use crate::occ::{GridMap, Occ};

@@ -55,9 +55,42 @@ pub struct RosMapMeta {
     pub mode: RosMode,
 }
 
+/// Longest map YAML text accepted, in bytes (map_server's files are a few hundred).
+pub const MAX_YAML_BYTES: usize = 64 * 1024;
+
+/// Counts the alias events of a YAML stream (without expanding them).
+struct AliasCount(usize);
+
+impl yaml_rust2::parser::EventReceiver for AliasCount {
+    fn on_event(&mut self, ev: yaml_rust2::parser::Event) {
+        if let yaml_rust2::parser::Event::Alias(_) = ev {
+            self.0 += 1;
+        }
+    }
+}
+
 /// Parse the fields of a ROS map YAML file; `yaml_path` is the file named in errors.
 pub fn parse_ros_yaml_meta(text: &str, yaml_path: &Path) -> Result<RosMapMeta, MapError> {
     let err = |kind| MapError::new(yaml_path, kind);
+    // A map YAML is a few short fields. Aliases would be expanded by copying, which a few
+    // hundred bytes of nested aliases turn into gigabytes ("billion laughs"): refuse them,
+    // and any text far longer than a map YAML, before building the document.
+    if text.len() > MAX_YAML_BYTES {
+        return Err(err(MapErrorKind::YamlSyntax(format!(
+            "expected a map YAML of a few fields (at most {MAX_YAML_BYTES} bytes), found {} bytes",
+            text.len()
+        ))));
+    }
+    let mut aliases = AliasCount(0);
+    yaml_rust2::parser::Parser::new_from_str(text)
+        .load(&mut aliases, true)
+        .map_err(|e| err(MapErrorKind::YamlSyntax(e.to_string())))?;
+    if aliases.0 > 0 {
+        return Err(err(MapErrorKind::YamlSyntax(format!(
+            "expected plain fields, found {} alias(es) (`*name`): aliases are not supported in a map YAML",
+            aliases.0
+        ))));
+    }
     let docs = YamlLoader::load_from_str(text)
         .map_err(|e| err(MapErrorKind::YamlSyntax(e.to_string())))?;
     let doc = match docs.first() {
