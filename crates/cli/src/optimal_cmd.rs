@@ -266,6 +266,12 @@ pub fn run(a: OptimalArgs) -> Result<()> {
             println!("picture written to {}", dir.join("optimal.png").display());
         }
     }
+    if out.stop == Some(optimal::StopReason::Interrupted) {
+        // The bounds are reported, but the run did not finish: say so to the shell (128 +
+        // SIGINT, as an uncaught Ctrl-C would).
+        eprintln!("interrupted: the optimum lies within the bounds above");
+        std::process::exit(130);
+    }
     Ok(())
 }
 

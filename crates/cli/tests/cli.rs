@@ -622,3 +622,32 @@ fn optimal_ctrl_c_stops_the_search_with_its_bounds() {
         "{v}"
     );
 }
+
+/// Regression: an `optimal` search stopped by Ctrl-C reported its bounds and exited 0, so
+/// scripts took an unfinished search for a result. It exits 130 (128 + SIGINT).
+#[test]
+fn interrupted_optimal_exits_non_zero() {
+    let child = Command::new(env!("CARGO_BIN_EXE_frontier"))
+        .args(["optimal", "--env", "cave", "--json"])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("start frontier");
+    // The search of the cave takes several seconds; its set-up well under one.
+    std::thread::sleep(std::time::Duration::from_millis(2500));
+    let sent = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .expect("kill -INT");
+    assert!(sent.success());
+    let out = child.wait_with_output().expect("wait");
+    assert_eq!(
+        out.status.code(),
+        Some(130),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value =
+        serde_json::from_slice(&out.stdout).expect("the bounds found are still reported");
+    assert_eq!(v["stop"], "interrupt", "{v}");
+}
