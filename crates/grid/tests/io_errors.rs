@@ -636,3 +636,20 @@ fn yaml_billion_laughs_is_refused() {
     let e = msg(parse_ros_yaml_meta(&big, p));
     assert!(e.contains("at most 65536 bytes"), "{e}");
 }
+
+/// Regression: `/dev/zero` given as a map (here behind a `.pgm` link) was read for 4 GiB
+/// before failing; a device is refused before reading.
+#[cfg(unix)]
+#[test]
+fn dev_zero_as_a_map_is_refused_at_once() {
+    let dir = scratch("dev-zero");
+    let path = dir.join("zero.pgm");
+    std::os::unix::fs::symlink("/dev/zero", &path).expect("symlink");
+    let started = std::time::Instant::now();
+    let e = msg(load_map(&path, &LoadOptions::with_resolution(0.1)));
+    assert!(
+        e.ends_with("zero.pgm: not a regular file: a device, pipe or socket"),
+        "{e}"
+    );
+    assert!(started.elapsed().as_secs() < 2);
+}

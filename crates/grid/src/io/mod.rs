@@ -235,7 +235,22 @@ pub(crate) fn check_size(width: u64, height: u64, path: &Path) -> Result<(), Map
 /// Read a whole file, refusing ones larger than [`MAX_FILE_BYTES`].
 pub(crate) fn read_bytes(path: &Path) -> Result<Vec<u8>, MapError> {
     let err = |e| MapError::new(path, MapErrorKind::Read(e));
-    let size = std::fs::metadata(path).map_err(err)?.len();
+    let meta = std::fs::metadata(path).map_err(err)?;
+    if !meta.is_file() {
+        // A device (/dev/zero) or pipe has no size to check before reading: refuse it.
+        return Err(MapError::new(
+            path,
+            MapErrorKind::WrongFormat {
+                expected: "regular",
+                found: if meta.is_dir() {
+                    "a directory".to_string()
+                } else {
+                    "a device, pipe or socket".to_string()
+                },
+            },
+        ));
+    }
+    let size = meta.len();
     if size > MAX_FILE_BYTES {
         return Err(MapError::new(
             path,
@@ -245,7 +260,25 @@ pub(crate) fn read_bytes(path: &Path) -> Result<Vec<u8>, MapError> {
             },
         ));
     }
-    std::fs::read(path).map_err(err)
+    // A device or a file growing while read (e.g. /dev/zero, whose size reads 0) must not be
+    // read past the limit either.
+    let mut bytes = Vec::with_capacity(size as usize);
+    let file = std::fs::File::open(path).map_err(err)?;
+    std::io::Read::read_to_end(
+        &mut std::io::Read::take(file, MAX_FILE_BYTES + 1),
+        &mut bytes,
+    )
+    .map_err(err)?;
+    if bytes.len() as u64 > MAX_FILE_BYTES {
+        return Err(MapError::new(
+            path,
+            MapErrorKind::FileTooLarge {
+                size: bytes.len() as u64,
+                limit: MAX_FILE_BYTES,
+            },
+        ));
+    }
+    Ok(bytes)
 }
 
 /// Read a whole UTF-8 text file.
