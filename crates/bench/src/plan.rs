@@ -460,7 +460,18 @@ fn resolve(src: &Source, f: ScenarioFile, unbuilt: Unbuilt) -> Result<Plan, Benc
 
     // Perturbations.
     let perturbations = match &f.perturbations {
-        Some(v) => nonneg(src, v, "perturbations", 0)? as u32,
+        Some(v) => {
+            // Each variant is drawn and held before the trial count is known: bound it here.
+            let n = nonneg(src, v, "perturbations", 0)?;
+            if n > MAX_PLAN_TRIALS {
+                return Err(src.error(
+                    span_of(v),
+                    "perturbations",
+                    format!("expected at most {MAX_PLAN_TRIALS} start variants, found {n}"),
+                ));
+            }
+            n as u32
+        }
         None => 0,
     };
     let radius_m = match (&f.radius, perturbations) {
@@ -556,6 +567,30 @@ fn resolve(src: &Source, f: ScenarioFile, unbuilt: Unbuilt) -> Result<Plan, Benc
         }
     }
 
+    // Count before building: every trial of a plan is held in memory (and in --dry-run).
+    let mut total: u64 = 0;
+    for env in &envs {
+        for v in &variants {
+            for start in &env.starts {
+                let n = if start.is_none() || v.stochastic || common.repeat_deterministic {
+                    common.trials
+                } else {
+                    1
+                };
+                total += u64::from(n);
+            }
+        }
+    }
+    if total > MAX_PLAN_TRIALS {
+        return Err(src.error(
+            f.trials.as_ref().and_then(span_of),
+            "trials",
+            format!(
+                "the study has {total} trials; expected at most {MAX_PLAN_TRIALS} in one \
+                 scenario (lower trials, perturbations or the variants, or split the study)"
+            ),
+        ));
+    }
     let mut trials = Vec::new();
     let mut keys = BTreeSet::new();
     for (e, env) in envs.iter().enumerate() {
@@ -801,6 +836,10 @@ fn load_env(
     }
 }
 
+/// Most trials one scenario may plan (the `faigl2013` suite has 118,080); each is held in
+/// memory with its key.
+pub const MAX_PLAN_TRIALS: u64 = 2_000_000;
+
 /// The start variants of `env` (see the module doc).
 fn start_variants(
     env: &EnvInstance,
@@ -842,6 +881,14 @@ fn start_variants(
             reach[i] && dx * dx + dy * dy <= r_cells * r_cells
         })
         .collect();
+    if perturbations as usize > near.len() {
+        return Err(format!(
+            "{perturbations} perturbations of the start within {} m, but only {} reachable \
+             cells lie there: expected at most that many (or a larger radius)",
+            radius_m.unwrap_or(0.0),
+            near.len()
+        ));
+    }
     (0..perturbations)
         .map(|j| {
             let mut rng = sim::seed::rng(master_seed, &format!("{}|start={j}", env.name));

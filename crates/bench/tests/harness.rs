@@ -362,3 +362,38 @@ fn report_links_each_environment_to_a_replay_of_one_of_its_runs() {
         }
     }
 }
+
+/// Regression: `trials = 1_000_000_000` planned (and held) a billion trials before anything
+/// ran, until memory ran out. The count is checked before a trial is built.
+#[test]
+fn huge_trials_scenario_is_refused_before_planning() {
+    let e = error_of(("trials = 2", "trials = 1000000000"));
+    assert!(e.contains("tiny.toml:7: key `trials`"), "{e}");
+    assert!(e.contains("expected at most 2000000"), "{e}");
+}
+
+/// Regression: `perturbations` above 2^32 wrapped to a small count, and a huge count drew
+/// start variants for minutes before the trial count was checked.
+#[test]
+fn huge_perturbations_are_refused_before_drawing() {
+    for n in ["4294967297", "50000000"] {
+        let e = error_of((
+            "trials = 2",
+            &format!("trials = 2\nperturbations = {n}\nradius = 1.0"),
+        ));
+        assert!(e.contains("key `perturbations`"), "{e}");
+        assert!(e.contains(&format!("found {n}")), "{e}");
+    }
+}
+
+/// More start variants than reachable cells within the radius can only repeat cells: the
+/// scenario is refused, naming the count that fits.
+#[test]
+fn more_perturbations_than_cells_is_refused() {
+    let e = error_of((
+        "trials = 2",
+        "trials = 2\nperturbations = 500\nradius = 0.5",
+    ));
+    assert!(e.contains("500 perturbations"), "{e}");
+    assert!(e.contains("reachable cells lie there"), "{e}");
+}
