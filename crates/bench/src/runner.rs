@@ -135,6 +135,7 @@ pub fn run(plan: &Plan, db: &Path, opts: &RunOptions) -> Result<RunSummary, Benc
     } else {
         ProgressBar::hidden()
     };
+    check_memory(plan, &pending, opts.threads, sim::memory::available_bytes())?;
     let optimal_cache = crate::competitive::Cache::new(store.optimal_paths()?);
     let store = Mutex::new(store);
     let failed = Mutex::new(Vec::new());
@@ -208,6 +209,46 @@ pub fn run(plan: &Plan, db: &Path, opts: &RunOptions) -> Result<RunSummary, Benc
     summary.ran = ran.into_inner();
     summary.wall_s = started.elapsed().as_secs_f64();
     Ok(summary)
+}
+
+/// Refuse to start when the largest trials, one per worker thread, would need more memory
+/// at once than the machine has `available` (estimated before any runs).
+fn check_memory(
+    plan: &Plan,
+    pending: &[&Trial],
+    threads: Option<usize>,
+    available: Option<u64>,
+) -> Result<(), BenchError> {
+    let workers = worker_threads(threads, pending.len()).unwrap_or_else(rayon::current_num_threads);
+    let mut need: Vec<(u64, &str)> = pending
+        .iter()
+        .map(|t| {
+            let cells = plan.envs[t.env].map.cells.len();
+            (
+                sim::memory::run_bytes(cells, &plan.config(t)),
+                t.key.as_str(),
+            )
+        })
+        .collect();
+    need.sort_unstable_by(|a, b| b.cmp(a));
+    let Some(&(largest, key)) = need.first() else {
+        return Ok(());
+    };
+    let at_once: u64 = need.iter().take(workers).map(|n| n.0).sum();
+    let what = format!(
+        "running {} trials on {workers} thread{} (the largest, {key}, about {} MiB)",
+        pending.len(),
+        if workers == 1 { "" } else { "s" },
+        largest.div_ceil(1 << 20)
+    );
+    sim::memory::check(
+        &what,
+        at_once,
+        None,
+        available,
+        "use fewer threads (-j) or maps with fewer cells",
+    )
+    .map_err(|e| BenchError::Other(e.to_string()))
 }
 
 /// Worker threads for `pending` trials when `requested` were asked for: never more than
@@ -334,7 +375,32 @@ pub fn row(plan: &Plan, t: &Trial, result: &RunResult, wall_s: f64) -> TrialRow 
 
 #[cfg(test)]
 mod tests {
-    use super::worker_threads;
+    use super::{check_memory, worker_threads};
+    use crate::{Plan, Source, Unbuilt};
+
+    /// Trials whose maps would not fit in memory together are refused before any runs,
+    /// naming the largest trial and the thread count.
+    #[test]
+    fn trials_beyond_available_memory_are_refused_up_front() {
+        let text = "name = \"m\"\nseed = 1\nrobots = [5]\nsensors = [\"los:r=3c\"]\n\
+                    strategies = [\"cf\", \"ha-cc\"]\n\n[[env]]\nkind = \"office\"\n\
+                    seeds = [0]\nsize = [20, 20]\nresolution = 0.1\n";
+        let src = Source {
+            file: "m.toml".into(),
+            text: text.into(),
+            dir: None,
+        };
+        let plan = Plan::resolve(&src, Unbuilt::Error).expect("resolves");
+        let pending: Vec<_> = plan.trials.iter().collect();
+        assert!(check_memory(&plan, &pending, Some(2), None).is_ok());
+        assert!(check_memory(&plan, &pending, Some(2), Some(1 << 40)).is_ok());
+        let e = check_memory(&plan, &pending, Some(2), Some(20 << 20))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("running 2 trials on 2 threads"), "{e}");
+        assert!(e.contains("ha-cc"), "{e}");
+        assert!(e.contains("20 MiB this machine has available"), "{e}");
+    }
 
     /// Regression: `-j 10000` started 10,000 threads for 6 trials.
     #[test]

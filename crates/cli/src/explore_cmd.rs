@@ -68,6 +68,10 @@ pub struct ExploreArgs {
     /// Leave wall-clock timings out of the JSON (null), so that equal runs print equal bytes.
     #[arg(long)]
     pub no_timing: bool,
+    /// Refuse the run up front if its estimated memory exceeds this many MiB (the memory
+    /// the machine has available is always checked).
+    #[arg(long)]
+    pub memory_mb: Option<u64>,
 }
 
 /// Resolve flags into a run configuration (everything but the map).
@@ -111,6 +115,7 @@ pub fn config(a: &ExploreArgs, truth: &Truth) -> Result<RunConfig> {
     cfg.max_moves = a.max_moves;
     cfg.record_trace = a.out.is_some() || a.gif.is_some() || a.html.is_some();
     cfg.clutter = truth.clutter.clone();
+    check_memory(&cfg, truth, a.memory_mb)?;
     if let Some(s) = &a.start {
         let first = parse_cell(s, "--start")?;
         if !truth.map.cells.contains(first) {
@@ -130,6 +135,27 @@ pub fn config(a: &ExploreArgs, truth: &Truth) -> Result<RunConfig> {
         }
     }
     Ok(cfg)
+}
+
+/// Refuse a run whose estimated peak memory exceeds `--memory-mb` or what the machine has
+/// available, before anything map-sized is allocated.
+pub fn check_memory(cfg: &RunConfig, truth: &Truth, memory_mb: Option<u64>) -> Result<()> {
+    let (w, h) = (truth.map.width(), truth.map.height());
+    let what = format!(
+        "exploring this {w}x{h} map with {} robot{} ({})",
+        cfg.robots,
+        if cfg.robots == 1 { "" } else { "s" },
+        cfg.strategy.name
+    );
+    sim::memory::check(
+        &what,
+        sim::memory::run_bytes(w * h, cfg),
+        memory_mb,
+        sim::memory::available_bytes(),
+        "use a map with fewer, larger cells (scale the image down and raise its resolution), \
+         fewer robots, or another candidate generator",
+    )?;
+    Ok(())
 }
 
 /// Run `frontier explore`.

@@ -13,7 +13,9 @@ use explore::strategy::{SensingMode, Strategy};
 use grid::{Cell, Occ};
 use image::{Rgb, RgbImage};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use optimal::{ActionSet, Config, HeuristicKind, Outcome, Progress, coarsen_problem, solve_with};
+use optimal::{
+    ActionSet, Config, HeuristicKind, Outcome, Progress, SensorModel, coarsen_problem, solve_with,
+};
 use sense::SensorSpec;
 use serde_json::{Value, json};
 use sim::RunConfig;
@@ -99,6 +101,50 @@ struct Compared {
     ratio: Option<f64>,
     /// The ratio to the proven lower bound: an upper bound on the competitive ratio.
     ratio_max: Option<f64>,
+}
+
+/// Estimated set-up bytes of the search on `map` coarsened by `factor`.
+fn setup_bytes_at(map: &grid::GridMap, factor: usize, spec: &SensorSpec) -> Result<u64> {
+    let (w, h) = (map.width().div_ceil(factor), map.height().div_ceil(factor));
+    let model = SensorModel::from_spec(spec, map.resolution * factor as f64)
+        .map_err(|e| anyhow::anyhow!("--sensor: {e}"))?;
+    Ok(optimal::setup_bytes(w * h, model))
+}
+
+/// Refuse a search whose set-up alone exceeds `--memory-mb` or the machine's available
+/// memory, before the problem is built, naming the `--cell-size` that would fit.
+fn check_setup_memory(
+    map: &grid::GridMap,
+    factor: usize,
+    spec: &SensorSpec,
+    memory_mb: usize,
+) -> Result<()> {
+    let needed = setup_bytes_at(map, factor, spec)?;
+    let budget = (memory_mb as u64).saturating_mul(1 << 20);
+    let available = sim::memory::available_bytes();
+    let limit = available.map_or(budget, |a| a.min(budget));
+    if needed <= limit {
+        return Ok(());
+    }
+    let mut fix = String::new();
+    for f in factor + 1..=64 {
+        if setup_bytes_at(map, f, spec).is_ok_and(|b| 2 * b <= limit) {
+            fix = format!("use --cell-size {f} (cells {f} times larger) or ");
+            break;
+        }
+    }
+    let what = format!(
+        "setting up the search of this {}x{} map{}",
+        map.width().div_ceil(factor),
+        map.height().div_ceil(factor),
+        if factor > 1 { " (coarsened)" } else { "" }
+    );
+    fix.push_str(&format!(
+        "give --memory-mb at least {}",
+        needed.div_ceil(1 << 20) * 2
+    ));
+    sim::memory::check(&what, needed, Some(memory_mb as u64), available, &fix)?;
+    Ok(())
 }
 
 fn default_start(map: &grid::GridMap) -> Option<Cell> {
@@ -193,6 +239,7 @@ pub fn run(a: OptimalArgs) -> Result<()> {
         time_limit,
         coarse_incumbent: a.coarse_incumbent,
     };
+    check_setup_memory(map, a.cell_size, &spec, a.memory_mb)?;
     let co = coarsen_problem(map, a.cell_size, start, &spec)?;
     if co.kept_area < KEPT_AREA_WARNING {
         eprintln!(

@@ -652,3 +652,68 @@ fn interrupted_optimal_exits_non_zero() {
         serde_json::from_slice(&out.stdout).expect("the bounds found are still reported");
     assert_eq!(v["stop"], "interrupt", "{v}");
 }
+
+/// An open MovingAI map of `n` × `n` cells in `dir`.
+fn open_map(dir: &Path, n: usize) -> std::path::PathBuf {
+    let path = dir.join(format!("open{n}.map"));
+    let rows = vec![".".repeat(n); n].join("\n");
+    std::fs::write(
+        &path,
+        format!("type octile\nheight {n}\nwidth {n}\nmap\n{rows}\n"),
+    )
+    .unwrap();
+    path
+}
+
+/// Regression: a map at the cell limit was accepted and `explore` aborted allocating its
+/// candidate set; the run is refused up front with the memory it would need.
+#[test]
+fn huge_map_explore_is_refused_with_the_memory_it_needs() {
+    let dir = tempfile::tempdir().unwrap();
+    let map = open_map(dir.path(), 2000);
+    let e = err(&[
+        "explore",
+        "--map",
+        map.to_str().unwrap(),
+        "--resolution",
+        "0.05",
+        "--robots",
+        "5",
+        "--strategy",
+        "ha-cc",
+        "--memory-mb",
+        "100",
+    ]);
+    assert!(
+        e.contains("exploring this 2000x2000 map with 5 robots (ha-cc)"),
+        "{e}"
+    );
+    assert!(e.contains("needs about"), "{e}");
+    assert!(e.contains("more than --memory-mb 100"), "{e}");
+}
+
+/// Regression: `optimal --memory-mb 64` on a 1200 × 1200 map spent 840 MB setting up and
+/// then reported bounds after 0 expansions as a success; the set-up is estimated first and
+/// the command names a `--cell-size` that fits.
+#[test]
+fn optimal_memory_mb_bounds_the_set_up() {
+    let dir = tempfile::tempdir().unwrap();
+    let map = open_map(dir.path(), 1200);
+    let e = err(&[
+        "optimal",
+        "--map",
+        map.to_str().unwrap(),
+        "--resolution",
+        "0.1",
+        "--sensor",
+        "los:r=0.5",
+        "--memory-mb",
+        "64",
+    ]);
+    assert!(
+        e.contains("setting up the search of this 1200x1200 map"),
+        "{e}"
+    );
+    assert!(e.contains("more than --memory-mb 64"), "{e}");
+    assert!(e.contains("use --cell-size"), "{e}");
+}

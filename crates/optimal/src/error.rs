@@ -26,4 +26,16 @@ pub enum OptimalError {
     /// The sensor cannot be used by the offline search.
     #[error("sensor: {0}")]
     Sensor(String),
+    /// Setting up the search would take more memory than its budget.
+    #[error(
+        "setting up the search needs about {} MiB, more than its memory budget of {} MiB",
+        .needed.div_ceil(1 << 20),
+        .budget / (1 << 20)
+    )]
+    Memory {
+        /// Estimated bytes of the set-up.
+        needed: u64,
+        /// The budget ([`crate::Config::max_bytes`]).
+        budget: u64,
+    },
 }

@@ -690,7 +690,7 @@ struct Views {
 }
 
 /// Most viewpoint entries kept for landmark selection (4 bytes each, during set-up only).
-const VIEW_ENTRIES: usize = 16 << 20;
+pub(crate) const VIEW_ENTRIES: usize = 16 << 20;
 
 impl Views {
     fn new(problem: &Problem, reach_targets: &[u32]) -> Self {

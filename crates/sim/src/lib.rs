@@ -13,6 +13,7 @@
 #![warn(missing_docs)]
 
 pub mod config;
+pub mod memory;
 pub mod metrics;
 pub mod run;
 pub mod seed;
