@@ -363,6 +363,17 @@ fn yaml_bad_field_types() {
             "7",
             "field 'origin': expected a list of three numbers [x, y, yaw], found 7",
         ),
+        // Regression: a NaN in the origin was reported as "found a list of 3 items".
+        (
+            "origin",
+            "[.nan, 0.0, 0.0]",
+            "field 'origin': expected a finite number as its x ([x, y, yaw]), found .nan",
+        ),
+        (
+            "origin",
+            "[0.0, 0.0, \"north\"]",
+            "field 'origin': expected a finite number as its yaw ([x, y, yaw]), found \"north\"",
+        ),
         ("negate", "2", "field 'negate': expected 0 or 1, found 2"),
         (
             "negate",

@@ -137,10 +137,16 @@ pub fn parse_ros_yaml_meta(text: &str, yaml_path: &Path) -> Result<RosMapMeta, M
     let origin = match y {
         Yaml::Array(a) if a.len() == 3 => {
             let mut o = [0.0; 3];
-            for (slot, v) in o.iter_mut().zip(a) {
+            for ((slot, v), part) in o.iter_mut().zip(a).zip(["x", "y", "yaw"]) {
                 match number(v) {
                     Some(x) if x.is_finite() => *slot = x,
-                    _ => return Err(bad("origin", "a list of three numbers [x, y, yaw]", y)),
+                    _ => {
+                        return Err(err(MapErrorKind::BadField {
+                            field: "origin",
+                            expected: format!("a finite number as its {part} ([x, y, yaw])"),
+                            found: show(v),
+                        }));
+                    }
                 }
             }
             o
