@@ -717,3 +717,35 @@ fn optimal_memory_mb_bounds_the_set_up() {
     assert!(e.contains("more than --memory-mb 64"), "{e}");
     assert!(e.contains("use --cell-size"), "{e}");
 }
+
+/// Regression: `--sensor laser-limited-sonar` on the default office (0.5 m cells) ended
+/// after 1 move at 1.4 % coverage as if explored; sonar on cells coarser than 0.1 m is
+/// refused, saying the resolution it needs, and the message is not repeated.
+#[test]
+fn sonar_on_coarse_cells_is_refused_naming_the_resolution() {
+    for sensor in ["sonar", "laser-limited-sonar"] {
+        let e = err(&["explore", "--sensor", sensor]);
+        assert!(e.contains("sonar on 0.5 m cells"), "{e}");
+        assert!(e.contains("--resolution 0.1 or finer"), "{e}");
+        assert_eq!(
+            e.matches("expected cells of at most 0.1 m").count(),
+            1,
+            "{e}"
+        );
+    }
+    let v: serde_json::Value = serde_json::from_str(&ok(&[
+        "explore",
+        "--env",
+        "office",
+        "--size",
+        "12x10",
+        "--resolution",
+        "0.1",
+        "--sensor",
+        "sonar",
+        "--json",
+        "--no-timing",
+    ]))
+    .unwrap();
+    assert!(v["coverage"].as_f64().unwrap() > 0.9, "{v}");
+}

@@ -80,6 +80,14 @@ pub enum SenseError {
     /// A map resolution (metres per cell) is not a positive finite number.
     #[error("map resolution: expected a positive number of metres per cell, found {0}")]
     BadResolution(f64),
+    /// A sonar ring on cells too coarse for its cones (see [`crate::spec::SONAR_MAX_CELL_M`]).
+    #[error(
+        "sonar on {0} m cells: expected cells of at most {max} m (on coarser cells the 25° \
+         cones and the echo band paint corridors occupied and exploration stops early); \
+         use --resolution {max} or finer, or a map of finer cells",
+        max = crate::spec::SONAR_MAX_CELL_M
+    )]
+    SonarTooCoarse(f64),
     /// A belief-map probability parameter is out of bounds.
     #[error("belief map: {what}: expected a probability in the allowed range, found {found}")]
     BadProbability {

@@ -85,6 +85,14 @@ pub enum SensorSpec {
     },
 }
 
+/// The coarsest cells the sonar kinds run on, in metres. Measured with `cf-rr` on the
+/// generated office and hospital (seeds 0–2): at 0.05 m both kinds cover over 99 %, at
+/// 0.1 m laser-limited sonar 81–96 %; at 0.15 m it stopped at 2.4 % on one office, and at
+/// 0.5 m (the office's default) both stop after a move or two. A cone 25° wide and an echo
+/// band a cell deep mark whole corridors occupied when a cell is a large share of the
+/// 3 m range.
+pub const SONAR_MAX_CELL_M: f64 = 0.1;
+
 /// The default range of Yamauchi's presets: his sonar's usable 10 ft.
 pub const YAMAUCHI_RANGE: Range = Range::Metres(crate::sonar::DEFAULT_RANGE_M);
 
@@ -125,12 +133,16 @@ impl SensorSpec {
 
     /// The sonar ring of a sonar kind for a map of `resolution` metres per cell (Yamauchi's
     /// parameters, [`SonarParams::yamauchi`], with this spec's range); `None` for the others.
+    /// Cells coarser than [`SONAR_MAX_CELL_M`] are refused.
     pub fn sonar(&self, resolution: f64) -> Option<Result<SonarSensor, SenseError>> {
         let SensorSpec::Sonar { r, .. } = *self else {
             return None;
         };
         if !(resolution.is_finite() && resolution > 0.0) {
             return Some(Err(SenseError::BadResolution(resolution)));
+        }
+        if resolution > SONAR_MAX_CELL_M * (1.0 + 1e-9) {
+            return Some(Err(SenseError::SonarTooCoarse(resolution)));
         }
         let params = SonarParams {
             range: r.cells(resolution),
@@ -313,6 +325,20 @@ mod tests {
 
     fn parse(s: &str) -> Result<SensorSpec, SenseError> {
         s.parse()
+    }
+
+    #[test]
+    fn sonar_refuses_cells_coarser_than_a_tenth_of_a_metre() {
+        for kind in ["sonar", "laser-limited-sonar"] {
+            let spec = parse(kind).unwrap();
+            assert!(spec.sonar(0.1).unwrap().is_ok());
+            assert!(spec.sonar(0.05).unwrap().is_ok());
+            match spec.sonar(0.5).unwrap() {
+                Err(SenseError::SonarTooCoarse(r)) => assert_eq!(r, 0.5),
+                other => panic!("{kind}: expected SonarTooCoarse, got {other:?}"),
+            }
+        }
+        assert!(parse("laser").unwrap().sonar(0.5).is_none());
     }
 
     #[test]

@@ -94,5 +94,13 @@ pub enum SimError {
     },
     /// The sensor cannot be built at this resolution.
     #[error("sensor: {0}")]
-    Sensor(#[from] sense::SenseError),
+    // Not a `#[source]`: the message already holds it, and error reporters that print the
+    // chain would repeat it.
+    Sensor(sense::SenseError),
+}
+
+impl From<sense::SenseError> for SimError {
+    fn from(e: sense::SenseError) -> Self {
+        SimError::Sensor(e)
+    }
 }
