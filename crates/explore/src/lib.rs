@@ -24,6 +24,21 @@
 //!
 //! The exact Euclidean distance transform used for clearance maps lives in `grid::edt`.
 //! Everything is deterministic and reuses its buffers across calls.
+//!
+//! ```
+//! use explore::frontier::frontiers_from_scratch;
+//! use explore::traversability::Traversability;
+//! use grid::{Cell, io::parse_ascii};
+//! // A known room whose right part is still unknown (`?`).
+//! let known = parse_ascii("######\n#..??#\n#..??#\n######\n", 1.0).unwrap().cells;
+//! let mut trav = Traversability::new(known.width(), known.height(), 0.0);
+//! let all: Vec<u32> = (0..known.len() as u32).collect();
+//! trav.update(&known, &all, &mut Vec::new());
+//! let frontier = frontiers_from_scratch(&known, &trav);
+//! // The free cells next to the unknown ones are the frontier.
+//! let expect = [Cell::new(2, 1), Cell::new(2, 2)].map(|c| known.index(c) as u32);
+//! assert_eq!(frontier, expect);
+//! ```
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 

@@ -9,6 +9,15 @@
 //! [`io`].
 //!
 //! `grid` knows nothing about robots, sensors or strategies.
+//!
+//! ```
+//! use grid::{Cell, io::parse_ascii};
+//! // `#` wall, `.` free, `?` unknown, at 0.1 m per cell.
+//! let map = parse_ascii("#####\n#..?#\n#####\n", 0.1).unwrap();
+//! assert_eq!((map.width(), map.height()), (5, 3));
+//! assert!(map.cells.get(Cell::new(1, 1)).is_free());
+//! assert!(!map.cells.get(Cell::new(3, 1)).is_free());
+//! ```
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 

@@ -28,6 +28,18 @@
 //! Shared conventions: cells `(x, y)` with `y` down, flat row-major indices; in a ground
 //! truth, `Unknown` (outside the world) is opaque and seen as Occupied; cells outside the
 //! grid are opaque and never reported; headings are radians in grid coordinates (y down).
+//!
+//! ```
+//! use grid::{Cell, io::parse_ascii};
+//! use sense::{LosSensor, Observation, Pose, Sensor};
+//! let truth = parse_ascii("#######\n#.....#\n#.#...#\n#######\n", 1.0).unwrap();
+//! let los = LosSensor::new(3.0).unwrap();
+//! let mut seen = Observation::new();
+//! los.scan(&truth.cells, Pose::new(Cell::new(1, 1), 0.0), &mut seen);
+//! let idx = |x, y| truth.cells.index(Cell::new(x, y)) as u32;
+//! assert!(seen.cells.iter().any(|&(i, _)| i == idx(4, 1))); // 3 cells along the row
+//! assert!(!seen.cells.iter().any(|&(i, _)| i == idx(5, 1))); // beyond the range
+//! ```
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 

@@ -6,6 +6,15 @@
 //! factor so that small maps stay legible. [`animate::animate_gif`] makes an animated GIF
 //! of a run and [`replay::replay_html`] a self-contained HTML page that replays it. `viz`
 //! only draws into memory; the caller writes files.
+//!
+//! ```
+//! use explore::strategy::Strategy;
+//! use world::{EnvKind, EnvSpec, generate};
+//! let env = generate(&EnvSpec::new(EnvKind::Office, 7)).unwrap();
+//! let run = sim::run(&env.map, &sim::RunConfig::new(Strategy::preset("cf").unwrap())).unwrap();
+//! let picture = viz::final_picture(&env.map, &run);
+//! assert!(picture.width() >= env.map.width() as u32);
+//! ```
 #![warn(missing_docs)]
 
 pub mod animate;
