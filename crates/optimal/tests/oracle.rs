@@ -588,9 +588,16 @@ fn node_limit_gives_bracketing_bounds() {
     assert!(cut.lower_bound <= full.upper_bound + TOL);
     assert!(cut.upper_bound >= full.upper_bound - TOL);
     assert!(cut.solution.is_some(), "the greedy incumbent is kept");
+    // The budget covers the set-up (refused up front when it does not fit) and leaves the
+    // search 16 KiB.
     let mut c = cfg(1.0, ActionSet::Boundary, HeuristicKind::Paper);
-    c.max_bytes = 1 << 16;
+    c.max_bytes = optimal::setup_bytes(p.cells().len(), p.model()) as usize + (1 << 14);
     let mem = optimal::solve(&p, &c).expect("solve");
     assert!(matches!(mem.status, Status::Stopped | Status::Optimal));
-    assert!(mem.stats.bytes <= 1 << 16 || mem.status == Status::Optimal);
+    assert!(mem.stats.bytes <= c.max_bytes || mem.status == Status::Optimal);
+    c.max_bytes = 1 << 16;
+    assert!(matches!(
+        optimal::solve(&p, &c),
+        Err(optimal::OptimalError::Memory { .. })
+    ));
 }
