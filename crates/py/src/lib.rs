@@ -2,9 +2,9 @@
 //! PyO3 and maturin.
 //!
 //! Researchers mostly work in Python; this crate gives them the Rust loop at Rust speed:
-//! maps ([`map::Map`]) and single runs and parallel batches that print exactly what
-//! `frontier explore --json` prints ([`run`]). The Python side (`python/frontier`) wraps
-//! these in pandas' shapes.
+//! maps ([`map::Map`]), single runs and parallel batches that print exactly what
+//! `frontier explore --json` prints ([`run`]) and a study store read into rows
+//! ([`store`]). The Python side (`python/frontier`) wraps these in pandas' shapes.
 //!
 //! Errors from user input become `ValueError` (or `TypeError` for a wrong type or dtype)
 //! with the CLI's message; a panic inside a run is caught and raised as `RuntimeError`, so
@@ -12,6 +12,7 @@
 
 pub mod map;
 pub mod run;
+pub mod store;
 
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
@@ -45,6 +46,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(run::explore, m)?)?;
     m.add_function(wrap_pyfunction!(run::explore_many, m)?)?;
     m.add_function(wrap_pyfunction!(run::strategies, m)?)?;
+    m.add_function(wrap_pyfunction!(store::load_rows, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

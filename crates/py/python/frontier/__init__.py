@@ -2,7 +2,7 @@
 
 Maps (:class:`Map`), single runs (:func:`explore`) that report exactly what
 ``frontier explore --json --no-timing`` prints, and parallel batches (:func:`explore_many`)
-on Rust threads with the GIL released.
+on Rust threads with the GIL released, and study stores (:mod:`frontier.bench`).
 """
 
 from __future__ import annotations

@@ -71,3 +71,6 @@ def explore_many(
 
 def strategies() -> List[Tuple[str, str]]:
     """The strategy presets: (name, description)."""
+
+def load_rows(path: Union[str, PathLike[str]]) -> str:
+    """Every trial of a study store as a JSON array of rows."""
