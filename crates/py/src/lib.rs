@@ -3,13 +3,16 @@
 //!
 //! Researchers mostly work in Python; this crate gives them the Rust loop at Rust speed:
 //! maps ([`map::Map`]), single runs and parallel batches that print exactly what
-//! `frontier explore --json` prints ([`run`]) and a study store read into rows
-//! ([`store`]). The Python side (`python/frontier`) wraps these in pandas' shapes.
+//! `frontier explore --json` prints ([`run`]), a study store read into rows ([`store`]) and
+//! the core of the Gymnasium environments ([`mod@env`]), one decision per step over
+//! [`sim::Session`]. The Python side (`python/frontier`) wraps these in Gymnasium's and
+//! pandas' shapes.
 //!
 //! Errors from user input become `ValueError` (or `TypeError` for a wrong type or dtype)
 //! with the CLI's message; a panic inside a run is caught and raised as `RuntimeError`, so
 //! nothing unwinds across the boundary.
 
+pub mod env;
 pub mod map;
 pub mod run;
 pub mod store;
@@ -43,6 +46,9 @@ pub(crate) fn internal(msg: String) -> PyErr {
 #[pymodule]
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<map::Map>()?;
+    m.add_class::<env::EnvCore>()?;
+    m.add_class::<env::VecEnvCore>()?;
+    m.add_class::<env::TeamEnvCore>()?;
     m.add_function(wrap_pyfunction!(run::explore, m)?)?;
     m.add_function(wrap_pyfunction!(run::explore_many, m)?)?;
     m.add_function(wrap_pyfunction!(run::strategies, m)?)?;

@@ -1,8 +1,10 @@
 """frontier: frontier-based robot exploration at Rust speed.
 
 Maps (:class:`Map`), single runs (:func:`explore`) that report exactly what
-``frontier explore --json --no-timing`` prints, and parallel batches (:func:`explore_many`)
-on Rust threads with the GIL released, and study stores (:mod:`frontier.bench`).
+``frontier explore --json --no-timing`` prints, parallel batches (:func:`explore_many`)
+on Rust threads with the GIL released, study stores (:mod:`frontier.bench`), Gymnasium
+environments (:mod:`frontier.gym`) whose baselines are the papers' strategies, and a
+PettingZoo environment for teams (:mod:`frontier.pettingzoo`).
 """
 
 from __future__ import annotations

@@ -74,3 +74,106 @@ def strategies() -> List[Tuple[str, str]]:
 
 def load_rows(path: Union[str, PathLike[str]]) -> str:
     """Every trial of a study store as a JSON array of rows."""
+
+class EnvCore:
+    """One exploration environment (the core of `frontier.gym.ExploreEnv`)."""
+
+    def __init__(
+        self,
+        maps: Optional[List[Map]] = None,
+        generator: Optional[Tuple[str, Optional[Tuple[float, float]], Optional[float]]] = None,
+        kwargs: Optional[Dict[str, Any]] = None,
+        candidates: Optional[str] = None,
+        k: int = 16,
+        view: Optional[int] = None,
+        lam: float = 0.0,
+        max_path_m: Optional[float] = None,
+        max_steps: Optional[int] = None,
+        gain: bool = False,
+    ) -> None: ...
+    @property
+    def shape(self) -> Tuple[int, int]:
+        """Observation (height, width)."""
+    @property
+    def k(self) -> int:
+        """The most candidates offered."""
+    def reset(self, seed: int) -> Dict[str, np.ndarray]:
+        """Start an episode; returns the observation."""
+    def step(self, action: int) -> Tuple[Dict[str, np.ndarray], float, bool, bool]:
+        """(observation, reward, terminated, truncated)."""
+    def observation(self) -> Dict[str, np.ndarray]:
+        """The current observation."""
+    def info(self) -> Dict[str, Any]:
+        """Coverage, path length, decisions, moves, steps, candidates, map."""
+    def baseline_action(self, preset: str) -> int:
+        """The action `preset` would take now."""
+
+class VecEnvCore:
+    """N exploration environments stepped together on Rust threads."""
+
+    def __init__(
+        self,
+        n: int,
+        maps: Optional[List[Map]] = None,
+        generator: Optional[Tuple[str, Optional[Tuple[float, float]], Optional[float]]] = None,
+        kwargs: Optional[Dict[str, Any]] = None,
+        candidates: Optional[str] = None,
+        k: int = 16,
+        view: Optional[int] = None,
+        lam: float = 0.0,
+        max_path_m: Optional[float] = None,
+        max_steps: Optional[int] = None,
+        gain: bool = False,
+        threads: Optional[int] = None,
+    ) -> None: ...
+    @property
+    def shape(self) -> Tuple[int, int]:
+        """Observation (height, width)."""
+    @property
+    def k(self) -> int:
+        """The most candidates offered."""
+    def reset(self, seeds: List[int]) -> Dict[str, np.ndarray]:
+        """Start every environment's episode."""
+    def step(
+        self, actions: List[int]
+    ) -> Tuple[Dict[str, np.ndarray], List[float], List[bool], List[bool], List[float], List[float]]:
+        """(observations, rewards, terminated, truncated, coverage, path lengths)."""
+    def baseline_actions(self, preset: str) -> List[int]:
+        """Each environment's action under `preset`."""
+
+class TeamEnvCore:
+    """A team exploring together, one agent per robot (the core of
+    `frontier.pettingzoo.ExploreParallelEnv`)."""
+
+    def __init__(
+        self,
+        maps: Optional[List[Map]] = None,
+        generator: Optional[Tuple[str, Optional[Tuple[float, float]], Optional[float]]] = None,
+        kwargs: Optional[Dict[str, Any]] = None,
+        candidates: Optional[str] = None,
+        k: int = 16,
+        view: Optional[int] = None,
+        lam: float = 0.0,
+        max_path_m: Optional[float] = None,
+        max_steps: Optional[int] = None,
+        gain: bool = False,
+    ) -> None: ...
+    @property
+    def robots(self) -> int:
+        """Number of robots (agents)."""
+    @property
+    def shape(self) -> Tuple[int, int]:
+        """Observation (height, width)."""
+    @property
+    def k(self) -> int:
+        """The most candidates offered to one robot."""
+    def reset(self, seed: int) -> List[Dict[str, np.ndarray]]:
+        """Start an episode; one observation per robot."""
+    def step(self, actions: List[int]) -> Tuple[List[Dict[str, np.ndarray]], float, bool, bool]:
+        """(observations, team reward, terminated, truncated)."""
+    def deciding(self) -> List[bool]:
+        """Which robots decide now."""
+    def info(self) -> Dict[str, Any]:
+        """Coverage, per-robot path lengths, decisions, moves, steps, map."""
+    def baseline_actions(self, preset: str) -> List[int]:
+        """Each robot's action under `preset`."""
