@@ -119,3 +119,16 @@ def test_vector_env_autoresets(office):
     assert trunc.all()
     _, rew, term, trunc, infos = venv.step([0, 0])
     assert not trunc.any() and (rew == 0).all() and (infos["path_length_m"] == 0).all()
+
+
+def test_maps_from_a_folder(office, tmp_path):
+    office.save(tmp_path / "a.yaml")
+    office.save(tmp_path / "b.yaml")
+    (tmp_path / "notes.md").write_text("not a map")
+    env = ExploreEnv(str(tmp_path), k=4)
+    names = {env.reset(seed=s)[1]["map"] for s in range(8)}
+    assert names == {"a", "b"}
+    empty = tmp_path / "empty"
+    empty.mkdir()
+    with pytest.raises(ValueError, match="no map files"):
+        ExploreEnv(str(empty))
