@@ -2,10 +2,8 @@
 
 use std::path::PathBuf;
 
-use anyhow::{Context, Result, bail};
+use anyhow::{Context, Result};
 use clap::Args;
-use explore::strategy::{SensingMode, Strategy};
-use sense::{BeliefKind, SensorSpec};
 use sim::RunConfig;
 
 use crate::args::{MapSource, Truth, parse_cell};
@@ -76,64 +74,29 @@ pub struct ExploreArgs {
 
 /// Resolve flags into a run configuration (everything but the map).
 pub fn config(a: &ExploreArgs, truth: &Truth) -> Result<RunConfig> {
-    let strategy = Strategy::preset(&a.strategy).map_err(|e| anyhow::anyhow!("--strategy: {e}"))?;
-    let sensor: SensorSpec = a
-        .sensor
-        .parse()
-        .map_err(|e| anyhow::anyhow!("--sensor: {e}"))?;
-    let belief: BeliefKind = match a.belief.as_deref() {
-        Some(b) => b.parse().map_err(|e| anyhow::anyhow!("--belief: {e}"))?,
-        None if sensor.sonar_mode().is_some() => BeliefKind::Evidence,
-        None => BeliefKind::Known,
-    };
-    let sensing = a
-        .sensing
+    let start = a
+        .start
         .as_deref()
-        .map(|s| s.parse::<SensingMode>())
-        .transpose()
-        .map_err(|e| anyhow::anyhow!("--sensing: {e}"))?;
-    let mut strategy = strategy;
-    match a.s_max {
-        None => {}
-        Some(-1) => strategy.replan.every_moves = None,
-        Some(n) if n > 0 && n <= i64::from(u32::MAX) => {
-            strategy.replan.every_moves = Some(n as u32)
-        }
-        Some(n) => {
-            bail!("--s-max: expected a positive number of cell moves or -1 (on arrival), found {n}")
-        }
-    }
-    let mut cfg = RunConfig::new(strategy);
-    cfg.sensor = sensor;
-    cfg.belief = belief;
-    cfg.sensing = sensing;
-    cfg.robots = a.robots;
-    cfg.clearance_m = a.clearance;
-    cfg.speed = a.speed;
-    cfg.seed = a.seed;
-    cfg.coverage_goal = a.goal;
-    cfg.max_moves = a.max_moves;
-    cfg.record_trace = a.out.is_some() || a.gif.is_some() || a.html.is_some();
-    cfg.clutter = truth.clutter.clone();
+        .map(|s| parse_cell(s, "--start"))
+        .transpose()?;
+    let opts = bench::explore::ExploreOptions {
+        seed: a.seed,
+        start,
+        strategy: a.strategy.clone(),
+        sensor: a.sensor.clone(),
+        belief: a.belief.clone(),
+        sensing: a.sensing.clone(),
+        clearance: a.clearance,
+        speed: a.speed,
+        robots: a.robots,
+        s_max: a.s_max,
+        goal: a.goal,
+        max_moves: a.max_moves,
+        record_trace: a.out.is_some() || a.gif.is_some() || a.html.is_some(),
+    };
+    let cfg = bench::explore::config(&opts, &truth.map, truth.clutter.clone())
+        .map_err(anyhow::Error::msg)?;
     check_memory(&cfg, truth, a.memory_mb)?;
-    if let Some(s) = &a.start {
-        let first = parse_cell(s, "--start")?;
-        if !truth.map.cells.contains(first) {
-            bail!(
-                "--start {s}: outside the {}x{} map",
-                truth.map.width(),
-                truth.map.height()
-            );
-        }
-        if a.robots == 1 {
-            cfg.starts = vec![first];
-        } else {
-            let trav =
-                sim::truth::traversable(&truth.map.cells, a.clearance / truth.map.resolution);
-            sim::truth::check_start(&truth.map.cells, &trav, first)?;
-            cfg.starts = sim::truth::team_starts(&truth.map.cells, &trav, first, a.robots)?;
-        }
-    }
     Ok(cfg)
 }
 

@@ -16,84 +16,9 @@ fn round(v: f64, digits: i32) -> f64 {
     (v * f).round() / f
 }
 
-/// At most `n` points of the coverage curve, evenly spaced by index, last point kept.
-fn downsample(curve: &[(f64, f64)], n: usize) -> Vec<Value> {
-    if curve.is_empty() {
-        return Vec::new();
-    }
-    let step = curve.len().div_ceil(n).max(1);
-    let mut out: Vec<Value> = curve
-        .iter()
-        .step_by(step)
-        .map(|&(d, c)| json!([round(d, 3), round(c, 5)]))
-        .collect();
-    if !(curve.len() - 1).is_multiple_of(step) {
-        let &(d, c) = curve.last().expect("non-empty");
-        out.push(json!([round(d, 3), round(c, 5)]));
-    }
-    out
-}
-
 /// The JSON summary of a run (`timing`: include wall-clock times).
 pub fn summary_json(truth: &Truth, cfg: &RunConfig, r: &RunResult, timing: bool) -> Value {
-    let ms = |s: f64| {
-        if timing {
-            json!(round(s * 1000.0, 3))
-        } else {
-            Value::Null
-        }
-    };
-    json!({
-        "env": truth.name,
-        "width": truth.map.width(),
-        "height": truth.map.height(),
-        "resolution": truth.map.resolution,
-        "seed": cfg.seed,
-        "strategy": cfg.strategy.name,
-        "robots": cfg.robots,
-        "sensor": cfg.sensor.to_string(),
-        "sensing": cfg.sensing_mode().to_string(),
-        "belief": cfg.belief.to_string(),
-        "clearance_m": cfg.clearance_m,
-        "speed": cfg.speed,
-        "s_max": cfg.strategy.replan.every_moves,
-        "starts": r.starts.iter().map(|c| json!([c.x, c.y])).collect::<Vec<_>>(),
-        "complete": r.complete(),
-        "reason": r.reason.as_str(),
-        "coverage": round(r.coverage, 6),
-        "reachable_cells": r.reachable_cells,
-        "path_length_m": r.path_length_m.iter().map(|&l| round(l, 4)).collect::<Vec<_>>(),
-        "max_path_length_m": round(r.max_path_length_m(), 4),
-        "total_path_length_m": round(r.total_path_length_m(), 4),
-        "time_s": round(r.time_s, 4),
-        "decisions": r.decisions,
-        "moves": r.moves,
-        "decide_ms": ms(r.times.decide_s),
-        "timing_ms": {
-            "sense": ms(r.times.sense_s),
-            "upkeep": ms(r.times.upkeep_s),
-            "decide": ms(r.times.decide_s),
-            "total": ms(r.times.total_s),
-        },
-        "map": audit_json(r),
-        "coverage_curve": downsample(&r.coverage_curve, 100),
-    })
-}
-
-/// The map built against the ground truth ([`sim::MapAudit`]).
-pub fn audit_json(r: &RunResult) -> Value {
-    let a = &r.audit;
-    json!({
-        "accuracy": round(a.accuracy, 6),
-        "false_free_cells": a.false_free_cells,
-        "clutter_cells": a.clutter_cells,
-        "clutter_mapped": a.clutter_mapped,
-        "phantom_frontier_regions": a.phantom_regions,
-        "phantom_frontier_regions_per_decision": round(a.phantom_regions_mean(r.decisions), 4),
-        "phantom_frontier_regions_max": a.phantom_regions_max,
-        "phantom_frontier_share": round(a.phantom_share(), 6),
-        "phantom_goals": a.phantom_goals,
-    })
+    bench::explore::summary_json(&truth.name, &truth.map, cfg, r, timing)
 }
 
 /// The trace file: trails, decisions and frontier counts, cells as [x, y].

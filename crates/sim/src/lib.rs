@@ -6,6 +6,9 @@
 //! re-plan policy) triple, and move cell by cell along 8-connected shortest paths at speed
 //! v — concurrently, in the order of their clocks — until no reachable frontier is left
 //! or the coverage goal is met (Faigl & Kulich's steps 1–8; DESIGN.md "One loop").
+//! [`Session`] is the same loop stopped at every decision, so that goals can come from
+//! outside (a learning agent in the Python package's Gymnasium environment); `run()` is a
+//! session whose strategy decides.
 //!
 //! `sim` is deterministic given (map, configuration, seed): all randomness comes from
 //! streams derived from the seed, and ties are broken by robot id and cell index.
@@ -34,4 +37,4 @@ pub mod truth;
 
 pub use config::{RunConfig, SimError};
 pub use metrics::{EndReason, MapAudit, PhaseTimes, RunResult, Trace, TraceEvent, TraceGoal};
-pub use run::run;
+pub use run::{Session, Status, run};

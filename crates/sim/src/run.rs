@@ -17,6 +17,7 @@
 //! free. Yamauchi's no-progress rule then puts a goal that is not approached for its time
 //! limit on the inaccessible list, also across such re-plans.
 
+use std::borrow::Cow;
 use std::time::Instant;
 
 use explore::assign::{AssignerKind, utility};
@@ -72,8 +73,18 @@ struct Robot {
 
 /// Everything the loop owns besides the robots.
 struct Team<'a> {
-    truth: &'a GridMap,
-    cfg: &'a RunConfig,
+    truth: Cow<'a, GridMap>,
+    cfg: Cow<'a, RunConfig>,
+    /// Goals come from outside ([`Session::choose`]) instead of the strategy's assigner.
+    external: bool,
+    /// An external decision is due: candidates are generated, goals not yet chosen.
+    pending: bool,
+    /// Candidates offered to an assigner by [`Session::propose`].
+    offered: CandidateSet,
+    /// Goals an assigner proposed.
+    proposed: Vec<Option<Goal>>,
+    /// Buffers of information-gain predictions.
+    gain_scratch: sense::gain::GainScratch,
     sensor: Box<dyn Sensor>,
     sweep: Box<dyn Sensor>,
     belief: Box<dyn Belief>,
@@ -127,202 +138,511 @@ struct Team<'a> {
 
 /// Run one exploration of `truth` as configured.
 pub fn run(truth: &GridMap, cfg: &RunConfig) -> Result<RunResult, SimError> {
-    let started = Instant::now();
-    validate(cfg)?;
-    let res = truth.resolution;
-    let cells = &truth.cells;
-    let (w, h) = (cells.width(), cells.height());
-    if let Some(c) = &cfg.clutter
-        && (c.width(), c.height()) != (w, h)
-    {
-        return Err(SimError::BadParameter {
-            field: "clutter",
-            expected: "a layer of the map's size",
-            found: format!("{}x{} for a {w}x{h} map", c.width(), c.height()),
-        });
-    }
-    // Where the robot's body can be: the plane's free cells less the off-plane clutter.
-    let body = cfg.clutter.as_ref().map(|c| truth::with_clutter(cells, c));
-    let clearance_cells = cfg.clearance_m / res;
-    let cells_for_body = body.as_ref().unwrap_or(cells);
-    let trav_truth = truth::traversable(cells_for_body, clearance_cells);
-    let starts: Vec<Cell> = if cfg.starts.is_empty() {
-        let mut rng = seed::rng(cfg.seed, "start");
-        let first = truth::random_start(cells_for_body, &trav_truth, &mut rng, cfg.clearance_m)?;
-        truth::team_starts(cells_for_body, &trav_truth, first, cfg.robots)?
-    } else {
-        if cfg.starts.len() != cfg.robots {
+    let mut session = Session::start(Cow::Borrowed(truth), Cow::Borrowed(cfg), false)?;
+    session.advance();
+    Ok(session.finish())
+}
+
+/// Where a [`Session`] stopped.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Status {
+    /// An external decision is due: read the candidates, then [`Session::choose`].
+    Decide,
+    /// The run is over.
+    Ended(EndReason),
+}
+
+/// One run of the loop that can stop at every decision: the stepping form of [`run()`].
+///
+/// With `external` goals the session stops whenever robots must decide ([`Status::Decide`]):
+/// the strategy's candidates are generated, and the caller picks the goals
+/// ([`choose`](Self::choose)) — a learning agent, or an assigner through
+/// [`propose`](Self::propose). Without, the strategy's assigner decides and
+/// [`advance`](Self::advance) runs to the end; that is exactly [`run()`], which is
+/// implemented this way, so there is one loop.
+pub struct Session<'a> {
+    team: Team<'a>,
+    robots: Vec<Robot>,
+    starts: Vec<Cell>,
+    started: Instant,
+    reason: Option<EndReason>,
+}
+
+impl<'a> Session<'a> {
+    /// Set up a run of `truth` as configured: place the robots, let each look around once
+    /// and make the first decision (with `external` goals, stop before choosing them).
+    pub fn start(
+        truth: Cow<'a, GridMap>,
+        cfg: Cow<'a, RunConfig>,
+        external: bool,
+    ) -> Result<Self, SimError> {
+        let started = Instant::now();
+        validate(&cfg)?;
+        let res = truth.resolution;
+        let cells = &truth.cells;
+        let (w, h) = (cells.width(), cells.height());
+        if let Some(c) = &cfg.clutter
+            && (c.width(), c.height()) != (w, h)
+        {
             return Err(SimError::BadParameter {
-                field: "--start",
-                expected: "one start cell per robot (or one, for the whole team)",
-                found: format!("{} starts for {} robots", cfg.starts.len(), cfg.robots),
+                field: "clutter",
+                expected: "a layer of the map's size",
+                found: format!("{}x{} for a {w}x{h} map", c.width(), c.height()),
             });
         }
-        for &s in &cfg.starts {
-            truth::check_start(cells_for_body, &trav_truth, s)?;
-        }
-        cfg.starts.clone()
-    };
-    let reachable = truth::reachable_from(cells_for_body, &trav_truth, cells.index(starts[0]));
-    let reachable_cells = reachable.iter().filter(|&&r| r).count();
-    drop(trav_truth);
+        // Where the robot's body can be: the plane's free cells less the off-plane clutter.
+        let body = cfg.clutter.as_ref().map(|c| truth::with_clutter(cells, c));
+        let clearance_cells = cfg.clearance_m / res;
+        let cells_for_body = body.as_ref().unwrap_or(cells);
+        let trav_truth = truth::traversable(cells_for_body, clearance_cells);
+        let starts: Vec<Cell> = if cfg.starts.is_empty() {
+            let mut rng = seed::rng(cfg.seed, "start");
+            let first =
+                truth::random_start(cells_for_body, &trav_truth, &mut rng, cfg.clearance_m)?;
+            truth::team_starts(cells_for_body, &trav_truth, first, cfg.robots)?
+        } else {
+            if cfg.starts.len() != cfg.robots {
+                return Err(SimError::BadParameter {
+                    field: "--start",
+                    expected: "one start cell per robot (or one, for the whole team)",
+                    found: format!("{} starts for {} robots", cfg.starts.len(), cfg.robots),
+                });
+            }
+            for &s in &cfg.starts {
+                truth::check_start(cells_for_body, &trav_truth, s)?;
+            }
+            cfg.starts.clone()
+        };
+        let reachable = truth::reachable_from(cells_for_body, &trav_truth, cells.index(starts[0]));
+        let reachable_cells = reachable.iter().filter(|&&r| r).count();
+        drop(trav_truth);
 
-    let sensor = cfg.sensor.build(res)?;
-    let sweep = cfg.sensor.sweep().build(res)?;
-    let sonar = cfg.sensor.sonar(res).transpose()?;
-    let imperfect = sonar.is_some() || cfg.clutter.is_some();
-    let m = cfg.robots;
-    let mut team = Team {
-        truth,
-        cfg,
-        range_cells: sensor.range_cells(),
-        sensor,
-        sweep,
-        belief: cfg.belief.build(w, h),
-        upkeep: FrontierUpkeep::new(w, h, clearance_cells),
-        planner: Planner::new(w, h, m),
-        lists: GoalLists::new(cells.len()),
-        candidates: CandidateSet::new(cells.len()),
-        memory: {
-            let mut memory = Memory::default();
-            memory.dt.model = sense::gain::InverseModel::for_belief(cfg.belief);
-            memory
-        },
-        rng: seed::rng(cfg.seed, "strategy"),
-        obs: Observation::new(),
-        changed: Vec::new(),
-        imperfect,
-        no_progress_s: cfg
-            .strategy
-            .replan
-            .no_progress_s
-            .or(imperfect.then_some(IMPERFECT_NO_PROGRESS_S)),
-        regions_buf: Vec::new(),
-        audit: MapAudit::default(),
-        body,
-        sonar,
-        sonar_rng: seed::rng(cfg.seed, "sonar"),
-        readings: Vec::with_capacity(sense::sonar::TRANSDUCERS),
-        laser_hits: Vec::new(),
-        counted: vec![false; cells.len()],
-        reachable,
-        covered: 0,
-        reachable_cells,
-        cells_buf: vec![0; m],
-        goals_buf: vec![None; m],
-        deciding: vec![false; m],
-        out: vec![None; m],
-        path_buf: Vec::new(),
-        arrive_buf: Vec::new(),
-        all: (0..m).collect(),
-        decisions: 0,
-        moves: 0,
-        times: PhaseTimes::default(),
-        total_dist_cells: 0.0,
-        curve: vec![(0.0, 0.0)],
-        trace: cfg.record_trace.then(|| Trace {
+        let sensor = cfg.sensor.build(res)?;
+        let sweep = cfg.sensor.sweep().build(res)?;
+        let sonar = cfg.sensor.sonar(res).transpose()?;
+        let imperfect = sonar.is_some() || cfg.clutter.is_some();
+        let m = cfg.robots;
+        let len = cells.len();
+        let robots: Vec<Robot> = starts
+            .iter()
+            .map(|&c| Robot {
+                cell: cells.index(c) as u32,
+                heading: 0.0,
+                clock: 0.0,
+                dist_cells: 0.0,
+                path: Vec::new(),
+                path_pos: 0,
+                goal: None,
+                moves_since_decision: 0,
+                remaining: f64::INFINITY,
+                best_remaining: f64::INFINITY,
+                progress_clock: 0.0,
+                progress_goal: None,
+                idle: false,
+                utility0: 0.0,
+                heading0: 0.0,
+            })
+            .collect();
+        let trace = cfg.record_trace.then(|| Trace {
             robots: m,
             starts: starts.iter().map(|&c| cells.index(c) as u32).collect(),
             ..Trace::default()
-        }),
-    };
-    let mut robots: Vec<Robot> = starts
-        .iter()
-        .map(|&c| Robot {
-            cell: cells.index(c) as u32,
-            heading: 0.0,
-            clock: 0.0,
-            dist_cells: 0.0,
-            path: Vec::new(),
-            path_pos: 0,
-            goal: None,
-            moves_since_decision: 0,
-            remaining: f64::INFINITY,
-            best_remaining: f64::INFINITY,
-            progress_clock: 0.0,
-            progress_goal: None,
-            idle: false,
-            utility0: 0.0,
-            heading0: 0.0,
-        })
-        .collect();
-    // Every robot looks around once where it stands.
-    for r in 0..m {
-        let pose = Pose {
-            cell: cells.cell(robots[r].cell as usize),
-            heading: 0.0,
-        };
-        team.sense(pose, true);
-        team.pin_free(robots[r].cell);
-        team.record(&robots, r);
-    }
-    let all: Vec<usize> = (0..m).collect();
-    team.decide(&mut robots, &all);
-
-    let reason = loop {
-        if let Some(g) = cfg.coverage_goal
-            && team.coverage() >= g
-        {
-            break EndReason::GoalReached;
-        }
-        if team.moves >= cfg.max_moves {
-            break EndReason::StepLimit;
-        }
-        // The active robot with the earliest clock moves next.
-        let Some(r) = (0..m)
-            .filter(|&r| !robots[r].idle)
-            .min_by(|&a, &b| robots[a].clock.total_cmp(&robots[b].clock).then(a.cmp(&b)))
-        else {
-            break if team.covered == team.reachable_cells {
-                EndReason::Complete
+        });
+        let team = Team {
+            range_cells: sensor.range_cells(),
+            sensor,
+            sweep,
+            belief: cfg.belief.build(w, h),
+            upkeep: FrontierUpkeep::new(w, h, clearance_cells),
+            planner: Planner::new(w, h, m),
+            lists: GoalLists::new(len),
+            candidates: CandidateSet::new(len),
+            memory: {
+                let mut memory = Memory::default();
+                memory.dt.model = sense::gain::InverseModel::for_belief(cfg.belief);
+                memory
+            },
+            rng: seed::rng(cfg.seed, "strategy"),
+            obs: Observation::new(),
+            changed: Vec::new(),
+            imperfect,
+            no_progress_s: cfg
+                .strategy
+                .replan
+                .no_progress_s
+                .or(imperfect.then_some(IMPERFECT_NO_PROGRESS_S)),
+            regions_buf: Vec::new(),
+            audit: MapAudit::default(),
+            body,
+            sonar,
+            sonar_rng: seed::rng(cfg.seed, "sonar"),
+            readings: Vec::with_capacity(sense::sonar::TRANSDUCERS),
+            laser_hits: Vec::new(),
+            counted: vec![false; len],
+            reachable,
+            covered: 0,
+            reachable_cells,
+            cells_buf: vec![0; m],
+            goals_buf: vec![None; m],
+            deciding: vec![false; m],
+            out: vec![None; m],
+            path_buf: Vec::new(),
+            arrive_buf: Vec::new(),
+            all: (0..m).collect(),
+            decisions: 0,
+            moves: 0,
+            times: PhaseTimes::default(),
+            total_dist_cells: 0.0,
+            curve: vec![(0.0, 0.0)],
+            trace,
+            external,
+            pending: false,
+            offered: if external {
+                CandidateSet::new(len)
             } else {
-                EndReason::NoReachableFrontier
-            };
+                CandidateSet::default()
+            },
+            proposed: vec![None; m],
+            gain_scratch: sense::gain::GainScratch::new(),
+            truth,
+            cfg,
         };
-        team.step(&mut robots, r);
-    };
+        let mut session = Session {
+            team,
+            robots,
+            starts,
+            started,
+            reason: None,
+        };
+        let (team, robots) = (&mut session.team, &mut session.robots);
+        // Every robot looks around once where it stands.
+        for r in 0..m {
+            let pose = Pose {
+                cell: team.truth.cells.cell(robots[r].cell as usize),
+                heading: 0.0,
+            };
+            team.sense(pose, true);
+            team.pin_free(robots[r].cell);
+            team.record(robots, r);
+        }
+        let all: Vec<usize> = (0..m).collect();
+        team.decide(robots, &all);
+        Ok(session)
+    }
 
-    let frontiers_left: Vec<u32> = {
-        // Frontier cells still open: not on the visited or inaccessible lists (a visited
-        // goal that is still a frontier borders cells no position can see, such as a
-        // wall cell behind a corner squeeze).
-        let mut f: Vec<u32> = team
-            .upkeep
-            .frontiers
-            .cells()
+    /// Run until an external decision is due or the run ends.
+    pub fn advance(&mut self) -> Status {
+        if let Some(reason) = self.reason {
+            return Status::Ended(reason);
+        }
+        if self.team.pending {
+            return Status::Decide;
+        }
+        let (team, robots) = (&mut self.team, &mut self.robots);
+        let m = robots.len();
+        let reason = loop {
+            if let Some(g) = team.cfg.coverage_goal
+                && team.coverage() >= g
+            {
+                break EndReason::GoalReached;
+            }
+            if team.moves >= team.cfg.max_moves {
+                break EndReason::StepLimit;
+            }
+            // The active robot with the earliest clock moves next.
+            let Some(r) = (0..m)
+                .filter(|&r| !robots[r].idle)
+                .min_by(|&a, &b| robots[a].clock.total_cmp(&robots[b].clock).then(a.cmp(&b)))
+            else {
+                break if team.covered == team.reachable_cells {
+                    EndReason::Complete
+                } else {
+                    EndReason::NoReachableFrontier
+                };
+            };
+            team.step(robots, r);
+            if team.pending {
+                return Status::Decide;
+            }
+        };
+        self.reason = Some(reason);
+        Status::Ended(reason)
+    }
+
+    /// Which robots the pending decision is for (all false when none is pending).
+    pub fn deciding(&self) -> &[bool] {
+        if self.team.pending {
+            &self.team.deciding
+        } else {
+            &[]
+        }
+    }
+
+    /// The candidates the strategy's generator offered at the last decision, in its order.
+    pub fn candidates(&self) -> &[u32] {
+        self.team.candidates.cells()
+    }
+
+    /// The position of `cell` among the candidates of the last decision, if it is one.
+    pub fn candidate_position(&self, cell: u32) -> Option<usize> {
+        self.team.candidates.index_of(cell as usize)
+    }
+
+    /// The (at most) `k` candidates of the pending decision cheapest for robot `r` to reach,
+    /// by (path cost in cells, cell index), into `out`. The search from the robot stops as
+    /// soon as `k` candidates are settled, so the cost follows the area nearer than them.
+    pub fn nearest_candidates(&mut self, r: usize, k: usize, out: &mut Vec<Goal>) {
+        out.clear();
+        let team = &mut self.team;
+        if r >= self.robots.len() || k == 0 || team.candidates.is_empty() {
+            return;
+        }
+        let from = self.robots[r].cell;
+        let known = team.belief.known();
+        let mut seen = 0;
+        let mut through = 0;
+        loop {
+            let done = team.planner.grow(r, from, known, &team.upkeep, through);
+            let map = team.planner.map(r);
+            let settled = map.settled();
+            for &c in &settled[seen.min(settled.len())..] {
+                if team.candidates.contains(c as usize) {
+                    let cost = map.cost(c as usize).unwrap_or(f64::INFINITY);
+                    out.push(Goal { cell: c, cost });
+                }
+            }
+            seen = settled.len();
+            if done || out.len() >= k {
+                break;
+            }
+            through = map.next_bucket();
+        }
+        out.sort_by(|a, b| a.cost.total_cmp(&b.cost).then(a.cell.cmp(&b.cell)));
+        out.truncate(k);
+    }
+
+    /// The goals `assigner` would give the deciding robots if only `cells` (candidates of the
+    /// pending decision, in this order) were offered: a paper's rule acting as a policy.
+    /// Draws from the run's strategy stream as the rule would in a run.
+    pub fn propose(&mut self, assigner: AssignerKind, cells: &[u32]) -> &[Option<Goal>] {
+        let t = &mut self.team;
+        if !t.pending {
+            t.proposed.fill(None);
+            return &t.proposed;
+        }
+        t.offered.clear();
+        for &c in cells {
+            if t.candidates.contains(c as usize) {
+                t.offered.insert(c);
+            }
+        }
+        let mut ctx = DecisionCtx {
+            known: t.belief.known(),
+            upkeep: &mut t.upkeep,
+            planner: &mut t.planner,
+            robots: &t.cells_buf,
+            deciding: &t.deciding,
+            goals: &t.goals_buf,
+            lists: &t.lists,
+            resolution: t.truth.resolution,
+            sensor_range_cells: t.range_cells,
+            rng: &mut t.rng,
+            belief: t.belief.as_ref(),
+            sensor: t.sensor.as_ref(),
+            memory: &mut t.memory,
+        };
+        assigner.assign(&mut ctx, &t.offered, &mut t.proposed);
+        &t.proposed
+    }
+
+    /// Give the deciding robots their goals (one entry per robot; `None` = no goal, the robot
+    /// waits and retries at the next decision; entries of robots not deciding are ignored),
+    /// then carry on as after an assigner's choice.
+    pub fn choose(&mut self, goals: &[Option<u32>]) -> Result<(), SimError> {
+        let t = &mut self.team;
+        let m = self.robots.len();
+        if !t.pending {
+            return Err(SimError::BadParameter {
+                field: "goal",
+                expected: "a pending decision",
+                found: "none is pending".into(),
+            });
+        }
+        if goals.len() != m {
+            return Err(SimError::BadParameter {
+                field: "goals",
+                expected: "one entry per robot",
+                found: format!("{} entries for {m} robots", goals.len()),
+            });
+        }
+        for (r, &goal) in goals.iter().enumerate() {
+            t.out[r] = None;
+            let Some(cell) = goal.filter(|_| t.deciding[r]) else {
+                continue;
+            };
+            if cell as usize >= t.truth.cells.len() {
+                return Err(SimError::BadParameter {
+                    field: "goal",
+                    expected: "a cell of the map",
+                    found: format!("cell index {cell}"),
+                });
+            }
+            let from = self.robots[r].cell;
+            if !t.planner.path(r, cell, &mut t.path_buf) {
+                t.planner.full(r, from, t.belief.known(), &t.upkeep);
+            }
+            let Some(cost) = t.planner.map(r).cost(cell as usize) else {
+                return Err(SimError::BadParameter {
+                    field: "goal",
+                    expected: "a cell the robot can reach",
+                    found: format!("{} for robot {r}", t.truth.cells.cell(cell as usize)),
+                });
+            };
+            t.out[r] = Some(Goal { cell, cost });
+        }
+        t.pending = false;
+        t.conclude(&mut self.robots, Instant::now());
+        Ok(())
+    }
+
+    /// Expected information gain of sensing from `cell` facing `heading` (radians): on the
+    /// ternary belief, the number of unknown cells a predicted scan would see.
+    pub fn information_gain(&mut self, cell: u32, heading: f64) -> f64 {
+        let t = &mut self.team;
+        let pose = Pose {
+            cell: t.truth.cells.cell(cell as usize),
+            heading,
+        };
+        sense::gain::information_gain(
+            t.sensor.as_ref(),
+            t.belief.as_ref(),
+            &t.memory.dt.model,
+            pose,
+            &mut t.gain_scratch,
+        )
+    }
+
+    /// The belief's known grid.
+    pub fn known(&self) -> &Grid<Occ> {
+        self.team.belief.known()
+    }
+
+    /// The current frontier cells (unordered).
+    pub fn frontiers(&self) -> &[u32] {
+        self.team.upkeep.frontiers.cells()
+    }
+
+    /// Robot `r`'s cell index and heading (radians, x right, y down).
+    pub fn pose(&self, r: usize) -> (u32, f64) {
+        (self.robots[r].cell, self.robots[r].heading)
+    }
+
+    /// Robot `r`'s current goal.
+    pub fn goal(&self, r: usize) -> Option<u32> {
+        self.robots[r].goal
+    }
+
+    /// Metres robot `r` has travelled.
+    pub fn path_length_m(&self, r: usize) -> f64 {
+        self.robots[r].dist_cells * self.team.truth.resolution
+    }
+
+    /// Metres the whole team has travelled.
+    pub fn total_path_length_m(&self) -> f64 {
+        self.team.total_dist_cells * self.team.truth.resolution
+    }
+
+    /// Share of the reachable free cells known free.
+    pub fn coverage(&self) -> f64 {
+        self.team.coverage()
+    }
+
+    /// Reachable free cells known free so far.
+    pub fn covered_cells(&self) -> usize {
+        self.team.covered
+    }
+
+    /// Free cells of the ground truth reachable from the first start.
+    pub fn reachable_cells(&self) -> usize {
+        self.team.reachable_cells
+    }
+
+    /// Decisions made so far (one per deciding robot).
+    pub fn decisions(&self) -> u64 {
+        self.team.decisions
+    }
+
+    /// Cell moves of the whole team so far.
+    pub fn moves(&self) -> u64 {
+        self.team.moves
+    }
+
+    /// The ground truth explored.
+    pub fn truth(&self) -> &GridMap {
+        &self.team.truth
+    }
+
+    /// The run's configuration.
+    pub fn config(&self) -> &RunConfig {
+        &self.team.cfg
+    }
+
+    /// The result of the run so far (a run stopped before its end reports the step limit).
+    pub fn finish(self) -> RunResult {
+        let Session {
+            mut team,
+            robots,
+            starts,
+            started,
+            reason,
+        } = self;
+        let reason = reason.unwrap_or(EndReason::StepLimit);
+        let res = team.truth.resolution;
+        let cells = &team.truth.cells;
+        let frontiers_left: Vec<u32> = {
+            // Frontier cells still open: not on the visited or inaccessible lists (a visited
+            // goal that is still a frontier borders cells no position can see, such as a
+            // wall cell behind a corner squeeze).
+            let mut f: Vec<u32> = team
+                .upkeep
+                .frontiers
+                .cells()
+                .iter()
+                .copied()
+                .filter(|&c| !team.lists.is_excluded(c))
+                .collect();
+            f.sort_unstable();
+            f
+        };
+        let ends = robots.iter().map(|r| cells.cell(r.cell as usize)).collect();
+        team.final_audit();
+        team.times.total_s = started.elapsed().as_secs_f64();
+        let speed = team.cfg.speed;
+        let path_length_m: Vec<f64> = robots.iter().map(|r| r.dist_cells * res).collect();
+        let time_s = robots
             .iter()
-            .copied()
-            .filter(|&c| !team.lists.is_excluded(c))
-            .collect();
-        f.sort_unstable();
-        f
-    };
-    team.final_audit();
-    team.times.total_s = started.elapsed().as_secs_f64();
-    let path_length_m: Vec<f64> = robots.iter().map(|r| r.dist_cells * res).collect();
-    let time_s = robots
-        .iter()
-        .map(|r| r.dist_cells * res / cfg.speed)
-        .fold(0.0, f64::max);
-    Ok(RunResult {
-        reason,
-        coverage: team.coverage(),
-        reachable_cells: team.reachable_cells,
-        path_length_m,
-        time_s,
-        decisions: team.decisions,
-        moves: team.moves,
-        clearance_cells,
-        starts,
-        ends: robots.iter().map(|r| cells.cell(r.cell as usize)).collect(),
-        coverage_curve: team.curve.iter().map(|&(d, c)| (d * res, c)).collect(),
-        times: team.times,
-        belief: team.belief.known().clone(),
-        frontiers_left,
-        audit: team.audit,
-        clutter: cfg.clutter.clone(),
-        trace: team.trace,
-    })
+            .map(|r| r.dist_cells * res / speed)
+            .fold(0.0, f64::max);
+        RunResult {
+            reason,
+            coverage: team.coverage(),
+            reachable_cells: team.reachable_cells,
+            path_length_m,
+            time_s,
+            decisions: team.decisions,
+            moves: team.moves,
+            clearance_cells: team.cfg.clearance_m / res,
+            starts,
+            ends,
+            coverage_curve: team.curve.iter().map(|&(d, c)| (d * res, c)).collect(),
+            times: team.times,
+            belief: team.belief.known().clone(),
+            frontiers_left,
+            audit: team.audit,
+            clutter: team.cfg.clutter.clone(),
+            trace: team.trace,
+        }
+    }
 }
 
 fn validate(cfg: &RunConfig) -> Result<(), SimError> {
@@ -614,11 +934,27 @@ impl Team<'_> {
                 .strategy
                 .candidates
                 .generate(&mut ctx, &mut self.candidates);
-            self.cfg
-                .strategy
-                .assigner
-                .assign(&mut ctx, &self.candidates, &mut self.out);
+            if !self.external {
+                self.cfg
+                    .strategy
+                    .assigner
+                    .assign(&mut ctx, &self.candidates, &mut self.out);
+            }
         }
+        if self.external {
+            // The caller chooses (`Session::choose`), then `conclude` carries on.
+            self.pending = true;
+            self.times.decide_s += t0.elapsed().as_secs_f64();
+            return;
+        }
+        self.conclude(robots, t0);
+    }
+
+    /// The rest of a decision once goals are in `out`: trace, paths, progress bookkeeping,
+    /// idle robots' clocks, and arrival at goals under the robots' feet.
+    #[allow(clippy::needless_range_loop)]
+    fn conclude(&mut self, robots: &mut [Robot], t0: Instant) {
+        let m = robots.len();
         if let Some(t) = self.trace.as_mut()
             && self.cfg.strategy.candidates != CandidateKind::AllFrontiers
         {

@@ -1,0 +1,222 @@
+//! One run as `frontier explore` describes it: its options resolved into a run
+//! configuration, and its JSON summary.
+//!
+//! The CLI and the Python package both go through these functions, so that a run started
+//! from either reports the same numbers, and a mistake gets the same message.
+
+use explore::strategy::{SensingMode, Strategy};
+use grid::{Cell, Grid, GridMap};
+use sense::{BeliefKind, SensorSpec};
+use serde_json::{Value, json};
+use sim::{RunConfig, RunResult};
+
+/// The options of one run, as given by the user (names are the CLI's flags).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ExploreOptions {
+    /// Master seed (`--seed`).
+    pub seed: u64,
+    /// Start cell of the first robot (`--start`); `None` = chosen by seed.
+    pub start: Option<Cell>,
+    /// Strategy preset (`--strategy`).
+    pub strategy: String,
+    /// Sensor spec (`--sensor`).
+    pub sensor: String,
+    /// Belief map kind (`--belief`); `None` = known, or evidence with sonar.
+    pub belief: Option<String>,
+    /// Sensing mode (`--sensing`); `None` = the strategy's.
+    pub sensing: Option<String>,
+    /// Clearance in metres (`--clearance`).
+    pub clearance: f64,
+    /// Speed in metres per second (`--speed`).
+    pub speed: f64,
+    /// Number of robots (`--robots`).
+    pub robots: usize,
+    /// Re-planning period in moves, -1 = on arrival (`--s-max`); `None` = the strategy's.
+    pub s_max: Option<i64>,
+    /// Coverage goal (`--goal`).
+    pub goal: Option<f64>,
+    /// Move limit of the team (`--max-moves`).
+    pub max_moves: u64,
+    /// Keep a trace (trails, goals) for pictures.
+    pub record_trace: bool,
+}
+
+impl Default for ExploreOptions {
+    /// The CLI's defaults.
+    fn default() -> Self {
+        Self {
+            seed: 0,
+            start: None,
+            strategy: "cf-rr".into(),
+            sensor: "los:r=5".into(),
+            belief: None,
+            sensing: None,
+            clearance: 0.0,
+            speed: 1.0,
+            robots: 1,
+            s_max: None,
+            goal: None,
+            max_moves: 10_000_000,
+            record_trace: false,
+        }
+    }
+}
+
+/// Resolve `o` into a run configuration for `map` (with its off-plane `clutter`); the
+/// error names the flag, what was expected and what was found.
+pub fn config(
+    o: &ExploreOptions,
+    map: &GridMap,
+    clutter: Option<Grid<bool>>,
+) -> Result<RunConfig, String> {
+    let mut strategy = Strategy::preset(&o.strategy).map_err(|e| format!("--strategy: {e}"))?;
+    let sensor: SensorSpec = o.sensor.parse().map_err(|e| format!("--sensor: {e}"))?;
+    let belief: BeliefKind = match o.belief.as_deref() {
+        Some(b) => b.parse().map_err(|e| format!("--belief: {e}"))?,
+        None if sensor.sonar_mode().is_some() => BeliefKind::Evidence,
+        None => BeliefKind::Known,
+    };
+    let sensing = o
+        .sensing
+        .as_deref()
+        .map(|s| s.parse::<SensingMode>())
+        .transpose()
+        .map_err(|e| format!("--sensing: {e}"))?;
+    match o.s_max {
+        None => {}
+        Some(-1) => strategy.replan.every_moves = None,
+        Some(n) if n > 0 && n <= i64::from(u32::MAX) => {
+            strategy.replan.every_moves = Some(n as u32)
+        }
+        Some(n) => {
+            return Err(format!(
+                "--s-max: expected a positive number of cell moves or -1 (on arrival), found {n}"
+            ));
+        }
+    }
+    let mut cfg = RunConfig::new(strategy);
+    cfg.sensor = sensor;
+    cfg.belief = belief;
+    cfg.sensing = sensing;
+    cfg.robots = o.robots;
+    cfg.clearance_m = o.clearance;
+    cfg.speed = o.speed;
+    cfg.seed = o.seed;
+    cfg.coverage_goal = o.goal;
+    cfg.max_moves = o.max_moves;
+    cfg.record_trace = o.record_trace;
+    cfg.clutter = clutter;
+    if let Some(first) = o.start {
+        if !map.cells.contains(first) {
+            return Err(format!(
+                "--start {},{}: outside the {}x{} map",
+                first.x,
+                first.y,
+                map.width(),
+                map.height()
+            ));
+        }
+        if o.robots == 1 {
+            cfg.starts = vec![first];
+        } else {
+            let trav = sim::truth::traversable(&map.cells, o.clearance / map.resolution);
+            sim::truth::check_start(&map.cells, &trav, first).map_err(|e| e.to_string())?;
+            cfg.starts = sim::truth::team_starts(&map.cells, &trav, first, o.robots)
+                .map_err(|e| e.to_string())?;
+        }
+    }
+    Ok(cfg)
+}
+
+/// Round to `digits` decimals so that JSON stays short and stable.
+fn round(v: f64, digits: i32) -> f64 {
+    let f = 10f64.powi(digits);
+    (v * f).round() / f
+}
+
+/// At most `n` points of the coverage curve, evenly spaced by index, last point kept.
+fn downsample(curve: &[(f64, f64)], n: usize) -> Vec<Value> {
+    if curve.is_empty() {
+        return Vec::new();
+    }
+    let step = curve.len().div_ceil(n).max(1);
+    let mut out: Vec<Value> = curve
+        .iter()
+        .step_by(step)
+        .map(|&(d, c)| json!([round(d, 3), round(c, 5)]))
+        .collect();
+    if !(curve.len() - 1).is_multiple_of(step) {
+        let &(d, c) = curve.last().expect("non-empty");
+        out.push(json!([round(d, 3), round(c, 5)]));
+    }
+    out
+}
+
+/// The JSON summary of a run of `map` (named `name` in reports) as `frontier explore
+/// --json` prints it (`timing`: include wall-clock times, else `null`).
+pub fn summary_json(
+    name: &str,
+    map: &GridMap,
+    cfg: &RunConfig,
+    r: &RunResult,
+    timing: bool,
+) -> Value {
+    let ms = |s: f64| {
+        if timing {
+            json!(round(s * 1000.0, 3))
+        } else {
+            Value::Null
+        }
+    };
+    json!({
+        "env": name,
+        "width": map.width(),
+        "height": map.height(),
+        "resolution": map.resolution,
+        "seed": cfg.seed,
+        "strategy": cfg.strategy.name,
+        "robots": cfg.robots,
+        "sensor": cfg.sensor.to_string(),
+        "sensing": cfg.sensing_mode().to_string(),
+        "belief": cfg.belief.to_string(),
+        "clearance_m": cfg.clearance_m,
+        "speed": cfg.speed,
+        "s_max": cfg.strategy.replan.every_moves,
+        "starts": r.starts.iter().map(|c| json!([c.x, c.y])).collect::<Vec<_>>(),
+        "complete": r.complete(),
+        "reason": r.reason.as_str(),
+        "coverage": round(r.coverage, 6),
+        "reachable_cells": r.reachable_cells,
+        "path_length_m": r.path_length_m.iter().map(|&l| round(l, 4)).collect::<Vec<_>>(),
+        "max_path_length_m": round(r.max_path_length_m(), 4),
+        "total_path_length_m": round(r.total_path_length_m(), 4),
+        "time_s": round(r.time_s, 4),
+        "decisions": r.decisions,
+        "moves": r.moves,
+        "decide_ms": ms(r.times.decide_s),
+        "timing_ms": {
+            "sense": ms(r.times.sense_s),
+            "upkeep": ms(r.times.upkeep_s),
+            "decide": ms(r.times.decide_s),
+            "total": ms(r.times.total_s),
+        },
+        "map": audit_json(r),
+        "coverage_curve": downsample(&r.coverage_curve, 100),
+    })
+}
+
+/// The map built against the ground truth ([`sim::MapAudit`]).
+pub fn audit_json(r: &RunResult) -> Value {
+    let a = &r.audit;
+    json!({
+        "accuracy": round(a.accuracy, 6),
+        "false_free_cells": a.false_free_cells,
+        "clutter_cells": a.clutter_cells,
+        "clutter_mapped": a.clutter_mapped,
+        "phantom_frontier_regions": a.phantom_regions,
+        "phantom_frontier_regions_per_decision": round(a.phantom_regions_mean(r.decisions), 4),
+        "phantom_frontier_regions_max": a.phantom_regions_max,
+        "phantom_frontier_share": round(a.phantom_share(), 6),
+        "phantom_goals": a.phantom_goals,
+    })
+}

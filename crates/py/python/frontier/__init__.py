@@ -1,0 +1,192 @@
+"""frontier: frontier-based robot exploration at Rust speed.
+
+Maps (:class:`Map`), single runs (:func:`explore`) that report exactly what
+``frontier explore --json --no-timing`` prints, parallel batches (:func:`explore_many`)
+on Rust threads with the GIL released, study stores (:mod:`frontier.bench`), Gymnasium
+environments (:mod:`frontier.gym`) whose baselines are the papers' strategies, and a
+PettingZoo environment for teams (:mod:`frontier.pettingzoo`).
+"""
+
+from __future__ import annotations
+
+import json
+from typing import Any, Dict, Iterable, List, Mapping, Optional, Sequence, Tuple
+
+import numpy as np
+
+from . import _native
+from ._native import Map
+
+__all__ = [
+    "Map",
+    "ExploreResult",
+    "explore",
+    "explore_many",
+    "strategies",
+    "__version__",
+]
+
+__version__: str = _native.__version__
+
+
+class ExploreResult:
+    """One run's result: the fields of ``frontier explore --json`` as attributes (and
+    :attr:`summary`), plus the final belief and the robots' trajectories as numpy arrays."""
+
+    __slots__ = ("summary", "belief", "trajectories")
+
+    def __init__(
+        self,
+        summary: Dict[str, Any],
+        belief: np.ndarray,
+        trajectories: Optional[List[np.ndarray]],
+    ) -> None:
+        #: The JSON summary as a dict, key for key as the CLI prints it.
+        self.summary = summary
+        #: Final belief, (height, width) uint8: 0 unknown, 1 free, 2 occupied.
+        self.belief = belief
+        #: Per robot an (n, 2) int32 array of the (x, y) cells it stood on, start first.
+        self.trajectories = trajectories
+
+    def __getattr__(self, name: str) -> Any:
+        try:
+            return self.summary[name]
+        except KeyError:
+            raise AttributeError(name) from None
+
+    def __dir__(self) -> Iterable[str]:
+        return list(self.summary) + ["summary", "belief", "trajectories", "to_json", "row"]
+
+    def to_json(self) -> str:
+        """The summary as JSON text."""
+        return json.dumps(self.summary)
+
+    def row(self) -> Dict[str, Any]:
+        """The summary flattened into one row (``map.accuracy`` → ``map_accuracy``)."""
+        return _flatten(self.summary)
+
+    def __repr__(self) -> str:
+        s = self.summary
+        return (
+            f"ExploreResult(env={s['env']!r}, strategy={s['strategy']!r}, seed={s['seed']}, "
+            f"reason={s['reason']!r}, coverage={s['coverage']}, "
+            f"path_length_m={s['path_length_m']})"
+        )
+
+
+def _flatten(d: Mapping[str, Any], prefix: str = "") -> Dict[str, Any]:
+    """Nested dicts become prefixed columns; lists stay as values."""
+    out: Dict[str, Any] = {}
+    for k, v in d.items():
+        key = f"{prefix}{k}"
+        if isinstance(v, Mapping):
+            out.update(_flatten(v, key + "_"))
+        else:
+            out[key] = v
+    return out
+
+
+def _kwargs(
+    strategy: str,
+    sensor: str,
+    robots: int,
+    seed: int,
+    start: Optional[Tuple[int, int]],
+    belief: Optional[str],
+    sensing: Optional[str],
+    clearance: float,
+    speed: float,
+    s_max: Optional[int],
+    goal: Optional[float],
+    max_moves: int,
+) -> Dict[str, Any]:
+    return dict(
+        strategy=strategy,
+        sensor=sensor,
+        robots=robots,
+        seed=seed,
+        start=start,
+        belief=belief,
+        sensing=sensing,
+        clearance=clearance,
+        speed=speed,
+        s_max=s_max,
+        goal=goal,
+        max_moves=max_moves,
+    )
+
+
+def explore(
+    map: Map,
+    strategy: str = "cf-rr",
+    sensor: str = "los:r=5",
+    robots: int = 1,
+    seed: int = 0,
+    *,
+    start: Optional[Tuple[int, int]] = None,
+    belief: Optional[str] = None,
+    sensing: Optional[str] = None,
+    clearance: float = 0.0,
+    speed: float = 1.0,
+    s_max: Optional[int] = None,
+    goal: Optional[float] = None,
+    max_moves: int = 10_000_000,
+    trajectories: bool = True,
+    timing: bool = False,
+) -> ExploreResult:
+    """Explore ``map`` once, as ``frontier explore`` does with the same flags.
+
+    Defaults are the CLI's. ``start`` is the first robot's cell (x, y); the others start at
+    the nearest free cells around it. ``timing=True`` fills the wall-clock fields
+    (``decide_ms``, ``timing_ms``), which are ``None`` otherwise so that equal runs give
+    equal results. Raises ``ValueError`` with the CLI's message for a bad argument."""
+    if not isinstance(map, Map):
+        raise TypeError(f"map: expected a frontier.Map, found {type(map).__name__}")
+    kw = _kwargs(
+        strategy, sensor, robots, seed, start, belief, sensing, clearance, speed, s_max, goal,
+        max_moves,
+    )
+    kw["trajectories"] = trajectories
+    text, belief_arr, trails = _native.explore(map, kw, timing)
+    return ExploreResult(json.loads(text), belief_arr, trails)
+
+
+def explore_many(
+    runs: Sequence[Mapping[str, Any]],
+    threads: Optional[int] = None,
+    timing: bool = False,
+) -> List[Dict[str, Any]]:
+    """Run many explorations in parallel on Rust threads (the GIL released).
+
+    Each run is a mapping with a ``map`` (a :class:`Map`) and any keyword arguments of
+    :func:`explore` but ``trajectories``; other keys (e.g. ``tag``) are copied into the
+    run's row. Returns one flat row per run, in order — ``pandas.DataFrame(rows)`` makes the
+    table. All runs are checked before any starts."""
+    keys = {
+        "strategy", "sensor", "robots", "seed", "start", "belief", "sensing", "clearance",
+        "speed", "s_max", "goal", "max_moves",
+    }
+    native_runs = []
+    extras = []
+    for i, run in enumerate(runs):
+        if not isinstance(run, Mapping):
+            raise TypeError(f"run {i}: expected a mapping with a 'map', found {type(run).__name__}")
+        if "map" not in run:
+            raise TypeError(f"run {i}: missing 'map'")
+        m = run["map"]
+        if not isinstance(m, Map):
+            raise TypeError(f"run {i}: map: expected a frontier.Map, found {type(m).__name__}")
+        native_runs.append((m, {k: v for k, v in run.items() if k in keys}))
+        extras.append({k: v for k, v in run.items() if k not in keys and k != "map"})
+    texts = _native.explore_many(native_runs, threads, timing)
+    rows = []
+    for text, extra in zip(texts, extras):
+        row = dict(extra)
+        row.update(_flatten(json.loads(text)))
+        rows.append(row)
+    return rows
+
+
+def strategies() -> List[Tuple[str, str]]:
+    """The strategy presets as (name, description) pairs, as ``frontier list`` prints them."""
+    return list(_native.strategies())

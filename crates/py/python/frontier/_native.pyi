@@ -1,0 +1,179 @@
+"""Type stubs of the native module `frontier._native` (the Rust side of the package)."""
+
+from os import PathLike
+from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
+
+import numpy as np
+
+__version__: str
+
+class Map:
+    """A ground-truth occupancy map: cells (0 unknown, 1 free, 2 occupied), resolution in
+    metres per cell, and the name runs report."""
+
+    @staticmethod
+    def load(
+        path: Union[str, PathLike[str]],
+        resolution: Union[None, float, Tuple[float, float]] = None,
+        border: bool = False,
+    ) -> Map:
+        """Load a map file the CLI reads (ROS YAML + PGM/PNG, bare PGM/PNG with
+        `resolution`, MovingAI `.map`, ASCII `.txt`)."""
+    @staticmethod
+    def from_numpy(array: np.ndarray, resolution: float, name: str = "array") -> Map:
+        """A map from a 2-D bool (True = occupied) or uint8 (0 unknown, 1 free, 2 occupied)
+        array; row 0 is the top row."""
+    @staticmethod
+    def generate(
+        kind: str,
+        seed: int = 0,
+        size: Optional[Tuple[float, float]] = None,
+        resolution: Optional[float] = None,
+    ) -> Map:
+        """Generate a built-in environment from (kind, seed, size in metres, resolution)."""
+    def to_numpy(self) -> np.ndarray:
+        """The cells as a (height, width) uint8 array."""
+    def save(self, path: Union[str, PathLike[str]]) -> None:
+        """Write `.yaml` (ROS YAML + PGM), `.pgm` or `.png`."""
+    @property
+    def width(self) -> int:
+        """Width in cells."""
+    @property
+    def height(self) -> int:
+        """Height in cells."""
+    @property
+    def shape(self) -> Tuple[int, int]:
+        """(height, width)."""
+    @property
+    def resolution(self) -> float:
+        """Metres per cell."""
+    @property
+    def name(self) -> str:
+        """The name runs report."""
+    @property
+    def origin(self) -> Tuple[float, float, float]:
+        """World pose (x, y, yaw) of the lower-left corner."""
+    @property
+    def free_cells(self) -> int:
+        """Number of free cells."""
+
+def explore(
+    map: Map, kwargs: Optional[Dict[str, Any]] = None, timing: bool = False
+) -> Tuple[str, np.ndarray, Optional[List[np.ndarray]]]:
+    """One run: (summary JSON, final belief, trajectories)."""
+
+def explore_many(
+    runs: Sequence[Tuple[Map, Optional[Dict[str, Any]]]],
+    threads: Optional[int] = None,
+    timing: bool = False,
+) -> List[str]:
+    """Many runs in parallel; one summary JSON per run, in order."""
+
+def strategies() -> List[Tuple[str, str]]:
+    """The strategy presets: (name, description)."""
+
+def load_rows(path: Union[str, PathLike[str]]) -> str:
+    """Every trial of a study store as a JSON array of rows."""
+
+class EnvCore:
+    """One exploration environment (the core of `frontier.gym.ExploreEnv`)."""
+
+    def __init__(
+        self,
+        maps: Optional[List[Map]] = None,
+        generator: Optional[Tuple[str, Optional[Tuple[float, float]], Optional[float]]] = None,
+        kwargs: Optional[Dict[str, Any]] = None,
+        candidates: Optional[str] = None,
+        k: int = 16,
+        view: Optional[int] = None,
+        lam: float = 0.0,
+        max_path_m: Optional[float] = None,
+        max_steps: Optional[int] = None,
+        gain: bool = False,
+    ) -> None: ...
+    @property
+    def shape(self) -> Tuple[int, int]:
+        """Observation (height, width)."""
+    @property
+    def k(self) -> int:
+        """The most candidates offered."""
+    def reset(self, seed: int) -> Dict[str, np.ndarray]:
+        """Start an episode; returns the observation."""
+    def step(self, action: int) -> Tuple[Dict[str, np.ndarray], float, bool, bool]:
+        """(observation, reward, terminated, truncated)."""
+    def observation(self) -> Dict[str, np.ndarray]:
+        """The current observation."""
+    def info(self) -> Dict[str, Any]:
+        """Coverage, path length, decisions, moves, steps, candidates, map."""
+    def baseline_action(self, preset: str) -> int:
+        """The action `preset` would take now."""
+
+class VecEnvCore:
+    """N exploration environments stepped together on Rust threads."""
+
+    def __init__(
+        self,
+        n: int,
+        maps: Optional[List[Map]] = None,
+        generator: Optional[Tuple[str, Optional[Tuple[float, float]], Optional[float]]] = None,
+        kwargs: Optional[Dict[str, Any]] = None,
+        candidates: Optional[str] = None,
+        k: int = 16,
+        view: Optional[int] = None,
+        lam: float = 0.0,
+        max_path_m: Optional[float] = None,
+        max_steps: Optional[int] = None,
+        gain: bool = False,
+        threads: Optional[int] = None,
+    ) -> None: ...
+    @property
+    def shape(self) -> Tuple[int, int]:
+        """Observation (height, width)."""
+    @property
+    def k(self) -> int:
+        """The most candidates offered."""
+    def reset(self, seeds: List[int]) -> Dict[str, np.ndarray]:
+        """Start every environment's episode."""
+    def step(
+        self, actions: List[int]
+    ) -> Tuple[Dict[str, np.ndarray], List[float], List[bool], List[bool], List[float], List[float]]:
+        """(observations, rewards, terminated, truncated, coverage, path lengths)."""
+    def baseline_actions(self, preset: str) -> List[int]:
+        """Each environment's action under `preset`."""
+
+class TeamEnvCore:
+    """A team exploring together, one agent per robot (the core of
+    `frontier.pettingzoo.ExploreParallelEnv`)."""
+
+    def __init__(
+        self,
+        maps: Optional[List[Map]] = None,
+        generator: Optional[Tuple[str, Optional[Tuple[float, float]], Optional[float]]] = None,
+        kwargs: Optional[Dict[str, Any]] = None,
+        candidates: Optional[str] = None,
+        k: int = 16,
+        view: Optional[int] = None,
+        lam: float = 0.0,
+        max_path_m: Optional[float] = None,
+        max_steps: Optional[int] = None,
+        gain: bool = False,
+    ) -> None: ...
+    @property
+    def robots(self) -> int:
+        """Number of robots (agents)."""
+    @property
+    def shape(self) -> Tuple[int, int]:
+        """Observation (height, width)."""
+    @property
+    def k(self) -> int:
+        """The most candidates offered to one robot."""
+    def reset(self, seed: int) -> List[Dict[str, np.ndarray]]:
+        """Start an episode; one observation per robot."""
+    def step(self, actions: List[int]) -> Tuple[List[Dict[str, np.ndarray]], float, bool, bool]:
+        """(observations, team reward, terminated, truncated)."""
+    def deciding(self) -> List[bool]:
+        """Which robots decide now."""
+    def info(self) -> Dict[str, Any]:
+        """Coverage, per-robot path lengths, decisions, moves, steps, map."""
+    def baseline_actions(self, preset: str) -> List[int]:
+        """Each robot's action under `preset`."""

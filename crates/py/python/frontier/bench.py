@@ -1,0 +1,57 @@
+"""Read a study's SQLite store (written by ``frontier bench``) into a data frame.
+
+The rows come through the bench crate's own reader, so the columns are exactly those of
+``frontier bench export`` (CSV): one row per trial, ordered by key. JSON columns
+(``starts``, ``path_lengths``, ``coverage_curve``) are decoded into lists.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+from typing import Any, Dict, List, Union
+
+from . import _native
+
+__all__ = ["load", "rows"]
+
+_JSON_COLUMNS = ("starts", "path_lengths", "coverage_curve")
+
+
+def rows(db: Union[str, "os.PathLike[str]"]) -> List[Dict[str, Any]]:
+    """Every trial of the store ``db`` as a list of dicts (no pandas needed)."""
+    out = json.loads(_native.load_rows(os.fspath(db)))
+    for r in out:
+        for c in _JSON_COLUMNS:
+            if isinstance(r.get(c), str):
+                r[c] = json.loads(r[c])
+    return out
+
+
+def load(db: Union[str, "os.PathLike[str]"], backend: str = "pandas") -> Any:
+    """Every trial of the store ``db`` as a ``pandas.DataFrame`` (``backend="polars"``:
+    a ``polars.DataFrame``). Raises ``ValueError`` if ``db`` is not a study store."""
+    if backend not in ("pandas", "polars"):
+        raise ValueError(f"backend: expected 'pandas' or 'polars', found {backend!r}")
+    data = rows(db)
+    if backend == "pandas":
+        import pandas as pd
+
+        from_rows = pd.DataFrame(data)
+        if not data:
+            from_rows = pd.DataFrame(columns=_columns())
+        return from_rows
+    import polars as pl
+
+    return pl.DataFrame(data) if data else pl.DataFrame(schema=_columns())
+
+
+def _columns() -> List[str]:
+    return [
+        "key", "scenario", "env", "env_kind", "env_seed", "map_file", "resolution", "width",
+        "height", "strategy", "preset", "s_max", "sensor", "belief", "sensing", "robots",
+        "start_variant", "trial", "seed", "starts", "clearance", "speed", "coverage_goal",
+        "max_moves", "path_lengths", "max_path", "total_path", "time_s", "coverage",
+        "decisions", "moves", "reason", "reachable_cells", "coverage_curve", "version",
+        "wall_s", "optimal_m", "optimal_lower_m", "optimal_proven", "ratio",
+    ]

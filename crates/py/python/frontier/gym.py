@@ -1,0 +1,403 @@
+"""Gymnasium environments: exploration one decision per step.
+
+``ExploreEnv`` (registered as ``frontier/Explore-v0``) drives one robot. An action is the
+index of one of at most K goal candidates — the K cheapest to reach of those the strategy's
+candidate generator offers (frontier cells, region centroids, RFE, CC), listed in the
+generator's order, with an ``action_mask``. The robot travels to it along its shortest
+path, sensing as configured, until the next decision: on arrival, or earlier when the
+strategy's re-plan policy calls one (``cf-rr`` re-decides when its goal stops being a
+frontier). ``ExploreVectorEnv`` steps N of them on Rust threads in one call.
+
+Baselines are policies: :class:`Baseline` asks a paper's preset (its assigner) which of the
+offered candidates it would take, so an agent and the papers' strategies run on the same
+maps. With the env's ``strategy`` equal to the preset and K at least the number of
+candidates, a baseline episode is exactly ``frontier.explore`` with the same seed.
+"""
+
+from __future__ import annotations
+
+import os
+from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
+
+import gymnasium
+import numpy as np
+from gymnasium import spaces
+from gymnasium.utils import seeding
+from gymnasium.vector import AutoresetMode, VectorEnv
+from gymnasium.vector.utils import batch_space
+
+from . import _native
+from ._native import Map
+
+__all__ = ["ExploreEnv", "ExploreVectorEnv", "Baseline", "RandomPolicy", "load_folder"]
+
+MapsArg = Union[None, str, "os.PathLike[str]", Map, Sequence[Map]]
+
+_MAP_EXTENSIONS = (".yaml", ".yml", ".png", ".pgm", ".map", ".txt")
+
+
+def load_folder(
+    folder: Union[str, "os.PathLike[str]"],
+    resolution: Optional[float] = None,
+    border: bool = False,
+) -> List[Map]:
+    """Every map file of ``folder`` (sorted by name): ROS YAML files if there are any (their
+    images are loaded through them), else every bitmap, MovingAI ``.map`` and ``.txt``."""
+    names = sorted(os.listdir(folder))
+    yaml = [n for n in names if n.endswith((".yaml", ".yml"))]
+    chosen = yaml or [n for n in names if n.endswith(_MAP_EXTENSIONS)]
+    if not chosen:
+        raise ValueError(f"{os.fspath(folder)}: no map files ({', '.join(_MAP_EXTENSIONS)})")
+    return [Map.load(os.path.join(folder, n), resolution=resolution, border=border) for n in chosen]
+
+
+def _source(
+    maps: MapsArg, size: Optional[Tuple[float, float]], resolution: Optional[float]
+) -> Tuple[Optional[List[Map]], Optional[Tuple[str, Any, Any]]]:
+    """(list of maps, None) or (None, generator spec)."""
+    if maps is None:
+        return None, ("office", size, resolution)
+    if isinstance(maps, Map):
+        return [maps], None
+    if isinstance(maps, (str, os.PathLike)):
+        if os.path.isdir(maps):
+            return load_folder(maps, resolution=resolution), None
+        return None, (os.fspath(maps), size, resolution)
+    maps = list(maps)
+    for i, m in enumerate(maps):
+        if not isinstance(m, Map):
+            raise TypeError(f"maps[{i}]: expected a frontier.Map, found {type(m).__name__}")
+    return maps, None
+
+
+def _core_args(
+    maps: MapsArg,
+    size: Optional[Tuple[float, float]],
+    resolution: Optional[float],
+    strategy: str,
+    sensor: str,
+    candidates: Optional[str],
+    k: int,
+    view: Optional[int],
+    lam: float,
+    max_path_m: Optional[float],
+    max_steps: Optional[int],
+    gain: bool,
+    run: Dict[str, Any],
+) -> Dict[str, Any]:
+    listed, generator = _source(maps, size, resolution)
+    kwargs = dict(run)
+    kwargs.update(strategy=strategy, sensor=sensor)
+    return dict(
+        maps=listed,
+        generator=generator,
+        kwargs=kwargs,
+        candidates=candidates,
+        k=k,
+        view=view,
+        lam=lam,
+        max_path_m=max_path_m,
+        max_steps=max_steps,
+        gain=gain,
+    )
+
+
+def _spaces(shape: Tuple[int, int], k: int) -> Tuple[spaces.Dict, spaces.Discrete]:
+    h, w = shape
+    obs = spaces.Dict(
+        {
+            "belief": spaces.Box(0, 2, (h, w), np.uint8),
+            "frontier": spaces.Box(0, 1, (h, w), np.uint8),
+            "pose": spaces.Box(-np.inf, np.inf, (3,), np.float32),
+            "candidates": spaces.Box(0.0, np.inf, (k, 4), np.float32),
+            "action_mask": spaces.Box(0, 1, (k,), np.int8),
+        }
+    )
+    return obs, spaces.Discrete(k)
+
+
+def _episode_seed(rng: np.random.Generator) -> int:
+    """The run seed of the next episode, drawn from the environment's generator."""
+    return int(rng.integers(0, 2**63))
+
+
+def _render(obs: Dict[str, np.ndarray]) -> np.ndarray:
+    """An RGB picture of the belief: unknown grey, free white, occupied black, frontier
+    red, robot blue (full-map observations; a crop is drawn as it is)."""
+    palette = np.array([[128, 128, 128], [255, 255, 255], [0, 0, 0]], dtype=np.uint8)
+    img = palette[obs["belief"]]
+    img[obs["frontier"] == 1] = (220, 30, 30)
+    h, w = obs["belief"].shape
+    x, y = int(obs["pose"][0]), int(obs["pose"][1])
+    if 0 <= x < w and 0 <= y < h:
+        img[max(0, y - 1) : y + 2, max(0, x - 1) : x + 2] = (30, 60, 220)
+    return img
+
+
+class ExploreEnv(gymnasium.Env):
+    """One robot exploring an unknown map, one decision per step.
+
+    Args:
+        maps: a :class:`~frontier.Map`, a list of maps (each episode picks one by its seed),
+            a generator kind (``"office"``, ``"hospital"``, ``"cave"``, ``"maze"``,
+            ``"potholes"``, ``"empty"``; each episode generates one from its seed) or a folder
+            of map files. Default: generated offices.
+        size: (width, height) in metres of generated maps (default: the kind's).
+        resolution: metres per cell of generated maps, or of bare bitmaps in a folder.
+        strategy: the preset whose candidate generator, re-plan policy and sensing the
+            environment uses (the agent replaces its assigner).
+        sensor: sensor spec as the CLI takes it, e.g. ``"lidar:r=3.5,fov=360,res=1"``.
+        candidates: override the candidate generator: ``"af"`` (all frontier cells),
+            ``"centroids"``, ``"rfe"`` or ``"cc"``.
+        k: the most candidates offered (the action space is ``Discrete(k)``).
+        view: side in cells of a robot-centred crop of belief and frontier layers (None:
+            the whole map; maps of different sizes need a crop).
+        lam: λ, the reward's price per metre travelled.
+        max_path_m: truncate an episode once the robot travelled this far.
+        max_steps: truncate an episode after this many decisions.
+        gain: fill the candidates' predicted gain (unknown area a predicted scan from the
+            candidate would see). It costs one predicted scan per candidate, about as much
+            as the rest of a step each, so it is off by default (the column is then 0).
+        invalid_action: ``"wrap"`` (an index beyond the candidates offered is taken modulo
+            their number, so every action of the space is legal) or ``"raise"``.
+        render_mode: ``"rgb_array"`` or None.
+        **run: more run options of :func:`frontier.explore` (``belief``, ``sensing``,
+            ``clearance``, ``speed``, ``s_max``).
+
+    Observation (Dict): ``belief`` (H, W) uint8 (0 unknown, 1 free, 2 occupied),
+    ``frontier`` (H, W) uint8 mask, ``pose`` (x, y, heading) float32 in cells and radians,
+    ``candidates`` (K, 4) float32 rows of (x, y, path cost in m, predicted gain in m²)
+    padded with zeros, ``action_mask`` (K,) int8. Reward: newly known reachable free area
+    in m² minus λ × metres travelled. ``terminated`` when nothing reachable is left;
+    ``truncated`` at the path or step budget. ``info``: coverage, path_length_m, decisions,
+    moves, steps, candidates, map, seed.
+    """
+
+    metadata = {"render_modes": ["rgb_array"], "render_fps": 4}
+
+    def __init__(
+        self,
+        maps: MapsArg = None,
+        *,
+        size: Optional[Tuple[float, float]] = None,
+        resolution: Optional[float] = None,
+        strategy: str = "cf-rr",
+        sensor: str = "los:r=5",
+        candidates: Optional[str] = None,
+        k: int = 16,
+        view: Optional[int] = None,
+        lam: float = 0.0,
+        max_path_m: Optional[float] = None,
+        max_steps: Optional[int] = None,
+        gain: bool = False,
+        invalid_action: str = "wrap",
+        render_mode: Optional[str] = None,
+        **run: Any,
+    ) -> None:
+        if invalid_action not in ("wrap", "raise"):
+            raise ValueError(
+                f"invalid_action: expected 'wrap' or 'raise', found {invalid_action!r}"
+            )
+        if render_mode is not None and render_mode not in self.metadata["render_modes"]:
+            raise ValueError(f"render_mode: expected 'rgb_array' or None, found {render_mode!r}")
+        self._core = _native.EnvCore(
+            **_core_args(
+                maps, size, resolution, strategy, sensor, candidates, k, view, lam,
+                max_path_m, max_steps, gain, run,
+            )
+        )
+        self._wrap = invalid_action == "wrap"
+        self.render_mode = render_mode
+        self.observation_space, self.action_space = _spaces(self._core.shape, self._core.k)
+        self._obs: Optional[Dict[str, np.ndarray]] = None
+        self._seed = 0
+
+    def _info(self) -> Dict[str, Any]:
+        info = self._core.info()
+        info["seed"] = self._seed
+        return info
+
+    def reset(
+        self, *, seed: Optional[int] = None, options: Optional[Dict[str, Any]] = None
+    ) -> Tuple[Dict[str, np.ndarray], Dict[str, Any]]:
+        """Start an episode; the same ``seed`` gives the same map, start and episode."""
+        super().reset(seed=seed)
+        self._seed = _episode_seed(self.np_random)
+        self._obs = self._core.reset(self._seed)
+        return self._obs, self._info()
+
+    def step(
+        self, action: Any
+    ) -> Tuple[Dict[str, np.ndarray], float, bool, bool, Dict[str, Any]]:
+        """Send the robot to candidate ``action`` and run to the next decision."""
+        a = int(action)
+        if self._wrap and self._obs is not None:
+            n = int(self._obs["action_mask"].sum())
+            if n > 0 and not 0 <= a < n:
+                a %= n
+        obs, reward, terminated, truncated = self._core.step(a)
+        self._obs = obs
+        return obs, reward, terminated, truncated, self._info()
+
+    def baseline_action(self, preset: str) -> int:
+        """The action ``preset`` (a paper's strategy, e.g. ``"cf-rr"``) would take now."""
+        return self._core.baseline_action(preset)
+
+    def render(self) -> Optional[np.ndarray]:
+        """An RGB array of the current belief (``render_mode="rgb_array"``)."""
+        if self.render_mode != "rgb_array" or self._obs is None:
+            return None
+        return _render(self._obs)
+
+
+class ExploreVectorEnv(VectorEnv):
+    """``num_envs`` :class:`ExploreEnv` stepped together on Rust threads in one call (the GIL
+    released). Takes ExploreEnv's arguments plus ``threads`` (default: one per core). An
+    ended episode resets at the next step (Gymnasium's next-step autoreset); environment i
+    of ``reset(seed=s)`` starts from seed ``s + i``. ``infos`` holds arrays ``coverage`` and
+    ``path_length_m``."""
+
+    metadata = {"autoreset_mode": AutoresetMode.NEXT_STEP, "render_modes": []}
+
+    def __init__(
+        self,
+        num_envs: int,
+        maps: MapsArg = None,
+        *,
+        size: Optional[Tuple[float, float]] = None,
+        resolution: Optional[float] = None,
+        strategy: str = "cf-rr",
+        sensor: str = "los:r=5",
+        candidates: Optional[str] = None,
+        k: int = 16,
+        view: Optional[int] = None,
+        lam: float = 0.0,
+        max_path_m: Optional[float] = None,
+        max_steps: Optional[int] = None,
+        gain: bool = False,
+        invalid_action: str = "wrap",
+        threads: Optional[int] = None,
+        **run: Any,
+    ) -> None:
+        if invalid_action not in ("wrap", "raise"):
+            raise ValueError(
+                f"invalid_action: expected 'wrap' or 'raise', found {invalid_action!r}"
+            )
+        self._core = _native.VecEnvCore(
+            num_envs,
+            threads=threads,
+            **_core_args(
+                maps, size, resolution, strategy, sensor, candidates, k, view, lam,
+                max_path_m, max_steps, gain, run,
+            ),
+        )
+        self._wrap = invalid_action == "wrap"
+        self.num_envs = num_envs
+        self.single_observation_space, self.single_action_space = _spaces(
+            self._core.shape, self._core.k
+        )
+        self.observation_space = batch_space(self.single_observation_space, num_envs)
+        self.action_space = batch_space(self.single_action_space, num_envs)
+        self._obs: Optional[Dict[str, np.ndarray]] = None
+
+    def reset(
+        self,
+        *,
+        seed: Union[None, int, Sequence[Optional[int]]] = None,
+        options: Optional[Dict[str, Any]] = None,
+    ) -> Tuple[Dict[str, np.ndarray], Dict[str, Any]]:
+        """Start every environment's episode."""
+        if isinstance(seed, (int, np.integer)):
+            super().reset(seed=int(seed))
+            given: List[Optional[int]] = [int(seed) + i for i in range(self.num_envs)]
+        else:
+            super().reset(seed=None)
+            given = list(seed) if seed is not None else [None] * self.num_envs
+            if len(given) != self.num_envs:
+                raise ValueError(f"seed: expected {self.num_envs} seeds, found {len(given)}")
+        # Environment i seeded with s starts the episode ExploreEnv.reset(seed=s) starts.
+        seeds = [
+            _episode_seed(seeding.np_random(int(s))[0] if s is not None else self.np_random)
+            for s in given
+        ]
+        self._obs = self._core.reset(seeds)
+        return self._obs, {}
+
+    def step(
+        self, actions: Any
+    ) -> Tuple[Dict[str, np.ndarray], np.ndarray, np.ndarray, np.ndarray, Dict[str, Any]]:
+        """Step every environment (an ended one resets instead)."""
+        acts = np.asarray(actions, dtype=np.int64).reshape(self.num_envs)
+        if self._wrap and self._obs is not None:
+            n = self._obs["action_mask"].sum(axis=1).astype(np.int64)
+            bad = (n > 0) & ((acts < 0) | (acts >= n))
+            acts = np.where(bad, np.mod(acts, np.maximum(n, 1)), acts)
+        obs, rewards, terminated, truncated, coverage, path = self._core.step(acts.tolist())
+        self._obs = obs
+        infos = {
+            "coverage": np.asarray(coverage),
+            "path_length_m": np.asarray(path),
+        }
+        return (
+            obs,
+            np.asarray(rewards, dtype=np.float64),
+            np.asarray(terminated, dtype=np.bool_),
+            np.asarray(truncated, dtype=np.bool_),
+            infos,
+        )
+
+    def baseline_actions(self, preset: str) -> np.ndarray:
+        """Each environment's action under ``preset``."""
+        return np.asarray(self._core.baseline_actions(preset), dtype=np.int64)
+
+
+class Baseline:
+    """A paper's strategy as a policy: ``Baseline("cf-rr")(env)`` is the action the preset's
+    assigner takes among the candidates ``env`` offers (an array for a vector env)."""
+
+    def __init__(self, preset: str) -> None:
+        if not isinstance(preset, str):
+            raise TypeError(f"preset: expected a str, found {type(preset).__name__}")
+        #: The preset's name.
+        self.preset = preset
+
+    def __call__(self, env: Any) -> Any:
+        u = getattr(env, "unwrapped", env)
+        if hasattr(u, "possible_agents") and hasattr(u, "baseline_actions"):
+            return u.baseline_actions(self.preset)
+        if isinstance(u, ExploreVectorEnv):
+            return u.baseline_actions(self.preset)
+        if isinstance(u, ExploreEnv):
+            return u.baseline_action(self.preset)
+        raise TypeError(
+            "env: expected an ExploreEnv, ExploreVectorEnv or ExploreParallelEnv, "
+            f"found {type(u).__name__}"
+        )
+
+
+class RandomPolicy:
+    """Uniformly one of the offered candidates (by the observation's ``action_mask``)."""
+
+    def __init__(self, seed: Optional[int] = None) -> None:
+        self._rng = np.random.default_rng(seed)
+
+    def __call__(self, obs: Dict[str, np.ndarray]) -> Any:
+        mask = obs["action_mask"]
+        if mask.ndim == 1:
+            n = max(int(mask.sum()), 1)
+            return int(self._rng.integers(0, n))
+        n = np.maximum(mask.sum(axis=1), 1)
+        return (self._rng.random(len(n)) * n).astype(np.int64)
+
+
+def _register() -> None:
+    """Register ``frontier/Explore-v0`` (on import of this module)."""
+    if "frontier/Explore-v0" not in gymnasium.registry:
+        gymnasium.register(
+            id="frontier/Explore-v0",
+            entry_point="frontier.gym:ExploreEnv",
+            vector_entry_point="frontier.gym:ExploreVectorEnv",
+        )
+
+
+_register()

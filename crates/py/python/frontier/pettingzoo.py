@@ -1,0 +1,131 @@
+"""A PettingZoo ``ParallelEnv`` for teams: one agent per robot, one team decision per step.
+
+The robots explore together through the one loop (``sim::Session``), so they move
+concurrently in the order of their clocks, exactly as in ``frontier.explore(...,
+robots=m)``. A step is the team's next decision: the robots whose decision is due
+(:meth:`ExploreParallelEnv.deciding`; their ``action_mask`` is not empty) go to their chosen
+candidates; the others' actions are ignored. Every agent gets the team's reward (newly known
+reachable free area in m² minus λ × metres travelled by the team). Each observation is
+:class:`frontier.gym.ExploreEnv`'s for that robot plus ``team``: the (x, y, heading) of every
+robot. :class:`~frontier.gym.Baseline` works here too (``Baseline("ha-cc")(env)``): the
+preset's assigner chooses for the deciding robots together.
+"""
+
+from __future__ import annotations
+
+from typing import Any, Dict, List, Optional, Tuple
+
+import numpy as np
+from gymnasium import spaces
+from gymnasium.utils import seeding
+from pettingzoo import ParallelEnv
+
+from . import _native
+from .gym import MapsArg, _core_args, _episode_seed, _spaces
+
+__all__ = ["ExploreParallelEnv"]
+
+
+class ExploreParallelEnv(ParallelEnv):
+    """A team of ``robots`` exploring an unknown map; agents ``robot_0`` … ``robot_{m-1}``.
+
+    Takes :class:`frontier.gym.ExploreEnv`'s arguments (``strategy`` defaults to
+    ``"nearest"``, whose candidates are every frontier cell) plus ``robots``."""
+
+    metadata = {"name": "frontier_explore_v0", "render_modes": [], "is_parallelizable": True}
+
+    def __init__(
+        self,
+        maps: MapsArg = None,
+        *,
+        robots: int = 2,
+        size: Optional[Tuple[float, float]] = None,
+        resolution: Optional[float] = None,
+        strategy: str = "nearest",
+        sensor: str = "los:r=5",
+        candidates: Optional[str] = None,
+        k: int = 16,
+        view: Optional[int] = None,
+        lam: float = 0.0,
+        max_path_m: Optional[float] = None,
+        max_steps: Optional[int] = None,
+        gain: bool = False,
+        **run: Any,
+    ) -> None:
+        run = dict(run, robots=robots)
+        self._core = _native.TeamEnvCore(
+            **_core_args(
+                maps, size, resolution, strategy, sensor, candidates, k, view, lam,
+                max_path_m, max_steps, gain, run,
+            )
+        )
+        m = self._core.robots
+        self.possible_agents: List[str] = [f"robot_{i}" for i in range(m)]
+        self.agents: List[str] = []
+        single, self._action_space = _spaces(self._core.shape, self._core.k)
+        self._observation_space = spaces.Dict(
+            dict(single.spaces, team=spaces.Box(-np.inf, np.inf, (m, 3), np.float32))
+        )
+        self._rng: Optional[np.random.Generator] = None
+        self._obs: List[Dict[str, np.ndarray]] = []
+        self._seed = 0
+
+    def observation_space(self, agent: str) -> spaces.Dict:
+        """Every agent's observation space (the same for all)."""
+        return self._observation_space
+
+    def action_space(self, agent: str) -> spaces.Discrete:
+        """Every agent's action space: ``Discrete(k)``."""
+        return self._action_space
+
+    def _infos(self) -> Dict[str, Dict[str, Any]]:
+        info = self._core.info()
+        info["seed"] = self._seed
+        deciding = self._core.deciding()
+        return {a: dict(info, deciding=d) for a, d in zip(self.possible_agents, deciding)}
+
+    def reset(
+        self, seed: Optional[int] = None, options: Optional[Dict[str, Any]] = None
+    ) -> Tuple[Dict[str, Dict[str, np.ndarray]], Dict[str, Dict[str, Any]]]:
+        """Start an episode; the same ``seed`` gives the same map, starts and episode."""
+        if seed is not None or self._rng is None:
+            self._rng = seeding.np_random(seed)[0]
+        self._seed = _episode_seed(self._rng)
+        self._obs = self._core.reset(self._seed)
+        self.agents = list(self.possible_agents)
+        return dict(zip(self.possible_agents, self._obs)), self._infos()
+
+    def deciding(self) -> List[str]:
+        """The agents whose actions count at this step."""
+        return [a for a, d in zip(self.possible_agents, self._core.deciding()) if d]
+
+    def step(self, actions: Dict[str, Any]) -> Tuple[
+        Dict[str, Dict[str, np.ndarray]],
+        Dict[str, float],
+        Dict[str, bool],
+        Dict[str, bool],
+        Dict[str, Dict[str, Any]],
+    ]:
+        """The team's next decision: deciding agents go to their candidates (an index beyond
+        the offered ones is taken modulo their number)."""
+        acts = []
+        for agent, obs in zip(self.possible_agents, self._obs):
+            a = int(actions.get(agent, 0))
+            n = int(obs["action_mask"].sum())
+            acts.append(a % n if n > 0 and not 0 <= a < n else a)
+        self._obs, reward, terminated, truncated = self._core.step(acts)
+        agents = self.possible_agents
+        obs = dict(zip(agents, self._obs))
+        infos = self._infos()
+        self.agents = [] if terminated or truncated else list(agents)
+        return (
+            obs,
+            {a: reward for a in agents},
+            {a: terminated for a in agents},
+            {a: truncated for a in agents},
+            infos,
+        )
+
+    def baseline_actions(self, preset: str) -> Dict[str, int]:
+        """Every agent's action under ``preset`` (the deciding ones chosen together)."""
+        return dict(zip(self.possible_agents, self._core.baseline_actions(preset)))

@@ -1,0 +1,1076 @@
+//! The core of `frontier.gym`: one decision per step over [`sim::Session`].
+//!
+//! A step takes the index of one of at most K goal candidates (the K cheapest to reach,
+//! listed in the candidate generator's order), sends the robot there along its shortest
+//! path sensing as configured, and ends at the next decision — on arrival, or earlier when
+//! the strategy's re-plan policy calls one (e.g. `cf-rr`'s re-check when the goal stops
+//! being a frontier). The observation is written into flat buffers, so that a vector of
+//! environments steps on Rust threads with the GIL released and hands numpy one array per
+//! key.
+
+use std::borrow::Cow;
+use std::sync::{Arc, Mutex, MutexGuard};
+
+use bench::explore::ExploreOptions;
+use explore::candidates::CandidateKind;
+use explore::decision::Goal;
+use explore::strategy::Strategy;
+use grid::{GridMap, Occ};
+use numpy::{PyArray1, PyArrayMethods};
+use pyo3::exceptions::PyTypeError;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use rayon::prelude::*;
+use sim::{Session, Status};
+use world::{EnvKind, EnvSpec};
+
+use crate::map::Map;
+use crate::{guarded, internal, value_error};
+
+/// A generator spec from Python: (kind, size in metres, resolution).
+pub type Generator = (String, Option<(f64, f64)>, Option<f64>);
+
+/// Features per candidate: x, y (cells), path cost (m), predicted gain (m²).
+pub const FEATURES: usize = 4;
+
+/// Where an environment's maps come from.
+enum Maps {
+    /// A fixed list; each episode picks one by its seed.
+    List(Vec<Map>),
+    /// A generator kind; each episode generates one from its seed.
+    Generated {
+        kind: EnvKind,
+        size: Option<(f64, f64)>,
+        resolution: Option<f64>,
+    },
+}
+
+/// Everything fixed across episodes.
+struct Spec {
+    maps: Maps,
+    options: ExploreOptions,
+    candidates: Option<CandidateKind>,
+    k: usize,
+    view: Option<usize>,
+    /// Observation height and width.
+    shape: (usize, usize),
+    lambda: f64,
+    max_path_m: Option<f64>,
+    max_steps: Option<u64>,
+    gain: bool,
+}
+
+/// SplitMix64: the next seed of a stream (episode seeds after an automatic reset).
+fn splitmix(x: u64) -> u64 {
+    let mut z = x.wrapping_add(0x9E37_79B9_7F4A_7C15);
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D4_9BCB_133A_D049);
+    z ^ (z >> 31)
+}
+
+impl Spec {
+    /// The ground truth of the episode with `seed`, and its name.
+    fn map(&self, seed: u64) -> Result<(GridMap, String), String> {
+        match &self.maps {
+            Maps::List(maps) => {
+                let m = &maps[(splitmix(seed) % maps.len() as u64) as usize];
+                Ok(((*m.map).clone(), m.name.clone()))
+            }
+            Maps::Generated {
+                kind,
+                size,
+                resolution,
+            } => {
+                let spec = EnvSpec {
+                    kind: *kind,
+                    seed,
+                    size_m: *size,
+                    resolution: *resolution,
+                };
+                let env = world::generate(&spec).map_err(|e| format!("generating {kind}: {e}"))?;
+                Ok((env.map, env.name))
+            }
+        }
+    }
+
+    fn cells(&self) -> usize {
+        self.shape.0 * self.shape.1
+    }
+}
+
+/// What a step returns besides the observation.
+#[derive(Clone, Copy, Default)]
+struct StepOut {
+    reward: f64,
+    terminated: bool,
+    truncated: bool,
+}
+
+/// One environment's episode.
+struct State {
+    spec: Arc<Spec>,
+    session: Option<Session<'static>>,
+    map_name: String,
+    /// Each robot's offered candidates, in the generator's order (empty: not deciding).
+    shown: Vec<Vec<Goal>>,
+    /// Their predicted gains (when asked for).
+    gains: Vec<Vec<f64>>,
+    buf: Vec<Goal>,
+    steps: u64,
+    done: bool,
+    seed: u64,
+    /// Reset at the next step (vector environments reset automatically).
+    needs_reset: bool,
+}
+
+impl State {
+    fn new(spec: Arc<Spec>) -> Self {
+        Self {
+            spec,
+            session: None,
+            map_name: String::new(),
+            shown: Vec::new(),
+            gains: Vec::new(),
+            buf: Vec::new(),
+            steps: 0,
+            done: true,
+            seed: 0,
+            needs_reset: false,
+        }
+    }
+
+    fn reset(&mut self, seed: u64) -> Result<(), String> {
+        let spec = self.spec.clone();
+        let (map, name) = spec.map(seed)?;
+        if spec.view.is_none() && (map.height(), map.width()) != spec.shape {
+            return Err(format!(
+                "map {name}: {}x{} cells, but the observation is {}x{}; maps of different \
+                 sizes need a robot-centred view (view=...)",
+                map.width(),
+                map.height(),
+                spec.shape.1,
+                spec.shape.0
+            ));
+        }
+        let mut o = spec.options.clone();
+        o.seed = seed;
+        o.record_trace = false;
+        let mut cfg = bench::explore::config(&o, &map, None)?;
+        if let Some(c) = spec.candidates {
+            cfg.strategy.candidates = c;
+        }
+        let session = guarded(|| Session::start(Cow::Owned(map), Cow::Owned(cfg), true))?
+            .map_err(|e| format!("map {name}: {e}"))?;
+        self.session = Some(session);
+        self.map_name = name;
+        self.steps = 0;
+        self.done = false;
+        self.seed = seed;
+        self.needs_reset = false;
+        let ended = self.next_decision()?;
+        self.done = ended;
+        Ok(())
+    }
+
+    /// Run to the next decision with a candidate to offer (or the end); true if ended.
+    fn next_decision(&mut self) -> Result<bool, String> {
+        let spec = self.spec.clone();
+        let s = self.session.as_mut().expect("a session");
+        let m = s.config().robots;
+        self.shown.resize_with(m, Vec::new);
+        self.gains.resize_with(m, Vec::new);
+        self.shown.iter_mut().for_each(Vec::clear);
+        self.gains.iter_mut().for_each(Vec::clear);
+        loop {
+            match s.advance() {
+                Status::Ended(_) => return Ok(true),
+                Status::Decide => {
+                    let deciding = s.deciding().to_vec();
+                    let mut offered = false;
+                    for (r, &d) in deciding.iter().enumerate() {
+                        self.shown[r].clear();
+                        self.gains[r].clear();
+                        if !d {
+                            continue;
+                        }
+                        s.nearest_candidates(r, spec.k, &mut self.buf);
+                        self.buf
+                            .sort_by_key(|g| s.candidate_position(g.cell).unwrap_or(usize::MAX));
+                        self.shown[r].extend_from_slice(&self.buf);
+                        offered |= !self.buf.is_empty();
+                        if spec.gain {
+                            let (me, _) = s.pose(r);
+                            let w = s.known().width() as i64;
+                            let (rx, ry) = (me as i64 % w, me as i64 / w);
+                            for g in &self.shown[r] {
+                                let (cx, cy) = (g.cell as i64 % w, g.cell as i64 / w);
+                                let heading = ((cy - ry) as f64).atan2((cx - rx) as f64);
+                                self.gains[r].push(s.information_gain(g.cell, heading));
+                            }
+                        }
+                    }
+                    if !offered {
+                        // Nothing reachable for the deciding robots: they stop (and retry at
+                        // the team's next decision); with none left moving, the run ends.
+                        s.choose(&vec![None; m]).map_err(|e| e.to_string())?;
+                        continue;
+                    }
+                    return Ok(false);
+                }
+            }
+        }
+    }
+
+    /// One decision: robot r (if deciding) goes to its candidate `actions[r]`.
+    fn step(&mut self, actions: &[usize]) -> Result<StepOut, String> {
+        if self.done || self.session.is_none() {
+            return Err("step() after the episode ended: call reset() first".into());
+        }
+        let mut goals = vec![None; self.shown.len()];
+        for (r, shown) in self.shown.iter().enumerate() {
+            if shown.is_empty() {
+                continue;
+            }
+            let a = actions.get(r).copied().unwrap_or(usize::MAX);
+            let who = if self.shown.len() > 1 {
+                format!(" of robot {r}")
+            } else {
+                String::new()
+            };
+            let Some(g) = shown.get(a) else {
+                return Err(format!(
+                    "action{who} {a}: expected the index of one of the {} candidates offered \
+                     (see the action_mask)",
+                    shown.len()
+                ));
+            };
+            goals[r] = Some(g.cell);
+        }
+        let s = self.session.as_mut().expect("a session");
+        let (cov0, path0) = (s.covered_cells(), s.total_path_length_m());
+        s.choose(&goals).map_err(|e| e.to_string())?;
+        let terminated = self.next_decision()?;
+        let s = self.session.as_ref().expect("a session");
+        let res = s.truth().resolution;
+        let (cov1, path1) = (s.covered_cells(), s.total_path_length_m());
+        self.steps += 1;
+        let truncated = !terminated
+            && (self.spec.max_path_m.is_some_and(|m| path1 >= m)
+                || self.spec.max_steps.is_some_and(|m| self.steps >= m));
+        self.done = terminated || truncated;
+        Ok(StepOut {
+            reward: (cov1 as f64 - cov0 as f64) * res * res - self.spec.lambda * (path1 - path0),
+            terminated,
+            truncated,
+        })
+    }
+
+    /// Reset if the last step ended the episode (vector environments), else step.
+    fn auto_step(&mut self, action: usize) -> Result<StepOut, String> {
+        if self.needs_reset {
+            self.reset(splitmix(self.seed))?;
+            return Ok(StepOut::default());
+        }
+        let out = self.step(&[action])?;
+        self.needs_reset = self.done;
+        Ok(out)
+    }
+
+    /// Write robot `r`'s observation into one environment's slices of the buffers.
+    fn write(&self, r: usize, o: ObsMut<'_>) {
+        let spec = &self.spec;
+        let Some(s) = self.session.as_ref() else {
+            return;
+        };
+        let known = s.known();
+        let (w, h) = (known.width(), known.height());
+        let (me, heading) = s.pose(r);
+        let (rx, ry) = ((me as usize % w) as i64, (me as usize / w) as i64);
+        let (oh, ow) = spec.shape;
+        o.frontier.fill(0);
+        match spec.view {
+            None => {
+                for (b, &c) in o.belief.iter_mut().zip(known.data()) {
+                    *b = c as u8;
+                }
+                for &f in s.frontiers() {
+                    o.frontier[f as usize] = 1;
+                }
+            }
+            Some(v) => {
+                let (x0, y0) = (rx - (v / 2) as i64, ry - (v / 2) as i64);
+                for dy in 0..oh {
+                    let y = y0 + dy as i64;
+                    let row = &mut o.belief[dy * ow..(dy + 1) * ow];
+                    if y < 0 || y >= h as i64 {
+                        row.fill(Occ::Unknown as u8);
+                        continue;
+                    }
+                    for (dx, b) in row.iter_mut().enumerate() {
+                        let x = x0 + dx as i64;
+                        *b = if x < 0 || x >= w as i64 {
+                            Occ::Unknown as u8
+                        } else {
+                            known[(y as usize) * w + x as usize] as u8
+                        };
+                    }
+                }
+                for &f in s.frontiers() {
+                    let (x, y) = ((f as usize % w) as i64 - x0, (f as usize / w) as i64 - y0);
+                    if x >= 0 && y >= 0 && (x as usize) < ow && (y as usize) < oh {
+                        o.frontier[y as usize * ow + x as usize] = 1;
+                    }
+                }
+            }
+        }
+        o.pose[0] = rx as f32;
+        o.pose[1] = ry as f32;
+        o.pose[2] = heading as f32;
+        o.candidates.fill(0.0);
+        o.mask.fill(0);
+        let res = s.truth().resolution;
+        let shown = self.shown.get(r).map_or(&[][..], Vec::as_slice);
+        let gains = self.gains.get(r).map_or(&[][..], Vec::as_slice);
+        for (k, g) in shown.iter().enumerate() {
+            let f = &mut o.candidates[k * FEATURES..(k + 1) * FEATURES];
+            f[0] = (g.cell as usize % w) as f32;
+            f[1] = (g.cell as usize / w) as f32;
+            f[2] = (g.cost * res) as f32;
+            f[3] = gains.get(k).map_or(0.0, |&n| (n * res * res) as f32);
+            o.mask[k] = 1;
+        }
+    }
+
+    fn coverage(&self) -> f64 {
+        self.session.as_ref().map_or(0.0, |s| s.coverage())
+    }
+
+    fn path_length_m(&self) -> f64 {
+        self.session
+            .as_ref()
+            .map_or(0.0, |s| s.total_path_length_m())
+    }
+
+    /// Robot 0's offered candidates (the single-robot environments').
+    fn offered(&self) -> &[Goal] {
+        self.shown.first().map_or(&[], Vec::as_slice)
+    }
+}
+
+/// One environment's part of the observation buffers.
+struct ObsMut<'a> {
+    belief: &'a mut [u8],
+    frontier: &'a mut [u8],
+    pose: &'a mut [f32],
+    candidates: &'a mut [f32],
+    mask: &'a mut [i8],
+}
+
+/// Observation buffers of `n` environments.
+struct Obs {
+    belief: Vec<u8>,
+    frontier: Vec<u8>,
+    pose: Vec<f32>,
+    candidates: Vec<f32>,
+    mask: Vec<i8>,
+}
+
+impl Obs {
+    fn new(spec: &Spec, n: usize) -> Self {
+        Self {
+            belief: vec![0; n * spec.cells()],
+            frontier: vec![0; n * spec.cells()],
+            pose: vec![0.0; n * 3],
+            candidates: vec![0.0; n * spec.k * FEATURES],
+            mask: vec![0; n * spec.k],
+        }
+    }
+
+    /// The buffers as a dict of numpy arrays; `n` = None for one environment (no leading axis).
+    fn into_dict<'py>(
+        self,
+        py: Python<'py>,
+        spec: &Spec,
+        n: Option<usize>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let (h, w) = spec.shape;
+        let d = PyDict::new(py);
+        let lead: Vec<usize> = n.into_iter().collect();
+        let shape = |rest: &[usize]| -> Vec<usize> { lead.iter().chain(rest).copied().collect() };
+        d.set_item(
+            "belief",
+            PyArray1::from_vec(py, self.belief).reshape(shape(&[h, w]))?,
+        )?;
+        d.set_item(
+            "frontier",
+            PyArray1::from_vec(py, self.frontier).reshape(shape(&[h, w]))?,
+        )?;
+        d.set_item(
+            "pose",
+            PyArray1::from_vec(py, self.pose).reshape(shape(&[3]))?,
+        )?;
+        d.set_item(
+            "candidates",
+            PyArray1::from_vec(py, self.candidates).reshape(shape(&[spec.k, FEATURES]))?,
+        )?;
+        d.set_item(
+            "action_mask",
+            PyArray1::from_vec(py, self.mask).reshape(shape(&[spec.k]))?,
+        )?;
+        Ok(d)
+    }
+
+    fn split(&mut self, spec: &Spec) -> Vec<ObsMut<'_>> {
+        let cells = spec.cells();
+        self.belief
+            .chunks_mut(cells)
+            .zip(self.frontier.chunks_mut(cells))
+            .zip(self.pose.chunks_mut(3))
+            .zip(self.candidates.chunks_mut(spec.k * FEATURES))
+            .zip(self.mask.chunks_mut(spec.k))
+            .map(|((((belief, frontier), pose), candidates), mask)| ObsMut {
+                belief,
+                frontier,
+                pose,
+                candidates,
+                mask,
+            })
+            .collect()
+    }
+}
+
+/// A user error or a caught panic, as the right Python exception.
+fn py_error(e: String) -> PyErr {
+    if e.starts_with("internal error") {
+        internal(e)
+    } else {
+        value_error(e)
+    }
+}
+
+/// Build the fixed part of an environment from the Python arguments.
+#[allow(clippy::too_many_arguments)]
+fn spec(
+    py: Python<'_>,
+    maps: Option<Vec<PyRef<'_, Map>>>,
+    generator: Option<Generator>,
+    kwargs: Option<&Bound<'_, PyDict>>,
+    candidates: Option<String>,
+    k: usize,
+    view: Option<usize>,
+    lambda: f64,
+    max_path_m: Option<f64>,
+    max_steps: Option<u64>,
+    gain: bool,
+    team: bool,
+) -> PyResult<Spec> {
+    let options = crate::run::options(kwargs)?;
+    if !team && options.robots != 1 {
+        return Err(value_error(format!(
+            "--robots: the environment drives one robot (a team: frontier.pettingzoo), found {}",
+            options.robots
+        )));
+    }
+    if k == 0 {
+        return Err(value_error("k: expected at least 1 candidate, found 0"));
+    }
+    if view == Some(0) {
+        return Err(value_error(
+            "view: expected a crop of at least 1 cell, found 0",
+        ));
+    }
+    if !lambda.is_finite() {
+        return Err(value_error(format!(
+            "lam: expected a finite number, found {lambda}"
+        )));
+    }
+    let candidates = candidates
+        .map(|c| {
+            Strategy::preset(&format!("nearest-{c}"))
+                .map(|s| s.candidates)
+                .map_err(|_| {
+                    value_error(format!(
+                        "candidates: expected af, centroids, rfe or cc, found '{c}'"
+                    ))
+                })
+        })
+        .transpose()?;
+    let maps = match (maps, generator) {
+        (Some(list), None) if !list.is_empty() => {
+            Maps::List(list.iter().map(|m| (**m).clone()).collect())
+        }
+        (None, Some((kind, size, resolution))) => Maps::Generated {
+            kind: kind
+                .parse()
+                .map_err(|e| value_error(format!("--env: {e}")))?,
+            size,
+            resolution,
+        },
+        _ => {
+            return Err(value_error(
+                "maps: give a non-empty list of maps or a generator kind",
+            ));
+        }
+    };
+    let mut s = Spec {
+        maps,
+        options,
+        candidates,
+        k,
+        view,
+        shape: (0, 0),
+        lambda,
+        max_path_m,
+        max_steps,
+        gain,
+    };
+    // Check the options on the first map, and learn the observation's size.
+    let (first, name) = py.detach(|| s.map(0)).map_err(value_error)?;
+    bench::explore::config(&s.options, &first, None).map_err(value_error)?;
+    s.shape = match view {
+        Some(v) => (v, v),
+        None => {
+            if let Maps::List(list) = &s.maps
+                && let Some(m) = list
+                    .iter()
+                    .find(|m| (m.map.height(), m.map.width()) != (first.height(), first.width()))
+            {
+                return Err(value_error(format!(
+                    "maps: {} is {}x{} cells but {name} is {}x{}; maps of different sizes \
+                     need a robot-centred view (view=...)",
+                    m.name,
+                    m.map.width(),
+                    m.map.height(),
+                    first.width(),
+                    first.height()
+                )));
+            }
+            (first.height(), first.width())
+        }
+    };
+    Ok(s)
+}
+
+/// The state behind `m` (a panic inside never leaves it poisoned for good).
+fn lock(m: &Mutex<State>) -> MutexGuard<'_, State> {
+    m.lock().unwrap_or_else(|p| p.into_inner())
+}
+
+/// The state behind `m`, borrowed exclusively.
+fn unlocked(m: &mut Mutex<State>) -> &mut State {
+    m.get_mut().unwrap_or_else(|p| p.into_inner())
+}
+
+/// One exploration environment (the core of `frontier.gym.ExploreEnv`).
+#[pyclass(module = "frontier._native")]
+pub struct EnvCore {
+    /// Locked only to satisfy Python's sharing rules; never contended.
+    state: Mutex<State>,
+}
+
+impl EnvCore {
+    fn st(&self) -> MutexGuard<'_, State> {
+        self.state.lock().unwrap_or_else(|p| p.into_inner())
+    }
+}
+
+#[pymethods]
+impl EnvCore {
+    /// A new environment; see `frontier.gym.ExploreEnv` for the arguments.
+    #[new]
+    #[pyo3(signature = (maps=None, generator=None, kwargs=None, candidates=None, k=16, view=None, lam=0.0, max_path_m=None, max_steps=None, gain=false))]
+    #[allow(clippy::too_many_arguments)]
+    fn new(
+        py: Python<'_>,
+        maps: Option<Vec<PyRef<'_, Map>>>,
+        generator: Option<Generator>,
+        kwargs: Option<&Bound<'_, PyDict>>,
+        candidates: Option<String>,
+        k: usize,
+        view: Option<usize>,
+        lam: f64,
+        max_path_m: Option<f64>,
+        max_steps: Option<u64>,
+        gain: bool,
+    ) -> PyResult<Self> {
+        let s = spec(
+            py, maps, generator, kwargs, candidates, k, view, lam, max_path_m, max_steps, gain,
+            false,
+        )?;
+        Ok(Self {
+            state: Mutex::new(State::new(Arc::new(s))),
+        })
+    }
+
+    /// Observation (height, width) of the belief and frontier layers.
+    #[getter]
+    fn shape(&self) -> (usize, usize) {
+        self.st().spec.shape
+    }
+
+    /// K: the most candidates offered.
+    #[getter]
+    fn k(&self) -> usize {
+        self.st().spec.k
+    }
+
+    /// Start an episode from `seed`; returns the observation.
+    fn reset<'py>(&mut self, py: Python<'py>, seed: u64) -> PyResult<Bound<'py, PyDict>> {
+        let state = self.state.get_mut().unwrap_or_else(|p| p.into_inner());
+        py.detach(|| guarded(|| state.reset(seed)).and_then(|r| r))
+            .map_err(py_error)?;
+        self.observation(py)
+    }
+
+    /// Go to candidate `action`; returns (observation, reward, terminated, truncated).
+    fn step<'py>(
+        &mut self,
+        py: Python<'py>,
+        action: i64,
+    ) -> PyResult<(Bound<'py, PyDict>, f64, bool, bool)> {
+        let a = usize::try_from(action).map_err(|_| {
+            value_error(format!(
+                "action {action}: expected the index of one of the {} candidates offered \
+                 (see the action_mask)",
+                self.st().offered().len()
+            ))
+        })?;
+        let state = self.state.get_mut().unwrap_or_else(|p| p.into_inner());
+        let out = py
+            .detach(|| guarded(|| state.step(&[a])).and_then(|r| r))
+            .map_err(py_error)?;
+        Ok((
+            self.observation(py)?,
+            out.reward,
+            out.terminated,
+            out.truncated,
+        ))
+    }
+
+    /// The current observation.
+    fn observation<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let st = self.st();
+        let mut obs = Obs::new(&st.spec, 1);
+        if let Some(o) = obs.split(&st.spec).pop() {
+            st.write(0, o);
+        }
+        obs.into_dict(py, &st.spec, None)
+    }
+
+    /// Coverage, path length, decisions, moves, steps, candidates offered and the map's name.
+    fn info<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let d = PyDict::new(py);
+        let st = self.st();
+        d.set_item("coverage", st.coverage())?;
+        d.set_item("path_length_m", st.path_length_m())?;
+        if let Some(s) = &st.session {
+            d.set_item("decisions", s.decisions())?;
+            d.set_item("moves", s.moves())?;
+        }
+        d.set_item("steps", st.steps)?;
+        d.set_item("candidates", st.offered().len())?;
+        d.set_item("map", st.map_name.clone())?;
+        Ok(d)
+    }
+
+    /// The action a paper's preset would take now: its assigner's choice among the offered
+    /// candidates (drawing from the episode's strategy stream).
+    fn baseline_action(&mut self, preset: &str) -> PyResult<usize> {
+        let strategy =
+            Strategy::preset(preset).map_err(|e| value_error(format!("--strategy: {e}")))?;
+        let st = self.state.get_mut().unwrap_or_else(|p| p.into_inner());
+        let cells: Vec<u32> = st.offered().iter().map(|g| g.cell).collect();
+        let Some(s) = st.session.as_mut().filter(|_| !st.done) else {
+            return Err(value_error(
+                "baseline_action() after the episode ended: call reset() first",
+            ));
+        };
+        let chosen = guarded(|| {
+            s.propose(strategy.assigner, &cells)
+                .first()
+                .copied()
+                .flatten()
+        })
+        .map_err(internal)?;
+        Ok(chosen
+            .and_then(|g| cells.iter().position(|&c| c == g.cell))
+            .unwrap_or(0))
+    }
+}
+
+/// N exploration environments stepped together on Rust threads (the core of
+/// `frontier.gym.ExploreVectorEnv`); an ended episode resets at the next step.
+#[pyclass(module = "frontier._native")]
+pub struct VecEnvCore {
+    /// Locked only to satisfy Python's sharing rules; never contended.
+    states: Vec<Mutex<State>>,
+    pool: rayon::ThreadPool,
+}
+
+impl VecEnvCore {
+    fn observations<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let spec = self.spec();
+        let mut obs = Obs::new(&spec, self.states.len());
+        let parts = obs.split(&spec);
+        py.detach(|| {
+            self.pool.install(|| {
+                self.states
+                    .par_iter()
+                    .zip(parts)
+                    .for_each(|(st, o)| lock(st).write(0, o))
+            })
+        });
+        obs.into_dict(py, &spec, Some(self.states.len()))
+    }
+
+    fn spec(&self) -> Arc<Spec> {
+        lock(&self.states[0]).spec.clone()
+    }
+}
+
+#[pymethods]
+impl VecEnvCore {
+    /// `n` environments like `EnvCore(...)` on `threads` threads (default: one per core).
+    #[new]
+    #[pyo3(signature = (n, maps=None, generator=None, kwargs=None, candidates=None, k=16, view=None, lam=0.0, max_path_m=None, max_steps=None, gain=false, threads=None))]
+    #[allow(clippy::too_many_arguments)]
+    fn new(
+        py: Python<'_>,
+        n: usize,
+        maps: Option<Vec<PyRef<'_, Map>>>,
+        generator: Option<Generator>,
+        kwargs: Option<&Bound<'_, PyDict>>,
+        candidates: Option<String>,
+        k: usize,
+        view: Option<usize>,
+        lam: f64,
+        max_path_m: Option<f64>,
+        max_steps: Option<u64>,
+        gain: bool,
+        threads: Option<usize>,
+    ) -> PyResult<Self> {
+        if n == 0 {
+            return Err(value_error("num_envs: expected at least 1, found 0"));
+        }
+        if threads == Some(0) {
+            return Err(value_error("threads: expected at least 1, found 0"));
+        }
+        let s = Arc::new(spec(
+            py, maps, generator, kwargs, candidates, k, view, lam, max_path_m, max_steps, gain,
+            false,
+        )?);
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads.unwrap_or(0))
+            .build()
+            .map_err(|e| PyTypeError::new_err(e.to_string()))?;
+        Ok(Self {
+            states: (0..n).map(|_| Mutex::new(State::new(s.clone()))).collect(),
+            pool,
+        })
+    }
+
+    /// Observation (height, width) of the belief and frontier layers.
+    #[getter]
+    fn shape(&self) -> (usize, usize) {
+        self.spec().shape
+    }
+
+    /// K: the most candidates offered.
+    #[getter]
+    fn k(&self) -> usize {
+        self.spec().k
+    }
+
+    /// Start every environment's episode, environment i from `seeds[i]`.
+    fn reset<'py>(&mut self, py: Python<'py>, seeds: Vec<u64>) -> PyResult<Bound<'py, PyDict>> {
+        if seeds.len() != self.states.len() {
+            return Err(value_error(format!(
+                "seeds: expected {} seeds, found {}",
+                self.states.len(),
+                seeds.len()
+            )));
+        }
+        let (states, pool) = (&mut self.states, &self.pool);
+        py.detach(|| {
+            pool.install(|| {
+                states
+                    .par_iter_mut()
+                    .zip(seeds)
+                    .map(|(st, seed)| guarded(|| unlocked(st).reset(seed)).and_then(|r| r))
+                    .collect::<Result<Vec<()>, String>>()
+            })
+        })
+        .map_err(py_error)?;
+        self.observations(py)
+    }
+
+    /// Step environment i with `actions[i]` (an ended episode resets instead); returns
+    /// (observations, rewards, terminated, truncated, coverage, path lengths).
+    #[allow(clippy::type_complexity)]
+    fn step<'py>(
+        &mut self,
+        py: Python<'py>,
+        actions: Vec<i64>,
+    ) -> PyResult<(
+        Bound<'py, PyDict>,
+        Vec<f64>,
+        Vec<bool>,
+        Vec<bool>,
+        Vec<f64>,
+        Vec<f64>,
+    )> {
+        if actions.len() != self.states.len() {
+            return Err(value_error(format!(
+                "actions: expected {} actions, found {}",
+                self.states.len(),
+                actions.len()
+            )));
+        }
+        let spec = self.spec();
+        let mut obs = Obs::new(&spec, self.states.len());
+        let parts = obs.split(&spec);
+        let (states, pool) = (&mut self.states, &self.pool);
+        // One parallel pass per call: each environment steps, then writes its observation.
+        let outs = py
+            .detach(|| {
+                pool.install(|| {
+                    states
+                        .par_iter_mut()
+                        .zip(actions)
+                        .zip(parts)
+                        .enumerate()
+                        .map(|(i, ((st, a), o))| {
+                            let a = usize::try_from(a).unwrap_or(usize::MAX);
+                            let st = unlocked(st);
+                            let out = guarded(|| st.auto_step(a))
+                                .and_then(|r| r)
+                                .map_err(|e| format!("environment {i}: {e}"))?;
+                            st.write(0, o);
+                            Ok(out)
+                        })
+                        .collect::<Result<Vec<StepOut>, String>>()
+                })
+            })
+            .map_err(py_error)?;
+        let obs = obs.into_dict(py, &spec, Some(self.states.len()))?;
+        Ok((
+            obs,
+            outs.iter().map(|o| o.reward).collect(),
+            outs.iter().map(|o| o.terminated).collect(),
+            outs.iter().map(|o| o.truncated).collect(),
+            self.states.iter().map(|s| lock(s).coverage()).collect(),
+            self.states
+                .iter()
+                .map(|s| lock(s).path_length_m())
+                .collect(),
+        ))
+    }
+
+    /// Each environment's baseline action (see `EnvCore.baseline_action`); 0 for an
+    /// environment about to reset.
+    fn baseline_actions(&mut self, py: Python<'_>, preset: &str) -> PyResult<Vec<usize>> {
+        let strategy =
+            Strategy::preset(preset).map_err(|e| value_error(format!("--strategy: {e}")))?;
+        let (states, pool) = (&mut self.states, &self.pool);
+        py.detach(|| {
+            pool.install(|| {
+                states
+                    .par_iter_mut()
+                    .map(|st| {
+                        let st = unlocked(st);
+                        let cells: Vec<u32> = st.offered().iter().map(|g| g.cell).collect();
+                        let Some(s) = st.session.as_mut().filter(|_| !st.done) else {
+                            return Ok(0);
+                        };
+                        let chosen = guarded(|| {
+                            s.propose(strategy.assigner, &cells)
+                                .first()
+                                .copied()
+                                .flatten()
+                        })?;
+                        Ok(chosen
+                            .and_then(|g| cells.iter().position(|&c| c == g.cell))
+                            .unwrap_or(0))
+                    })
+                    .collect::<Result<Vec<usize>, String>>()
+            })
+        })
+        .map_err(internal)
+    }
+}
+
+/// A team exploring together, one agent per robot (the core of
+/// `frontier.pettingzoo.ExploreParallelEnv`). At a decision only the deciding robots' actions
+/// count (the others' action masks are empty); the reward is the team's.
+#[pyclass(module = "frontier._native")]
+pub struct TeamEnvCore {
+    /// Locked only to satisfy Python's sharing rules; never contended.
+    state: Mutex<State>,
+}
+
+impl TeamEnvCore {
+    fn st(&self) -> MutexGuard<'_, State> {
+        lock(&self.state)
+    }
+
+    /// One observation dict per robot (the shared layers are copied into each).
+    fn observations<'py>(&self, py: Python<'py>) -> PyResult<Vec<Bound<'py, PyDict>>> {
+        let st = self.st();
+        let m = st.spec.options.robots;
+        let mut team = Vec::with_capacity(m * 3);
+        if let Some(s) = &st.session {
+            let w = s.known().width();
+            for r in 0..m {
+                let (c, heading) = s.pose(r);
+                team.extend([
+                    (c as usize % w) as f32,
+                    (c as usize / w) as f32,
+                    heading as f32,
+                ]);
+            }
+        } else {
+            team.resize(m * 3, 0.0);
+        }
+        (0..m)
+            .map(|r| {
+                let mut obs = Obs::new(&st.spec, 1);
+                if let Some(o) = obs.split(&st.spec).pop() {
+                    st.write(r, o);
+                }
+                let d = obs.into_dict(py, &st.spec, None)?;
+                d.set_item(
+                    "team",
+                    PyArray1::from_vec(py, team.clone()).reshape([m, 3])?,
+                )?;
+                Ok(d)
+            })
+            .collect()
+    }
+}
+
+#[pymethods]
+impl TeamEnvCore {
+    /// A new team environment; `kwargs["robots"]` is the team's size.
+    #[new]
+    #[pyo3(signature = (maps=None, generator=None, kwargs=None, candidates=None, k=16, view=None, lam=0.0, max_path_m=None, max_steps=None, gain=false))]
+    #[allow(clippy::too_many_arguments)]
+    fn new(
+        py: Python<'_>,
+        maps: Option<Vec<PyRef<'_, Map>>>,
+        generator: Option<Generator>,
+        kwargs: Option<&Bound<'_, PyDict>>,
+        candidates: Option<String>,
+        k: usize,
+        view: Option<usize>,
+        lam: f64,
+        max_path_m: Option<f64>,
+        max_steps: Option<u64>,
+        gain: bool,
+    ) -> PyResult<Self> {
+        let s = spec(
+            py, maps, generator, kwargs, candidates, k, view, lam, max_path_m, max_steps, gain,
+            true,
+        )?;
+        Ok(Self {
+            state: Mutex::new(State::new(Arc::new(s))),
+        })
+    }
+
+    /// Number of robots (agents).
+    #[getter]
+    fn robots(&self) -> usize {
+        self.st().spec.options.robots
+    }
+
+    /// Observation (height, width) of the belief and frontier layers.
+    #[getter]
+    fn shape(&self) -> (usize, usize) {
+        self.st().spec.shape
+    }
+
+    /// K: the most candidates offered to one robot.
+    #[getter]
+    fn k(&self) -> usize {
+        self.st().spec.k
+    }
+
+    /// Start an episode from `seed`; returns one observation per robot.
+    fn reset<'py>(&mut self, py: Python<'py>, seed: u64) -> PyResult<Vec<Bound<'py, PyDict>>> {
+        let state = self.state.get_mut().unwrap_or_else(|p| p.into_inner());
+        py.detach(|| guarded(|| state.reset(seed)).and_then(|r| r))
+            .map_err(py_error)?;
+        self.observations(py)
+    }
+
+    /// Robot r goes to its candidate `actions[r]` if it is deciding; returns (observations,
+    /// team reward, terminated, truncated).
+    #[allow(clippy::type_complexity)]
+    fn step<'py>(
+        &mut self,
+        py: Python<'py>,
+        actions: Vec<i64>,
+    ) -> PyResult<(Vec<Bound<'py, PyDict>>, f64, bool, bool)> {
+        let acts: Vec<usize> = actions
+            .iter()
+            .map(|&a| usize::try_from(a).unwrap_or(usize::MAX))
+            .collect();
+        let state = self.state.get_mut().unwrap_or_else(|p| p.into_inner());
+        let out = py
+            .detach(|| guarded(|| state.step(&acts)).and_then(|r| r))
+            .map_err(py_error)?;
+        Ok((
+            self.observations(py)?,
+            out.reward,
+            out.terminated,
+            out.truncated,
+        ))
+    }
+
+    /// Which robots decide now (their actions count).
+    fn deciding(&self) -> Vec<bool> {
+        self.st().shown.iter().map(|s| !s.is_empty()).collect()
+    }
+
+    /// Coverage, per-robot path lengths, decisions, moves, steps and the map's name.
+    fn info<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let d = PyDict::new(py);
+        let st = self.st();
+        d.set_item("coverage", st.coverage())?;
+        if let Some(s) = &st.session {
+            let m = st.spec.options.robots;
+            let paths: Vec<f64> = (0..m).map(|r| s.path_length_m(r)).collect();
+            d.set_item("path_length_m", paths)?;
+            d.set_item("decisions", s.decisions())?;
+            d.set_item("moves", s.moves())?;
+        }
+        d.set_item("steps", st.steps)?;
+        d.set_item("map", st.map_name.clone())?;
+        Ok(d)
+    }
+
+    /// Each robot's action under `preset`'s assigner, choosing for the deciding robots
+    /// together among the candidates offered to any of them (0 for the others).
+    fn baseline_actions(&mut self, preset: &str) -> PyResult<Vec<usize>> {
+        let strategy =
+            Strategy::preset(preset).map_err(|e| value_error(format!("--strategy: {e}")))?;
+        let st = self.state.get_mut().unwrap_or_else(|p| p.into_inner());
+        let Some(s) = st.session.as_mut().filter(|_| !st.done) else {
+            return Err(value_error(
+                "baseline_actions() after the episode ended: call reset() first",
+            ));
+        };
+        let mut cells: Vec<u32> = st.shown.iter().flatten().map(|g| g.cell).collect();
+        cells.sort_by_key(|&c| s.candidate_position(c).unwrap_or(usize::MAX));
+        cells.dedup();
+        let chosen = guarded(|| s.propose(strategy.assigner, &cells).to_vec()).map_err(internal)?;
+        Ok(st
+            .shown
+            .iter()
+            .zip(chosen)
+            .map(|(shown, g)| {
+                g.and_then(|g| shown.iter().position(|c| c.cell == g.cell))
+                    .unwrap_or(0)
+            })
+            .collect())
+    }
+}

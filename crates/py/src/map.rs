@@ -1,0 +1,248 @@
+//! `frontier.Map`: a ground-truth map loaded from a file, generated, or made from a numpy
+//! array.
+
+use std::path::PathBuf;
+use std::sync::Arc;
+
+use grid::{Grid, GridMap, Occ};
+use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray2, PyUntypedArrayMethods};
+use pyo3::exceptions::PyTypeError;
+use pyo3::prelude::*;
+use world::{EnvKind, EnvSpec};
+
+use crate::value_error;
+
+/// A ground-truth occupancy map: cells (0 unknown, 1 free, 2 occupied), resolution in metres
+/// per cell, and the name runs report.
+#[pyclass(module = "frontier._native", frozen)]
+#[derive(Clone)]
+pub struct Map {
+    /// The map (shared by runs without copying).
+    pub map: Arc<GridMap>,
+    /// The name runs report: the file's stem or the environment's name.
+    pub name: String,
+}
+
+/// Metres per cell as the CLI's `--resolution` takes it: one number or (x, y).
+fn resolution_arg(v: Option<&Bound<'_, PyAny>>) -> PyResult<Option<(f64, f64)>> {
+    let Some(v) = v else { return Ok(None) };
+    if v.is_none() {
+        return Ok(None);
+    }
+    let (x, y) = if let Ok(r) = v.extract::<f64>() {
+        (r, r)
+    } else if let Ok((x, y)) = v.extract::<(f64, f64)>() {
+        (x, y)
+    } else {
+        return Err(PyTypeError::new_err(format!(
+            "resolution: expected a number of metres per cell or a pair (x, y), found {}",
+            v.get_type().name()?
+        )));
+    };
+    for r in [x, y] {
+        if !(r.is_finite() && r > 0.0) {
+            return Err(value_error(format!(
+                "--resolution: expected a positive number of metres per cell, found '{r}'"
+            )));
+        }
+    }
+    Ok(Some((x, y)))
+}
+
+/// A size in metres: (width, height).
+fn size_arg(v: Option<(f64, f64)>) -> PyResult<Option<(f64, f64)>> {
+    match v {
+        Some((w, h)) if !(w.is_finite() && h.is_finite() && w > 0.0 && h > 0.0) => {
+            Err(value_error(format!(
+                "--size: expected WxH in metres (e.g. 25x20), found '{w}x{h}'"
+            )))
+        }
+        v => Ok(v),
+    }
+}
+
+impl Map {
+    /// Wrap a map.
+    pub fn new(map: GridMap, name: String) -> Self {
+        Self {
+            map: Arc::new(map),
+            name,
+        }
+    }
+}
+
+#[pymethods]
+impl Map {
+    /// Load a map file the CLI reads: ROS map_server YAML + PGM/PNG, a bare PGM/PNG bitmap
+    /// (needs `resolution`), MovingAI `.map` or ASCII `.txt`.
+    #[staticmethod]
+    #[pyo3(signature = (path, resolution=None, border=false))]
+    fn load(path: PathBuf, resolution: Option<&Bound<'_, PyAny>>, border: bool) -> PyResult<Self> {
+        let opts = grid::io::LoadOptions {
+            resolution: resolution_arg(resolution)?,
+            border,
+        };
+        let map = grid::io::load_map(&path, &opts).map_err(value_error)?;
+        let name = path
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_else(|| "map".into());
+        Ok(Self::new(map, name))
+    }
+
+    /// A map from a 2-D numpy array: bool (True = occupied) or uint8 (0 unknown, 1 free,
+    /// 2 occupied); row 0 is the top row.
+    #[staticmethod]
+    #[pyo3(signature = (array, resolution, name="array".to_string()))]
+    fn from_numpy(array: &Bound<'_, PyAny>, resolution: f64, name: String) -> PyResult<Self> {
+        if !(resolution.is_finite() && resolution > 0.0) {
+            return Err(value_error(format!(
+                "--resolution: expected a positive number of metres per cell, found '{resolution}'"
+            )));
+        }
+        let cells: Vec<Occ>;
+        let (h, w);
+        if let Ok(a) = array.extract::<PyReadonlyArray2<'_, bool>>() {
+            (h, w) = (a.shape()[0], a.shape()[1]);
+            cells = a
+                .as_array()
+                .iter()
+                .map(|&o| if o { Occ::Occupied } else { Occ::Free })
+                .collect();
+        } else if let Ok(a) = array.extract::<PyReadonlyArray2<'_, u8>>() {
+            (h, w) = (a.shape()[0], a.shape()[1]);
+            let mut out = Vec::with_capacity(h * w);
+            for (k, &v) in a.as_array().iter().enumerate() {
+                out.push(match v {
+                    0 => Occ::Unknown,
+                    1 => Occ::Free,
+                    2 => Occ::Occupied,
+                    _ => {
+                        return Err(value_error(format!(
+                            "array: expected cell values 0 (unknown), 1 (free) or 2 (occupied), \
+                             found {v} at row {}, column {}",
+                            k / w,
+                            k % w
+                        )));
+                    }
+                });
+            }
+            cells = out;
+        } else {
+            let what = match (array.getattr("dtype"), array.getattr("ndim")) {
+                (Ok(d), Ok(n)) => format!("a {n}-D array of dtype {d}"),
+                _ => format!("{}", array.get_type().name()?),
+            };
+            return Err(PyTypeError::new_err(format!(
+                "array: expected a 2-D numpy array of bool (True = occupied) or uint8 \
+                 (0 unknown, 1 free, 2 occupied), found {what}"
+            )));
+        }
+        if w == 0 || h == 0 {
+            return Err(value_error(format!(
+                "array: empty map: width {w} and height {h} must both be positive"
+            )));
+        }
+        let grid = Grid::from_vec(w, h, cells).ok_or_else(|| value_error("array: bad shape"))?;
+        Ok(Self::new(GridMap::new(grid, resolution), name))
+    }
+
+    /// Generate a built-in environment (office, hospital, cave, maze, potholes, empty) from
+    /// its seed, size in metres (width, height) and resolution (defaults: the kind's).
+    #[staticmethod]
+    #[pyo3(signature = (kind, seed=0, size=None, resolution=None))]
+    fn generate(
+        py: Python<'_>,
+        kind: &str,
+        seed: u64,
+        size: Option<(f64, f64)>,
+        resolution: Option<f64>,
+    ) -> PyResult<Self> {
+        let kind: EnvKind = kind
+            .parse()
+            .map_err(|e| value_error(format!("--env: {e}")))?;
+        if let Some(r) = resolution
+            && !(r.is_finite() && r > 0.0)
+        {
+            return Err(value_error(format!(
+                "--resolution: expected a positive number of metres per cell, found '{r}'"
+            )));
+        }
+        let spec = EnvSpec {
+            kind,
+            seed,
+            size_m: size_arg(size)?,
+            resolution,
+        };
+        let env = py
+            .detach(|| world::generate(&spec))
+            .map_err(|e| value_error(format!("generating {kind}: {e}")))?;
+        Ok(Self::new(env.map, env.name))
+    }
+
+    /// The cells as a (height, width) uint8 array: 0 unknown, 1 free, 2 occupied.
+    fn to_numpy<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let cells = &self.map.cells;
+        let data: Vec<u8> = cells.data().iter().map(|&o| o as u8).collect();
+        let a = PyArray1::from_vec(py, data);
+        Ok(a.reshape([cells.height(), cells.width()])?.into_any())
+    }
+
+    /// Write the map: `.yaml` (ROS map_server YAML + PGM), `.pgm` or `.png`.
+    fn save(&self, path: PathBuf) -> PyResult<()> {
+        grid::io::save_map(&self.map, &path).map_err(value_error)
+    }
+
+    /// Width in cells.
+    #[getter]
+    fn width(&self) -> usize {
+        self.map.width()
+    }
+
+    /// Height in cells.
+    #[getter]
+    fn height(&self) -> usize {
+        self.map.height()
+    }
+
+    /// (height, width), as numpy orders it.
+    #[getter]
+    fn shape(&self) -> (usize, usize) {
+        (self.map.height(), self.map.width())
+    }
+
+    /// Metres per cell.
+    #[getter]
+    fn resolution(&self) -> f64 {
+        self.map.resolution
+    }
+
+    /// The name runs report.
+    #[getter]
+    fn name(&self) -> String {
+        self.name.clone()
+    }
+
+    /// World pose (x, y, yaw) of the lower-left corner (ROS `origin`).
+    #[getter]
+    fn origin(&self) -> (f64, f64, f64) {
+        let [x, y, t] = self.map.origin;
+        (x, y, t)
+    }
+
+    /// Number of free cells.
+    #[getter]
+    fn free_cells(&self) -> usize {
+        self.map.cells.data().iter().filter(|o| o.is_free()).count()
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "Map('{}', {}x{} cells at {} m)",
+            self.name,
+            self.map.width(),
+            self.map.height(),
+            self.map.resolution
+        )
+    }
+}

@@ -1,0 +1,26 @@
+//! `frontier.bench.load`: a study's SQLite store read through the bench crate's own
+//! reader, so the columns are exactly those of `frontier bench export` (CSV).
+
+use std::path::PathBuf;
+
+use pyo3::prelude::*;
+
+use crate::value_error;
+
+/// Every trial of the study store at `path` as a JSON array of row objects (ordered by
+/// key); a file that is not a store of this version is refused with the CLI's message.
+#[pyfunction]
+pub fn load_rows(py: Python<'_>, path: PathBuf) -> PyResult<String> {
+    if !path.is_file() {
+        return Err(value_error(format!(
+            "{}: no such study store (a file written by `frontier bench`)",
+            path.display()
+        )));
+    }
+    py.detach(|| {
+        let store = bench::Store::open_raw(&path)?;
+        let rows = store.rows()?;
+        serde_json::to_string(&rows).map_err(|e| bench::BenchError::Other(e.to_string()))
+    })
+    .map_err(value_error)
+}

@@ -1,0 +1,73 @@
+"""frontier.bench.load: a study store written by `frontier bench` read into a data frame."""
+
+import subprocess
+
+import pytest
+
+import frontier
+import frontier.bench
+
+SCENARIO = """
+name = "tiny"
+seed = 1
+robots = [1, 2]
+sensors = ["los:r=4c"]
+strategies = ["cf", "cf-rr"]
+trials = 2
+
+[[env]]
+kind = "office"
+seeds = [0]
+size = [15, 12]
+resolution = 0.25
+"""
+
+
+@pytest.fixture(scope="module")
+def store(cli, tmp_path_factory):
+    d = tmp_path_factory.mktemp("study")
+    (d / "tiny.toml").write_text(SCENARIO)
+    subprocess.run(
+        [cli, "bench", str(d / "tiny.toml"), "--db", str(d / "tiny.sqlite"), "--no-progress"],
+        check=True, capture_output=True,
+    )
+    subprocess.run(
+        [cli, "bench", "export", str(d / "tiny.sqlite"), "--csv", str(d / "tiny.csv")],
+        check=True, capture_output=True,
+    )
+    return d
+
+
+def test_load_into_pandas_matches_the_csv_export(store):
+    pd = pytest.importorskip("pandas")
+    df = frontier.bench.load(store / "tiny.sqlite")
+    csv = pd.read_csv(store / "tiny.csv")
+    assert list(df.columns) == list(csv.columns)
+    assert len(df) == 8
+    assert list(df["key"]) == list(csv["key"])
+    assert df["total_path"].tolist() == pytest.approx(csv["total_path"].tolist())
+    assert set(df["strategy"]) == {"cf", "cf-rr"}
+    assert all(isinstance(p, list) and len(p) == m for p, m in zip(df["path_lengths"], df["robots"]))
+    means = df.groupby(["strategy", "robots"])["max_path"].mean()
+    assert len(means) == 4
+
+
+def test_rows_equal_explore(store):
+    row = next(r for r in frontier.bench.rows(store / "tiny.sqlite") if r["robots"] == 1)
+    m = frontier.Map.generate("office", seed=0, size=(15, 12), resolution=0.25)
+    got = frontier.explore(
+        m, strategy=row["preset"], sensor=row["sensor"], seed=int(row["seed"]),
+        start=tuple(row["starts"][0]),
+    )
+    assert got.total_path_length_m == pytest.approx(row["total_path"], abs=1e-4)
+
+
+def test_not_a_store(tmp_path):
+    with pytest.raises(ValueError, match="no such study store"):
+        frontier.bench.load(tmp_path / "missing.sqlite")
+    bad = tmp_path / "bad.sqlite"
+    bad.write_text("not a database at all, just text" * 100)
+    with pytest.raises(ValueError):
+        frontier.bench.load(bad)
+    with pytest.raises(ValueError, match="backend: expected 'pandas' or 'polars'"):
+        frontier.bench.load(bad, backend="excel")

@@ -1,0 +1,128 @@
+"""frontier.explore and explore_many: the CLI's numbers, parallel batches, clear errors."""
+
+import json
+import subprocess
+
+import numpy as np
+import pytest
+
+import frontier
+
+
+def cli_json(cli, *args):
+    out = subprocess.run(
+        [cli, "explore", *args, "--json", "--no-timing"], capture_output=True, text=True, check=True
+    )
+    return json.loads(out.stdout)
+
+
+@pytest.mark.parametrize(
+    "strategy,sensor,robots",
+    [("cf-rr", "los:r=5", 1), ("yamauchi", "lidar:r=4,fov=180,res=2", 1), ("ha-cc", "los:r=3", 3)],
+)
+def test_equals_cli_json(cli, office, tmp_path, strategy, sensor, robots):
+    yaml = tmp_path / "office.yaml"
+    office.save(yaml)
+    want = cli_json(
+        cli, "--map", str(yaml), "--strategy", strategy, "--sensor", sensor,
+        "--robots", str(robots), "--seed", "4",
+    )
+    got = frontier.explore(
+        frontier.Map.load(yaml), strategy=strategy, sensor=sensor, robots=robots, seed=4
+    )
+    assert got.summary == want
+    assert got.path_length_m == want["path_length_m"]
+
+
+def test_generated_map_equals_cli_env(cli, office):
+    want = cli_json(cli, "--env", "office", "--seed", "3", "--size", "15x12", "--resolution", "0.25")
+    assert frontier.explore(office, seed=3).summary == want
+
+
+def test_arrays(office):
+    r = frontier.explore(office, robots=2, seed=1)
+    assert r.belief.shape == office.shape and r.belief.dtype == np.uint8
+    assert len(r.trajectories) == 2
+    for t, start in zip(r.trajectories, r.starts):
+        assert t.dtype == np.int32 and t.shape[1] == 2
+        assert list(t[0]) == start
+        steps = np.abs(np.diff(t, axis=0)).max(axis=1)
+        assert (steps <= 1).all()
+    assert r.decide_ms is None
+    assert frontier.explore(office, timing=True).decide_ms >= 0
+    assert frontier.explore(office, trajectories=False).trajectories is None
+
+
+def test_same_seed_same_result(office):
+    a = frontier.explore(office, strategy="random", seed=9)
+    b = frontier.explore(office, strategy="random", seed=9)
+    assert a.summary == b.summary and np.array_equal(a.belief, b.belief)
+
+
+def test_explore_many_matches_explore_in_order(office):
+    runs = [
+        dict(map=office, strategy=s, seed=seed, tag=f"{s}/{seed}")
+        for s in ("cf", "cf-rr", "random")
+        for seed in range(3)
+    ]
+    rows = frontier.explore_many(runs, threads=2)
+    assert [r["tag"] for r in rows] == [r["tag"] for r in runs]
+    for run, row in zip(runs, rows):
+        one = frontier.explore(office, strategy=run["strategy"], seed=run["seed"]).row()
+        assert {k: row[k] for k in one} == one
+    pd = pytest.importorskip("pandas")
+    df = pd.DataFrame(rows)
+    assert len(df) == 9 and "map_accuracy" in df and "max_path_length_m" in df
+    assert (df.groupby("strategy").size() == 3).all()
+
+
+@pytest.mark.parametrize(
+    "kwargs,error,message",
+    [
+        (dict(strategy="fastest"), ValueError, "--strategy: unknown strategy 'fastest'"),
+        (dict(sensor="radar:r=3"), ValueError, "--sensor: sensor 'radar:r=3': unknown kind 'radar'"),
+        (dict(start=(500, 2)), ValueError, "--start 500,2: outside the 60x48 map"),
+        (dict(start=(0, 0)), ValueError, r"start \(0, 0\): the cell is occupied"),
+        (dict(robots=0), ValueError, "--robots: expected at least 1, found 0"),
+        (dict(speed=-1.0), ValueError, "--speed: expected a positive number of metres per second"),
+        (dict(goal=2.0), ValueError, r"--goal: expected a coverage share in \(0, 1\]"),
+        (dict(s_max=0), ValueError, "--s-max: expected a positive number of cell moves or -1"),
+        (dict(belief="fuzzy"), ValueError, "--belief: "),
+        (dict(seed=-1), ValueError, "--seed: expected an integer in 0..2"),
+        (dict(strategy=3), TypeError, "strategy: expected a str, found int"),
+        (dict(start="1,2"), TypeError, r"start: expected a cell \(x, y\)"),
+    ],
+)
+def test_bad_input_raises_with_cli_message(office, kwargs, error, message):
+    with pytest.raises(error, match=message):
+        frontier.explore(office, **kwargs)
+
+
+def test_messages_equal_the_cli(cli, office, tmp_path):
+    yaml = tmp_path / "office.yaml"
+    office.save(yaml)
+    for flags, kwargs in [
+        (["--strategy", "fastest"], dict(strategy="fastest")),
+        (["--sensor", "los:r=-2"], dict(sensor="los:r=-2")),
+        (["--start", "500,2"], dict(start=(500, 2))),
+        (["--start", "0,0"], dict(start=(0, 0))),
+    ]:
+        out = subprocess.run([cli, "explore", "--map", str(yaml), *flags], capture_output=True, text=True)
+        assert out.returncode == 1
+        with pytest.raises(ValueError) as e:
+            frontier.explore(frontier.Map.load(yaml), **kwargs)
+        assert out.stderr.strip() == f"error: {e.value}"
+
+
+def test_explore_many_checks_every_run_first(office):
+    with pytest.raises(ValueError, match="run 1: --strategy: unknown strategy 'nope'"):
+        frontier.explore_many([dict(map=office), dict(map=office, strategy="nope")])
+    with pytest.raises(TypeError, match="run 0: missing 'map'"):
+        frontier.explore_many([dict(seed=1)])
+    with pytest.raises(TypeError, match="unexpected keyword argument 'colour'"):
+        frontier.explore(office, **{"colour": "red"}) if False else frontier._native.explore(office, {"colour": "red"})
+
+
+def test_strategies_lists_the_presets():
+    names = [n for n, _ in frontier.strategies()]
+    assert {"cf-rr", "yamauchi", "dt500", "random"} <= set(names)

@@ -1,0 +1,134 @@
+"""frontier.gym: Gymnasium's checker, determinism, baselines equal to explore, vector env."""
+
+import gymnasium
+import numpy as np
+import pytest
+from gymnasium.utils.env_checker import check_env
+
+import frontier
+from frontier.gym import Baseline, ExploreEnv, ExploreVectorEnv, RandomPolicy
+
+
+def episode(env, policy, seed):
+    """Observations' digests, rewards and infos of one whole episode."""
+    obs, info = env.reset(seed=seed)
+    trace = [(obs["belief"].tobytes(), obs["candidates"].tobytes(), info["seed"])]
+    while True:
+        a = policy(env) if isinstance(policy, Baseline) else policy(obs)
+        obs, reward, terminated, truncated, info = env.step(a)
+        trace.append((obs["belief"].tobytes(), obs["candidates"].tobytes(), reward))
+        if terminated or truncated:
+            return trace, info, terminated
+
+
+def test_check_env_passes(office):
+    for kwargs in (dict(), dict(view=21, gain=True, k=4), dict(candidates="centroids")):
+        check_env(ExploreEnv(office, **kwargs), skip_render_check=True)
+
+
+def test_registered():
+    env = gymnasium.make("frontier/Explore-v0", maps="cave", size=(8, 8), resolution=0.25, k=8)
+    obs, _ = env.reset(seed=1)
+    assert obs["belief"].shape == (32, 32) and obs["candidates"].shape == (8, 4)
+
+
+def test_same_seed_identical_episodes(office):
+    env = ExploreEnv([office], k=8, lam=0.1)
+    a = episode(env, RandomPolicy(5), 11)
+    b = episode(env, RandomPolicy(5), 11)
+    assert a == b
+    c = episode(env, RandomPolicy(5), 12)
+    assert c[0][0][2] != a[0][0][2]
+
+
+@pytest.mark.parametrize("preset", ["cf-rr", "cf", "random", "yamauchi"])
+def test_baseline_episode_equals_explore(office, preset):
+    env = ExploreEnv(office, strategy=preset, k=4096)
+    _, info, terminated = episode(env, Baseline(preset), 3)
+    assert terminated
+    ref = frontier.explore(office, strategy=preset, seed=info["seed"])
+    assert info["path_length_m"] == pytest.approx(ref.path_length_m[0], abs=1e-4)
+    assert (info["decisions"], info["moves"]) == (ref.decisions, ref.moves)
+    assert info["coverage"] == pytest.approx(ref.coverage, abs=1e-6)
+
+
+def test_reward_and_budget(office):
+    env = ExploreEnv(office, lam=0.5, max_steps=3, render_mode="rgb_array")
+    obs, info = env.reset(seed=0)
+    cov0 = info["coverage"]
+    total, steps = 0.0, 0
+    while True:
+        obs, r, terminated, truncated, info = env.step(0)
+        total += r
+        steps += 1
+        if terminated or truncated:
+            break
+    assert truncated and not terminated and steps == 3
+    reachable = frontier.explore(office, seed=info["seed"]).reachable_cells
+    area = (info["coverage"] - cov0) * reachable * office.resolution**2
+    assert total == pytest.approx(area - 0.5 * info["path_length_m"], abs=1e-6)
+    assert env.render().shape == office.shape + (3,)
+    with pytest.raises(ValueError, match="after the episode ended"):
+        env.step(0)
+
+
+def test_invalid_actions(office):
+    env = ExploreEnv(office, k=8, invalid_action="raise")
+    obs, _ = env.reset(seed=0)
+    n = int(obs["action_mask"].sum())
+    with pytest.raises(ValueError, match=f"action 99: expected the index of one of the {n} candidates"):
+        env.step(99)
+    with pytest.raises(ValueError, match="action -1"):
+        env.step(-1)
+    with pytest.raises(ValueError, match="--strategy: unknown strategy"):
+        ExploreEnv(office, strategy="nope")
+    with pytest.raises(ValueError, match="candidates: expected af, centroids, rfe or cc"):
+        ExploreEnv(office, candidates="all")
+    with pytest.raises(ValueError, match="maps of different sizes need a robot-centred view"):
+        ExploreEnv([office, frontier.Map.generate("cave", size=(8, 8), resolution=0.25)])
+
+
+def test_vector_env_matches_single_envs(office):
+    n = 3
+    venv = ExploreVectorEnv(n, [office], k=8, threads=2)
+    obs, _ = venv.reset(seed=7)
+    singles = [ExploreEnv([office], k=8) for _ in range(n)]
+    for i, e in enumerate(singles):
+        e.reset(seed=7 + i)
+    for i, e in enumerate(singles):
+        assert np.array_equal(obs["belief"][i], e._obs["belief"])
+    done = np.zeros(n, bool)
+    for _ in range(15):
+        acts = venv.baseline_actions("cf-rr")
+        obs, rew, term, trunc, infos = venv.step(acts)
+        for i, e in enumerate(singles):
+            if done[i]:
+                continue
+            o, r, t, tr, info = e.step(int(acts[i]))
+            assert r == rew[i] and t == term[i]
+            assert np.array_equal(o["candidates"], obs["candidates"][i])
+            done[i] = t or tr
+    assert venv.observation_space.contains(obs)
+
+
+def test_vector_env_autoresets(office):
+    venv = ExploreVectorEnv(2, [office], k=8, max_steps=2)
+    venv.reset(seed=0)
+    _, _, _, trunc, _ = venv.step([0, 0])
+    _, _, _, trunc, _ = venv.step([0, 0])
+    assert trunc.all()
+    _, rew, term, trunc, infos = venv.step([0, 0])
+    assert not trunc.any() and (rew == 0).all() and (infos["path_length_m"] == 0).all()
+
+
+def test_maps_from_a_folder(office, tmp_path):
+    office.save(tmp_path / "a.yaml")
+    office.save(tmp_path / "b.yaml")
+    (tmp_path / "notes.md").write_text("not a map")
+    env = ExploreEnv(str(tmp_path), k=4)
+    names = {env.reset(seed=s)[1]["map"] for s in range(8)}
+    assert names == {"a", "b"}
+    empty = tmp_path / "empty"
+    empty.mkdir()
+    with pytest.raises(ValueError, match="no map files"):
+        ExploreEnv(str(empty))

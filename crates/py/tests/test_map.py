@@ -1,0 +1,65 @@
+"""frontier.Map: loading, generating, numpy in and out, saving, and refusing bad input."""
+
+import numpy as np
+import pytest
+
+import frontier
+
+
+def test_generate_is_deterministic(office):
+    again = frontier.Map.generate("office", seed=3, size=(15, 12), resolution=0.25)
+    assert office.shape == (48, 60)
+    assert office.resolution == 0.25
+    assert office.name == "office-s3-15x12m-r0.25"
+    assert np.array_equal(office.to_numpy(), again.to_numpy())
+
+
+def test_numpy_round_trip(office):
+    a = office.to_numpy()
+    assert a.dtype == np.uint8 and set(np.unique(a)) <= {0, 1, 2}
+    b = frontier.Map.from_numpy(a, 0.25)
+    assert np.array_equal(b.to_numpy(), a)
+    occ = frontier.Map.from_numpy(a == 2, 0.25)
+    assert np.array_equal(occ.to_numpy() == 2, a == 2)
+    assert occ.free_cells == int((a != 2).sum())
+
+
+def test_save_and_load_every_format(office, tmp_path):
+    yaml = tmp_path / "office.yaml"
+    office.save(yaml)
+    loaded = frontier.Map.load(yaml)
+    assert loaded.name == "office" and loaded.resolution == 0.25
+    assert np.array_equal(loaded.to_numpy(), office.to_numpy())
+    png = tmp_path / "plan.png"
+    office.save(png)
+    bare = frontier.Map.load(png, resolution=0.25)
+    assert np.array_equal(bare.to_numpy() == 2, office.to_numpy() == 2)
+    text = tmp_path / "tiny.map"
+    text.write_text("type octile\nheight 3\nwidth 4\nmap\n@@@@\n@..@\n@@@@\n")
+    assert frontier.Map.load(text).shape == (3, 4)
+
+
+def test_wrong_dtype_and_shape_raise_type_error():
+    with pytest.raises(TypeError, match="2-D numpy array of bool .* found a 2-D array of dtype float64"):
+        frontier.Map.from_numpy(np.zeros((4, 4)), 0.1)
+    with pytest.raises(TypeError, match="found a 3-D array"):
+        frontier.Map.from_numpy(np.zeros((2, 4, 4), dtype=np.uint8), 0.1)
+    with pytest.raises(TypeError):
+        frontier.Map.from_numpy([[0, 1]], 0.1)
+
+
+def test_bad_values_raise_value_error(tmp_path):
+    with pytest.raises(ValueError, match=r"expected cell values 0 \(unknown\), 1 \(free\) or 2 \(occupied\), found 7 at row 1, column 2"):
+        a = np.ones((3, 4), dtype=np.uint8)
+        a[1, 2] = 7
+        frontier.Map.from_numpy(a, 0.1)
+    with pytest.raises(ValueError, match="--resolution: expected a positive number"):
+        frontier.Map.from_numpy(np.ones((3, 3), dtype=np.uint8), -1.0)
+    with pytest.raises(ValueError, match="--env: "):
+        frontier.Map.generate("castle")
+    with pytest.raises(ValueError, match="--resolution is required for a bare bitmap"):
+        png = tmp_path / "x.png"
+        frontier.Map.from_numpy(np.ones((3, 3), dtype=np.uint8), 0.1).save(png)
+        frontier.Map.load(png)
+    with pytest.raises(ValueError, match="cannot read"):
+        frontier.Map.load(tmp_path / "missing.yaml")

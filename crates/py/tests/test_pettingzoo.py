@@ -1,0 +1,57 @@
+"""frontier.pettingzoo: PettingZoo's API test, determinism, team baselines equal to explore."""
+
+import numpy as np
+import pytest
+
+pytest.importorskip("pettingzoo")
+from pettingzoo.test import parallel_api_test  # noqa: E402
+
+import frontier  # noqa: E402
+from frontier.gym import Baseline  # noqa: E402
+from frontier.pettingzoo import ExploreParallelEnv  # noqa: E402
+
+
+def play(env, seed, policy):
+    obs, infos = env.reset(seed=seed)
+    trace = []
+    while env.agents:
+        actions = policy(env, obs)
+        obs, rewards, terms, truncs, infos = env.step(actions)
+        trace.append((rewards["robot_0"], tuple(sorted(env.deciding()))))
+    return trace, infos["robot_0"]
+
+
+def test_parallel_api(office):
+    parallel_api_test(ExploreParallelEnv(office, robots=3, k=8), num_cycles=50)
+
+
+def test_same_seed_identical_episodes(office):
+    env = ExploreParallelEnv(office, robots=2, k=8)
+    first = lambda env, obs: {a: 0 for a in env.agents}  # noqa: E731
+    assert play(env, 4, first) == play(env, 4, first)
+
+
+@pytest.mark.parametrize("preset", ["nearest", "greedy", "ha-cc"])
+def test_team_baseline_equals_explore(office, preset):
+    env = ExploreParallelEnv(office, robots=3, strategy=preset, k=4096)
+    trace, info = play(env, 2, lambda env, obs: Baseline(preset)(env))
+    ref = frontier.explore(office, strategy=preset, robots=3, seed=info["seed"])
+    assert info["path_length_m"] == pytest.approx(ref.path_length_m, abs=1e-4)
+    assert (info["decisions"], info["moves"]) == (ref.decisions, ref.moves)
+    assert info["coverage"] == pytest.approx(ref.coverage, abs=1e-6)
+
+
+def test_only_deciding_agents_have_candidates(office):
+    env = ExploreParallelEnv(office, robots=3, k=8, strategy="nearest")
+    obs, _ = env.reset(seed=0)
+    for _ in range(10):
+        deciding = set(env.deciding())
+        for agent, o in obs.items():
+            assert (o["action_mask"].sum() > 0) == (agent in deciding)
+            assert o["team"].shape == (3, 3)
+        obs, *_ = env.step({a: 0 for a in env.agents})
+        if not env.agents:
+            break
+    with pytest.raises(ValueError, match="--robots: expected at least 1, found 0"):
+        ExploreParallelEnv(office, robots=0)
+    assert np.all(obs["robot_0"]["team"] == obs["robot_1"]["team"])

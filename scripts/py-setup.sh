@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# Build the Python package `frontier` into a virtualenv and install what its tests need.
+#
+#   scripts/py-setup.sh            # target/py-venv (FRONTIER_VENV=... for another place)
+#   scripts/py-setup.sh --dev      # the dev profile: reuses what `cargo test` built (CI)
+#   target/py-venv/bin/pytest crates/py/tests
+#
+# maturin and the test requirements come from PyPI (crates/py/requirements-dev.txt).
+# The extension is built once: in the release profile by default (the speed is the point
+# of it), or with --dev in the workspace's dev profile, whose dependencies `cargo test` has
+# already compiled, so CI pays for the package crate only.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+profile=--release
+case "${1:-}" in
+    --dev) profile= ;;
+    "") ;;
+    *) echo "usage: $0 [--dev]" >&2; exit 2 ;;
+esac
+venv=${FRONTIER_VENV:-target/py-venv}
+python=${PYTHON:-python3}
+if [ ! -x "$venv/bin/python" ]; then
+    "$python" -m venv "$venv"
+fi
+"$venv/bin/python" -m pip install --quiet --disable-pip-version-check \
+    -r crates/py/requirements-dev.txt
+VIRTUAL_ENV="$(cd "$venv" && pwd)" PATH="$venv/bin:$PATH" \
+    "$venv/bin/maturin" develop --quiet $profile --manifest-path crates/py/Cargo.toml
+"$venv/bin/python" -c 'import frontier; print("frontier", frontier.__version__, "installed in '"$venv"'")'
