@@ -50,4 +50,4 @@ pub use error::BenchError;
 pub use plan::{Plan, Trial, Unbuilt};
 pub use runner::{RunOptions, RunSummary, Shard};
 pub use scenario::Source;
-pub use store::{Store, TrialRow};
+pub use store::{Merged, Store, TrialRow};

@@ -59,13 +59,7 @@ pub fn write(
     out: &Path,
     opts: &ReportOptions,
 ) -> Result<Vec<std::path::PathBuf>, BenchError> {
-    if !db.exists() {
-        return Err(BenchError::Io {
-            path: db.to_path_buf(),
-            source: std::io::Error::new(std::io::ErrorKind::NotFound, "no such database"),
-        });
-    }
-    let store = Store::open_raw(db)?;
+    let store = Store::open_read_only(db)?;
     let rows = store.rows()?;
     let envs = store.envs()?;
     let scenario = store.meta("scenario")?.unwrap_or_default();

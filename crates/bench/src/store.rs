@@ -6,11 +6,17 @@
 //! in flight: SQLite's journal keeps every committed row and never leaves a half-written
 //! one. Rows are keyed by the trial's stable key, which is how a re-run skips finished
 //! trials and how shard databases merge.
+//!
+//! A store closed normally goes back to a rollback journal, so a finished database is one
+//! file that can be read without writing anything beside it. Reading (export, report, merge
+//! inputs) opens it read-only. Opening an existing database checks it first (SQLite's
+//! `quick_check`, and that it is a results store): a damaged file is refused rather than
+//! resumed or merged, and a merge checks every input before it writes its output.
 
 use std::collections::BTreeSet;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
-use rusqlite::{Connection, OptionalExtension, params};
+use rusqlite::{Connection, OpenFlags, OptionalExtension, params};
 use serde::Serialize;
 
 use crate::error::BenchError;
@@ -149,7 +155,142 @@ pub struct EnvPicture {
 /// An open results database.
 pub struct Store {
     conn: Connection,
-    path: std::path::PathBuf,
+    path: PathBuf,
+    /// Opened for writing: switched back to a rollback journal when closed.
+    writable: bool,
+}
+
+impl Drop for Store {
+    /// A store in WAL mode can only be read by someone who may create its `-shm` file
+    /// beside it, and every reader leaves a `-wal` and `-shm` there. So a store opened for
+    /// writing goes back to a rollback journal when it closes (after a last checkpoint):
+    /// finished databases are single files that read-only users (`export`, `report`,
+    /// `merge` inputs, a read-only file system) read without writing anything. If another
+    /// connection still has it open, or the process is killed, it stays in WAL mode, as
+    /// safe as before.
+    fn drop(&mut self) {
+        if self.writable {
+            let _ = self
+                .conn
+                .query_row("PRAGMA journal_mode=DELETE", [], |_| Ok(()));
+        }
+    }
+}
+
+/// What [`Store::merge`] did.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Merged {
+    /// Trials new to the output.
+    pub added: usize,
+    /// Trials in the output after the merge.
+    pub total: usize,
+}
+
+/// A read-only connection to `path`. A database left in WAL mode (by an older version or
+/// a killed run) needs a `-shm` file beside it even to be read; in a directory the user
+/// cannot write, and when no `-wal` file holds unfinished work, it is opened as immutable
+/// instead (nothing is written to it then, so nothing can change under the reader).
+fn open_read_only(path: &Path) -> Result<Connection, BenchError> {
+    let flags = OpenFlags::SQLITE_OPEN_READ_ONLY | OpenFlags::SQLITE_OPEN_NO_MUTEX;
+    let first = Connection::open_with_flags(path, flags).and_then(|c| {
+        c.busy_timeout(std::time::Duration::from_secs(30))?;
+        c.query_row("SELECT COUNT(*) FROM sqlite_master", [], |_| Ok(()))?;
+        Ok(c)
+    });
+    match first {
+        Err(rusqlite::Error::SqliteFailure(e, _))
+            if matches!(
+                e.extended_code,
+                rusqlite::ffi::SQLITE_READONLY_DIRECTORY | rusqlite::ffi::SQLITE_CANTOPEN
+            ) && !sibling(path, "-wal").exists() =>
+        {
+            let uri = format!("file:{}?immutable=1", uri_path(path));
+            Connection::open_with_flags(uri, flags | OpenFlags::SQLITE_OPEN_URI)
+                .map_err(BenchError::sql(path))
+        }
+        other => other.map_err(|e| sql_error(path, e)),
+    }
+}
+
+/// An SQLite error on `path`, in words when it says the file is not a database or is
+/// damaged.
+fn sql_error(path: &Path, e: rusqlite::Error) -> BenchError {
+    let code = e.sqlite_error_code();
+    let message = match code {
+        Some(rusqlite::ErrorCode::NotADatabase) => {
+            "is not an SQLite database; expected a frontier results database".to_string()
+        }
+        Some(rusqlite::ErrorCode::DatabaseCorrupt) => damaged(&e.to_string()),
+        _ => return BenchError::sql(path)(e),
+    };
+    BenchError::Store {
+        path: path.to_path_buf(),
+        message,
+    }
+}
+
+/// What to say about a damaged database, given what SQLite found.
+fn damaged(what: &str) -> String {
+    format!(
+        "is damaged ({what}); its results cannot be trusted: run the study into a new database file, or restore this one from a copy"
+    )
+}
+
+/// `path` with `suffix` appended to its file name (SQLite's `-wal`, `-shm`, `-journal`).
+fn sibling(path: &Path, suffix: &str) -> PathBuf {
+    let mut p = path.as_os_str().to_owned();
+    p.push(suffix);
+    PathBuf::from(p)
+}
+
+/// `path` as the path of an SQLite `file:` URI (made absolute, `%`, `?` and `#` escaped).
+fn uri_path(path: &Path) -> String {
+    let abs = std::path::absolute(path).unwrap_or_else(|_| path.to_path_buf());
+    let mut out = String::new();
+    for c in abs.to_string_lossy().chars() {
+        match c {
+            '%' => out.push_str("%25"),
+            '?' => out.push_str("%3f"),
+            '#' => out.push_str("%23"),
+            c => out.push(c),
+        }
+    }
+    out
+}
+
+/// Run SQLite's `quick_check` on `conn` and turn any finding into an error naming `path`.
+fn check_integrity(conn: &Connection, path: &Path) -> Result<(), BenchError> {
+    let found = conn.prepare("PRAGMA quick_check(5)").and_then(|mut st| {
+        st.query_map([], |r| r.get::<_, String>(0))?
+            .collect::<Result<Vec<_>, _>>()
+    });
+    match found {
+        Ok(lines) if lines.len() == 1 && lines[0] == "ok" => Ok(()),
+        Ok(lines) => Err(BenchError::Store {
+            path: path.to_path_buf(),
+            message: damaged(&format!("SQLite's quick_check: {}", lines.join("; "))),
+        }),
+        Err(e) => Err(sql_error(path, e)),
+    }
+}
+
+/// Whether the database has the `meta` table every results store has.
+fn has_meta_table(conn: &Connection, path: &Path) -> Result<bool, BenchError> {
+    conn.query_row(
+        "SELECT COUNT(*) FROM sqlite_master WHERE type = 'table' AND name = 'meta'",
+        [],
+        |r| r.get::<_, i64>(0),
+    )
+    .map(|n| n > 0)
+    .map_err(BenchError::sql(path))
+}
+
+fn not_a_store(path: &Path) -> BenchError {
+    BenchError::Store {
+        path: path.to_path_buf(),
+        message: "is not a frontier results database (it has no results tables); give another file"
+            .into(),
+    }
 }
 
 impl Store {
@@ -163,12 +304,23 @@ impl Store {
     }
 
     /// Open (or create) the database without checking what study it holds.
+    ///
+    /// An existing database is checked before anything is written to it: it must pass
+    /// SQLite's `quick_check` (a damaged file would otherwise resume as "all done" from an
+    /// intact key index over lost rows) and be a results store, not some other database.
     pub fn open_raw(path: &Path) -> Result<Store, BenchError> {
+        let existing = std::fs::metadata(path).is_ok_and(|m| m.len() > 0);
         let sql = BenchError::sql(path);
         let conn = Connection::open(path).map_err(sql)?;
         let sql = BenchError::sql(path);
         conn.busy_timeout(std::time::Duration::from_secs(30))
             .map_err(sql)?;
+        if existing {
+            check_integrity(&conn, path)?;
+            if !has_meta_table(&conn, path)? {
+                return Err(not_a_store(path));
+            }
+        }
         let mode: String = conn
             .query_row("PRAGMA journal_mode=WAL", [], |r| r.get(0))
             .map_err(BenchError::sql(path))?;
@@ -184,17 +336,77 @@ impl Store {
         let store = Store {
             conn,
             path: path.to_path_buf(),
+            writable: true,
         };
         match store.meta("schema_version")? {
             None => store.set_meta("schema_version", SCHEMA_VERSION)?,
-            Some(v) if v == SCHEMA_VERSION => {}
-            Some(v) => {
-                return Err(store.problem(format!(
-                    "results of table layout {v}; this program writes layout {SCHEMA_VERSION}"
-                )));
-            }
+            Some(v) => store.check_schema(&v)?,
         }
         Ok(store)
+    }
+
+    /// Open an existing database for reading only (export, report, merge inputs): the
+    /// file is never written, so a database on a read-only file system or owned by
+    /// someone else can be read, and a wrong file given as an input stays as it was.
+    /// It must pass `quick_check` and be a results store of this table layout.
+    pub fn open_read_only(path: &Path) -> Result<Store, BenchError> {
+        let meta = match std::fs::metadata(path) {
+            Ok(m) => m,
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+                return Err(BenchError::Store {
+                    path: path.to_path_buf(),
+                    message: "no such file; expected a results database".into(),
+                });
+            }
+            Err(e) => return Err(BenchError::io(path)(e)),
+        };
+        if !meta.is_file() {
+            return Err(BenchError::Store {
+                path: path.to_path_buf(),
+                message: "is not a file; expected a results database".into(),
+            });
+        }
+        if meta.len() == 0 {
+            return Err(BenchError::Store {
+                path: path.to_path_buf(),
+                message: "is an empty file, not a frontier results database".into(),
+            });
+        }
+        let conn = open_read_only(path)?;
+        check_integrity(&conn, path)?;
+        if !has_meta_table(&conn, path)? {
+            return Err(not_a_store(path));
+        }
+        let store = Store {
+            conn,
+            path: path.to_path_buf(),
+            writable: false,
+        };
+        match store.meta("schema_version")? {
+            None => return Err(not_a_store(path)),
+            Some(v) => store.check_schema(&v)?,
+        }
+        Ok(store)
+    }
+
+    fn check_schema(&self, version: &str) -> Result<(), BenchError> {
+        if version == SCHEMA_VERSION {
+            return Ok(());
+        }
+        Err(self.problem(format!(
+            "results of table layout {version}; this program writes layout {SCHEMA_VERSION}"
+        )))
+    }
+
+    /// The study (scenario name, fingerprint) the database holds; a database that holds
+    /// none (never claimed by a run) is refused.
+    pub fn study(&self) -> Result<(String, String), BenchError> {
+        match (self.meta("scenario")?, self.meta("fingerprint")?) {
+            (Some(s), Some(f)) => Ok((s, f)),
+            _ => Err(self.problem(
+                "holds no study (no scenario name or fingerprint); it was never written by `frontier bench`".into(),
+            )),
+        }
     }
 
     fn problem(&self, message: String) -> BenchError {
@@ -441,43 +653,102 @@ impl Store {
         Ok(rows)
     }
 
-    /// Copy every trial of the databases `inputs` into this one (trials already here are
-    /// kept). All inputs must hold the same study and fingerprint; an empty output takes
-    /// them over. Returns the number of rows added.
-    pub fn merge_from(&self, inputs: &[std::path::PathBuf]) -> Result<usize, BenchError> {
+    /// Merge the databases `inputs` into the database `out` (created if missing; trials
+    /// already there are kept).
+    ///
+    /// Every input is opened read-only and checked first — it exists, is a results store
+    /// that passes `quick_check`, and holds the same study and fingerprint as the others
+    /// and as `out` — so a bad input changes nothing: no input is written, and `out` is
+    /// neither created nor changed. The copy is one transaction, all or nothing.
+    pub fn merge(out: &Path, inputs: &[PathBuf]) -> Result<Merged, BenchError> {
+        let mut study: Option<(String, String, &Path)> = None;
+        for input in inputs {
+            let (scenario, fingerprint) = Store::open_read_only(input)?.study()?;
+            if let Some((s, f, first)) = &study {
+                for (key, have, want) in
+                    [("scenario", &scenario, s), ("fingerprint", &fingerprint, f)]
+                {
+                    if have != want {
+                        return Err(BenchError::Store {
+                            path: input.clone(),
+                            message: format!(
+                                "holds results of another {key} ('{have}', not '{want}' as {}); merge only shards of one study",
+                                first.display()
+                            ),
+                        });
+                    }
+                }
+            } else {
+                study = Some((scenario, fingerprint, input));
+            }
+        }
+        let Some((scenario, fingerprint, _)) = study else {
+            return Err(BenchError::Other("merge: no input databases".into()));
+        };
+        let existed = std::fs::metadata(out).is_ok_and(|m| m.len() > 0);
+        if existed {
+            let have = Store::open_read_only(out)?;
+            if have.meta("scenario")?.is_some() || have.meta("fingerprint")?.is_some() {
+                let (s, f) = have.study()?;
+                if (&s, &f) != (&scenario, &fingerprint) {
+                    let key = if s != scenario {
+                        "scenario"
+                    } else {
+                        "fingerprint"
+                    };
+                    return Err(have.problem(format!(
+                        "holds results of another {key} than the inputs; merge into another file"
+                    )));
+                }
+            }
+        }
+        let created = !out.exists();
+        let result =
+            Store::open_raw(out).and_then(|store| store.copy_in(&scenario, &fingerprint, inputs));
+        if result.is_err() && created {
+            for suffix in ["", "-wal", "-shm", "-journal"] {
+                let _ = std::fs::remove_file(sibling(out, suffix));
+            }
+        }
+        result
+    }
+
+    /// Copy the checked `inputs` into this store in one transaction.
+    fn copy_in(
+        &self,
+        scenario: &str,
+        fingerprint: &str,
+        inputs: &[PathBuf],
+    ) -> Result<Merged, BenchError> {
+        let tx = self
+            .conn
+            .unchecked_transaction()
+            .map_err(BenchError::sql(&self.path))?;
+        self.claim(scenario, fingerprint)?;
         let mut added = 0;
         for input in inputs {
-            if !input.exists() {
-                return Err(BenchError::Io {
-                    path: input.clone(),
-                    source: std::io::Error::new(std::io::ErrorKind::NotFound, "no such file"),
-                });
-            }
-            let other = Store::open_raw(input)?;
-            let scenario = other.meta("scenario")?.unwrap_or_default();
-            let fingerprint = other.meta("fingerprint")?.unwrap_or_default();
-            self.claim(&scenario, &fingerprint)
-                .map_err(|e| BenchError::Other(format!("merging {}: {e}", input.display())))?;
-            let rows = other.rows()?;
-            let envs = other.envs()?;
-            let paths = other.optimal_paths()?;
-            drop(other);
-            for e in &envs {
+            let other = Store::open_read_only(input)?;
+            for e in &other.envs()? {
                 self.put_env(e)?;
             }
-            for (k, p) in &paths {
+            for (k, p) in &other.optimal_paths()? {
                 self.put_optimal(k, p)?;
             }
-            let tx = self
-                .conn
-                .unchecked_transaction()
-                .map_err(BenchError::sql(&self.path))?;
-            for r in &rows {
+            for r in &other.rows()? {
                 added += usize::from(self.insert(r)?);
             }
-            tx.commit().map_err(BenchError::sql(&self.path))?;
         }
-        Ok(added)
+        let total = self.count()?;
+        tx.commit().map_err(BenchError::sql(&self.path))?;
+        Ok(Merged { added, total })
+    }
+
+    /// Number of stored trials.
+    pub fn count(&self) -> Result<usize, BenchError> {
+        self.conn
+            .query_row("SELECT COUNT(*) FROM trials", [], |r| r.get::<_, i64>(0))
+            .map(|n| n as usize)
+            .map_err(BenchError::sql(&self.path))
     }
 
     /// Write every trial as CSV (header = column names, rows ordered by key).

@@ -41,7 +41,7 @@ fn plan() -> Plan {
 
 /// Rows without the wall times, which are the only non-deterministic column.
 fn rows(db: &Path) -> Vec<TrialRow> {
-    let store = Store::open_raw(db).expect("open");
+    let store = Store::open_read_only(db).expect("open");
     store
         .rows()
         .expect("rows")
@@ -148,19 +148,24 @@ fn merged_shards_equal_the_unsharded_run() {
     }
     assert_eq!(total, p.trials.len());
     let merged = dir.path().join("m.sqlite");
-    let out = Store::open_raw(&merged).unwrap();
-    assert_eq!(out.merge_from(&shards).unwrap(), p.trials.len());
+    let n = p.trials.len();
+    let all = bench::Merged { added: n, total: n };
+    assert_eq!(Store::merge(&merged, &shards).unwrap(), all);
     assert_eq!(
-        out.merge_from(&shards).unwrap(),
-        0,
+        Store::merge(&merged, &shards).unwrap(),
+        bench::Merged { added: 0, ..all },
         "merging twice adds nothing"
     );
+    let out = Store::open_read_only(&merged).unwrap();
     assert_eq!(out.envs().unwrap().len(), 2);
     drop(out);
     assert_eq!(rows(&whole), rows(&merged));
     // CSV: a header and one line per trial.
     let csv = dir.path().join("t.csv");
-    let n = Store::open_raw(&merged).unwrap().export_csv(&csv).unwrap();
+    let n = Store::open_read_only(&merged)
+        .unwrap()
+        .export_csv(&csv)
+        .unwrap();
     let text = std::fs::read_to_string(&csv).unwrap();
     assert_eq!(n, p.trials.len());
     assert_eq!(text.lines().count(), n + 1);
@@ -396,4 +401,42 @@ fn more_perturbations_than_cells_is_refused() {
     ));
     assert!(e.contains("500 perturbations"), "{e}");
     assert!(e.contains("reachable cells lie there"), "{e}");
+}
+
+/// Regression: a database with a zeroed page in the middle resumed as "all trials done"
+/// (the key index was intact, the rows behind it were gone) and only `export` failed on it.
+/// Opening an existing database now runs SQLite's quick_check and refuses a damaged one,
+/// naming the file and what to do.
+#[test]
+fn zeroed_page_database_is_refused_on_resume() {
+    let dir = tempfile::tempdir().unwrap();
+    let db = dir.path().join("a.sqlite");
+    let p = plan();
+    bench::runner::run(&p, &db, &opts(2)).unwrap();
+    assert!(
+        !dir.path().join("a.sqlite-wal").exists(),
+        "the closed store is checkpointed into one file"
+    );
+    let mut bytes = std::fs::read(&db).unwrap();
+    let page_size = match u16::from_be_bytes([bytes[16], bytes[17]]) {
+        1 => 65536,
+        n => usize::from(n),
+    };
+    // A leaf page of the trials table: b-tree page type 13 holding trial keys.
+    let leaf = (1..bytes.len() / page_size)
+        .find(|&i| {
+            let page = &bytes[i * page_size..(i + 1) * page_size];
+            page[0] == 13 && page.windows(7).any(|w| w == b"|trial=")
+        })
+        .expect("a leaf page of the trials table");
+    bytes[leaf * page_size..(leaf + 1) * page_size].fill(0);
+    std::fs::write(&db, &bytes).unwrap();
+    let e = bench::runner::run(&p, &db, &opts(1))
+        .expect_err("a damaged database must be refused")
+        .to_string();
+    assert!(e.contains(&db.display().to_string()), "{e}");
+    assert!(e.contains("damaged"), "{e}");
+    assert!(e.contains("new database file"), "{e}");
+    // The damaged file is left as it was, for whoever wants to rescue it.
+    assert_eq!(std::fs::read(&db).unwrap(), bytes);
 }

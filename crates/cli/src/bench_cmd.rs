@@ -96,9 +96,7 @@ pub enum BenchCommand {
 pub fn run(a: BenchArgs) -> Result<()> {
     match a.command {
         Some(BenchCommand::Merge { out, inputs }) => {
-            let store = bench::Store::open_raw(&out)?;
-            let added = store.merge_from(&inputs)?;
-            let total = store.finished()?.len();
+            let bench::Merged { added, total } = bench::Store::merge(&out, &inputs)?;
             println!(
                 "merged {} database(s) into {}: {added} new trial(s), {total} in all",
                 inputs.len(),
@@ -107,10 +105,7 @@ pub fn run(a: BenchArgs) -> Result<()> {
             Ok(())
         }
         Some(BenchCommand::Export { db, csv }) => {
-            if !db.exists() {
-                bail!("{}: no such database", db.display());
-            }
-            let n = bench::Store::open_raw(&db)?.export_csv(&csv)?;
+            let n = bench::Store::open_read_only(&db)?.export_csv(&csv)?;
             println!("wrote {n} trial(s) to {}", csv.display());
             Ok(())
         }

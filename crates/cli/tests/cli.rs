@@ -308,7 +308,7 @@ fn sensors_compares_the_three_setups() {
 
 /// The rows of a results database without the wall times (the only non-deterministic column).
 fn bench_rows(db: &Path) -> Vec<bench::TrialRow> {
-    let store = bench::Store::open_raw(db).expect("open the results database");
+    let store = bench::Store::open_read_only(db).expect("open the results database");
     let mut rows = store.rows().expect("read the rows");
     for r in &mut rows {
         r.wall_s = 0.0;
@@ -358,7 +358,9 @@ resolution = 0.25
             child.try_wait().unwrap().is_none(),
             "the study finished before it could be killed; make it longer"
         );
-        if killed.exists() && bench_rows(&killed).len() >= 2 {
+        // (The database may not have its tables yet when it first appears.)
+        let committed = bench::Store::open_read_only(&killed).and_then(|s| s.count());
+        if committed.is_ok_and(|n| n >= 2) {
             break;
         }
         assert!(
@@ -665,6 +667,22 @@ fn open_map(dir: &Path, n: usize) -> std::path::PathBuf {
     path
 }
 
+/// A tiny study named "tiny" (4 trials) with master seed `seed`, written into `dir` as
+/// `tiny-SEED.toml`; returns the scenario file.
+fn tiny_study(dir: &Path, seed: u64) -> std::path::PathBuf {
+    let path = dir.join(format!("tiny-{seed}.toml"));
+    std::fs::write(
+        &path,
+        format!(
+            "name = \"tiny\"\nseed = {seed}\nrobots = [1]\nsensors = [\"los:r=3c\"]\n\
+strategies = [\"cf\", \"random\"]\ntrials = 2\n\n[[env]]\nkind = \"maze\"\nseeds = [0]\n\
+size = [6, 5]\nresolution = 0.5\n"
+        ),
+    )
+    .unwrap();
+    path
+}
+
 /// Regression: a map at the cell limit was accepted and `explore` aborted allocating its
 /// candidate set; the run is refused up front with the memory it would need.
 #[test]
@@ -748,4 +766,219 @@ fn sonar_on_coarse_cells_is_refused_naming_the_resolution() {
     ]))
     .unwrap();
     assert!(v["coverage"].as_f64().unwrap() > 0.9, "{v}");
+}
+
+/// Run shard `shard` (e.g. "1/2") of `scenario` into `db`.
+fn bench_shard(scenario: &Path, db: &Path, shard: &str) {
+    ok(&[
+        "bench",
+        scenario.to_str().unwrap(),
+        "--db",
+        db.to_str().unwrap(),
+        "--shard",
+        shard,
+        "-j",
+        "1",
+        "--no-progress",
+    ]);
+}
+
+/// Every file in `dir` with its length and a hash of its bytes (FNV-1a).
+fn snapshot(dir: &Path) -> std::collections::BTreeMap<std::path::PathBuf, (usize, u64)> {
+    std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| {
+            let p = e.unwrap().path();
+            let bytes = std::fs::read(&p).unwrap();
+            let hash = bytes.iter().fold(0xcbf2_9ce4_8422_2325_u64, |h, &b| {
+                (h ^ u64::from(b)).wrapping_mul(0x100_0000_01b3)
+            });
+            (p, (bytes.len(), hash))
+        })
+        .collect()
+}
+
+/// Regression: `bench merge` opened its inputs for writing, so an empty input file became a
+/// database and stamped the output with an empty study name (poisoning later merges). Inputs
+/// are now opened read-only and checked before anything is written.
+#[test]
+fn merge_leaves_inputs_untouched() {
+    let dir = tempfile::tempdir().unwrap();
+    let inputs = dir.path().join("in");
+    std::fs::create_dir(&inputs).unwrap();
+    let study = tiny_study(dir.path(), 7);
+    let (s1, s2) = (inputs.join("s1.sqlite"), inputs.join("s2.sqlite"));
+    bench_shard(&study, &s1, "1/2");
+    bench_shard(&study, &s2, "2/2");
+    let empty = inputs.join("empty.sqlite");
+    std::fs::write(&empty, b"").unwrap();
+    let before = snapshot(&inputs);
+    let out = dir.path().join("all.sqlite");
+    let (o, a, b, e) = (
+        out.to_str().unwrap(),
+        s1.to_str().unwrap(),
+        s2.to_str().unwrap(),
+        empty.to_str().unwrap(),
+    );
+    let msg = err(&["bench", "merge", o, a, e, b]);
+    assert!(msg.contains(e), "{msg}");
+    assert!(msg.contains("not a frontier results database"), "{msg}");
+    assert_eq!(
+        snapshot(&inputs),
+        before,
+        "a refused merge changed its inputs"
+    );
+    assert!(!out.exists(), "a refused merge wrote {o}");
+    // Without the empty file the merge succeeds, still without touching its inputs.
+    let merged = ok(&["bench", "merge", o, a, b]);
+    assert!(merged.contains("4 new trial(s), 4 in all"), "{merged}");
+    assert_eq!(snapshot(&inputs), before, "a merge changed its inputs");
+    assert_eq!(bench_rows(&out).len(), 4);
+}
+
+/// Regression: when a later input of `bench merge` was refused (another study), the rows of
+/// the earlier inputs stayed in the output. The merge is now all or nothing.
+#[test]
+fn merge_refusing_a_later_input_writes_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let (tiny, other) = (tiny_study(dir.path(), 7), tiny_study(dir.path(), 8));
+    let (s1, s2, x) = (
+        dir.path().join("s1.sqlite"),
+        dir.path().join("s2.sqlite"),
+        dir.path().join("x.sqlite"),
+    );
+    bench_shard(&tiny, &s1, "1/2");
+    bench_shard(&tiny, &s2, "2/2");
+    bench_shard(&other, &x, "1/2");
+    let out = dir.path().join("all.sqlite");
+    let (o, a, b, c) = (
+        out.to_str().unwrap(),
+        s1.to_str().unwrap(),
+        s2.to_str().unwrap(),
+        x.to_str().unwrap(),
+    );
+    let msg = err(&["bench", "merge", o, a, c]);
+    assert!(msg.contains(c) && msg.contains("fingerprint"), "{msg}");
+    assert!(!out.exists(), "a refused merge wrote {o}");
+    // Into an existing output: the refused merge leaves it as it was.
+    ok(&["bench", "merge", o, a]);
+    let kept = bench_rows(&out);
+    assert_eq!(kept.len(), 2);
+    let msg = err(&["bench", "merge", o, b, c]);
+    assert!(msg.contains(c), "{msg}");
+    assert_eq!(bench_rows(&out), kept, "a refused merge changed the output");
+}
+
+/// Regression: `bench merge OUT present.sqlite missing.sqlite` failed on the missing input
+/// but left OUT behind, holding the first input's trials.
+#[test]
+fn merge_with_a_missing_input_leaves_no_output() {
+    let dir = tempfile::tempdir().unwrap();
+    let study = tiny_study(dir.path(), 7);
+    let s1 = dir.path().join("s1.sqlite");
+    bench_shard(&study, &s1, "1/2");
+    let out = dir.path().join("all.sqlite");
+    let missing = dir.path().join("s2.sqlite");
+    let m = missing.to_str().unwrap();
+    let msg = err(&[
+        "bench",
+        "merge",
+        out.to_str().unwrap(),
+        s1.to_str().unwrap(),
+        m,
+    ]);
+    assert!(msg.contains(m), "{msg}");
+    let left: Vec<_> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name().into_string().unwrap())
+        .filter(|n| n.starts_with("all"))
+        .collect();
+    assert!(left.is_empty(), "a failed merge left {left:?}");
+}
+
+/// Run `frontier args` as a user who cannot write `db` or its directory: the file and the
+/// directory lose their write bits, and when the tests run as root (who writes anyway) the
+/// command runs as `nobody`. Returns the output; `writable` is a directory the user can
+/// write its results into.
+#[cfg(unix)]
+fn frontier_on_a_read_only_database(db: &Path, writable: &Path, args: &[&str]) -> Output {
+    use std::os::unix::fs::{MetadataExt, PermissionsExt};
+    use std::os::unix::process::CommandExt;
+    let parent = db.parent().unwrap();
+    let mode = |p: &Path, m: u32| std::fs::set_permissions(p, std::fs::Permissions::from_mode(m));
+    mode(db, 0o444).unwrap();
+    mode(parent, 0o555).unwrap();
+    mode(writable, 0o777).unwrap();
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_frontier"));
+    cmd.args(args);
+    if std::fs::metadata(writable).unwrap().uid() == 0 {
+        cmd.uid(65534).gid(65534);
+    }
+    let out = cmd.output().expect("run frontier");
+    mode(parent, 0o755).unwrap();
+    out
+}
+
+/// Regression: `bench export` opened the database for writing, so it failed on a database
+/// the user may only read (a finished study on a shared, read-only file system).
+#[cfg(unix)]
+#[test]
+fn export_reads_a_read_only_database() {
+    let dir = tempfile::tempdir().unwrap();
+    let ro = dir.path().join("ro");
+    let out = dir.path().join("out");
+    std::fs::create_dir(&ro).unwrap();
+    std::fs::create_dir(&out).unwrap();
+    let study = tiny_study(dir.path(), 7);
+    let db = ro.join("tiny.sqlite");
+    bench_shard(&study, &db, "1/1");
+    let before = snapshot(&ro);
+    let csv = out.join("tiny.csv");
+    let args = [
+        "bench",
+        "export",
+        db.to_str().unwrap(),
+        "--csv",
+        csv.to_str().unwrap(),
+    ];
+    let o = frontier_on_a_read_only_database(&db, &out, &args);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(std::fs::read_to_string(&csv).unwrap().lines().count(), 5);
+    assert_eq!(
+        snapshot(&ro),
+        before,
+        "export changed the database's directory"
+    );
+}
+
+/// Regression: `bench report` opened the database for writing, so it failed on a database
+/// the user may only read.
+#[cfg(unix)]
+#[test]
+fn report_reads_a_read_only_database() {
+    let dir = tempfile::tempdir().unwrap();
+    let ro = dir.path().join("ro");
+    let out = dir.path().join("out");
+    std::fs::create_dir(&ro).unwrap();
+    std::fs::create_dir(&out).unwrap();
+    let study = tiny_study(dir.path(), 7);
+    let db = ro.join("tiny.sqlite");
+    bench_shard(&study, &db, "1/1");
+    let before = snapshot(&ro);
+    let report = out.join("report");
+    let args = [
+        "bench",
+        "report",
+        db.to_str().unwrap(),
+        "--out",
+        report.to_str().unwrap(),
+    ];
+    let o = frontier_on_a_read_only_database(&db, &out, &args);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(report.join("report.html").exists());
+    assert_eq!(
+        snapshot(&ro),
+        before,
+        "report changed the database's directory"
+    );
 }
