@@ -135,7 +135,12 @@ pub fn run(plan: &Plan, db: &Path, opts: &RunOptions) -> Result<RunSummary, Benc
     } else {
         ProgressBar::hidden()
     };
-    check_memory(plan, &pending, opts.threads, sim::memory::available_bytes())?;
+    check_memory(
+        plan,
+        &pending,
+        opts.threads,
+        crate::machine::available_bytes(),
+    )?;
     let optimal_cache = crate::competitive::Cache::new(store.optimal_paths()?);
     let store = Mutex::new(store);
     let failed = Mutex::new(Vec::new());

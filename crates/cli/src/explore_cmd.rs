@@ -114,7 +114,7 @@ pub fn check_memory(cfg: &RunConfig, truth: &Truth, memory_mb: Option<u64>) -> R
         &what,
         sim::memory::run_bytes(w * h, cfg),
         memory_mb,
-        sim::memory::available_bytes(),
+        bench::machine::available_bytes(),
         "use a map with fewer, larger cells (scale the image down and raise its resolution), \
          fewer robots, or another candidate generator",
     )?;

@@ -121,7 +121,7 @@ fn check_setup_memory(
 ) -> Result<()> {
     let needed = setup_bytes_at(map, factor, spec)?;
     let budget = (memory_mb as u64).saturating_mul(1 << 20);
-    let available = sim::memory::available_bytes();
+    let available = bench::machine::available_bytes();
     let limit = available.map_or(budget, |a| a.min(budget));
     if needed <= limit {
         return Ok(());

@@ -8,7 +8,8 @@
 //! plan (1.1 M cells): 42 B/cell for one robot, 75 with 5 robots, 113 with 10, 64 for
 //! `dt500`, 160 for a 5-robot `ha-cc`. A map the loader accepts (up to 2^28 cells) can need
 //! tens of GiB; the commands compare this estimate with `--memory-mb` and the memory the
-//! machine has available, and refuse up front instead of being killed half-way.
+//! machine has available (which they read: `sim` touches no files), and refuse up front
+//! instead of being killed half-way.
 
 use explore::candidates::CandidateKind;
 
@@ -35,20 +36,6 @@ pub fn run_bytes(cells: usize, cfg: &RunConfig) -> u64 {
         _ => 0,
     };
     BASE_BYTES + per_cell.saturating_mul(cells as u64)
-}
-
-/// Bytes of memory the machine has available now (Linux `MemAvailable`); `None` where it
-/// cannot be read.
-pub fn available_bytes() -> Option<u64> {
-    let text = std::fs::read_to_string("/proc/meminfo").ok()?;
-    mem_available(&text)
-}
-
-/// The `MemAvailable` line of a `/proc/meminfo` text, in bytes.
-fn mem_available(meminfo: &str) -> Option<u64> {
-    let line = meminfo.lines().find(|l| l.starts_with("MemAvailable:"))?;
-    let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
-    kib.checked_mul(1024)
 }
 
 /// Why a run would not fit in memory.
@@ -104,14 +91,6 @@ pub fn check(
 mod tests {
     use super::*;
     use explore::strategy::Strategy;
-
-    #[test]
-    fn mem_available_reads_the_kib_line() {
-        let text = "MemTotal:       24000000 kB\nMemFree:   100 kB\nMemAvailable:   2048 kB\n";
-        assert_eq!(mem_available(text), Some(2048 * 1024));
-        assert_eq!(mem_available("MemTotal: 1 kB\n"), None);
-        assert_eq!(mem_available("MemAvailable: lots kB\n"), None);
-    }
 
     #[test]
     fn estimate_grows_with_robots_and_coverage_candidates() {
