@@ -51,7 +51,7 @@ cleanup() {
     kill -9 "$pid" 2>/dev/null || true
   done
   if ((rc != 0)); then
-    for log in "$T"/*.log "$T"/work/*.out; do
+    for log in "$T"/*.log "$T"/jobs/*.out; do
       [[ -f $log ]] && { say "--- $log"; tail -n 20 "$log" >&2; }
     done
   fi
@@ -82,7 +82,7 @@ NODE=$(hostname -s)
 USER_NAME=$(id -un)
 CPUS=16
 PORT=${SLURM_E2E_PORT:-16817}
-mkdir -p "$T/state" "$T/spool" "$T/work"
+mkdir -p "$T/state" "$T/spool" "$T/jobs"
 cat >"$T/slurm.conf" <<EOF
 ClusterName=frontier-e2e
 SlurmctldHost=$NODE(127.0.0.1)
@@ -130,8 +130,8 @@ done
 [[ $state == idle ]] || fail "node $NODE is '$state', not idle, after 60 s"
 say "cluster up ($NODE, $CPUS CPUs); submitting $STUDY as $N shards"
 
-OUT=$T/work/out
-cd "$T/work"
+OUT=$T/jobs/out
+cd "$T/jobs"
 submitted=$("$ROOT/scripts/slurm/submit.sh" "$STUDY" "$OUT" "$N")
 echo "$submitted"
 MERGE=${submitted##*job }
