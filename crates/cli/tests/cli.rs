@@ -919,19 +919,29 @@ fn frontier_on_a_read_only_database(db: &Path, writable: &Path, args: &[&str]) -
     out
 }
 
+/// A finished tiny study `ro/tiny.sqlite` under `dir`, and an empty `out` folder beside
+/// it: (ro, out, db).
+#[cfg(unix)]
+fn finished_study_in_ro(
+    dir: &Path,
+) -> (std::path::PathBuf, std::path::PathBuf, std::path::PathBuf) {
+    let ro = dir.join("ro");
+    let out = dir.join("out");
+    std::fs::create_dir(&ro).unwrap();
+    std::fs::create_dir(&out).unwrap();
+    let study = tiny_study(dir, 7);
+    let db = ro.join("tiny.sqlite");
+    bench_shard(&study, &db, "1/1");
+    (ro, out, db)
+}
+
 /// Regression: `bench export` opened the database for writing, so it failed on a database
 /// the user may only read (a finished study on a shared, read-only file system).
 #[cfg(unix)]
 #[test]
 fn export_reads_a_read_only_database() {
     let dir = tempfile::tempdir().unwrap();
-    let ro = dir.path().join("ro");
-    let out = dir.path().join("out");
-    std::fs::create_dir(&ro).unwrap();
-    std::fs::create_dir(&out).unwrap();
-    let study = tiny_study(dir.path(), 7);
-    let db = ro.join("tiny.sqlite");
-    bench_shard(&study, &db, "1/1");
+    let (ro, out, db) = finished_study_in_ro(dir.path());
     let before = snapshot(&ro);
     let csv = out.join("tiny.csv");
     let args = [
@@ -957,13 +967,7 @@ fn export_reads_a_read_only_database() {
 #[test]
 fn report_reads_a_read_only_database() {
     let dir = tempfile::tempdir().unwrap();
-    let ro = dir.path().join("ro");
-    let out = dir.path().join("out");
-    std::fs::create_dir(&ro).unwrap();
-    std::fs::create_dir(&out).unwrap();
-    let study = tiny_study(dir.path(), 7);
-    let db = ro.join("tiny.sqlite");
-    bench_shard(&study, &db, "1/1");
+    let (ro, out, db) = finished_study_in_ro(dir.path());
     let before = snapshot(&ro);
     let report = out.join("report");
     let args = [

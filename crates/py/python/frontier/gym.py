@@ -70,6 +70,12 @@ def _source(
     return maps, None
 
 
+def _check_invalid_action(invalid_action: str) -> None:
+    """Raise ValueError unless ``invalid_action`` is 'wrap' or 'raise'."""
+    if invalid_action not in ("wrap", "raise"):
+        raise ValueError(f"invalid_action: expected 'wrap' or 'raise', found {invalid_action!r}")
+
+
 def _core_args(
     maps: MapsArg,
     size: Optional[Tuple[float, float]],
@@ -194,10 +200,7 @@ class ExploreEnv(gymnasium.Env):
         render_mode: Optional[str] = None,
         **run: Any,
     ) -> None:
-        if invalid_action not in ("wrap", "raise"):
-            raise ValueError(
-                f"invalid_action: expected 'wrap' or 'raise', found {invalid_action!r}"
-            )
+        _check_invalid_action(invalid_action)
         if render_mode is not None and render_mode not in self.metadata["render_modes"]:
             raise ValueError(f"render_mode: expected 'rgb_array' or None, found {render_mode!r}")
         self._core = _native.EnvCore(
@@ -279,10 +282,7 @@ class ExploreVectorEnv(VectorEnv):
         threads: Optional[int] = None,
         **run: Any,
     ) -> None:
-        if invalid_action not in ("wrap", "raise"):
-            raise ValueError(
-                f"invalid_action: expected 'wrap' or 'raise', found {invalid_action!r}"
-            )
+        _check_invalid_action(invalid_action)
         self._core = _native.VecEnvCore(
             num_envs,
             threads=threads,
