@@ -4,7 +4,9 @@
 //! assigned to the robots optimally, the cost of robot i for cluster j being the length of
 //! an open TSP route from the robot through the goals of the cluster (Faigl, Kulich &
 //! Přeučil's ⟨cluster first, route second⟩); each robot's next goal is the first goal of
-//! its route. Robot-to-goal costs are path lengths from the robots' reachability maps.
+//! its route. Robot-to-goal costs are path lengths from the robots' searches, each grown
+//! only until it has settled every candidate (the costs are final then, bit for bit those
+//! of a full map; [`super::costs`]).
 //!
 //! Choices and deviations:
 //! - **Goal-to-goal distances** are not searched (that would be a Dijkstra per goal): we
@@ -25,6 +27,7 @@
 //!   failing that its cheapest goal taken or not (as HA does).
 //! - k-means++ seeding draws from the run's generator: MA is stochastic, as in the paper.
 
+use super::costs::LazyCosts;
 use crate::candidates::CandidateSet;
 use crate::decision::{DecisionCtx, Goal};
 use crate::kmeans::{Init, KMeans, Point};
@@ -54,6 +57,8 @@ pub struct State {
     cluster_of: Vec<usize>,
     fast: OpenTsp,
     full: OpenTsp,
+    /// The robots' searches, grown until every candidate is settled.
+    lazy: LazyCosts,
 }
 
 impl Default for State {
@@ -72,6 +77,7 @@ impl Default for State {
             cluster_of: Vec::new(),
             fast: OpenTsp::with_effort(1, 0),
             full: OpenTsp::new(),
+            lazy: LazyCosts::default(),
         }
     }
 }
@@ -133,8 +139,13 @@ fn run(
     if candidates.is_empty() || !ctx.deciding.iter().any(|&d| d) {
         return;
     }
+    // Each robot's search grows until it has settled every candidate (or all it can
+    // reach): the costs MA reads are then final, and the cells beyond are never searched.
+    st.lazy.reset(m);
     for r in 0..m {
-        ctx.planner.full(r, ctx.robots[r], ctx.known, ctx.upkeep);
+        while !st.lazy.step(ctx, candidates, r, false) && st.lazy.found(r).len() < candidates.len()
+        {
+        }
     }
     let planner = &*ctx.planner;
     let taken = |c: u32| (0..m).any(|r| !ctx.deciding[r] && ctx.goals[r] == Some(c));
