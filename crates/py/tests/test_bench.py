@@ -52,6 +52,19 @@ def test_load_into_pandas_matches_the_csv_export(store):
     assert len(means) == 4
 
 
+def test_load_into_polars_matches_pandas(store):
+    pl = pytest.importorskip("polars")
+    df = frontier.bench.load(store / "tiny.sqlite", backend="polars")
+    assert isinstance(df, pl.DataFrame)
+    pdf = frontier.bench.load(store / "tiny.sqlite")
+    assert df.columns == list(pdf.columns)
+    assert df["key"].to_list() == list(pdf["key"])
+    assert df["total_path"].to_list() == pytest.approx(pdf["total_path"].tolist())
+    assert df["path_lengths"].to_list() == list(pdf["path_lengths"])
+    means = df.group_by(["strategy", "robots"]).agg(pl.col("max_path").mean())
+    assert means.height == 4
+
+
 def test_rows_equal_explore(store):
     row = next(r for r in frontier.bench.rows(store / "tiny.sqlite") if r["robots"] == 1)
     m = frontier.Map.generate("office", seed=0, size=(15, 12), resolution=0.25)
