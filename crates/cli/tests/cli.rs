@@ -710,6 +710,25 @@ fn huge_map_explore_is_refused_with_the_memory_it_needs() {
     assert!(e.contains("more than --memory-mb 100"), "{e}");
 }
 
+/// `segment` estimates its memory before segmenting, like every command that takes a map.
+#[test]
+fn huge_map_segment_is_refused_with_the_memory_it_needs() {
+    let dir = tempfile::tempdir().unwrap();
+    let map = open_map(dir.path(), 2000);
+    let e = err(&[
+        "segment",
+        "--map",
+        map.to_str().unwrap(),
+        "--resolution",
+        "0.05",
+        "--memory-mb",
+        "100",
+    ]);
+    assert!(e.contains("segmenting this 2000x2000 map"), "{e}");
+    assert!(e.contains("needs about 200 MiB"), "{e}");
+    assert!(e.contains("more than --memory-mb 100"), "{e}");
+}
+
 /// Regression: `optimal --memory-mb 64` on a 1200 × 1200 map spent 840 MB setting up and
 /// then reported bounds after 0 expansions as a success; the set-up is estimated first and
 /// the command names a `--cell-size` that fits.
