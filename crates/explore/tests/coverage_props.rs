@@ -114,7 +114,7 @@ proptest! {
     fn cover_equals_the_slow_greedy_and_is_sound(
         bits in prop::collection::vec(0u8..100, 37),
         cut in 6usize..16,
-        range in 1.0f64..7.0,
+        range in prop_oneof![1.0f64..7.0, 24.0f64..32.0],
         visited in prop::collection::vec(0usize..256, 0..4),
     ) {
         let (w, h) = (16, 16);
@@ -169,7 +169,7 @@ proptest! {
     fn cover_with_cached_visibility_equals_a_fresh_one(
         bits in prop::collection::vec(0u8..100, 97),
         cut in 10usize..40,
-        range in 1.0f64..12.0,
+        range in prop_oneof![1.0f64..12.0, 24.0f64..40.0],
         rounds in prop::collection::vec(
             (0usize..40, 0usize..24, 1usize..12, 1usize..8, prop::collection::vec(0u8..100, 7)),
             1..6,

@@ -1,4 +1,5 @@
-//! One `los` scan + `KnownGrid` integration at r = 100 cells, and the template build.
+//! One `los` scan + `KnownGrid` integration at r = 100 cells, the template build, and the
+//! ray template against shadow casting ([`sense::shadow`]) at several ranges.
 
 use std::hint::black_box;
 
@@ -63,6 +64,32 @@ fn bench(c: &mut Criterion) {
                 black_box(obs.len())
             })
         });
+    }
+    // Ray template against shadow casting, the same cells, by range.
+    let mut scratch = sense::shadow::ShadowScratch::default();
+    for (name, truth) in [("open", Grid::new(N, N, Occ::Free)), ("rooms", rooms())] {
+        for r in [12.0, 28.0, 64.0, 128.0] {
+            let los = LosSensor::new(r).expect("valid range");
+            let mut n = 0usize;
+            c.bench_function(&format!("visible_template_r{r}_{name}"), |b| {
+                b.iter(|| {
+                    los.for_each_seen(black_box(&truth), pose.cell, |i, _| n += i as usize);
+                })
+            });
+            c.bench_function(&format!("visible_shadow_r{r}_{name}"), |b| {
+                b.iter(|| {
+                    sense::shadow::visible(
+                        black_box(&truth),
+                        pose.cell,
+                        r,
+                        |s| s == Occ::Free,
+                        &mut scratch,
+                        |i, _| n += i as usize,
+                    )
+                })
+            });
+            black_box(n);
+        }
     }
     let mut g = c.benchmark_group("template");
     g.sample_size(10);

@@ -9,9 +9,10 @@
 //! How it is computed: visibility under the exact segment rule of `sense::segment` is
 //! symmetric between two free cells (the same cells are crossed and the same vertices
 //! touched either way, and both ends are free), so C_i is what a line-of-sight scan *from*
-//! f_i sees: one walk of the shared ray template per frontier cell over the belief
-//! (unknown cells are opaque), keeping free cells that are traversable, reachable and not
-//! on the goal lists. The incidences go into two flat adjacency arrays (frontier →
+//! f_i sees: one scan per frontier cell over the belief (unknown cells are opaque) — by
+//! shadow casting ([`sense::shadow`], time ∝ the cells looked at) from 20 cells of range
+//! on, by the shared ray template below — keeping free cells that are traversable, reachable and not on the
+//! goal lists. The incidences go into two flat adjacency arrays (frontier →
 //! covering cells, covering cell → frontiers), and the greedy choice uses a lazy max-heap
 //! on the uncovered counts (counts only fall, so a popped entry whose count is current is
 //! the maximum). Cost ∝ the number of (frontier, covering cell) pairs; all buffers live in
@@ -29,6 +30,7 @@
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
 
+use sense::shadow::{self, ShadowScratch};
 use sense::{LosSensor, MAX_TEMPLATE_RANGE_CELLS};
 
 use grid::{Grid, Occ};
@@ -45,8 +47,8 @@ const NOT_ELIGIBLE: u32 = u32::MAX;
 /// Visibility buffers and the last cover, kept across decisions.
 #[derive(Default)]
 pub struct State {
-    /// Range the sensor was built for, and the sensor.
-    sensor: Option<(f64, LosSensor)>,
+    /// The ray template, for ranges where it is faster than shadow casting.
+    template: Option<(f64, LosSensor)>,
     /// F: the frontier cells to cover.
     front: Vec<u32>,
     /// Frontier k's covering candidates are `f_cov[f_start[k]..f_start[k + 1]]` (ids).
@@ -99,6 +101,8 @@ struct Visibility {
     spare: Vec<u32>,
     /// Per entry: still a frontier to cover in this decision.
     used: Vec<u32>,
+    /// Buffers of the shadow-casting scans.
+    scratch: ShadowScratch,
 }
 
 /// No cache entry.
@@ -163,8 +167,9 @@ impl Visibility {
         })
     }
 
-    /// The entry of frontier cell `f`, scanned again if the belief changed where it looked.
-    fn get(&mut self, f: u32, known: &Grid<Occ>, sensor: &LosSensor) -> u32 {
+    /// The entry of frontier cell `f`, scanned again (within `range` cells) if the belief
+    /// changed where it looked.
+    fn get(&mut self, f: u32, known: &Grid<Occ>, range: f64, template: Option<&LosSensor>) -> u32 {
         let mut k = self.slot[f as usize];
         if k != NONE && self.valid(&self.entries[k as usize]) {
             self.used[k as usize] = self.decision;
@@ -178,29 +183,53 @@ impl Visibility {
             });
             self.slot[f as usize] = k;
         }
-        let w = known.width();
-        let (bw, bh) = (self.blocks_x, self.changed_at.len() / self.blocks_x.max(1));
         let e = &mut self.entries[k as usize];
         e.cell = f;
         e.made = self.decision;
         e.free.clear();
-        let (fx, fy) = (f as usize % w, f as usize / w);
-        let (mut x0, mut x1, mut y0, mut y1) = (fx, fx, fy, fy);
-        sensor.for_each_seen(known, known.cell(f as usize), |i, s| {
-            let (x, y) = (i as usize % w, i as usize / w);
-            x0 = x0.min(x);
-            x1 = x1.max(x);
-            y0 = y0.min(y);
-            y1 = y1.max(y);
-            if s == Occ::Free {
-                e.free.push(i);
-            }
-        });
-        // one cell more each way: the squeeze test reads the cells beside a diagonal step
-        e.bx0 = (x0.saturating_sub(1) / BLOCK) as u32;
-        e.by0 = (y0.saturating_sub(1) / BLOCK) as u32;
-        e.bx1 = ((x1 + 1) / BLOCK).min(bw - 1) as u32;
-        e.by1 = ((y1 + 1) / BLOCK).min(bh - 1) as u32;
+        if let Some(sensor) = template {
+            // Short ranges: the ray template is the faster walk.
+            let w = known.width();
+            let (bw, bh) = (self.blocks_x, self.changed_at.len() / self.blocks_x.max(1));
+            let (fx, fy) = (f as usize % w, f as usize / w);
+            let (mut x0, mut x1, mut y0, mut y1) = (fx, fx, fy, fy);
+            sensor.for_each_seen(known, known.cell(f as usize), |i, s| {
+                let (x, y) = (i as usize % w, i as usize / w);
+                x0 = x0.min(x);
+                x1 = x1.max(x);
+                y0 = y0.min(y);
+                y1 = y1.max(y);
+                if s == Occ::Free {
+                    e.free.push(i);
+                }
+            });
+            // one cell more each way: the squeeze test reads the cells beside a diagonal step
+            e.bx0 = (x0.saturating_sub(1) / BLOCK) as u32;
+            e.by0 = (y0.saturating_sub(1) / BLOCK) as u32;
+            e.bx1 = ((x1 + 1) / BLOCK).min(bw - 1) as u32;
+            e.by1 = ((y1 + 1) / BLOCK).min(bh - 1) as u32;
+            self.used[k as usize] = self.decision;
+            return k;
+        }
+        let read = shadow::visible(
+            known,
+            known.cell(f as usize),
+            range,
+            |s| s == Occ::Free,
+            &mut self.scratch,
+            |i, s| {
+                if s == Occ::Free {
+                    e.free.push(i);
+                }
+            },
+        );
+        // The scan read only the cells of this box, so it stays valid until one changes.
+        if let Some(b) = read {
+            e.bx0 = (b.x0 / BLOCK) as u32;
+            e.by0 = (b.y0 / BLOCK) as u32;
+            e.bx1 = (b.x1 / BLOCK) as u32;
+            e.by1 = (b.y1 / BLOCK) as u32;
+        }
         self.used[k as usize] = self.decision;
         k
     }
@@ -262,9 +291,11 @@ fn cover(ctx: &mut DecisionCtx<'_>, st: &mut State) {
     };
     let range = (COVER_FRACTION * ctx.sensor_range_cells).clamp(0.0, MAX_TEMPLATE_RANGE_CELLS);
     let range = if range.is_finite() { range } else { 0.0 };
-    if st.sensor.as_ref().is_none_or(|(r0, _)| *r0 != range) {
+    if range >= shadow::FASTER_FROM_RANGE {
+        st.template = None;
+    } else if st.template.as_ref().is_none_or(|(r0, _)| *r0 != range) {
         match LosSensor::new(range) {
-            Ok(s) => st.sensor = Some((range, s)),
+            Ok(s) => st.template = Some((range, s)),
             Err(_) => return, // unreachable: the range was clamped into the valid interval
         }
     }
@@ -280,7 +311,6 @@ fn cover(ctx: &mut DecisionCtx<'_>, st: &mut State) {
     let lists = ctx.lists;
     let reach = ctx.planner.component(r, ctx.robots[r], known, ctx.upkeep);
     let upkeep = &*ctx.upkeep;
-    let sensor = &st.sensor.as_ref().expect("built above").1;
     st.vis.start(known);
 
     // Lines 2–4: covering cells of every frontier cell.
@@ -297,7 +327,9 @@ fn cover(ctx: &mut DecisionCtx<'_>, st: &mut State) {
         (&mut st.cands, &mut st.count, &mut st.f_cov, &mut st.f_start);
     for &f in &st.front {
         f_start.push(f_cov.len() as u32);
-        let k = st.vis.get(f, known, sensor);
+        let k = st
+            .vis
+            .get(f, known, range, st.template.as_ref().map(|t| &t.1));
         for &i in &st.vis.entries[k as usize].free {
             let iu = i as usize;
             if stamp[iu] == epoch {

@@ -1,0 +1,371 @@
+//! Exact line of sight by shadow casting: the cells [`segment_clear`] sees, found in time
+//! proportional to the cells looked at rather than to the rays cast.
+//!
+//! The ray template of [`LosSensor`](crate::LosSensor) walks one ray per target cell
+//! (about 0.9 r³ tree nodes in open space). Here the map is swept octant by octant, column
+//! by column outward from the origin, keeping the set of blocked ray slopes:
+//!
+//! - a non-transparent cell blocks, for every cell in a later column, exactly the rays
+//!   through its open interior: the open interval of slopes between its extreme corners
+//!   (in the octant where `0 ≤ y ≤ x`, a ray's x only grows, so a cell in an earlier
+//!   column lies before every later target on the ray, and a cell in the same column
+//!   never meets the open interior of a ray to another cell of that column);
+//! - a grid vertex between two non-transparent cells touching it diagonally blocks the
+//!   single ray through it (the squeeze rule of [`crate::segment`]);
+//! - a target is seen iff its centre's slope lies in no blocked interval and on no blocked
+//!   vertex ray.
+//!
+//! Slopes are exact fractions of small integers (doubled coordinates), so the result is
+//! [`segment_clear`]'s bit for bit; a property test checks it against that oracle. Only
+//! cells whose closed cone of slopes meets an unblocked slope are read: a scan costs about
+//! the cells it sees plus its blocking boundary. Which cells were read is reported as a box,
+//! for callers that cache a scan until the map changes where it looked.
+//!
+//! [`segment_clear`]: crate::segment_clear
+
+use grid::{Grid, Occ};
+
+/// The range (cells) from which shadow casting is faster than the ray template: per scan
+/// on a 400 × 400 map (`cargo bench -p sense --bench scan -- visible_`), open space /
+/// rooms, template against shadow casting: r = 12: 4.8 / 4.8 µs against 8.6 / 7.1 µs;
+/// r = 28: 90 / 40 µs against 42 / 30 µs; r = 64: 1.04 ms / 172 µs against 203 / 60 µs;
+/// r = 128: 6.1 ms / 630 µs against 664 / 146 µs.
+pub const FASTER_FROM_RANGE: f64 = 20.0;
+
+/// A slope `num / den` (`den > 0`), compared exactly.
+#[derive(Clone, Copy, Debug)]
+struct Slope {
+    num: i64,
+    den: i64,
+}
+
+impl Slope {
+    fn new(num: i64, den: i64) -> Self {
+        Self { num, den }
+    }
+    fn lt(self, o: Slope) -> bool {
+        self.num * o.den < o.num * self.den
+    }
+    fn le(self, o: Slope) -> bool {
+        self.num * o.den <= o.num * self.den
+    }
+    fn eq(self, o: Slope) -> bool {
+        self.num * o.den == o.num * self.den
+    }
+}
+
+/// The blocked slopes of one octant: disjoint open intervals sorted by their ends (two may
+/// touch: the shared end stays open), and single blocked slopes (squeezed vertices).
+#[derive(Default)]
+struct Shadows {
+    open: Vec<(Slope, Slope)>,
+    points: Vec<Slope>,
+}
+
+impl Shadows {
+    fn clear(&mut self) {
+        self.open.clear();
+        self.points.clear();
+    }
+
+    /// Block the open interval `(lo, hi)`.
+    fn add(&mut self, lo: Slope, hi: Slope) {
+        // First interval that ends after `lo`, then every one that starts before `hi`.
+        let a = self.open.partition_point(|&(_, h)| h.le(lo));
+        let mut b = a;
+        let (mut nlo, mut nhi) = (lo, hi);
+        while b < self.open.len() && self.open[b].0.lt(hi) {
+            if self.open[b].0.lt(nlo) {
+                nlo = self.open[b].0;
+            }
+            if nhi.lt(self.open[b].1) {
+                nhi = self.open[b].1;
+            }
+            b += 1;
+        }
+        self.open.splice(a..b, [(nlo, nhi)]);
+    }
+
+    /// Block the single slope `p` (kept sorted).
+    fn add_point(&mut self, p: Slope) {
+        let k = self.points.partition_point(|&q| q.lt(p));
+        if !self.points.get(k).is_some_and(|&q| q.eq(p)) {
+            self.points.insert(k, p);
+        }
+    }
+}
+
+/// Scratch buffers of [`visible`], reused between scans.
+#[derive(Default)]
+pub struct ShadowScratch {
+    shadows: Shadows,
+    /// Rows of the current column to look at, as inclusive ranges.
+    rows: Vec<(i64, i64)>,
+    /// Blocking cells of the current column (row indices).
+    blocking: Vec<i64>,
+}
+
+/// The box of grid cells a scan read: columns `x0..=x1`, rows `y0..=y1`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ReadBox {
+    /// Leftmost column read.
+    pub x0: usize,
+    /// Topmost row read.
+    pub y0: usize,
+    /// Rightmost column read.
+    pub x1: usize,
+    /// Bottom row read.
+    pub y1: usize,
+}
+
+/// Call `seen(flat index, state)` for every cell of `grid` within `range` cells of
+/// `origin` whose segment from `origin` crosses only `transparent` cells and squeezes
+/// between no two non-transparent ones ([`crate::segment`]'s rule with `transparent` for
+/// "free"); cells outside the grid are opaque and never reported. Each cell is reported
+/// once, in no particular order. Returns the box of cells whose state was read (`None` if
+/// `origin` is outside the grid).
+pub fn visible(
+    grid: &Grid<Occ>,
+    origin: grid::Cell,
+    range: f64,
+    transparent: impl Fn(Occ) -> bool,
+    scratch: &mut ShadowScratch,
+    mut seen: impl FnMut(u32, Occ),
+) -> Option<ReadBox> {
+    let (w, h) = (grid.width() as i64, grid.height() as i64);
+    let (ox, oy) = (i64::from(origin.x), i64::from(origin.y));
+    if ox < 0 || oy < 0 || ox >= w || oy >= h {
+        return None;
+    }
+    let data = grid.data();
+    let o = (oy * w + ox) as usize;
+    let mut rb = ReadBox {
+        x0: ox as usize,
+        y0: oy as usize,
+        x1: ox as usize,
+        y1: oy as usize,
+    };
+    seen(o as u32, data[o]);
+    if !transparent(data[o]) || range.is_nan() || range < 1.0 {
+        return Some(rb);
+    }
+    let reach = range.floor().min((w + h) as f64) as i64;
+    // Targets: squared distance within range² (integers, as `within_range`).
+    let r2 = (range * range).floor().min((4 * (w + h) * (w + h)) as f64) as i64;
+    // Blockers beyond the range cannot lie on a segment to a target within it; one cell
+    // more is read as a margin (reading a cell is always safe).
+    let blocker_reach2 = (reach + 1) * (reach + 1);
+    let state = |gx: i64, gy: i64| -> Option<Occ> {
+        (gx >= 0 && gy >= 0 && gx < w && gy < h).then(|| data[(gy * w + gx) as usize])
+    };
+    for octant in 0..8u8 {
+        let swap = octant & 4 != 0;
+        let sx = if octant & 1 == 0 { 1 } else { -1 };
+        let sy = if octant & 2 == 0 { 1 } else { -1 };
+        // Local (x, y), 0 ≤ y ≤ x, to grid coordinates.
+        let to_grid = |x: i64, y: i64| {
+            let (a, b) = if swap { (y, x) } else { (x, y) };
+            (ox + sx * a, oy + sy * b)
+        };
+        // The local box of the cells read: columns 0..=xmax, rows ymin..=ymax.
+        let (mut xmax, mut ymin, mut ymax) = (0i64, 0i64, 0i64);
+        let sh = &mut scratch.shadows;
+        sh.clear();
+        for x in 1..=reach + 1 {
+            // Rows whose closed cone meets an unblocked slope of [0, 1].
+            scratch.rows.clear();
+            let push_gap = |g0: Slope, g1: Slope, rows: &mut Vec<(i64, i64)>| {
+                // (2y − 1)/(2x + 1) ≤ g1 and (2y + 1)/(2x − 1) ≥ g0.
+                let hi = (g1.num * (2 * x + 1) + g1.den).div_euclid(2 * g1.den);
+                let lo = -((-(g0.num * (2 * x - 1) - g0.den)).div_euclid(2 * g0.den));
+                let (lo, hi) = (lo.max(0), hi.min(x));
+                if lo <= hi {
+                    match rows.last_mut() {
+                        Some(last) if last.1 >= lo - 1 => last.1 = last.1.max(hi),
+                        _ => rows.push((lo, hi)),
+                    }
+                }
+            };
+            let (zero, one) = (Slope::new(0, 1), Slope::new(1, 1));
+            let mut from = zero;
+            for &(l, hgh) in &sh.open {
+                if hgh.le(zero) {
+                    continue;
+                }
+                if one.lt(l) {
+                    break;
+                }
+                // The gap [from, l]: the ends of blocked open intervals are not blocked.
+                if from.le(l) {
+                    push_gap(from, l, &mut scratch.rows);
+                }
+                from = hgh;
+            }
+            if from.le(one) {
+                push_gap(from, one, &mut scratch.rows);
+            }
+            if scratch.rows.is_empty() {
+                break;
+            }
+            // Pass 1: the blocking cells of this column widen the shadows.
+            scratch.blocking.clear();
+            for &(lo, hi) in &scratch.rows {
+                // Read: columns up to x, rows lo..=hi + 1 (the cell up-left of a corner).
+                xmax = x;
+                ymin = ymin.min(lo);
+                ymax = ymax.max(hi + 1);
+                for y in lo..=hi {
+                    if x * x + y * y > blocker_reach2 {
+                        break;
+                    }
+                    // (Its closed cone meets an unblocked slope, so it is not hidden.)
+                    let (gx, gy) = to_grid(x, y);
+                    if state(gx, gy).is_some_and(&transparent) {
+                        continue;
+                    }
+                    scratch.blocking.push(y);
+                    // The vertex at its upper-left corner (local), between it and the
+                    // cell diagonally up-left, when that ray is in this octant.
+                    if y < x {
+                        let (ux, uy) = to_grid(x - 1, y + 1);
+                        if !state(ux, uy).is_some_and(&transparent) {
+                            sh.add_point(Slope::new(2 * y + 1, 2 * x - 1));
+                        }
+                    }
+                }
+            }
+            // Pass 2: the targets of this column, by increasing slope (so the blocked
+            // intervals and points are walked once).
+            let (mut k, mut kp) = (0, 0);
+            for &(lo, hi) in &scratch.rows {
+                for y in lo..=hi {
+                    if x * x + y * y > r2 {
+                        break;
+                    }
+                    // Each boundary cell once: the axes in one octant of each pair, the
+                    // diagonals in the unswapped ones.
+                    if (y == 0 && (if swap { sx != 1 } else { sy != 1 })) || (y == x && swap) {
+                        continue;
+                    }
+                    let t = Slope::new(y, x);
+                    while k < sh.open.len() && sh.open[k].1.le(t) {
+                        k += 1;
+                    }
+                    while kp < sh.points.len() && sh.points[kp].lt(t) {
+                        kp += 1;
+                    }
+                    if (k < sh.open.len() && sh.open[k].0.lt(t))
+                        || (kp < sh.points.len() && sh.points[kp].eq(t))
+                    {
+                        continue;
+                    }
+                    let (gx, gy) = to_grid(x, y);
+                    if let Some(s) = state(gx, gy) {
+                        seen((gy * w + gx) as u32, s);
+                    }
+                }
+            }
+            for k in 0..scratch.blocking.len() {
+                let y = scratch.blocking[k];
+                sh.add(
+                    Slope::new(2 * y - 1, 2 * x + 1),
+                    Slope::new(2 * y + 1, 2 * x - 1),
+                );
+            }
+        }
+        for (lx, ly) in [(0, ymin), (xmax, ymax)] {
+            let (gx, gy) = to_grid(lx, ly);
+            let (cx, cy) = (gx.clamp(0, w - 1) as usize, gy.clamp(0, h - 1) as usize);
+            rb.x0 = rb.x0.min(cx);
+            rb.x1 = rb.x1.max(cx);
+            rb.y0 = rb.y0.min(cy);
+            rb.y1 = rb.y1.max(cy);
+        }
+    }
+    Some(rb)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::segment::los_visible;
+    use crate::{LosSensor, sensor::observed};
+    use grid::Cell;
+    use proptest::prelude::*;
+
+    fn grid_from(w: usize, h: usize, bits: &[u8], density: u8) -> Grid<Occ> {
+        let mut g = Grid::new(w, h, Occ::Free);
+        for (i, &b) in bits.iter().cycle().take(w * h).enumerate() {
+            let v = b % 100;
+            if v < density {
+                g.data_mut()[i] = if v % 3 == 0 {
+                    Occ::Unknown
+                } else {
+                    Occ::Occupied
+                };
+            }
+        }
+        g
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(300))]
+
+        /// Exactly the cells the segment oracle sees, each once.
+        #[test]
+        fn shadow_casting_equals_the_segment_oracle(
+            bits in proptest::collection::vec(any::<u8>(), 16..300),
+            density in 0u8..60,
+            w in 1usize..24,
+            h in 1usize..24,
+            ox in 0i32..24,
+            oy in 0i32..24,
+            range in 0.0f64..14.0,
+        ) {
+            let g = grid_from(w, h, &bits, density);
+            let origin = Cell::new(ox % w as i32, oy % h as i32);
+            let mut got = vec![0u8; w * h];
+            let mut scratch = ShadowScratch::default();
+            visible(&g, origin, range, |s| s == Occ::Free, &mut scratch, |i, s| {
+                got[i as usize] += 1;
+                assert_eq!(s, g.data()[i as usize]);
+            });
+            for (i, &n) in got.iter().enumerate() {
+                let c = g.cell(i);
+                let want = c == origin
+                    || (*g.get(origin) == Occ::Free && los_visible(&g, origin, c, range));
+                prop_assert_eq!(n, u8::from(want), "cell {:?} from {:?}", c, origin);
+            }
+        }
+    }
+
+    /// The same cells as the ray template, at the ranges CC uses on fine maps.
+    #[test]
+    fn shadow_casting_equals_the_template_on_a_large_map() {
+        let bits: Vec<u8> = (0..977u32).map(|i| (i * 37 % 251) as u8).collect();
+        for (density, range) in [(3u8, 60.0), (10, 45.5), (0, 70.0), (25, 30.0)] {
+            let g = grid_from(150, 130, &bits, density);
+            let los = LosSensor::new(range).unwrap();
+            let mut scratch = ShadowScratch::default();
+            for origin in [Cell::new(75, 65), Cell::new(3, 4), Cell::new(149, 60)] {
+                let mut want = Vec::new();
+                los.for_each_seen(&g, origin, |i, s| want.push((i, s)));
+                let mut got = Vec::new();
+                visible(
+                    &g,
+                    origin,
+                    range,
+                    |s| s == Occ::Free,
+                    &mut scratch,
+                    |i, s| got.push((i, observed(s))),
+                );
+                want.sort_unstable_by_key(|p| p.0);
+                got.sort_unstable_by_key(|p| p.0);
+                assert_eq!(
+                    got, want,
+                    "density {density}, range {range}, origin {origin:?}"
+                );
+            }
+        }
+    }
+}
