@@ -28,6 +28,7 @@ const KEYS: &[&str] = &[
     "goal",
     "max_moves",
     "trajectories",
+    "clutter",
 ];
 
 /// Read `explore`'s keyword arguments from `kw` into options (CLI defaults for the rest).
@@ -98,6 +99,8 @@ pub(crate) fn options(kw: Option<&Bound<'_, PyDict>>) -> PyResult<ExploreOptions
                 })?;
             }
             "trajectories" => o.record_trace = v.extract().map_err(|_| typed("a bool"))?,
+            // Read by `job` (it is a map, not an option).
+            "clutter" => {}
             _ => {
                 return Err(PyTypeError::new_err(format!(
                     "explore() got an unexpected keyword argument '{key}' (expected one of {})",
@@ -117,11 +120,45 @@ struct Job {
 
 fn job(map: &Map, kw: Option<&Bound<'_, PyDict>>) -> PyResult<Job> {
     let o = options(kw)?;
-    let cfg = config(&o, &map.map, None).map_err(value_error)?;
+    let clutter = match kw.map(|kw| kw.get_item("clutter")).transpose()?.flatten() {
+        Some(v) if !v.is_none() => Some(clutter_layer(map, &v)?),
+        _ => None,
+    };
+    let cfg = config(&o, &map.map, clutter).map_err(value_error)?;
     Ok(Job {
         map: map.clone(),
         cfg,
     })
+}
+
+/// Off-plane obstacles (`clutter=`, as the CLI's `--clutter-map`): the occupied cells of
+/// a `Map` of the map's size.
+fn clutter_layer(map: &Map, v: &Bound<'_, PyAny>) -> PyResult<grid::Grid<bool>> {
+    let layer: PyRef<'_, Map> = v.extract().map_err(|_| {
+        PyTypeError::new_err(format!(
+            "clutter: expected a frontier.Map, found {}",
+            v.get_type()
+                .name()
+                .map(|n| n.to_string())
+                .unwrap_or_default()
+        ))
+    })?;
+    let (w, h) = (map.map.width(), map.map.height());
+    if (layer.map.width(), layer.map.height()) != (w, h) {
+        return Err(value_error(format!(
+            "clutter: expected the map's size {w}x{h} cells, found {}x{}",
+            layer.map.width(),
+            layer.map.height()
+        )));
+    }
+    let cells = layer
+        .map
+        .cells
+        .data()
+        .iter()
+        .map(|&c| c == grid::Occ::Occupied)
+        .collect();
+    grid::Grid::from_vec(w, h, cells).ok_or_else(|| internal("clutter layer size".to_string()))
 }
 
 /// Run a job (panics caught).

@@ -39,6 +39,35 @@ def test_generated_map_equals_cli_env(cli, office):
     assert frontier.explore(office, seed=3).summary == want
 
 
+def test_clutter_equals_cli_clutter_map(cli, office, tmp_path):
+    # Tables off the laser plane: every free cell of a few 3 x 3 blocks.
+    cells = office.to_numpy()
+    furniture = np.zeros(cells.shape, dtype=bool)
+    for y, x in [(10, 12), (20, 30), (30, 45), (12, 40)]:
+        furniture[y:y + 3, x:x + 3] = cells[y:y + 3, x:x + 3] == 1
+    assert furniture.any()
+    layer = frontier.Map.from_numpy(furniture, 0.25)
+    office.save(tmp_path / "office.yaml")
+    layer.save(tmp_path / "clutter.yaml")
+    want = cli_json(
+        cli, "--map", str(tmp_path / "office.yaml"), "--clutter-map",
+        str(tmp_path / "clutter.yaml"), "--sensor", "lidar:r=4,fov=180,res=2", "--seed", "2",
+    )
+    loaded = frontier.Map.load(tmp_path / "office.yaml")
+    got = frontier.explore(loaded, sensor="lidar:r=4,fov=180,res=2", seed=2, clutter=layer)
+    assert got.summary == want
+    plain = frontier.explore(loaded, sensor="lidar:r=4,fov=180,res=2", seed=2)
+    assert plain.summary != want  # the body met the furniture the laser did not see
+    rows = frontier.explore_many(
+        [{"map": loaded, "sensor": "lidar:r=4,fov=180,res=2", "seed": 2, "clutter": layer}]
+    )
+    assert rows[0]["path_length_m"] == want["path_length_m"]
+    with pytest.raises(ValueError, match="clutter: expected the map's size 60x48 cells, found 2x2"):
+        frontier.explore(office, clutter=frontier.Map.from_numpy(np.zeros((2, 2), bool), 0.25))
+    with pytest.raises(TypeError, match="clutter: expected a frontier.Map"):
+        frontier.explore(office, clutter="tables")
+
+
 def test_arrays(office):
     r = frontier.explore(office, robots=2, seed=1)
     assert r.belief.shape == office.shape and r.belief.dtype == np.uint8

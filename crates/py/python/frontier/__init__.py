@@ -133,11 +133,15 @@ def explore(
     max_moves: int = 10_000_000,
     trajectories: bool = True,
     timing: bool = False,
+    clutter: Optional[Map] = None,
 ) -> ExploreResult:
     """Explore ``map`` once, as ``frontier explore`` does with the same flags.
 
     Defaults are the CLI's. ``start`` is the first robot's cell (x, y); the others start at
-    the nearest free cells around it. ``timing=True`` fills the wall-clock fields
+    the nearest free cells around it. ``clutter`` is a map of the same size whose occupied
+    cells are obstacles off the laser plane (tables, chairs), as ``--clutter-map``: planar
+    sensors miss them, sonar hears them, the robot's body bumps into them.
+    ``timing=True`` fills the wall-clock fields
     (``decide_ms``, ``timing_ms``), which are ``None`` otherwise so that equal runs give
     equal results. Raises ``ValueError`` with the CLI's message for a bad argument."""
     if not isinstance(map, Map):
@@ -147,6 +151,8 @@ def explore(
         max_moves,
     )
     kw["trajectories"] = trajectories
+    if clutter is not None:
+        kw["clutter"] = clutter
     text, belief_arr, trails = _native.explore(map, kw, timing)
     return ExploreResult(json.loads(text), belief_arr, trails)
 
@@ -164,7 +170,7 @@ def explore_many(
     table. All runs are checked before any starts."""
     keys = {
         "strategy", "sensor", "robots", "seed", "start", "belief", "sensing", "clearance",
-        "speed", "s_max", "goal", "max_moves",
+        "speed", "s_max", "goal", "max_moves", "clutter",
     }
     native_runs = []
     extras = []
