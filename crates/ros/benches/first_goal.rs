@@ -41,6 +41,29 @@ fn config() -> ExplorerConfig {
 
 fn bench(c: &mut Criterion) {
     let (msg, (x, y)) = setup();
+    if std::env::var_os("FIRST_GOAL_SPLIT").is_some() {
+        // Where the first message's time goes (one run each).
+        let t = std::time::Instant::now();
+        let frame = record::occupancy::frame_of(&msg).unwrap();
+        let mut classes = vec![grid::Occ::Unknown; frame.width * frame.height];
+        record::occupancy::classify_into(&msg, &frame, &mut classes);
+        eprintln!("classify {:?}", t.elapsed());
+        let t = std::time::Instant::now();
+        let mut up = explore::FrontierUpkeep::new(frame.width, frame.height, 4.0);
+        let _pl = explore::decision::Planner::new(frame.width, frame.height, 1);
+        eprintln!("allocate upkeep + planner {:?}", t.elapsed());
+        let known = grid::Grid::from_vec(frame.width, frame.height, classes).unwrap();
+        let t = std::time::Instant::now();
+        up.rebuild(&known);
+        eprintln!("upkeep rebuild {:?}", t.elapsed());
+        let mut ex = Explorer::new(config());
+        let t = std::time::Instant::now();
+        ex.update_map(&msg).unwrap();
+        eprintln!("update_map {:?}", t.elapsed());
+        let t = std::time::Instant::now();
+        let d = ex.decide(x, y, 0.0);
+        eprintln!("decide {:?} {d:?}", t.elapsed());
+    }
     let mut g = c.benchmark_group("map message to goal, 2000x2000 at 0.05 m");
     g.sample_size(10);
     g.bench_function("first message", |b| {

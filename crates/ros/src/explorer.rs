@@ -321,7 +321,12 @@ impl Explorer {
         let st = self.state.as_mut().expect("built above");
         self.changed.clear();
         st.belief.set_all(&self.classes, &mut self.changed);
-        st.upkeep.update(st.belief.known(), &self.changed);
+        if rebuilt {
+            // A whole new map: recounting from scratch beats updating every known cell.
+            st.upkeep.rebuild(st.belief.known());
+        } else {
+            st.upkeep.update(st.belief.known(), &self.changed);
+        }
         if rebuilt {
             // Goal lists in the new frame's cells.
             for &(x, y) in &self.visited_world {

@@ -9,7 +9,8 @@
 //!   strategy's re-plan policy and Yamauchi's visited and inaccessible lists;
 //! - [`map_belief`]: the received map as the belief;
 //! - [`params`]: the node's parameters from a ROS 2 parameters file;
-//! - [`node`]: the ROS 2 node itself (ros2-client, no ROS installation needed).
+//! - `node` (feature `node`, on by default): the ROS 2 node itself (ros2-client, no ROS
+//!   installation needed).
 //!
 //! The messages and their CDR form live in the `record` crate, shared with the MCAP reader
 //! and writer of `frontier explore`.
@@ -18,6 +19,7 @@
 
 pub mod explorer;
 pub mod map_belief;
+#[cfg(feature = "node")]
 pub mod node;
 pub mod params;
 

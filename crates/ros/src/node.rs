@@ -9,7 +9,7 @@
 //! | out | `/navigate_to_pose` | `nav2_msgs/action/NavigateToPose` | goals (not in publish-only mode) |
 //! | out | `/explore/goal` | `geometry_msgs/msg/PoseStamped` | every goal chosen |
 //! | out | `/explore/frontiers` | `visualization_msgs/msg/MarkerArray` | frontier cells and goal candidates |
-//! | out | `/explore/status` | `std_msgs/msg/String` | `exploring`, `paused`, `returning`, `done: <reason>` |
+//! | out | `/explore/status` | `std_msgs/msg/String` | `idle`, `exploring`, `waiting: <why>`, `paused`, `returning`, `done: <reason>` |
 //!
 //! The robot's pose comes from a pose topic rather than TF: AMCL (`/amcl_pose`) and
 //! slam_toolbox (`/pose`) publish one, and reading TF would need the whole tree of
@@ -34,8 +34,7 @@ use serde::{Deserialize, Serialize, de::DeserializeOwned};
 
 use record::mcap_write::markers;
 use record::msgs::{
-    Header, NavigateToPoseFeedback, NavigateToPoseGoal, NavigateToPoseResult, OccupancyGrid, Pose,
-    PoseStamped, PoseWithCovarianceStamped, Time,
+    Header, NavigateToPoseGoal, OccupancyGrid, Pose, PoseStamped, PoseWithCovarianceStamped, Time,
 };
 
 use crate::explorer::{Check, Decision, Explorer, StopReason};
@@ -62,12 +61,10 @@ pub struct Text {
     pub data: String,
 }
 
-/// The navigation action client of the node.
-type NavClient = ros2_client::action::ActionClient<
-    Ros<NavigateToPoseGoal>,
-    Ros<NavigateToPoseResult>,
-    Ros<NavigateToPoseFeedback>,
->;
+/// The navigation action client of the node. Only the goal's end status is read, so its
+/// result and feedback are read as `()` (nothing): Humble's empty result, Jazzy's error code
+/// and later additions all decode.
+type NavClient = ros2_client::action::ActionClient<Ros<NavigateToPoseGoal>, (), ()>;
 
 /// What the node is doing.
 #[derive(Clone, Debug, PartialEq)]
@@ -371,6 +368,8 @@ pub fn run(
         buf_a: Vec::new(),
         buf_b: Vec::new(),
         last_status: String::new(),
+        waiting: None,
+        reason: String::new(),
     };
     state.publish_status();
     let main = async {
@@ -407,6 +406,10 @@ struct State {
     buf_a: Vec<(f64, f64)>,
     buf_b: Vec<(f64, f64)>,
     last_status: String,
+    /// Why no goal can be chosen just now (the robot is not on the map's free space yet).
+    waiting: Option<String>,
+    /// Why exploring stopped (empty while it has not).
+    reason: String,
 }
 
 impl State {
@@ -414,8 +417,20 @@ impl State {
         self.t0.elapsed().as_secs_f64()
     }
 
+    /// `what`, after the reason exploring stopped (if it did).
+    fn after(&self, what: &str) -> String {
+        if self.reason.is_empty() {
+            what.to_string()
+        } else {
+            format!("{}; {what}", self.reason)
+        }
+    }
+
     fn publish_status(&mut self) {
-        let s = self.mode.status();
+        let mut s = self.mode.status();
+        if let (Mode::Exploring, Some(w)) = (&self.mode, &self.waiting) {
+            s = format!("waiting: {w}");
+        }
         if s != self.last_status {
             log::info!("status: {s}");
             let _ = self.status_pub.publish(Text { data: s.clone() });
@@ -456,10 +471,11 @@ impl State {
                     *self.in_flight.borrow_mut() = None;
                     match (&self.mode, outcome) {
                         (Mode::Returning, Outcome::Succeeded) => {
-                            self.mode = Mode::Done("returned to the start pose".into());
+                            self.mode = Mode::Done(self.after("returned to the start pose"));
                         }
                         (Mode::Returning, _) => {
-                            self.mode = Mode::Done("could not return to the start pose".into());
+                            self.mode =
+                                Mode::Done(self.after("could not return to the start pose"));
                         }
                         (Mode::Exploring, Outcome::Succeeded) => {
                             self.explorer.goal_reached();
@@ -485,6 +501,7 @@ impl State {
             "start" | "resume" => {
                 if matches!(self.mode, Mode::Idle | Mode::Paused | Mode::Done(_)) {
                     self.mode = Mode::Exploring;
+                    self.reason.clear();
                     self.decide(ex);
                 }
             }
@@ -532,16 +549,24 @@ impl State {
         let now = self.now_s();
         match self.explorer.decide(x, y, now) {
             Decision::Goal(g) => {
+                self.waiting = None;
                 log::info!("goal ({:.2}, {:.2}), path {:.2} m", g.x, g.y, g.cost_m);
                 self.publish_markers();
                 self.send(g.x, g.y, g.yaw, ex);
             }
             Decision::Stop(StopReason::NoMap) => {}
+            Decision::Stop(
+                r @ (StopReason::RobotOffMap { .. } | StopReason::RobotNotOnFreeSpace { .. }),
+            ) => {
+                // Often passing: the SLAM map does not show the robot's surroundings yet.
+                self.waiting = Some(r.to_string());
+            }
             Decision::Stop(r) => {
                 log::info!("stop: {r}");
                 self.publish_markers();
                 self.cancel_in_flight(ex);
                 self.mode = Mode::Done(r.to_string());
+                self.reason = r.to_string();
                 if self.params.return_to_init {
                     self.return_to_start(ex);
                 }
@@ -556,10 +581,10 @@ impl State {
                 self.mode = Mode::Returning;
                 self.send(x, y, yaw, ex);
                 if self.params.publish_only {
-                    self.mode = Mode::Done("start pose published".into());
+                    self.mode = Mode::Done(self.after("start pose published"));
                 }
             }
-            None => self.mode = Mode::Done("no start pose known".into()),
+            None => self.mode = Mode::Done(self.after("no start pose known")),
         }
     }
 

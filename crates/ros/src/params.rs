@@ -297,6 +297,16 @@ mod tests {
     }
 
     #[test]
+    fn the_example_params_file_is_valid() {
+        let mut p = Params::default();
+        let text = include_str!("../params/explore.yaml");
+        p.apply_yaml(text, "frontier_explore", "explore.yaml")
+            .unwrap();
+        assert_eq!((p.clearance, p.return_to_init), (0.25, true));
+        p.explorer_config().unwrap();
+    }
+
+    #[test]
     fn wildcard_sections_apply_to_any_node() {
         let mut p = Params::default();
         p.apply_yaml("/**:\n  ros__parameters:\n    seed: 9\n", "x", "p.yaml")
