@@ -60,7 +60,7 @@ pub fn write_run<W: Write + Seek>(
                 let (x, y) = world(cell);
                 rec.goal(t, g.robot as usize, x, y)?;
             }
-            if *next_goal % every == 0 {
+            if (*next_goal).is_multiple_of(every) {
                 rec.belief(t, belief)?;
                 frontiers.clear();
                 frontiers.extend(upkeep.frontiers.cells().iter().map(|&c| world(c)));
