@@ -14,9 +14,13 @@ pub struct MapSource {
     /// is `office`.
     #[arg(long, conflicts_with = "map")]
     pub env: Option<String>,
-    /// A map file: ROS .yaml, .pgm/.png bitmap (needs --resolution), MovingAI .map, ASCII .txt.
+    /// A map file: ROS .yaml, .pgm/.png bitmap (needs --resolution), MovingAI .map, ASCII .txt,
+    /// or an MCAP recording (.mcap: its last nav_msgs/OccupancyGrid).
     #[arg(long)]
     pub map: Option<PathBuf>,
+    /// The OccupancyGrid topic of an MCAP --map (default: its only one, or /map).
+    #[arg(long)]
+    pub topic: Option<String>,
     /// Metres per cell for bitmaps and .map files; "RX,RY" for non-square pixels; for --env,
     /// the resolution to generate at.
     #[arg(long)]
@@ -62,6 +66,28 @@ impl Truth {
         }
         Ok(self)
     }
+}
+
+/// Recordings larger than this are refused before reading (the map message itself is at
+/// most [`record::occupancy::MAX_CELLS`] bytes).
+const MAX_MCAP_BYTES: u64 = 8 << 30;
+
+/// The last OccupancyGrid of an MCAP recording.
+pub fn load_mcap_map(path: &std::path::Path, topic: Option<&str>) -> Result<GridMap> {
+    let len = std::fs::metadata(path)
+        .with_context(|| format!("reading {}", path.display()))?
+        .len();
+    if len > MAX_MCAP_BYTES {
+        bail!(
+            "{}: expected a recording of at most {MAX_MCAP_BYTES} bytes, found {len}; record \
+             only the map topic (ros2 bag record /map)",
+            path.display()
+        );
+    }
+    let bytes = std::fs::read(path).with_context(|| format!("reading {}", path.display()))?;
+    let (map, _) =
+        record::last_map(&bytes, topic).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+    Ok(map)
 }
 
 /// Parse "R" or "RX,RY" (metres per cell).
@@ -124,6 +150,9 @@ impl MapSource {
             .as_deref()
             .map(parse_resolution)
             .transpose()?;
+        if self.topic.is_some() && self.map.is_none() {
+            bail!("--topic chooses the map topic of an MCAP recording (--map FILE.mcap)");
+        }
         if let Some(path) = &self.map {
             if self.size.is_some() {
                 bail!("--size applies to generated environments (--env), not to --map");
@@ -132,7 +161,22 @@ impl MapSource {
                 resolution,
                 border: self.border,
             };
-            let map = grid::io::load_map(path, &opts)?;
+            let is_mcap = path
+                .extension()
+                .is_some_and(|e| e.eq_ignore_ascii_case("mcap"));
+            if self.topic.is_some() && !is_mcap {
+                bail!("--topic chooses the map topic of an MCAP recording (--map FILE.mcap)");
+            }
+            let map = if is_mcap {
+                if resolution.is_some() || self.border {
+                    bail!(
+                        "--resolution / --border: an MCAP recording's map carries its own resolution"
+                    );
+                }
+                load_mcap_map(path, self.topic.as_deref())?
+            } else {
+                grid::io::load_map(path, &opts)?
+            };
             let name = path
                 .file_stem()
                 .map(|s| s.to_string_lossy().into_owned())

@@ -60,6 +60,10 @@ pub struct ExploreArgs {
     /// Write a self-contained HTML page that replays the run (opens from a file, no network).
     #[arg(long)]
     pub html: Option<PathBuf>,
+    /// Write the run as an MCAP recording (map, belief over time, poses, goals, frontiers;
+    /// ROS 2 messages that Foxglove Studio opens).
+    #[arg(long)]
+    pub mcap: Option<PathBuf>,
     /// Print one JSON object instead of the summary.
     #[arg(long)]
     pub json: bool,
@@ -92,7 +96,7 @@ pub fn config(a: &ExploreArgs, truth: &Truth) -> Result<RunConfig> {
         s_max: a.s_max,
         goal: a.goal,
         max_moves: a.max_moves,
-        record_trace: a.out.is_some() || a.gif.is_some() || a.html.is_some(),
+        record_trace: a.out.is_some() || a.gif.is_some() || a.html.is_some() || a.mcap.is_some(),
     };
     let cfg = bench::explore::config(&opts, &truth.map, truth.clutter.clone())
         .map_err(anyhow::Error::msg)?;
@@ -167,6 +171,12 @@ pub fn run(a: ExploreArgs) -> Result<()> {
         );
         let page = viz::replay::replay_html(&truth.map, &result, &truth.name, &meta)?;
         std::fs::write(path, page).with_context(|| format!("writing {}", path.display()))?;
+    }
+    if let Some(path) = &a.mcap {
+        let file =
+            std::fs::File::create(path).with_context(|| format!("writing {}", path.display()))?;
+        crate::mcap_out::write_run(std::io::BufWriter::new(file), &truth.map, &cfg, &result)
+            .with_context(|| format!("writing {}", path.display()))?;
     }
     if a.json {
         println!(

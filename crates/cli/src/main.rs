@@ -11,6 +11,7 @@ mod demo;
 mod env_cmd;
 mod explore_cmd;
 mod map_cmd;
+mod mcap_out;
 mod optimal_cmd;
 mod report;
 mod segment_cmd;

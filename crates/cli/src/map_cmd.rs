@@ -15,7 +15,7 @@ use crate::args::parse_resolution;
 pub enum MapCommand {
     /// Size, resolution, cell counts and free connected components of a map file.
     Info {
-        /// The map file (.yaml, .pgm, .png, .map, .txt).
+        /// The map file (.yaml, .pgm, .png, .map, .txt, or .mcap: its last OccupancyGrid).
         file: PathBuf,
         /// Metres per cell ("R" or "RX,RY") for bitmaps and .map files.
         #[arg(long)]
@@ -38,7 +38,14 @@ pub fn run(cmd: MapCommand) -> Result<()> {
         json,
     } = cmd;
     let resolution = resolution.as_deref().map(parse_resolution).transpose()?;
-    let map = grid::io::load_map(&file, &grid::io::LoadOptions { resolution, border })?;
+    let is_mcap = file
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("mcap"));
+    let map = if is_mcap {
+        crate::args::load_mcap_map(&file, None)?
+    } else {
+        grid::io::load_map(&file, &grid::io::LoadOptions { resolution, border })?
+    };
     let (free, occupied, unknown) = map.counts();
     let cells = &map.cells;
     let (_, components) = label(

@@ -1005,3 +1005,63 @@ fn report_reads_a_read_only_database() {
         "report changed the database's directory"
     );
 }
+
+#[test]
+fn a_run_recorded_as_mcap_is_a_map_again() {
+    let dir = tempfile::tempdir().unwrap();
+    let rec = dir.path().join("run.mcap");
+    let rec_s = rec.to_str().unwrap();
+    let base = [
+        "--env",
+        "office",
+        "--size",
+        "15x12",
+        "--resolution",
+        "0.25",
+        "--seed",
+        "3",
+    ];
+    let mut args = vec!["explore", "--mcap", rec_s, "--json", "--no-timing"];
+    args.extend(base);
+    ok(&args);
+    // The recording's /map is the generated office; exploring it again gives the same run.
+    let mut direct = vec!["explore", "--json", "--no-timing"];
+    direct.extend(base);
+    let again = ok(&[
+        "explore",
+        "--map",
+        rec_s,
+        "--json",
+        "--no-timing",
+        "--seed",
+        "3",
+    ]);
+    let a: serde_json::Value = serde_json::from_str(&ok(&direct)).unwrap();
+    let b: serde_json::Value = serde_json::from_str(&again).unwrap();
+    for k in [
+        "width",
+        "height",
+        "resolution",
+        "path_length_m",
+        "coverage",
+        "decisions",
+    ] {
+        assert_eq!(a[k], b[k], "{k}");
+    }
+    // The last belief is a map too.
+    ok(&["explore", "--map", rec_s, "--topic", "/frontier/belief"]);
+    let e = err(&[
+        "explore",
+        "--map",
+        rec_s,
+        "--topic",
+        "/frontier/robot0/pose",
+    ]);
+    assert!(e.contains("expected nav_msgs/msg/OccupancyGrid"), "{e}");
+    let e = err(&["explore", "--env", "office", "--topic", "/map"]);
+    assert!(e.contains("--topic"), "{e}");
+    let bad = dir.path().join("bad.mcap");
+    std::fs::write(&bad, b"not a recording").unwrap();
+    let e = err(&["explore", "--map", bad.to_str().unwrap()]);
+    assert!(e.contains("bad.mcap: expected an MCAP file"), "{e}");
+}

@@ -80,16 +80,27 @@ impl FrontierUpkeep {
         }
     }
 
-    /// Forget everything and recount from `known` (cost ∝ map; for a first, pre-filled belief).
+    /// Forget everything and recount from `known` (cost ∝ map; for a first, pre-filled belief,
+    /// such as a map received whole). Only the Occupied cells go through the clearance counts,
+    /// and the frontier test runs once per cell in index order, so this is several times
+    /// faster than [`update`](Self::update) with every known cell as changed.
     pub fn rebuild(&mut self, known: &Grid<Occ>) {
         let (w, h) = (self.trav.width(), self.trav.height());
         self.trav = Traversability::new(w, h, self.trav.clearance_cells());
         self.frontiers.clear();
-        let changed: Vec<u32> = (0..known.len().min(w * h))
-            .filter(|&i| !known[i].is_unknown())
-            .map(|i| i as u32)
-            .collect();
-        self.update(known, &changed);
+        let n = known.len().min(w * h);
+        self.touched.clear();
+        self.touched
+            .extend((0..n).filter(|&i| known[i].is_occupied()).map(|i| i as u32));
+        let occupied = std::mem::take(&mut self.touched);
+        let mut touched = Vec::new();
+        self.trav.update(known, &occupied, &mut touched);
+        self.touched = occupied;
+        for i in 0..n {
+            if crate::frontier::is_frontier(known, &self.trav, i) {
+                self.frontiers.insert(i);
+            }
+        }
     }
 
     #[inline]

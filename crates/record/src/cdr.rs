@@ -1,0 +1,101 @@
+//! CDR with its encapsulation header, as ROS 2 puts it on the wire and MCAP stores it.
+//!
+//! A serialized ROS 2 message is a 4-byte encapsulation header (`00 01 00 00` for little-endian
+//! plain CDR, `00 00 00 00` for big-endian) followed by the CDR body; alignment counts from
+//! the body's start.
+
+use byteorder::{BigEndian, LittleEndian};
+use serde::{Serialize, de::DeserializeOwned};
+
+/// Encapsulation header of little-endian plain CDR.
+pub const CDR_LE: [u8; 4] = [0, 1, 0, 0];
+
+/// Why bytes are not a message of the expected type.
+#[derive(Debug, thiserror::Error)]
+pub enum CdrError {
+    /// Shorter than the 4-byte encapsulation header.
+    #[error("expected a 4-byte CDR encapsulation header, found {0} bytes")]
+    Short(usize),
+    /// An encapsulation this reader does not speak (e.g. XCDR2 or parameter lists).
+    #[error("expected plain CDR (encapsulation 0 or 1), found encapsulation {0}")]
+    Encapsulation(u16),
+    /// The body does not decode as the message.
+    #[error("{0}")]
+    Body(String),
+}
+
+/// Serialize `msg` as little-endian CDR with its encapsulation header.
+pub fn encode<T: Serialize>(msg: &T) -> Vec<u8> {
+    let body = cdr_encoding::to_vec::<T, LittleEndian>(msg)
+        .expect("CDR serialization of plain structs, strings and sequences cannot fail");
+    let mut out = Vec::with_capacity(body.len() + 4);
+    out.extend_from_slice(&CDR_LE);
+    out.extend_from_slice(&body);
+    out
+}
+
+/// Deserialize a message from CDR bytes with their encapsulation header.
+pub fn decode<T: DeserializeOwned>(bytes: &[u8]) -> Result<T, CdrError> {
+    if bytes.len() < 4 {
+        return Err(CdrError::Short(bytes.len()));
+    }
+    let kind = u16::from_be_bytes([bytes[0], bytes[1]]);
+    let body = &bytes[4..];
+    let r = match kind {
+        0 => cdr_encoding::from_bytes::<T, BigEndian>(body),
+        1 => cdr_encoding::from_bytes::<T, LittleEndian>(body),
+        k => return Err(CdrError::Encapsulation(k)),
+    };
+    r.map(|(m, _)| m).map_err(|e| CdrError::Body(e.to_string()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::msgs::{Point, Pose, PoseStamped, Quaternion};
+
+    #[test]
+    fn pose_stamped_round_trips_and_has_the_ros_layout() {
+        let mut p = PoseStamped::default();
+        p.header.stamp.sec = 7;
+        p.header.frame_id = "map".into();
+        p.pose = Pose {
+            position: Point {
+                x: 1.5,
+                y: -2.0,
+                z: 0.0,
+            },
+            orientation: Quaternion {
+                x: 0.0,
+                y: 0.0,
+                z: 0.0,
+                w: 1.0,
+            },
+        };
+        let bytes = encode(&p);
+        // header: sec (4) nanosec (4) frame_id (len 4 + "map\0"), then pad to 8 for f64s.
+        assert_eq!(&bytes[..4], &CDR_LE);
+        assert_eq!(&bytes[4..8], &7i32.to_le_bytes());
+        assert_eq!(&bytes[12..16], &4u32.to_le_bytes());
+        assert_eq!(&bytes[16..20], b"map\0");
+        assert_eq!(&bytes[20..28], &1.5f64.to_le_bytes());
+        assert_eq!(bytes.len(), 4 + 16 + 7 * 8);
+        assert_eq!(decode::<PoseStamped>(&bytes).unwrap(), p);
+    }
+
+    #[test]
+    fn short_or_foreign_bytes_are_errors() {
+        assert!(matches!(
+            decode::<PoseStamped>(&[0, 1]),
+            Err(CdrError::Short(2))
+        ));
+        assert!(matches!(
+            decode::<PoseStamped>(&[0, 7, 0, 0, 1, 2]),
+            Err(CdrError::Encapsulation(7))
+        ));
+        assert!(matches!(
+            decode::<PoseStamped>(&[0, 1, 0, 0, 1, 2]),
+            Err(CdrError::Body(_))
+        ));
+    }
+}

@@ -1,0 +1,28 @@
+//! `record`: the ROS 2 messages frontier speaks and MCAP recordings of maps and runs.
+//!
+//! - [`msgs`]: the standard messages a frontier node reads and writes
+//!   (`nav_msgs/OccupancyGrid`, `geometry_msgs/PoseStamped`, `nav2_msgs/action/NavigateToPose`,
+//!   `visualization_msgs/MarkerArray`) as serde structs whose field order is the ROS 2
+//!   definition's, so that CDR (the DDS wire format and MCAP's `cdr` encoding) of the struct
+//!   is the message; each carries its `.msg` text for MCAP schemas;
+//! - [`occupancy`]: an `OccupancyGrid` message to a frontier map and back (rows flipped,
+//!   the origin pose kept), with every malformation (wrong sizes, NaN resolution, an empty
+//!   map) an error rather than a panic, and world ⇄ cell transforms;
+//! - [`mcap_read`]: the last `OccupancyGrid` of a recording, as a map;
+//! - [`mcap_write`]: a run as a recording (map, belief over time, poses, goals, frontiers)
+//!   that Foxglove Studio opens beside the user's own data.
+//!
+//! Nothing here touches the file system: readers take bytes, writers take any
+//! `Write + Seek`.
+#![forbid(unsafe_code)]
+#![warn(missing_docs)]
+
+pub mod cdr;
+pub mod mcap_read;
+pub mod mcap_write;
+pub mod msgs;
+pub mod occupancy;
+
+pub use mcap_read::{RecordError, last_map};
+pub use mcap_write::RunWriter;
+pub use occupancy::{MapFrame, MapMsgError};

@@ -1,0 +1,278 @@
+//! A run as an MCAP recording that Foxglove Studio (or `ros2 bag play`) opens.
+//!
+//! Topics, all in the `map` frame, ROS 2 CDR with `ros2msg` schemas:
+//!
+//! | topic | type | what |
+//! |---|---|---|
+//! | `/map` | `nav_msgs/msg/OccupancyGrid` | the map explored (once, at the start) |
+//! | `/frontier/belief` | `nav_msgs/msg/OccupancyGrid` | what the robots knew, at every decision |
+//! | `/frontier/robot<k>/pose` | `geometry_msgs/msg/PoseStamped` | robot k's pose after every move |
+//! | `/frontier/robot<k>/goal` | `geometry_msgs/msg/PoseStamped` | each goal robot k chose |
+//! | `/frontier/markers` | `visualization_msgs/msg/MarkerArray` | frontier cells and goal candidates at every decision |
+//!
+//! Log times are the run's clock (seconds of robot travel at its speed) in nanoseconds.
+
+use std::collections::BTreeMap;
+use std::io::{Seek, Write};
+
+use grid::GridMap;
+
+use crate::cdr::encode;
+use crate::msgs::{
+    ColorRgba, Header, Marker, MarkerArray, OccupancyGrid, Point, Pose, PoseStamped, RosMessage,
+    Time, Vector3,
+};
+use crate::occupancy::msg_from_map;
+
+/// The frame every message of a run is in.
+pub const FRAME: &str = "map";
+
+/// Topic of the explored map.
+pub const MAP_TOPIC: &str = "/map";
+/// Topic of the belief snapshots.
+pub const BELIEF_TOPIC: &str = "/frontier/belief";
+/// Topic of robot `k`'s poses.
+pub fn pose_topic(k: usize) -> String {
+    format!("/frontier/robot{k}/pose")
+}
+
+/// Topic of robot `k`'s goals.
+pub fn goal_topic(k: usize) -> String {
+    format!("/frontier/robot{k}/goal")
+}
+/// Topic of the frontier and candidate markers.
+pub const MARKER_TOPIC: &str = "/frontier/markers";
+
+/// Writes a run's messages into an MCAP file.
+pub struct RunWriter<W: Write + Seek> {
+    out: mcap::Writer<W>,
+    map: u16,
+    belief: u16,
+    pose_schema: u16,
+    /// (pose, goal) channels of each robot, added when first used.
+    robots: Vec<(u16, u16)>,
+    markers: u16,
+    sequence: u32,
+}
+
+fn schema<M: RosMessage>(w: &mut mcap::Writer<impl Write + Seek>) -> mcap::McapResult<u16> {
+    w.add_schema(M::TYPE, "ros2msg", M::definition().as_bytes())
+}
+
+impl<W: Write + Seek> RunWriter<W> {
+    /// Start a recording into `out` (zstd-compressed chunks).
+    pub fn new(out: W) -> mcap::McapResult<Self> {
+        let mut out = mcap::WriteOptions::new()
+            .profile("ros2")
+            .library(concat!("frontier ", env!("CARGO_PKG_VERSION")))
+            .create(out)?;
+        let grid = schema::<OccupancyGrid>(&mut out)?;
+        let pose = schema::<PoseStamped>(&mut out)?;
+        let markers = schema::<MarkerArray>(&mut out)?;
+        let none = BTreeMap::new();
+        let mut channel = |s, t| out.add_channel(s, t, "cdr", &none);
+        let ids = (
+            channel(grid, MAP_TOPIC)?,
+            channel(grid, BELIEF_TOPIC)?,
+            channel(markers, MARKER_TOPIC)?,
+        );
+        Ok(Self {
+            out,
+            map: ids.0,
+            belief: ids.1,
+            pose_schema: pose,
+            robots: Vec::new(),
+            markers: ids.2,
+            sequence: 0,
+        })
+    }
+
+    fn put(&mut self, channel_id: u16, t_s: f64, data: &[u8]) -> mcap::McapResult<()> {
+        let t = Time::from_secs(t_s).nanos();
+        self.sequence += 1;
+        let header = mcap::records::MessageHeader {
+            channel_id,
+            sequence: self.sequence,
+            log_time: t,
+            publish_time: t,
+        };
+        self.out.write_to_known_channel(&header, data)
+    }
+
+    fn header(t_s: f64) -> Header {
+        Header {
+            stamp: Time::from_secs(t_s),
+            frame_id: FRAME.into(),
+        }
+    }
+
+    /// The explored map, at time `t_s`.
+    pub fn map(&mut self, t_s: f64, map: &GridMap) -> mcap::McapResult<()> {
+        let msg = msg_from_map(map, FRAME, Time::from_secs(t_s));
+        self.put(self.map, t_s, &encode(&msg))
+    }
+
+    /// A belief snapshot (same frame as the map).
+    pub fn belief(&mut self, t_s: f64, belief: &GridMap) -> mcap::McapResult<()> {
+        let msg = msg_from_map(belief, FRAME, Time::from_secs(t_s));
+        self.put(self.belief, t_s, &encode(&msg))
+    }
+
+    fn robot(&mut self, k: usize) -> mcap::McapResult<(u16, u16)> {
+        while self.robots.len() <= k {
+            let r = self.robots.len();
+            let none = BTreeMap::new();
+            let pose = self
+                .out
+                .add_channel(self.pose_schema, &pose_topic(r), "cdr", &none)?;
+            let goal = self
+                .out
+                .add_channel(self.pose_schema, &goal_topic(r), "cdr", &none)?;
+            self.robots.push((pose, goal));
+        }
+        Ok(self.robots[k])
+    }
+
+    /// Robot `k`'s pose (world metres and yaw).
+    pub fn pose(&mut self, t_s: f64, k: usize, x: f64, y: f64, yaw: f64) -> mcap::McapResult<()> {
+        let msg = PoseStamped {
+            header: Self::header(t_s),
+            pose: Pose::planar(x, y, yaw),
+        };
+        let ch = self.robot(k)?.0;
+        self.put(ch, t_s, &encode(&msg))
+    }
+
+    /// A goal robot `k` chose.
+    pub fn goal(&mut self, t_s: f64, k: usize, x: f64, y: f64) -> mcap::McapResult<()> {
+        let msg = PoseStamped {
+            header: Self::header(t_s),
+            pose: Pose::planar(x, y, 0.0),
+        };
+        let ch = self.robot(k)?.1;
+        self.put(ch, t_s, &encode(&msg))
+    }
+
+    /// Frontier cells and goal candidates (world points) as markers of side `cell_m`.
+    pub fn markers(
+        &mut self,
+        t_s: f64,
+        frontiers: &[(f64, f64)],
+        candidates: &[(f64, f64)],
+        cell_m: f64,
+    ) -> mcap::McapResult<()> {
+        let msg = markers(&Self::header(t_s), frontiers, candidates, cell_m);
+        self.put(self.markers, t_s, &encode(&msg))
+    }
+
+    /// Write the summary and hand back the output.
+    pub fn finish(mut self) -> mcap::McapResult<W> {
+        self.out.finish()?;
+        Ok(self.out.into_inner())
+    }
+}
+
+/// The marker array of a decision: a DELETEALL, frontier cells as a blue cube list and goal
+/// candidates as orange spheres (what the ROS node publishes too).
+pub fn markers(
+    header: &Header,
+    frontiers: &[(f64, f64)],
+    candidates: &[(f64, f64)],
+    cell_m: f64,
+) -> MarkerArray {
+    let pts = |v: &[(f64, f64)]| v.iter().map(|&(x, y)| Point { x, y, z: 0.0 }).collect();
+    let clear = Marker {
+        header: header.clone(),
+        action: Marker::DELETEALL,
+        ..Marker::default()
+    };
+    let list = |ns: &str, kind, side: f64, color, points| Marker {
+        header: header.clone(),
+        ns: ns.into(),
+        id: 0,
+        kind,
+        action: Marker::ADD,
+        pose: Pose::planar(0.0, 0.0, 0.0),
+        scale: Vector3 {
+            x: side,
+            y: side,
+            z: side,
+        },
+        color,
+        points,
+        ..Marker::default()
+    };
+    MarkerArray {
+        markers: vec![
+            clear,
+            list(
+                "frontiers",
+                Marker::CUBE_LIST,
+                cell_m,
+                ColorRgba {
+                    r: 0.1,
+                    g: 0.4,
+                    b: 1.0,
+                    a: 0.8,
+                },
+                pts(frontiers),
+            ),
+            list(
+                "candidates",
+                Marker::SPHERE_LIST,
+                (3.0 * cell_m).max(0.1),
+                ColorRgba {
+                    r: 1.0,
+                    g: 0.5,
+                    b: 0.0,
+                    a: 1.0,
+                },
+                pts(candidates),
+            ),
+        ],
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mcap_read::last_map;
+    use grid::io::parse_ascii;
+
+    #[test]
+    fn a_run_written_reads_back() {
+        let mut map = parse_ascii("#####\n#..?#\n#.#.#\n#####\n", 0.1).unwrap();
+        map.origin = [1.0, 2.0, 0.0];
+        let mut w = RunWriter::new(std::io::Cursor::new(Vec::new())).unwrap();
+        w.map(0.0, &map).unwrap();
+        let mut later = map.clone();
+        later.cells.data_mut()[8] = grid::Occ::Free;
+        w.belief(1.0, &later).unwrap();
+        w.pose(1.0, 0, 1.2, 2.2, 0.5).unwrap();
+        w.goal(1.5, 0, 1.3, 2.3).unwrap();
+        w.markers(1.5, &[(1.25, 2.25)], &[(1.35, 2.25)], 0.1)
+            .unwrap();
+        let bytes = w.finish().unwrap().into_inner();
+        // `/map` is the only map topic named /map, the belief the other.
+        let (back, topic) = last_map(&bytes, None).unwrap();
+        assert_eq!((back.cells, topic.as_str()), (map.cells.clone(), "/map"));
+        let (back, _) = last_map(&bytes, Some(BELIEF_TOPIC)).unwrap();
+        assert_eq!(back.cells, later.cells);
+        let e = last_map(&bytes, Some(&pose_topic(0)))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("expected nav_msgs/msg/OccupancyGrid"), "{e}");
+        let e = last_map(&bytes, Some("/nothing")).unwrap_err().to_string();
+        assert!(
+            e.contains("/frontier/robot0/pose (geometry_msgs/msg/PoseStamped)"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn garbage_is_an_error_not_a_panic() {
+        for bytes in [&b""[..], b"\x89MCAP0\r\n", b"not an mcap file at all"] {
+            assert!(last_map(bytes, None).is_err());
+        }
+    }
+}

@@ -1,0 +1,339 @@
+//! `nav_msgs/OccupancyGrid` ⇄ frontier's map, and the map frame's world ⇄ cell transforms.
+//!
+//! An OccupancyGrid's row 0 is at its origin, the bottom of the map as drawn; frontier's
+//! row 0 is the top row (as in a PGM file), so rows flip, exactly as map_server flips a
+//! PGM. Cell values follow map_server's trinary reading with its default thresholds: −1
+//! (and any negative) is Unknown, values ≥ 65 are Occupied, values ≤ 25 are Free; values in
+//! between are neither certain free nor occupied, so they stay Unknown (Holz et al.'s rule for
+//! their reflection map: free only when p ≤ 0.25).
+
+use grid::{Cell, Grid, GridMap, Occ};
+
+use crate::msgs::{MapMetaData, OccupancyGrid, Pose, Quaternion};
+
+/// Occupancy at or above which a cell is Occupied (map_server's `occupied_thresh` 0.65).
+pub const OCCUPIED_MIN: i8 = 65;
+/// Occupancy at or below which a cell is Free (map_server's `free_thresh` 0.25).
+pub const FREE_MAX: i8 = 25;
+/// The largest map accepted, in cells (a 0.05 m map of 1.6 km × 1.6 km).
+pub const MAX_CELLS: usize = 1 << 30;
+
+/// Why an OccupancyGrid message is not a usable map.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum MapMsgError {
+    /// Width or height is 0.
+    #[error("map message: expected a non-empty map, found {width}x{height} cells")]
+    Empty {
+        /// Cells per row.
+        width: u32,
+        /// Rows.
+        height: u32,
+    },
+    /// More cells than [`MAX_CELLS`].
+    #[error("map message: expected at most {MAX_CELLS} cells, found {width}x{height}")]
+    TooLarge {
+        /// Cells per row.
+        width: u32,
+        /// Rows.
+        height: u32,
+    },
+    /// `data` does not have width × height entries.
+    #[error("map message: expected {expected} cells ({width}x{height}), found {found} in data")]
+    WrongSize {
+        /// Cells per row.
+        width: u32,
+        /// Rows.
+        height: u32,
+        /// width × height.
+        expected: usize,
+        /// data length.
+        found: usize,
+    },
+    /// The resolution is not a positive finite number.
+    #[error("map message: expected a positive finite resolution, found {0}")]
+    BadResolution(f32),
+    /// The origin has a non-finite coordinate or a non-unit orientation.
+    #[error("map message: expected a finite origin with a unit quaternion, found {0}")]
+    BadOrigin(String),
+}
+
+/// Where a map lies in the world: size, resolution and origin, with the transforms between
+/// world points (metres, in the map's frame) and frontier's cells (row 0 at the top).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MapFrame {
+    /// Cells per row.
+    pub width: usize,
+    /// Rows.
+    pub height: usize,
+    /// Metres per cell.
+    pub resolution: f64,
+    /// World `[x, y, yaw]` of the bottom-left corner of the map.
+    pub origin: [f64; 3],
+}
+
+impl MapFrame {
+    /// The frame of `map`.
+    pub fn of(map: &GridMap) -> Self {
+        Self {
+            width: map.width(),
+            height: map.height(),
+            resolution: map.resolution,
+            origin: map.origin,
+        }
+    }
+
+    /// World point of the centre of `cell`.
+    pub fn world_from_cell(&self, cell: Cell) -> (f64, f64) {
+        let u = (f64::from(cell.x) + 0.5) * self.resolution;
+        let v = (self.height as f64 - 1.0 - f64::from(cell.y) + 0.5) * self.resolution;
+        let (s, c) = self.origin[2].sin_cos();
+        (
+            self.origin[0] + c * u - s * v,
+            self.origin[1] + s * u + c * v,
+        )
+    }
+
+    /// The cell that holds world point `(x, y)`, if it is on the map.
+    pub fn cell_from_world(&self, x: f64, y: f64) -> Option<Cell> {
+        let (dx, dy) = (x - self.origin[0], y - self.origin[1]);
+        let (s, c) = self.origin[2].sin_cos();
+        let (u, v) = (c * dx + s * dy, -s * dx + c * dy);
+        let (col, row_up) = ((u / self.resolution).floor(), (v / self.resolution).floor());
+        if !(col >= 0.0 && row_up >= 0.0 && col < self.width as f64 && row_up < self.height as f64)
+        {
+            return None;
+        }
+        let row = self.height - 1 - row_up as usize;
+        Some(Cell::new(col as i32, row as i32))
+    }
+}
+
+/// Check an OccupancyGrid's size, resolution and origin; returns its frame.
+pub fn frame_of(msg: &OccupancyGrid) -> Result<MapFrame, MapMsgError> {
+    let info = &msg.info;
+    let (w, h) = (info.width, info.height);
+    if w == 0 || h == 0 {
+        return Err(MapMsgError::Empty {
+            width: w,
+            height: h,
+        });
+    }
+    let cells = (w as usize)
+        .checked_mul(h as usize)
+        .filter(|&n| n <= MAX_CELLS);
+    let Some(expected) = cells else {
+        return Err(MapMsgError::TooLarge {
+            width: w,
+            height: h,
+        });
+    };
+    if msg.data.len() != expected {
+        return Err(MapMsgError::WrongSize {
+            width: w,
+            height: h,
+            expected,
+            found: msg.data.len(),
+        });
+    }
+    if !(info.resolution.is_finite() && info.resolution > 0.0) {
+        return Err(MapMsgError::BadResolution(info.resolution));
+    }
+    let (p, q) = (info.origin.position, info.origin.orientation);
+    let norm = (q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w).sqrt();
+    let unit = (norm - 1.0).abs() < 1e-3; // false for NaN too
+    if ![p.x, p.y, p.z].iter().all(|v| v.is_finite()) || !unit {
+        return Err(MapMsgError::BadOrigin(format!(
+            "position ({}, {}, {}), orientation ({}, {}, {}, {})",
+            p.x, p.y, p.z, q.x, q.y, q.z, q.w
+        )));
+    }
+    Ok(MapFrame {
+        width: w as usize,
+        height: h as usize,
+        resolution: f64::from(info.resolution),
+        origin: [p.x, p.y, q.yaw()],
+    })
+}
+
+/// The class of an OccupancyGrid value.
+#[inline]
+pub fn class_of(v: i8) -> Occ {
+    if v < 0 {
+        Occ::Unknown
+    } else if v >= OCCUPIED_MIN {
+        Occ::Occupied
+    } else if v <= FREE_MAX {
+        Occ::Free
+    } else {
+        Occ::Unknown
+    }
+}
+
+/// Write the classes of `msg`'s cells into `out` (frontier's row order), which must have the
+/// frame's size; `msg` must have passed [`frame_of`].
+pub fn classify_into(msg: &OccupancyGrid, frame: &MapFrame, out: &mut [Occ]) {
+    let w = frame.width;
+    debug_assert_eq!(out.len(), w * frame.height);
+    for (row_up, src) in msg.data.chunks_exact(w).enumerate() {
+        let row = frame.height - 1 - row_up;
+        let dst = &mut out[row * w..(row + 1) * w];
+        for (d, &v) in dst.iter_mut().zip(src) {
+            *d = class_of(v);
+        }
+    }
+}
+
+/// The map an OccupancyGrid message holds.
+pub fn map_from_msg(msg: &OccupancyGrid) -> Result<GridMap, MapMsgError> {
+    let frame = frame_of(msg)?;
+    let mut cells = Grid::new(frame.width, frame.height, Occ::Unknown);
+    classify_into(msg, &frame, cells.data_mut());
+    Ok(GridMap {
+        cells,
+        resolution: frame.resolution,
+        origin: frame.origin,
+    })
+}
+
+/// The OccupancyGrid message of `map` (Free 0, Occupied 100, Unknown −1) in frame `frame_id`.
+pub fn msg_from_map(map: &GridMap, frame_id: &str, stamp: crate::msgs::Time) -> OccupancyGrid {
+    let (w, h) = (map.width(), map.height());
+    let mut data = Vec::with_capacity(w * h);
+    for row_up in 0..h {
+        let row = h - 1 - row_up;
+        data.extend(
+            map.cells.data()[row * w..(row + 1) * w]
+                .iter()
+                .map(|c| match c {
+                    Occ::Free => 0i8,
+                    Occ::Occupied => 100,
+                    Occ::Unknown => -1,
+                }),
+        );
+    }
+    OccupancyGrid {
+        header: crate::msgs::Header {
+            stamp,
+            frame_id: frame_id.to_string(),
+        },
+        info: MapMetaData {
+            map_load_time: stamp,
+            resolution: map.resolution as f32,
+            width: w as u32,
+            height: h as u32,
+            origin: Pose {
+                position: crate::msgs::Point {
+                    x: map.origin[0],
+                    y: map.origin[1],
+                    z: 0.0,
+                },
+                orientation: Quaternion::from_yaw(map.origin[2]),
+            },
+        },
+        data,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use grid::io::parse_ascii;
+    use proptest::prelude::*;
+
+    fn msg(w: u32, h: u32, data: Vec<i8>) -> OccupancyGrid {
+        let mut m = OccupancyGrid::default();
+        m.info.width = w;
+        m.info.height = h;
+        m.info.resolution = 0.05;
+        m.data = data;
+        m
+    }
+
+    #[test]
+    fn rows_flip_and_values_classify_like_map_server() {
+        // Bottom row (row_up 0) first: -1, 0, 25; top row: 26, 65, 100.
+        let m = msg(3, 2, vec![-1, 0, 25, 26, 65, 100]);
+        let map = map_from_msg(&m).unwrap();
+        use Occ::*;
+        assert_eq!(
+            map.cells.data(),
+            &[Unknown, Occupied, Occupied, Unknown, Free, Free]
+        );
+    }
+
+    #[test]
+    fn bad_messages_are_errors_naming_what_is_wrong() {
+        assert_eq!(
+            map_from_msg(&msg(0, 4, vec![])).unwrap_err(),
+            MapMsgError::Empty {
+                width: 0,
+                height: 4
+            }
+        );
+        let e = map_from_msg(&msg(3, 2, vec![0; 5])).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "map message: expected 6 cells (3x2), found 5 in data"
+        );
+        let mut m = msg(1, 1, vec![0]);
+        m.info.resolution = f32::NAN;
+        assert!(matches!(
+            map_from_msg(&m),
+            Err(MapMsgError::BadResolution(_))
+        ));
+        m.info.resolution = -0.05;
+        assert!(matches!(
+            map_from_msg(&m),
+            Err(MapMsgError::BadResolution(_))
+        ));
+        m.info.resolution = 0.05;
+        m.info.origin.position.x = f64::INFINITY;
+        assert!(matches!(map_from_msg(&m), Err(MapMsgError::BadOrigin(_))));
+        m.info.origin.position.x = 0.0;
+        m.info.origin.orientation.w = 0.0;
+        assert!(matches!(map_from_msg(&m), Err(MapMsgError::BadOrigin(_))));
+        let huge = msg(u32::MAX, u32::MAX, vec![]);
+        assert!(matches!(
+            map_from_msg(&huge),
+            Err(MapMsgError::TooLarge { .. })
+        ));
+    }
+
+    #[test]
+    fn a_map_survives_the_message() {
+        let mut map = parse_ascii("#####\n#..?#\n#.#.#\n#####\n", 0.1).unwrap();
+        map.origin = [-1.5, 2.0, 0.3];
+        let back = map_from_msg(&msg_from_map(&map, "map", Default::default())).unwrap();
+        assert_eq!(back.cells, map.cells);
+        assert!((back.resolution - 0.1).abs() < 1e-6);
+        assert!((back.origin[2] - 0.3).abs() < 1e-12);
+    }
+
+    #[test]
+    fn the_bottom_left_cell_is_at_the_origin() {
+        let f = MapFrame {
+            width: 4,
+            height: 3,
+            resolution: 0.5,
+            origin: [10.0, 20.0, 0.0],
+        };
+        assert_eq!(f.world_from_cell(Cell::new(0, 2)), (10.25, 20.25));
+        assert_eq!(f.cell_from_world(10.1, 20.1), Some(Cell::new(0, 2)));
+        assert_eq!(f.cell_from_world(11.9, 21.4), Some(Cell::new(3, 0)));
+        assert_eq!(f.cell_from_world(9.9, 20.1), None);
+        assert_eq!(f.cell_from_world(10.1, 21.6), None);
+    }
+
+    proptest! {
+        #[test]
+        fn cell_world_cell_is_the_identity(
+            w in 1usize..40, h in 1usize..40, x in 0usize..40, y in 0usize..40,
+            ox in -50.0f64..50.0, oy in -50.0f64..50.0, yaw in -3.1f64..3.1, res in 0.01f64..1.0,
+        ) {
+            let f = MapFrame { width: w, height: h, resolution: res, origin: [ox, oy, yaw] };
+            let c = Cell::new((x % w) as i32, (y % h) as i32);
+            let (wx, wy) = f.world_from_cell(c);
+            prop_assert_eq!(f.cell_from_world(wx, wy), Some(c));
+        }
+    }
+}

@@ -1,0 +1,100 @@
+//! `frontier-ros`: the exploration node. See `docs/ros.md`.
+
+use std::path::PathBuf;
+
+use anyhow::Context as _;
+use frontier_ros::Params;
+
+const USAGE: &str =
+    "usage: frontier-ros [--params-file FILE] [--node NAME] [--domain ID] [-p NAME:=VALUE]...
+
+Runs frontier's exploration node: subscribes to the map and the robot's pose and sends
+goals to Nav2's NavigateToPose action. Parameters come from a ROS 2 parameters file
+(the section of the node's name, or /**) and -p overrides; ROS_DOMAIN_ID is read when
+--domain is not given. Ctrl-C stops it.";
+
+fn main() -> anyhow::Result<()> {
+    env_logger_init();
+    let mut args = std::env::args().skip(1);
+    let mut file: Option<PathBuf> = None;
+    let mut node = "frontier_explore".to_string();
+    let mut domain: Option<u16> = None;
+    let mut overrides: Vec<String> = Vec::new();
+    while let Some(a) = args.next() {
+        let mut value = |name: &str| {
+            args.next()
+                .with_context(|| format!("{name}: expected a value"))
+        };
+        match a.as_str() {
+            "--params-file" => file = Some(value("--params-file")?.into()),
+            "--node" => node = value("--node")?,
+            "--domain" => {
+                let v = value("--domain")?;
+                domain = Some(
+                    v.parse()
+                        .with_context(|| format!("--domain: expected 0–232, found '{v}'"))?,
+                );
+            }
+            "-p" => overrides.push(value("-p")?),
+            "-h" | "--help" => {
+                println!("{USAGE}");
+                return Ok(());
+            }
+            other => anyhow::bail!("unexpected argument '{other}'\n{USAGE}"),
+        }
+    }
+    let mut params = match &file {
+        Some(f) => Params::from_file(f, &node)?,
+        None => Params::default(),
+    };
+    for o in &overrides {
+        let (k, v) = o
+            .split_once(":=")
+            .with_context(|| format!("-p {o}: expected NAME:=VALUE"))?;
+        params
+            .set(k, v)
+            .map_err(|e| anyhow::anyhow!("-p {o}: {e}"))?;
+    }
+    let domain = match domain {
+        Some(d) => d,
+        None => match std::env::var("ROS_DOMAIN_ID") {
+            Ok(v) if !v.is_empty() => v
+                .parse()
+                .with_context(|| format!("ROS_DOMAIN_ID: expected 0–232, found '{v}'"))?,
+            _ => 0,
+        },
+    };
+    let ctx = frontier_ros::node::context(domain)?;
+    let (stop_tx, stop_rx) = async_channel::bounded(1);
+    ctrlc::set_handler(move || {
+        let _ = stop_tx.try_send(());
+    })
+    .context("cannot install the Ctrl-C handler")?;
+    let mode = frontier_ros::node::run(params, &node, &ctx, stop_rx)?;
+    eprintln!("frontier-ros: {mode:?}");
+    Ok(())
+}
+
+/// Log to stderr at the level in RUST_LOG (default info).
+fn env_logger_init() {
+    struct Stderr(log::LevelFilter);
+    impl log::Log for Stderr {
+        fn enabled(&self, m: &log::Metadata) -> bool {
+            m.level() <= self.0 && m.target().starts_with("frontier_ros")
+        }
+        fn log(&self, r: &log::Record) {
+            if self.enabled(r.metadata()) {
+                eprintln!("[{}] {}", r.level(), r.args());
+            }
+        }
+        fn flush(&self) {}
+    }
+    let level = match std::env::var("RUST_LOG").as_deref() {
+        Ok("debug") => log::LevelFilter::Debug,
+        Ok("warn") => log::LevelFilter::Warn,
+        Ok("error") => log::LevelFilter::Error,
+        _ => log::LevelFilter::Info,
+    };
+    let _ = log::set_boxed_logger(Box::new(Stderr(level)));
+    log::set_max_level(level);
+}

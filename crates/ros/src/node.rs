@@ -1,0 +1,666 @@
+//! The ROS 2 node: topics and Nav2's action around an [`Explorer`].
+//!
+//! | direction | name (default) | type | what |
+//! |---|---|---|---|
+//! | in | `/map` | `nav_msgs/msg/OccupancyGrid` | the SLAM map, transient-local and reliable like map_server and slam_toolbox |
+//! | in | `/pose` | `geometry_msgs/msg/PoseWithCovarianceStamped` (or `PoseStamped`) | the robot's pose in the map frame |
+//! | in | `/explore/resume` | `std_msgs/msg/Bool` | explore_lite's: `true` starts or resumes, `false` stops |
+//! | in | `/explore/command` | `std_msgs/msg/String` | `start`, `stop`, `resume`, `return_to_init` |
+//! | out | `/navigate_to_pose` | `nav2_msgs/action/NavigateToPose` | goals (not in publish-only mode) |
+//! | out | `/explore/goal` | `geometry_msgs/msg/PoseStamped` | every goal chosen |
+//! | out | `/explore/frontiers` | `visualization_msgs/msg/MarkerArray` | frontier cells and goal candidates |
+//! | out | `/explore/status` | `std_msgs/msg/String` | `idle`, `exploring`, `waiting: <why>`, `paused`, `returning`, `done: <reason>` |
+//!
+//! The robot's pose comes from a pose topic rather than TF: AMCL (`/amcl_pose`) and
+//! slam_toolbox (`/pose`) publish one, and reading TF would need the whole tree of
+//! transforms. Decisions run on map updates, on poses (the re-plan policy's checks are
+//! O(1)), when Nav2 ends a goal, and at `planner_frequency`.
+
+use std::cell::RefCell;
+use std::rc::Rc;
+use std::time::{Duration, Instant};
+
+use futures::{FutureExt, StreamExt};
+use ros2_client::action::ActionClientQosPolicies;
+use ros2_client::action_msgs::GoalStatusEnum;
+use ros2_client::builtin_interfaces::Time as RosTime;
+use ros2_client::qos::{Durability, History};
+use ros2_client::unique_identifier_msgs::UUID;
+use ros2_client::{
+    ActionTypeName, Context, ContextOptions, MessageTypeName, Name, Node, NodeName, NodeOptions,
+    QosProfile, ServiceMapping,
+};
+use serde::{Deserialize, Serialize, de::DeserializeOwned};
+
+use record::mcap_write::markers;
+use record::msgs::{
+    Header, NavigateToPoseGoal, OccupancyGrid, Pose, PoseStamped, PoseWithCovarianceStamped, Time,
+};
+
+use crate::explorer::{Check, Decision, Explorer, StopReason};
+use crate::params::{Params, PoseType};
+
+/// A message of the `record` crate as ros2-client sends it (CDR of the struct itself).
+#[derive(Clone, Debug, Serialize, Deserialize)]
+#[serde(transparent)]
+pub struct Ros<T>(pub T);
+
+impl<T: Serialize + DeserializeOwned> ros2_client::Message for Ros<T> {}
+
+/// `std_msgs/msg/Bool`.
+#[derive(Clone, Copy, Debug, Serialize, Deserialize)]
+pub struct Bool {
+    /// The value.
+    pub data: bool,
+}
+
+/// `std_msgs/msg/String`.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct Text {
+    /// The text.
+    pub data: String,
+}
+
+/// The navigation action client of the node. Only the goal's end status is read, so its
+/// result and feedback are read as `()` (nothing): Humble's empty result, Jazzy's error code
+/// and later additions all decode.
+type NavClient = ros2_client::action::ActionClient<Ros<NavigateToPoseGoal>, (), ()>;
+
+/// What the node is doing.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Mode {
+    /// Waiting for `start`.
+    Idle,
+    /// Deciding and sending goals.
+    Exploring,
+    /// Stopped by `stop`; `resume` goes on.
+    Paused,
+    /// Driving back to the start pose.
+    Returning,
+    /// Finished, with the reason.
+    Done(String),
+}
+
+impl Mode {
+    fn status(&self) -> String {
+        match self {
+            Mode::Idle => "idle".into(),
+            Mode::Exploring => "exploring".into(),
+            Mode::Paused => "paused".into(),
+            Mode::Returning => "returning".into(),
+            Mode::Done(r) => format!("done: {r}"),
+        }
+    }
+}
+
+/// Everything the event loop reacts to.
+enum Event {
+    Map(OccupancyGrid),
+    Pose(f64, f64, f64),
+    Command(String),
+    Tick,
+    /// Nav2 accepted goal `seq` as `id`.
+    Accepted(u64, UUID),
+    /// Goal `seq` ended.
+    Ended(u64, Outcome),
+    Shutdown,
+}
+
+/// How a goal ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Outcome {
+    Succeeded,
+    Failed,
+    Canceled,
+}
+
+/// The QoS of `/map`: reliable, transient local, keep last 1 (map_server, slam_toolbox).
+pub fn map_qos() -> QosProfile {
+    QosProfile::publisher_default()
+        .durability(Durability::TransientLocal)
+        .history(History::KeepLast { depth: 1 })
+}
+
+/// The QoS of the action's services and feedback (volatile) and status (transient local).
+pub fn action_qos() -> ActionClientQosPolicies {
+    let service = QosProfile::publisher_default()
+        .durability(Durability::Volatile)
+        .history(History::KeepLast { depth: 1 });
+    ActionClientQosPolicies {
+        goal_service: service.clone(),
+        result_service: service.clone(),
+        cancel_service: service.clone(),
+        feedback_subscription: service.clone(),
+        status_subscription: service.durability(Durability::TransientLocal),
+    }
+}
+
+/// A DDS context on `domain_id` (ROS_DOMAIN_ID).
+pub fn context(domain_id: u16) -> anyhow::Result<Context> {
+    Context::with_options(ContextOptions::new().domain_id(domain_id))
+        .map_err(|e| anyhow::anyhow!("cannot start DDS on domain {domain_id}: {e:?}"))
+}
+
+/// A name in the root namespace (`/map`), or relative to it.
+pub fn topic_name(s: &str) -> anyhow::Result<Name> {
+    let s = s.trim_start_matches('/');
+    let (ns, base) = match s.rsplit_once('/') {
+        Some((ns, base)) => (format!("/{ns}"), base),
+        None => ("/".to_string(), s),
+    };
+    Name::new(&ns, base).map_err(|e| anyhow::anyhow!("topic name '{s}': {e:?}"))
+}
+
+/// Create a topic of `package/Type` on `node`.
+pub fn topic(
+    node: &Node,
+    name: &str,
+    package: &str,
+    ty: &str,
+) -> anyhow::Result<ros2_client::dds::rustdds::Topic> {
+    node.create_topic(
+        &topic_name(name)?,
+        MessageTypeName::new(package, ty),
+        &QosProfile::publisher_default(),
+    )
+    .map_err(|e| anyhow::anyhow!("topic {name}: {e:?}"))
+}
+
+fn stamp(now: Instant, t0: Instant) -> Time {
+    Time::from_secs((now - t0).as_secs_f64())
+}
+
+/// Run the node until `stop` fires (or the channel closes); returns the final mode.
+pub fn run(
+    params: Params,
+    node_name: &str,
+    ctx: &Context,
+    stop: async_channel::Receiver<()>,
+) -> anyhow::Result<Mode> {
+    let cfg = params.explorer_config().map_err(|e| anyhow::anyhow!(e))?;
+    let mut node = ctx
+        .new_node(
+            NodeName::new("/", node_name).map_err(|e| anyhow::anyhow!("node name: {e:?}"))?,
+            NodeOptions::new().enable_rosout(false),
+        )
+        .map_err(|e| anyhow::anyhow!("cannot create node {node_name}: {e:?}"))?;
+    let map_t = topic(&node, &params.map_topic, "nav_msgs", "OccupancyGrid")?;
+    let map_sub = node
+        .create_subscription::<Ros<OccupancyGrid>>(&map_t, Some(map_qos()))
+        .map_err(|e| anyhow::anyhow!("{e:?}"))?;
+    let pose_ty = match params.pose_type {
+        PoseType::WithCovariance => "PoseWithCovarianceStamped",
+        PoseType::Stamped => "PoseStamped",
+    };
+    let pose_t = topic(&node, &params.pose_topic, "geometry_msgs", pose_ty)?;
+    let resume_t = topic(&node, "/explore/resume", "std_msgs", "Bool")?;
+    let command_t = topic(&node, "/explore/command", "std_msgs", "String")?;
+    let goal_t = topic(&node, &params.goal_topic, "geometry_msgs", "PoseStamped")?;
+    let markers_t = topic(
+        &node,
+        &params.markers_topic,
+        "visualization_msgs",
+        "MarkerArray",
+    )?;
+    let status_t = topic(&node, "/explore/status", "std_msgs", "String")?;
+    let reliable = QosProfile::publisher_default().history(History::KeepLast { depth: 10 });
+    let latched = reliable
+        .clone()
+        .durability(Durability::TransientLocal)
+        .history(History::KeepLast { depth: 1 });
+    let err = |e| anyhow::anyhow!("{e:?}");
+    let resume_sub = node
+        .create_subscription::<Bool>(&resume_t, Some(reliable.clone()))
+        .map_err(err)?;
+    let command_sub = node
+        .create_subscription::<Text>(&command_t, Some(reliable.clone()))
+        .map_err(err)?;
+    let goal_pub = node
+        .create_publisher::<Ros<PoseStamped>>(&goal_t, Some(reliable.clone()))
+        .map_err(err)?;
+    let markers_pub = node
+        .create_publisher::<Ros<record::msgs::MarkerArray>>(&markers_t, Some(reliable.clone()))
+        .map_err(err)?;
+    let status_pub = node
+        .create_publisher::<Text>(&status_t, Some(latched))
+        .map_err(err)?;
+    let nav: Rc<NavClient> = Rc::new(
+        node.create_action_client(
+            ServiceMapping::Enhanced,
+            &topic_name(&params.navigate_action)?,
+            &ActionTypeName::new("nav2_msgs", "NavigateToPose"),
+            action_qos(),
+        )
+        .map_err(err)?,
+    );
+
+    let ex = smol::LocalExecutor::new();
+    ex.spawn(node.spinner().map_err(err)?.spin()).detach();
+    let (tx, rx) = async_channel::unbounded::<Event>();
+    {
+        let tx = tx.clone();
+        ex.spawn(async move {
+            let mut s = std::pin::pin!(map_sub.async_stream());
+            while let Some(m) = s.next().await {
+                match m {
+                    Ok((Ros(msg), _)) => {
+                        let _ = tx.send(Event::Map(msg)).await;
+                    }
+                    Err(e) => log::warn!("map message skipped: {e:?}"),
+                }
+            }
+        })
+        .detach();
+    }
+    {
+        let tx = tx.clone();
+        let pose_type = params.pose_type;
+        let pose_sub = node
+            .create_subscription::<Ros<PoseWithCovarianceStamped>>(&pose_t, Some(reliable.clone()));
+        let stamped_sub =
+            node.create_subscription::<Ros<PoseStamped>>(&pose_t, Some(reliable.clone()));
+        ex.spawn(async move {
+            let send = |p: Pose| {
+                let (x, y, yaw) = (p.position.x, p.position.y, p.orientation.yaw());
+                (x.is_finite() && y.is_finite()).then_some(Event::Pose(x, y, yaw))
+            };
+            match pose_type {
+                PoseType::WithCovariance => {
+                    let Ok(sub) = pose_sub else { return };
+                    let mut s = std::pin::pin!(sub.async_stream());
+                    while let Some(m) = s.next().await {
+                        match m {
+                            Ok((Ros(p), _)) => match send(p.pose.pose) {
+                                Some(e) => {
+                                    let _ = tx.send(e).await;
+                                }
+                                None => log::warn!("pose with a non-finite position skipped"),
+                            },
+                            Err(e) => log::warn!("pose message skipped: {e:?}"),
+                        }
+                    }
+                }
+                PoseType::Stamped => {
+                    let Ok(sub) = stamped_sub else { return };
+                    let mut s = std::pin::pin!(sub.async_stream());
+                    while let Some(m) = s.next().await {
+                        match m {
+                            Ok((Ros(p), _)) => match send(p.pose) {
+                                Some(e) => {
+                                    let _ = tx.send(e).await;
+                                }
+                                None => log::warn!("pose with a non-finite position skipped"),
+                            },
+                            Err(e) => log::warn!("pose message skipped: {e:?}"),
+                        }
+                    }
+                }
+            }
+        })
+        .detach();
+    }
+    {
+        let tx = tx.clone();
+        ex.spawn(async move {
+            let mut s = std::pin::pin!(resume_sub.async_stream());
+            while let Some(m) = s.next().await {
+                if let Ok((b, _)) = m {
+                    let c = if b.data { "resume" } else { "stop" };
+                    let _ = tx.send(Event::Command(c.into())).await;
+                }
+            }
+        })
+        .detach();
+    }
+    {
+        let tx = tx.clone();
+        ex.spawn(async move {
+            let mut s = std::pin::pin!(command_sub.async_stream());
+            while let Some(m) = s.next().await {
+                if let Ok((t, _)) = m {
+                    let _ = tx.send(Event::Command(t.data)).await;
+                }
+            }
+        })
+        .detach();
+    }
+    {
+        let tx = tx.clone();
+        let period = Duration::from_secs_f64(1.0 / params.planner_frequency);
+        ex.spawn(async move {
+            let mut t = smol::Timer::interval(period);
+            while t.next().await.is_some() {
+                if tx.send(Event::Tick).await.is_err() {
+                    break;
+                }
+            }
+        })
+        .detach();
+    }
+    {
+        let tx = tx.clone();
+        ex.spawn(async move {
+            let _ = stop.recv().await;
+            let _ = tx.send(Event::Shutdown).await;
+        })
+        .detach();
+    }
+
+    let t0 = Instant::now();
+    let mut state = State {
+        params: params.clone(),
+        explorer: Explorer::new(cfg),
+        mode: if params.autostart {
+            Mode::Exploring
+        } else {
+            Mode::Idle
+        },
+        pose: None,
+        start: None,
+        seq: 0,
+        in_flight: Rc::new(RefCell::new(None)),
+        goal_pub,
+        markers_pub,
+        status_pub,
+        nav,
+        tx: tx.clone(),
+        t0,
+        buf_a: Vec::new(),
+        buf_b: Vec::new(),
+        last_status: String::new(),
+        waiting: None,
+        reason: String::new(),
+    };
+    state.publish_status();
+    let main = async {
+        while let Ok(ev) = rx.recv().await {
+            if !state.handle(ev, &ex) {
+                break;
+            }
+        }
+        state.cancel_in_flight(&ex);
+        // Let the cancel request go out.
+        smol::Timer::after(Duration::from_millis(100)).await;
+        state.mode.clone()
+    };
+    Ok(smol::block_on(ex.run(main.fuse())))
+}
+
+/// The event loop's state.
+struct State {
+    params: Params,
+    explorer: Explorer,
+    mode: Mode,
+    pose: Option<(f64, f64, f64)>,
+    start: Option<(f64, f64, f64)>,
+    /// Number of the latest goal sent; events of older goals are ignored.
+    seq: u64,
+    /// The Nav2 id of the goal in flight.
+    in_flight: Rc<RefCell<Option<(u64, UUID)>>>,
+    goal_pub: ros2_client::Publisher<Ros<PoseStamped>>,
+    markers_pub: ros2_client::Publisher<Ros<record::msgs::MarkerArray>>,
+    status_pub: ros2_client::Publisher<Text>,
+    nav: Rc<NavClient>,
+    tx: async_channel::Sender<Event>,
+    t0: Instant,
+    buf_a: Vec<(f64, f64)>,
+    buf_b: Vec<(f64, f64)>,
+    last_status: String,
+    /// Why no goal can be chosen just now (the robot is not on the map's free space yet).
+    waiting: Option<String>,
+    /// Why exploring stopped (empty while it has not).
+    reason: String,
+}
+
+impl State {
+    fn now_s(&self) -> f64 {
+        self.t0.elapsed().as_secs_f64()
+    }
+
+    /// `what`, after the reason exploring stopped (if it did).
+    fn after(&self, what: &str) -> String {
+        if self.reason.is_empty() {
+            what.to_string()
+        } else {
+            format!("{}; {what}", self.reason)
+        }
+    }
+
+    fn publish_status(&mut self) {
+        let mut s = self.mode.status();
+        if let (Mode::Exploring, Some(w)) = (&self.mode, &self.waiting) {
+            s = format!("waiting: {w}");
+        }
+        if s != self.last_status {
+            log::info!("status: {s}");
+            let _ = self.status_pub.publish(Text { data: s.clone() });
+            self.last_status = s;
+        }
+    }
+
+    /// React to one event; false ends the loop.
+    fn handle(&mut self, ev: Event, ex: &smol::LocalExecutor<'_>) -> bool {
+        match ev {
+            Event::Shutdown => return false,
+            Event::Map(msg) => match self.explorer.update_map(&msg) {
+                Ok(u) => {
+                    log::debug!(
+                        "map: {} cells changed{}",
+                        u.changed,
+                        if u.rebuilt { " (new frame)" } else { "" }
+                    );
+                    self.check(ex);
+                }
+                Err(e) => log::warn!("map message skipped: {e}"),
+            },
+            Event::Pose(x, y, yaw) => {
+                self.pose = Some((x, y, yaw));
+                if self.start.is_none() {
+                    self.start = Some((x, y, yaw));
+                }
+                self.check(ex);
+            }
+            Event::Tick => self.check(ex),
+            Event::Accepted(seq, id) => {
+                if seq == self.seq {
+                    *self.in_flight.borrow_mut() = Some((seq, id));
+                }
+            }
+            Event::Ended(seq, outcome) => {
+                if seq == self.seq {
+                    *self.in_flight.borrow_mut() = None;
+                    match (&self.mode, outcome) {
+                        (Mode::Returning, Outcome::Succeeded) => {
+                            self.mode = Mode::Done(self.after("returned to the start pose"));
+                        }
+                        (Mode::Returning, _) => {
+                            self.mode =
+                                Mode::Done(self.after("could not return to the start pose"));
+                        }
+                        (Mode::Exploring, Outcome::Succeeded) => {
+                            self.explorer.goal_reached();
+                            self.decide(ex);
+                        }
+                        (Mode::Exploring, Outcome::Failed) => {
+                            log::info!("goal failed: blacklisted");
+                            self.explorer.goal_failed();
+                            self.decide(ex);
+                        }
+                        _ => {}
+                    }
+                }
+            }
+            Event::Command(c) => self.command(c.trim(), ex),
+        }
+        self.publish_status();
+        true
+    }
+
+    fn command(&mut self, c: &str, ex: &smol::LocalExecutor<'_>) {
+        match c {
+            "start" | "resume" => {
+                if matches!(self.mode, Mode::Idle | Mode::Paused | Mode::Done(_)) {
+                    self.mode = Mode::Exploring;
+                    self.reason.clear();
+                    self.decide(ex);
+                }
+            }
+            "stop" => {
+                self.cancel_in_flight(ex);
+                self.explorer.forget_goal();
+                self.mode = Mode::Paused;
+            }
+            "return_to_init" => {
+                self.explorer.forget_goal();
+                self.return_to_start(ex);
+            }
+            other => log::warn!(
+                "command '{other}' skipped: expected start, stop, resume or return_to_init"
+            ),
+        }
+    }
+
+    /// Apply the re-plan policy; decide when it says so.
+    fn check(&mut self, ex: &smol::LocalExecutor<'_>) {
+        if self.mode != Mode::Exploring {
+            return;
+        }
+        let Some((x, y, _)) = self.pose else { return };
+        let now = self.now_s();
+        match self.explorer.check(x, y, now) {
+            Check::Keep => {}
+            Check::NoGoal => {
+                if self.in_flight.borrow().is_none() || self.params.publish_only {
+                    self.decide(ex)
+                }
+            }
+            why => {
+                log::info!("re-plan: {why:?}");
+                self.decide(ex)
+            }
+        }
+    }
+
+    fn decide(&mut self, ex: &smol::LocalExecutor<'_>) {
+        if self.mode != Mode::Exploring {
+            return;
+        }
+        let Some((x, y, _)) = self.pose else { return };
+        let now = self.now_s();
+        match self.explorer.decide(x, y, now) {
+            Decision::Goal(g) => {
+                self.waiting = None;
+                log::info!("goal ({:.2}, {:.2}), path {:.2} m", g.x, g.y, g.cost_m);
+                self.publish_markers();
+                self.send(g.x, g.y, g.yaw, ex);
+            }
+            Decision::Stop(StopReason::NoMap) => {}
+            Decision::Stop(
+                r @ (StopReason::RobotOffMap { .. } | StopReason::RobotNotOnFreeSpace { .. }),
+            ) => {
+                // Often passing: the SLAM map does not show the robot's surroundings yet.
+                self.waiting = Some(r.to_string());
+            }
+            Decision::Stop(r) => {
+                log::info!("stop: {r}");
+                self.publish_markers();
+                self.cancel_in_flight(ex);
+                self.mode = Mode::Done(r.to_string());
+                self.reason = r.to_string();
+                if self.params.return_to_init {
+                    self.return_to_start(ex);
+                }
+            }
+        }
+    }
+
+    fn return_to_start(&mut self, ex: &smol::LocalExecutor<'_>) {
+        self.cancel_in_flight(ex);
+        match self.start {
+            Some((x, y, yaw)) => {
+                self.mode = Mode::Returning;
+                self.send(x, y, yaw, ex);
+                if self.params.publish_only {
+                    self.mode = Mode::Done(self.after("start pose published"));
+                }
+            }
+            None => self.mode = Mode::Done(self.after("no start pose known")),
+        }
+    }
+
+    fn publish_markers(&mut self) {
+        if !self.params.visualize {
+            return;
+        }
+        let Some(frame) = self.explorer.frame() else {
+            return;
+        };
+        let res = frame.resolution;
+        self.explorer.frontier_points(&mut self.buf_a);
+        self.explorer.candidate_points(&mut self.buf_b);
+        let header = Header {
+            stamp: stamp(Instant::now(), self.t0),
+            frame_id: "map".into(),
+        };
+        let m = markers(&header, &self.buf_a, &self.buf_b, res);
+        let _ = self.markers_pub.publish(Ros(m));
+    }
+
+    fn cancel_in_flight(&mut self, ex: &smol::LocalExecutor<'_>) {
+        self.seq += 1; // whatever comes back about older goals is ignored
+        if let Some((_, id)) = self.in_flight.borrow_mut().take() {
+            let nav = self.nav.clone();
+            ex.spawn(async move {
+                let _ = nav.async_cancel_goal(id, RosTime::ZERO).await;
+            })
+            .detach();
+        }
+    }
+
+    /// Publish the goal, and send it to Nav2 unless publish-only.
+    fn send(&mut self, x: f64, y: f64, yaw: f64, ex: &smol::LocalExecutor<'_>) {
+        let header = Header {
+            stamp: stamp(Instant::now(), self.t0),
+            frame_id: "map".into(),
+        };
+        let pose = PoseStamped {
+            header,
+            pose: Pose::planar(x, y, yaw),
+        };
+        let _ = self.goal_pub.publish(Ros(pose.clone()));
+        if self.params.publish_only {
+            return;
+        }
+        self.cancel_in_flight(ex);
+        let seq = self.seq;
+        let nav = self.nav.clone();
+        let tx = self.tx.clone();
+        ex.spawn(async move {
+            let goal = Ros(NavigateToPoseGoal {
+                pose,
+                behavior_tree: String::new(),
+            });
+            let sent = futures::select! {
+                r = nav.async_send_goal(goal).fuse() => r.ok(),
+                _ = FutureExt::fuse(smol::Timer::after(Duration::from_secs(10))) => None,
+            };
+            let Some((id, response)) = sent else {
+                log::warn!("no answer from the NavigateToPose server");
+                let _ = tx.send(Event::Ended(seq, Outcome::Failed)).await;
+                return;
+            };
+            if !response.accepted {
+                let _ = tx.send(Event::Ended(seq, Outcome::Failed)).await;
+                return;
+            }
+            let _ = tx.send(Event::Accepted(seq, id)).await;
+            let outcome = match nav.async_request_result(id).await {
+                Ok((GoalStatusEnum::Succeeded, _)) => Outcome::Succeeded,
+                Ok((GoalStatusEnum::Canceled, _)) => Outcome::Canceled,
+                Ok(_) | Err(_) => Outcome::Failed,
+            };
+            let _ = tx.send(Event::Ended(seq, outcome)).await;
+        })
+        .detach();
+    }
+}

@@ -1,0 +1,347 @@
+//! The node's parameters, from a ROS 2 parameters file (YAML).
+//!
+//! The file has the form ROS 2 launch files pass with `--params-file`:
+//!
+//! ```yaml
+//! frontier_explore:          # the node's name, or /** for any node
+//!   ros__parameters:
+//!     strategy: cf-rr
+//!     sensor: "lidar:r=8,fov=360,res=0.5"
+//!     planner_frequency: 1.0
+//! ```
+//!
+//! Names shared with explore_lite mean the same: `planner_frequency` (Hz; decisions
+//! happen on map updates and goal ends too, this is the fastest periodic re-check),
+//! `progress_timeout` (s), `min_frontier_size` (m), `return_to_init`, `visualize`. Any
+//! other name is an error, so a misspelt parameter never silently keeps its default.
+
+use std::path::Path;
+
+use yaml_rust2::{Yaml, YamlLoader};
+
+/// Every parameter of the node, with its default.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Params {
+    /// Strategy preset (`cf-rr`, `yamauchi`, `cf-rr-seg`, `dt500`, ...).
+    pub strategy: String,
+    /// Sensor model for strategies that predict what a goal shows (`los:r=5`, `lidar:...`).
+    pub sensor: String,
+    /// Clearance from known obstacles, metres.
+    pub clearance: f64,
+    /// Periodic re-check rate, Hz (explore_lite's name).
+    pub planner_frequency: f64,
+    /// Seconds without progress before a goal is given up (explore_lite's name).
+    pub progress_timeout: f64,
+    /// Smallest frontier region that is a goal, metres (explore_lite's name).
+    pub min_frontier_size: f64,
+    /// Drive back to the start pose when exploration ends (explore_lite's name).
+    pub return_to_init: bool,
+    /// Publish frontier and candidate markers (explore_lite's name).
+    pub visualize: bool,
+    /// Distance to a goal at which it counts as reached, metres.
+    pub goal_tolerance: f64,
+    /// Only publish goals (on `goal_topic`), never send them to Nav2.
+    pub publish_only: bool,
+    /// Start exploring at once (else wait for `start`).
+    pub autostart: bool,
+    /// The map topic (OccupancyGrid, transient local).
+    pub map_topic: String,
+    /// The robot pose topic.
+    pub pose_topic: String,
+    /// Its type: `PoseWithCovarianceStamped` (AMCL, slam_toolbox) or `PoseStamped`.
+    pub pose_type: PoseType,
+    /// Nav2's NavigateToPose action.
+    pub navigate_action: String,
+    /// Where goals are published (always, and only there in publish-only mode).
+    pub goal_topic: String,
+    /// Where markers go.
+    pub markers_topic: String,
+    /// Seed of the strategy's random choices.
+    pub seed: u64,
+}
+
+/// The message type of the pose topic.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PoseType {
+    /// `geometry_msgs/msg/PoseWithCovarianceStamped` (AMCL's `/amcl_pose`, slam_toolbox's `/pose`).
+    WithCovariance,
+    /// `geometry_msgs/msg/PoseStamped`.
+    Stamped,
+}
+
+impl Default for Params {
+    fn default() -> Self {
+        Self {
+            strategy: "cf-rr".into(),
+            sensor: "lidar:r=8,fov=360,res=0.5".into(),
+            clearance: 0.2,
+            planner_frequency: 1.0,
+            progress_timeout: 30.0,
+            min_frontier_size: 0.5,
+            return_to_init: false,
+            visualize: true,
+            goal_tolerance: 0.5,
+            publish_only: false,
+            autostart: true,
+            map_topic: "/map".into(),
+            pose_topic: "/pose".into(),
+            pose_type: PoseType::WithCovariance,
+            navigate_action: "/navigate_to_pose".into(),
+            goal_topic: "/explore/goal".into(),
+            markers_topic: "/explore/frontiers".into(),
+            seed: 0,
+        }
+    }
+}
+
+/// A parameters file or value that cannot be used.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("{source_name}: {what}")]
+pub struct ParamError {
+    /// The file (or `--param`) the problem is in.
+    pub source_name: String,
+    /// What was expected and what was found.
+    pub what: String,
+}
+
+impl Params {
+    /// Read the parameters for node `node` from the YAML file at `path`, over the defaults.
+    pub fn from_file(path: &Path, node: &str) -> Result<Self, ParamError> {
+        let name = path.display().to_string();
+        let text = std::fs::read_to_string(path).map_err(|e| ParamError {
+            source_name: name.clone(),
+            what: format!("cannot read: {e}"),
+        })?;
+        let mut p = Params::default();
+        p.apply_yaml(&text, node, &name)?;
+        Ok(p)
+    }
+
+    /// Apply the parameters of `node` (or `/**`) in YAML `text` from `source_name`.
+    pub fn apply_yaml(
+        &mut self,
+        text: &str,
+        node: &str,
+        source_name: &str,
+    ) -> Result<(), ParamError> {
+        let err = |what: String| ParamError {
+            source_name: source_name.into(),
+            what,
+        };
+        let docs = YamlLoader::load_from_str(text).map_err(|e| err(format!("not YAML: {e}")))?;
+        let Some(Yaml::Hash(top)) = docs.first() else {
+            return Err(err(
+                "expected a mapping of node names to ros__parameters".into()
+            ));
+        };
+        let mut found = false;
+        for (k, v) in top {
+            let key = k.as_str().unwrap_or("");
+            let bare = key.trim_start_matches('/');
+            if key != "/**" && bare != node.trim_start_matches('/') {
+                continue;
+            }
+            let Some(params) = v["ros__parameters"].as_hash() else {
+                return Err(err(format!("{key}: expected a ros__parameters mapping")));
+            };
+            found = true;
+            for (pk, pv) in params {
+                let name = pk
+                    .as_str()
+                    .ok_or_else(|| err("a parameter name is not a string".into()))?;
+                self.set(name, &yaml_value(pv)).map_err(err)?;
+            }
+        }
+        if !found {
+            return Err(err(format!(
+                "expected a section for node {node} (or /**), found none"
+            )));
+        }
+        Ok(())
+    }
+
+    /// Set one parameter from its text form (as on a command line, `name:=value`).
+    pub fn set(&mut self, name: &str, value: &str) -> Result<(), String> {
+        fn num(name: &str, v: &str, min: f64) -> Result<f64, String> {
+            match v.parse::<f64>() {
+                Ok(x) if x.is_finite() && x >= min => Ok(x),
+                _ => Err(format!("{name}: expected a number ≥ {min}, found '{v}'")),
+            }
+        }
+        fn flag(name: &str, v: &str) -> Result<bool, String> {
+            match v {
+                "true" | "True" => Ok(true),
+                "false" | "False" => Ok(false),
+                _ => Err(format!("{name}: expected true or false, found '{v}'")),
+            }
+        }
+        fn topic(name: &str, v: &str) -> Result<String, String> {
+            if v.is_empty() || v.contains(char::is_whitespace) {
+                Err(format!("{name}: expected a topic name, found '{v}'"))
+            } else {
+                Ok(v.to_string())
+            }
+        }
+        match name {
+            "strategy" => {
+                explore::strategy::Strategy::preset(value).map_err(|e| format!("strategy: {e}"))?;
+                self.strategy = value.into();
+            }
+            "sensor" => {
+                value
+                    .parse::<sense::SensorSpec>()
+                    .map_err(|e| format!("sensor: {e}"))?;
+                self.sensor = value.into();
+            }
+            "clearance" => self.clearance = num(name, value, 0.0)?,
+            "planner_frequency" => {
+                let f = num(name, value, 0.0)?;
+                if f == 0.0 {
+                    return Err(format!(
+                        "{name}: expected a rate above 0 Hz, found '{value}'"
+                    ));
+                }
+                self.planner_frequency = f;
+            }
+            "progress_timeout" => self.progress_timeout = num(name, value, 0.0)?,
+            "min_frontier_size" => self.min_frontier_size = num(name, value, 0.0)?,
+            "goal_tolerance" => self.goal_tolerance = num(name, value, 0.0)?,
+            "return_to_init" => self.return_to_init = flag(name, value)?,
+            "visualize" => self.visualize = flag(name, value)?,
+            "publish_only" => self.publish_only = flag(name, value)?,
+            "autostart" => self.autostart = flag(name, value)?,
+            "map_topic" => self.map_topic = topic(name, value)?,
+            "pose_topic" => self.pose_topic = topic(name, value)?,
+            "navigate_action" => self.navigate_action = topic(name, value)?,
+            "goal_topic" => self.goal_topic = topic(name, value)?,
+            "markers_topic" => self.markers_topic = topic(name, value)?,
+            "pose_type" => {
+                self.pose_type = match value {
+                    "PoseWithCovarianceStamped" => PoseType::WithCovariance,
+                    "PoseStamped" => PoseType::Stamped,
+                    _ => {
+                        return Err(format!(
+                            "pose_type: expected PoseWithCovarianceStamped or PoseStamped, found '{value}'"
+                        ));
+                    }
+                }
+            }
+            "seed" => {
+                self.seed = value.parse().map_err(|_| {
+                    format!("seed: expected a non-negative integer, found '{value}'")
+                })?
+            }
+            _ => {
+                return Err(format!(
+                    "unknown parameter '{name}': expected one of strategy, sensor, clearance, \
+                     planner_frequency, progress_timeout, min_frontier_size, goal_tolerance, \
+                     return_to_init, visualize, publish_only, autostart, map_topic, pose_topic, \
+                     pose_type, navigate_action, goal_topic, markers_topic, seed"
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// The explorer configuration these parameters give.
+    pub fn explorer_config(&self) -> Result<crate::explorer::ExplorerConfig, String> {
+        let strategy =
+            explore::strategy::Strategy::preset(&self.strategy).map_err(|e| e.to_string())?;
+        let sensor = self
+            .sensor
+            .parse()
+            .map_err(|e: sense::SenseError| e.to_string())?;
+        Ok(crate::explorer::ExplorerConfig {
+            strategy,
+            sensor,
+            clearance_m: self.clearance,
+            min_frontier_size_m: self.min_frontier_size,
+            progress_timeout_s: self.progress_timeout,
+            goal_tolerance_m: self.goal_tolerance,
+            seed: self.seed,
+        })
+    }
+}
+
+/// A YAML scalar as the text `Params::set` takes.
+fn yaml_value(v: &Yaml) -> String {
+    match v {
+        Yaml::Real(s) | Yaml::String(s) => s.clone(),
+        Yaml::Integer(i) => i.to_string(),
+        Yaml::Boolean(b) => b.to_string(),
+        Yaml::Null => String::new(),
+        other => format!("{other:?}"),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const FILE: &str = "frontier_explore:\n  ros__parameters:\n    strategy: yamauchi\n    planner_frequency: 2\n    progress_timeout: 12.5\n    min_frontier_size: 0.3\n    return_to_init: true\n    sensor: \"los:r=4\"\n    pose_type: PoseStamped\n";
+
+    #[test]
+    fn a_params_file_sets_what_it_names() {
+        let mut p = Params::default();
+        p.apply_yaml(FILE, "frontier_explore", "p.yaml").unwrap();
+        assert_eq!(p.strategy, "yamauchi");
+        assert_eq!(p.planner_frequency, 2.0);
+        assert_eq!(p.progress_timeout, 12.5);
+        assert_eq!(p.min_frontier_size, 0.3);
+        assert!(p.return_to_init);
+        assert_eq!(p.sensor, "los:r=4");
+        assert_eq!(p.pose_type, PoseType::Stamped);
+        assert_eq!(p.clearance, Params::default().clearance);
+        let c = p.explorer_config().unwrap();
+        assert_eq!(c.strategy.name, "yamauchi");
+    }
+
+    #[test]
+    fn the_example_params_file_is_valid() {
+        let mut p = Params::default();
+        let text = include_str!("../params/explore.yaml");
+        p.apply_yaml(text, "frontier_explore", "explore.yaml")
+            .unwrap();
+        assert_eq!((p.clearance, p.return_to_init), (0.25, true));
+        p.explorer_config().unwrap();
+    }
+
+    #[test]
+    fn wildcard_sections_apply_to_any_node() {
+        let mut p = Params::default();
+        p.apply_yaml("/**:\n  ros__parameters:\n    seed: 9\n", "x", "p.yaml")
+            .unwrap();
+        assert_eq!(p.seed, 9);
+    }
+
+    #[test]
+    fn mistakes_name_the_file_the_parameter_and_the_value() {
+        let mut p = Params::default();
+        let e = p
+            .apply_yaml("n:\n  ros__parameters:\n    stratgy: cf\n", "n", "p.yaml")
+            .unwrap_err()
+            .to_string();
+        assert!(e.starts_with("p.yaml: unknown parameter 'stratgy'"), "{e}");
+        let e = p
+            .apply_yaml(
+                "n:\n  ros__parameters:\n    progress_timeout: .nan\n",
+                "n",
+                "p.yaml",
+            )
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("progress_timeout: expected a number"), "{e}");
+        let e = p
+            .apply_yaml("m:\n  ros__parameters: {}\n", "n", "p.yaml")
+            .unwrap_err();
+        assert!(e.what.contains("section for node n"), "{e}");
+        assert!(
+            p.set("strategy", "closest")
+                .unwrap_err()
+                .contains("unknown strategy")
+        );
+        assert!(p.set("sensor", "radar:r=5").is_err());
+        assert!(p.set("planner_frequency", "0").is_err());
+        assert!(p.apply_yaml(": : :", "n", "p.yaml").is_err());
+    }
+}

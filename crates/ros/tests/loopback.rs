@@ -1,0 +1,301 @@
+//! The node over DDS on this machine: a mock Nav2 drives a pretend robot.
+//!
+//! One process, two DDS participants on a domain of their own: the node under test, and the
+//! test's node that publishes the map (transient local, like slam_toolbox) and the robot's
+//! pose, serves `NavigateToPose` by moving the robot to each goal and revealing the true map
+//! around it, and listens to the node's goals and status. RustDDS announces itself to
+//! 127.0.0.1's discovery ports besides multicast, so the two find each other with or
+//! without multicast on the loopback interface.
+
+mod common;
+
+use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant};
+
+use common::World;
+use frontier_ros::Params;
+use frontier_ros::node::{self, Bool, Ros, Text, action_qos, map_qos, topic};
+use futures::{FutureExt, StreamExt};
+use grid::Cell;
+use grid::io::parse_ascii;
+use record::msgs::{
+    NavigateToPoseFeedback, NavigateToPoseGoal, NavigateToPoseResult, OccupancyGrid, Pose,
+    PoseStamped,
+};
+use ros2_client::action::{ActionServerQosPolicies, AsyncActionServer, GoalEndStatus};
+use ros2_client::qos::{Durability, History};
+use ros2_client::{ActionTypeName, NodeName, NodeOptions, QosProfile, ServiceMapping};
+use smol::future::FutureExt as _;
+
+const ROOMS: &str = "\
+################
+#......#.......#
+#......#.......#
+#..............#
+#......#.......#
+####.#######.###
+#..............#
+#..............#
+################
+";
+
+/// What the test saw.
+#[derive(Default)]
+struct Seen {
+    goals_sent: Vec<(f64, f64)>,
+    nav_goals: Vec<(f64, f64)>,
+    status: Vec<String>,
+}
+
+fn domain() -> u16 {
+    // A domain per test process, away from the default 0.
+    100 + (std::process::id() % 100) as u16
+}
+
+fn params(publish_only: bool) -> Params {
+    let mut p = Params::default();
+    for (k, v) in [
+        ("strategy", "cf-rr"),
+        ("sensor", "los:r=3"),
+        ("clearance", "0"),
+        ("min_frontier_size", "0"),
+        ("planner_frequency", "5"),
+        ("pose_type", "PoseStamped"),
+        ("goal_tolerance", "0.3"),
+    ] {
+        p.set(k, v).unwrap();
+    }
+    p.publish_only = publish_only;
+    p
+}
+
+/// Run the node in a thread and a mock robot here until the node reports `done`, or fail
+/// after `limit`. The mock aborts the first `abort_first` goals Nav2 receives; the test
+/// sends `stop` after `stop_after` goals and `resume` a second later.
+fn scenario(publish_only: bool, abort_first: usize, stop_after: Option<usize>) -> (f64, Seen) {
+    let domain = domain() + u16::from(publish_only);
+    let node_ctx = node::context(domain).unwrap();
+    let (stop_tx, stop_rx) = async_channel::bounded(1);
+    let p = params(publish_only);
+    let handle = std::thread::spawn(move || node::run(p, "frontier_explore", &node_ctx, stop_rx));
+
+    let ctx = node::context(domain).unwrap();
+    let mut n = ctx
+        .new_node(
+            NodeName::new("/", "mock_nav2").unwrap(),
+            NodeOptions::new().enable_rosout(false),
+        )
+        .unwrap();
+    let reliable = QosProfile::publisher_default().history(History::KeepLast { depth: 10 });
+    let latched = reliable
+        .clone()
+        .durability(Durability::TransientLocal)
+        .history(History::KeepLast { depth: 1 });
+    let map_pub = n
+        .create_publisher::<Ros<OccupancyGrid>>(
+            &topic(&n, "/map", "nav_msgs", "OccupancyGrid").unwrap(),
+            Some(map_qos()),
+        )
+        .unwrap();
+    let pose_pub = n
+        .create_publisher::<Ros<PoseStamped>>(
+            &topic(&n, "/pose", "geometry_msgs", "PoseStamped").unwrap(),
+            Some(reliable.clone()),
+        )
+        .unwrap();
+    let cmd_pub = n
+        .create_publisher::<Text>(
+            &topic(&n, "/explore/command", "std_msgs", "String").unwrap(),
+            Some(reliable.clone()),
+        )
+        .unwrap();
+    let _resume_pub = n
+        .create_publisher::<Bool>(
+            &topic(&n, "/explore/resume", "std_msgs", "Bool").unwrap(),
+            Some(reliable.clone()),
+        )
+        .unwrap();
+    let status_sub = n
+        .create_subscription::<Text>(
+            &topic(&n, "/explore/status", "std_msgs", "String").unwrap(),
+            Some(latched),
+        )
+        .unwrap();
+    let goal_sub = n
+        .create_subscription::<Ros<PoseStamped>>(
+            &topic(&n, "/explore/goal", "geometry_msgs", "PoseStamped").unwrap(),
+            Some(reliable.clone()),
+        )
+        .unwrap();
+    let service = QosProfile::publisher_default()
+        .durability(Durability::Volatile)
+        .history(History::KeepLast { depth: 1 });
+    let server = AsyncActionServer::new(
+        n.create_action_server::<Ros<NavigateToPoseGoal>, Ros<NavigateToPoseResult>, Ros<NavigateToPoseFeedback>>(
+            ServiceMapping::Enhanced,
+            &node::topic_name("/navigate_to_pose").unwrap(),
+            &ActionTypeName::new("nav2_msgs", "NavigateToPose"),
+            ActionServerQosPolicies {
+                goal_service: service.clone(),
+                result_service: service.clone(),
+                cancel_service: service.clone(),
+                feedback_publisher: service.clone(),
+                status_publisher: service.durability(Durability::TransientLocal),
+            },
+        )
+        .unwrap(),
+    );
+    let _ = action_qos;
+
+    let world = Arc::new(Mutex::new(World::new(
+        parse_ascii(ROOMS, 0.5).unwrap(),
+        "los:r=3",
+    )));
+    let seen = Arc::new(Mutex::new(Seen::default()));
+    let start = world.lock().unwrap().world(Cell::new(2, 2));
+    let robot = Arc::new(Mutex::new(start));
+    let ex = smol::LocalExecutor::new();
+    ex.spawn(n.spinner().unwrap().spin()).detach();
+
+    // Move the robot to (x, y), sense there, publish the map and the pose.
+    let publish = {
+        let world = world.clone();
+        let robot = robot.clone();
+        move |x: f64, y: f64| {
+            *robot.lock().unwrap() = (x, y);
+            let mut w = world.lock().unwrap();
+            w.sense_at(x, y);
+            let _ = map_pub.publish(Ros(w.map_msg()));
+            let mut p = PoseStamped::default();
+            p.header.frame_id = "map".into();
+            p.pose = Pose::planar(x, y, 0.0);
+            let _ = pose_pub.publish(Ros(p));
+        }
+    };
+    let publish = Rc::new(publish);
+
+    let deadline = Instant::now() + Duration::from_secs(90);
+    let main = async {
+        // Give discovery a moment, then the first map and pose; repeat them until goals come.
+        let mut goals = std::pin::pin!(goal_sub.async_stream());
+        let mut status = std::pin::pin!(status_sub.async_stream());
+        let mut tick = smol::Timer::interval(Duration::from_millis(500));
+        let mut nav_count = 0usize;
+        let mut stopped_at: Option<Instant> = None;
+        let mut paused_goals = None;
+        loop {
+            if Instant::now() > deadline {
+                panic!(
+                    "no end within the limit; saw status {:?}",
+                    seen.lock().unwrap().status
+                );
+            }
+            futures::select! {
+                _ = FutureExt::fuse(tick.next()) => {
+                    let (x, y) = *robot.lock().unwrap();
+                    publish(x, y);
+                    if let Some(t) = stopped_at && t.elapsed() > Duration::from_secs(2) {
+                        stopped_at = None;
+                        let s = seen.lock().unwrap();
+                        assert_eq!(Some(s.goals_sent.len()), paused_goals, "a goal while paused");
+                        drop(s);
+                        let _ = cmd_pub.publish(Text { data: "resume".into() });
+                    }
+                }
+                s = status.next() => {
+                    let Some(Ok((t, _))) = s else { continue };
+                    seen.lock().unwrap().status.push(t.data.clone());
+                    if t.data == "paused" {
+                        paused_goals = Some(seen.lock().unwrap().goals_sent.len());
+                    }
+                    if t.data.starts_with("done") {
+                        break;
+                    }
+                }
+                g = goals.next() => {
+                    let Some(Ok((Ros(g), _))) = g else { continue };
+                    let (x, y) = (g.pose.position.x, g.pose.position.y);
+                    let k = {
+                        let mut s = seen.lock().unwrap();
+                        s.goals_sent.push((x, y));
+                        s.goals_sent.len()
+                    };
+                    if publish_only {
+                        // Drive there by ourselves.
+                        publish(x, y);
+                    }
+                    if stop_after == Some(k) {
+                        let _ = cmd_pub.publish(Text { data: "stop".into() });
+                        stopped_at = Some(Instant::now());
+                    }
+                }
+                h = server.receive_new_goal().fuse() => {
+                    let Ok(h) = h else { continue };
+                    let Some(Ros(goal)) = server.get_new_goal(h.clone()) else { continue };
+                    let Ok(acc) = server.accept_goal(h).await else { continue };
+                    let Ok(exe) = server.start_executing_goal(acc).await else { continue };
+                    let (x, y) = (goal.pose.pose.position.x, goal.pose.pose.position.y);
+                    seen.lock().unwrap().nav_goals.push((x, y));
+                    nav_count += 1;
+                    let end = if nav_count <= abort_first {
+                        GoalEndStatus::Aborted
+                    } else {
+                        publish(x, y);
+                        GoalEndStatus::Succeeded
+                    };
+                    let result = Ros(NavigateToPoseResult { error_code: 0, error_msg: String::new() });
+                    let _ = server
+                        .send_result_response(exe, end, result)
+                        .or(async {
+                            smol::Timer::after(Duration::from_secs(5)).await;
+                            Err(ros2_client::action::GoalError::NoSuchGoal)
+                        })
+                        .await;
+                }
+            }
+        }
+    };
+    smol::block_on(ex.run(main));
+    stop_tx.try_send(()).unwrap();
+    let mode = handle.join().unwrap().unwrap();
+    assert!(matches!(mode, node::Mode::Done(_)), "{mode:?}");
+    let coverage = world.lock().unwrap().coverage_from(Cell::new(2, 2));
+    let seen = std::mem::take(&mut *seen.lock().unwrap());
+    eprintln!(
+        "status {:?}\ngoals {:?}\nnav2 {:?}",
+        seen.status, seen.goals_sent, seen.nav_goals
+    );
+    (coverage, seen)
+}
+
+use std::rc::Rc;
+
+#[test]
+fn the_node_explores_blacklists_and_honours_stop_and_resume() {
+    let (coverage, seen) = scenario(false, 1, Some(3));
+    let last = seen.status.last().unwrap();
+    assert!(last.starts_with("done: explored"), "{:?}", seen.status);
+    assert!(coverage > 0.999, "{coverage}");
+    // The aborted goal is never sent again.
+    let aborted = seen.nav_goals[0];
+    assert!(
+        !seen.nav_goals[1..].contains(&aborted),
+        "{:?}",
+        seen.nav_goals
+    );
+    // Stop and resume happened.
+    let i = seen
+        .status
+        .iter()
+        .position(|s| s == "paused")
+        .expect("paused");
+    assert_eq!(seen.status[i + 1], "exploring", "{:?}", seen.status);
+}
+
+#[test]
+fn publish_only_never_sends_a_goal_to_nav2() {
+    let (coverage, seen) = scenario(true, 0, None);
+    assert!(seen.nav_goals.is_empty(), "{:?}", seen.nav_goals);
+    assert!(seen.goals_sent.len() > 1);
+    assert!(coverage > 0.999, "{coverage} {:?}", seen.status);
+}
