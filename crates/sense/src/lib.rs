@@ -58,7 +58,7 @@ pub mod spec;
 pub use belief::{Belief, BeliefKind, EvidenceGrid, KnownGrid, ReflectionMap};
 pub use error::SenseError;
 pub use footprint::{FootprintSensor, MAX_RANGE_CELLS};
-pub use gain::{GainScratch, InverseModel, entropy, information_gain};
+pub use gain::{GainScratch, InverseModel, entropy, information_gain, information_gain_gated};
 pub use lidar::LidarSensor;
 pub use los::LosSensor;
 pub use ray_template::{LosTemplate, MAX_TEMPLATE_RANGE_CELLS};

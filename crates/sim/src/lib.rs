@@ -36,5 +36,7 @@ pub mod seed;
 pub mod truth;
 
 pub use config::{RunConfig, SimError};
-pub use metrics::{EndReason, MapAudit, PhaseTimes, RunResult, Trace, TraceEvent, TraceGoal};
+pub use metrics::{
+    DtDecision, DtSample, EndReason, MapAudit, PhaseTimes, RunResult, Trace, TraceEvent, TraceGoal,
+};
 pub use run::{Session, Status, run};

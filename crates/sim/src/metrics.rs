@@ -70,6 +70,35 @@ pub struct TraceGoal {
     pub goal: Option<u32>,
 }
 
+/// One sample of a decision-theoretic decision, as the trace records it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DtSample {
+    /// The sample's cell.
+    pub cell: u32,
+    /// Its expected information gain `I(p)` in bits.
+    pub gain: f64,
+    /// Its path cost `L(p)` in metres from the deciding robot (infinite if unreachable).
+    pub cost_m: f64,
+    /// Its utility `I·exp(−λ·L)`.
+    pub utility: f64,
+}
+
+/// A decision of the decision-theoretic strategy in the trace.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct DtDecision {
+    /// Number of events before the decision.
+    pub event: u32,
+    /// The deciding robot.
+    pub robot: u32,
+    /// Whether no sample had a gain, so the frontier cells were the candidates.
+    pub fell_back: bool,
+    /// Every candidate with its gain, cost and utility (gains the decision did not need
+    /// are evaluated for the trace; the decision is unchanged).
+    pub samples: Vec<DtSample>,
+    /// The chosen goal.
+    pub chosen: Option<u32>,
+}
+
 /// Per-step record of a run, for pictures and replays: every event with the belief changes
 /// it made (only what changed, so a long run stays compact).
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -86,6 +115,9 @@ pub struct Trace {
     pub change_ends: Vec<u32>,
     /// Every decision's outcome.
     pub goals: Vec<TraceGoal>,
+    /// Every decision-theoretic decision (`dt`, `dt500`, `dt-rr`) in detail: its samples
+    /// with `I`, `L` and utility, and the chosen goal.
+    pub dt: Vec<DtDecision>,
     /// Goal candidates of each decision (not recorded when the candidates are all frontier
     /// cells, which the frontier layer shows): (events before it, candidate cells).
     pub candidates: Vec<(u32, Vec<u32>)>,

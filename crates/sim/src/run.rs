@@ -41,7 +41,9 @@ use rand_pcg::Pcg64Mcg;
 use sense::{Belief, Observation, Pose, Sensor, SonarMode, SonarReading, SonarSensor};
 
 use crate::config::{RunConfig, SimError};
-use crate::metrics::{EndReason, MapAudit, PhaseTimes, RunResult, Trace, TraceEvent, TraceGoal};
+use crate::metrics::{
+    DtDecision, DtSample, EndReason, MapAudit, PhaseTimes, RunResult, Trace, TraceEvent, TraceGoal,
+};
 use crate::{seed, truth};
 
 /// One robot's state.
@@ -1028,6 +1030,33 @@ impl Team<'_> {
                     robot.goal = None;
                     robot.idle = true;
                 }
+            }
+            if let (Some(t), AssignerKind::DtUtility { lambda }) =
+                (self.trace.as_mut(), self.cfg.strategy.assigner)
+            {
+                let dt = &mut self.memory.dt;
+                let reach = self.planner.map(r);
+                let mut samples = Vec::with_capacity(dt.cells.len());
+                for k in 0..dt.cells.len() {
+                    let by = self.planner.map(dt.reachers[k] as usize);
+                    let gain = dt.gain(k, self.sensor.as_ref(), self.belief.as_ref(), by);
+                    let cost_m = reach
+                        .cost(dt.cells[k] as usize)
+                        .map_or(f64::INFINITY, |c| c * self.truth.resolution);
+                    samples.push(DtSample {
+                        cell: dt.cells[k],
+                        gain,
+                        cost_m,
+                        utility: gain * (-lambda * cost_m).exp(),
+                    });
+                }
+                t.dt.push(DtDecision {
+                    event: t.events.len() as u32,
+                    robot: r as u32,
+                    fell_back: dt.fell_back,
+                    samples,
+                    chosen: robot.goal,
+                });
             }
             if let Some(t) = self.trace.as_mut() {
                 t.goals.push(TraceGoal {
