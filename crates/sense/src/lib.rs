@@ -54,6 +54,7 @@ pub mod segment;
 pub mod sensor;
 pub mod sonar;
 pub mod spec;
+pub mod square;
 
 pub use belief::{Belief, BeliefKind, EvidenceGrid, KnownGrid, ReflectionMap};
 pub use error::SenseError;
@@ -66,3 +67,4 @@ pub use segment::{los_visible, segment_clear};
 pub use sensor::{Observation, Pose, Sensor};
 pub use sonar::{SonarError, SonarMode, SonarParams, SonarReading, SonarSensor};
 pub use spec::{Range, SensorSpec, YAMAUCHI_RANGE};
+pub use square::SquareSensor;

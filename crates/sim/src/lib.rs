@@ -35,8 +35,9 @@ pub mod run;
 pub mod seed;
 pub mod truth;
 
-pub use config::{RunConfig, SimError};
+pub use config::{CoverageKind, RunConfig, SimError};
 pub use metrics::{
-    DtDecision, DtSample, EndReason, MapAudit, PhaseTimes, RunResult, Trace, TraceEvent, TraceGoal,
+    DtDecision, DtSample, EndReason, MILESTONES, MapAudit, Milestone, PhaseTimes, RunResult, Trace,
+    TraceEvent, TraceGoal,
 };
 pub use run::{Session, Status, run};

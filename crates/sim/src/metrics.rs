@@ -225,6 +225,21 @@ impl Trace {
     }
 }
 
+/// Coverage levels (per cent) whose first reaching a run records: D90/T90, D98/T98 (the
+/// level Explore-Bench reports) and D99/T99.
+pub const MILESTONES: [u32; 3] = [90, 98, 99];
+
+/// When a run first reached a coverage level.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Milestone {
+    /// The level in per cent.
+    pub percent: u32,
+    /// Distance the team had travelled, in metres (summed over robots).
+    pub dist_m: f64,
+    /// Time in seconds (the clock of the robot whose sensing reached it).
+    pub time_s: f64,
+}
+
 /// The result of one run.
 #[derive(Clone, Debug)]
 pub struct RunResult {
@@ -250,6 +265,14 @@ pub struct RunResult {
     pub ends: Vec<Cell>,
     /// Coverage over total distance: (metres travelled by the team, coverage), at every change.
     pub coverage_curve: Vec<(f64, f64)>,
+    /// The levels of [`MILESTONES`] the run reached, in order, with distance and time.
+    pub milestones: Vec<Milestone>,
+    /// Cells sensed by two or more robots over cells sensed by any (0 for one robot): the
+    /// team's overlap ratio.
+    pub overlap: f64,
+    /// Seconds each robot did not travel before the run's end (`time_s` less its own
+    /// travel time): idle without a goal, or done before the others.
+    pub idle_s: Vec<f64>,
     /// Wall-clock phase timings.
     pub times: PhaseTimes,
     /// The final belief, classified.
@@ -293,6 +316,17 @@ pub struct MapAudit {
     pub phantom_regions_max: u64,
     /// Goals chosen on cells that are not free in the ground truth.
     pub phantom_goals: u64,
+}
+
+impl RunResult {
+    /// Distance and time (metres, seconds) at which coverage first reached `percent` (one of
+    /// [`MILESTONES`]), if it did.
+    pub fn milestone(&self, percent: u32) -> Option<(f64, f64)> {
+        self.milestones
+            .iter()
+            .find(|m| m.percent == percent)
+            .map(|m| (m.dist_m, m.time_s))
+    }
 }
 
 impl MapAudit {
