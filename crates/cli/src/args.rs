@@ -24,6 +24,11 @@ pub struct MapSource {
     /// Add a wall around a bare bitmap (Stage floor plans often have none).
     #[arg(long)]
     pub border: bool,
+    /// Read --map as a dungeon PNG of learned-exploration work (Chen et al. 2019): pixels
+    /// brighter than 150 are free, and pixels of value 208 mark the start (used unless
+    /// --start is given). Needs --resolution.
+    #[arg(long)]
+    pub dungeon: bool,
     /// Size of a generated environment in metres, "WxH".
     #[arg(long)]
     pub size: Option<String>,
@@ -48,6 +53,8 @@ pub struct Truth {
     pub map: GridMap,
     /// Obstacles off the laser plane (same size as the map), if any.
     pub clutter: Option<Grid<bool>>,
+    /// The start the map file marks (a dungeon PNG's), if any.
+    pub start: Option<grid::Cell>,
 }
 
 impl Truth {
@@ -132,7 +139,19 @@ impl MapSource {
                 resolution,
                 border: self.border,
             };
-            let map = grid::io::load_map(path, &opts)?;
+            let mut start = None;
+            let map = if self.dungeon {
+                let Some((rx, _)) = resolution.filter(|(x, y)| x == y) else {
+                    bail!("--dungeon: expected one --resolution (square cells) for the PNG");
+                };
+                let bytes = std::fs::read(path)
+                    .with_context(|| format!("{}: cannot read", path.display()))?;
+                let d = grid::io::parse_dungeon(&bytes, path, rx)?;
+                start = Some(d.start);
+                d.map
+            } else {
+                grid::io::load_map(path, &opts)?
+            };
             let name = path
                 .file_stem()
                 .map(|s| s.to_string_lossy().into_owned())
@@ -144,7 +163,12 @@ impl MapSource {
                 );
             }
             let clutter = self.load_clutter(&map, &opts)?;
-            return Ok(Truth { name, map, clutter });
+            return Ok(Truth {
+                name,
+                map,
+                clutter,
+                start,
+            });
         }
         let kind: EnvKind = self
             .env
@@ -183,6 +207,7 @@ impl MapSource {
             name: env.name.clone(),
             map: env.map,
             clutter,
+            start: None,
         })
     }
 

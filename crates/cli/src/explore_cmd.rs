@@ -82,7 +82,8 @@ pub fn config(a: &ExploreArgs, truth: &Truth) -> Result<RunConfig> {
         .start
         .as_deref()
         .map(|s| parse_cell(s, "--start"))
-        .transpose()?;
+        .transpose()?
+        .or(truth.start);
     let opts = bench::explore::ExploreOptions {
         seed: a.seed,
         start,

@@ -93,7 +93,7 @@ fn team_idle_time_and_overlap() {
         assert!(idle >= 0.0);
     }
     assert!(
-        r.idle_s.iter().any(|&t| t == 0.0),
+        r.idle_s.contains(&0.0),
         "the last robot to finish is never idle"
     );
     assert!(r.overlap > 0.0 && r.overlap < 1.0, "overlap {}", r.overlap);

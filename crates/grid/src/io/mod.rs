@@ -15,6 +15,7 @@
 
 pub mod ascii;
 pub mod bitmap;
+pub mod dungeon;
 pub mod error;
 pub mod movingai;
 pub mod pgm;
@@ -26,6 +27,7 @@ use std::path::Path;
 
 pub use ascii::{ascii_map, parse_ascii, to_ascii};
 pub use bitmap::{add_border, parse_bitmap};
+pub use dungeon::{DungeonMap, parse_dungeon};
 pub use error::{MEMORY, MapError, MapErrorKind};
 pub use movingai::{parse_movingai, to_movingai};
 pub use pgm::{encode_pgm, parse_pgm};
