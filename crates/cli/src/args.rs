@@ -14,7 +14,8 @@ pub struct MapSource {
     /// is `office`.
     #[arg(long, conflicts_with = "map")]
     pub env: Option<String>,
-    /// A map file: ROS .yaml, .pgm/.png bitmap (needs --resolution), MovingAI .map, ASCII .txt.
+    /// A map file: ROS .yaml, .pgm/.png bitmap (needs --resolution), MovingAI .map, HouseExpo
+    /// .json (needs --resolution), ASCII .txt.
     #[arg(long)]
     pub map: Option<PathBuf>,
     /// Metres per cell for bitmaps and .map files; "RX,RY" for non-square pixels; for --env,

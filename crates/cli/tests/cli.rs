@@ -1047,3 +1047,33 @@ fn a_dungeon_png_gives_its_marked_start() {
     let msg = err(&["explore", "--map", p, "--dungeon", "--resolution", "0.1"]);
     assert!(msg.contains("dungeon.png") && msg.contains("208"), "{msg}");
 }
+
+#[test]
+fn a_houseexpo_plan_is_explored() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("house.json");
+    std::fs::write(
+        &path,
+        r#"{"id": "h", "verts": [[0,0],[6,0],[6,3],[3,3],[3,6],[0,6]],
+           "room_category": {"living_room": [[0,0,6,3]], "bedroom": [[0,3,3,6]]}}"#,
+    )
+    .unwrap();
+    let p = path.to_str().unwrap();
+    let out = ok(&[
+        "explore",
+        "--map",
+        p,
+        "--resolution",
+        "0.1",
+        "--json",
+        "--no-timing",
+    ]);
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(v["coverage"], 1.0);
+    assert_eq!(v["width"], 62);
+    let msg = err(&["explore", "--map", p]);
+    assert!(
+        msg.contains("house.json") && msg.contains("resolution"),
+        "{msg}"
+    );
+}
