@@ -35,6 +35,8 @@ pub struct ExploreOptions {
     pub s_max: Option<i64>,
     /// Coverage goal (`--goal`).
     pub goal: Option<f64>,
+    /// What coverage counts (`--coverage`: `reachable` or `known`; default reachable).
+    pub coverage: Option<String>,
     /// Move limit of the team (`--max-moves`).
     pub max_moves: u64,
     /// Keep a trace (trails, goals) for pictures.
@@ -56,6 +58,7 @@ impl Default for ExploreOptions {
             robots: 1,
             s_max: None,
             goal: None,
+            coverage: None,
             max_moves: 10_000_000,
             record_trace: false,
         }
@@ -103,6 +106,9 @@ pub fn config(
     cfg.speed = o.speed;
     cfg.seed = o.seed;
     cfg.coverage_goal = o.goal;
+    if let Some(c) = o.coverage.as_deref() {
+        cfg.coverage = c.parse()?;
+    }
     cfg.max_moves = o.max_moves;
     cfg.record_trace = o.record_trace;
     cfg.clutter = clutter;
@@ -186,6 +192,7 @@ pub fn summary_json(
         "complete": r.complete(),
         "reason": r.reason.as_str(),
         "coverage": round(r.coverage, 6),
+        "coverage_kind": cfg.coverage.to_string(),
         "reachable_cells": r.reachable_cells,
         "path_length_m": r.path_length_m.iter().map(|&l| round(l, 4)).collect::<Vec<_>>(),
         "max_path_length_m": round(r.max_path_length_m(), 4),
@@ -200,9 +207,26 @@ pub fn summary_json(
             "decide": ms(r.times.decide_s),
             "total": ms(r.times.total_s),
         },
+        "d90_m": milestone(r, 90).0,
+        "t90_s": milestone(r, 90).1,
+        "d98_m": milestone(r, 98).0,
+        "t98_s": milestone(r, 98).1,
+        "d99_m": milestone(r, 99).0,
+        "t99_s": milestone(r, 99).1,
+        "overlap": round(r.overlap, 6),
+        "idle_s": r.idle_s.iter().map(|&t| round(t, 4)).collect::<Vec<_>>(),
         "map": audit_json(r),
         "coverage_curve": downsample(&r.coverage_curve, 100),
     })
+}
+
+/// Distance and time (JSON numbers, or null if never reached) at which coverage first
+/// reached `percent`.
+fn milestone(r: &RunResult, percent: u32) -> (Value, Value) {
+    match r.milestone(percent) {
+        Some((d, t)) => (json!(round(d, 4)), json!(round(t, 4))),
+        None => (Value::Null, Value::Null),
+    }
 }
 
 /// The map built against the ground truth ([`sim::MapAudit`]).

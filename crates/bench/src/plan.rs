@@ -36,6 +36,12 @@ use world::{EnvKind, EnvSpec};
 use crate::error::BenchError;
 use crate::scenario::{ScenarioFile, Source};
 
+/// Revision of the strategies' results in a study's fingerprint: bumped when a preset's
+/// results change, so that a store of older results is not resumed with new ones (v2: the
+/// decision-theoretic presets sample near reachable frontiers only, stop when none is left,
+/// and gate predicted rays at unseen wall cells).
+pub const STRATEGY_REVISION: u32 = 2;
+
 /// A resolved study: environments, variants, common settings and the flat trial list.
 #[derive(Clone, Debug)]
 pub struct Plan {
@@ -193,8 +199,9 @@ impl Plan {
         cfg
     }
 
-    /// A text naming the settings every trial shares; a results database holds the results
-    /// of one fingerprint only, so a changed scenario cannot silently mix with old results.
+    /// A text naming the settings every trial shares and the strategies' revision; a
+    /// results database holds the results of one fingerprint only, so a changed scenario,
+    /// or strategies whose results changed, cannot silently mix with old results.
     pub fn fingerprint(&self) -> String {
         let c = &self.common;
         let optimal = self
@@ -202,7 +209,8 @@ impl Plan {
             .as_ref()
             .map_or(String::new(), |o| format!(" optimal=[{}]", o.fingerprint()));
         format!(
-            "seed={} speed={} clearance={} goal={:?} max_moves={} belief={} sensing={}{optimal}",
+            "strategies={STRATEGY_REVISION} seed={} speed={} clearance={} goal={:?} max_moves={} \
+             belief={} sensing={}{optimal}",
             self.master_seed,
             c.speed,
             c.clearance_m,

@@ -182,6 +182,18 @@ fn build(
             let id = slug(&format!("{e}-{sensor}-m{robots}"));
             blocks.push(Block::Heading(3, name.clone()));
             blocks.push(summary_table(by_strategy));
+            blocks.push(Block::Para(
+                "Distance (team, m) and time (s) to 90 % and 99 % coverage (D90, T90, D99, T99; \
+                 over the trials that reached it)"
+                    .to_string()
+                    + if *robots > 1 {
+                        ", the overlap ratio (cells sensed by two or more robots over cells \
+                         sensed) and the mean idle time per robot (s)."
+                    } else {
+                        "."
+                    },
+            ));
+            blocks.push(milestones_table(by_strategy, *robots > 1));
             if let Some((header, body)) = crate::competitive::ratio_table(by_strategy) {
                 blocks.push(Block::Para(
                     "Competitive ratio (Quattrini Li et al. 2012): path length over the optimal \
@@ -345,6 +357,50 @@ fn summary_table(by_strategy: &BTreeMap<String, Vec<&TrialRow>>) -> Block {
                 stats::summarize(&t)
                     .map_or("–".into(), |x| format!("{} ± {}", fmt(x.mean), fmt(x.sd))),
             );
+            row
+        })
+        .collect();
+    Block::Table(header, body)
+}
+
+/// D90/T90/D99/T99 per strategy (mean ± sd over the trials that reached the level, with
+/// their count when some did not) and, for teams, the overlap ratio and idle time.
+fn milestones_table(by_strategy: &BTreeMap<String, Vec<&TrialRow>>, team: bool) -> Block {
+    let mut header: Vec<String> = ["strategy", "D90 (m)", "T90 (s)", "D99 (m)", "T99 (s)"]
+        .map(String::from)
+        .to_vec();
+    if team {
+        header.extend(["overlap", "idle per robot (s)"].map(String::from));
+    }
+    let cell = |rs: &[&TrialRow], get: &dyn Fn(&TrialRow) -> Option<f64>| {
+        let v: Vec<f64> = rs.iter().filter_map(|r| get(r)).collect();
+        let reached = if v.len() < rs.len() {
+            format!(" ({}/{})", v.len(), rs.len())
+        } else {
+            String::new()
+        };
+        match stats::summarize(&v) {
+            Ok(x) => format!("{} ± {}{reached}", fmt(x.mean), fmt(x.sd)),
+            Err(_) => format!("–{reached}"),
+        }
+    };
+    let body = by_strategy
+        .iter()
+        .map(|(s, rs)| {
+            let mut row = vec![
+                s.clone(),
+                cell(rs, &|r| r.d90_m),
+                cell(rs, &|r| r.t90_s),
+                cell(rs, &|r| r.d99_m),
+                cell(rs, &|r| r.t99_s),
+            ];
+            if team {
+                row.push(cell(rs, &|r| Some(r.overlap)));
+                row.push(cell(rs, &|r| {
+                    let idle: Vec<f64> = serde_json::from_str(&r.idle_s).ok()?;
+                    (!idle.is_empty()).then(|| idle.iter().sum::<f64>() / idle.len() as f64)
+                }));
+            }
             row
         })
         .collect();

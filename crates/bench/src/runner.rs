@@ -375,6 +375,12 @@ pub fn row(plan: &Plan, t: &Trial, result: &RunResult, wall_s: f64) -> TrialRow 
         optimal_lower_m: None,
         optimal_proven: None,
         ratio: None,
+        d90_m: result.milestone(90).map(|m| m.0),
+        t90_s: result.milestone(90).map(|m| m.1),
+        d99_m: result.milestone(99).map(|m| m.0),
+        t99_s: result.milestone(99).map(|m| m.1),
+        overlap: result.overlap,
+        idle_s: serde_json::to_string(&result.idle_s).unwrap_or_default(),
     }
 }
 

@@ -22,7 +22,7 @@ use serde::Serialize;
 use crate::error::BenchError;
 
 /// Version of the table layout; databases of another version are refused.
-pub const SCHEMA_VERSION: &str = "2";
+pub const SCHEMA_VERSION: &str = "3";
 
 /// One finished trial, as stored (and as exported to CSV, column for column).
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -108,13 +108,25 @@ pub struct TrialRow {
     pub optimal_proven: Option<bool>,
     /// Competitive ratio: total path over `optimal_m`.
     pub ratio: Option<f64>,
+    /// Team distance in metres when coverage first reached 90 % (D90), if it did.
+    pub d90_m: Option<f64>,
+    /// Time in seconds when coverage first reached 90 % (T90).
+    pub t90_s: Option<f64>,
+    /// Team distance in metres when coverage first reached 99 % (D99).
+    pub d99_m: Option<f64>,
+    /// Time in seconds when coverage first reached 99 % (T99).
+    pub t99_s: Option<f64>,
+    /// Teams: cells sensed by two or more robots over cells sensed by any (0 for one robot).
+    pub overlap: f64,
+    /// Seconds each robot did not travel before the run ended, JSON array.
+    pub idle_s: String,
 }
 
 const COLUMNS: &str = "key, scenario, env, env_kind, env_seed, map_file, resolution, width, height, \
 strategy, preset, s_max, sensor, belief, sensing, robots, start_variant, trial, seed, starts, \
 clearance, speed, coverage_goal, max_moves, path_lengths, max_path, total_path, time_s, coverage, \
 decisions, moves, reason, reachable_cells, coverage_curve, version, wall_s, optimal_m, \
-optimal_lower_m, optimal_proven, ratio";
+optimal_lower_m, optimal_proven, ratio, d90_m, t90_s, d99_m, t99_s, overlap, idle_s";
 
 const CREATE: &str = "
 CREATE TABLE IF NOT EXISTS meta (key TEXT PRIMARY KEY, value TEXT NOT NULL);
@@ -132,7 +144,8 @@ CREATE TABLE IF NOT EXISTS trials (
     decisions INTEGER NOT NULL, moves INTEGER NOT NULL, reason TEXT NOT NULL,
     reachable_cells INTEGER NOT NULL, coverage_curve TEXT NOT NULL, version TEXT NOT NULL,
     wall_s REAL NOT NULL, optimal_m REAL, optimal_lower_m REAL, optimal_proven INTEGER,
-    ratio REAL
+    ratio REAL, d90_m REAL, t90_s REAL, d99_m REAL, t99_s REAL, overlap REAL NOT NULL,
+    idle_s TEXT NOT NULL
 );
 CREATE TABLE IF NOT EXISTS optimal (key TEXT PRIMARY KEY, length_m REAL, lower_m REAL NOT NULL,
     proven INTEGER NOT NULL, expanded INTEGER NOT NULL, wall_s REAL NOT NULL);";
@@ -470,7 +483,7 @@ impl Store {
         let mut st = self
             .conn
             .prepare_cached(&format!(
-                "INSERT OR IGNORE INTO trials ({COLUMNS}) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14, ?15, ?16, ?17, ?18, ?19, ?20, ?21, ?22, ?23, ?24, ?25, ?26, ?27, ?28, ?29, ?30, ?31, ?32, ?33, ?34, ?35, ?36, ?37, ?38, ?39, ?40)"
+                "INSERT OR IGNORE INTO trials ({COLUMNS}) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14, ?15, ?16, ?17, ?18, ?19, ?20, ?21, ?22, ?23, ?24, ?25, ?26, ?27, ?28, ?29, ?30, ?31, ?32, ?33, ?34, ?35, ?36, ?37, ?38, ?39, ?40, ?41, ?42, ?43, ?44, ?45, ?46)"
             ))
             .map_err(BenchError::sql(&self.path))?;
         st.execute(params![
@@ -514,6 +527,12 @@ impl Store {
             r.optimal_lower_m,
             r.optimal_proven,
             r.ratio,
+            r.d90_m,
+            r.t90_s,
+            r.d99_m,
+            r.t99_s,
+            r.overlap,
+            r.idle_s,
         ])
         .map(|n| n == 1)
         .map_err(BenchError::sql(&self.path))
@@ -645,6 +664,12 @@ impl Store {
                     optimal_lower_m: r.get(37)?,
                     optimal_proven: r.get(38)?,
                     ratio: r.get(39)?,
+                    d90_m: r.get(40)?,
+                    t90_s: r.get(41)?,
+                    d99_m: r.get(42)?,
+                    t99_s: r.get(43)?,
+                    overlap: r.get(44)?,
+                    idle_s: r.get(45)?,
                 })
             })
             .map_err(BenchError::sql(&self.path))?

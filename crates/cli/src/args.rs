@@ -14,8 +14,9 @@ pub struct MapSource {
     /// is `office`.
     #[arg(long, conflicts_with = "map")]
     pub env: Option<String>,
-    /// A map file: ROS .yaml, .pgm/.png bitmap (needs --resolution), MovingAI .map, ASCII .txt,
-    /// or an MCAP recording (.mcap: its last nav_msgs/OccupancyGrid).
+    /// A map file: ROS .yaml, .pgm/.png bitmap (needs --resolution), MovingAI .map, HouseExpo
+    /// .json (needs --resolution), ASCII .txt, or an MCAP recording (.mcap: its last
+    /// nav_msgs/OccupancyGrid).
     #[arg(long)]
     pub map: Option<PathBuf>,
     /// The OccupancyGrid topic of an MCAP --map (default: its only one, or /map).
@@ -28,6 +29,11 @@ pub struct MapSource {
     /// Add a wall around a bare bitmap (Stage floor plans often have none).
     #[arg(long)]
     pub border: bool,
+    /// Read --map as a dungeon PNG of learned-exploration work (Chen et al. 2019): pixels
+    /// brighter than 150 are free, and pixels of value 208 mark the start (used unless
+    /// --start is given). Needs --resolution.
+    #[arg(long)]
+    pub dungeon: bool,
     /// Size of a generated environment in metres, "WxH".
     #[arg(long)]
     pub size: Option<String>,
@@ -52,6 +58,8 @@ pub struct Truth {
     pub map: GridMap,
     /// Obstacles off the laser plane (same size as the map), if any.
     pub clutter: Option<Grid<bool>>,
+    /// The start the map file marks (a dungeon PNG's), if any.
+    pub start: Option<grid::Cell>,
 }
 
 impl Truth {
@@ -167,6 +175,7 @@ impl MapSource {
             if self.topic.is_some() && !is_mcap {
                 bail!("--topic chooses the map topic of an MCAP recording (--map FILE.mcap)");
             }
+            let mut start = None;
             let map = if is_mcap {
                 if resolution.is_some() || self.border {
                     bail!(
@@ -174,6 +183,15 @@ impl MapSource {
                     );
                 }
                 load_mcap_map(path, self.topic.as_deref())?
+            } else if self.dungeon {
+                let Some((rx, _)) = resolution.filter(|(x, y)| x == y) else {
+                    bail!("--dungeon: expected one --resolution (square cells) for the PNG");
+                };
+                let bytes = std::fs::read(path)
+                    .with_context(|| format!("{}: cannot read", path.display()))?;
+                let d = grid::io::parse_dungeon(&bytes, path, rx)?;
+                start = Some(d.start);
+                d.map
             } else {
                 grid::io::load_map(path, &opts)?
             };
@@ -188,7 +206,12 @@ impl MapSource {
                 );
             }
             let clutter = self.load_clutter(&map, &opts)?;
-            return Ok(Truth { name, map, clutter });
+            return Ok(Truth {
+                name,
+                map,
+                clutter,
+                start,
+            });
         }
         let kind: EnvKind = self
             .env
@@ -227,6 +250,7 @@ impl MapSource {
             name: env.name.clone(),
             map: env.map,
             clutter,
+            start: None,
         })
     }
 

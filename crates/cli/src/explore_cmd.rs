@@ -48,6 +48,10 @@ pub struct ExploreArgs {
     /// Stop at this coverage (0..1]; default: explore everything reachable.
     #[arg(long)]
     pub goal: Option<f64>,
+    /// What coverage counts: `reachable` (known free among the reachable free cells) or
+    /// `known` (Explore-Bench: known free or occupied among the cells the map knows).
+    #[arg(long)]
+    pub coverage: Option<String>,
     /// Stop after this many cell moves of the whole team.
     #[arg(long, default_value_t = 10_000_000)]
     pub max_moves: u64,
@@ -82,7 +86,8 @@ pub fn config(a: &ExploreArgs, truth: &Truth) -> Result<RunConfig> {
         .start
         .as_deref()
         .map(|s| parse_cell(s, "--start"))
-        .transpose()?;
+        .transpose()?
+        .or(truth.start);
     let opts = bench::explore::ExploreOptions {
         seed: a.seed,
         start,
@@ -95,6 +100,7 @@ pub fn config(a: &ExploreArgs, truth: &Truth) -> Result<RunConfig> {
         robots: a.robots,
         s_max: a.s_max,
         goal: a.goal,
+        coverage: a.coverage.clone(),
         max_moves: a.max_moves,
         record_trace: a.out.is_some() || a.gif.is_some() || a.html.is_some() || a.mcap.is_some(),
     };

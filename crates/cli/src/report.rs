@@ -38,6 +38,11 @@ pub fn trace_json(truth: &Truth, cfg: &RunConfig, r: &RunResult) -> Value {
             "event": g.event, "robot": g.robot, "goal": g.goal.map(|c| cell_json(cells, c)),
         })).collect::<Vec<_>>()),
         "events": trace.map(|t| t.events.iter().map(|e| json!([round(e.t, 4), e.robot, cell_json(cells, e.cell), round(e.dist_m, 4), round(e.coverage, 6), e.frontiers])).collect::<Vec<_>>()),
+        "dt_decisions": trace.map(|t| t.dt.iter().map(|d| json!({
+            "event": d.event, "robot": d.robot, "fell_back": d.fell_back,
+            "chosen": d.chosen.map(|c| cell_json(cells, c)),
+            "samples": d.samples.iter().map(|s| json!([cell_json(cells, s.cell), round(s.gain, 3), if s.cost_m.is_finite() { json!(round(s.cost_m, 3)) } else { Value::Null }, round(s.utility, 6)])).collect::<Vec<_>>(),
+        })).collect::<Vec<_>>()),
         "frontiers_left": r.frontiers_left.iter().map(|&i| cell_json(cells, i)).collect::<Vec<_>>(),
     })
 }

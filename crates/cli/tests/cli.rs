@@ -58,6 +58,15 @@ fn explore_json_has_the_fields_and_is_byte_identical() {
         "time_s",
         "decisions",
         "decide_ms",
+        "d90_m",
+        "t90_s",
+        "d98_m",
+        "t98_s",
+        "d99_m",
+        "t99_s",
+        "overlap",
+        "idle_s",
+        "coverage_kind",
     ] {
         assert!(v.get(key).is_some(), "missing {key} in {a}");
     }
@@ -1064,4 +1073,86 @@ fn a_run_recorded_as_mcap_is_a_map_again() {
     std::fs::write(&bad, b"not a recording").unwrap();
     let e = err(&["explore", "--map", bad.to_str().unwrap()]);
     assert!(e.contains("bad.mcap: expected an MCAP file"), "{e}");
+}
+
+#[test]
+fn a_dungeon_png_gives_its_marked_start() {
+    use image::{ExtendedColorType, ImageEncoder, codecs::png::PngEncoder};
+    // A 12 x 8 room: walls (0) around free space (255), a start blob (208) of two pixels.
+    let (w, h) = (12u32, 8u32);
+    let mut pixels = vec![255u8; (w * h) as usize];
+    for y in 0..h {
+        for x in 0..w {
+            if x == 0 || y == 0 || x == w - 1 || y == h - 1 {
+                pixels[(y * w + x) as usize] = 0;
+            }
+        }
+    }
+    pixels[(3 * w + 4) as usize] = 208;
+    pixels[(3 * w + 5) as usize] = 208;
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("dungeon.png");
+    let mut bytes = Vec::new();
+    PngEncoder::new(&mut bytes)
+        .write_image(&pixels, w, h, ExtendedColorType::L8)
+        .unwrap();
+    std::fs::write(&path, bytes).unwrap();
+    let p = path.to_str().unwrap();
+    let out = ok(&[
+        "explore",
+        "--map",
+        p,
+        "--dungeon",
+        "--resolution",
+        "0.1",
+        "--json",
+        "--no-timing",
+    ]);
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(
+        v["starts"],
+        serde_json::json!([[5, 3]]),
+        "the middle of the blob"
+    );
+    assert_eq!(v["coverage"], 1.0);
+    // Without a marker: an error naming the file.
+    pixels[(3 * w + 4) as usize] = 255;
+    pixels[(3 * w + 5) as usize] = 255;
+    let mut bytes = Vec::new();
+    PngEncoder::new(&mut bytes)
+        .write_image(&pixels, w, h, ExtendedColorType::L8)
+        .unwrap();
+    std::fs::write(&path, bytes).unwrap();
+    let msg = err(&["explore", "--map", p, "--dungeon", "--resolution", "0.1"]);
+    assert!(msg.contains("dungeon.png") && msg.contains("208"), "{msg}");
+}
+
+#[test]
+fn a_houseexpo_plan_is_explored() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("house.json");
+    std::fs::write(
+        &path,
+        r#"{"id": "h", "verts": [[0,0],[6,0],[6,3],[3,3],[3,6],[0,6]],
+           "room_category": {"living_room": [[0,0,6,3]], "bedroom": [[0,3,3,6]]}}"#,
+    )
+    .unwrap();
+    let p = path.to_str().unwrap();
+    let out = ok(&[
+        "explore",
+        "--map",
+        p,
+        "--resolution",
+        "0.1",
+        "--json",
+        "--no-timing",
+    ]);
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(v["coverage"], 1.0);
+    assert_eq!(v["width"], 62);
+    let msg = err(&["explore", "--map", p]);
+    assert!(
+        msg.contains("house.json") && msg.contains("resolution"),
+        "{msg}"
+    );
 }

@@ -20,7 +20,7 @@ use rand::SeedableRng;
 use rand_pcg::Pcg64Mcg;
 use sense::{
     Belief, GainScratch, InverseModel, KnownGrid, LidarSensor, LosSensor, Observation, Pose,
-    Sensor, information_gain,
+    Sensor, information_gain, information_gain_gated,
 };
 
 /// Everything a decision context borrows, owned.
@@ -143,7 +143,14 @@ fn reach(fx: &Fixture) -> Reachability {
     r
 }
 
-/// The gain of `cell` on arrival along `reach`'s path, evaluated afresh.
+/// Whether frontier cell `i` is open: reachable by robot 0 (the fixtures list nothing).
+fn is_open(fx: &Fixture, reach: &Reachability, i: usize) -> bool {
+    fx.upkeep.frontiers.contains(i) && reach.cost(i).is_some()
+}
+
+/// The gain of `cell` on arrival along `reach`'s path, evaluated afresh, its rays gated as
+/// the module says: an Unknown cell with a known 8-neighbour is passed only if one of its
+/// 8-neighbours is an open frontier cell (brute force over the neighbours).
 fn fresh_gain(fx: &Fixture, reach: &Reachability, cell: u32) -> f64 {
     let known = fx.belief.known();
     let heading = if fx.sensor.is_omnidirectional() {
@@ -151,11 +158,29 @@ fn fresh_gain(fx: &Fixture, reach: &Reachability, cell: u32) -> f64 {
     } else {
         arrival_heading(known, reach, cell)
     };
-    information_gain(
+    let any_open = fx
+        .upkeep
+        .frontiers
+        .cells()
+        .iter()
+        .any(|&c| is_open(fx, reach, c as usize));
+    let neighbours = |i: usize| {
+        let c = known.cell(i);
+        (-1i32..=1)
+            .flat_map(move |dy| (-1i32..=1).map(move |dx| (dx, dy)))
+            .filter(|&d| d != (0, 0))
+            .filter_map(move |(dx, dy)| known.checked_index(Cell::new(c.x + dx, c.y + dy)))
+    };
+    let gate = |i: usize| {
+        let borders_known = neighbours(i).any(|j| known[j] != Occ::Unknown);
+        !borders_known || neighbours(i).any(|j| is_open(fx, reach, j))
+    };
+    information_gain_gated(
         fx.sensor.as_ref(),
         &fx.belief,
         &InverseModel::IDEAL,
         Pose::new(known.cell(cell as usize), heading),
+        any_open.then_some(&gate as &dyn Fn(usize) -> bool),
         &mut GainScratch::new(),
     )
 }
@@ -215,7 +240,10 @@ proptest! {
         let known = fx.belief.known().clone();
         let reach = reach(&fx);
         let range = fx.sensor.range_cells();
-        let frontier: Vec<Cell> = fx.upkeep.frontiers.cells().iter().map(|&c| known.cell(c as usize)).collect();
+        // Samples lie near open frontier cells only (reachable ones; nothing is listed).
+        let frontier: Vec<Cell> = fx.upkeep.frontiers.cells().iter()
+            .filter(|&&c| is_open(&fx, &reach, c as usize))
+            .map(|&c| known.cell(c as usize)).collect();
         // Brute force: the eligible cells and those with a positive gain.
         let eligible: Vec<u32> = (0..known.len() as u32)
             .filter(|&i| i != robot && reach.cost(i as usize).is_some())
@@ -415,4 +443,67 @@ fn target_utility_matches_the_chosen_candidate() {
     );
     assert!(gain > 0.0);
     assert!((u - gain * (-0.2 * goal.cost * 0.1f64).exp()).abs() < 1e-9);
+}
+
+/// The fixture's frontiers and traversability recomputed with a clearance of `cells`.
+fn with_clearance(fx: &mut Fixture, cells: f64) {
+    let known = fx.belief.known();
+    fx.upkeep = FrontierUpkeep::new(known.width(), known.height(), cells);
+    fx.upkeep.rebuild(known);
+}
+
+#[test]
+fn dt_stops_when_no_reachable_frontier_is_left() {
+    // The right room is seen through a one-cell gap in the wall, too narrow to pass with a
+    // clearance of one cell: its frontier cells (next to the unknown column) cannot be
+    // reached. Holz et al.'s termination: no reachable frontier cell, so no goal — however
+    // much a scan through the gap could still reveal.
+    let g = map(&[
+        "###########",
+        "#.....#...?",
+        "#.....#...?",
+        "#..........",
+        "#.....#...?",
+        "#.....#...?",
+        "###########",
+    ]);
+    let robot = g.index(Cell::new(2, 3)) as u32;
+    let mut fx = Fixture::new(&g, vec![robot], sensor(true, 12.0), 2);
+    with_clearance(&mut fx, 1.0);
+    assert!(!fx.upkeep.frontiers.cells().is_empty());
+    assert_eq!(fx.decide(500, 0.2)[0], None);
+    assert!(fx.candidates.cells().is_empty());
+}
+
+#[test]
+fn dt_gain_does_not_leak_through_an_unseen_wall_cell() {
+    // A corridor whose only open frontier is its right end; the bottom wall has one unseen
+    // cell (x = 9) with a large unknown region behind it. A predicted ray must not pass that
+    // cell (module doc), so the samples go to the right end, not to the gap.
+    let mut rows = vec![
+        "####################",
+        "#..................?",
+        "#..................?",
+        "#..................?",
+        "#########?##########",
+    ];
+    rows.extend(std::iter::repeat_n("????????????????????", 12));
+    let g = map(&rows);
+    let robot = g.index(Cell::new(2, 2)) as u32;
+    let lidar = || Box::new(LidarSensor::new(6.0, 360.0, 1.0).expect("lidar")) as Box<dyn Sensor>;
+    let mut fx = Fixture::new(&g, vec![robot], lidar(), 4);
+    with_clearance(&mut fx, 1.0);
+    let goal = fx.decide(500, 0.2)[0].expect("a goal");
+    let c = g.cell(goal.cell as usize);
+    assert!(c.x >= 12, "goal {c} is not near the open end");
+    // Every sample's gain counts at most the gap cell itself below the wall.
+    let known = fx.belief.known().clone();
+    for (k, &cell) in fx.candidates.cells().iter().enumerate() {
+        let reach = reach(&fx);
+        let gain = fresh_gain(&fx, &reach, cell);
+        assert!(
+            gain <= 1.0 + 3.0 + 1e-9 || known.cell(cell as usize).x >= 12,
+            "sample {k}: {gain}"
+        );
+    }
 }

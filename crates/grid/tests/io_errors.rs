@@ -501,7 +501,7 @@ fn missing_map_file_and_unknown_extension() {
     let e = msg(load_map(&dir.join("plan.bmp"), &LoadOptions::default()));
     assert!(
         e.ends_with(
-            "plan.bmp: unknown map format \"bmp\": expected .yaml, .yml, .pgm, .png, .map or .txt"
+            "plan.bmp: unknown map format \"bmp\": expected .yaml, .yml, .pgm, .png, .map, .json (HouseExpo) or .txt"
         ),
         "{e}"
     );

@@ -53,6 +53,9 @@ impl SensorModel {
             SensorSpec::Lidar { .. } => Err(OptimalError::Sensor(
                 "the optimal search supports los and footprint (360° sensors), not lidar".into(),
             )),
+            SensorSpec::Square { .. } => Err(OptimalError::Sensor(
+                "the optimal search supports los and footprint (round ranges), not square".into(),
+            )),
             SensorSpec::Sonar { .. } => Err(OptimalError::Sensor(
                 "the optimal search supports los and footprint (ideal sensors), not sonar".into(),
             )),

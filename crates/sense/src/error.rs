@@ -17,7 +17,7 @@ pub enum SenseError {
     },
     /// A sensor spec names a kind that does not exist.
     #[error(
-        "sensor '{spec}': unknown kind '{kind}': expected one of los, footprint, lidar, sonar, laser-limited-sonar, laser"
+        "sensor '{spec}': unknown kind '{kind}': expected one of los, footprint, lidar, square, sonar, laser-limited-sonar, laser"
     )]
     UnknownKind {
         /// The whole spec as written.

@@ -147,6 +147,19 @@ pub fn information_gain(
     pose: Pose,
     scratch: &mut GainScratch,
 ) -> f64 {
+    information_gain_gated(sensor, belief, model, pose, None, scratch)
+}
+
+/// [`information_gain`] of a scan whose rays pass an Unknown cell only where `passable`
+/// says so ([`Sensor::predict_gated`]); `None` lets every Unknown cell through.
+pub fn information_gain_gated(
+    sensor: &dyn Sensor,
+    belief: &dyn Belief,
+    model: &InverseModel,
+    pose: Pose,
+    passable: Option<&dyn Fn(usize) -> bool>,
+    scratch: &mut GainScratch,
+) -> f64 {
     let known = belief.known();
     scratch.next_round(known.len());
     let half = match scratch.half {
@@ -158,11 +171,12 @@ pub fn information_gain(
         }
     };
     let ternary = belief.is_ternary();
-    if ternary {
-        // Only Unknown cells are uncertain (p = ½): the others need not be listed.
-        sensor.predict_unknown(known, pose, &mut scratch.touched);
-    } else {
-        sensor.predict(known, pose, &mut scratch.touched);
+    match passable {
+        // Only Unknown cells are uncertain (p = ½) in a ternary belief: the others need
+        // not be listed.
+        Some(gate) => sensor.predict_gated(known, pose, ternary, gate, &mut scratch.touched),
+        None if ternary => sensor.predict_unknown(known, pose, &mut scratch.touched),
+        None => sensor.predict(known, pose, &mut scratch.touched),
     }
     let generation = scratch.generation;
     let mut gain = 0.0;

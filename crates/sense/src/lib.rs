@@ -56,11 +56,12 @@ pub mod sensor;
 pub mod shadow;
 pub mod sonar;
 pub mod spec;
+pub mod square;
 
 pub use belief::{Belief, BeliefKind, EvidenceGrid, KnownGrid, ReflectionMap};
 pub use error::SenseError;
 pub use footprint::{FootprintSensor, MAX_RANGE_CELLS};
-pub use gain::{GainScratch, InverseModel, entropy, information_gain};
+pub use gain::{GainScratch, InverseModel, entropy, information_gain, information_gain_gated};
 pub use lidar::LidarSensor;
 pub use los::LosSensor;
 pub use ray_template::{LosTemplate, MAX_TEMPLATE_RANGE_CELLS};
@@ -68,3 +69,4 @@ pub use segment::{los_visible, segment_clear};
 pub use sensor::{Observation, Pose, Sensor};
 pub use sonar::{SonarError, SonarMode, SonarParams, SonarReading, SonarSensor};
 pub use spec::{Range, SensorSpec, YAMAUCHI_RANGE};
+pub use square::SquareSensor;

@@ -105,7 +105,7 @@ impl LidarSensor {
         &self,
         grid: &Grid<Occ>,
         pose: Pose,
-        transparent: impl Fn(Occ) -> bool,
+        transparent: impl Fn(usize, Occ) -> bool,
         mut seen: impl FnMut(usize, i64, i64, Occ),
     ) {
         let Some(origin) = grid.checked_index(pose.cell) else {
@@ -118,7 +118,7 @@ impl LidarSensor {
             i64::from(pose.cell.y),
             data[origin],
         );
-        if !transparent(data[origin]) {
+        if !transparent(origin, data[origin]) {
             return;
         }
         let (w, h) = (grid.width() as i64, grid.height() as i64);
@@ -150,7 +150,7 @@ impl LidarSensor {
                 }
                 let i = (y * w + x) as usize;
                 seen(i, x, y, data[i]);
-                if !transparent(data[i]) {
+                if !transparent(i, data[i]) {
                     break;
                 }
             }
@@ -240,7 +240,7 @@ impl Sensor for LidarSensor {
             self.trace(
                 truth,
                 pose,
-                |s| s == Occ::Free,
+                |_, s| s == Occ::Free,
                 |_, x, y, _| window.mark(&mut bits, x, y),
             );
             let data = truth.data();
@@ -260,15 +260,44 @@ impl Sensor for LidarSensor {
     /// sort: callers deduplicate with a mark buffer).
     fn predict(&self, known: &Grid<Occ>, pose: Pose, out: &mut Vec<u32>) {
         out.clear();
-        self.trace(known, pose, predicted_transparent, |i, _, _, _| {
-            out.push(i as u32)
-        });
+        self.trace(
+            known,
+            pose,
+            |_, s| predicted_transparent(s),
+            |i, _, _, _| out.push(i as u32),
+        );
     }
 
     fn predict_unknown(&self, known: &Grid<Occ>, pose: Pose, out: &mut Vec<u32>) {
         out.clear();
-        self.trace(known, pose, predicted_transparent, |i, _, _, s| {
-            if s == Occ::Unknown {
+        self.trace(
+            known,
+            pose,
+            |_, s| predicted_transparent(s),
+            |i, _, _, s| {
+                if s == Occ::Unknown {
+                    out.push(i as u32);
+                }
+            },
+        );
+    }
+
+    fn predict_gated(
+        &self,
+        known: &Grid<Occ>,
+        pose: Pose,
+        unknown_only: bool,
+        passable: &dyn Fn(usize) -> bool,
+        out: &mut Vec<u32>,
+    ) {
+        out.clear();
+        let transparent = |i: usize, s: Occ| match s {
+            Occ::Free => true,
+            Occ::Unknown => passable(i),
+            Occ::Occupied => false,
+        };
+        self.trace(known, pose, transparent, |i, _, _, s| {
+            if !unknown_only || s == Occ::Unknown {
                 out.push(i as u32);
             }
         });

@@ -102,6 +102,26 @@ pub trait Sensor: Send + Sync {
         let data = known.data();
         out.retain(|&i| data.get(i as usize) == Some(&Occ::Unknown));
     }
+
+    /// Like [`predict`](Self::predict) (or [`predict_unknown`](Self::predict_unknown) when
+    /// `unknown_only`), but an Unknown cell lets a ray through only where `passable(index)`
+    /// says so; otherwise the ray ends there (after reporting it), as at an obstacle. The
+    /// lidar honours the gate; the default ignores it.
+    fn predict_gated(
+        &self,
+        known: &Grid<Occ>,
+        pose: Pose,
+        unknown_only: bool,
+        passable: &dyn Fn(usize) -> bool,
+        out: &mut Vec<u32>,
+    ) {
+        let _ = passable;
+        if unknown_only {
+            self.predict_unknown(known, pose, out);
+        } else {
+            self.predict(known, pose, out);
+        }
+    }
 }
 
 /// Whether a belief cell lets a predicted ray through: everything but known Occupied.

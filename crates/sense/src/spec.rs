@@ -1,6 +1,6 @@
 //! Sensor specs: the textual description of a sensor (`los:r=5`, `footprint:r=3`,
-//! `lidar:r=8,fov=180,res=1`, `los:r=4c`, `sonar`, `laser-limited-sonar`, `laser`) and how
-//! it is turned into a [`Sensor`].
+//! `lidar:r=8,fov=180,res=1`, `los:r=4c`, `square:r=3.5`, `sonar`, `laser-limited-sonar`,
+//! `laser`) and how it is turned into a [`Sensor`].
 //!
 //! Ranges are in metres, or in cells with a `c` suffix (`r=4c`, as in the multi-robot
 //! study's 4-cell sensor). Angles are in degrees. Lidar defaults: `fov=180`, `res=1`
@@ -25,6 +25,7 @@ use crate::lidar::{LidarSensor, MIN_LIDAR_RES_DEG};
 use crate::los::LosSensor;
 use crate::sensor::Sensor;
 use crate::sonar::{SonarMode, SonarParams, SonarSensor};
+use crate::square::SquareSensor;
 
 /// A sensor range: metres (converted with the map's resolution) or cells.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -65,6 +66,11 @@ pub enum SensorSpec {
     /// Every cell within range, through walls ([`FootprintSensor`]).
     Footprint {
         /// Range.
+        r: Range,
+    },
+    /// Explore-Bench's square window of half-side `r` ([`SquareSensor`]).
+    Square {
+        /// Half-side of the window.
         r: Range,
     },
     /// A laser scanner with a field of view ([`LidarSensor`]).
@@ -112,6 +118,7 @@ impl SensorSpec {
         Ok(match *self {
             SensorSpec::Los { .. } => Box::new(LosSensor::new(r)?),
             SensorSpec::Footprint { .. } => Box::new(FootprintSensor::new(r)?),
+            SensorSpec::Square { .. } => Box::new(SquareSensor::new(r)?),
             SensorSpec::Lidar {
                 fov_deg, res_deg, ..
             } => Box::new(LidarSensor::new(r, fov_deg, res_deg)?),
@@ -174,6 +181,7 @@ impl SensorSpec {
         match *self {
             SensorSpec::Los { r }
             | SensorSpec::Footprint { r }
+            | SensorSpec::Square { r }
             | SensorSpec::Lidar { r, .. }
             | SensorSpec::Sonar { r, .. } => r,
         }
@@ -185,6 +193,7 @@ impl fmt::Display for SensorSpec {
         match self {
             SensorSpec::Los { r } => write!(f, "los:r={r}"),
             SensorSpec::Footprint { r } => write!(f, "footprint:r={r}"),
+            SensorSpec::Square { r } => write!(f, "square:r={r}"),
             SensorSpec::Lidar {
                 r,
                 fov_deg,
@@ -231,7 +240,7 @@ impl FromStr for SensorSpec {
             None => (spec.trim(), None),
         };
         let valid: &'static str = match kind {
-            "los" | "footprint" | "sonar" | "laser-limited-sonar" | "laser" => "r",
+            "los" | "footprint" | "square" | "sonar" | "laser-limited-sonar" | "laser" => "r",
             "lidar" => "r, fov, res",
             _ => {
                 return Err(SenseError::UnknownKind {
@@ -301,6 +310,7 @@ impl FromStr for SensorSpec {
         Ok(match kind {
             "los" => SensorSpec::Los { r },
             "footprint" => SensorSpec::Footprint { r },
+            "square" => SensorSpec::Square { r },
             "sonar" | "laser-limited-sonar" => SensorSpec::Sonar {
                 r,
                 laser_limited: kind == "laser-limited-sonar",
@@ -395,7 +405,7 @@ mod tests {
         );
         assert_eq!(
             msg("radar:r=3"),
-            "sensor 'radar:r=3': unknown kind 'radar': expected one of los, footprint, lidar, \
+            "sensor 'radar:r=3': unknown kind 'radar': expected one of los, footprint, lidar, square, \
              sonar, laser-limited-sonar, laser"
         );
         assert_eq!(

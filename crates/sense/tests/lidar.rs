@@ -129,3 +129,72 @@ fn leaving_the_grid_ends_the_beam_unreported() {
     s.scan(&g, Pose::new(Cell::new(5, 0), 0.0), &mut obs);
     assert!(obs.is_empty());
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(128))]
+
+    /// A gated prediction sees what a scan sees on the belief with every passable Unknown
+    /// cell made Free and every other Unknown cell made Occupied; with every cell passable it
+    /// is the plain prediction.
+    #[test]
+    fn gated_prediction_is_a_scan_of_the_gated_belief(
+        known in arb_map(),
+        r in 0.0f64..12.0,
+        fov in prop_oneof![Just(360.0), Just(180.0), 1.0f64..360.0],
+        res in prop_oneof![Just(1.0), 0.5f64..20.0],
+        heading in -7.0f64..7.0,
+        sx in 0i32..24,
+        sy in 0i32..24,
+        salt in any::<u64>(),
+        unknown_only in any::<bool>(),
+    ) {
+        let o = Cell::new(sx, sy);
+        prop_assume!(known.contains(o));
+        let sensor = LidarSensor::new(r, fov, res).expect("valid");
+        let pose = Pose::new(o, heading);
+        let passable = |i: usize| (i as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15) ^ salt >= u64::MAX / 3;
+        let gated_truth = Grid::from_vec(
+            known.width(),
+            known.height(),
+            known
+                .data()
+                .iter()
+                .enumerate()
+                .map(|(i, &s)| match s {
+                    Occ::Unknown if passable(i) => Occ::Free,
+                    Occ::Unknown => Occ::Occupied,
+                    s => s,
+                })
+                .collect(),
+        )
+        .expect("same size");
+        let mut obs = Observation::new();
+        sensor.scan(&gated_truth, pose, &mut obs);
+        let mut want: Vec<u32> = obs
+            .cells
+            .iter()
+            .map(|&(i, _)| i)
+            .filter(|&i| !unknown_only || known[i as usize] == Occ::Unknown)
+            .collect();
+        want.sort_unstable();
+        let mut got = Vec::new();
+        sensor.predict_gated(&known, pose, unknown_only, &passable, &mut got);
+        got.sort_unstable();
+        got.dedup();
+        prop_assert_eq!(got, want);
+        // Everything passable: the plain prediction.
+        let mut plain = Vec::new();
+        if unknown_only {
+            sensor.predict_unknown(&known, pose, &mut plain);
+        } else {
+            sensor.predict(&known, pose, &mut plain);
+        }
+        plain.sort_unstable();
+        plain.dedup();
+        let mut all = Vec::new();
+        sensor.predict_gated(&known, pose, unknown_only, &|_| true, &mut all);
+        all.sort_unstable();
+        all.dedup();
+        prop_assert_eq!(all, plain);
+    }
+}

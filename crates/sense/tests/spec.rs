@@ -12,6 +12,7 @@ fn arb_spec() -> impl Strategy<Value = SensorSpec> {
     prop_oneof![
         arb_range().prop_map(|r| SensorSpec::Los { r }),
         arb_range().prop_map(|r| SensorSpec::Footprint { r }),
+        arb_range().prop_map(|r| SensorSpec::Square { r }),
         (
             arb_range(),
             prop_oneof![Just(360.0), 1e-3f64..=360.0],

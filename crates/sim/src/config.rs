@@ -4,6 +4,41 @@ use explore::strategy::{SensingMode, Strategy};
 use grid::{Cell, Grid};
 use sense::{BeliefKind, SensorSpec};
 
+/// What coverage counts.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum CoverageKind {
+    /// Cells known free among the ground truth's free cells reachable from the start with
+    /// the robot's clearance (the default).
+    #[default]
+    ReachableFree,
+    /// Explore-Bench's: cells known (free or occupied) among every cell the ground truth
+    /// knows (free or occupied; not its unknown outside).
+    Known,
+}
+
+impl std::str::FromStr for CoverageKind {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s.trim() {
+            "reachable" => Ok(CoverageKind::ReachableFree),
+            "known" => Ok(CoverageKind::Known),
+            other => Err(format!(
+                "--coverage: expected reachable or known, found '{other}'"
+            )),
+        }
+    }
+}
+
+impl std::fmt::Display for CoverageKind {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            CoverageKind::ReachableFree => "reachable",
+            CoverageKind::Known => "known",
+        })
+    }
+}
+
 /// A fully resolved run: everything but the map.
 #[derive(Clone, Debug)]
 pub struct RunConfig {
@@ -26,8 +61,10 @@ pub struct RunConfig {
     pub speed: f64,
     /// Master seed.
     pub seed: u64,
-    /// Stop once this share of the reachable free cells is known (`None` = explore fully).
+    /// Stop once coverage reaches this share (`None` = explore fully).
     pub coverage_goal: Option<f64>,
+    /// What coverage counts (its curve, milestones, goal and reported value).
+    pub coverage: CoverageKind,
     /// Stop after this many cell moves of the whole team.
     pub max_moves: u64,
     /// Keep a per-step trace (trails, goals, frontier counts) for pictures.
@@ -53,6 +90,7 @@ impl RunConfig {
             speed: 1.0,
             seed: 0,
             coverage_goal: None,
+            coverage: CoverageKind::ReachableFree,
             max_moves: 10_000_000,
             record_trace: false,
             clutter: None,

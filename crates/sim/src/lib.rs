@@ -35,6 +35,9 @@ pub mod run;
 pub mod seed;
 pub mod truth;
 
-pub use config::{RunConfig, SimError};
-pub use metrics::{EndReason, MapAudit, PhaseTimes, RunResult, Trace, TraceEvent, TraceGoal};
+pub use config::{CoverageKind, RunConfig, SimError};
+pub use metrics::{
+    DtDecision, DtSample, EndReason, MILESTONES, MapAudit, Milestone, PhaseTimes, RunResult, Trace,
+    TraceEvent, TraceGoal,
+};
 pub use run::{Session, Status, run};

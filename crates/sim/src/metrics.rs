@@ -70,6 +70,35 @@ pub struct TraceGoal {
     pub goal: Option<u32>,
 }
 
+/// One sample of a decision-theoretic decision, as the trace records it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DtSample {
+    /// The sample's cell.
+    pub cell: u32,
+    /// Its expected information gain `I(p)` in bits.
+    pub gain: f64,
+    /// Its path cost `L(p)` in metres from the deciding robot (infinite if unreachable).
+    pub cost_m: f64,
+    /// Its utility `I·exp(−λ·L)`.
+    pub utility: f64,
+}
+
+/// A decision of the decision-theoretic strategy in the trace.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct DtDecision {
+    /// Number of events before the decision.
+    pub event: u32,
+    /// The deciding robot.
+    pub robot: u32,
+    /// Whether no sample had a gain, so the frontier cells were the candidates.
+    pub fell_back: bool,
+    /// Every candidate with its gain, cost and utility (gains the decision did not need
+    /// are evaluated for the trace; the decision is unchanged).
+    pub samples: Vec<DtSample>,
+    /// The chosen goal.
+    pub chosen: Option<u32>,
+}
+
 /// Per-step record of a run, for pictures and replays: every event with the belief changes
 /// it made (only what changed, so a long run stays compact).
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -86,6 +115,9 @@ pub struct Trace {
     pub change_ends: Vec<u32>,
     /// Every decision's outcome.
     pub goals: Vec<TraceGoal>,
+    /// Every decision-theoretic decision (`dt`, `dt500`, `dt-rr`) in detail: its samples
+    /// with `I`, `L` and utility, and the chosen goal.
+    pub dt: Vec<DtDecision>,
     /// Goal candidates of each decision (not recorded when the candidates are all frontier
     /// cells, which the frontier layer shows): (events before it, candidate cells).
     pub candidates: Vec<(u32, Vec<u32>)>,
@@ -193,6 +225,21 @@ impl Trace {
     }
 }
 
+/// Coverage levels (per cent) whose first reaching a run records: D90/T90, D98/T98 (the
+/// level Explore-Bench reports) and D99/T99.
+pub const MILESTONES: [u32; 3] = [90, 98, 99];
+
+/// When a run first reached a coverage level.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Milestone {
+    /// The level in per cent.
+    pub percent: u32,
+    /// Distance the team had travelled, in metres (summed over robots).
+    pub dist_m: f64,
+    /// Time in seconds (the clock of the robot whose sensing reached it).
+    pub time_s: f64,
+}
+
 /// The result of one run.
 #[derive(Clone, Debug)]
 pub struct RunResult {
@@ -218,6 +265,14 @@ pub struct RunResult {
     pub ends: Vec<Cell>,
     /// Coverage over total distance: (metres travelled by the team, coverage), at every change.
     pub coverage_curve: Vec<(f64, f64)>,
+    /// The levels of [`MILESTONES`] the run reached, in order, with distance and time.
+    pub milestones: Vec<Milestone>,
+    /// Cells sensed by two or more robots over cells sensed by any (0 for one robot): the
+    /// team's overlap ratio.
+    pub overlap: f64,
+    /// Seconds each robot did not travel before the run's end (`time_s` less its own
+    /// travel time): idle without a goal, or done before the others.
+    pub idle_s: Vec<f64>,
     /// Wall-clock phase timings.
     pub times: PhaseTimes,
     /// The final belief, classified.
@@ -261,6 +316,17 @@ pub struct MapAudit {
     pub phantom_regions_max: u64,
     /// Goals chosen on cells that are not free in the ground truth.
     pub phantom_goals: u64,
+}
+
+impl RunResult {
+    /// Distance and time (metres, seconds) at which coverage first reached `percent` (one of
+    /// [`MILESTONES`]), if it did.
+    pub fn milestone(&self, percent: u32) -> Option<(f64, f64)> {
+        self.milestones
+            .iter()
+            .find(|m| m.percent == percent)
+            .map(|m| (m.dist_m, m.time_s))
+    }
 }
 
 impl MapAudit {

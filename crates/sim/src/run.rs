@@ -40,8 +40,11 @@ use grid::{Cell, Grid, GridMap, Occ, step_cost};
 use rand_pcg::Pcg64Mcg;
 use sense::{Belief, Observation, Pose, Sensor, SonarMode, SonarReading, SonarSensor};
 
-use crate::config::{RunConfig, SimError};
-use crate::metrics::{EndReason, MapAudit, PhaseTimes, RunResult, Trace, TraceEvent, TraceGoal};
+use crate::config::{CoverageKind, RunConfig, SimError};
+use crate::metrics::{
+    DtDecision, DtSample, EndReason, MILESTONES, MapAudit, Milestone, PhaseTimes, RunResult, Trace,
+    TraceEvent, TraceGoal,
+};
 use crate::{seed, truth};
 
 /// One robot's state.
@@ -118,6 +121,12 @@ struct Team<'a> {
     counted: Vec<bool>,
     covered: usize,
     reachable_cells: usize,
+    /// `--coverage known`: the cells the ground truth knows, which of them are known, and
+    /// both counts (empty otherwise).
+    knowable: Vec<bool>,
+    known_counted: Vec<bool>,
+    known_covered: usize,
+    knowable_cells: usize,
     range_cells: f64,
     // Decision buffers.
     cells_buf: Vec<u32>,
@@ -133,6 +142,15 @@ struct Team<'a> {
     times: PhaseTimes,
     total_dist_cells: f64,
     curve: Vec<(f64, f64)>,
+    milestones: Vec<Milestone>,
+    /// The robot sensing now and its clock (for milestones and overlap).
+    now: (usize, f64),
+    /// Teams: the first robot that sensed each cell (`u32::MAX`: none; empty for one
+    /// robot), whether a second one did, and the counts of both.
+    first_sensed_by: Vec<u32>,
+    sensed_twice: Vec<bool>,
+    sensed_cells: usize,
+    overlap_cells: usize,
     trace: Option<Trace>,
 }
 
@@ -215,6 +233,10 @@ impl<'a> Session<'a> {
         };
         let reachable = truth::reachable_from(cells_for_body, &trav_truth, cells.index(starts[0]));
         let reachable_cells = reachable.iter().filter(|&&r| r).count();
+        let knowable: Vec<bool> = match cfg.coverage {
+            CoverageKind::ReachableFree => Vec::new(),
+            CoverageKind::Known => cells.data().iter().map(|&s| s != Occ::Unknown).collect(),
+        };
         drop(trav_truth);
 
         let sensor = cfg.sensor.build(res)?;
@@ -279,6 +301,10 @@ impl<'a> Session<'a> {
             readings: Vec::with_capacity(sense::sonar::TRANSDUCERS),
             laser_hits: Vec::new(),
             counted: vec![false; len],
+            knowable_cells: knowable.iter().filter(|&&k| k).count(),
+            known_counted: vec![false; knowable.len()],
+            knowable,
+            known_covered: 0,
             reachable,
             covered: 0,
             reachable_cells,
@@ -294,6 +320,16 @@ impl<'a> Session<'a> {
             times: PhaseTimes::default(),
             total_dist_cells: 0.0,
             curve: vec![(0.0, 0.0)],
+            milestones: Vec::new(),
+            now: (0, 0.0),
+            first_sensed_by: if m > 1 {
+                vec![u32::MAX; len]
+            } else {
+                Vec::new()
+            },
+            sensed_twice: if m > 1 { vec![false; len] } else { Vec::new() },
+            sensed_cells: 0,
+            overlap_cells: 0,
             trace,
             external,
             pending: false,
@@ -321,7 +357,7 @@ impl<'a> Session<'a> {
                 cell: team.truth.cells.cell(robots[r].cell as usize),
                 heading: 0.0,
             };
-            team.sense(pose, true);
+            team.sense((r, 0.0), pose, true);
             team.pin_free(robots[r].cell);
             team.record(robots, r);
         }
@@ -623,6 +659,15 @@ impl<'a> Session<'a> {
             .iter()
             .map(|r| r.dist_cells * res / speed)
             .fold(0.0, f64::max);
+        let idle_s = robots
+            .iter()
+            .map(|r| time_s - r.dist_cells * res / speed)
+            .collect();
+        let overlap = if team.sensed_cells == 0 {
+            0.0
+        } else {
+            team.overlap_cells as f64 / team.sensed_cells as f64
+        };
         RunResult {
             reason,
             coverage: team.coverage(),
@@ -635,6 +680,9 @@ impl<'a> Session<'a> {
             starts,
             ends,
             coverage_curve: team.curve.iter().map(|&(d, c)| (d * res, c)).collect(),
+            milestones: team.milestones,
+            overlap,
+            idle_s,
             times: team.times,
             belief: team.belief.known().clone(),
             frontiers_left,
@@ -687,17 +735,27 @@ fn validate(cfg: &RunConfig) -> Result<(), SimError> {
 
 impl Team<'_> {
     fn coverage(&self) -> f64 {
-        if self.reachable_cells == 0 {
+        let (covered, total) = self.coverage_counts();
+        if total == 0 {
             1.0
         } else {
-            self.covered as f64 / self.reachable_cells as f64
+            covered as f64 / total as f64
+        }
+    }
+
+    /// Coverage's numerator and denominator for the configured kind.
+    fn coverage_counts(&self) -> (usize, usize) {
+        match self.cfg.coverage {
+            CoverageKind::ReachableFree => (self.covered, self.reachable_cells),
+            CoverageKind::Known => (self.known_covered, self.knowable_cells),
         }
     }
 
     /// Sense from `pose` (with the 360° sweep if `sweep`), integrate, keep frontiers and
     /// coverage up to date.
-    fn sense(&mut self, pose: Pose, sweep: bool) {
+    fn sense(&mut self, who: (usize, f64), pose: Pose, sweep: bool) {
         let t0 = Instant::now();
+        self.now = who;
         self.changed.clear();
         if let Some(sonar) = &mut self.sonar {
             let plane = &self.truth.cells;
@@ -728,8 +786,34 @@ impl Team<'_> {
             sensor.scan(&self.truth.cells, pose, &mut self.obs);
             self.belief.integrate(&self.obs, &mut self.changed);
         }
+        if !self.first_sensed_by.is_empty() {
+            self.count_overlap();
+        }
         self.times.sense_s += t0.elapsed().as_secs_f64();
         self.absorb_changes();
+    }
+
+    /// Teams: count the cells of the last scan (for sonar, the cells it changed) that robot
+    /// `now.0` senses first, or senses after another robot did.
+    fn count_overlap(&mut self) {
+        let r = self.now.0 as u32;
+        let (first, twice) = (&mut self.first_sensed_by, &mut self.sensed_twice);
+        let (sensed, overlap) = (&mut self.sensed_cells, &mut self.overlap_cells);
+        let mut see = |i: u32| {
+            let i = i as usize;
+            if first[i] == u32::MAX {
+                first[i] = r;
+                *sensed += 1;
+            } else if first[i] != r && !twice[i] {
+                twice[i] = true;
+                *overlap += 1;
+            }
+        };
+        if self.sonar.is_some() {
+            self.changed.iter().for_each(|&i| see(i));
+        } else {
+            self.obs.cells.iter().for_each(|&(i, _)| see(i));
+        }
     }
 
     /// Bring frontiers, trace and coverage up to date with the cells in `changed`.
@@ -742,9 +826,20 @@ impl Team<'_> {
             t.changes
                 .extend(self.changed.iter().map(|&c| (c, known[c as usize])));
         }
-        let before = self.covered;
+        let before = self.coverage_counts().0;
         for &c in &self.changed {
             let c = c as usize;
+            if self.knowable.get(c) == Some(&true) {
+                let known_now = known[c] != Occ::Unknown;
+                if known_now != self.known_counted[c] {
+                    self.known_counted[c] = known_now;
+                    if known_now {
+                        self.known_covered += 1
+                    } else {
+                        self.known_covered -= 1
+                    }
+                }
+            }
             if self.reachable[c] {
                 let free = known[c] == Occ::Free;
                 if free != self.counted[c] {
@@ -757,9 +852,19 @@ impl Team<'_> {
                 }
             }
         }
-        if self.covered != before {
+        let (covered, total) = self.coverage_counts();
+        if covered != before {
             let cov = self.coverage();
             self.curve.push((self.total_dist_cells, cov));
+            while let Some(&percent) = MILESTONES.get(self.milestones.len())
+                && covered as u128 * 100 >= u128::from(percent) * total as u128
+            {
+                self.milestones.push(Milestone {
+                    percent,
+                    dist_m: self.total_dist_cells * self.truth.resolution,
+                    time_s: self.now.1,
+                });
+            }
         }
         self.times.upkeep_s += (t2 - t1).as_secs_f64();
     }
@@ -841,7 +946,7 @@ impl Team<'_> {
             cell: self.truth.cells.cell(robots[r].cell as usize),
             heading: robots[r].heading,
         };
-        self.sense(pose, false);
+        self.sense((r, robots[r].clock), pose, false);
         self.changed.clear();
         for &i in blocked {
             self.belief
@@ -1029,6 +1134,33 @@ impl Team<'_> {
                     robot.idle = true;
                 }
             }
+            if let (Some(t), AssignerKind::DtUtility { lambda }) =
+                (self.trace.as_mut(), self.cfg.strategy.assigner)
+            {
+                let dt = &mut self.memory.dt;
+                let reach = self.planner.map(r);
+                let mut samples = Vec::with_capacity(dt.cells.len());
+                for k in 0..dt.cells.len() {
+                    let by = self.planner.map(dt.reachers[k] as usize);
+                    let gain = dt.gain(k, self.sensor.as_ref(), self.belief.as_ref(), by);
+                    let cost_m = reach
+                        .cost(dt.cells[k] as usize)
+                        .map_or(f64::INFINITY, |c| c * self.truth.resolution);
+                    samples.push(DtSample {
+                        cell: dt.cells[k],
+                        gain,
+                        cost_m,
+                        utility: gain * (-lambda * cost_m).exp(),
+                    });
+                }
+                t.dt.push(DtDecision {
+                    event: t.events.len() as u32,
+                    robot: r as u32,
+                    fell_back: dt.fell_back,
+                    samples,
+                    chosen: robot.goal,
+                });
+            }
             if let Some(t) = self.trace.as_mut() {
                 t.goals.push(TraceGoal {
                     event: t.events.len() as u32,
@@ -1071,6 +1203,7 @@ impl Team<'_> {
         let cell = self.truth.cells.cell(goal as usize);
         if self.cfg.sensing_mode() == SensingMode::OnArrival {
             self.sense(
+                (r, robots[r].clock),
                 Pose {
                     cell,
                     heading: robots[r].heading,
@@ -1091,7 +1224,7 @@ impl Team<'_> {
             }
             let heading = sy.atan2(sx);
             robots[r].heading = heading;
-            self.sense(Pose { cell, heading }, false);
+            self.sense((r, robots[r].clock), Pose { cell, heading }, false);
             self.record(robots, r);
         }
         self.lists.mark_visited(goal);
@@ -1150,6 +1283,7 @@ impl Team<'_> {
         self.total_dist_cells += len;
         if self.cfg.sensing_mode() == SensingMode::Continuous {
             self.sense(
+                (r, robots[r].clock),
                 Pose {
                     cell: b,
                     heading: robots[r].heading,

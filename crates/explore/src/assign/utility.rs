@@ -33,7 +33,7 @@
 
 use std::cmp::Ordering;
 
-use sense::{Belief, Pose, Sensor, information_gain};
+use sense::{Belief, Pose, Sensor};
 
 use crate::candidates::CandidateSet;
 use crate::candidates::dt_samples::{State, arrival_heading};
@@ -353,7 +353,7 @@ pub fn target_utility(
     resolution: f64,
     lambda: f64,
 ) -> f64 {
-    let gain = information_gain(sensor, belief, &dt.model, target, &mut dt.scratch);
+    let gain = dt.gain_at(sensor, belief, target);
     gain * (-lambda * remaining_cells.max(0.0) * resolution).exp()
 }
 

@@ -2,15 +2,37 @@
 //! 2010 ran it, §3.2): `n` poses drawn from the free space "in the vicinity of frontiers",
 //! each scored by its expected information gain `I(p)` ([`sense::gain`]).
 //!
-//! The vicinity is every cell within the sensor range (Euclidean, centre to centre) of a
-//! frontier cell that is not on the visited/inaccessible lists: one exact distance
-//! transform from those frontier cells per decision, over their bounding box grown by the
-//! range. Eligible cells are listed in index order within that box. A sample must also be reachable by a
+//! The vicinity is every cell within the sensor range (Euclidean, centre to centre) of an
+//! *open* frontier cell — one a deciding robot can reach and not on the visited/inaccessible
+//! lists: one exact distance transform from those frontier cells per decision, over their
+//! bounding box grown by the range.
+//!
+//! Termination is the paper's common criterion (§3.1: "there is not any single reachable
+//! cell being adjacent to an unknown cell"): with no open frontier cell there are no
+//! candidates, so the robot stops, whatever gain a scan could still promise. The gain
+//! counts every uncertain cell a scan touches, also cells no robot can reach (free cells
+//! closer to a wall than the clearance, specks between the laser's rays behind walls);
+//! sampling near unreachable frontiers, or going on while such gains remain, made a run
+//! on a large real floor plan travel eight times as far as closest-frontier after every
+//! reachable cell was known (regression test
+//! `dt_stops_when_no_reachable_frontier_is_left`). Eligible cells are listed in index order within that box. A sample must also be reachable by a
 //! deciding robot (its full reachability map) and not stand where a deciding robot stands.
 //! Samples are drawn uniformly without replacement (a partial Fisher–Yates shuffle of the
 //! eligible cells, listed in index order, driven by the run's `rng`), so a run is
 //! deterministic. `I(p)` is stored in [`State::gains`], aligned with the candidate set's
 //! order, for the utility assigner.
+//!
+//! Gated rays (deviation, for the lidar): a predicted ray enters an Unknown cell that
+//! borders the known map (8-neighbours) only if that cell also borders an open frontier
+//! cell; otherwise the ray ends there (the cell still counts: a real scan would observe
+//! it). A 1° laser at 5 cm cells sees a wall as hits a few cells apart and never its far
+//! side; with every Unknown cell transparent, a predicted ray slips through such an unseen
+//! wall cell into whatever unknown lies behind — the outside of the building, a courtyard, a
+//! room behind a door too narrow to pass — and promises thousands of bits that no visit
+//! delivers. González-Baños & Latombe count the unexplored area visible through the *free
+//! edges* of the known region; the open frontier cells are a grid's free edges. The
+//! dt-rr re-check ([`State::gain_at`]) uses the open cells of the last decision. `los` and
+//! `footprint` predictions are not gated.
 //!
 //! Lazy gains (speed, same decisions): the samples are evaluated in draw order only until
 //! the first one with a positive gain; the others are stored with gain `NaN` ("not yet
@@ -36,7 +58,7 @@
 use grid::Grid;
 use grid::edt::{EdtScratch, edt_squared_into};
 use rand::RngExt;
-use sense::{Belief, GainScratch, InverseModel, Pose, Sensor, information_gain};
+use sense::{Belief, GainScratch, InverseModel, Pose, Sensor, information_gain_gated};
 
 use super::CandidateSet;
 use crate::decision::DecisionCtx;
@@ -70,6 +92,10 @@ pub struct State {
     pub(crate) bound: crate::assign::utility::GainBound,
     near: Grid<f64>,
     edt: EdtScratch,
+    /// The open frontier cells of the current decision (map-sized marks, and their list to
+    /// clear them), gating the predicted rays (module doc); empty marks: no gating.
+    open: Vec<bool>,
+    open_cells: Vec<u32>,
 }
 
 impl Default for State {
@@ -88,6 +114,8 @@ impl Default for State {
             bound: Default::default(),
             near: Grid::new(0, 0, f64::INFINITY),
             edt: EdtScratch::new(),
+            open: Vec::new(),
+            open_cells: Vec::new(),
         }
     }
 }
@@ -100,6 +128,20 @@ impl State {
         self.headings.clear();
         self.reachers.clear();
         self.fell_back = false;
+        for &c in &self.open_cells {
+            self.open[c as usize] = false;
+        }
+        self.open_cells.clear();
+    }
+
+    /// Mark `cell` an open frontier cell of this decision (`len`: the map's cells).
+    fn mark_open(&mut self, len: usize, cell: u32) {
+        if self.open.len() != len {
+            self.open.clear();
+            self.open.resize(len, false);
+        }
+        self.open[cell as usize] = true;
+        self.open_cells.push(cell);
     }
 
     /// Whether some candidate's gain is not evaluated yet.
@@ -167,9 +209,44 @@ impl State {
             arrival_heading(known, reach, cell)
         };
         let pose = Pose::new(known.cell(cell as usize), heading);
-        let gain = information_gain(sensor, belief, &self.model, pose, &mut self.scratch);
-        (gain, heading)
+        (self.gain_at(sensor, belief, pose), heading)
     }
+
+    /// `I(p)` of a scan from `pose`, its rays gated by the open frontier cells of the last
+    /// decision (module doc; ungated before the first).
+    pub fn gain_at(&mut self, sensor: &dyn Sensor, belief: &dyn Belief, pose: Pose) -> f64 {
+        let known = belief.known();
+        let open = &self.open;
+        let gate = |i: usize| passable(known, open, i);
+        let gate: Option<&dyn Fn(usize) -> bool> = if self.open_cells.is_empty() {
+            None
+        } else {
+            Some(&gate)
+        };
+        information_gain_gated(sensor, belief, &self.model, pose, gate, &mut self.scratch)
+    }
+}
+
+/// Whether a predicted ray may pass the Unknown cell `i` (module doc): it may unless it
+/// borders the known map (8-neighbours) without bordering an open frontier cell (`open`).
+fn passable(known: &Grid<grid::Occ>, open: &[bool], i: usize) -> bool {
+    let (w, h) = (known.width(), known.height());
+    let (x, y) = (i % w, i / w);
+    let data = known.data();
+    let mut borders_known = false;
+    for ny in y.saturating_sub(1)..=(y + 1).min(h - 1) {
+        for nx in x.saturating_sub(1)..=(x + 1).min(w - 1) {
+            let j = ny * w + nx;
+            if j == i || data[j] == grid::Occ::Unknown {
+                continue;
+            }
+            if open[j] {
+                return true;
+            }
+            borders_known = true;
+        }
+    }
+    !borders_known
 }
 
 /// The heading on arrival at `cell` along `reach`'s shortest path: the direction of its last
@@ -213,19 +290,29 @@ fn fill(ctx: &mut DecisionCtx<'_>, n: usize, out: &mut CandidateSet, st: &mut St
     }
     let lists = ctx.lists;
     let frontiers = &ctx.upkeep.frontiers;
-    if !any || !frontiers.cells().iter().any(|&c| !lists.is_excluded(c)) {
+    let planner = &*ctx.planner;
+    let reacher = |i: usize| (0..m).find(|&r| ctx.deciding[r] && planner.map(r).is_settled(i));
+    // The frontiers that count (module doc): unlisted and reachable by a deciding robot.
+    let open = |c: u32| !lists.is_excluded(c) && reacher(c as usize).is_some();
+    if !any || !frontiers.cells().iter().any(|&c| open(c)) {
         return;
     }
-    // The distance transform runs on the frontier cells' bounding box grown by the range
-    // (clipped): every cell within range of a frontier cell lies in it, and every frontier
-    // cell too, so distances there are exact.
+    let len = ctx.known.len();
+    for &c in frontiers.cells() {
+        if open(c) {
+            st.mark_open(len, c);
+        }
+    }
+    // The distance transform runs on the open frontier cells' bounding box grown by the
+    // range (clipped): every cell within range of one lies in it, and every one too, so
+    // distances there are exact.
     let (w, h) = (ctx.known.width(), ctx.known.height());
     let range = ctx.sensor_range_cells.max(0.0);
     let r2 = range * range;
     let grow = range.ceil().min((w + h) as f64) as usize;
     let (mut x0, mut y0, mut x1, mut y1) = (usize::MAX, usize::MAX, 0, 0);
     for &c in frontiers.cells() {
-        if !lists.is_excluded(c) {
+        if open(c) {
             let (x, y) = (c as usize % w, c as usize / w);
             (x0, y0, x1, y1) = (x0.min(x), y0.min(y), x1.max(x), y1.max(y));
         }
@@ -244,13 +331,11 @@ fn fill(ctx: &mut DecisionCtx<'_>, n: usize, out: &mut CandidateSet, st: &mut St
         bh,
         |j| {
             let i = to_map(j);
-            frontiers.contains(i) && !lists.is_excluded(i as u32)
+            frontiers.contains(i) && open(i as u32)
         },
         &mut st.near,
         &mut st.edt,
     );
-    let planner = &*ctx.planner;
-    let reacher = |i: usize| (0..m).find(|&r| ctx.deciding[r] && planner.map(r).is_settled(i));
     st.eligible.clear();
     for (j, &d2) in st.near.data().iter().enumerate() {
         let i = to_map(j);

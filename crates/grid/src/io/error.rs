@@ -47,7 +47,9 @@ pub enum MapErrorKind {
         limit: u64,
     },
     /// The extension does not say which format the file is in.
-    #[error("unknown map format {0:?}: expected .yaml, .yml, .pgm, .png, .map or .txt")]
+    #[error(
+        "unknown map format {0:?}: expected .yaml, .yml, .pgm, .png, .map, .json (HouseExpo) or .txt"
+    )]
     UnknownFormat(String),
     /// A bare bitmap was loaded without a resolution.
     #[error("--resolution is required for a bare bitmap")]

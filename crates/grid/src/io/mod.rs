@@ -15,7 +15,9 @@
 
 pub mod ascii;
 pub mod bitmap;
+pub mod dungeon;
 pub mod error;
+pub mod houseexpo;
 pub mod movingai;
 pub mod pgm;
 pub mod png;
@@ -26,7 +28,9 @@ use std::path::Path;
 
 pub use ascii::{ascii_map, parse_ascii, to_ascii};
 pub use bitmap::{add_border, parse_bitmap};
+pub use dungeon::{DungeonMap, parse_dungeon};
 pub use error::{MEMORY, MapError, MapErrorKind};
+pub use houseexpo::{HouseExpoMap, parse_houseexpo};
 pub use movingai::{parse_movingai, to_movingai};
 pub use pgm::{encode_pgm, parse_pgm};
 pub use png::{encode_png, parse_png};
@@ -100,6 +104,14 @@ pub fn load_map(path: &Path, opts: &LoadOptions) -> Result<GridMap, MapError> {
                 path,
                 opts.border,
             )?
+        }
+        "json" => {
+            let (rx, ry) = opts
+                .resolution
+                .ok_or_else(|| MapError::new(path, MapErrorKind::ResolutionRequired))?;
+            let text = read_text(path)?;
+            let map = parse_houseexpo(&text, path, rx.min(ry))?.map;
+            finish(map, (rx.min(ry), rx.min(ry)), path, opts.border)?
         }
         "txt" => {
             let text = read_text(path)?;

@@ -1,0 +1,223 @@
+//! HouseExpo floor plans (Li et al. 2019, "HouseExpo: a large-scale 2D indoor layout
+//! dataset"): a JSON object whose `verts` is the house's outline, one polygon in metres,
+//! and whose `room_category` maps a room type to the bounding boxes `[x0, y0, x1, y1]` (in
+//! metres) of its rooms. Its simulator fills the outline as free space and leaves the rest
+//! an obstacle; so does this reader, at a chosen resolution: a cell is free when its centre
+//! lies inside the outline (even–odd rule), and a ring of one obstacle cell surrounds the
+//! outline's bounding box. Each room's box gives its cells a room id (1, 2, … in the order
+//! of the file; 0 outside every room), for scoring a segmentation.
+
+use std::path::Path;
+
+use serde_json::Value;
+
+use super::check_size;
+use super::error::{MapError, MapErrorKind};
+use crate::grid::Grid;
+use crate::occ::{GridMap, Occ};
+
+/// A HouseExpo floor plan rasterised, with its rooms.
+#[derive(Clone, Debug)]
+pub struct HouseExpoMap {
+    /// The map (origin at the outline's lower-left corner less one cell).
+    pub map: GridMap,
+    /// Room id of every cell (row-major; 0 = no room).
+    pub rooms: Vec<u32>,
+    /// Room type of room id `k` at index `k − 1`.
+    pub room_types: Vec<String>,
+}
+
+fn bad(name: &Path, field: &'static str, expected: &str, found: String) -> MapError {
+    MapError::new(
+        name,
+        MapErrorKind::BadField {
+            field,
+            expected: expected.into(),
+            found,
+        },
+    )
+}
+
+/// The `[x, y]` pairs (or `[x0, y0, x1, y1]` boxes) of a JSON array, as numbers.
+fn numbers(v: &Value, n: usize) -> Option<Vec<f64>> {
+    let a = v.as_array()?;
+    (a.len() == n)
+        .then(|| {
+            a.iter()
+                .map(|x| x.as_f64().filter(|f| f.is_finite()))
+                .collect()
+        })
+        .flatten()
+}
+
+/// Read a HouseExpo JSON text (`name` is the file named in errors) at `resolution` metres
+/// per cell.
+pub fn parse_houseexpo(text: &str, name: &Path, resolution: f64) -> Result<HouseExpoMap, MapError> {
+    super::check_resolution(resolution, name)?;
+    let json: Value = serde_json::from_str(text)
+        .map_err(|e| bad(name, "json", "a HouseExpo JSON object", e.to_string()))?;
+    let verts = json
+        .get("verts")
+        .and_then(Value::as_array)
+        .ok_or_else(|| MapError::new(name, MapErrorKind::MissingField("verts")))?;
+    let poly: Vec<(f64, f64)> = verts
+        .iter()
+        .map(|v| numbers(v, 2).map(|p| (p[0], p[1])))
+        .collect::<Option<_>>()
+        .ok_or_else(|| {
+            bad(
+                name,
+                "verts",
+                "[x, y] pairs of finite metres",
+                "another value".into(),
+            )
+        })?;
+    if poly.len() < 3 {
+        return Err(bad(
+            name,
+            "verts",
+            "an outline of at least 3 points",
+            format!("{} points", poly.len()),
+        ));
+    }
+    let (x_min, x_max) = poly
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
+            (a.min(p.0), b.max(p.0))
+        });
+    let (y_min, y_max) = poly
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
+            (a.min(p.1), b.max(p.1))
+        });
+    // One obstacle cell around the outline's box.
+    let w = ((x_max - x_min) / resolution).ceil() + 2.0;
+    let h = ((y_max - y_min) / resolution).ceil() + 2.0;
+    check_size(w as u64, h as u64, name)?;
+    let (w, h) = (w as usize, h as usize);
+    let (x0, y0) = (x_min - resolution, y_min - resolution);
+    // Row 0 is the top of the map: y grows downwards in cells, upwards in metres.
+    let centre = |cx: usize, cy: usize| {
+        (
+            x0 + (cx as f64 + 0.5) * resolution,
+            y0 + ((h - 1 - cy) as f64 + 0.5) * resolution,
+        )
+    };
+    let mut cells = Grid::new(w, h, Occ::Occupied);
+    let mut crossings: Vec<f64> = Vec::new();
+    for cy in 0..h {
+        let (_, y) = centre(0, cy);
+        crossings.clear();
+        for k in 0..poly.len() {
+            let (a, b) = (poly[k], poly[(k + 1) % poly.len()]);
+            if (a.1 <= y) != (b.1 <= y) {
+                crossings.push(a.0 + (y - a.1) / (b.1 - a.1) * (b.0 - a.0));
+            }
+        }
+        crossings.sort_by(f64::total_cmp);
+        for pair in crossings.chunks_exact(2) {
+            for cx in 0..w {
+                let (x, _) = centre(cx, cy);
+                if x >= pair[0] && x < pair[1] {
+                    cells.data_mut()[cy * w + cx] = Occ::Free;
+                }
+            }
+        }
+    }
+    let mut rooms = vec![0u32; w * h];
+    let mut room_types = Vec::new();
+    if let Some(cats) = json.get("room_category").and_then(Value::as_object) {
+        for (kind, boxes) in cats {
+            let boxes = boxes.as_array().ok_or_else(|| {
+                bad(
+                    name,
+                    "room_category",
+                    "lists of [x0, y0, x1, y1] boxes",
+                    format!("{kind}: {boxes}"),
+                )
+            })?;
+            for b in boxes {
+                let b = numbers(b, 4).ok_or_else(|| {
+                    bad(
+                        name,
+                        "room_category",
+                        "[x0, y0, x1, y1] boxes in metres",
+                        format!("{kind}: {b}"),
+                    )
+                })?;
+                room_types.push(kind.clone());
+                let id = room_types.len() as u32;
+                for cy in 0..h {
+                    for cx in 0..w {
+                        let (x, y) = centre(cx, cy);
+                        let i = cy * w + cx;
+                        if rooms[i] == 0
+                            && cells.data()[i] == Occ::Free
+                            && (b[0]..b[2]).contains(&x)
+                            && (b[1]..b[3]).contains(&y)
+                        {
+                            rooms[i] = id;
+                        }
+                    }
+                }
+            }
+        }
+    }
+    let mut map = GridMap::new(cells, resolution);
+    map.origin = [x0, y0, 0.0];
+    Ok(HouseExpoMap {
+        map,
+        rooms,
+        room_types,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_l_shaped_house_with_two_rooms() {
+        // An L: 4 x 2 m along the bottom and 2 x 2 m above its left half, at 0.5 m.
+        let text = r#"{"id": "t", "verts": [[0,0],[4,0],[4,2],[2,2],[2,4],[0,4]],
+            "room_category": {"kitchen": [[0,0,4,2]], "bedroom": [[0,2,2,4]]},
+            "room_num": 2, "bbox": {"min": [0,0], "max": [4,4]}}"#;
+        let h = parse_houseexpo(text, Path::new("t.json"), 0.5).expect("reads");
+        let g = &h.map.cells;
+        assert_eq!((g.width(), g.height()), (10, 10));
+        let free = g.data().iter().filter(|&&s| s == Occ::Free).count();
+        assert_eq!(free, 8 * 4 + 4 * 4, "12 m² of floor in 0.25 m² cells");
+        // The ring and the missing upper-right square are obstacles.
+        assert_eq!(g[0], Occ::Occupied);
+        assert_eq!(g[g.index(crate::Cell::new(7, 2))], Occ::Occupied);
+        assert_eq!(g[g.index(crate::Cell::new(2, 2))], Occ::Free);
+        assert_eq!(
+            h.room_types,
+            vec!["bedroom".to_string(), "kitchen".to_string()]
+        );
+        let count = |id| h.rooms.iter().filter(|&&r| r == id).count();
+        assert_eq!((count(1), count(2)), (16, 32));
+        assert_eq!(h.map.origin, [-0.5, -0.5, 0.0]);
+    }
+
+    #[test]
+    fn errors_name_the_file_and_the_field() {
+        let p = Path::new("maps/h.json");
+        for (text, want) in [
+            ("{", "json"),
+            ("{}", "verts"),
+            (r#"{"verts": [[0,0],[1]]}"#, "verts"),
+            (r#"{"verts": [[0,0],[1,0]]}"#, "3 points"),
+            (
+                r#"{"verts": [[0,0],[1,0],[0,1]], "room_category": {"a": [[0,0,1]]}}"#,
+                "room_category",
+            ),
+        ] {
+            let msg = parse_houseexpo(text, p, 0.1).expect_err(text).to_string();
+            assert!(
+                msg.contains("maps/h.json") && msg.contains(want),
+                "{text}: {msg}"
+            );
+        }
+    }
+}
