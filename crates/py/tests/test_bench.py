@@ -43,6 +43,9 @@ def test_load_into_pandas_matches_the_csv_export(store):
     df = frontier.bench.load(store / "tiny.sqlite")
     csv = pd.read_csv(store / "tiny.csv")
     assert list(df.columns) == list(csv.columns)
+    # The columns an empty store's frame gets are the same.
+    assert frontier.bench._columns() == list(csv.columns)
+    assert all(isinstance(v, list) for v in df["idle_s"])
     assert len(df) == 8
     assert list(df["key"]) == list(csv["key"])
     assert df["total_path"].tolist() == pytest.approx(csv["total_path"].tolist())

@@ -15,7 +15,7 @@ from . import _native
 
 __all__ = ["load", "rows"]
 
-_JSON_COLUMNS = ("starts", "path_lengths", "coverage_curve")
+_JSON_COLUMNS = ("starts", "path_lengths", "coverage_curve", "idle_s")
 
 
 def rows(db: Union[str, "os.PathLike[str]"]) -> List[Dict[str, Any]]:
@@ -53,5 +53,6 @@ def _columns() -> List[str]:
         "start_variant", "trial", "seed", "starts", "clearance", "speed", "coverage_goal",
         "max_moves", "path_lengths", "max_path", "total_path", "time_s", "coverage",
         "decisions", "moves", "reason", "reachable_cells", "coverage_curve", "version",
-        "wall_s", "optimal_m", "optimal_lower_m", "optimal_proven", "ratio",
+        "wall_s", "optimal_m", "optimal_lower_m", "optimal_proven", "ratio", "d90_m", "t90_s",
+        "d99_m", "t99_s", "overlap", "idle_s",
     ]
