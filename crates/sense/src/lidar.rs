@@ -22,7 +22,7 @@ use grid::{Grid, Occ};
 
 use crate::error::SenseError;
 use crate::footprint::check_plain_range;
-use crate::sensor::{Observation, Pose, Sensor, observed, predicted_transparent};
+use crate::sensor::{Observation, Pose, Sensor, observed};
 
 /// The smallest angular resolution accepted, in degrees (at most 36,000 beams).
 pub const MIN_LIDAR_RES_DEG: f64 = 0.01;
@@ -259,27 +259,11 @@ impl Sensor for LidarSensor {
     /// The beams of [`scan`](Sensor::scan) on the belief, unsorted and with repeats (no
     /// sort: callers deduplicate with a mark buffer).
     fn predict(&self, known: &Grid<Occ>, pose: Pose, out: &mut Vec<u32>) {
-        out.clear();
-        self.trace(
-            known,
-            pose,
-            |_, s| predicted_transparent(s),
-            |i, _, _, _| out.push(i as u32),
-        );
+        self.predict_through(known, pose, false, |_| true, out);
     }
 
     fn predict_unknown(&self, known: &Grid<Occ>, pose: Pose, out: &mut Vec<u32>) {
-        out.clear();
-        self.trace(
-            known,
-            pose,
-            |_, s| predicted_transparent(s),
-            |i, _, _, s| {
-                if s == Occ::Unknown {
-                    out.push(i as u32);
-                }
-            },
-        );
+        self.predict_through(known, pose, true, |_| true, out);
     }
 
     fn predict_gated(
@@ -288,6 +272,22 @@ impl Sensor for LidarSensor {
         pose: Pose,
         unknown_only: bool,
         passable: &dyn Fn(usize) -> bool,
+        out: &mut Vec<u32>,
+    ) {
+        self.predict_through(known, pose, unknown_only, passable, out);
+    }
+}
+
+impl LidarSensor {
+    /// The predicted beams on the belief: Free cells pass, Occupied ones stop a beam, an
+    /// Unknown cell passes where `passable(index)`; every cell reached is pushed (only the
+    /// Unknown ones if `unknown_only`). The one walk behind the three `predict*` methods.
+    fn predict_through(
+        &self,
+        known: &Grid<Occ>,
+        pose: Pose,
+        unknown_only: bool,
+        passable: impl Fn(usize) -> bool,
         out: &mut Vec<u32>,
     ) {
         out.clear();
