@@ -664,3 +664,90 @@ fn dev_zero_as_a_map_is_refused_at_once() {
     );
     assert!(started.elapsed().as_secs() < 2);
 }
+
+/// A PNG of `side × side` 8-bit grey pixels whose image data stops after a few bytes: a
+/// header promising a picture at the cell limit, at no cost to the test.
+fn png_header_only(side: u32) -> Vec<u8> {
+    let chunk = |out: &mut Vec<u8>, kind: &[u8; 4], data: &[u8]| {
+        out.extend_from_slice(&(data.len() as u32).to_be_bytes());
+        let mut typed = kind.to_vec();
+        typed.extend_from_slice(data);
+        out.extend_from_slice(&typed);
+        out.extend_from_slice(&crc32(&typed).to_be_bytes());
+    };
+    let mut png = b"\x89PNG\r\n\x1a\n".to_vec();
+    let mut ihdr = side.to_be_bytes().to_vec();
+    ihdr.extend_from_slice(&side.to_be_bytes());
+    ihdr.extend_from_slice(&[8, 0, 0, 0, 0]); // 8-bit grey, deflate, no interlace
+    chunk(&mut png, b"IHDR", &ihdr);
+    chunk(&mut png, b"IDAT", &[0x78, 0x9c, 0x62, 0x60]);
+    chunk(&mut png, b"IEND", &[]);
+    png
+}
+
+/// A 16384 × 16384 picture is at the cell limit; `--border` takes it past, and that is known
+/// from the header: the pixels (a gigabyte and seconds to decode) are never decoded.
+#[test]
+fn png_at_the_cell_limit_with_a_border_is_refused_before_decoding() {
+    let dir = scratch("png-limit-border");
+    let path = dir.join("huge.png");
+    std::fs::write(&path, png_header_only(16_384)).unwrap();
+    let opts = LoadOptions {
+        resolution: Some((0.05, 0.05)),
+        border: true,
+    };
+    let err = load_map(&path, &opts).expect_err("past the cell limit");
+    assert!(
+        matches!(
+            err.kind,
+            MapErrorKind::TooLarge {
+                width: 16_386,
+                height: 16_386,
+                limit: MAX_CELLS
+            }
+        ),
+        "{err}"
+    );
+    // Non-square pixels resample to 16384 × 32768: refused on the header too.
+    let opts = LoadOptions {
+        resolution: Some((0.05, 0.1)),
+        border: false,
+    };
+    let err = load_map(&path, &opts).expect_err("past the cell limit once resampled");
+    assert!(matches!(err.kind, MapErrorKind::TooLarge { .. }), "{err}");
+    // Through a ROS YAML naming the picture: the same.
+    std::fs::write(
+        dir.join("huge.yaml"),
+        GOOD_YAML.replace("office.pgm", "huge.png"),
+    )
+    .unwrap();
+    let err = load_map(
+        &dir.join("huge.yaml"),
+        &LoadOptions {
+            resolution: None,
+            border: true,
+        },
+    )
+    .expect_err("past the cell limit");
+    assert!(matches!(err.kind, MapErrorKind::TooLarge { .. }), "{err}");
+    // Without the border it is within the limit, so the decoder is what refuses it.
+    let err = load_map(&path, &LoadOptions::with_resolution(0.05)).expect_err("truncated");
+    assert!(!matches!(err.kind, MapErrorKind::TooLarge { .. }), "{err}");
+}
+
+/// A binary PGM header at the cell limit with `--border`: refused before its pixels are read.
+#[test]
+fn pgm_at_the_cell_limit_with_a_border_is_refused_before_reading() {
+    let dir = scratch("pgm-limit-border");
+    let path = dir.join("huge.pgm");
+    std::fs::write(&path, b"P5\n16384 16384\n255\n\x00\x00").unwrap();
+    let opts = LoadOptions {
+        resolution: Some((0.05, 0.05)),
+        border: true,
+    };
+    let err = load_map(&path, &opts).expect_err("past the cell limit");
+    assert!(
+        matches!(err.kind, MapErrorKind::TooLarge { width: 16_386, .. }),
+        "{err}"
+    );
+}

@@ -87,10 +87,11 @@ pub fn load_map(path: &Path, opts: &LoadOptions) -> Result<GridMap, MapError> {
                 .resolution
                 .ok_or_else(|| MapError::new(path, MapErrorKind::ResolutionRequired))?;
             let bytes = read_bytes(path)?;
+            let fits = finished_size_check((rx, ry), opts.border);
             let raster = if ext == "pgm" {
-                parse_pgm(&bytes, path)?
+                pgm::decode_pgm(&bytes, path, &fits)?
             } else {
-                parse_png(&bytes, path)?
+                png::decode_png(&bytes, path, &fits)?
             };
             let cells = parse_bitmap(&raster);
             finish(GridMap::new(cells, 1.0), (rx, ry), path, opts.border)?
@@ -162,6 +163,50 @@ fn extension(path: &Path) -> String {
         .and_then(|e| e.to_str())
         .unwrap_or("")
         .to_ascii_lowercase()
+}
+
+/// A check of a raster's `(width, height)` from its header, before its pixels are decoded;
+/// the path is the file named in the error.
+pub(crate) type SizeCheck = dyn Fn(u64, u64, &Path) -> Result<(), MapError>;
+
+/// The check that a raster's header size gives a map [`finish`] can make with pixel size
+/// `(rx, ry)` and `border`: the raster itself, its resampled size and the border all within
+/// [`MAX_CELLS`], so that a picture the map would outgrow is refused before it is decoded.
+pub(crate) fn finished_size_check(
+    (rx, ry): (f64, f64),
+    border: bool,
+) -> impl Fn(u64, u64, &Path) -> Result<(), MapError> {
+    move |w, h, path| {
+        check_size(w, h, path)?;
+        if !(rx.is_finite() && ry.is_finite() && rx > 0.0 && ry > 0.0) {
+            return Ok(()); // `finish` names the bad resolution
+        }
+        let (w, h) = if rx == ry {
+            (w, h)
+        } else {
+            let side = rx.min(ry);
+            let size = usize::try_from(w)
+                .ok()
+                .zip(usize::try_from(h).ok())
+                .and_then(|(w, h)| resample::resampled_size(w, h, (rx, ry), side));
+            let Some((w, h)) = size else {
+                return Err(MapError::new(
+                    path,
+                    MapErrorKind::TooLarge {
+                        width: (w as f64 * rx / side).round() as u64,
+                        height: (h as f64 * ry / side).round() as u64,
+                        limit: MAX_CELLS,
+                    },
+                ));
+            };
+            check_size(w as u64, h as u64, path)?;
+            (w as u64, h as u64)
+        };
+        if border {
+            check_size(w + 2, h + 2, path)?;
+        }
+        Ok(())
+    }
 }
 
 /// Apply the pixel size `(rx, ry)` (resampling non-square pixels) and the optional border.

@@ -8,7 +8,7 @@ use std::path::Path;
 
 use super::error::{MapError, MapErrorKind};
 use super::raster::Raster;
-use super::{check_size, grey_bytes};
+use super::{SizeCheck, check_size, grey_bytes};
 use crate::grid::Grid;
 use crate::occ::Occ;
 
@@ -16,7 +16,15 @@ use crate::occ::Occ;
 const PNG_SIGNATURE: &[u8] = b"\x89PNG\r\n\x1a\n";
 
 /// Decode a PGM image (P2 or P5, 8- or 16-bit); `name` is the file named in errors.
+///
+/// The size in the header is checked against [`MAX_CELLS`](super::MAX_CELLS) before the
+/// pixels are read.
 pub fn parse_pgm(bytes: &[u8], name: &Path) -> Result<Raster, MapError> {
+    decode_pgm(bytes, name, &check_size)
+}
+
+/// Decode a PGM image once `fits(width, height, name)` accepts the size in its header.
+pub(crate) fn decode_pgm(bytes: &[u8], name: &Path, fits: &SizeCheck) -> Result<Raster, MapError> {
     let err = |kind| MapError::new(name, kind);
     let plain = match bytes.get(..2) {
         Some(b"P2") => true,
@@ -37,7 +45,7 @@ pub fn parse_pgm(bytes: &[u8], name: &Path) -> Result<Raster, MapError> {
             "maxval must be between 1 and 65535, found {maxval}"
         ))));
     }
-    check_size(width, height, name)?;
+    fits(width, height, name)?;
     // One whitespace byte ends the header.
     match bytes.get(pos) {
         Some(b) if b.is_ascii_whitespace() => pos += 1,

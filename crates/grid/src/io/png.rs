@@ -13,7 +13,7 @@ use image::{DynamicImage, ExtendedColorType, ImageDecoder, ImageEncoder};
 use super::error::{MapError, MapErrorKind};
 use super::pgm::describe_magic;
 use super::raster::Raster;
-use super::{check_size, grey_bytes};
+use super::{SizeCheck, check_size, grey_bytes};
 use crate::grid::Grid;
 use crate::occ::Occ;
 
@@ -25,6 +25,11 @@ const PNG_SIGNATURE: &[u8] = b"\x89PNG\r\n\x1a\n";
 /// The size in the header is checked against [`MAX_CELLS`](super::MAX_CELLS) before the
 /// pixels are decoded.
 pub fn parse_png(bytes: &[u8], name: &Path) -> Result<Raster, MapError> {
+    decode_png(bytes, name, &check_size)
+}
+
+/// Decode a PNG image once `fits(width, height, name)` accepts the size in its header.
+pub(crate) fn decode_png(bytes: &[u8], name: &Path, fits: &SizeCheck) -> Result<Raster, MapError> {
     let err = |kind| MapError::new(name, kind);
     if !bytes.starts_with(PNG_SIGNATURE) {
         return Err(err(MapErrorKind::WrongFormat {
@@ -34,7 +39,7 @@ pub fn parse_png(bytes: &[u8], name: &Path) -> Result<Raster, MapError> {
     }
     let decoder = PngDecoder::new(Cursor::new(bytes)).map_err(|e| err(png_error(e)))?;
     let (w, h) = decoder.dimensions();
-    check_size(u64::from(w), u64::from(h), name)?;
+    fits(u64::from(w), u64::from(h), name)?;
     let image = DynamicImage::from_decoder(decoder).map_err(|e| err(png_error(e)))?;
     let (w, h) = (w as usize, h as usize);
     let (maxval, values, transparent) = match &image {

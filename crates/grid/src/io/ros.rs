@@ -24,8 +24,10 @@ use std::path::{Path, PathBuf};
 use yaml_rust2::{Yaml, YamlLoader};
 
 use super::error::{MapError, MapErrorKind};
+use super::pgm::decode_pgm;
+use super::png::decode_png;
 use super::raster::Thresholds;
-use super::{LoadOptions, MAX_FILE_BYTES, check_resolution, finish, parse_pgm, parse_png};
+use super::{LoadOptions, MAX_FILE_BYTES, check_resolution, finish, finished_size_check};
 use crate::occ::GridMap;
 
 /// How map_server turns pixel values into occupancy.
@@ -238,9 +240,13 @@ pub fn parse_ros_yaml(
         .and_then(|e| e.to_str())
         .unwrap_or("")
         .to_ascii_lowercase();
+    let res = opts
+        .resolution
+        .unwrap_or((meta.resolution, meta.resolution));
+    let fits = finished_size_check(res, opts.border);
     let raster = match ext.as_str() {
-        "pgm" | "pnm" => parse_pgm(&bytes, &image)?,
-        "png" => parse_png(&bytes, &image)?,
+        "pgm" | "pnm" => decode_pgm(&bytes, &image, &fits)?,
+        "png" => decode_png(&bytes, &image, &fits)?,
         _ => {
             return Err(MapError::new(
                 yaml_path,
@@ -261,9 +267,6 @@ pub fn parse_ros_yaml(
         resolution: meta.resolution,
         origin: meta.origin,
     };
-    let res = opts
-        .resolution
-        .unwrap_or((meta.resolution, meta.resolution));
     finish(map, res, yaml_path, opts.border)
 }
 
