@@ -199,6 +199,13 @@ impl Plan {
         cfg
     }
 
+    /// Keep only the first `n` trials of every start variant (trial numbers `0..n`), for a
+    /// first look at every cell of a study: the trials kept have the keys and seeds they
+    /// have in the whole study, so the rest can be run later into the same database.
+    pub fn first_trials(&mut self, n: u32) {
+        self.trials.retain(|t| t.trial < n);
+    }
+
     /// A text naming the settings every trial shares and the strategies' revision; a
     /// results database holds the results of one fingerprint only, so a changed scenario,
     /// or strategies whose results changed, cannot silently mix with old results.

@@ -2,7 +2,7 @@
 //! SQLite database, and merge, export and report such databases (issue 9).
 //!
 //! ```text
-//! frontier bench study.toml [--db study.sqlite] [--threads N] [--shard I/N]
+//! frontier bench study.toml [--db study.sqlite] [--threads N] [--shard I/N] [--trials N]
 //! frontier bench --suite quick --report quick-report
 //! frontier bench merge all.sqlite shard-*.sqlite
 //! frontier bench export all.sqlite --csv all.csv
@@ -47,6 +47,10 @@ pub struct RunArgs {
     /// Run at most this many of the pending trials.
     #[arg(long)]
     pub limit: Option<usize>,
+    /// Run only the first N trials of every start variant (a first look at every cell; the
+    /// rest can follow later into the same database).
+    #[arg(long, value_name = "N")]
+    pub trials: Option<u32>,
     /// Only print the plan (environments, variants, trial count); run nothing.
     #[arg(long)]
     pub dry_run: bool,
@@ -150,6 +154,12 @@ fn run_study(a: RunArgs) -> Result<()> {
         }
         (None, None) => bail!("give a scenario file or --suite NAME"),
     };
+    let mut plan = plan;
+    match a.trials {
+        Some(0) => bail!("--trials: expected at least 1 trial per start variant, found 0"),
+        Some(n) => plan.first_trials(n),
+        None => {}
+    }
     for s in &plan.skipped {
         eprintln!("note: skipping strategy {s}");
     }

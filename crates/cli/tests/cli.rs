@@ -1156,3 +1156,70 @@ fn a_houseexpo_plan_is_explored() {
         "{msg}"
     );
 }
+
+/// `--trials 1` runs one trial per start variant, with the keys and seeds of the whole
+/// study: running the study later into the same database adds only the rest, and ends
+/// with exactly the rows of a run of the whole study.
+#[test]
+fn bench_first_trials_then_the_rest_equals_the_whole_study() {
+    let dir = tempfile::tempdir().unwrap();
+    let scenario = dir.path().join("study.toml");
+    std::fs::write(
+        &scenario,
+        r#"
+name = "first"
+seed = 3
+robots = [2]
+sensors = ["los:r=4c"]
+strategies = ["random", "cf"]
+trials = 3
+perturbations = 2
+radius = 1.0
+
+[[env]]
+kind = "office"
+seeds = [1]
+size = [16, 12]
+resolution = 0.5
+"#,
+    )
+    .unwrap();
+    let s = scenario.to_str().unwrap();
+    let db = dir.path().join("first.sqlite");
+    let d = db.to_str().unwrap();
+    let run = |extra: &[&str]| {
+        let mut args = vec!["bench", s, "--db", d, "-j", "1", "--no-progress"];
+        args.extend_from_slice(extra);
+        frontier(&args)
+    };
+    let out = run(&["--trials", "1"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let first = bench_rows(&db);
+    // `random` is stochastic (3 trials per start), `cf` is not (1): one of each per start.
+    let mut keys: Vec<&str> = first.iter().map(|r| r.key.as_str()).collect();
+    keys.sort_unstable();
+    assert_eq!(keys.len(), 4, "{keys:?}");
+    assert!(keys.iter().all(|k| k.ends_with("trial=0")), "{keys:?}");
+    let out = run(&[]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    assert!(stderr.contains("4 of 8 trials done before"), "{stderr}");
+    let whole = dir.path().join("whole.sqlite");
+    ok(&[
+        "bench",
+        s,
+        "--db",
+        whole.to_str().unwrap(),
+        "-j",
+        "2",
+        "--no-progress",
+    ]);
+    assert_eq!(bench_rows(&db), bench_rows(&whole));
+    // Zero trials is a mistake, not an empty study.
+    let msg = err(&["bench", s, "--db", d, "--trials", "0"]);
+    assert!(msg.contains("--trials: expected at least 1"), "{msg}");
+}
