@@ -14,6 +14,23 @@
 //!
 //! Nothing here touches the file system: readers take bytes, writers take any
 //! `Write + Seek`.
+//!
+//! A map recorded as a run and read back, as `frontier explore --map run.mcap` does:
+//!
+//! ```
+//! use grid::io::parse_ascii;
+//!
+//! let map = parse_ascii("#####\n#...#\n#.#.#\n#####\n", 0.05).unwrap();
+//! let mut run = record::RunWriter::new(std::io::Cursor::new(Vec::new())).unwrap();
+//! run.map(0.0, &map).unwrap();
+//! run.pose(0.0, 0, 0.075, 0.075, 0.0).unwrap();
+//! let bytes = run.finish().unwrap().into_inner();
+//!
+//! let (back, topic) = record::last_map(&bytes, None).unwrap();
+//! assert_eq!(topic, "/map");
+//! assert_eq!(back.cells, map.cells);
+//! assert!((back.resolution - map.resolution).abs() < 1e-7); // ROS's float32
+//! ```
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
