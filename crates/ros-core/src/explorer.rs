@@ -31,7 +31,7 @@ use explore::decision::{DecisionCtx, GoalLists, Memory, Planner};
 use explore::frontier::Region;
 use explore::strategy::Strategy;
 use explore::upkeep::FrontierUpkeep;
-use grid::{NEIGHBOURS8, Occ};
+use grid::{Grid, NEIGHBOURS8, Occ};
 use rand_pcg::Pcg64Mcg;
 use record::msgs::OccupancyGrid;
 use record::occupancy::{MapFrame, MapMsgError, classify_into, frame_of};
@@ -257,7 +257,6 @@ pub struct Explorer {
     inaccessible_world: Vec<(f64, f64)>,
     active: Option<Active>,
     // Buffers.
-    classes: Vec<Occ>,
     changed: Vec<u32>,
     regions: Vec<Region>,
     queue: Vec<u32>,
@@ -276,7 +275,6 @@ impl Explorer {
             visited_world: Vec::new(),
             inaccessible_world: Vec::new(),
             active: None,
-            classes: Vec::new(),
             changed: Vec::new(),
             regions: Vec::new(),
             queue: Vec::new(),
@@ -312,21 +310,26 @@ impl Explorer {
     pub fn update_map(&mut self, msg: &OccupancyGrid) -> Result<MapUpdate, UpdateError> {
         let frame = frame_of(msg)?;
         let n = frame.width * frame.height;
-        self.classes.resize(n, Occ::Unknown);
-        classify_into(msg, &frame, &mut self.classes);
         let rebuilt = self.state.as_ref().is_none_or(|s| s.frame != frame);
-        if rebuilt {
-            self.state = Some(self.fresh_state(frame)?);
-        }
-        let st = self.state.as_mut().expect("built above");
-        self.changed.clear();
-        st.belief.set_all(&self.classes, &mut self.changed);
-        if rebuilt {
-            // A whole new map: recounting from scratch beats updating every known cell.
+        let changed = if rebuilt {
+            // A whole new map: classified straight into the new belief, and frontiers
+            // counted from scratch, which beats updating every known cell.
+            let sensor = self.sensor_for(&frame)?;
+            let mut cells = vec![Occ::Unknown; n];
+            classify_into(msg, &frame, &mut cells);
+            let known = Grid::from_vec(frame.width, frame.height, cells).expect("sized above");
+            let known_cells = known.data().iter().filter(|c| !c.is_unknown()).count();
+            let st = self.state.insert(self.fresh_state(frame, known, sensor));
             st.upkeep.rebuild(st.belief.known());
+            known_cells
         } else {
+            let st = self.state.as_mut().expect("not rebuilt");
+            self.changed.clear();
+            st.belief.set_from_msg(msg, &frame, &mut self.changed);
             st.upkeep.update(st.belief.known(), &self.changed);
-        }
+            self.changed.len()
+        };
+        let st = self.state.as_mut().expect("built above");
         if rebuilt {
             // Goal lists in the new frame's cells.
             for &(x, y) in &self.visited_world {
@@ -347,37 +350,38 @@ impl Explorer {
                 }
             }
         }
-        Ok(MapUpdate {
-            rebuilt,
-            changed: self.changed.len(),
-        })
+        Ok(MapUpdate { rebuilt, changed })
     }
 
-    fn fresh_state(&self, frame: MapFrame) -> Result<State, UpdateError> {
-        let (w, h) = (frame.width, frame.height);
-        let sensor = self
-            .cfg
+    /// The robot's sensor at the resolution of `frame`.
+    fn sensor_for(&self, frame: &MapFrame) -> Result<Box<dyn Sensor>, UpdateError> {
+        self.cfg
             .sensor
             .build(frame.resolution)
             .map_err(|e| UpdateError::Sensor {
                 spec: self.cfg.sensor.to_string(),
                 resolution: frame.resolution,
                 why: e.to_string(),
-            })?;
+            })
+    }
+
+    /// Everything sized for `frame`, with the belief `known` (the map's classes).
+    fn fresh_state(&self, frame: MapFrame, known: Grid<Occ>, sensor: Box<dyn Sensor>) -> State {
+        let (w, h) = (frame.width, frame.height);
         let mut memory = Memory::default();
         memory.dt.model = sense::gain::InverseModel::for_belief(sense::BeliefKind::Known);
-        Ok(State {
+        State {
             range_cells: sensor.range_cells(),
             sensor,
             frame,
-            belief: MapBelief::new(w, h),
+            belief: MapBelief::from_known(known),
             upkeep: FrontierUpkeep::new(w, h, self.cfg.clearance_m / frame.resolution),
             planner: Planner::new(w, h, 1),
             lists: GoalLists::new(w * h),
             candidates: CandidateSet::new(w * h),
             allowed: CandidateSet::new(w * h),
             memory,
-        })
+        }
     }
 
     /// Whether the current goal stands, given the robot at world `(x, y)` at time `now_s`

@@ -6,7 +6,12 @@
 //! closure — and reports which cells changed so that frontier upkeep stays incremental.
 
 use grid::{Grid, Occ};
+use record::msgs::OccupancyGrid;
+use record::occupancy::{MapFrame, class_of};
 use sense::{Belief, Observation};
+
+/// Cells compared at once by [`MapBelief::set_from_msg`].
+const CHUNK: usize = 64;
 
 /// A ternary belief set from map messages.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -19,6 +24,43 @@ impl MapBelief {
     pub fn new(width: usize, height: usize) -> Self {
         Self {
             known: Grid::new(width, height, Occ::Unknown),
+        }
+    }
+
+    /// The belief whose cells are `known` (a map's classes, taken whole).
+    pub fn from_known(known: Grid<Occ>) -> Self {
+        Self { known }
+    }
+
+    /// Set every cell to its class in `msg` (whose frame, `frame`, has this belief's size),
+    /// pushing the index of each cell whose class changed to `changed`, in index order:
+    /// one pass over the message, classifying as [`record::occupancy::classify_into`].
+    pub fn set_from_msg(&mut self, msg: &OccupancyGrid, frame: &MapFrame, changed: &mut Vec<u32>) {
+        let (w, h) = (frame.width, frame.height);
+        debug_assert_eq!(w * h, self.known.len());
+        debug_assert_eq!(msg.data.len(), self.known.len());
+        let data = self.known.data_mut();
+        for (row, dst) in data.chunks_exact_mut(w).enumerate().take(h) {
+            // The message's rows run from the bottom (its origin) up, the belief's down.
+            let src = &msg.data[(h - 1 - row) * w..(h - row) * w];
+            // Most of a map is as it was: compare a chunk at a time without branches, and
+            // look cell by cell only at the chunks that differ.
+            for (k, (dst, src)) in dst.chunks_mut(CHUNK).zip(src.chunks(CHUNK)).enumerate() {
+                let diff = dst.iter().zip(src).fold(0u8, |acc, (&slot, &v)| {
+                    acc | (slot as u8 ^ class_of(v) as u8)
+                });
+                if diff == 0 {
+                    continue;
+                }
+                let first = row * w + k * CHUNK;
+                for (x, (slot, &v)) in dst.iter_mut().zip(src).enumerate() {
+                    let c = class_of(v);
+                    if *slot != c {
+                        *slot = c;
+                        changed.push((first + x) as u32);
+                    }
+                }
+            }
         }
     }
 
@@ -90,5 +132,29 @@ mod tests {
         b.set_all(&[Occ::Free, Occ::Free, Occ::Unknown], &mut changed);
         assert_eq!(changed, [1, 2]);
         assert_eq!(b.known().data(), &[Occ::Free, Occ::Free, Occ::Unknown]);
+    }
+
+    #[test]
+    fn set_from_msg_is_classify_then_set_all() {
+        // A 3 × 2 map: the message's first row is the belief's last.
+        let mut msg = OccupancyGrid::default();
+        msg.info.width = 3;
+        msg.info.height = 2;
+        msg.info.resolution = 0.5;
+        let frame = |m: &OccupancyGrid| record::occupancy::frame_of(m).unwrap();
+        let mut a = MapBelief::new(3, 2);
+        let mut b = MapBelief::new(3, 2);
+        for data in [[-1, 0, 100, 30, 25, 65], [0, 0, 100, 100, -1, 70], [-1; 6]] {
+            msg.data = data.to_vec();
+            let f = frame(&msg);
+            let mut classes = vec![Occ::Unknown; 6];
+            record::occupancy::classify_into(&msg, &f, &mut classes);
+            let (mut ca, mut cb) = (Vec::new(), Vec::new());
+            a.set_all(&classes, &mut ca);
+            b.set_from_msg(&msg, &f, &mut cb);
+            assert_eq!(ca, cb);
+            assert_eq!(a, b);
+        }
+        assert_eq!(a.known().data(), &[Occ::Unknown; 6]);
     }
 }
