@@ -8,10 +8,16 @@
 //! robot's search bucket by bucket only as far as their rule needs (see
 //! [`crate::assign::costs`]); the questions "reachable at all?" are answered by one flood
 //! fill shared by the robots of a component.
+//!
+//! [`decide`] is that middle, written once: the simulation's loop and the ROS node's
+//! explorer both call it, so a strategy decides by the same code path in both.
 
 use grid::{Grid, Occ};
 use rand_pcg::Pcg64Mcg;
 
+use crate::assign::AssignerKind;
+use crate::candidates::{CandidateKind, CandidateSet};
+use crate::frontier::Region;
 use crate::plan::component::Component;
 use crate::plan::reachability::Reachability;
 use crate::upkeep::FrontierUpkeep;
@@ -279,4 +285,88 @@ pub struct Goal {
     pub cell: u32,
     /// Length of the shortest path to it, in cells.
     pub cost: f64,
+}
+
+/// The candidates of a decision and the buffers [`decide`] reuses across decisions.
+#[derive(Clone, Debug, Default)]
+pub struct Offer {
+    /// The generator's candidates at the last decision, in its order.
+    pub candidates: CandidateSet,
+    /// The candidates in frontier regions of the minimum size, when that narrows them.
+    narrowed: CandidateSet,
+    regions: Vec<Region>,
+    /// Frontier cells left out at the last decision because their region is below the
+    /// minimum size.
+    pub too_small: usize,
+}
+
+impl Offer {
+    /// Buffers for a map of `cells` cells.
+    pub fn new(cells: usize) -> Self {
+        Self {
+            candidates: CandidateSet::new(cells),
+            // Allocated on first use: only a minimum region size over all frontiers needs it.
+            narrowed: CandidateSet::default(),
+            regions: Vec::new(),
+            too_small: 0,
+        }
+    }
+}
+
+/// One decision of the exploration loop (DESIGN.md: the loop exists once): the generator
+/// `candidates` fills `offer.candidates`; frontier regions shorter than `min_region_m`
+/// metres (explore_lite's `min_frontier_size`; 0 keeps every region) are not offered; then
+/// `assigner`, if given, writes the deciding robots' goals to `out` (without one, the caller
+/// chooses among the candidates).
+///
+/// The minimum region size acts on the generators that offer frontier cells or regions:
+/// for all frontier cells it drops the cells of smaller regions (counted in
+/// `offer.too_small`), for region centroids it raises the generator's own minimum; the
+/// other generators choose their candidates by their papers' rules and are left as they are.
+pub fn decide(
+    ctx: &mut DecisionCtx<'_>,
+    candidates: CandidateKind,
+    assigner: Option<AssignerKind>,
+    min_region_m: f64,
+    offer: &mut Offer,
+    out: &mut [Option<Goal>],
+) {
+    let kind = match candidates {
+        CandidateKind::RegionCentroids { min_size_m } if min_region_m > 0.0 => {
+            CandidateKind::RegionCentroids {
+                min_size_m: min_size_m.max(min_region_m),
+            }
+        }
+        other => other,
+    };
+    kind.generate(ctx, &mut offer.candidates);
+    offer.too_small = 0;
+    let min_cells = (min_region_m / ctx.resolution).ceil().max(1.0) as usize;
+    let narrow = kind == CandidateKind::AllFrontiers && min_cells > 1;
+    if narrow {
+        if !offer.narrowed.fits(ctx.known.len()) {
+            offer.narrowed = CandidateSet::new(ctx.known.len());
+        }
+        ctx.upkeep.regions(ctx.known.width(), 1, &mut offer.regions);
+        offer.narrowed.clear();
+        for r in &offer.regions {
+            if r.cells.len() >= min_cells {
+                for &c in &r.cells {
+                    if offer.candidates.contains(c as usize) {
+                        offer.narrowed.insert(c);
+                    }
+                }
+            } else {
+                offer.too_small += r.cells.len();
+            }
+        }
+    }
+    if let Some(assigner) = assigner {
+        let offered = if narrow {
+            &offer.narrowed
+        } else {
+            &offer.candidates
+        };
+        assigner.assign(ctx, offered, out);
+    }
 }

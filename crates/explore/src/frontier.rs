@@ -12,13 +12,14 @@
 use crate::traversability::Traversability;
 use grid::{Grid, NEIGHBOURS8, Occ};
 
-/// Marker for "not in the set" in [`FrontierSet`]'s position array.
-const ABSENT: u32 = u32::MAX;
+/// Marker for "not in the set" in [`FrontierSet`]'s position array: zero, so that a new
+/// set is a zeroed allocation (pages the operating system maps on first touch).
+const ABSENT: u32 = 0;
 
 /// A sparse set of flat cell indices: O(1) insert, remove and membership, cells as a slice.
 #[derive(Clone, Debug)]
 pub struct FrontierSet {
-    /// Position of each cell in `dense`, or `ABSENT`.
+    /// One more than the position of each cell in `dense`, or `ABSENT`.
     pos: Vec<u32>,
     /// The members, in insertion order modified by swap-remove.
     dense: Vec<u32>,
@@ -44,8 +45,8 @@ impl FrontierSet {
     pub fn insert(&mut self, i: usize) -> bool {
         match self.pos.get_mut(i) {
             Some(p) if *p == ABSENT => {
-                *p = self.dense.len() as u32;
                 self.dense.push(i as u32);
+                *p = self.dense.len() as u32;
                 true
             }
             _ => false,
@@ -61,10 +62,10 @@ impl FrontierSet {
         if p == ABSENT {
             return false;
         }
-        let last = self.dense.len() - 1;
-        self.dense.swap_remove(p as usize);
-        if (p as usize) < last {
-            let moved = self.dense[p as usize] as usize;
+        let (k, last) = (p as usize - 1, self.dense.len() - 1);
+        self.dense.swap_remove(k);
+        if k < last {
+            let moved = self.dense[k] as usize;
             self.pos[moved] = p;
         }
         self.pos[i] = ABSENT;

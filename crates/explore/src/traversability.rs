@@ -20,10 +20,14 @@ pub struct Traversability {
     clearance: f64,
     /// Offsets `(dx, dy)` with `√(dx² + dy²) ≤ clearance` (clipped to the grid size).
     disk: Vec<(i32, i32)>,
+    /// The disk by rows: `(dy, h)` for the offsets `(−h..=h, dy)` (a disk's row is one run).
+    spans: Vec<(i32, i32)>,
     /// Number of counted Occupied cells whose disk covers the cell.
     count: Vec<u32>,
     /// Whether the cell is currently counted as Occupied.
     counted: Vec<bool>,
+    /// Whether anything was ever counted (else the counts are still the zeroed allocation).
+    dirty: bool,
 }
 
 impl Traversability {
@@ -31,13 +35,68 @@ impl Traversability {
     /// clearances act as 0 for occupied cells themselves, which are never traversable anyway).
     pub fn new(width: usize, height: usize, clearance_cells: f64) -> Self {
         let n = width * height;
+        let disk = disk_offsets(clearance_cells, width.max(height));
         Self {
             width,
             height,
             clearance: clearance_cells,
-            disk: disk_offsets(clearance_cells, width.max(height)),
+            spans: disk_spans(&disk),
+            disk,
             count: vec![0; n],
             counted: vec![false; n],
+            dirty: false,
+        }
+    }
+
+    /// Forget every count and count the Occupied cells of `known` (same size) afresh: the
+    /// state [`update`](Self::update) reaches with every cell as changed, at a fraction of
+    /// its cost. Each Occupied cell marks where its disk's rows start and end (a difference
+    /// array: +1 at a run's first cell, −1 after its last, in wrapping arithmetic), and one
+    /// running sum per row turns the marks into counts; nothing is reported as touched, and
+    /// counts still zero from the allocation are not cleared again.
+    pub fn rebuild(&mut self, known: &Grid<Occ>) {
+        debug_assert_eq!(known.len(), self.count.len(), "belief size differs");
+        if self.dirty {
+            self.count.fill(0);
+            self.counted.fill(false);
+        }
+        self.dirty = true;
+        let (w, h) = (self.width, self.height);
+        let data = known.data();
+        let h = h.min(data.len() / w.max(1));
+        let mut marked = vec![false; h];
+        for y in 0..h {
+            let row = &data[y * w..(y + 1) * w];
+            for (x, _) in row.iter().enumerate().filter(|(_, o)| o.is_occupied()) {
+                self.counted[y * w + x] = true;
+                for &(dy, hx) in &self.spans {
+                    let ny = y as i64 + i64::from(dy);
+                    if ny < 0 || ny >= h as i64 {
+                        continue;
+                    }
+                    let ny = ny as usize;
+                    marked[ny] = true;
+                    let lo = (x as i64 - i64::from(hx)).max(0) as usize;
+                    let end = x + hx as usize + 1;
+                    let c = &mut self.count[ny * w + lo];
+                    *c = c.wrapping_add(1);
+                    if end < w {
+                        let c = &mut self.count[ny * w + end];
+                        *c = c.wrapping_sub(1);
+                    }
+                }
+            }
+        }
+        for (y, _) in marked.iter().enumerate().filter(|(_, m)| **m) {
+            let mut acc = 0u32;
+            for c in &mut self.count[y * w..(y + 1) * w] {
+                acc = acc.wrapping_add(*c);
+                // Stores only where the count is not already right: the zero runs between
+                // obstacles' disks stay untouched (a new map's pages are never written).
+                if *c != acc {
+                    *c = acc;
+                }
+            }
         }
     }
 
@@ -47,6 +106,7 @@ impl Traversability {
     /// handled too). Indices outside the grid are ignored; duplicates are harmless.
     pub fn update(&mut self, known: &Grid<Occ>, changed: &[u32], touched: &mut Vec<u32>) {
         let n = self.count.len();
+        self.dirty = true;
         for &c in changed {
             let i = c as usize;
             if i >= n || i >= known.len() {
@@ -115,6 +175,24 @@ impl Traversability {
     }
 }
 
+/// The rows of `disk` as `(dy, h)`: the offsets of row `dy` are `−h..=h` (a disk of centre
+/// distances is symmetric, and convex along a row).
+fn disk_spans(disk: &[(i32, i32)]) -> Vec<(i32, i32)> {
+    let mut spans: Vec<(i32, i32)> = Vec::new();
+    for &(dx, dy) in disk {
+        match spans.iter_mut().find(|s| s.0 == dy) {
+            Some(s) => s.1 = s.1.max(dx.abs()),
+            None => spans.push((dy, dx.abs())),
+        }
+    }
+    debug_assert_eq!(
+        spans.iter().map(|s| 2 * s.1 as usize + 1).sum::<usize>(),
+        disk.len(),
+        "every disk row is one run"
+    );
+    spans
+}
+
 /// Offsets with centre distance `≤ clearance`, clipped to `|dx|, |dy| < max_side`.
 fn disk_offsets(clearance: f64, max_side: usize) -> Vec<(i32, i32)> {
     if clearance.is_nan() || clearance < 0.0 || max_side == 0 {
@@ -148,6 +226,22 @@ mod tests {
         assert_eq!(disk_offsets(-1.0, 10).len(), 1);
         assert_eq!(disk_offsets(f64::NAN, 10).len(), 1);
         assert_eq!(disk_offsets(1e12, 2).len(), 9);
+    }
+
+    #[test]
+    fn disk_rows_are_single_runs() {
+        for c in [0.0, 1.0, 1.5, 2.5, 4.0, 7.3, -1.0] {
+            let disk = disk_offsets(c, 50);
+            let spans = disk_spans(&disk);
+            let mut from_spans: Vec<(i32, i32)> = spans
+                .iter()
+                .flat_map(|&(dy, h)| (-h..=h).map(move |dx| (dx, dy)))
+                .collect();
+            let mut disk = disk;
+            from_spans.sort_unstable();
+            disk.sort_unstable();
+            assert_eq!(from_spans, disk, "clearance {c}");
+        }
     }
 
     #[test]

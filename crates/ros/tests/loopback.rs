@@ -7,6 +7,7 @@
 //! 127.0.0.1's discovery ports besides multicast, so the two find each other with or
 //! without multicast on the loopback interface.
 
+#[path = "../../ros-core/tests/common/mod.rs"]
 mod common;
 
 use std::sync::{Arc, Mutex};

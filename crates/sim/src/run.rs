@@ -22,7 +22,7 @@ use std::time::Instant;
 
 use explore::assign::{AssignerKind, utility};
 use explore::candidates::{CandidateKind, CandidateSet};
-use explore::decision::{DecisionCtx, Goal, GoalLists, Memory, Planner};
+use explore::decision::{self, DecisionCtx, Goal, GoalLists, Memory, Offer, Planner};
 use explore::strategy::SensingMode;
 
 /// `dt-rr` re-evaluates its target's utility every this many moves (one predicted scan).
@@ -94,7 +94,8 @@ struct Team<'a> {
     upkeep: FrontierUpkeep,
     planner: Planner,
     lists: GoalLists,
-    candidates: CandidateSet,
+    /// The candidates of the last decision (and the shared decision step's buffers).
+    offer: Offer,
     memory: Memory,
     rng: Pcg64Mcg,
     obs: Observation,
@@ -278,7 +279,7 @@ impl<'a> Session<'a> {
             upkeep: FrontierUpkeep::new(w, h, clearance_cells),
             planner: Planner::new(w, h, m),
             lists: GoalLists::new(len),
-            candidates: CandidateSet::new(len),
+            offer: Offer::new(len),
             memory: {
                 let mut memory = Memory::default();
                 memory.dt.model = sense::gain::InverseModel::for_belief(cfg.belief);
@@ -416,12 +417,12 @@ impl<'a> Session<'a> {
 
     /// The candidates the strategy's generator offered at the last decision, in its order.
     pub fn candidates(&self) -> &[u32] {
-        self.team.candidates.cells()
+        self.team.offer.candidates.cells()
     }
 
     /// The position of `cell` among the candidates of the last decision, if it is one.
     pub fn candidate_position(&self, cell: u32) -> Option<usize> {
-        self.team.candidates.index_of(cell as usize)
+        self.team.offer.candidates.index_of(cell as usize)
     }
 
     /// The (at most) `k` candidates of the pending decision cheapest for robot `r` to reach,
@@ -430,7 +431,7 @@ impl<'a> Session<'a> {
     pub fn nearest_candidates(&mut self, r: usize, k: usize, out: &mut Vec<Goal>) {
         out.clear();
         let team = &mut self.team;
-        if r >= self.robots.len() || k == 0 || team.candidates.is_empty() {
+        if r >= self.robots.len() || k == 0 || team.offer.candidates.is_empty() {
             return;
         }
         let from = self.robots[r].cell;
@@ -442,7 +443,7 @@ impl<'a> Session<'a> {
             let map = team.planner.map(r);
             let settled = map.settled();
             for &c in &settled[seen.min(settled.len())..] {
-                if team.candidates.contains(c as usize) {
+                if team.offer.candidates.contains(c as usize) {
                     let cost = map.cost(c as usize).unwrap_or(f64::INFINITY);
                     out.push(Goal { cell: c, cost });
                 }
@@ -468,7 +469,7 @@ impl<'a> Session<'a> {
         }
         t.offered.clear();
         for &c in cells {
-            if t.candidates.contains(c as usize) {
+            if t.offer.candidates.contains(c as usize) {
                 t.offered.insert(c);
             }
         }
@@ -1035,16 +1036,16 @@ impl Team<'_> {
                 sensor: self.sensor.as_ref(),
                 memory: &mut self.memory,
             };
-            self.cfg
-                .strategy
-                .candidates
-                .generate(&mut ctx, &mut self.candidates);
-            if !self.external {
-                self.cfg
-                    .strategy
-                    .assigner
-                    .assign(&mut ctx, &self.candidates, &mut self.out);
-            }
+            let strategy = &self.cfg.strategy;
+            let assigner = (!self.external).then_some(strategy.assigner);
+            decision::decide(
+                &mut ctx,
+                strategy.candidates,
+                assigner,
+                0.0,
+                &mut self.offer,
+                &mut self.out,
+            );
         }
         if self.external {
             // The caller chooses (`Session::choose`), then `conclude` carries on.
@@ -1063,8 +1064,10 @@ impl Team<'_> {
         if let Some(t) = self.trace.as_mut()
             && self.cfg.strategy.candidates != CandidateKind::AllFrontiers
         {
-            t.candidates
-                .push((t.events.len() as u32, self.candidates.cells().to_vec()));
+            t.candidates.push((
+                t.events.len() as u32,
+                self.offer.candidates.cells().to_vec(),
+            ));
         }
         let seg = &self.memory.segments;
         if let Some(t) = self.trace.as_mut()

@@ -13,13 +13,15 @@ pub mod rfe;
 use crate::decision::DecisionCtx;
 
 /// A set of goal candidates with O(1) membership, reused across decisions.
+///
+/// A sparse set: a cell is a member iff its slot in `index` points at a place in `cells`
+/// that holds it back, so emptying is O(1) without generation stamps, and one array of the
+/// map's size (zeroed, so new pages cost nothing until touched) is all it allocates.
 #[derive(Clone, Debug, Default)]
 pub struct CandidateSet {
     cells: Vec<u32>,
-    mark: Vec<u32>,
-    /// Position of each marked cell in `cells`.
+    /// Position of each member in `cells` (stale entries of non-members point elsewhere).
     index: Vec<u32>,
-    generation: u32,
 }
 
 impl CandidateSet {
@@ -27,27 +29,18 @@ impl CandidateSet {
     pub fn new(len: usize) -> Self {
         Self {
             cells: Vec::new(),
-            mark: vec![0; len],
             index: vec![0; len],
-            generation: 1,
         }
     }
 
-    /// Empty the set in O(1) (amortised).
+    /// Empty the set in O(1).
     pub fn clear(&mut self) {
         self.cells.clear();
-        self.generation = self.generation.wrapping_add(1);
-        if self.generation == 0 {
-            self.mark.fill(0);
-            self.generation = 1;
-        }
     }
 
     /// Add `cell` (no effect if present).
     pub fn insert(&mut self, cell: u32) {
-        let m = &mut self.mark[cell as usize];
-        if *m != self.generation {
-            *m = self.generation;
+        if !self.contains(cell as usize) {
             self.index[cell as usize] = self.cells.len() as u32;
             self.cells.push(cell);
         }
@@ -56,7 +49,8 @@ impl CandidateSet {
     /// Whether `cell` is a candidate.
     #[inline]
     pub fn contains(&self, cell: usize) -> bool {
-        self.mark[cell] == self.generation
+        let k = self.index[cell] as usize;
+        self.cells.get(k).is_some_and(|&c| c as usize == cell)
     }
 
     /// The position of `cell` in [`cells`](Self::cells), if it is a candidate.
@@ -78,6 +72,11 @@ impl CandidateSet {
     /// Whether there are no candidates.
     pub fn is_empty(&self) -> bool {
         self.cells.is_empty()
+    }
+
+    /// Whether the set is sized for a map of `len` cells.
+    pub fn fits(&self, len: usize) -> bool {
+        self.index.len() == len
     }
 }
 
@@ -121,6 +120,41 @@ impl CandidateKind {
             CandidateKind::Rfe { min_edge } => rfe::generate(ctx, min_edge, out),
             CandidateKind::Coverage => coverage::generate(ctx, out),
             CandidateKind::DtSamples { n } => dt_samples::generate(ctx, n, out),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        /// Inserts and clears in any order: the set holds what a list without duplicates
+        /// holds, in insertion order, with the same positions.
+        #[test]
+        fn behaves_as_a_list_without_duplicates(
+            ops in proptest::collection::vec((0u32..40, 0u8..8), 0..200)
+        ) {
+            let mut set = CandidateSet::new(40);
+            let mut list: Vec<u32> = Vec::new();
+            for (cell, op) in ops {
+                if op == 0 {
+                    set.clear();
+                    list.clear();
+                } else if !list.contains(&cell) {
+                    set.insert(cell);
+                    list.push(cell);
+                } else {
+                    set.insert(cell);
+                }
+                prop_assert_eq!(set.cells(), &list[..]);
+                for c in 0..40 {
+                    let at = list.iter().position(|&x| x == c);
+                    prop_assert_eq!(set.contains(c as usize), at.is_some());
+                    prop_assert_eq!(set.index_of(c as usize), at);
+                }
+            }
         }
     }
 }

@@ -19,7 +19,8 @@ use crate::upkeep::next_gen;
 pub struct Component {
     width: usize,
     height: usize,
-    /// `mark[i] == epoch` iff cell i is in the component of the last fill.
+    /// `mark[i] == epoch` iff cell i is in the component of the last fill (allocated by
+    /// the first fill: strategies that never ask "reachable?" never pay for it).
     mark: Vec<u32>,
     epoch: u32,
     /// Seeds of runs still to fill: `(x, y)`.
@@ -35,7 +36,7 @@ impl Component {
         Self {
             width,
             height,
-            mark: vec![0; width * height],
+            mark: Vec::new(),
             epoch: 0,
             stack: Vec::new(),
             start: None,
@@ -47,6 +48,9 @@ impl Component {
     /// Fill the cells reachable from `start` over cells where `passable(i)` (the start itself
     /// is always included). A start outside the grid gives an empty set.
     pub fn compute(&mut self, start: usize, passable: impl Fn(usize) -> bool) {
+        if self.mark.len() != self.width * self.height {
+            self.mark = vec![0; self.width * self.height];
+        }
         self.epoch = next_gen(self.epoch, &mut self.mark);
         self.stack.clear();
         self.len = 0;

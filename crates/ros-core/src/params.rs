@@ -299,7 +299,8 @@ mod tests {
     #[test]
     fn the_example_params_file_is_valid() {
         let mut p = Params::default();
-        let text = include_str!("../params/explore.yaml");
+        // The file shipped beside the node (crates/ros/params).
+        let text = include_str!("../../ros/params/explore.yaml");
         p.apply_yaml(text, "frontier_explore", "explore.yaml")
             .unwrap();
         assert_eq!((p.clearance, p.return_to_init), (0.25, true));

@@ -4,7 +4,7 @@ mod common;
 
 use common::World;
 use explore::strategy::Strategy;
-use frontier_ros::{Check, Decision, Explorer, ExplorerConfig, StopReason};
+use frontier_ros_core::{Check, Decision, Explorer, ExplorerConfig, StopReason};
 use grid::io::parse_ascii;
 use grid::{Cell, GridMap};
 

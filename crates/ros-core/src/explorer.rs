@@ -2,10 +2,11 @@
 //!
 //! [`Explorer`] holds what `sim`'s loop holds for one robot — the belief, incremental
 //! frontier upkeep, the planner's buffers, Yamauchi's visited and inaccessible lists, the
-//! strategy's memory and its seeded random stream — and runs the same pieces
-//! (`explore::strategy` presets: candidate generator, then assigner). What differs from the
-//! simulation is who moves and who senses: a SLAM node builds the map and Nav2 drives, so the
-//! explorer is fed map messages and poses and answers with goals in world coordinates.
+//! strategy's memory and its seeded random stream — and decides by the very function `sim`'s
+//! loop calls ([`explore::decision::decide`]: the preset's candidate generator, then its
+//! assigner). What differs from the simulation is who moves and who senses: a SLAM node
+//! builds the map and Nav2 drives, so the explorer is fed map messages and poses and answers
+//! with goals in world coordinates.
 //!
 //! The re-plan policy of the strategy is kept, read for a robot that moves by itself:
 //!
@@ -26,12 +27,10 @@
 //! `dt-rr` on arrival, like `dt`), because it needs the predicted scan of the belief at the
 //! robot's heading while Nav2, not the node, chooses that heading.
 
-use explore::candidates::{CandidateKind, CandidateSet};
-use explore::decision::{DecisionCtx, GoalLists, Memory, Planner};
-use explore::frontier::Region;
+use explore::decision::{self, DecisionCtx, GoalLists, Memory, Offer, Planner};
 use explore::strategy::Strategy;
 use explore::upkeep::FrontierUpkeep;
-use grid::{NEIGHBOURS8, Occ};
+use grid::{Grid, NEIGHBOURS8, Occ};
 use rand_pcg::Pcg64Mcg;
 use record::msgs::OccupancyGrid;
 use record::occupancy::{MapFrame, MapMsgError, classify_into, frame_of};
@@ -240,8 +239,7 @@ struct State {
     upkeep: FrontierUpkeep,
     planner: Planner,
     lists: GoalLists,
-    candidates: CandidateSet,
-    allowed: CandidateSet,
+    offer: Offer,
     memory: Memory,
     sensor: Box<dyn Sensor>,
     range_cells: f64,
@@ -257,12 +255,9 @@ pub struct Explorer {
     inaccessible_world: Vec<(f64, f64)>,
     active: Option<Active>,
     // Buffers.
-    classes: Vec<Occ>,
     changed: Vec<u32>,
-    regions: Vec<Region>,
     queue: Vec<u32>,
     seen: Vec<u32>,
-    too_small: usize,
 }
 
 impl Explorer {
@@ -276,12 +271,9 @@ impl Explorer {
             visited_world: Vec::new(),
             inaccessible_world: Vec::new(),
             active: None,
-            classes: Vec::new(),
             changed: Vec::new(),
-            regions: Vec::new(),
             queue: Vec::new(),
             seen: Vec::new(),
-            too_small: 0,
         }
     }
 
@@ -312,21 +304,26 @@ impl Explorer {
     pub fn update_map(&mut self, msg: &OccupancyGrid) -> Result<MapUpdate, UpdateError> {
         let frame = frame_of(msg)?;
         let n = frame.width * frame.height;
-        self.classes.resize(n, Occ::Unknown);
-        classify_into(msg, &frame, &mut self.classes);
         let rebuilt = self.state.as_ref().is_none_or(|s| s.frame != frame);
-        if rebuilt {
-            self.state = Some(self.fresh_state(frame)?);
-        }
-        let st = self.state.as_mut().expect("built above");
-        self.changed.clear();
-        st.belief.set_all(&self.classes, &mut self.changed);
-        if rebuilt {
-            // A whole new map: recounting from scratch beats updating every known cell.
+        let changed = if rebuilt {
+            // A whole new map: classified straight into the new belief, and frontiers
+            // counted from scratch, which beats updating every known cell.
+            let sensor = self.sensor_for(&frame)?;
+            let mut cells = vec![Occ::Unknown; n];
+            classify_into(msg, &frame, &mut cells);
+            let known = Grid::from_vec(frame.width, frame.height, cells).expect("sized above");
+            let known_cells = known.data().iter().filter(|c| !c.is_unknown()).count();
+            let st = self.state.insert(self.fresh_state(frame, known, sensor));
             st.upkeep.rebuild(st.belief.known());
+            known_cells
         } else {
+            let st = self.state.as_mut().expect("not rebuilt");
+            self.changed.clear();
+            st.belief.set_from_msg(msg, &frame, &mut self.changed);
             st.upkeep.update(st.belief.known(), &self.changed);
-        }
+            self.changed.len()
+        };
+        let st = self.state.as_mut().expect("built above");
         if rebuilt {
             // Goal lists in the new frame's cells.
             for &(x, y) in &self.visited_world {
@@ -347,37 +344,37 @@ impl Explorer {
                 }
             }
         }
-        Ok(MapUpdate {
-            rebuilt,
-            changed: self.changed.len(),
-        })
+        Ok(MapUpdate { rebuilt, changed })
     }
 
-    fn fresh_state(&self, frame: MapFrame) -> Result<State, UpdateError> {
-        let (w, h) = (frame.width, frame.height);
-        let sensor = self
-            .cfg
+    /// The robot's sensor at the resolution of `frame`.
+    fn sensor_for(&self, frame: &MapFrame) -> Result<Box<dyn Sensor>, UpdateError> {
+        self.cfg
             .sensor
             .build(frame.resolution)
             .map_err(|e| UpdateError::Sensor {
                 spec: self.cfg.sensor.to_string(),
                 resolution: frame.resolution,
                 why: e.to_string(),
-            })?;
+            })
+    }
+
+    /// Everything sized for `frame`, with the belief `known` (the map's classes).
+    fn fresh_state(&self, frame: MapFrame, known: Grid<Occ>, sensor: Box<dyn Sensor>) -> State {
+        let (w, h) = (frame.width, frame.height);
         let mut memory = Memory::default();
         memory.dt.model = sense::gain::InverseModel::for_belief(sense::BeliefKind::Known);
-        Ok(State {
+        State {
             range_cells: sensor.range_cells(),
             sensor,
             frame,
-            belief: MapBelief::new(w, h),
+            belief: MapBelief::from_known(known),
             upkeep: FrontierUpkeep::new(w, h, self.cfg.clearance_m / frame.resolution),
             planner: Planner::new(w, h, 1),
             lists: GoalLists::new(w * h),
-            candidates: CandidateSet::new(w * h),
-            allowed: CandidateSet::new(w * h),
+            offer: Offer::new(w * h),
             memory,
-        })
+        }
     }
 
     /// Whether the current goal stands, given the robot at world `(x, y)` at time `now_s`
@@ -498,77 +495,32 @@ impl Explorer {
         let goals = [None];
         let mut out = [None];
         st.planner.invalidate();
-        let min_cells = (self.cfg.min_frontier_size_m / st.frame.resolution)
-            .ceil()
-            .max(1.0) as usize;
-        let candidates = match self.cfg.strategy.candidates {
-            CandidateKind::RegionCentroids { min_size_m } => CandidateKind::RegionCentroids {
-                min_size_m: min_size_m.max(self.cfg.min_frontier_size_m),
-            },
-            other => other,
+        let mut ctx = DecisionCtx {
+            known: st.belief.known(),
+            upkeep: &mut st.upkeep,
+            planner: &mut st.planner,
+            robots: &robots,
+            deciding: &deciding,
+            goals: &goals,
+            lists: &st.lists,
+            resolution: st.frame.resolution,
+            sensor_range_cells: st.range_cells,
+            rng: &mut self.rng,
+            belief: &st.belief,
+            sensor: st.sensor.as_ref(),
+            memory: &mut st.memory,
         };
-        {
-            let mut ctx = DecisionCtx {
-                known: st.belief.known(),
-                upkeep: &mut st.upkeep,
-                planner: &mut st.planner,
-                robots: &robots,
-                deciding: &deciding,
-                goals: &goals,
-                lists: &st.lists,
-                resolution: st.frame.resolution,
-                sensor_range_cells: st.range_cells,
-                rng: &mut self.rng,
-                belief: &st.belief,
-                sensor: st.sensor.as_ref(),
-                memory: &mut st.memory,
-            };
-            candidates.generate(&mut ctx, &mut st.candidates);
-        }
-        // Explore_lite's min_frontier_size, for goals that are frontier cells themselves.
-        self.too_small = 0;
-        let use_allowed = candidates == CandidateKind::AllFrontiers && min_cells > 1;
-        if use_allowed {
-            st.upkeep.regions(st.frame.width, 1, &mut self.regions);
-            st.allowed.clear();
-            for r in &self.regions {
-                if r.cells.len() >= min_cells {
-                    for &c in &r.cells {
-                        if st.candidates.contains(c as usize) {
-                            st.allowed.insert(c);
-                        }
-                    }
-                } else {
-                    self.too_small += r.cells.len();
-                }
-            }
-        }
-        {
-            let mut ctx = DecisionCtx {
-                known: st.belief.known(),
-                upkeep: &mut st.upkeep,
-                planner: &mut st.planner,
-                robots: &robots,
-                deciding: &deciding,
-                goals: &goals,
-                lists: &st.lists,
-                resolution: st.frame.resolution,
-                sensor_range_cells: st.range_cells,
-                rng: &mut self.rng,
-                belief: &st.belief,
-                sensor: st.sensor.as_ref(),
-                memory: &mut st.memory,
-            };
-            let offered = if use_allowed {
-                &st.allowed
-            } else {
-                &st.candidates
-            };
-            self.cfg
-                .strategy
-                .assigner
-                .assign(&mut ctx, offered, &mut out);
-        }
+        // The loop's one decision step; explore_lite's min_frontier_size is its minimum
+        // frontier region size.
+        let strategy = &self.cfg.strategy;
+        decision::decide(
+            &mut ctx,
+            strategy.candidates,
+            Some(strategy.assigner),
+            self.cfg.min_frontier_size_m,
+            &mut st.offer,
+            &mut out,
+        );
         let Some(goal) = out[0] else {
             let frontiers = &st.upkeep.frontiers;
             let open = frontiers
@@ -596,7 +548,7 @@ impl Explorer {
                 StopReason::NoReachableFrontier {
                     frontiers: frontiers.len(),
                     inaccessible,
-                    too_small: self.too_small,
+                    too_small: st.offer.too_small,
                     narrow,
                 }
             });
@@ -642,7 +594,8 @@ impl Explorer {
         if let Some(st) = &self.state {
             let known = st.belief.known();
             out.extend(
-                st.candidates
+                st.offer
+                    .candidates
                     .cells()
                     .iter()
                     .map(|&c| st.frame.world_from_cell(known.cell(c as usize))),

@@ -8,7 +8,7 @@
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use explore::strategy::Strategy;
-use frontier_ros::{Decision, Explorer, ExplorerConfig};
+use frontier_ros_core::{Decision, Explorer, ExplorerConfig};
 use record::msgs::Time;
 use record::occupancy::{MapFrame, msg_from_map};
 

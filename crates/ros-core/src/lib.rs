@@ -1,0 +1,22 @@
+//! `frontier-ros-core`: the decisions of frontier's ROS 2 node, without DDS.
+//!
+//! Everything of the exploration node (`crates/ros`, `frontier-ros`) that can be tested
+//! without a DDS stack lives here, in the main workspace, so that `cargo test --workspace`
+//! and CI run its tests; the node itself adds only ros2-client's topics and actions.
+//!
+//! - [`explorer`]: the decisions (map message → belief → goal), with the strategy's
+//!   re-plan policy and Yamauchi's visited and inaccessible lists;
+//! - [`map_belief`]: the received map as the belief;
+//! - [`params`]: the node's parameters from a ROS 2 parameters file.
+//!
+//! The messages and their CDR form live in the `record` crate, shared with the MCAP reader
+//! and writer of `frontier explore`.
+#![forbid(unsafe_code)]
+#![warn(missing_docs)]
+
+pub mod explorer;
+pub mod map_belief;
+pub mod params;
+
+pub use explorer::{Check, Decision, Explorer, ExplorerConfig, GoalPose, StopReason};
+pub use params::Params;
