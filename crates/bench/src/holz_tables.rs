@@ -69,8 +69,11 @@ fn mean_sd(v: &[f64]) -> (f64, f64) {
     (m, var.sqrt())
 }
 
+/// (mean, sd) of path length per strategy of one environment.
+type ByStrategy = BTreeMap<String, (f64, f64)>;
+
 /// Mean path length per (environment, strategy) of `rows`, environments in first-seen order.
-fn means(rows: &[TrialRow]) -> Vec<(String, BTreeMap<String, (f64, f64)>)> {
+fn means(rows: &[TrialRow]) -> Vec<(String, ByStrategy)> {
     let mut envs: Vec<(String, BTreeMap<String, Vec<f64>>)> = Vec::new();
     for r in rows {
         let slot = match envs.iter().position(|(e, _)| *e == r.env) {
