@@ -41,6 +41,8 @@ pub struct ExploreOptions {
     pub max_moves: u64,
     /// Keep a trace (trails, goals) for pictures.
     pub record_trace: bool,
+    /// How path length is measured (`--motion`: `grid` or `any-angle`); `None` = grid.
+    pub motion: Option<String>,
 }
 
 impl Default for ExploreOptions {
@@ -61,6 +63,7 @@ impl Default for ExploreOptions {
             coverage: None,
             max_moves: 10_000_000,
             record_trace: false,
+            motion: None,
         }
     }
 }
@@ -111,6 +114,9 @@ pub fn config(
     }
     cfg.max_moves = o.max_moves;
     cfg.record_trace = o.record_trace;
+    if let Some(m) = o.motion.as_deref() {
+        cfg.motion = m.parse().map_err(|e| format!("--motion: {e}"))?;
+    }
     cfg.clutter = clutter;
     if let Some(first) = o.start {
         if !map.cells.contains(first) {
@@ -197,6 +203,8 @@ pub fn summary_json(
         "path_length_m": r.path_length_m.iter().map(|&l| round(l, 4)).collect::<Vec<_>>(),
         "max_path_length_m": round(r.max_path_length_m(), 4),
         "total_path_length_m": round(r.total_path_length_m(), 4),
+        "motion": r.motion.name(),
+        "grid_path_length_m": r.grid_path_length_m.iter().map(|&l| round(l, 4)).collect::<Vec<_>>(),
         "time_s": round(r.time_s, 4),
         "decisions": r.decisions,
         "moves": r.moves,

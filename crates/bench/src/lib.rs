@@ -36,6 +36,7 @@ pub mod built;
 pub mod competitive;
 pub mod error;
 pub mod explore;
+pub mod holz_tables;
 pub mod machine;
 pub mod plan;
 pub mod plots;

@@ -39,8 +39,9 @@ use crate::scenario::{ScenarioFile, Source};
 /// Revision of the strategies' results in a study's fingerprint: bumped when a preset's
 /// results change, so that a store of older results is not resumed with new ones (v2: the
 /// decision-theoretic presets sample near reachable frontiers only, stop when none is left,
-/// and gate predicted rays at unseen wall cells).
-pub const STRATEGY_REVISION: u32 = 2;
+/// and gate predicted rays at unseen wall cells; v3: the segmenting presets segment maps
+/// finer than 0.1 m on 0.1 m blocks).
+pub const STRATEGY_REVISION: u32 = 3;
 
 /// A resolved study: environments, variants, common settings and the flat trial list.
 #[derive(Clone, Debug)]

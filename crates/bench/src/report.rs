@@ -152,6 +152,29 @@ fn build(
         wall,
         opts.alpha
     )));
+    if scenario.starts_with("holz2010")
+        && let Some((header, body)) = crate::holz_tables::comparison(rows)
+    {
+        blocks.push(Block::Heading(2, "Holz et al. 2010, Tables 1–3".into()));
+        blocks.push(Block::Para(
+            "Mean path length to full coverage ± sd (m) and, in brackets, the ratio to closest \
+             frontier (cf) in the same environment: ours beside the paper's Tables 1–3 (cave, \
+             AVZ 5th floor, Stage hospital). Compare ratios and orderings, not metres."
+                .into(),
+        ));
+        blocks.push(Block::Table(header, body));
+        let lines: Vec<String> = crate::holz_tables::ordering(rows)
+            .into_iter()
+            .map(|(env, r)| match r {
+                Ok(()) => format!("{env}: the paper's ordering holds"),
+                Err(why) => format!("{env}: {why}"),
+            })
+            .collect();
+        blocks.push(Block::Para(format!(
+            "Ordering random > dt > cf > cf-rr ≥ cf-rr-seg: {}.",
+            lines.join("; ")
+        )));
+    }
     let mut settings: BTreeMap<Setting, BTreeMap<String, Vec<&TrialRow>>> = BTreeMap::new();
     for r in rows {
         settings

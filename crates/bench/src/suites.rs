@@ -4,6 +4,8 @@
 
 use crate::error::BenchError;
 use crate::plan::{Plan, Unbuilt};
+use std::path::Path;
+
 use crate::scenario::Source;
 
 /// The suites: (name, one-line description, scenario text).
@@ -17,6 +19,11 @@ pub const SUITES: &[(&str, &str, &str)] = &[
         "holz2010",
         "Holz et al. 2010: single-robot presets on cave, office, hospital (Tables 1-3)",
         include_str!("../suites/holz2010.toml"),
+    ),
+    (
+        "holz2010-real",
+        "Holz et al. 2010 on the real floor plans in a folder (--maps DIR: its ROS .yaml maps)",
+        include_str!("../suites/holz2010-real.toml"),
     ),
     (
         "multirobot",
@@ -51,8 +58,79 @@ pub fn source(name: &str) -> Result<Source, BenchError> {
     })
 }
 
+/// The suites whose environments are the maps of a folder (`--maps DIR`).
+pub const MAP_FOLDER_SUITES: &[&str] = &["holz2010-real"];
+
 /// Resolve suite `name`, leaving out strategies that are not built yet (see
 /// [`Plan::skipped`]).
 pub fn plan(name: &str) -> Result<Plan, BenchError> {
-    Plan::resolve(&source(name)?, Unbuilt::Skip)
+    plan_with_maps(name, None)
+}
+
+/// Resolve suite `name`; the suites of [`MAP_FOLDER_SUITES`] take their environments from
+/// the ROS map_server YAML files of `maps` (sorted by file name), which they require.
+pub fn plan_with_maps(name: &str, maps: Option<&Path>) -> Result<Plan, BenchError> {
+    let mut src = source(name)?;
+    let wants = MAP_FOLDER_SUITES.contains(&name);
+    match (wants, maps) {
+        (true, None) => {
+            return Err(BenchError::Other(format!(
+                "--suite {name}: expected --maps DIR, a folder of ROS map_server .yaml maps"
+            )));
+        }
+        (false, Some(_)) => {
+            return Err(BenchError::Other(format!(
+                "--maps: suite '{name}' has its own environments; --maps goes with {}",
+                MAP_FOLDER_SUITES.join(", ")
+            )));
+        }
+        (true, Some(dir)) => {
+            let files = yaml_maps(dir)?;
+            for f in &files {
+                src.text
+                    .push_str(&format!("\n[[env]]\nmap = \"{}\"\n", toml_escape(f)));
+            }
+            src.dir = Some(dir.to_path_buf());
+        }
+        (false, None) => {}
+    }
+    Plan::resolve(&src, Unbuilt::Skip)
+}
+
+/// The file names of the `.yaml` / `.yml` files in `dir`, sorted; an error when there are
+/// none or the folder cannot be read.
+pub fn yaml_maps(dir: &Path) -> Result<Vec<String>, BenchError> {
+    let entries = std::fs::read_dir(dir).map_err(BenchError::io(dir))?;
+    let mut names = Vec::new();
+    for e in entries {
+        let e = e.map_err(BenchError::io(dir))?;
+        let name = e.file_name().to_string_lossy().into_owned();
+        let lower = name.to_ascii_lowercase();
+        if (lower.ends_with(".yaml") || lower.ends_with(".yml")) && e.path().is_file() {
+            names.push(name);
+        }
+    }
+    names.sort();
+    if names.is_empty() {
+        return Err(BenchError::Other(format!(
+            "--maps {}: expected ROS map_server .yaml maps in the folder, found none \
+             (a bare .png or .pgm needs a .yaml beside it giving its resolution)",
+            dir.display()
+        )));
+    }
+    Ok(names)
+}
+
+/// `s` as the inside of a TOML basic string.
+fn toml_escape(s: &str) -> String {
+    let mut out = String::with_capacity(s.len());
+    for c in s.chars() {
+        match c {
+            '\\' => out.push_str("\\\\"),
+            '"' => out.push_str("\\\""),
+            c if c.is_control() => out.push_str(&format!("\\u{:04X}", c as u32)),
+            c => out.push(c),
+        }
+    }
+    out
 }

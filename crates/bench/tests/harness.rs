@@ -319,6 +319,11 @@ fn suites_resolve() {
         if *name == "faigl2013" {
             continue; // big environments; resolving it is checked by the CLI's dry run
         }
+        if bench::suites::MAP_FOLDER_SUITES.contains(name) {
+            let e = bench::suites::plan(name).unwrap_err().to_string();
+            assert!(e.contains("--maps"), "{e}");
+            continue;
+        }
         let p = bench::suites::plan(name).unwrap();
         assert!(!p.trials.is_empty(), "{name}");
     }
@@ -439,4 +444,73 @@ fn zeroed_page_database_is_refused_on_resume() {
     assert!(e.contains("new database file"), "{e}");
     // The damaged file is left as it was, for whoever wants to rescue it.
     assert_eq!(std::fs::read(&db).unwrap(), bytes);
+}
+
+/// A ROS map_server map `NAME.yaml` + `NAME.pgm` in `dir`: three rooms joined by doors.
+fn write_ros_map(dir: &std::path::Path, name: &str) {
+    let (w, h) = (60usize, 20usize);
+    let mut px = vec![0u8; w * h];
+    for y in 1..h - 1 {
+        for x in 1..w - 1 {
+            let wall = (x == 20 && !(2..5).contains(&y)) || (x == 40 && !(15..18).contains(&y));
+            px[y * w + x] = if wall { 0 } else { 254 };
+        }
+    }
+    let mut pgm = format!("P5\n{w} {h}\n255\n").into_bytes();
+    pgm.extend_from_slice(&px);
+    std::fs::write(dir.join(format!("{name}.pgm")), pgm).unwrap();
+    std::fs::write(
+        dir.join(format!("{name}.yaml")),
+        format!(
+            "image: {name}.pgm\nresolution: 0.5\norigin: [0.0, 0.0, 0.0]\nnegate: 0\n\
+             occupied_thresh: 0.65\nfree_thresh: 0.196\n"
+        ),
+    )
+    .unwrap();
+}
+
+#[test]
+fn the_real_floor_plan_suite_runs_on_the_yaml_maps_of_a_folder() {
+    let dir = tempfile::tempdir().unwrap();
+    write_ros_map(dir.path(), "b-rooms");
+    write_ros_map(dir.path(), "a \"quoted\" plan");
+    std::fs::write(dir.path().join("notes.txt"), "not a map").unwrap();
+    let p = bench::suites::plan_with_maps("holz2010-real", Some(dir.path())).unwrap();
+    let names: Vec<&str> = p.envs.iter().map(|e| e.name.as_str()).collect();
+    assert_eq!(names.len(), 2, "{names:?}");
+    assert!(
+        names[0].contains("quoted") && names[1] == "b-rooms",
+        "{names:?}"
+    );
+    assert_eq!(p.trials.len(), 2 * 6 * 5);
+    // run it and put the paper's tables beside ours in the report
+    let db = dir.path().join("real.sqlite");
+    bench::runner::run(&p, &db, &opts(2)).unwrap();
+    let out = dir.path().join("report");
+    bench::report::write(&db, &out, &bench::report::ReportOptions::default()).unwrap();
+    let md = std::fs::read_to_string(out.join("report.md")).unwrap();
+    assert!(md.contains("Holz et al. 2010, Tables 1–3"), "{md}");
+    assert!(
+        md.contains("| strategy | a \"quoted\" plan (ours) | b-rooms (ours) | cave (T1) (paper)"),
+        "{md}"
+    );
+    assert!(
+        md.contains("| cf-rr-seg |") && md.contains("221.4 ± 20.0 (×0.79)"),
+        "{md}"
+    );
+    assert!(
+        md.contains("Ordering random > dt > cf > cf-rr ≥ cf-rr-seg: "),
+        "{md}"
+    );
+    assert!(!md.contains("| cf | 0.0 ± 0.0"), "{md}");
+    // an empty folder and a suite with its own environments say what was expected
+    let empty = tempfile::tempdir().unwrap();
+    let e = bench::suites::plan_with_maps("holz2010-real", Some(empty.path()))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains(".yaml") && e.contains("found none"), "{e}");
+    let e = bench::suites::plan_with_maps("holz2010", Some(dir.path()))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("--maps") && e.contains("holz2010-real"), "{e}");
 }

@@ -32,9 +32,13 @@ pub struct RunArgs {
     /// Scenario file (TOML; see `crates/bench/src/scenario.rs` for the keys).
     #[arg(conflicts_with = "suite", required_unless_present = "suite")]
     pub scenario: Option<PathBuf>,
-    /// Built-in suite: quick, holz2010, multirobot, faigl2013, quattrini2012.
+    /// Built-in suite: quick, holz2010, holz2010-real (with --maps), multirobot, faigl2013,
+    /// quattrini2012.
     #[arg(long)]
     pub suite: Option<String>,
+    /// The folder of ROS map_server .yaml maps a map-folder suite runs on (holz2010-real).
+    #[arg(long, requires = "suite")]
+    pub maps: Option<PathBuf>,
     /// Results database; re-running with the same database resumes (default: NAME.sqlite).
     #[arg(long)]
     pub db: Option<PathBuf>,
@@ -148,7 +152,7 @@ fn run_study(a: RunArgs) -> Result<()> {
         bail!("--threads: expected at least 1");
     }
     let plan = match (&a.suite, &a.scenario) {
-        (Some(name), _) => bench::suites::plan(name)?,
+        (Some(name), _) => bench::suites::plan_with_maps(name, a.maps.as_deref())?,
         (None, Some(path)) => {
             bench::Plan::resolve(&bench::Source::read(path)?, bench::Unbuilt::Error)?
         }

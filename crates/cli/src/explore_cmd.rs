@@ -38,6 +38,10 @@ pub struct ExploreArgs {
     /// Speed in metres per second.
     #[arg(long, default_value_t = 1.0)]
     pub speed: f64,
+    /// How path length is measured: `grid` (cell moves, 1 or √2) or `any-angle` (the route
+    /// string-pulled through traversable cells, like a robot with smooth controllers).
+    #[arg(long, default_value = "grid")]
+    pub motion: String,
     /// Number of robots.
     #[arg(long, default_value_t = 1)]
     pub robots: usize,
@@ -103,6 +107,7 @@ pub fn config(a: &ExploreArgs, truth: &Truth) -> Result<RunConfig> {
         coverage: a.coverage.clone(),
         max_moves: a.max_moves,
         record_trace: a.out.is_some() || a.gif.is_some() || a.html.is_some() || a.mcap.is_some(),
+        motion: Some(a.motion.clone()),
     };
     let cfg = bench::explore::config(&opts, &truth.map, truth.clutter.clone())
         .map_err(anyhow::Error::msg)?;

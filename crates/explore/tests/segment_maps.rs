@@ -495,3 +495,61 @@ fn patched_neighbour_counts_equal_a_fresh_count_of_the_patched_labels() {
     }
     assert!(opened >= 4 && state.patches() >= 4, "{opened} openings");
 }
+
+/// `g` with every cell replaced by a `k × k` block of the same state.
+fn upscale(g: &Grid<Occ>, k: usize) -> Grid<Occ> {
+    let (w, h) = (g.width(), g.height());
+    let mut out = Grid::new(w * k, h * k, Occ::Occupied);
+    for y in 0..h * k {
+        for x in 0..w * k {
+            out.data_mut()[y * w * k + x] = g.data()[(y / k) * w + x / k];
+        }
+    }
+    out
+}
+
+#[test]
+fn block_segmentation_of_an_upscaled_map_is_the_upscaled_segmentation() {
+    let coarse = hospital_wing(5, 12, 14, 8, 4);
+    let want = segment(&coarse, Rule::Holz);
+    for k in [2, 3] {
+        let fine = upscale(&coarse, k);
+        let mut state = State::new();
+        let got = state.update_blocks(&fine, Rule::Holz, k).clone();
+        assert_eq!(got.count, want.count, "block {k}");
+        assert_eq!(got.critical.len(), want.critical.len(), "block {k}");
+        let w = fine.width();
+        for (i, &l) in got.labels.iter().enumerate() {
+            let c = (i / w / k) * coarse.width() + (i % w) / k;
+            assert_eq!(l, want.labels[c], "block {k}, cell {i}");
+        }
+        // each critical point lands in its block
+        for (g, c) in got.critical.iter().zip(&want.critical) {
+            let (gx, gy) = (g.cell as usize % w, g.cell as usize / w);
+            let cw = coarse.width();
+            assert_eq!(
+                (gx / k, gy / k),
+                (c.cell as usize % cw, c.cell as usize / cw)
+            );
+        }
+    }
+}
+
+#[test]
+fn block_one_is_the_plain_update_and_partly_free_blocks_take_a_label() {
+    let g = hospital_wing(5, 12, 14, 8, 4);
+    let mut a = State::new();
+    let mut b = State::new();
+    assert_eq!(a.update(&g, Rule::Holz), b.update_blocks(&g, Rule::Holz, 1));
+    // blocks of 2 over an odd-sized map: blocks on the edges and across walls are partly
+    // free, and their free cells still get the label of the free cells they connect to
+    let mut c = State::new();
+    let seg = c.update_blocks(&g, Rule::Holz, 2).clone();
+    for (i, o) in g.data().iter().enumerate() {
+        if o.is_free() {
+            assert_ne!(seg.labels[i], NONE, "free cell {i} unlabelled");
+        } else {
+            assert_eq!(seg.labels[i], NONE);
+        }
+    }
+}

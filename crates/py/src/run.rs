@@ -22,6 +22,7 @@ const KEYS: &[&str] = &[
     "start",
     "belief",
     "sensing",
+    "motion",
     "clearance",
     "speed",
     "s_max",
@@ -63,6 +64,7 @@ pub(crate) fn options(kw: Option<&Bound<'_, PyDict>>) -> PyResult<ExploreOptions
             "sensor" => o.sensor = v.extract().map_err(|_| typed("a str"))?,
             "belief" => o.belief = Some(v.extract().map_err(|_| typed("a str"))?),
             "sensing" => o.sensing = Some(v.extract().map_err(|_| typed("a str"))?),
+            "motion" => o.motion = Some(v.extract().map_err(|_| typed("a str"))?),
             "robots" => {
                 let n: i64 = v.extract().map_err(|_| typed("an int"))?;
                 if n < 1 {

@@ -72,6 +72,8 @@ pub struct RunConfig {
     /// Obstacles off the laser plane (same size as the map, true = obstacle): planar
     /// sensors miss them, sonar hears them and the robot's body is stopped by them.
     pub clutter: Option<Grid<bool>>,
+    /// How path length is measured (grid moves or any-angle; see [`crate::motion`]).
+    pub motion: crate::motion::Motion,
 }
 
 impl RunConfig {
@@ -94,6 +96,7 @@ impl RunConfig {
             max_moves: 10_000_000,
             record_trace: false,
             clutter: None,
+            motion: crate::motion::Motion::Grid,
         }
     }
 

@@ -31,6 +31,7 @@
 pub mod config;
 pub mod memory;
 pub mod metrics;
+pub mod motion;
 pub mod run;
 pub mod seed;
 pub mod truth;
@@ -40,4 +41,5 @@ pub use metrics::{
     DtDecision, DtSample, EndReason, MILESTONES, MapAudit, Milestone, PhaseTimes, RunResult, Trace,
     TraceEvent, TraceGoal,
 };
+pub use motion::Motion;
 pub use run::{Session, Status, run};

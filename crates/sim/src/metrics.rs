@@ -249,8 +249,13 @@ pub struct RunResult {
     pub coverage: f64,
     /// Ground-truth free cells reachable from the start with the robot's clearance.
     pub reachable_cells: usize,
-    /// Path length of each robot in metres.
+    /// Path length of each robot in metres, measured as [`RunResult::motion`] says.
     pub path_length_m: Vec<f64>,
+    /// Path length of each robot in metres as grid moves (equal to `path_length_m` under
+    /// grid motion).
+    pub grid_path_length_m: Vec<f64>,
+    /// How `path_length_m` and `time_s` are measured.
+    pub motion: crate::motion::Motion,
     /// Exploration time in seconds: when the last robot finished.
     pub time_s: f64,
     /// Number of decisions taken (one per robot that chose a goal or found none).

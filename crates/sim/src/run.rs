@@ -35,6 +35,7 @@ pub const BUMP_S: f64 = 1.0;
 /// the map can be wrong about where the robot can go (sonar, off-plane clutter): without
 /// it, a goal behind an obstacle the map does not show would be chased forever.
 pub const IMPERFECT_NO_PROGRESS_S: f64 = 30.0;
+use crate::motion::{Motion, any_angle_length};
 use explore::upkeep::FrontierUpkeep;
 use grid::{Cell, Grid, GridMap, Occ, step_cost};
 use rand_pcg::Pcg64Mcg;
@@ -55,6 +56,8 @@ struct Robot {
     clock: f64,
     /// Cells travelled (straight 1, diagonal √2).
     dist_cells: f64,
+    /// Cells stood on, in order (kept only for any-angle motion).
+    trail: Vec<u32>,
     /// Remaining cells of the current path (next cell first is at `path_pos`).
     path: Vec<u32>,
     path_pos: usize,
@@ -253,6 +256,7 @@ impl<'a> Session<'a> {
                 heading: 0.0,
                 clock: 0.0,
                 dist_cells: 0.0,
+                trail: vec![cells.index(c) as u32],
                 path: Vec::new(),
                 path_pos: 0,
                 goal: None,
@@ -655,15 +659,27 @@ impl<'a> Session<'a> {
         team.final_audit();
         team.times.total_s = started.elapsed().as_secs_f64();
         let speed = team.cfg.speed;
-        let path_length_m: Vec<f64> = robots.iter().map(|r| r.dist_cells * res).collect();
-        let time_s = robots
-            .iter()
-            .map(|r| r.dist_cells * res / speed)
-            .fold(0.0, f64::max);
-        let idle_s = robots
-            .iter()
-            .map(|r| time_s - r.dist_cells * res / speed)
-            .collect();
+        let grid_path_length_m: Vec<f64> = robots.iter().map(|r| r.dist_cells * res).collect();
+        let path_length_m: Vec<f64> = match team.cfg.motion {
+            Motion::Grid => grid_path_length_m.clone(),
+            Motion::AnyAngle => {
+                let known = team.belief.known();
+                let w = known.width();
+                let mut stood = vec![false; known.len()];
+                for r in &robots {
+                    for &c in &r.trail {
+                        stood[c as usize] = true;
+                    }
+                }
+                let passable = |i: usize| stood[i] || team.upkeep.trav.is_traversable(known, i);
+                robots
+                    .iter()
+                    .map(|r| any_angle_length(w, &r.trail, passable) * res)
+                    .collect()
+            }
+        };
+        let time_s = path_length_m.iter().map(|&d| d / speed).fold(0.0, f64::max);
+        let idle_s = path_length_m.iter().map(|&d| time_s - d / speed).collect();
         let overlap = if team.sensed_cells == 0 {
             0.0
         } else {
@@ -674,6 +690,8 @@ impl<'a> Session<'a> {
             coverage: team.coverage(),
             reachable_cells: team.reachable_cells,
             path_length_m,
+            grid_path_length_m,
+            motion: team.cfg.motion,
             time_s,
             decisions: team.decisions,
             moves: team.moves,
@@ -1277,6 +1295,9 @@ impl Team<'_> {
             robot.cell = next;
             robot.heading = f64::from(dy).atan2(f64::from(dx));
             robot.dist_cells += len;
+            if self.cfg.motion == Motion::AnyAngle {
+                robot.trail.push(next);
+            }
             robot.remaining -= len;
             robot.clock += len * self.truth.resolution / self.cfg.speed;
             robot.path_pos += 1;

@@ -193,11 +193,6 @@ impl Segmenter {
     pub fn result(&self) -> &Segmentation {
         &self.result
     }
-
-    /// Mutable access to the last segmentation (for incremental label upkeep).
-    pub(crate) fn result_mut(&mut self) -> &mut Segmentation {
-        &mut self.result
-    }
 }
 
 /// Segment the free cells of `known` (allocating fresh buffers).

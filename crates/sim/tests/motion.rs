@@ -1,0 +1,190 @@
+//! Any-angle path length against slow oracles: dense sampling of segments and the grid length.
+
+use grid::step_cost;
+use proptest::prelude::*;
+use sim::motion::{any_angle_corners, any_angle_length, line_of_sight, polyline_length};
+
+/// The cells a segment between two cell centres touches, found by sampling it densely:
+/// every cell containing a sample point, and both cells beside a sample that lies on a cell
+/// edge (the slow oracle of `line_of_sight`).
+fn sampled_cells(w: usize, a: usize, b: usize) -> Vec<usize> {
+    let (ax, ay) = ((a % w) as f64, (a / w) as f64);
+    let (bx, by) = ((b % w) as f64, (b / w) as f64);
+    let n = 4000;
+    let mut out = Vec::new();
+    for k in 0..=n {
+        let t = k as f64 / n as f64;
+        let (x, y) = (ax + t * (bx - ax), ay + t * (by - ay));
+        let (cx, cy) = ((x + 0.5).floor(), (y + 0.5).floor());
+        if cx >= 0.0 && cy >= 0.0 && (cx as usize) < w {
+            out.push(cy as usize * w + cx as usize);
+        }
+    }
+    out.sort_unstable();
+    out.dedup();
+    out
+}
+
+/// A random walk of `steps` 8-moves over `passable` cells from `start`.
+fn walk(w: usize, h: usize, pass: &[bool], start: usize, dirs: &[u8]) -> Vec<u32> {
+    let mut trail = vec![start as u32];
+    let mut cur = start;
+    for &d in dirs {
+        let (dx, dy) = [
+            (1, 0),
+            (1, -1),
+            (0, -1),
+            (-1, -1),
+            (-1, 0),
+            (-1, 1),
+            (0, 1),
+            (1, 1),
+        ][d as usize % 8];
+        let (x, y) = ((cur % w) as i64 + dx, (cur / w) as i64 + dy);
+        if x < 0 || y < 0 || x >= w as i64 || y >= h as i64 {
+            continue;
+        }
+        let next = y as usize * w + x as usize;
+        if pass[next] {
+            cur = next;
+            trail.push(cur as u32);
+        }
+    }
+    trail
+}
+
+fn grid_length(w: usize, trail: &[u32]) -> f64 {
+    trail
+        .windows(2)
+        .map(|p| {
+            let (a, b) = (p[0] as usize, p[1] as usize);
+            let dx = (b % w) as i32 - (a % w) as i32;
+            let dy = (b / w) as i32 - (a / w) as i32;
+            if dx == 0 && dy == 0 {
+                0.0
+            } else {
+                step_cost(dx, dy)
+            }
+        })
+        .sum()
+}
+
+proptest! {
+    #[test]
+    fn line_of_sight_never_passes_a_blocked_cell_a_sample_touches(
+        w in 2usize..14, h in 2usize..14,
+        blocked in proptest::collection::vec(0u8..10, 196),
+        a in 0usize..196, b in 0usize..196,
+    ) {
+        let n = w * h;
+        let (a, b) = (a % n, b % n);
+        let pass: Vec<bool> = (0..n).map(|i| blocked[i] >= 3).collect();
+        if line_of_sight(w, a, b, |i| pass[i]) {
+            for c in sampled_cells(w, a, b) {
+                prop_assert!(pass[c], "segment {a}->{b} crosses blocked cell {c}");
+            }
+        }
+        // with nothing blocked every segment is clear
+        prop_assert!(line_of_sight(w, a, b, |_| true));
+    }
+
+    #[test]
+    fn any_angle_length_lies_between_the_straight_line_and_the_grid_length(
+        w in 2usize..16, h in 2usize..16,
+        blocked in proptest::collection::vec(0u8..10, 256),
+        start in 0usize..256,
+        dirs in proptest::collection::vec(0u8..8, 0..120),
+    ) {
+        let n = w * h;
+        let mut pass: Vec<bool> = (0..n).map(|i| blocked[i] >= 3).collect();
+        let start = start % n;
+        pass[start] = true;
+        let trail = walk(w, h, &pass, start, &dirs);
+        let mut corners = Vec::new();
+        any_angle_corners(w, &trail, |i| pass[i], &mut corners);
+        let len = polyline_length(w, &corners);
+        prop_assert!((len - any_angle_length(w, &trail, |i| pass[i])).abs() < 1e-12);
+        let grid = grid_length(w, &trail);
+        prop_assert!(len <= grid + 1e-9, "{len} > grid {grid}");
+        let (f, l) = (trail[0] as usize, *trail.last().unwrap() as usize);
+        let straight = ((f % w) as f64 - (l % w) as f64).hypot((f / w) as f64 - (l / w) as f64);
+        prop_assert!(len >= straight - 1e-9, "{len} < straight {straight}");
+        // the polyline starts and ends where the trail does, and each leg is a step the
+        // robot made or a segment through passable cells only
+        prop_assert_eq!(corners[0], trail[0]);
+        prop_assert_eq!(*corners.last().unwrap(), *trail.last().unwrap());
+        for leg in corners.windows(2) {
+            let (a, b) = (leg[0] as usize, leg[1] as usize);
+            let adjacent = (a % w).abs_diff(b % w) <= 1 && (a / w).abs_diff(b / w) <= 1;
+            if !adjacent {
+                for c in sampled_cells(w, a, b) {
+                    prop_assert!(pass[c], "leg {a}->{b} crosses blocked cell {c}");
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn an_l_shaped_route_in_an_open_room_becomes_one_straight_line() {
+    // 10 × 10, all free: right 6 cells then down 8 cells; any-angle is the hypotenuse
+    let w = 10;
+    let mut trail: Vec<u32> = (0..=6).map(|x| x as u32).collect();
+    trail.extend((1..=8).map(|y| (y * w + 6) as u32));
+    let len = any_angle_length(w, &trail, |_| true);
+    assert!((len - 10.0).abs() < 1e-12, "{len}");
+    assert!((grid_length(w, &trail) - 14.0).abs() < 1e-12);
+}
+
+#[test]
+fn a_wall_corner_keeps_the_route_bent_around_it() {
+    // the same L route with the cell inside the bend blocked beside the corner: the straight
+    // line would cut through the blocked cells, so the route keeps a corner near (6, 0)
+    let w = 10;
+    let mut trail: Vec<u32> = (0..=6).map(|x| x as u32).collect();
+    trail.extend((1..=8).map(|y| (y * w + 6) as u32));
+    let blocked = |i: usize| i % w <= 5 && i / w >= 1; // everything below row 0 left of x = 6
+    let len = any_angle_length(w, &trail, |i| !blocked(i));
+    assert!((len - 14.0).abs() < 1e-12, "{len}");
+}
+
+#[test]
+fn motion_names_parse_and_bad_names_say_what_was_expected() {
+    assert_eq!("grid".parse::<sim::Motion>(), Ok(sim::Motion::Grid));
+    assert_eq!(
+        "any-angle".parse::<sim::Motion>(),
+        Ok(sim::Motion::AnyAngle)
+    );
+    let e = "theta".parse::<sim::Motion>().unwrap_err();
+    assert!(e.contains("theta") && e.contains("any-angle"), "{e}");
+}
+
+#[test]
+fn any_angle_motion_changes_only_the_reported_length() {
+    use explore::strategy::Strategy;
+    use sim::{Motion, RunConfig};
+    use world::{EnvKind, EnvSpec};
+    for (kind, seed) in [(EnvKind::Office, 1), (EnvKind::Cave, 2)] {
+        let env = world::generate(&EnvSpec::new(kind, seed)).expect("generate");
+        let mut cfg = RunConfig::new(Strategy::preset("cf").expect("preset"));
+        cfg.seed = seed;
+        cfg.clearance_m = 0.3;
+        let grid = sim::run(&env.map, &cfg).expect("run");
+        cfg.motion = Motion::AnyAngle;
+        let smooth = sim::run(&env.map, &cfg).expect("run");
+        assert_eq!(grid.motion, Motion::Grid);
+        assert_eq!(grid.path_length_m, grid.grid_path_length_m);
+        assert_eq!(smooth.grid_path_length_m, grid.path_length_m);
+        assert_eq!(
+            (smooth.decisions, smooth.moves),
+            (grid.decisions, grid.moves)
+        );
+        assert_eq!(smooth.coverage, grid.coverage);
+        let (s, g) = (smooth.path_length_m[0], grid.path_length_m[0]);
+        assert!(
+            s < g && s > 0.5 * g,
+            "{kind:?}: any-angle {s} against grid {g}"
+        );
+        assert!((smooth.time_s - s / cfg.speed).abs() < 1e-9);
+    }
+}
