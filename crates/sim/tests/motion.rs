@@ -30,17 +30,11 @@ fn walk(w: usize, h: usize, pass: &[bool], start: usize, dirs: &[u8]) -> Vec<u32
     let mut trail = vec![start as u32];
     let mut cur = start;
     for &d in dirs {
-        let (dx, dy) = [
-            (1, 0),
-            (1, -1),
-            (0, -1),
-            (-1, -1),
-            (-1, 0),
-            (-1, 1),
-            (0, 1),
-            (1, 1),
-        ][d as usize % 8];
-        let (x, y) = ((cur % w) as i64 + dx, (cur / w) as i64 + dy);
+        let (dx, dy) = grid::NEIGHBOURS8[d as usize % 8];
+        let (x, y) = (
+            (cur % w) as i64 + i64::from(dx),
+            (cur / w) as i64 + i64::from(dy),
+        );
         if x < 0 || y < 0 || x >= w as i64 || y >= h as i64 {
             continue;
         }

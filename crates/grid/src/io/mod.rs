@@ -219,29 +219,19 @@ pub(crate) fn finish(
     for r in [rx, ry] {
         check_resolution(r, path)?;
     }
+    // The same check the raster decoders make on a header, so the sizes are checked once.
+    finished_size_check((rx, ry), border)(map.width() as u64, map.height() as u64, path)?;
     let mut map = map;
     if rx == ry {
         map.resolution = rx;
     } else {
         let side = rx.min(ry);
-        let (w, h) = resample::resampled_size(map.width(), map.height(), (rx, ry), side)
-            .ok_or_else(|| {
-                MapError::new(
-                    path,
-                    MapErrorKind::TooLarge {
-                        width: (map.width() as f64 * rx / side).round() as u64,
-                        height: (map.height() as f64 * ry / side).round() as u64,
-                        limit: MAX_CELLS,
-                    },
-                )
-            })?;
-        check_size(w as u64, h as u64, path)?;
         let cells = resample::resample_nearest(&map.cells, (rx, ry), side).ok_or_else(|| {
             MapError::new(
                 path,
                 MapErrorKind::TooLarge {
-                    width: w as u64,
-                    height: h as u64,
+                    width: (map.width() as f64 * rx / side).round() as u64,
+                    height: (map.height() as f64 * ry / side).round() as u64,
                     limit: MAX_CELLS,
                 },
             )
@@ -253,7 +243,6 @@ pub(crate) fn finish(
         };
     }
     if border {
-        check_size(map.width() as u64 + 2, map.height() as u64 + 2, path)?;
         map = add_border(&map);
     }
     Ok(map)
