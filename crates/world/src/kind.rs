@@ -105,7 +105,8 @@ impl EnvKind {
         }
     }
 
-    /// Smallest accepted size `(width, height)` in metres.
+    /// Smallest accepted size `(width, height)` in metres: at least 3 cells at the coarsest
+    /// accepted resolution, so every size from here up is accepted at every resolution.
     pub fn min_size_m(self) -> (f64, f64) {
         match self {
             EnvKind::Office => (10.0, 10.0),
@@ -113,7 +114,7 @@ impl EnvKind {
             EnvKind::Cave => (4.0, 4.0),
             EnvKind::Maze => (3.0, 3.0),
             EnvKind::Potholes => (6.0, 6.0),
-            EnvKind::Empty => (1.0, 1.0),
+            EnvKind::Empty => (3.0, 3.0),
         }
     }
 

@@ -352,6 +352,28 @@ fn golden_fingerprints() {
     }
 }
 
+#[test]
+fn empty_at_its_minimum_size_and_half_metre_cells_is_accepted() {
+    // the minimum size used to give 2 cells at 0.5 m, below the 3-cell floor
+    let (w, h) = EnvKind::Empty.min_size_m();
+    let spec = EnvSpec::new(EnvKind::Empty, 0)
+        .with_size(w, h)
+        .with_resolution(0.5);
+    generate(&spec).unwrap();
+}
+
+#[test]
+fn every_kind_at_its_minimum_size_and_coarsest_resolution_is_accepted() {
+    for kind in EnvKind::all() {
+        let (w, h) = kind.min_size_m();
+        let spec = EnvSpec::new(*kind, 3)
+            .with_size(w, h)
+            .with_resolution(kind.max_resolution());
+        let env = generate(&spec).unwrap_or_else(|e| panic!("{kind}: {e}"));
+        check(&env, &format!("{spec:?}"));
+    }
+}
+
 fn kind_strategy() -> impl Strategy<Value = EnvKind> {
     proptest::sample::select(EnvKind::all().to_vec())
 }
