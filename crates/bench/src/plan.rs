@@ -40,8 +40,9 @@ use crate::scenario::{ScenarioFile, Source};
 /// results change, so that a store of older results is not resumed with new ones (v2: the
 /// decision-theoretic presets sample near reachable frontiers only, stop when none is left,
 /// and gate predicted rays at unseen wall cells; v3: the segmenting presets segment maps
-/// finer than 0.1 m on 0.1 m blocks).
-pub const STRATEGY_REVISION: u32 = 3;
+/// finer than 0.1 m on 0.1 m blocks; v4: CC covers a frontier cell from where the unknown
+/// next to it is seen).
+pub const STRATEGY_REVISION: u32 = 4;
 
 /// A resolved study: environments, variants, common settings and the flat trial list.
 #[derive(Clone, Debug)]

@@ -26,6 +26,17 @@ impl<T: Clone> Grid<T> {
     }
 }
 
+impl<T> Default for Grid<T> {
+    /// The empty 0 × 0 grid.
+    fn default() -> Self {
+        Self {
+            width: 0,
+            height: 0,
+            data: Vec::new(),
+        }
+    }
+}
+
 impl<T> Grid<T> {
     /// A grid over existing row-major data; `None` if `data.len() != width * height`.
     pub fn from_vec(width: usize, height: usize, data: Vec<T>) -> Option<Self> {

@@ -1,29 +1,43 @@
 //! Coverage candidates (Faigl & Kulich 2013, §IV, Algorithm 1, CC).
 //!
 //! For every reachable frontier cell f_i, the covering cells C_i are the reachable cells
-//! from which a laser of range 0.8 ρ sees f_i (Line 3, ray casting; the shorter range
+//! from which a laser of range 0.8 ρ covers f_i (Line 3, ray casting; the shorter range
 //! "supports navigation towards frontiers"). Then, while some frontier is uncovered, the
-//! covering cell that sees the most still-uncovered frontiers becomes a goal candidate
+//! covering cell that covers the most still-uncovered frontiers becomes a goal candidate
 //! (Lines 9–13). Deterministic: ties go to the lower cell index.
 //!
+//! A frontier cell is covered from c when the laser at c sees **unknown space next to it**
+//! (one of its 8-neighbours that is unknown), not merely the frontier cell itself. The paper
+//! does not spell out "covered"; the frontier is free space bordering the unknown, and
+//! covering it is meant to reveal that unknown. The difference matters on grids: a free cell
+//! whose only unknown neighbour is a wall cell seen edge-on (the cells along a wall near a
+//! corner) is seen from most of a room, but its unknown neighbour only from a few cells. A
+//! robot sent to a cell that sees the frontier cell but not the unknown learns nothing;
+//! the cell goes on the visited list, and the next decision sends it to the next such
+//! cell, so that a team sweeps the room row by row (on the 21 × 24 m open space with ρ = 7
+//! m, 3 robots, HA–CC's longest path was 78 m against HA–RFE's 31 m).
+//!
 //! How it is computed: visibility under the exact segment rule of `sense::segment` is
-//! symmetric between two free cells (the same cells are crossed and the same vertices
-//! touched either way, and both ends are free), so C_i is what a line-of-sight scan *from*
-//! f_i sees: one scan per frontier cell over the belief (unknown cells are opaque) — by
-//! shadow casting ([`sense::shadow`], time ∝ the cells looked at) from 20 cells of range
-//! on, by the shared ray template below — keeping free cells that are traversable, reachable and not on the
-//! goal lists. The incidences go into two flat adjacency arrays (frontier →
-//! covering cells, covering cell → frontiers), and the greedy choice uses a lazy max-heap
-//! on the uncovered counts (counts only fall, so a popped entry whose count is current is
-//! the maximum). Cost ∝ the number of (frontier, covering cell) pairs; all buffers live in
-//! [`State`] and are reused.
+//! symmetric between two cells when the far end is exempt from the "crossed cells are free"
+//! test at either end (the same cells are crossed and the same vertices touched either
+//! way), so the cells that see an unknown cell u are what a line-of-sight scan *from* u
+//! sees, with u itself taken as free: one scan per unknown cell next to a frontier, over a
+//! copy of the belief (unknown cells are opaque) — by shadow casting ([`sense::shadow`],
+//! time ∝ the cells looked at) from 20 cells of range on, by the shared ray template below
+//! — keeping free cells that are traversable, reachable and not on the goal lists. C_i is
+//! the union of the scans of f_i's unknown neighbours. The incidences go into two flat
+//! adjacency arrays (frontier → covering cells, covering cell → frontiers), and the greedy
+//! choice uses a lazy max-heap on the uncovered counts (counts only fall, so a popped entry
+//! whose count is current is the maximum). Cost ∝ the number of (frontier, covering cell)
+//! pairs; all buffers live in [`State`] and are reused.
 //!
 //! Choices where the paper is silent:
+//! - "covered" is as above;
 //! - "reachable" is reachability from the first deciding robot (all free space of a run is
 //!   one component; Faigl & Kulich assume the same);
 //! - frontier cells on the visited/inaccessible lists are not to be covered (a robot stood
 //!   there and sensed), and listed cells are never candidates; a frontier cell that no
-//!   eligible cell sees is left uncovered rather than looping;
+//!   eligible cell covers is left uncovered rather than looping;
 //! - the ray casting is the ideal laser of `sense` (`los`) whatever the robots' sensor is,
 //!   as the paper's omnidirectional scanner; ρ is the run's sensor range in cells.
 
@@ -60,8 +74,11 @@ pub struct State {
     epoch: u32,
     /// Candidate id → cell.
     cands: Vec<u32>,
-    /// Candidate id → number of uncovered frontiers it sees.
+    /// Candidate id → number of uncovered frontiers it covers.
     count: Vec<u32>,
+    /// Candidate id → 1 + the index of the last frontier that counted it (deduplicates
+    /// the union over a frontier's unknown neighbours).
+    last: Vec<u32>,
     /// Candidate id → the frontiers (indices into `front`) it sees, flat.
     c_start: Vec<u32>,
     c_front: Vec<u32>,
@@ -79,16 +96,17 @@ pub struct State {
 /// Side of the square blocks in which belief changes are tracked, in cells.
 const BLOCK: usize = 16;
 
-/// What each frontier cell sees, kept across decisions: the free cells a scan from it
-/// reports (before the per-decision eligibility filter), and the blocks of cells the scan
-/// looked at. A scan's result depends only on the cells it looked at (the cells it
+/// What each unknown cell next to a frontier is seen from, kept across decisions: the free
+/// cells a scan from it reports (before the per-decision eligibility filter), and the
+/// blocks of cells the scan looked at. A scan's result depends only on the cells it looked at (the cells it
 /// reported, blocking ones included, and the cells beside them that the diagonal squeeze
 /// test reads), so it stays valid until a cell in that box of blocks changes. Changes are
 /// found by comparing the belief with its copy from the last decision, block by block.
 #[derive(Default)]
 struct Visibility {
-    /// The belief at the last decision.
-    prev: Vec<Occ>,
+    /// The belief at the last decision (equal to the current one once [`Self::start`] ran;
+    /// scans read it, with their origin set free for the scan's duration).
+    prev: Grid<Occ>,
     /// Per block: the decision that last saw a change in it.
     changed_at: Vec<u32>,
     blocks_x: usize,
@@ -108,7 +126,7 @@ struct Visibility {
 /// No cache entry.
 const NONE: u32 = u32::MAX;
 
-/// One frontier cell's scan.
+/// One unknown cell's scan.
 #[derive(Default)]
 struct Seen {
     cell: u32,
@@ -129,8 +147,8 @@ impl Visibility {
         let (w, h) = (known.width(), known.height());
         let data = known.data();
         self.decision += 1;
-        if self.prev.len() != data.len() {
-            self.prev = data.to_vec();
+        if self.prev.width() != w || self.prev.height() != h {
+            self.prev = known.clone();
             self.blocks_x = w.div_ceil(BLOCK);
             self.changed_at = vec![0; self.blocks_x * h.div_ceil(BLOCK)];
             self.slot = vec![NONE; data.len()];
@@ -142,7 +160,7 @@ impl Visibility {
         for y in 0..h {
             let (row, old) = (
                 &data[y * w..(y + 1) * w],
-                &mut self.prev[y * w..(y + 1) * w],
+                &mut self.prev.data_mut()[y * w..(y + 1) * w],
             );
             if row == old {
                 continue;
@@ -159,18 +177,19 @@ impl Visibility {
 
     /// Whether entry `e` is still what a scan would report.
     fn valid(&self, e: &Seen) -> bool {
-        (e.by0..=e.by1).all(|by| {
-            let row = by as usize * self.blocks_x;
-            self.changed_at[row + e.bx0 as usize..=row + e.bx1 as usize]
-                .iter()
-                .all(|&c| c < e.made)
-        })
+        e.made == self.decision
+            || (e.by0..=e.by1).all(|by| {
+                let row = by as usize * self.blocks_x;
+                self.changed_at[row + e.bx0 as usize..=row + e.bx1 as usize]
+                    .iter()
+                    .all(|&c| c < e.made)
+            })
     }
 
-    /// The entry of frontier cell `f`, scanned again (within `range` cells) if the belief
-    /// changed where it looked.
-    fn get(&mut self, f: u32, known: &Grid<Occ>, range: f64, template: Option<&LosSensor>) -> u32 {
-        let mut k = self.slot[f as usize];
+    /// The entry of unknown cell `u`: the cells that see it within `range` cells, scanned
+    /// again if the belief changed where the last scan looked.
+    fn get(&mut self, u: u32, range: f64, template: Option<&LosSensor>) -> u32 {
+        let mut k = self.slot[u as usize];
         if k != NONE && self.valid(&self.entries[k as usize]) {
             self.used[k as usize] = self.decision;
             return k;
@@ -181,60 +200,68 @@ impl Visibility {
                 self.used.push(0);
                 (self.entries.len() - 1) as u32
             });
-            self.slot[f as usize] = k;
+            self.slot[u as usize] = k;
         }
-        let e = &mut self.entries[k as usize];
-        e.cell = f;
-        e.made = self.decision;
+        self.used[k as usize] = self.decision;
+        let Visibility {
+            prev,
+            entries,
+            scratch,
+            blocks_x,
+            changed_at,
+            decision,
+            ..
+        } = self;
+        let e = &mut entries[k as usize];
+        e.cell = u;
+        e.made = *decision;
         e.free.clear();
+        // A segment from u is clear if every cell it crosses but the far end is free, u
+        // included: u is taken as free for its own scan (never "touched" at a vertex, so
+        // nothing else changes).
+        let was = prev.data()[u as usize];
+        prev.data_mut()[u as usize] = Occ::Free;
+        let known = &*prev;
+        let origin = known.cell(u as usize);
+        let mut push = |i: u32, s: Occ| {
+            if s == Occ::Free && i != u {
+                e.free.push(i);
+            }
+        };
         if let Some(sensor) = template {
             // Short ranges: the ray template is the faster walk.
             let w = known.width();
-            let (bw, bh) = (self.blocks_x, self.changed_at.len() / self.blocks_x.max(1));
-            let (fx, fy) = (f as usize % w, f as usize / w);
-            let (mut x0, mut x1, mut y0, mut y1) = (fx, fx, fy, fy);
-            sensor.for_each_seen(known, known.cell(f as usize), |i, s| {
+            let (bw, bh) = (*blocks_x, changed_at.len() / (*blocks_x).max(1));
+            let (ux, uy) = (u as usize % w, u as usize / w);
+            let (mut x0, mut x1, mut y0, mut y1) = (ux, ux, uy, uy);
+            sensor.for_each_seen(known, origin, |i, s| {
                 let (x, y) = (i as usize % w, i as usize / w);
                 x0 = x0.min(x);
                 x1 = x1.max(x);
                 y0 = y0.min(y);
                 y1 = y1.max(y);
-                if s == Occ::Free {
-                    e.free.push(i);
-                }
+                push(i, s);
             });
             // one cell more each way: the squeeze test reads the cells beside a diagonal step
             e.bx0 = (x0.saturating_sub(1) / BLOCK) as u32;
             e.by0 = (y0.saturating_sub(1) / BLOCK) as u32;
             e.bx1 = ((x1 + 1) / BLOCK).min(bw - 1) as u32;
             e.by1 = ((y1 + 1) / BLOCK).min(bh - 1) as u32;
-            self.used[k as usize] = self.decision;
-            return k;
+        } else {
+            let read = shadow::visible(known, origin, range, |s| s == Occ::Free, scratch, push);
+            // The scan read only the cells of this box, so it stays valid until one changes.
+            if let Some(b) = read {
+                e.bx0 = (b.x0 / BLOCK) as u32;
+                e.by0 = (b.y0 / BLOCK) as u32;
+                e.bx1 = (b.x1 / BLOCK) as u32;
+                e.by1 = (b.y1 / BLOCK) as u32;
+            }
         }
-        let read = shadow::visible(
-            known,
-            known.cell(f as usize),
-            range,
-            |s| s == Occ::Free,
-            &mut self.scratch,
-            |i, s| {
-                if s == Occ::Free {
-                    e.free.push(i);
-                }
-            },
-        );
-        // The scan read only the cells of this box, so it stays valid until one changes.
-        if let Some(b) = read {
-            e.bx0 = (b.x0 / BLOCK) as u32;
-            e.by0 = (b.y0 / BLOCK) as u32;
-            e.bx1 = (b.x1 / BLOCK) as u32;
-            e.by1 = (b.y1 / BLOCK) as u32;
-        }
-        self.used[k as usize] = self.decision;
+        prev.data_mut()[u as usize] = was;
         k
     }
 
-    /// Drop the entries of cells that were not frontiers to cover in this decision.
+    /// Drop the entries of cells that no frontier to cover needed in this decision.
     fn sweep(&mut self) {
         for k in 0..self.entries.len() {
             let cell = self.entries[k].cell as usize;
@@ -323,33 +350,50 @@ fn cover(ctx: &mut DecisionCtx<'_>, st: &mut State) {
     // Frontier order is the upkeep's (history dependent); sort for determinism by index.
     st.front.sort_unstable();
     let (cid, stamp, epoch) = (&mut st.cid, &mut st.stamp, st.epoch);
-    let (cands, count, f_cov, f_start) =
-        (&mut st.cands, &mut st.count, &mut st.f_cov, &mut st.f_start);
-    for &f in &st.front {
+    let (cands, count, last, f_cov, f_start) = (
+        &mut st.cands,
+        &mut st.count,
+        &mut st.last,
+        &mut st.f_cov,
+        &mut st.f_start,
+    );
+    last.clear();
+    let template = st.template.as_ref().map(|t| &t.1);
+    for (fk, &f) in st.front.iter().enumerate() {
         f_start.push(f_cov.len() as u32);
-        let k = st
-            .vis
-            .get(f, known, range, st.template.as_ref().map(|t| &t.1));
-        for &i in &st.vis.entries[k as usize].free {
-            let iu = i as usize;
-            if stamp[iu] == epoch {
-                let id = cid[iu];
-                if id != NOT_ELIGIBLE {
-                    f_cov.push(id);
-                    count[id as usize] += 1;
+        let tag = fk as u32 + 1;
+        for u in known.neighbours8(f as usize) {
+            if known[u] != Occ::Unknown {
+                continue;
+            }
+            let k = st.vis.get(u as u32, range, template);
+            for &i in &st.vis.entries[k as usize].free {
+                let iu = i as usize;
+                let id = if stamp[iu] == epoch {
+                    cid[iu]
+                } else {
+                    stamp[iu] = epoch;
+                    if !upkeep.is_traversable(known, iu)
+                        || lists.is_excluded(i)
+                        || !reach.contains(iu)
+                    {
+                        cid[iu] = NOT_ELIGIBLE;
+                        continue;
+                    }
+                    let id = cands.len() as u32;
+                    cid[iu] = id;
+                    cands.push(i);
+                    count.push(0);
+                    last.push(0);
+                    id
+                };
+                if id == NOT_ELIGIBLE || last[id as usize] == tag {
+                    continue;
                 }
-                continue;
+                last[id as usize] = tag;
+                count[id as usize] += 1;
+                f_cov.push(id);
             }
-            stamp[iu] = epoch;
-            if !upkeep.is_traversable(known, iu) || lists.is_excluded(i) || !reach.contains(iu) {
-                cid[iu] = NOT_ELIGIBLE;
-                continue;
-            }
-            let id = cands.len() as u32;
-            cid[iu] = id;
-            cands.push(i);
-            count.push(1);
-            f_cov.push(id);
         }
     }
     st.vis.sweep();
