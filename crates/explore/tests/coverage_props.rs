@@ -80,6 +80,21 @@ fn oracle(fx: &Fixture, robot: u32) -> Vec<(u32, Vec<u32>)> {
     out
 }
 
+/// Run CC on the fixture: the candidates in the order chosen, each with the frontier cells
+/// credited to it, and the candidate set's cells.
+fn run_cc(fx: &mut Fixture) -> (Vec<(u32, Vec<u32>)>, Vec<u32>) {
+    let mut out = CandidateSet::new(fx.known.len());
+    let mut ctx = fx.ctx();
+    CandidateKind::Coverage.generate(&mut ctx, &mut out);
+    let credits = fx
+        .memory
+        .coverage
+        .credits()
+        .map(|(c, s)| (c, s.to_vec()))
+        .collect();
+    (credits, out.cells().to_vec())
+}
+
 #[test]
 fn corridor_worked_example() {
     // A 3-wide corridor, known for x < 12, unknown beyond: the frontier is the column
@@ -97,21 +112,13 @@ fn corridor_worked_example() {
     }
     let robot = g.index(Cell::new(1, 2)) as u32;
     let mut fx = Fixture::new(g, vec![robot], 5.0, 1);
-    let mut out = CandidateSet::new(w * h);
-    let mut ctx = fx.ctx();
-    CandidateKind::Coverage.generate(&mut ctx, &mut out);
-    let credits: Vec<(u32, Vec<u32>)> = fx
-        .memory
-        .coverage
-        .credits()
-        .map(|(c, s)| (c, s.to_vec()))
-        .collect();
+    let (credits, cells) = run_cc(&mut fx);
     assert_eq!(credits.len(), 1);
     // (8, 1) sees (11, 3) but none of its unknown neighbours (12, 2), (12, 3) within 4
     // (squared distances 17, 20); (9, 1) sees (12, 1) and (12, 2), next to all three.
     assert_eq!(fx.known.cell(credits[0].0 as usize), Cell::new(9, 1));
     assert_eq!(credits, oracle(&fx, robot));
-    assert_eq!(out.cells(), &[credits[0].0]);
+    assert_eq!(cells, [credits[0].0]);
 }
 
 /// A walled room, all known but the given cells, with the robot in the middle.
@@ -139,21 +146,13 @@ fn cc_sends_robots_where_they_see_the_unknown_not_only_the_frontier() {
     // not the wall cell taught the robot nothing, went on the visited list one by one, and
     // a team swept the room row by row (HA-CC 78 m against HA-RFE 31 m on the open space).
     let mut fx = room_with_unknown(&[(0, 5)], 10.0);
-    let mut out = CandidateSet::new(fx.known.len());
-    let mut ctx = fx.ctx();
-    CandidateKind::Coverage.generate(&mut ctx, &mut out);
-    assert_eq!(out.cells().len(), 1);
-    let c = fx.known.cell(out.cells()[0] as usize);
+    let (got, cells) = run_cc(&mut fx);
+    assert_eq!(cells.len(), 1);
+    let c = fx.known.cell(cells[0] as usize);
     // (1, 1), the lowest cell that sees the three frontier cells, does not see (0, 5).
     assert_ne!(c, Cell::new(1, 1));
     assert!(los_visible(&fx.known, c, Cell::new(0, 5), 8.0), "{c:?}");
     let robot = fx.known.index(Cell::new(6, 5)) as u32;
-    let got: Vec<(u32, Vec<u32>)> = fx
-        .memory
-        .coverage
-        .credits()
-        .map(|(c, s)| (c, s.to_vec()))
-        .collect();
     assert_eq!(got, oracle(&fx, robot));
 }
 
@@ -195,15 +194,7 @@ proptest! {
                 fx.lists.mark_visited(v as u32);
             }
         }
-        let mut out = CandidateSet::new(w * h);
-        let mut ctx = fx.ctx();
-        CandidateKind::Coverage.generate(&mut ctx, &mut out);
-        let got: Vec<(u32, Vec<u32>)> = fx
-            .memory
-            .coverage
-            .credits()
-            .map(|(c, s)| (c, s.to_vec()))
-            .collect();
+        let (got, cells) = run_cc(&mut fx);
         // Soundness by the direct segment test: from every candidate, unknown space next
         // to each frontier it is credited with is seen within 0.8 ρ.
         let r2 = (0.8 * range) * (0.8 * range);
@@ -237,7 +228,7 @@ proptest! {
         // Equal to the slow greedy, candidate by candidate.
         prop_assert_eq!(&got, &oracle(&fx, robot as u32));
         let chosen: Vec<u32> = got.iter().map(|(c, _)| *c).collect();
-        prop_assert_eq!(out.cells(), &chosen[..]);
+        prop_assert_eq!(cells, chosen);
     }
 
     #[test]
@@ -263,21 +254,9 @@ proptest! {
         };
         let mut kept = Fixture::new(known, vec![robot as u32], range, 3);
         for (x0, y0, bw, bh, pattern) in rounds {
-            let credits = |fx: &mut Fixture| {
-                let mut out = CandidateSet::new(w * h);
-                let mut ctx = fx.ctx();
-                CandidateKind::Coverage.generate(&mut ctx, &mut out);
-                let got: Vec<(u32, Vec<u32>)> = fx
-                    .memory
-                    .coverage
-                    .credits()
-                    .map(|(c, s)| (c, s.to_vec()))
-                    .collect();
-                (got, out.cells().to_vec())
-            };
-            let before = credits(&mut kept);
+            let before = run_cc(&mut kept);
             let mut fresh = Fixture::new(kept.known.clone(), kept.robots.clone(), range, 3);
-            prop_assert_eq!(&before, &credits(&mut fresh));
+            prop_assert_eq!(&before, &run_cc(&mut fresh));
             // change a box of cells
             for y in y0..(y0 + bh).min(h) {
                 for x in x0..(x0 + bw).min(w) {
