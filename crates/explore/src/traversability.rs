@@ -10,6 +10,7 @@
 //! cells in its disk change by one, so an update costs O(changed cells × disk size) for the
 //! cells whose occupancy changed and O(1) for the others — independent of the map size.
 
+use crate::bits::CellBits;
 use grid::{Grid, Occ};
 
 /// Per-cell counts of known Occupied cells within the clearance disk, maintained incrementally.
@@ -24,8 +25,8 @@ pub struct Traversability {
     spans: Vec<(i32, i32)>,
     /// Number of counted Occupied cells whose disk covers the cell.
     count: Vec<u32>,
-    /// Whether the cell is currently counted as Occupied.
-    counted: Vec<bool>,
+    /// The cells currently counted as Occupied.
+    counted: CellBits,
     /// Whether anything was ever counted (else the counts are still the zeroed allocation).
     dirty: bool,
 }
@@ -43,7 +44,7 @@ impl Traversability {
             spans: disk_spans(&disk),
             disk,
             count: vec![0; n],
-            counted: vec![false; n],
+            counted: CellBits::new(n),
             dirty: false,
         }
     }
@@ -58,7 +59,7 @@ impl Traversability {
         debug_assert_eq!(known.len(), self.count.len(), "belief size differs");
         if self.dirty {
             self.count.fill(0);
-            self.counted.fill(false);
+            self.counted = CellBits::new(self.count.len());
         }
         self.dirty = true;
         let (w, h) = (self.width, self.height);
@@ -68,7 +69,7 @@ impl Traversability {
         for y in 0..h {
             let row = &data[y * w..(y + 1) * w];
             for (x, _) in row.iter().enumerate().filter(|(_, o)| o.is_occupied()) {
-                self.counted[y * w + x] = true;
+                self.counted.insert(y * w + x);
                 for &(dy, hx) in &self.spans {
                     let ny = y as i64 + i64::from(dy);
                     if ny < 0 || ny >= h as i64 {
@@ -115,10 +116,14 @@ impl Traversability {
             // its own class changed: Free-ness may have changed
             touched.push(c);
             let occ = known[i].is_occupied();
-            if occ == self.counted[i] {
+            if occ == self.counted.contains(i) {
                 continue;
             }
-            self.counted[i] = occ;
+            if occ {
+                self.counted.insert(i);
+            } else {
+                self.counted.remove(i);
+            }
             let (x, y) = ((i % self.width) as i32, (i / self.width) as i32);
             let (w, h) = (self.width as i32, self.height as i32);
             for &(dx, dy) in &self.disk {

@@ -8,6 +8,7 @@
 //! became or stopped being Occupied and O(changed cells) otherwise, independent of the map size.
 //! [`crate::frontier::frontiers_from_scratch`] is the oracle it is tested against.
 
+use crate::bits::CellBits;
 use crate::frontier::{FrontierSet, Region, is_frontier_xy};
 use crate::traversability::Traversability;
 use grid::{Grid, NEIGHBOURS8, Occ};
@@ -25,9 +26,9 @@ pub struct FrontierUpkeep {
     /// (allocated by the first update: a rebuild does not need them).
     stamp: Vec<u32>,
     epoch: u32,
-    /// Generation stamps for region labelling (allocated by the first labelling).
-    seen: Vec<u32>,
-    seen_epoch: u32,
+    /// Cells labelled by the region labelling in progress (allocated by the first
+    /// labelling; only frontier cells are marked, and they are unmarked at its end).
+    seen: CellBits,
     /// Work stack for region labelling.
     stack: Vec<u32>,
     /// One row's flags for [`rebuild`](Self::rebuild).
@@ -43,8 +44,7 @@ impl FrontierUpkeep {
             touched: Vec::new(),
             stamp: Vec::new(),
             epoch: 0,
-            seen: Vec::new(),
-            seen_epoch: 0,
+            seen: CellBits::default(),
             stack: Vec::new(),
             row_buf: Vec::new(),
         }
@@ -139,7 +139,7 @@ impl FrontierUpkeep {
         self.retest_xy(known, i, (i % w) as i32, (i / w) as i32);
     }
 
-    #[inline]
+    #[inline(always)]
     fn retest_xy(&mut self, known: &Grid<Occ>, i: usize, x: i32, y: i32) {
         if self.stamp[i] == self.epoch {
             return;
@@ -165,13 +165,12 @@ impl FrontierUpkeep {
         let (w, h) = (self.trav.width() as i32, self.trav.height() as i32);
         let cells = self.trav.width() * self.trav.height();
         if self.seen.len() != cells {
-            self.seen = vec![0; cells];
+            self.seen = CellBits::new(cells);
         }
-        self.seen_epoch = next_gen(self.seen_epoch, &mut self.seen);
         let mut n_out = 0;
         for k in 0..self.frontiers.len() {
             let seed = self.frontiers.cells()[k];
-            if self.seen[seed as usize] == self.seen_epoch {
+            if self.seen.contains(seed as usize) {
                 continue;
             }
             if n_out == out.len() {
@@ -183,7 +182,7 @@ impl FrontierUpkeep {
             }
             let region = &mut out[n_out];
             region.cells.clear();
-            self.seen[seed as usize] = self.seen_epoch;
+            self.seen.insert(seed as usize);
             self.stack.clear();
             self.stack.push(seed);
             while let Some(c) = self.stack.pop() {
@@ -195,8 +194,8 @@ impl FrontierUpkeep {
                         continue;
                     }
                     let j = (ny * w + nx) as usize;
-                    if self.seen[j] != self.seen_epoch && self.frontiers.contains(j) {
-                        self.seen[j] = self.seen_epoch;
+                    if !self.seen.contains(j) && self.frontiers.contains(j) {
+                        self.seen.insert(j);
                         self.stack.push(j as u32);
                     }
                 }
@@ -206,6 +205,9 @@ impl FrontierUpkeep {
                 region.finish(w as usize);
                 n_out += 1;
             }
+        }
+        for &c in self.frontiers.cells() {
+            self.seen.remove(c as usize);
         }
         out.truncate(n_out);
         out.sort_unstable_by_key(|r| r.cells[0]);
