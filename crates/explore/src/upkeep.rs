@@ -31,8 +31,8 @@ pub struct FrontierUpkeep {
     seen: CellBits,
     /// Work stack for region labelling.
     stack: Vec<u32>,
-    /// One row's flags for [`rebuild`](Self::rebuild).
-    row_buf: Vec<bool>,
+    /// Two rows' flags for [`rebuild`](Self::rebuild).
+    row_buf: Vec<u8>,
 }
 
 impl FrontierUpkeep {
@@ -96,12 +96,14 @@ impl FrontierUpkeep {
         self.frontiers.clear();
         let data = known.data();
         let h = h.min(data.len() / w.max(1));
-        // unknown[x]: some cell of column x in rows y − 1..=y + 1 is Unknown; a frontier
-        // cell has an Unknown 8-neighbour, so it has one of unknown[x − 1..=x + 1]. This
-        // byte pass leaves the exact test to the few cells near unknown space.
-        let mut unknown = std::mem::take(&mut self.row_buf);
-        unknown.clear();
-        unknown.resize(w + 2, false);
+        // unknown[x + 1]: some cell of column x in rows y − 1..=y + 1 is Unknown; a
+        // frontier cell has an Unknown 8-neighbour, so it has one of unknown[x..=x + 2].
+        // near[x]: cell x is Free and has one. These byte passes leave the exact test to
+        // the few cells near unknown space, found eight at a time.
+        let mut buf = std::mem::take(&mut self.row_buf);
+        buf.clear();
+        buf.resize(2 * w + 2, 0);
+        let (unknown, near) = buf.split_at_mut(w + 2);
         for y in 0..h {
             let row = &data[y * w..(y + 1) * w];
             let above = if y > 0 {
@@ -115,19 +117,29 @@ impl FrontierUpkeep {
                 row
             };
             for (((u, a), c), b) in unknown[1..=w].iter_mut().zip(above).zip(row).zip(below) {
-                *u = a.is_unknown() | c.is_unknown() | b.is_unknown();
+                *u = u8::from(a.is_unknown() | c.is_unknown() | b.is_unknown());
             }
-            for x in 0..w {
-                // unknown[x + 1] is column x
-                if (unknown[x] | unknown[x + 1] | unknown[x + 2])
-                    && row[x].is_free()
-                    && is_frontier_xy(known, &self.trav, y * w + x, x as i32, y as i32)
-                {
-                    self.frontiers.insert(y * w + x);
+            let sides = unknown[..w].iter().zip(&unknown[1..=w]).zip(&unknown[2..]);
+            for ((n, ((l, m), r)), c) in near.iter_mut().zip(sides).zip(row) {
+                *n = (l | m | r) & u8::from(c.is_free());
+            }
+            for (k, chunk) in near.chunks(8).enumerate() {
+                let any = match <[u8; 8]>::try_from(chunk) {
+                    Ok(eight) => u64::from_ne_bytes(eight) != 0,
+                    Err(_) => chunk.iter().any(|&n| n != 0),
+                };
+                if !any {
+                    continue;
+                }
+                for (d, _) in chunk.iter().enumerate().filter(|(_, n)| **n != 0) {
+                    let x = k * 8 + d;
+                    if is_frontier_xy(known, &self.trav, y * w + x, x as i32, y as i32) {
+                        self.frontiers.insert(y * w + x);
+                    }
                 }
             }
         }
-        self.row_buf = unknown;
+        self.row_buf = buf;
     }
 
     #[inline]
