@@ -16,6 +16,7 @@ use grid::{Grid, Occ};
 use rand_pcg::Pcg64Mcg;
 
 use crate::assign::AssignerKind;
+use crate::bits::CellBits;
 use crate::candidates::{CandidateKind, CandidateSet};
 use crate::frontier::Region;
 use crate::plan::component::Component;
@@ -186,7 +187,10 @@ impl Planner {
 /// explored from there, so choosing it again would loop forever.
 #[derive(Clone, Debug, Default)]
 pub struct GoalLists {
-    excluded: Vec<bool>,
+    /// The listed goals as bits, allocated by the first listing: until a goal is listed,
+    /// the test that every frontier cell goes through touches no memory of the map's size.
+    excluded: CellBits,
+    cells: usize,
     /// Goals reached and sensed from, in order.
     pub visited: Vec<u32>,
     /// Goals given up as inaccessible (no progress for the time limit), in order.
@@ -197,24 +201,35 @@ impl GoalLists {
     /// Empty lists for a map of `cells` cells.
     pub fn new(cells: usize) -> Self {
         Self {
-            excluded: vec![false; cells],
+            excluded: CellBits::default(),
+            cells,
             visited: Vec::new(),
             inaccessible: Vec::new(),
         }
     }
 
+    /// List `goal` as excluded; false if it already was.
+    fn exclude(&mut self, goal: u32) -> bool {
+        if self.excluded.is_empty() {
+            self.excluded = CellBits::new(self.cells);
+        }
+        let fresh = !self.excluded.contains(goal as usize);
+        if fresh {
+            self.excluded.insert(goal as usize);
+        }
+        fresh
+    }
+
     /// Record that a robot reached `goal` and sensed there.
     pub fn mark_visited(&mut self, goal: u32) {
-        if !self.excluded[goal as usize] {
-            self.excluded[goal as usize] = true;
+        if self.exclude(goal) {
             self.visited.push(goal);
         }
     }
 
     /// Record that `goal` could not be reached.
     pub fn mark_inaccessible(&mut self, goal: u32) {
-        if !self.excluded[goal as usize] {
-            self.excluded[goal as usize] = true;
+        if self.exclude(goal) {
             self.inaccessible.push(goal);
         }
     }
@@ -222,7 +237,7 @@ impl GoalLists {
     /// Whether `cell` is on either list.
     #[inline]
     pub fn is_excluded(&self, cell: u32) -> bool {
-        self.excluded[cell as usize]
+        self.excluded.contains(cell as usize)
     }
 }
 
@@ -368,5 +383,44 @@ pub fn decide(
             &offer.candidates
         };
         assigner.assign(ctx, offered, out);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        /// Goals listed in any order: the lists hold each goal once, on the list it was first
+        /// put on, and exactly the listed cells are excluded (a `bool` per cell as oracle).
+        #[test]
+        fn lists_behave_as_a_bool_per_cell(
+            ops in proptest::collection::vec((0u32..30, any::<bool>()), 0..60)
+        ) {
+            let mut lists = GoalLists::new(30);
+            let mut excluded = [false; 30];
+            let (mut visited, mut inaccessible) = (Vec::new(), Vec::new());
+            for (goal, reached) in ops {
+                if reached {
+                    lists.mark_visited(goal);
+                } else {
+                    lists.mark_inaccessible(goal);
+                }
+                if !excluded[goal as usize] {
+                    excluded[goal as usize] = true;
+                    if reached {
+                        visited.push(goal);
+                    } else {
+                        inaccessible.push(goal);
+                    }
+                }
+                for (c, &e) in excluded.iter().enumerate() {
+                    prop_assert_eq!(lists.is_excluded(c as u32), e);
+                }
+            }
+            prop_assert_eq!(&lists.visited, &visited);
+            prop_assert_eq!(&lists.inaccessible, &inaccessible);
+        }
     }
 }

@@ -9,17 +9,20 @@
 //! ([`crate::upkeep::FrontierUpkeep`]) maintains, and the from-scratch detector used as its
 //! test oracle.
 
+use crate::bits::CellBits;
 use crate::traversability::Traversability;
 use grid::{Grid, NEIGHBOURS8, Occ};
 
-/// Marker for "not in the set" in [`FrontierSet`]'s position array: zero, so that a new
-/// set is a zeroed allocation (pages the operating system maps on first touch).
-const ABSENT: u32 = 0;
-
 /// A sparse set of flat cell indices: O(1) insert, remove and membership, cells as a slice.
+///
+/// Membership is one bit per cell ([`CellBits`]). The position of each member in the
+/// slice, which only removal needs, is an array of the map's size written from the first
+/// removal on: a set only filled and cleared (a map counted from scratch) touches the
+/// pages of its bits and nothing else of the map's size.
 #[derive(Clone, Debug)]
 pub struct FrontierSet {
-    /// One more than the position of each cell in `dense`, or `ABSENT`.
+    members: CellBits,
+    /// One more than the position of each member in `dense` (empty until a removal).
     pos: Vec<u32>,
     /// The members, in insertion order modified by swap-remove.
     dense: Vec<u32>,
@@ -29,7 +32,8 @@ impl FrontierSet {
     /// An empty set over a `width × height` grid.
     pub fn new(width: usize, height: usize) -> Self {
         Self {
-            pos: vec![ABSENT; width * height],
+            members: CellBits::new(width * height),
+            pos: Vec::new(),
             dense: Vec::new(),
         }
     }
@@ -37,45 +41,58 @@ impl FrontierSet {
     /// Whether cell `i` is in the set (false outside the grid).
     #[inline]
     pub fn contains(&self, i: usize) -> bool {
-        self.pos.get(i).is_some_and(|&p| p != ABSENT)
+        self.members.contains(i)
     }
 
     /// Add cell `i`; returns whether it was newly added (false if present or outside the grid).
     #[inline]
     pub fn insert(&mut self, i: usize) -> bool {
-        match self.pos.get_mut(i) {
-            Some(p) if *p == ABSENT => {
-                self.dense.push(i as u32);
-                *p = self.dense.len() as u32;
-                true
-            }
-            _ => false,
+        if i >= self.members.len() || self.members.contains(i) {
+            return false;
         }
+        self.members.insert(i);
+        self.dense.push(i as u32);
+        if !self.pos.is_empty() {
+            self.pos[i] = self.dense.len() as u32;
+        }
+        true
     }
 
     /// Remove cell `i`; returns whether it was present. The last member takes its place.
-    #[inline]
+    #[inline(always)]
     pub fn remove(&mut self, i: usize) -> bool {
-        let Some(&p) = self.pos.get(i) else {
-            return false;
-        };
-        if p == ABSENT {
+        if !self.members.contains(i) {
             return false;
         }
+        if self.pos.is_empty() {
+            self.write_positions();
+        }
+        let p = self.pos[i];
         let (k, last) = (p as usize - 1, self.dense.len() - 1);
         self.dense.swap_remove(k);
         if k < last {
             let moved = self.dense[k] as usize;
             self.pos[moved] = p;
         }
-        self.pos[i] = ABSENT;
+        self.members.remove(i);
         true
+    }
+
+    /// Allocate the position array and write every member's position (the first removal;
+    /// out of line, so that the removal stays small enough to inline).
+    #[cold]
+    #[inline(never)]
+    fn write_positions(&mut self) {
+        self.pos = vec![0; self.members.len()];
+        for (k, &c) in self.dense.iter().enumerate() {
+            self.pos[c as usize] = k as u32 + 1;
+        }
     }
 
     /// Remove every member (cost ∝ members).
     pub fn clear(&mut self) {
         for &c in &self.dense {
-            self.pos[c as usize] = ABSENT;
+            self.members.remove(c as usize);
         }
         self.dense.clear();
     }
@@ -179,6 +196,51 @@ impl Region {
             if d < best {
                 best = d;
                 self.representative = c;
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        /// Inserts, removes and clears in any order: the set holds what a list with
+        /// swap-remove holds, in the same order (removal builds the positions lazily).
+        #[test]
+        fn behaves_as_a_list_with_swap_remove(
+            ops in proptest::collection::vec((0usize..50, 0u8..6), 0..300)
+        ) {
+            let mut set = FrontierSet::new(8, 6);
+            let mut list: Vec<u32> = Vec::new();
+            for (i, op) in ops {
+                let at = list.iter().position(|&c| c as usize == i);
+                match op {
+                    0 => {
+                        set.clear();
+                        list.clear();
+                    }
+                    1 | 2 => {
+                        prop_assert_eq!(set.remove(i), at.is_some());
+                        if let Some(k) = at {
+                            list.swap_remove(k);
+                        }
+                    }
+                    _ => {
+                        let fresh = i < 48 && at.is_none();
+                        prop_assert_eq!(set.insert(i), fresh);
+                        if fresh {
+                            list.push(i as u32);
+                        }
+                    }
+                }
+                prop_assert_eq!(set.cells(), &list[..]);
+                prop_assert_eq!(set.len(), list.len());
+                for c in 0..50 {
+                    prop_assert_eq!(set.contains(c), list.contains(&(c as u32)));
+                }
             }
         }
     }

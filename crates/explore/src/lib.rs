@@ -15,6 +15,7 @@
 //!   Yamauchi's visited and inaccessible lists);
 //! - [`candidates`]: goal candidates (all frontier cells; Yamauchi's region centroids);
 //! - [`assign`]: assigners (nearest by path; Holz's random-frontier baseline);
+//! - [`bits`]: sets of cells as one bit per cell, for sets that touch few of a map's pages;
 //! - [`strategy`]: strategies as (candidates, assigner, re-plan policy) triples and the
 //!   papers' presets.
 //!
@@ -43,6 +44,7 @@
 #![warn(missing_docs)]
 
 pub mod assign;
+pub mod bits;
 pub mod candidates;
 pub mod decision;
 pub mod frontier;

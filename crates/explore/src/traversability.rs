@@ -10,6 +10,7 @@
 //! cells in its disk change by one, so an update costs O(changed cells × disk size) for the
 //! cells whose occupancy changed and O(1) for the others — independent of the map size.
 
+use crate::bits::CellBits;
 use grid::{Grid, Occ};
 
 /// Per-cell counts of known Occupied cells within the clearance disk, maintained incrementally.
@@ -23,9 +24,9 @@ pub struct Traversability {
     /// The disk by rows: `(dy, h)` for the offsets `(−h..=h, dy)` (a disk's row is one run).
     spans: Vec<(i32, i32)>,
     /// Number of counted Occupied cells whose disk covers the cell.
-    count: Vec<u32>,
-    /// Whether the cell is currently counted as Occupied.
-    counted: Vec<bool>,
+    count: Counts,
+    /// The cells currently counted as Occupied.
+    counted: CellBits,
     /// Whether anything was ever counted (else the counts are still the zeroed allocation).
     dirty: bool,
 }
@@ -41,9 +42,9 @@ impl Traversability {
             height,
             clearance: clearance_cells,
             spans: disk_spans(&disk),
+            count: Counts::for_disk(disk.len(), n),
             disk,
-            count: vec![0; n],
-            counted: vec![false; n],
+            counted: CellBits::new(n),
             dirty: false,
         }
     }
@@ -55,48 +56,20 @@ impl Traversability {
     /// running sum per row turns the marks into counts; nothing is reported as touched, and
     /// counts still zero from the allocation are not cleared again.
     pub fn rebuild(&mut self, known: &Grid<Occ>) {
-        debug_assert_eq!(known.len(), self.count.len(), "belief size differs");
+        let n = self.width * self.height;
+        debug_assert_eq!(known.len(), n, "belief size differs");
         if self.dirty {
-            self.count.fill(0);
-            self.counted.fill(false);
+            self.count = Counts::for_disk(self.disk.len(), n);
+            self.counted = CellBits::new(n);
         }
         self.dirty = true;
         let (w, h) = (self.width, self.height);
         let data = known.data();
         let h = h.min(data.len() / w.max(1));
-        let mut marked = vec![false; h];
-        for y in 0..h {
-            let row = &data[y * w..(y + 1) * w];
-            for (x, _) in row.iter().enumerate().filter(|(_, o)| o.is_occupied()) {
-                self.counted[y * w + x] = true;
-                for &(dy, hx) in &self.spans {
-                    let ny = y as i64 + i64::from(dy);
-                    if ny < 0 || ny >= h as i64 {
-                        continue;
-                    }
-                    let ny = ny as usize;
-                    marked[ny] = true;
-                    let lo = (x as i64 - i64::from(hx)).max(0) as usize;
-                    let end = x + hx as usize + 1;
-                    let c = &mut self.count[ny * w + lo];
-                    *c = c.wrapping_add(1);
-                    if end < w {
-                        let c = &mut self.count[ny * w + end];
-                        *c = c.wrapping_sub(1);
-                    }
-                }
-            }
-        }
-        for (y, _) in marked.iter().enumerate().filter(|(_, m)| **m) {
-            let mut acc = 0u32;
-            for c in &mut self.count[y * w..(y + 1) * w] {
-                acc = acc.wrapping_add(*c);
-                // Stores only where the count is not already right: the zero runs between
-                // obstacles' disks stay untouched (a new map's pages are never written).
-                if *c != acc {
-                    *c = acc;
-                }
-            }
+        let counted = &mut self.counted;
+        match &mut self.count {
+            Counts::U8(count) => count_from_scratch(count, &self.spans, data, w, h, counted),
+            Counts::U32(count) => count_from_scratch(count, &self.spans, data, w, h, counted),
         }
     }
 
@@ -105,7 +78,7 @@ impl Traversability {
     /// record of which cells it has counted as occupied, so a cell that stops being Occupied is
     /// handled too). Indices outside the grid are ignored; duplicates are harmless.
     pub fn update(&mut self, known: &Grid<Occ>, changed: &[u32], touched: &mut Vec<u32>) {
-        let n = self.count.len();
+        let n = self.width * self.height;
         self.dirty = true;
         for &c in changed {
             let i = c as usize;
@@ -115,29 +88,19 @@ impl Traversability {
             // its own class changed: Free-ness may have changed
             touched.push(c);
             let occ = known[i].is_occupied();
-            if occ == self.counted[i] {
+            if occ == self.counted.contains(i) {
                 continue;
             }
-            self.counted[i] = occ;
+            if occ {
+                self.counted.insert(i);
+            } else {
+                self.counted.remove(i);
+            }
             let (x, y) = ((i % self.width) as i32, (i / self.width) as i32);
-            let (w, h) = (self.width as i32, self.height as i32);
-            for &(dx, dy) in &self.disk {
-                let (nx, ny) = (x + dx, y + dy);
-                if nx < 0 || ny < 0 || nx >= w || ny >= h {
-                    continue;
-                }
-                let j = ny as usize * self.width + nx as usize;
-                if occ {
-                    self.count[j] += 1;
-                    if self.count[j] == 1 {
-                        touched.push(j as u32);
-                    }
-                } else {
-                    self.count[j] -= 1;
-                    if self.count[j] == 0 {
-                        touched.push(j as u32);
-                    }
-                }
+            let (w, h) = (self.width, self.height);
+            match &mut self.count {
+                Counts::U8(count) => count_disk(count, &self.disk, (x, y), (w, h), occ, touched),
+                Counts::U32(count) => count_disk(count, &self.disk, (x, y), (w, h), occ, touched),
             }
         }
     }
@@ -145,13 +108,13 @@ impl Traversability {
     /// Whether cell `i` is traversable: known Free and no known Occupied cell within clearance.
     #[inline]
     pub fn is_traversable(&self, known: &Grid<Occ>, i: usize) -> bool {
-        known.data().get(i).is_some_and(|o| o.is_free()) && self.count.get(i) == Some(&0)
+        known.data().get(i).is_some_and(|o| o.is_free()) && self.count.is_zero(i) == Some(true)
     }
 
     /// Whether some counted Occupied cell lies within the clearance of cell `i`.
     #[inline]
     pub fn is_blocked(&self, i: usize) -> bool {
-        self.count.get(i).is_some_and(|&c| c > 0)
+        self.count.is_zero(i) == Some(false)
     }
 
     /// The robot's clearance in cells, as given to [`Traversability::new`].
@@ -172,6 +135,154 @@ impl Traversability {
     /// The disk offsets `(dx, dy)` counted around each occupied cell.
     pub fn disk(&self) -> &[(i32, i32)] {
         &self.disk
+    }
+}
+
+/// The per-cell counts, in the narrowest type that holds a whole disk: a byte per cell
+/// while the disk has at most 255 cells (clearances below √82 ≈ 9.06 cells), a quarter of
+/// the memory and of the pages that counting a new map touches.
+#[derive(Clone, Debug)]
+enum Counts {
+    /// Disks of at most 255 cells.
+    U8(Vec<u8>),
+    /// Larger disks.
+    U32(Vec<u32>),
+}
+
+impl Counts {
+    /// Zero counts for `n` cells and a disk of `disk_cells` cells.
+    fn for_disk(disk_cells: usize, n: usize) -> Self {
+        if disk_cells <= usize::from(u8::MAX) {
+            Counts::U8(vec![0; n])
+        } else {
+            Counts::U32(vec![0; n])
+        }
+    }
+
+    /// Whether cell `i`'s count is zero (`None` outside the grid).
+    #[inline]
+    fn is_zero(&self, i: usize) -> Option<bool> {
+        match self {
+            Counts::U8(c) => c.get(i).map(|&c| c == 0),
+            Counts::U32(c) => c.get(i).map(|&c| c == 0),
+        }
+    }
+}
+
+/// A count type: wrapping arithmetic for the difference arrays, exact for counts it holds.
+trait Count: Copy + Eq + std::ops::Add<Output = Self> + std::ops::Sub<Output = Self> {
+    const ZERO: Self;
+    const ONE: Self;
+    fn wrapping_add(self, d: Self) -> Self;
+    fn wrapping_sub(self, d: Self) -> Self;
+}
+
+impl Count for u8 {
+    const ZERO: Self = 0;
+    const ONE: Self = 1;
+    fn wrapping_add(self, d: Self) -> Self {
+        u8::wrapping_add(self, d)
+    }
+    fn wrapping_sub(self, d: Self) -> Self {
+        u8::wrapping_sub(self, d)
+    }
+}
+
+impl Count for u32 {
+    const ZERO: Self = 0;
+    const ONE: Self = 1;
+    fn wrapping_add(self, d: Self) -> Self {
+        u32::wrapping_add(self, d)
+    }
+    fn wrapping_sub(self, d: Self) -> Self {
+        u32::wrapping_sub(self, d)
+    }
+}
+
+/// [`Traversability::rebuild`] on zero counts: every Occupied cell of the first `h` rows
+/// of `data` (`w` columns) goes into `counted` and marks its disk's row runs in `count`
+/// (+1 at a run's first cell, −1 after its last, wrapping); one running sum per marked row
+/// turns the marks into counts. A count never exceeds the disk's size, which the type
+/// holds, so the wrapping sums are exact.
+fn count_from_scratch<T: Count>(
+    count: &mut [T],
+    spans: &[(i32, i32)],
+    data: &[Occ],
+    w: usize,
+    h: usize,
+    counted: &mut CellBits,
+) {
+    let mut marked = vec![false; h];
+    for y in 0..h {
+        let row = &data[y * w..(y + 1) * w];
+        // Most of a row holds no obstacle: skip 16 cells at a time.
+        for (k, chunk) in row.chunks(16).enumerate() {
+            if !chunk.iter().fold(false, |a, o| a | o.is_occupied()) {
+                continue;
+            }
+            for (d, _) in chunk.iter().enumerate().filter(|(_, o)| o.is_occupied()) {
+                let x = k * 16 + d;
+                counted.insert(y * w + x);
+                for &(dy, hx) in spans {
+                    let ny = y as i64 + i64::from(dy);
+                    if ny < 0 || ny >= h as i64 {
+                        continue;
+                    }
+                    let ny = ny as usize;
+                    marked[ny] = true;
+                    let lo = (x as i64 - i64::from(hx)).max(0) as usize;
+                    let end = x + hx as usize + 1;
+                    let c = &mut count[ny * w + lo];
+                    *c = c.wrapping_add(T::ONE);
+                    if end < w {
+                        let c = &mut count[ny * w + end];
+                        *c = c.wrapping_sub(T::ONE);
+                    }
+                }
+            }
+        }
+    }
+    for (y, _) in marked.iter().enumerate().filter(|(_, m)| **m) {
+        let mut acc = T::ZERO;
+        for c in &mut count[y * w..(y + 1) * w] {
+            acc = acc.wrapping_add(*c);
+            // Stores only where the count is not already right: the zero runs between
+            // obstacles' disks stay untouched (a new map's pages are never written).
+            if *c != acc {
+                *c = acc;
+            }
+        }
+    }
+}
+
+/// Count (`occ`) or uncount the Occupied cell at `(x, y)` in the cells of its disk on a
+/// `w × h` grid, pushing each cell whose count becomes or stops being zero to `touched`.
+fn count_disk<T: Count>(
+    count: &mut [T],
+    disk: &[(i32, i32)],
+    (x, y): (i32, i32),
+    (w, h): (usize, usize),
+    occ: bool,
+    touched: &mut Vec<u32>,
+) {
+    let (wi, hi) = (w as i32, h as i32);
+    for &(dx, dy) in disk {
+        let (nx, ny) = (x + dx, y + dy);
+        if nx < 0 || ny < 0 || nx >= wi || ny >= hi {
+            continue;
+        }
+        let j = ny as usize * w + nx as usize;
+        if occ {
+            count[j] = count[j] + T::ONE;
+            if count[j] == T::ONE {
+                touched.push(j as u32);
+            }
+        } else {
+            count[j] = count[j] - T::ONE;
+            if count[j] == T::ZERO {
+                touched.push(j as u32);
+            }
+        }
     }
 }
 

@@ -8,6 +8,7 @@
 //! became or stopped being Occupied and O(changed cells) otherwise, independent of the map size.
 //! [`crate::frontier::frontiers_from_scratch`] is the oracle it is tested against.
 
+use crate::bits::CellBits;
 use crate::frontier::{FrontierSet, Region, is_frontier_xy};
 use crate::traversability::Traversability;
 use grid::{Grid, NEIGHBOURS8, Occ};
@@ -25,13 +26,13 @@ pub struct FrontierUpkeep {
     /// (allocated by the first update: a rebuild does not need them).
     stamp: Vec<u32>,
     epoch: u32,
-    /// Generation stamps for region labelling (allocated by the first labelling).
-    seen: Vec<u32>,
-    seen_epoch: u32,
+    /// Cells labelled by the region labelling in progress (allocated by the first
+    /// labelling; only frontier cells are marked, and they are unmarked at its end).
+    seen: CellBits,
     /// Work stack for region labelling.
     stack: Vec<u32>,
-    /// One row's flags for [`rebuild`](Self::rebuild).
-    row_buf: Vec<bool>,
+    /// Two rows' flags for [`rebuild`](Self::rebuild).
+    row_buf: Vec<u8>,
 }
 
 impl FrontierUpkeep {
@@ -43,8 +44,7 @@ impl FrontierUpkeep {
             touched: Vec::new(),
             stamp: Vec::new(),
             epoch: 0,
-            seen: Vec::new(),
-            seen_epoch: 0,
+            seen: CellBits::default(),
             stack: Vec::new(),
             row_buf: Vec::new(),
         }
@@ -96,12 +96,14 @@ impl FrontierUpkeep {
         self.frontiers.clear();
         let data = known.data();
         let h = h.min(data.len() / w.max(1));
-        // unknown[x]: some cell of column x in rows y − 1..=y + 1 is Unknown; a frontier
-        // cell has an Unknown 8-neighbour, so it has one of unknown[x − 1..=x + 1]. This
-        // byte pass leaves the exact test to the few cells near unknown space.
-        let mut unknown = std::mem::take(&mut self.row_buf);
-        unknown.clear();
-        unknown.resize(w + 2, false);
+        // unknown[x + 1]: some cell of column x in rows y − 1..=y + 1 is Unknown; a
+        // frontier cell has an Unknown 8-neighbour, so it has one of unknown[x..=x + 2].
+        // near[x]: cell x is Free and has one. These byte passes leave the exact test to
+        // the few cells near unknown space, found eight at a time.
+        let mut buf = std::mem::take(&mut self.row_buf);
+        buf.clear();
+        buf.resize(2 * w + 2, 0);
+        let (unknown, near) = buf.split_at_mut(w + 2);
         for y in 0..h {
             let row = &data[y * w..(y + 1) * w];
             let above = if y > 0 {
@@ -115,19 +117,29 @@ impl FrontierUpkeep {
                 row
             };
             for (((u, a), c), b) in unknown[1..=w].iter_mut().zip(above).zip(row).zip(below) {
-                *u = a.is_unknown() | c.is_unknown() | b.is_unknown();
+                *u = u8::from(a.is_unknown() | c.is_unknown() | b.is_unknown());
             }
-            for x in 0..w {
-                // unknown[x + 1] is column x
-                if (unknown[x] | unknown[x + 1] | unknown[x + 2])
-                    && row[x].is_free()
-                    && is_frontier_xy(known, &self.trav, y * w + x, x as i32, y as i32)
-                {
-                    self.frontiers.insert(y * w + x);
+            let sides = unknown[..w].iter().zip(&unknown[1..=w]).zip(&unknown[2..]);
+            for ((n, ((l, m), r)), c) in near.iter_mut().zip(sides).zip(row) {
+                *n = (l | m | r) & u8::from(c.is_free());
+            }
+            for (k, chunk) in near.chunks(8).enumerate() {
+                let any = match <[u8; 8]>::try_from(chunk) {
+                    Ok(eight) => u64::from_ne_bytes(eight) != 0,
+                    Err(_) => chunk.iter().any(|&n| n != 0),
+                };
+                if !any {
+                    continue;
+                }
+                for (d, _) in chunk.iter().enumerate().filter(|(_, n)| **n != 0) {
+                    let x = k * 8 + d;
+                    if is_frontier_xy(known, &self.trav, y * w + x, x as i32, y as i32) {
+                        self.frontiers.insert(y * w + x);
+                    }
                 }
             }
         }
-        self.row_buf = unknown;
+        self.row_buf = buf;
     }
 
     #[inline]
@@ -139,7 +151,7 @@ impl FrontierUpkeep {
         self.retest_xy(known, i, (i % w) as i32, (i / w) as i32);
     }
 
-    #[inline]
+    #[inline(always)]
     fn retest_xy(&mut self, known: &Grid<Occ>, i: usize, x: i32, y: i32) {
         if self.stamp[i] == self.epoch {
             return;
@@ -165,13 +177,12 @@ impl FrontierUpkeep {
         let (w, h) = (self.trav.width() as i32, self.trav.height() as i32);
         let cells = self.trav.width() * self.trav.height();
         if self.seen.len() != cells {
-            self.seen = vec![0; cells];
+            self.seen = CellBits::new(cells);
         }
-        self.seen_epoch = next_gen(self.seen_epoch, &mut self.seen);
         let mut n_out = 0;
         for k in 0..self.frontiers.len() {
             let seed = self.frontiers.cells()[k];
-            if self.seen[seed as usize] == self.seen_epoch {
+            if self.seen.contains(seed as usize) {
                 continue;
             }
             if n_out == out.len() {
@@ -183,7 +194,7 @@ impl FrontierUpkeep {
             }
             let region = &mut out[n_out];
             region.cells.clear();
-            self.seen[seed as usize] = self.seen_epoch;
+            self.seen.insert(seed as usize);
             self.stack.clear();
             self.stack.push(seed);
             while let Some(c) = self.stack.pop() {
@@ -195,8 +206,8 @@ impl FrontierUpkeep {
                         continue;
                     }
                     let j = (ny * w + nx) as usize;
-                    if self.seen[j] != self.seen_epoch && self.frontiers.contains(j) {
-                        self.seen[j] = self.seen_epoch;
+                    if !self.seen.contains(j) && self.frontiers.contains(j) {
+                        self.seen.insert(j);
                         self.stack.push(j as u32);
                     }
                 }
@@ -206,6 +217,9 @@ impl FrontierUpkeep {
                 region.finish(w as usize);
                 n_out += 1;
             }
+        }
+        for &c in self.frontiers.cells() {
+            self.seen.remove(c as usize);
         }
         out.truncate(n_out);
         out.sort_unstable_by_key(|r| r.cells[0]);

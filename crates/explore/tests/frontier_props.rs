@@ -225,7 +225,9 @@ fn check_walk(
     Ok(())
 }
 
-const CLEARANCES: [f64; 5] = [0.0, 1.0, 1.5, 2.5, std::f64::consts::SQRT_2];
+/// Clearances in cells: 9 has the largest disk kept in byte counts (253 cells), 9.5 one of
+/// 293 cells, kept in wider counts.
+const CLEARANCES: [f64; 7] = [0.0, 1.0, 1.5, 2.5, std::f64::consts::SQRT_2, 9.0, 9.5];
 
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(96))]

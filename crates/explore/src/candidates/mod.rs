@@ -10,18 +10,25 @@ pub mod coverage;
 pub mod dt_samples;
 pub mod rfe;
 
+use std::cell::{Cell, RefCell};
+
+use crate::bits::CellBits;
 use crate::decision::DecisionCtx;
 
 /// A set of goal candidates with O(1) membership, reused across decisions.
 ///
-/// A sparse set: a cell is a member iff its slot in `index` points at a place in `cells`
-/// that holds it back, so emptying is O(1) without generation stamps, and one array of the
-/// map's size (zeroed, so new pages cost nothing until touched) is all it allocates.
+/// Membership is one bit per cell of the map ([`CellBits`]), so a set of frontier cells
+/// touches few pages of it. The positions [`index_of`](Self::index_of) answers come from an
+/// array of the map's size that is written only when first asked: the assigners that only
+/// test membership never touch it.
 #[derive(Clone, Debug, Default)]
 pub struct CandidateSet {
     cells: Vec<u32>,
-    /// Position of each member in `cells` (stale entries of non-members point elsewhere).
-    index: Vec<u32>,
+    members: CellBits,
+    /// Position of each member in `cells`; valid for the members `cells[..indexed]`
+    /// (allocated and caught up by `index_of`).
+    index: RefCell<Vec<u32>>,
+    indexed: Cell<usize>,
 }
 
 impl CandidateSet {
@@ -29,19 +36,25 @@ impl CandidateSet {
     pub fn new(len: usize) -> Self {
         Self {
             cells: Vec::new(),
-            index: vec![0; len],
+            members: CellBits::new(len),
+            index: RefCell::new(Vec::new()),
+            indexed: Cell::new(0),
         }
     }
 
-    /// Empty the set in O(1).
+    /// Empty the set (cost ∝ members).
     pub fn clear(&mut self) {
+        for &c in &self.cells {
+            self.members.remove(c as usize);
+        }
         self.cells.clear();
+        self.indexed.set(0);
     }
 
     /// Add `cell` (no effect if present).
     pub fn insert(&mut self, cell: u32) {
-        if !self.contains(cell as usize) {
-            self.index[cell as usize] = self.cells.len() as u32;
+        if !self.members.contains(cell as usize) {
+            self.members.insert(cell as usize);
             self.cells.push(cell);
         }
     }
@@ -49,14 +62,27 @@ impl CandidateSet {
     /// Whether `cell` is a candidate.
     #[inline]
     pub fn contains(&self, cell: usize) -> bool {
-        let k = self.index[cell] as usize;
-        self.cells.get(k).is_some_and(|&c| c as usize == cell)
+        self.members.contains(cell)
     }
 
     /// The position of `cell` in [`cells`](Self::cells), if it is a candidate.
     #[inline]
     pub fn index_of(&self, cell: usize) -> Option<usize> {
-        self.contains(cell).then(|| self.index[cell] as usize)
+        if !self.contains(cell) {
+            return None;
+        }
+        let mut index = self.index.borrow_mut();
+        let from = self.indexed.get();
+        if from < self.cells.len() {
+            if index.len() != self.members.len() {
+                *index = vec![0; self.members.len()];
+            }
+            for (k, &c) in self.cells.iter().enumerate().skip(from) {
+                index[c as usize] = k as u32;
+            }
+            self.indexed.set(self.cells.len());
+        }
+        Some(index[cell] as usize)
     }
 
     /// The candidates, in the order they were added (deterministic).
@@ -76,7 +102,7 @@ impl CandidateSet {
 
     /// Whether the set is sized for a map of `len` cells.
     pub fn fits(&self, len: usize) -> bool {
-        self.index.len() == len
+        self.members.len() == len
     }
 }
 
@@ -154,6 +180,44 @@ mod tests {
                     prop_assert_eq!(set.contains(c as usize), at.is_some());
                     prop_assert_eq!(set.index_of(c as usize), at);
                 }
+            }
+        }
+
+        /// The same with positions asked only now and then, so that the lazily written
+        /// positions catch up over many inserts and clears at once.
+        #[test]
+        fn positions_catch_up_after_many_inserts(
+            ops in proptest::collection::vec((0u32..40, 0u8..12), 0..200)
+        ) {
+            let mut set = CandidateSet::new(40);
+            let mut list: Vec<u32> = Vec::new();
+            for (cell, op) in ops {
+                match op {
+                    0 => {
+                        set.clear();
+                        list.clear();
+                    }
+                    1 => {
+                        for c in 0..40 {
+                            let at = list.iter().position(|&x| x == c);
+                            prop_assert_eq!(set.index_of(c as usize), at);
+                        }
+                    }
+                    _ => {
+                        if !list.contains(&cell) {
+                            list.push(cell);
+                        }
+                        set.insert(cell);
+                    }
+                }
+                prop_assert_eq!(set.cells(), &list[..]);
+                for c in 0..40 {
+                    prop_assert_eq!(set.contains(c as usize), list.contains(&c));
+                }
+            }
+            for c in 0..40 {
+                let at = list.iter().position(|&x| x == c);
+                prop_assert_eq!(set.index_of(c as usize), at);
             }
         }
     }

@@ -1,0 +1,91 @@
+//! A set of cells as one bit per cell of the map.
+//!
+//! The sets that decisions keep over the whole map (frontier cells, goal candidates, the
+//! visited and inaccessible goals, region marks) hold few cells scattered along the
+//! frontiers. As bits, a 4 KiB page covers 32,768 cells (16 rows of a 2000-cell map) where
+//! a `u32` per cell covers 1,024 cells of one row: a set of frontier cells then touches a
+//! few dozen pages instead of thousands, and on a new map every first touch of a page is a
+//! page fault.
+
+/// Cells `0..len` as bits, all absent at first (a zeroed allocation).
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct CellBits {
+    words: Vec<u64>,
+    len: usize,
+}
+
+impl CellBits {
+    /// No cell of `0..len` present.
+    pub fn new(len: usize) -> Self {
+        Self {
+            words: vec![0; len.div_ceil(64)],
+            len,
+        }
+    }
+
+    /// Number of cells the set is for.
+    #[inline]
+    pub fn len(&self) -> usize {
+        self.len
+    }
+
+    /// Whether the set is for no cells at all.
+    #[inline]
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    /// Whether cell `i` is present (false for `i ≥ len`).
+    #[inline]
+    pub fn contains(&self, i: usize) -> bool {
+        i < self.len && (self.words[i >> 6] >> (i & 63)) & 1 != 0
+    }
+
+    /// Add cell `i < len`.
+    #[inline]
+    pub fn insert(&mut self, i: usize) {
+        assert!(i < self.len, "cell {i} outside a set of {} cells", self.len);
+        self.words[i >> 6] |= 1 << (i & 63);
+    }
+
+    /// Remove cell `i < len`.
+    #[inline]
+    pub fn remove(&mut self, i: usize) {
+        assert!(i < self.len, "cell {i} outside a set of {} cells", self.len);
+        self.words[i >> 6] &= !(1 << (i & 63));
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        /// Inserts and removes in any order: the bits hold what a `Vec<bool>` holds.
+        #[test]
+        fn behaves_as_a_bool_per_cell(
+            len in 0usize..200,
+            ops in proptest::collection::vec((0usize..200, any::<bool>()), 0..300),
+        ) {
+            let mut bits = CellBits::new(len);
+            let mut oracle = vec![false; len];
+            for (i, add) in ops {
+                if i >= len {
+                    prop_assert!(!bits.contains(i));
+                    continue;
+                }
+                if add {
+                    bits.insert(i);
+                } else {
+                    bits.remove(i);
+                }
+                oracle[i] = add;
+                for (c, &o) in oracle.iter().enumerate() {
+                    prop_assert_eq!(bits.contains(c), o);
+                }
+            }
+            prop_assert_eq!(bits.len(), len);
+        }
+    }
+}
