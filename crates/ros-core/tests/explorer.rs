@@ -16,6 +16,16 @@ fn config(strategy: &str, sensor: &str) -> ExplorerConfig {
     c
 }
 
+/// The rooms world sensed from cell (1, 1), its map fed to `ex`: the world and the robot's
+/// position.
+fn start_in_rooms(ex: &mut Explorer) -> (World, f64, f64) {
+    let mut world = rooms();
+    let (x, y) = world.world(Cell::new(1, 1));
+    world.sense_at(x, y);
+    ex.update_map(&world.map_msg()).unwrap();
+    (world, x, y)
+}
+
 /// Drive: decide, teleport to the goal, sense, feed the map; until the explorer stops.
 fn explore(
     world: &mut World,
@@ -88,11 +98,8 @@ fn rooms() -> World {
 
 #[test]
 fn a_failed_goal_is_never_chosen_again() {
-    let mut world = rooms();
     let mut ex = Explorer::new(config("cf", "los:r=3"));
-    let (x, y) = world.world(Cell::new(1, 1));
-    world.sense_at(x, y);
-    ex.update_map(&world.map_msg()).unwrap();
+    let (_, x, y) = start_in_rooms(&mut ex);
     let mut failed = Vec::new();
     // Nav2 fails every goal: each goes on the inaccessible list, none comes back.
     loop {
@@ -123,14 +130,11 @@ fn a_failed_goal_is_never_chosen_again() {
 
 #[test]
 fn no_progress_for_the_timeout_gives_the_goal_up() {
-    let mut world = rooms();
     let mut c = config("cf", "los:r=3");
     c.progress_timeout_s = 5.0;
     c.goal_tolerance_m = 0.1;
     let mut ex = Explorer::new(c);
-    let (x, y) = world.world(Cell::new(1, 1));
-    world.sense_at(x, y);
-    ex.update_map(&world.map_msg()).unwrap();
+    let (_, x, y) = start_in_rooms(&mut ex);
     let Decision::Goal(g) = ex.decide(x, y, 100.0) else {
         panic!()
     };
@@ -149,11 +153,8 @@ fn no_progress_for_the_timeout_gives_the_goal_up() {
 
 #[test]
 fn repetitive_rechecking_drops_a_goal_that_stopped_being_a_frontier() {
-    let mut world = rooms();
     let mut ex = Explorer::new(config("cf-rr", "los:r=3"));
-    let (x, y) = world.world(Cell::new(1, 1));
-    world.sense_at(x, y);
-    ex.update_map(&world.map_msg()).unwrap();
+    let (mut world, x, y) = start_in_rooms(&mut ex);
     let Decision::Goal(g) = ex.decide(x, y, 0.0) else {
         panic!()
     };
@@ -197,12 +198,9 @@ fn a_door_narrower_than_the_clearance_stops_with_the_reason() {
 
 #[test]
 fn a_robot_off_the_map_or_in_a_wall_is_a_stop_reason() {
-    let mut world = rooms();
     let mut ex = Explorer::new(config("cf", "los:r=3"));
     assert_eq!(ex.decide(0.0, 0.0, 0.0), Decision::Stop(StopReason::NoMap));
-    let (x, y) = world.world(Cell::new(1, 1));
-    world.sense_at(x, y);
-    ex.update_map(&world.map_msg()).unwrap();
+    let (world, _, _) = start_in_rooms(&mut ex);
     assert!(matches!(
         ex.decide(-5.0, 1.0, 0.0),
         Decision::Stop(StopReason::RobotOffMap { .. })
@@ -216,11 +214,8 @@ fn a_robot_off_the_map_or_in_a_wall_is_a_stop_reason() {
 
 #[test]
 fn bad_map_messages_are_errors_and_change_nothing() {
-    let mut world = rooms();
     let mut ex = Explorer::new(config("cf", "los:r=3"));
-    let (x, y) = world.world(Cell::new(1, 1));
-    world.sense_at(x, y);
-    ex.update_map(&world.map_msg()).unwrap();
+    let (world, x, y) = start_in_rooms(&mut ex);
     let before = ex.decide(x, y, 0.0);
     for bad in [
         {
@@ -249,11 +244,8 @@ fn bad_map_messages_are_errors_and_change_nothing() {
 fn a_growing_map_keeps_its_inaccessible_goals() {
     // A SLAM map grows: the same world with a border of unknown cells added on the left and
     // the bottom, so the origin moves; the goal given up stays given up.
-    let mut world = rooms();
     let mut ex = Explorer::new(config("cf", "los:r=3"));
-    let (x, y) = world.world(Cell::new(1, 1));
-    world.sense_at(x, y);
-    ex.update_map(&world.map_msg()).unwrap();
+    let (world, x, y) = start_in_rooms(&mut ex);
     let Decision::Goal(g) = ex.decide(x, y, 0.0) else {
         panic!()
     };
@@ -283,13 +275,10 @@ fn a_growing_map_keeps_its_inaccessible_goals() {
 #[test]
 fn the_same_seed_gives_the_same_goals() {
     let goals = |seed| {
-        let mut world = rooms();
         let mut c = config("random", "los:r=3");
         c.seed = seed;
         let mut ex = Explorer::new(c);
-        let (x, y) = world.world(Cell::new(1, 1));
-        world.sense_at(x, y);
-        ex.update_map(&world.map_msg()).unwrap();
+        let (_, x, y) = start_in_rooms(&mut ex);
         (0..5)
             .map(|_| {
                 let d = ex.decide(x, y, 0.0);
