@@ -177,27 +177,23 @@ trait Count: Copy + Eq + std::ops::Add<Output = Self> + std::ops::Sub<Output = S
     fn wrapping_sub(self, d: Self) -> Self;
 }
 
-impl Count for u8 {
-    const ZERO: Self = 0;
-    const ONE: Self = 1;
-    fn wrapping_add(self, d: Self) -> Self {
-        u8::wrapping_add(self, d)
-    }
-    fn wrapping_sub(self, d: Self) -> Self {
-        u8::wrapping_sub(self, d)
-    }
+/// `Count` for an unsigned integer type, by its own wrapping arithmetic.
+macro_rules! impl_count {
+    ($($t:ty),*) => {$(
+        impl Count for $t {
+            const ZERO: Self = 0;
+            const ONE: Self = 1;
+            fn wrapping_add(self, d: Self) -> Self {
+                <$t>::wrapping_add(self, d)
+            }
+            fn wrapping_sub(self, d: Self) -> Self {
+                <$t>::wrapping_sub(self, d)
+            }
+        }
+    )*};
 }
 
-impl Count for u32 {
-    const ZERO: Self = 0;
-    const ONE: Self = 1;
-    fn wrapping_add(self, d: Self) -> Self {
-        u32::wrapping_add(self, d)
-    }
-    fn wrapping_sub(self, d: Self) -> Self {
-        u32::wrapping_sub(self, d)
-    }
-}
+impl_count!(u8, u32);
 
 /// [`Traversability::rebuild`] on zero counts: every Occupied cell of the first `h` rows
 /// of `data` (`w` columns) goes into `counted` and marks its disk's row runs in `count`
