@@ -80,6 +80,102 @@ fn oracle(fx: &Fixture, robot: u32) -> Vec<(u32, Vec<u32>)> {
     out
 }
 
+/// The slow Algorithm 1 on blocks of `b × b` cells, as CC computes it on maps finer than
+/// 0.1 m: blocks occupied if any cell is, else unknown if any is, else free; the frontier
+/// cells grouped by block; a free block a candidate through its eligible cell nearest the
+/// block's centre; a group covered from a block that sees, within 0.8 ρ / b, a block holding
+/// an unknown 8-neighbour of one of its cells.
+fn block_oracle(fx: &Fixture, robot: u32, b: usize) -> Vec<(u32, Vec<u32>)> {
+    let known = &fx.known;
+    let (w, h) = (known.width(), known.height());
+    let (cw, ch) = (w.div_ceil(b), h.div_ceil(b));
+    let blk = |i: usize| (i / w / b) * cw + (i % w) / b;
+    let mut coarse = Grid::new(cw, ch, Occ::Free);
+    for i in 0..w * h {
+        match known[i] {
+            Occ::Occupied => coarse[blk(i)] = Occ::Occupied,
+            Occ::Unknown if coarse[blk(i)] != Occ::Occupied => coarse[blk(i)] = Occ::Unknown,
+            _ => {}
+        }
+    }
+    let (front, cells) = frontiers_and_eligible(fx, robot);
+    let mut keys: std::collections::BTreeMap<usize, Vec<u32>> = Default::default();
+    for &f in &front {
+        keys.entry(blk(f as usize)).or_default().push(f);
+    }
+    let groups: Vec<Vec<u32>> = keys.values().cloned().collect();
+    let targets: Vec<Vec<usize>> = groups
+        .iter()
+        .map(|g| {
+            let mut t: Vec<usize> = g
+                .iter()
+                .flat_map(|&f| known.neighbours8(f as usize))
+                .filter(|&u| known[u] == Occ::Unknown)
+                .map(blk)
+                .collect();
+            t.sort_unstable();
+            t.dedup();
+            t
+        })
+        .collect();
+    // Each free block's representative: its eligible cell nearest the centre.
+    let mut reps: Vec<(u32, usize)> = Vec::new();
+    for c in 0..cw * ch {
+        if coarse[c] != Occ::Free {
+            continue;
+        }
+        let (bx, by) = ((c % cw) * b, (c / cw) * b);
+        let centre = ((2 * bx + b - 1) as i64, (2 * by + b - 1) as i64);
+        let rep = cells
+            .iter()
+            .copied()
+            .filter(|&i| blk(i as usize) == c)
+            .min_by_key(|&i| {
+                let (x, y) = ((i as usize % w) as i64, (i as usize / w) as i64);
+                let (dx, dy) = (2 * x - centre.0, 2 * y - centre.1);
+                (dx * dx + dy * dy, i)
+            });
+        if let Some(rep) = rep {
+            reps.push((rep, c));
+        }
+    }
+    reps.sort_unstable();
+    let r = 0.8 * fx.range / b as f64;
+    let sees: Vec<Vec<usize>> = reps
+        .iter()
+        .map(|&(_, c)| {
+            (0..groups.len())
+                .filter(|&k| {
+                    targets[k]
+                        .iter()
+                        .any(|&t| los_visible(&coarse, coarse.cell(c), coarse.cell(t), r))
+                })
+                .collect()
+        })
+        .collect();
+    let mut covered = vec![false; groups.len()];
+    let mut out = Vec::new();
+    loop {
+        let mut best: Option<(usize, usize)> = None;
+        for (k, s) in sees.iter().enumerate() {
+            let cnt = s.iter().filter(|&&g| !covered[g]).count();
+            if cnt > 0 && best.is_none_or(|(bc, _)| cnt > bc) {
+                best = Some((cnt, k));
+            }
+        }
+        let Some((_, k)) = best else { break };
+        let mut credit = Vec::new();
+        for &g in &sees[k] {
+            if !covered[g] {
+                covered[g] = true;
+                credit.extend_from_slice(&groups[g]);
+            }
+        }
+        out.push((reps[k].0, credit));
+    }
+    out
+}
+
 /// Run CC on the fixture: the candidates in the order chosen, each with the frontier cells
 /// credited to it, and the candidate set's cells.
 fn run_cc(fx: &mut Fixture) -> (Vec<(u32, Vec<u32>)>, Vec<u32>) {
@@ -240,8 +336,10 @@ proptest! {
             (0usize..40, 0usize..24, 1usize..12, 1usize..8, prop::collection::vec(0u8..100, 7)),
             1..6,
         ),
+        resolution in prop_oneof![Just(0.2f64), Just(0.05), Just(0.03)],
     ) {
-        // Belief changes in random boxes between decisions; one fixture keeps its cache.
+        // Belief changes in random boxes between decisions; one fixture keeps its cache
+        // (and, on fine maps, its blocks).
         let (w, h) = (40, 24);
         let known = random_known(w, h, &bits, cut);
         let up = {
@@ -253,9 +351,11 @@ proptest! {
             return Ok(());
         };
         let mut kept = Fixture::new(known, vec![robot as u32], range, 3);
+        kept.resolution = resolution;
         for (x0, y0, bw, bh, pattern) in rounds {
             let before = run_cc(&mut kept);
             let mut fresh = Fixture::new(kept.known.clone(), kept.robots.clone(), range, 3);
+            fresh.resolution = resolution;
             prop_assert_eq!(&before, &run_cc(&mut fresh));
             // change a box of cells
             for y in y0..(y0 + bh).min(h) {
@@ -284,6 +384,7 @@ proptest! {
             out.cells().to_vec()
         };
         let mut fresh = Fixture::new(kept.known.clone(), kept.robots.clone(), range, 3);
+        fresh.resolution = resolution;
         let want = {
             let mut out = CandidateSet::new(w * h);
             let mut ctx = fresh.ctx();
@@ -291,5 +392,47 @@ proptest! {
             out.cells().to_vec()
         };
         prop_assert_eq!(last, want);
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(96))]
+
+    /// The deviation on fine maps: the cover on blocks equals the slow block oracle, and
+    /// every candidate is an eligible cell.
+    #[test]
+    fn cover_on_blocks_equals_the_slow_block_greedy(
+        bits in prop::collection::vec(0u8..100, 41),
+        cut in 8usize..20,
+        (resolution, b) in prop_oneof![Just((0.05, 2usize)), Just((0.03, 3)), Just((0.0125, 8))],
+        range in prop_oneof![2.0f64..14.0, 40.0f64..64.0],
+        visited in prop::collection::vec(0usize..480, 0..4),
+    ) {
+        let (w, h) = (24, 20);
+        let known = random_known(w, h, &bits, cut);
+        let up = {
+            let mut u = FrontierUpkeep::new(w, h, 0.0);
+            u.rebuild(&known);
+            u
+        };
+        let Some(robot) = largest_component_cell(&known, &up) else {
+            return Ok(());
+        };
+        prop_assert_eq!(explore::candidates::coverage::cover_block(resolution), b);
+        let mut fx = Fixture::new(known, vec![robot as u32], range, 3);
+        fx.resolution = resolution;
+        for v in visited {
+            if v != robot {
+                fx.lists.mark_visited(v as u32);
+            }
+        }
+        let (got, cells) = run_cc(&mut fx);
+        let (_, eligible) = frontiers_and_eligible(&fx, robot as u32);
+        for (c, _) in &got {
+            prop_assert!(eligible.binary_search(c).is_ok(), "{} is not eligible", c);
+        }
+        prop_assert_eq!(&got, &block_oracle(&fx, robot as u32, b));
+        let chosen: Vec<u32> = got.iter().map(|(c, _)| *c).collect();
+        prop_assert_eq!(cells, chosen);
     }
 }

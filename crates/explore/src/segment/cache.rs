@@ -41,10 +41,16 @@ pub const SEGMENT_CELL_M: f64 = 0.1;
 /// The block side, in cells, for a map of `resolution` metres per cell: the most cells that
 /// fit in [`SEGMENT_CELL_M`] (at least 1, at most 8).
 pub fn block_for(resolution: f64) -> usize {
+    block_side(SEGMENT_CELL_M, resolution)
+}
+
+/// The most cells of `resolution` metres that fit in `width_m` metres, at least 1 and at
+/// most 8 (blocks of work on fine maps).
+pub fn block_side(width_m: f64, resolution: f64) -> usize {
     if !(resolution.is_finite() && resolution > 0.0) {
         return 1;
     }
-    ((SEGMENT_CELL_M / resolution + 1e-9).floor() as usize).clamp(1, 8)
+    ((width_m / resolution + 1e-9).floor() as usize).clamp(1, 8)
 }
 
 /// The segmentation kept between decisions.

@@ -26,6 +26,8 @@ pub struct Fixture {
     pub deciding: Vec<bool>,
     pub goals: Vec<Option<u32>>,
     pub range: f64,
+    /// Metres per cell given to the decision (0.2 unless a test sets it).
+    pub resolution: f64,
 }
 
 impl Fixture {
@@ -45,6 +47,7 @@ impl Fixture {
             goals: vec![None; m],
             robots,
             range,
+            resolution: 0.2,
             known,
             upkeep,
         }
@@ -60,7 +63,7 @@ impl Fixture {
             deciding: &self.deciding,
             goals: &self.goals,
             lists: &self.lists,
-            resolution: 0.2,
+            resolution: self.resolution,
             sensor_range_cells: self.range,
             rng: &mut self.rng,
             belief: &self.belief,
