@@ -41,8 +41,9 @@ use crate::scenario::{ScenarioFile, Source};
 /// decision-theoretic presets sample near reachable frontiers only, stop when none is left,
 /// and gate predicted rays at unseen wall cells; v3: the segmenting presets segment maps
 /// finer than 0.1 m on 0.1 m blocks; v4: CC covers a frontier cell from where the unknown
-/// next to it is seen; v5: CC covers maps finer than 0.1 m on 0.1 m blocks).
-pub const STRATEGY_REVISION: u32 = 5;
+/// next to it is seen; v5: CC covers maps finer than 0.1 m on 0.1 m blocks; v6:
+/// MA's routes are optimal up to 12 nodes).
+pub const STRATEGY_REVISION: u32 = 6;
 
 /// A resolved study: environments, variants, common settings and the flat trial list.
 #[derive(Clone, Debug)]
