@@ -9,7 +9,11 @@
 //!   the start;
 //! - each improved by local search until no move improves it: full 3-opt (every reorder
 //!   and reversal of two adjacent segments) up to [`FULL_3OPT_UP_TO`] nodes, 2-opt and
-//!   Or-opt (segments of 1–3 nodes moved elsewhere, forwards or reversed) beyond;
+//!   Or-opt (segments of 1–3 nodes moved elsewhere, forwards or reversed) beyond, over
+//!   neighbour lists: a move must join a node to one of its [`NEIGHBOURS`] nearest, and
+//!   2-opt looks again only at nodes whose edges changed (Bentley's neighbour lists and
+//!   don't-look bits). Each pass of the plain moves was O(n²), and MA on all frontier
+//!   cells (routes of hundreds of goals) spent 93 % of a run in them;
 //! - then [`DEFAULT_KICKS`] perturbations of the best route (double bridges and other
 //!   random 3-opt reconnections from a fixed-seed generator), each followed by the local
 //!   search, keeping improvements.
@@ -53,6 +57,9 @@ pub const DEFAULT_KICKS: usize = 100;
 
 /// Up to this many nodes (the start included) the full-effort solver is exact.
 pub const EXACT_UP_TO: usize = 12;
+
+/// Candidate neighbours per node of the 2-opt and Or-opt moves on large routes.
+pub const NEIGHBOURS: usize = 10;
 
 /// xorshift64* step: a tiny fixed-seed generator for the perturbations.
 fn next(state: &mut u64) -> u64 {
@@ -107,6 +114,16 @@ pub struct OpenTsp {
     /// Held–Karp's table: `dp[set * m + j]`, the shortest route from node 0 through the
     /// goals of `set` (bit j − 1 for goal j) ending at goal j + 1; `m = n − 1`.
     dp: Vec<f64>,
+    /// `nbrs[a * k..(a + 1) * k]`: node a's nearest other nodes, nearest first (k =
+    /// `min(NEIGHBOURS, n − 1)`), for the instance in `nbrs_of`.
+    nbrs: Vec<u32>,
+    /// Scratch for selecting neighbours: (cost, node).
+    near: Vec<(f64, u32)>,
+    /// Position of each node in `route`.
+    pos: Vec<usize>,
+    /// 2-opt's work list and its membership marks.
+    queue: std::collections::VecDeque<u32>,
+    queued: Vec<bool>,
     route: Vec<u32>,
     best: Vec<u32>,
     used: Vec<bool>,
@@ -140,6 +157,11 @@ impl OpenTsp {
     pub fn with_effort(starts: usize, kicks: usize) -> Self {
         Self {
             dp: Vec::new(),
+            nbrs: Vec::new(),
+            near: Vec::new(),
+            pos: Vec::new(),
+            queue: Default::default(),
+            queued: Vec::new(),
             route: Vec::new(),
             best: Vec::new(),
             used: Vec::new(),
@@ -162,6 +184,9 @@ impl OpenTsp {
         }
         if self.kicks > 0 && (3..=EXACT_UP_TO).contains(&n) {
             return self.held_karp(n, d);
+        }
+        if n > FULL_3OPT_UP_TO {
+            self.build_neighbours(n, d);
         }
         // Multi-start: nearest neighbour after each of the first nodes nearest to the start,
         // each improved by local search; keep the best.
@@ -300,6 +325,140 @@ impl OpenTsp {
         }
     }
 
+    /// Each node's [`NEIGHBOURS`] nearest other nodes, nearest first (ties to the lower node).
+    fn build_neighbours(&mut self, n: usize, d: &[f64]) {
+        let k = NEIGHBOURS.min(n - 1);
+        self.nbrs.clear();
+        for a in 0..n {
+            self.near.clear();
+            self.near.extend(
+                (0..n as u32)
+                    .filter(|&b| b as usize != a)
+                    .map(|b| (d[a * n + b as usize], b)),
+            );
+            let by = |x: &(f64, u32), y: &(f64, u32)| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1));
+            if self.near.len() > k {
+                self.near.select_nth_unstable_by(k - 1, by);
+                self.near.truncate(k);
+            }
+            self.near.sort_unstable_by(by);
+            self.nbrs.extend(self.near.iter().map(|&(_, b)| b));
+        }
+    }
+
+    /// Reverse `route[i..=j]` and keep `pos` up to date.
+    fn reverse(&mut self, i: usize, j: usize) {
+        self.route[i..=j].reverse();
+        for p in i..=j {
+            self.pos[self.route[p] as usize] = p;
+        }
+    }
+
+    /// Put node `a` on 2-opt's work list.
+    fn enqueue(&mut self, a: u32) {
+        if !self.queued[a as usize] {
+            self.queued[a as usize] = true;
+            self.queue.push_back(a);
+        }
+    }
+
+    /// 2-opt over neighbour lists with don't-look bits: for each node on the work list,
+    /// try to join it to a near neighbour by reversing the part of the route between them
+    /// (so that the new edge replaces the node's edge to its successor or predecessor);
+    /// the nodes of the edges changed go back on the list. Returns whether anything changed.
+    fn two_opt(&mut self, n: usize, d: &[f64]) -> bool {
+        let len = self.route.len();
+        let k = NEIGHBOURS.min(n - 1);
+        let c = |a: u32, b: u32| d[a as usize * n + b as usize];
+        self.pos.clear();
+        self.pos.resize(n, 0);
+        for (p, &v) in self.route.iter().enumerate() {
+            self.pos[v as usize] = p;
+        }
+        self.queued.clear();
+        self.queued.resize(n, false);
+        self.queue.clear();
+        for p in 0..len {
+            let a = self.route[p];
+            self.enqueue(a);
+        }
+        let mut any = false;
+        while let Some(a) = self.queue.pop_front() {
+            self.queued[a as usize] = false;
+            let mut changed: Option<[u32; 4]> = None;
+            let p = self.pos[a as usize];
+            // The successor edge (a, s) gives way to (a, b).
+            if p + 1 < len {
+                let s = self.route[p + 1];
+                let das = c(a, s);
+                for &b in &self.nbrs[a as usize * k..(a as usize + 1) * k] {
+                    let dab = c(a, b);
+                    if dab >= das - EPS {
+                        break;
+                    }
+                    let q = self.pos[b as usize];
+                    if q > p + 1 {
+                        // reverse route[p + 1..=q]: edges (a, b) and (s, after b)
+                        let after = (q + 1 < len).then(|| self.route[q + 1]);
+                        let delta = dab - das + after.map_or(0.0, |t| c(s, t) - c(b, t));
+                        if delta < -EPS {
+                            self.reverse(p + 1, q);
+                            changed = Some([a, s, b, after.unwrap_or(a)]);
+                            break;
+                        }
+                    } else if q + 1 < p {
+                        // reverse route[q + 1..=p]: edges (b, a) and (after b, s)
+                        let t = self.route[q + 1];
+                        let delta = dab + c(t, s) - c(b, t) - das;
+                        if delta < -EPS {
+                            self.reverse(q + 1, p);
+                            changed = Some([a, s, b, t]);
+                            break;
+                        }
+                    }
+                }
+            }
+            // The predecessor edge (before a, a) gives way to (b, a).
+            if changed.is_none() && p >= 1 {
+                let pr = self.route[p - 1];
+                let dap = c(a, pr);
+                for &b in &self.nbrs[a as usize * k..(a as usize + 1) * k] {
+                    let dab = c(a, b);
+                    if dab >= dap - EPS {
+                        break;
+                    }
+                    let q = self.pos[b as usize];
+                    if q > p + 1 {
+                        // reverse route[p..=q − 1]: edges (pr, before b) and (a, b)
+                        let t = self.route[q - 1];
+                        let delta = c(pr, t) + dab - dap - c(t, b);
+                        if delta < -EPS {
+                            self.reverse(p, q - 1);
+                            changed = Some([a, pr, b, t]);
+                            break;
+                        }
+                    } else if q >= 1 && q + 1 < p {
+                        // reverse route[q..=p − 1]: edges (before b, pr) and (b, a)
+                        let t = self.route[q - 1];
+                        let delta = c(t, pr) + dab - c(t, b) - dap;
+                        if delta < -EPS {
+                            self.reverse(q, p - 1);
+                            changed = Some([a, pr, b, t]);
+                            break;
+                        }
+                    }
+                }
+            }
+            if let Some(nodes) = changed {
+                any = true;
+                for v in nodes {
+                    self.enqueue(v);
+                }
+            }
+        }
+        any
+    }
+
     /// The last route: node 0 first, then every other node once.
     pub fn route(&self) -> &[u32] {
         &self.route
@@ -382,88 +541,86 @@ impl OpenTsp {
         any
     }
 
-    /// 2-opt: reverse `route[i..=j]`; repeat passes until none improves. Returns whether
-    /// anything changed.
-    fn two_opt(&mut self, n: usize, d: &[f64]) -> bool {
-        let r = &mut self.route;
-        let len = r.len();
+    /// Or-opt over neighbour lists: move a segment of 1–3 nodes, forwards or reversed, next
+    /// to a near neighbour of one of its ends (between that neighbour and the node before or
+    /// after it). Passes until none improves. Returns whether anything changed.
+    fn or_opt(&mut self, n: usize, d: &[f64]) -> bool {
         let c = |a: u32, b: u32| d[a as usize * n + b as usize];
+        let len = self.route.len();
+        let k = NEIGHBOURS.min(n - 1);
+        self.pos.clear();
+        self.pos.resize(n, 0);
+        for (p, &v) in self.route.iter().enumerate() {
+            self.pos[v as usize] = p;
+        }
         let mut any = false;
         let mut improved = true;
         while improved {
             improved = false;
-            for i in 1..len {
-                for j in i + 1..len {
-                    let mut delta = c(r[i - 1], r[j]) - c(r[i - 1], r[i]);
-                    if j + 1 < len {
-                        delta += c(r[i], r[j + 1]) - c(r[j], r[j + 1]);
-                    }
-                    if delta < -EPS {
-                        r[i..=j].reverse();
+            for seg in 1..=3usize {
+                let mut i = 1;
+                while i + seg <= len {
+                    let e = i + seg; // the segment is route[i..e]
+                    if self.or_move(i, e, k, &c) {
                         improved = true;
                         any = true;
                     }
+                    i += 1;
                 }
             }
         }
         any
     }
 
-    /// Or-opt: move a segment of 1–3 nodes (possibly reversed) to another place in the route.
-    /// Returns whether anything changed.
-    fn or_opt(&mut self, n: usize, d: &[f64]) -> bool {
-        let c = |a: u32, b: u32| d[a as usize * n + b as usize];
+    /// Try Or-opt moves of `route[i..e]` next to near neighbours of its ends; make the first
+    /// that improves. Returns whether one was made.
+    fn or_move(&mut self, i: usize, e: usize, k: usize, c: &impl Fn(u32, u32) -> f64) -> bool {
         let len = self.route.len();
-        let max_seg = 3;
-        let mut any = false;
-        let mut improved = true;
-        while improved {
-            improved = false;
-            'outer: for seg in 1..=max_seg {
-                for i in 1..len {
-                    let e = i + seg; // segment is route[i..e]
-                    if e > len {
-                        break;
+        let r = &self.route;
+        let (first, last, prev) = (r[i], r[e - 1], r[i - 1]);
+        let removed = if e < len {
+            c(prev, first) + c(last, r[e]) - c(prev, r[e])
+        } else {
+            c(prev, first)
+        };
+        // positions of the nodes, by a scan of the segment's neighbours
+        let inside = |p: usize| (i..e).contains(&p);
+        for (u, v, u_first) in [(first, last, true), (last, first, false)] {
+            for &b in &self.nbrs[u as usize * k..(u as usize + 1) * k] {
+                let q = self.pos[b as usize];
+                if inside(q) {
+                    continue;
+                }
+                // between b and the node after it: b, u … v, after
+                if q + 1 == len || !inside(q + 1) {
+                    let after = (q + 1 < len).then(|| self.route[q + 1]);
+                    let added = c(b, u) + after.map_or(0.0, |t| c(v, t) - c(b, t));
+                    if added - removed < -EPS {
+                        self.move_segment_tracked(i, e, q, !u_first);
+                        return true;
                     }
-                    let r = &self.route;
-                    let (first, last) = (r[i], r[e - 1]);
-                    let prev = r[i - 1];
-                    // Gain of taking the segment out.
-                    let removed = if e < len {
-                        c(prev, first) + c(last, r[e]) - c(prev, r[e])
-                    } else {
-                        c(prev, first)
-                    };
-                    // Insert between r[p] and r[p + 1] (or after the last node), outside the
-                    // segment and not where it already is.
-                    for p in 0..len {
-                        if (i - 1..e).contains(&p) {
-                            continue;
-                        }
-                        let a = r[p];
-                        let next = if p + 1 < len { Some(r[p + 1]) } else { None };
-                        for reversed in [false, true] {
-                            let (u, v) = if reversed {
-                                (last, first)
-                            } else {
-                                (first, last)
-                            };
-                            let added = match next {
-                                Some(b) => c(a, u) + c(v, b) - c(a, b),
-                                None => c(a, u),
-                            };
-                            if added - removed < -EPS {
-                                self.move_segment(i, e, p, reversed);
-                                improved = true;
-                                any = true;
-                                continue 'outer;
-                            }
-                        }
+                }
+                // between the node before b and b: before, v … u, b
+                if q >= 1 && !inside(q - 1) {
+                    let before = self.route[q - 1];
+                    let added = c(u, b) + c(before, v) - c(before, b);
+                    if added - removed < -EPS {
+                        self.move_segment_tracked(i, e, q - 1, u_first);
+                        return true;
                     }
                 }
             }
         }
-        any
+        false
+    }
+
+    /// [`move_segment`](Self::move_segment), keeping `pos` up to date for the nodes moved.
+    fn move_segment_tracked(&mut self, i: usize, e: usize, p: usize, reversed: bool) {
+        self.move_segment(i, e, p, reversed);
+        let (a, b) = if p < i { (p + 1, e) } else { (i, p + 1) };
+        for q in a..b {
+            self.pos[self.route[q] as usize] = q;
+        }
     }
 
     /// Move `route[i..e]` to just after the node now at position `p` (outside `i-1..e`),

@@ -198,3 +198,131 @@ proptest! {
         prop_assert_eq!(ca, cb);
     }
 }
+
+/// The plain local search the neighbour lists replace on large routes: nearest neighbour
+/// from the start, then full passes of 2-opt (every reversal) and Or-opt (every segment of
+/// 1–3 nodes to every other place, both ways) until neither improves.
+fn plain_local_search(n: usize, d: &[f64]) -> f64 {
+    let c = |a: u32, b: u32| d[a as usize * n + b as usize];
+    let mut r: Vec<u32> = vec![0];
+    let mut used = vec![false; n];
+    used[0] = true;
+    for _ in 1..n {
+        let at = *r.last().expect("non-empty");
+        let next = (0..n as u32)
+            .filter(|&j| !used[j as usize])
+            .min_by(|&a, &b| c(at, a).total_cmp(&c(at, b)).then(a.cmp(&b)))
+            .expect("a node left");
+        used[next as usize] = true;
+        r.push(next);
+    }
+    let cost = |r: &[u32]| route_cost(n, d, r);
+    loop {
+        let before = cost(&r);
+        for i in 1..n {
+            for j in i + 1..n {
+                let mut t = r.clone();
+                t[i..=j].reverse();
+                if cost(&t) < cost(&r) - 1e-9 {
+                    r = t;
+                }
+            }
+        }
+        for seg in 1..=3 {
+            for i in 1..n {
+                if i + seg > n {
+                    break;
+                }
+                for at in 0..=n - seg {
+                    for rev in [false, true] {
+                        let mut t = r.clone();
+                        let mut piece: Vec<u32> = t.drain(i..i + seg).collect();
+                        if rev {
+                            piece.reverse();
+                        }
+                        if at < 1 {
+                            continue;
+                        }
+                        let at = at.min(t.len());
+                        t.splice(at..at, piece);
+                        if cost(&t) < cost(&r) - 1e-9 {
+                            r = t;
+                        }
+                    }
+                }
+            }
+        }
+        if cost(&r) >= before - 1e-9 {
+            return cost(&r);
+        }
+    }
+}
+
+/// Points from a fixed-seed generator (xorshift), so the quality test is the same on
+/// every run.
+fn seeded_points(n: usize, seed: u64) -> Vec<(f64, f64)> {
+    let mut s = seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1;
+    let mut next = || {
+        s ^= s << 13;
+        s ^= s >> 7;
+        s ^= s << 17;
+        (s >> 11) as f64 / (1u64 << 53) as f64 * 100.0
+    };
+    (0..n).map(|_| (next(), next())).collect()
+}
+
+#[test]
+fn large_routes_are_as_short_as_the_plain_local_searchs() {
+    // 24 fixed instances of 30–90 nodes: the solver (neighbour lists, starts and kicks)
+    // against one run of the plain O(n²)-per-pass 2-opt and Or-opt.
+    let mut ratios = Vec::new();
+    for seed in 0..24u64 {
+        let n = 30 + (seed as usize * 7) % 61;
+        let pts = seeded_points(n, seed);
+        let d = euclid(&pts);
+        let mut t = OpenTsp::new();
+        let cost = t.solve(n, &d);
+        check_route(n, t.route());
+        assert!((cost - route_cost(n, &d, t.route())).abs() < 1e-9);
+        ratios.push(cost / plain_local_search(n, &d));
+    }
+    let mean = ratios.iter().sum::<f64>() / ratios.len() as f64;
+    let worst = ratios.iter().cloned().fold(0.0, f64::max);
+    assert!(mean <= 1.0, "mean ratio {mean}: {ratios:?}");
+    assert!(worst <= 1.03, "worst ratio {worst}: {ratios:?}");
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    #[test]
+    fn large_routes_are_valid_and_no_longer_than_nearest_neighbour(
+        pts in prop::collection::vec((0.0..100.0f64, 0.0..100.0f64), 25..=120),
+        fast in any::<bool>(),
+    ) {
+        let n = pts.len();
+        let d = euclid(&pts);
+        let mut t = if fast { OpenTsp::with_effort(1, 0) } else { OpenTsp::new() };
+        let cost = t.solve(n, &d);
+        check_route(n, t.route());
+        prop_assert!((cost - route_cost(n, &d, t.route())).abs() < 1e-9);
+        // the nearest-neighbour route from the start is where the local search begins
+        let mut used = vec![false; n];
+        used[0] = true;
+        let mut at = 0usize;
+        let mut nn_cost = 0.0;
+        for _ in 1..n {
+            let next = (0..n)
+                .filter(|&j| !used[j])
+                .min_by(|&a, &b| d[at * n + a].total_cmp(&d[at * n + b]).then(a.cmp(&b)))
+                .expect("a node left");
+            used[next] = true;
+            nn_cost += d[at * n + next];
+            at = next;
+        }
+        prop_assert!(cost <= nn_cost + 1e-9, "{} > nearest neighbour {}", cost, nn_cost);
+        let mut again = if fast { OpenTsp::with_effort(1, 0) } else { OpenTsp::new() };
+        prop_assert_eq!(again.solve(n, &d), cost);
+        prop_assert_eq!(again.route(), t.route());
+    }
+}
