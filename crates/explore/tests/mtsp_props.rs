@@ -130,6 +130,45 @@ proptest! {
                 .sum();
             prop_assert!((total - brute_force(np, k, cost)).abs() < 1e-6 * total.max(1.0));
             prop_assert_eq!(st.assignment().filter(|j| j.is_some()).count(), np.min(k));
+            // Each entry is the fast route through the cluster on the documented bound
+            // max(octile, max_q |d_q(a) − d_q(b)|), built here from full searches.
+            let dists: Vec<Reachability> = part
+                .iter()
+                .map(|&r| {
+                    let mut rr = Reachability::new(w, h);
+                    rr.compute(robots[r] as usize, |i| up.is_traversable(&known, i));
+                    rr
+                })
+                .collect();
+            for (p, dp) in dists.iter().enumerate() {
+                for j in 0..k {
+                    let cl: Vec<u32> = st.cluster(j).iter().map(|&gi| st.goals()[gi as usize]).collect();
+                    let nodes: Vec<u32> = cl.iter().copied().filter(|&g| dp.cost(g as usize).is_some()).collect();
+                    let penalty = 1e9 * (cl.len() - nodes.len()) as f64;
+                    let n = nodes.len() + 1;
+                    let mut dm = vec![0.0; n * n];
+                    for a in 1..n {
+                        let ga = nodes[a - 1] as usize;
+                        dm[a] = dp.cost(ga).expect("reached");
+                        dm[a * n] = dm[a];
+                        for b in 1..n {
+                            let gb = nodes[b - 1] as usize;
+                            if a == b {
+                                continue;
+                            }
+                            let mut d = known.cell(ga).octile(known.cell(gb));
+                            for dq in &dists {
+                                if let (Some(x), Some(y)) = (dq.cost(ga), dq.cost(gb)) {
+                                    d = d.max((x - y).abs());
+                                }
+                            }
+                            dm[a * n + b] = d;
+                        }
+                    }
+                    let want = explore::tsp::OpenTsp::with_effort(1, 0).solve(n, &dm) + penalty;
+                    prop_assert_eq!(cost[p * k + j], want);
+                }
+            }
         }
         let taken: Vec<u32> = (0..m).filter(|&r| !fx.deciding[r]).filter_map(|r| fx.goals[r]).collect();
         let assignment: Vec<Option<usize>> = st.assignment().collect();

@@ -51,6 +51,11 @@ pub struct State {
     /// Node list and matrix of one route.
     nodes: Vec<u32>,
     dm: Vec<f64>,
+    /// The goal-to-goal bounds within each cluster: cluster j's (cluster order, row-major)
+    /// start at `gm[goff[j]]`; and the cluster positions of a route's nodes.
+    gm: Vec<f64>,
+    goff: Vec<usize>,
+    at: Vec<usize>,
     /// Participants × clusters route costs, row-major.
     cost: Vec<f64>,
     /// Cluster of each participant (`usize::MAX` for none) from the last decision.
@@ -73,6 +78,9 @@ impl Default for State {
             cstart: Vec::new(),
             nodes: Vec::new(),
             dm: Vec::new(),
+            gm: Vec::new(),
+            goff: Vec::new(),
+            at: Vec::new(),
             cost: Vec::new(),
             cluster_of: Vec::new(),
             fast: OpenTsp::with_effort(1, 0),
@@ -198,11 +206,12 @@ fn run(
             }
             st.cstart.push(st.order.len());
         }
+        bounds(st, width);
         // Route second: the participants × clusters matrix.
         st.cost.resize(np * k, 0.0);
         for p in 0..np {
             for j in 0..k {
-                let (c, _) = route(st, ctx, p, j, false);
+                let (c, _) = route(st, p, j, false);
                 st.cost[p * k + j] = c;
             }
         }
@@ -219,7 +228,7 @@ fn run(
             if !ctx.deciding[r] || j == usize::MAX {
                 continue;
             }
-            let (_, first) = route(st, ctx, p, j, true);
+            let (_, first) = route(st, p, j, true);
             if let Some(g) = first {
                 let cell = st.goals[g];
                 out[r] = Some(Goal {
@@ -251,18 +260,48 @@ fn run(
     }
 }
 
-/// Route participant `p` through cluster `j`: its cost (with penalties for unreachable
-/// goals) and the first goal (index into `st.goals`). `full` selects the thorough solver.
-fn route(
-    st: &mut State,
-    ctx: &DecisionCtx<'_>,
-    p: usize,
-    j: usize,
-    full: bool,
-) -> (f64, Option<usize>) {
+/// The goal-to-goal distances of each cluster, once per decision: the lower bound
+/// max(octile, max_q |d_q(a) − d_q(b)|) of the module documentation.
+fn bounds(st: &mut State, width: usize) {
     let ng = st.goals.len();
     let np = st.part.len();
-    let width = ctx.known.width();
+    st.gm.clear();
+    st.goff.clear();
+    for j in 0..st.cstart.len() - 1 {
+        let cluster = &st.order[st.cstart[j]..st.cstart[j + 1]];
+        let (c, off) = (cluster.len(), st.gm.len());
+        st.goff.push(off);
+        st.gm.resize(off + c * c, 0.0);
+        for (a, &ga) in cluster.iter().enumerate() {
+            let ga = ga as usize;
+            let ca = grid::Cell::new(
+                (st.goals[ga] as usize % width) as i32,
+                (st.goals[ga] as usize / width) as i32,
+            );
+            for (b, &gb) in cluster.iter().enumerate().skip(a + 1) {
+                let gb = gb as usize;
+                let cb = grid::Cell::new(
+                    (st.goals[gb] as usize % width) as i32,
+                    (st.goals[gb] as usize / width) as i32,
+                );
+                let mut d = ca.octile(cb);
+                for q in 0..np {
+                    let (x, y) = (st.dist[q * ng + ga], st.dist[q * ng + gb]);
+                    if x.is_finite() && y.is_finite() {
+                        d = d.max((x - y).abs());
+                    }
+                }
+                st.gm[off + a * c + b] = d;
+                st.gm[off + b * c + a] = d;
+            }
+        }
+    }
+}
+
+/// Route participant `p` through cluster `j`: its cost (with penalties for unreachable
+/// goals) and the first goal (index into `st.goals`). `full` selects the thorough solver.
+fn route(st: &mut State, p: usize, j: usize, full: bool) -> (f64, Option<usize>) {
+    let ng = st.goals.len();
     st.nodes.clear();
     let mut penalty = 0.0;
     for &g in &st.order[st.cstart[j]..st.cstart[j + 1]] {
@@ -272,33 +311,26 @@ fn route(
             penalty += UNREACHABLE;
         }
     }
+    // The goal-to-goal bounds do not depend on the participant (see `bounds`).
+    let off = st.goff[j];
+    let c = st.cstart[j + 1] - st.cstart[j];
+    // The cluster positions of the route's nodes (the goals participant p reaches).
+    st.at.clear();
+    for (a, &g) in st.order[st.cstart[j]..st.cstart[j + 1]].iter().enumerate() {
+        if st.dist[p * ng + g as usize].is_finite() {
+            st.at.push(a);
+        }
+    }
     let n = st.nodes.len() + 1;
     st.dm.clear();
     st.dm.resize(n * n, 0.0);
     for a in 1..n {
-        let ga = st.nodes[a - 1] as usize;
-        let d0 = st.dist[p * ng + ga];
+        let d0 = st.dist[p * ng + st.nodes[a - 1] as usize];
         st.dm[a] = d0;
         st.dm[a * n] = d0;
-        let ca = grid::Cell::new(
-            (st.goals[ga] as usize % width) as i32,
-            (st.goals[ga] as usize / width) as i32,
-        );
-        for b in a + 1..n {
-            let gb = st.nodes[b - 1] as usize;
-            let cb = grid::Cell::new(
-                (st.goals[gb] as usize % width) as i32,
-                (st.goals[gb] as usize / width) as i32,
-            );
-            let mut d = ca.octile(cb);
-            for q in 0..np {
-                let (x, y) = (st.dist[q * ng + ga], st.dist[q * ng + gb]);
-                if x.is_finite() && y.is_finite() {
-                    d = d.max((x - y).abs());
-                }
-            }
-            st.dm[a * n + b] = d;
-            st.dm[b * n + a] = d;
+        let row = off + st.at[a - 1] * c;
+        for b in 1..n {
+            st.dm[a * n + b] = st.gm[row + st.at[b - 1]];
         }
     }
     let solver = if full { &mut st.full } else { &mut st.fast };
