@@ -176,6 +176,30 @@ fn block_oracle(fx: &Fixture, robot: u32, b: usize) -> Vec<(u32, Vec<u32>)> {
     out
 }
 
+/// A CC fixture on a random `w × h` map: one robot in the largest component, the cells
+/// of `visited` (but the robot's) on the visited list; `None` when no cell is free.
+fn random_fixture(
+    (w, h): (usize, usize),
+    bits: &[u8],
+    cut: usize,
+    range: f64,
+    resolution: f64,
+    visited: &[usize],
+) -> Option<(Fixture, usize)> {
+    let known = random_known(w, h, bits, cut);
+    let mut up = FrontierUpkeep::new(w, h, 0.0);
+    up.rebuild(&known);
+    let robot = largest_component_cell(&known, &up)?;
+    let mut fx = Fixture::new(known, vec![robot as u32], range, 3);
+    fx.resolution = resolution;
+    for &v in visited {
+        if v != robot {
+            fx.lists.mark_visited(v as u32);
+        }
+    }
+    Some((fx, robot))
+}
+
 /// Run CC on the fixture: the candidates in the order chosen, each with the frontier cells
 /// credited to it, and the candidate set's cells.
 fn run_cc(fx: &mut Fixture) -> (Vec<(u32, Vec<u32>)>, Vec<u32>) {
@@ -274,22 +298,10 @@ proptest! {
         range in prop_oneof![1.0f64..7.0, 24.0f64..32.0],
         visited in prop::collection::vec(0usize..256, 0..4),
     ) {
-        let (w, h) = (16, 16);
-        let known = random_known(w, h, &bits, cut);
-        let up = {
-            let mut u = FrontierUpkeep::new(w, h, 0.0);
-            u.rebuild(&known);
-            u
-        };
-        let Some(robot) = largest_component_cell(&known, &up) else {
+        let Some((mut fx, robot)) = random_fixture((16, 16), &bits, cut, range, 0.2, &visited)
+        else {
             return Ok(());
         };
-        let mut fx = Fixture::new(known, vec![robot as u32], range, 3);
-        for v in visited {
-            if v != robot {
-                fx.lists.mark_visited(v as u32);
-            }
-        }
         let (got, cells) = run_cc(&mut fx);
         // Soundness by the direct segment test: from every candidate, unknown space next
         // to each frontier it is credited with is seen within 0.8 ρ.
@@ -408,24 +420,12 @@ proptest! {
         range in prop_oneof![2.0f64..14.0, 40.0f64..64.0],
         visited in prop::collection::vec(0usize..480, 0..4),
     ) {
-        let (w, h) = (24, 20);
-        let known = random_known(w, h, &bits, cut);
-        let up = {
-            let mut u = FrontierUpkeep::new(w, h, 0.0);
-            u.rebuild(&known);
-            u
-        };
-        let Some(robot) = largest_component_cell(&known, &up) else {
+        prop_assert_eq!(explore::candidates::coverage::cover_block(resolution), b);
+        let Some((mut fx, robot)) =
+            random_fixture((24, 20), &bits, cut, range, resolution, &visited)
+        else {
             return Ok(());
         };
-        prop_assert_eq!(explore::candidates::coverage::cover_block(resolution), b);
-        let mut fx = Fixture::new(known, vec![robot as u32], range, 3);
-        fx.resolution = resolution;
-        for v in visited {
-            if v != robot {
-                fx.lists.mark_visited(v as u32);
-            }
-        }
         let (got, cells) = run_cc(&mut fx);
         let (_, eligible) = frontiers_and_eligible(&fx, robot as u32);
         for (c, _) in &got {

@@ -49,6 +49,18 @@ fn euclid(points: &[(f64, f64)]) -> Vec<f64> {
     d
 }
 
+/// Solve the open route through `pts` (full effort) and check it is a route of the cost
+/// returned: the node count, the matrix and the cost.
+fn solve_euclid(pts: &[(f64, f64)]) -> (usize, Vec<f64>, f64) {
+    let n = pts.len();
+    let d = euclid(pts);
+    let mut t = OpenTsp::new();
+    let cost = t.solve(n, &d);
+    check_route(n, t.route());
+    assert!((cost - route_cost(n, &d, t.route())).abs() < 1e-9);
+    (n, d, cost)
+}
+
 fn check_route(n: usize, route: &[u32]) {
     assert_eq!(route.len(), n);
     if n > 0 {
@@ -140,12 +152,7 @@ proptest! {
     fn optimal_up_to_twelve_nodes_euclidean(
         pts in prop::collection::vec((0.0..100.0f64, 0.0..100.0f64), 1..=12)
     ) {
-        let n = pts.len();
-        let d = euclid(&pts);
-        let mut t = OpenTsp::new();
-        let cost = t.solve(n, &d);
-        check_route(n, t.route());
-        prop_assert!((cost - route_cost(n, &d, t.route())).abs() < 1e-9);
+        let (n, d, cost) = solve_euclid(&pts);
         let opt = held_karp(n, &d);
         prop_assert!((cost - opt).abs() <= 1e-9, "route {} vs optimum {}", cost, opt);
     }
@@ -155,12 +162,7 @@ proptest! {
         pts in prop::collection::vec((0.0..100.0f64, 0.0..100.0f64), 13..=14)
     ) {
         // Beyond EXACT_UP_TO nodes the solver is the chained local search.
-        let n = pts.len();
-        let d = euclid(&pts);
-        let mut t = OpenTsp::new();
-        let cost = t.solve(n, &d);
-        check_route(n, t.route());
-        prop_assert!((cost - route_cost(n, &d, t.route())).abs() < 1e-9);
+        let (n, d, cost) = solve_euclid(&pts);
         let opt = held_karp(n, &d);
         prop_assert!(cost >= opt - 1e-9, "below the optimum: {} < {}", cost, opt);
         prop_assert!(cost <= opt * 1.01 + 1e-9, "route {} vs optimum {}", cost, opt);

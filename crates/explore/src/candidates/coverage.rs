@@ -187,22 +187,10 @@ impl Visibility {
             self.used.clear();
             return;
         }
-        for y in 0..h {
-            let (row, old) = (
-                &data[y * w..(y + 1) * w],
-                &mut self.prev.data_mut()[y * w..(y + 1) * w],
-            );
-            if row == old {
-                continue;
-            }
-            let by = y / BLOCK;
-            for (bx, (a, b)) in row.chunks(BLOCK).zip(old.chunks(BLOCK)).enumerate() {
-                if a != b {
-                    self.changed_at[by * self.blocks_x + bx] = self.decision;
-                }
-            }
-            old.copy_from_slice(row);
-        }
+        let (changed_at, blocks_x, decision) = (&mut self.changed_at, self.blocks_x, self.decision);
+        sync_rows(known, &mut self.prev, BLOCK, |y, bx| {
+            changed_at[(y / BLOCK) * blocks_x + bx] = decision;
+        });
     }
 
     /// Whether entry `e` is still what a scan would report.
@@ -332,24 +320,14 @@ impl Coarse {
             }
             return;
         }
-        let data = known.data();
-        for y in 0..h {
-            let (row, old) = (
-                &data[y * w..(y + 1) * w],
-                &mut self.fine.data_mut()[y * w..(y + 1) * w],
-            );
-            if row == old {
-                continue;
+        let (marked, dirty) = (&mut self.marked, &mut self.dirty);
+        sync_rows(known, &mut self.fine, block, |y, bx| {
+            let b = (y / block) * cw + bx;
+            if !marked[b] {
+                marked[b] = true;
+                dirty.push(b as u32);
             }
-            let base = (y / block) * cw;
-            for (bx, (a, b)) in row.chunks(block).zip(old.chunks(block)).enumerate() {
-                if a != b && !self.marked[base + bx] {
-                    self.marked[base + bx] = true;
-                    self.dirty.push((base + bx) as u32);
-                }
-            }
-            old.copy_from_slice(row);
-        }
+        });
         for &b in &self.dirty {
             self.grid[b as usize] = block_state(known, block, cw, b as usize);
             self.marked[b as usize] = false;
@@ -361,6 +339,34 @@ impl Coarse {
     #[inline]
     fn of(&self, i: usize, w: usize) -> usize {
         (i / w / self.block) * self.grid.width() + (i % w) / self.block
+    }
+}
+
+/// Bring `prev` (a copy of an earlier belief of the same size) up to `known` row by row,
+/// calling `changed(y, k)` for each chunk k of `chunk` cells of row y that differed (work ∝
+/// the rows that changed: equal rows are compared whole).
+fn sync_rows(
+    known: &Grid<Occ>,
+    prev: &mut Grid<Occ>,
+    chunk: usize,
+    mut changed: impl FnMut(usize, usize),
+) {
+    let w = known.width();
+    for (y, (row, old)) in known
+        .data()
+        .chunks(w)
+        .zip(prev.data_mut().chunks_mut(w))
+        .enumerate()
+    {
+        if row == old {
+            continue;
+        }
+        for (k, (a, b)) in row.chunks(chunk).zip(old.chunks(chunk)).enumerate() {
+            if a != b {
+                changed(y, k);
+            }
+        }
+        old.copy_from_slice(row);
     }
 }
 
