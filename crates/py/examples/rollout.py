@@ -15,12 +15,12 @@ from frontier.gym import Baseline, ExploreEnv, ExploreVectorEnv, RandomPolicy
 
 def single_rate(env, policy, episodes, steps):
     """Steps per second of one ExploreEnv: `steps` steps of episodes 0..episodes-1 (seed i),
-    timing the steps only."""
+    the resets timed too (as the vector environment's automatic resets are)."""
     spent = 0.0
     done = 0
     for i in range(episodes):
-        obs, _ = env.reset(seed=i)
         t0 = time.perf_counter()
+        obs, _ = env.reset(seed=i)
         for _ in range(steps):
             a = policy(env) if isinstance(policy, Baseline) else policy(obs)
             obs, _, term, trunc, _ = env.step(a)
