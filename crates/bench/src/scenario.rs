@@ -90,7 +90,7 @@ pub struct ScenarioFile {
     pub max_moves: Option<Spanned<i64>>,
     /// Belief map: known, reflection, evidence.
     pub belief: Option<Spanned<String>>,
-    /// Sensing mode: continuous or on-arrival (default: each strategy's).
+    /// Sensing mode: continuous, on-arrival or every-N (default: each strategy's).
     pub sensing: Option<Spanned<String>>,
     /// Give single-robot trials the optimal offline path and their competitive ratio.
     pub optimal: Option<Spanned<OptimalEntry>>,

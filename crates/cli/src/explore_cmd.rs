@@ -29,7 +29,8 @@ pub struct ExploreArgs {
     /// Belief map: known, reflection, evidence (default: known; evidence with sonar).
     #[arg(long)]
     pub belief: Option<String>,
-    /// Sensing mode: continuous or on-arrival (default: the strategy's).
+    /// Sensing mode: continuous, on-arrival, or every-N (a scan at every N-th cell, at goals
+    /// and where the robot decides; Explore-Bench: every-3) (default: the strategy's).
     #[arg(long)]
     pub sensing: Option<String>,
     /// Robot clearance from known obstacles in metres (Holz's d_max).

@@ -24,27 +24,49 @@ pub enum SensingMode {
     Continuous,
     /// Only at goals, with a 360° sweep (Yamauchi, Quattrini Li et al.).
     OnArrival,
+    /// At every n-th cell it enters (n ≥ 2), at its goal and wherever it stops to decide:
+    /// a scan rate slower than the robot's cell rate, as Explore-Bench's grid simulator
+    /// senses at every third cell of a path and at its end (`every-3`).
+    Every(u32),
 }
+
+/// The longest sensing interval accepted, in cells.
+pub const MAX_SENSING_INTERVAL: u32 = 1_000_000;
 
 impl std::str::FromStr for SensingMode {
     type Err = String;
     fn from_str(s: &str) -> Result<Self, String> {
+        let bad = || {
+            format!(
+                "sensing mode: expected 'continuous', 'on-arrival' or 'every-N' (a scan at                  every N-th cell, N from 1 to {MAX_SENSING_INTERVAL}), found '{s}'"
+            )
+        };
         match s {
             "continuous" => Ok(SensingMode::Continuous),
             "on-arrival" => Ok(SensingMode::OnArrival),
-            _ => Err(format!(
-                "sensing mode: expected 'continuous' or 'on-arrival', found '{s}'"
-            )),
+            _ => {
+                let n: u32 = s
+                    .strip_prefix("every-")
+                    .and_then(|n| n.parse().ok())
+                    .filter(|n| (1..=MAX_SENSING_INTERVAL).contains(n))
+                    .ok_or_else(bad)?;
+                Ok(if n == 1 {
+                    SensingMode::Continuous
+                } else {
+                    SensingMode::Every(n)
+                })
+            }
         }
     }
 }
 
 impl std::fmt::Display for SensingMode {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(match self {
-            SensingMode::Continuous => "continuous",
-            SensingMode::OnArrival => "on-arrival",
-        })
+        match self {
+            SensingMode::Continuous => f.write_str("continuous"),
+            SensingMode::OnArrival => f.write_str("on-arrival"),
+            SensingMode::Every(n) => write!(f, "every-{n}"),
+        }
     }
 }
 

@@ -51,11 +51,16 @@ def main():
     p.add_argument("--resolution", type=float, default=0.1, help="metres per cell")
     p.add_argument("--sensor", default="los:r=3.5", help="sensor spec")
     p.add_argument("--kind", default="office", help="generated environment kind")
+    p.add_argument("--sensing", default=None,
+                   help="sensing mode, e.g. every-3 (Explore-Bench's every third cell)")
     a = p.parse_args()
     common = dict(
         maps=a.kind, size=(a.size, a.size), resolution=a.resolution, sensor=a.sensor, k=16,
     )
-    print(f"{a.kind} {a.size:g} x {a.size:g} m at {a.resolution} m, sensor {a.sensor}, K = 16")
+    if a.sensing:
+        common["sensing"] = a.sensing
+    print(f"{a.kind} {a.size:g} x {a.size:g} m at {a.resolution} m, sensor {a.sensor}, "
+          f"sensing {a.sensing or 'continuous'}, K = 16")
     envs = [int(n) for n in a.envs.split(",")]
     for name, make in [("random", lambda: RandomPolicy(0)), ("cf-rr", lambda: Baseline("cf-rr"))]:
         for n in envs:

@@ -34,6 +34,25 @@ def test_equals_cli_json(cli, office, tmp_path, strategy, sensor, robots):
     assert got.path_length_m == want["path_length_m"]
 
 
+@pytest.mark.parametrize("strategy,robots", [("cf-rr", 1), ("ha-cc", 3)])
+def test_sensing_every_third_cell_equals_cli_json(cli, office, tmp_path, strategy, robots):
+    # Explore-Bench's grid simulator senses at every third cell of a path and at its end.
+    yaml = tmp_path / "office.yaml"
+    office.save(yaml)
+    want = cli_json(
+        cli, "--map", str(yaml), "--strategy", strategy, "--sensor", "square:r=3",
+        "--robots", str(robots), "--seed", "4", "--sensing", "every-3",
+    )
+    assert want["sensing"] == "every-3" and want["reason"] == "complete"
+    got = frontier.explore(
+        frontier.Map.load(yaml), strategy=strategy, sensor="square:r=3", robots=robots, seed=4,
+        sensing="every-3",
+    )
+    assert got.summary == want
+    every = frontier.explore(office, strategy=strategy, robots=robots, seed=4, sensing="every-1")
+    assert every.summary == frontier.explore(office, strategy=strategy, robots=robots, seed=4).summary
+
+
 def test_generated_map_equals_cli_env(cli, office):
     want = cli_json(cli, "--env", "office", "--seed", "3", "--size", "15x12", "--resolution", "0.25")
     assert frontier.explore(office, seed=3).summary == want
@@ -117,6 +136,8 @@ def test_explore_many_matches_explore_in_order(office):
         (dict(goal=2.0), ValueError, r"--goal: expected a coverage share in \(0, 1\]"),
         (dict(s_max=0), ValueError, "--s-max: expected a positive number of cell moves or -1"),
         (dict(belief="fuzzy"), ValueError, "--belief: "),
+        (dict(sensing="every-0"), ValueError, "--sensing: sensing mode: expected 'continuous', "
+         "'on-arrival' or 'every-N'"),
         (dict(seed=-1), ValueError, "--seed: expected an integer in 0..2"),
         (dict(strategy=3), TypeError, "strategy: expected a str, found int"),
         (dict(start="1,2"), TypeError, r"start: expected a cell \(x, y\)"),

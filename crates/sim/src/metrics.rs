@@ -262,6 +262,8 @@ pub struct RunResult {
     pub decisions: u64,
     /// Cell moves of the whole team.
     pub moves: u64,
+    /// Scans taken by the team (start and arrival sweeps included).
+    pub scans: u64,
     /// The robot's clearance in cells (traversability of the belief used clearance this big).
     pub clearance_cells: f64,
     /// Start cell of each robot.

@@ -63,6 +63,8 @@ struct Robot {
     path_pos: usize,
     goal: Option<u32>,
     moves_since_decision: u32,
+    /// Cells entered since its last scan (sensing `every-N`).
+    unsensed: u32,
     /// Remaining path cost to the goal, its lowest value so far, and the clock then
     /// (Yamauchi's no-progress rule), for the goal `progress_goal`: a new decision for the
     /// same goal keeps them, so a detour is no progress.
@@ -155,6 +157,8 @@ struct Team<'a> {
     sensed_twice: Vec<bool>,
     sensed_cells: usize,
     overlap_cells: usize,
+    /// Scans taken.
+    scans: u64,
     trace: Option<Trace>,
 }
 
@@ -261,6 +265,7 @@ impl<'a> Session<'a> {
                 path_pos: 0,
                 goal: None,
                 moves_since_decision: 0,
+                unsensed: 0,
                 remaining: f64::INFINITY,
                 best_remaining: f64::INFINITY,
                 progress_clock: 0.0,
@@ -335,6 +340,7 @@ impl<'a> Session<'a> {
             sensed_twice: if m > 1 { vec![false; len] } else { Vec::new() },
             sensed_cells: 0,
             overlap_cells: 0,
+            scans: 0,
             trace,
             external,
             pending: false,
@@ -695,6 +701,7 @@ impl<'a> Session<'a> {
             time_s,
             decisions: team.decisions,
             moves: team.moves,
+            scans: team.scans,
             clearance_cells: team.cfg.clearance_m / res,
             starts,
             ends,
@@ -775,6 +782,7 @@ impl Team<'_> {
     fn sense(&mut self, who: (usize, f64), pose: Pose, sweep: bool) {
         let t0 = Instant::now();
         self.now = who;
+        self.scans += 1;
         self.changed.clear();
         if let Some(sonar) = &mut self.sonar {
             let plane = &self.truth.cells;
@@ -966,6 +974,7 @@ impl Team<'_> {
             heading: robots[r].heading,
         };
         self.sense((r, robots[r].clock), pose, false);
+        robots[r].unsensed = 0;
         self.changed.clear();
         for &i in blocked {
             self.belief
@@ -1019,6 +1028,20 @@ impl Team<'_> {
     // Robot r's state is spread over several parallel buffers, so index loops read best.
     #[allow(clippy::needless_range_loop)]
     fn decide(&mut self, robots: &mut [Robot], who: &[usize]) {
+        if matches!(self.cfg.sensing_mode(), SensingMode::Every(_)) {
+            // Sensing every n-th cell: a robot looks before it decides where it stands.
+            for &r in who {
+                if robots[r].unsensed > 0 {
+                    let pose = Pose {
+                        cell: self.truth.cells.cell(robots[r].cell as usize),
+                        heading: robots[r].heading,
+                    };
+                    self.sense((r, robots[r].clock), pose, false);
+                    robots[r].unsensed = 0;
+                    self.record(robots, r);
+                }
+            }
+        }
         let t0 = Instant::now();
         let m = robots.len();
         self.deciding.fill(false);
@@ -1246,6 +1269,7 @@ impl Team<'_> {
             let heading = sy.atan2(sx);
             robots[r].heading = heading;
             self.sense((r, robots[r].clock), Pose { cell, heading }, false);
+            robots[r].unsensed = 0;
             self.record(robots, r);
         }
         self.lists.mark_visited(goal);
@@ -1305,7 +1329,13 @@ impl Team<'_> {
         }
         self.moves += 1;
         self.total_dist_cells += len;
-        if self.cfg.sensing_mode() == SensingMode::Continuous {
+        robots[r].unsensed = robots[r].unsensed.saturating_add(1);
+        let scan = match self.cfg.sensing_mode() {
+            SensingMode::Continuous => true,
+            SensingMode::OnArrival => false,
+            SensingMode::Every(n) => robots[r].unsensed >= n || Some(next) == robots[r].goal,
+        };
+        if scan {
             self.sense(
                 (r, robots[r].clock),
                 Pose {
@@ -1314,6 +1344,7 @@ impl Team<'_> {
                 },
                 false,
             );
+            robots[r].unsensed = 0;
         }
         self.pin_free(next);
         if let Some(i) = passed_beside {

@@ -1,0 +1,138 @@
+//! Sensing at every n-th cell (`--sensing every-N`, Explore-Bench's every third cell): a
+//! robot scans at every n-th cell it enters, at its goal and wherever it decides; runs
+//! complete, `every-1` is continuous sensing, and the scans are as few as that rule says.
+
+use explore::strategy::{SensingMode, Strategy};
+use grid::GridMap;
+use sense::{Range, SensorSpec};
+use sim::{EndReason, RunConfig, RunResult};
+use world::{EnvKind, EnvSpec};
+
+fn office(seed: u64) -> GridMap {
+    let spec = EnvSpec::new(EnvKind::Office, seed)
+        .with_size(15.0, 12.0)
+        .with_resolution(0.25);
+    world::generate(&spec).expect("office").map
+}
+
+fn run(map: &GridMap, preset: &str, robots: usize, sensing: Option<SensingMode>) -> RunResult {
+    let mut cfg = RunConfig::new(Strategy::preset(preset).expect("preset"));
+    cfg.sensor = SensorSpec::Los {
+        r: Range::Metres(3.0),
+    };
+    cfg.robots = robots;
+    cfg.seed = 4;
+    cfg.sensing = sensing;
+    sim::run(map, &cfg).expect("run")
+}
+
+#[test]
+fn every_one_is_continuous_sensing() {
+    assert_eq!(
+        "every-1".parse::<SensingMode>(),
+        Ok(SensingMode::Continuous)
+    );
+    assert_eq!("every-3".parse::<SensingMode>(), Ok(SensingMode::Every(3)));
+    assert_eq!(SensingMode::Every(3).to_string(), "every-3");
+    for bad in [
+        "every-0",
+        "every-",
+        "every-x",
+        "every-3.5",
+        "every--2",
+        "every-2000000",
+    ] {
+        let e = bad.parse::<SensingMode>().expect_err(bad);
+        assert!(e.contains("every-N") && e.contains(bad), "{e}");
+    }
+    let map = office(1);
+    let a = run(&map, "cf-rr", 1, None);
+    let b = run(&map, "cf-rr", 1, Some(SensingMode::Continuous));
+    assert_eq!(a.path_length_m, b.path_length_m);
+    assert_eq!(a.scans, b.scans);
+    // continuous: the start sweep and a scan per move (and any look on arrival)
+    assert!(a.scans > a.moves, "{} scans, {} moves", a.scans, a.moves);
+}
+
+#[test]
+fn sensing_every_third_cell_explores_completely_with_fewer_scans() {
+    for (preset, robots) in [("cf-rr", 1), ("cf", 1), ("greedy", 3), ("ha-rfe", 3)] {
+        for seed in [1, 2] {
+            let map = office(seed);
+            let r = run(&map, preset, robots, Some(SensingMode::Every(3)));
+            assert_eq!(r.reason, EndReason::Complete, "{preset} seed {seed}");
+            assert!((r.coverage - 1.0).abs() < 1e-12, "{preset}: {}", r.coverage);
+            // at most a scan per third move, per decision (goal reached or re-plan) and per
+            // robot's start sweep, arrival look and bump
+            let bound = r.moves / 3 + 2 * r.decisions + 3 * robots as u64;
+            assert!(r.scans <= bound, "{preset}: {} scans > {bound}", r.scans);
+            let c = run(&map, preset, robots, None);
+            assert!(r.scans < c.scans, "{preset}: {} vs {}", r.scans, c.scans);
+        }
+    }
+}
+
+#[test]
+fn a_robot_sensing_every_third_cell_has_looked_where_it_decides() {
+    // Goals from outside: at every decision, a scan from where a deciding robot stands
+    // would reveal nothing the belief does not know. Teams re-plan every s_max = 7 moves,
+    // mid-path, where the third-cell rule alone would not have looked.
+    use sense::{Observation, Pose};
+    use sim::{Session, Status};
+    use std::borrow::Cow;
+    for (preset, robots, seed) in [
+        ("cf-rr", 1, 1),
+        ("yamauchi", 1, 3),
+        ("ha-af", 3, 2),
+        ("ga-rfe", 2, 1),
+    ] {
+        let map = office(seed);
+        let mut cfg = RunConfig::new(Strategy::preset(preset).expect("preset"));
+        cfg.sensor = SensorSpec::Los {
+            r: Range::Metres(3.0),
+        };
+        cfg.robots = robots;
+        cfg.seed = seed;
+        cfg.sensing = Some(SensingMode::Every(3));
+        let sensor = cfg.sensor.build(map.resolution).expect("sensor");
+        let mut s = Session::start(Cow::Borrowed(&map), Cow::Borrowed(&cfg), true).expect("start");
+        let mut obs = Observation::new();
+        let (mut decisions, mut mid_path) = (0, 0);
+        while s.advance() == Status::Decide {
+            let cells = s.candidates().to_vec();
+            let goals: Vec<Option<u32>> = s
+                .propose(cfg.strategy.assigner, &cells)
+                .iter()
+                .map(|g| g.map(|g| g.cell))
+                .collect();
+            for (r, g) in goals.iter().enumerate() {
+                if g.is_none() || *g == s.goal(r) {
+                    continue; // finds none, or keeps its goal (not deciding)
+                }
+                let (cell, heading) = s.pose(r);
+                if s.goal(r).is_some_and(|old| old != cell) {
+                    mid_path += 1;
+                }
+                sensor.scan(
+                    &map.cells,
+                    Pose::new(map.cells.cell(cell as usize), heading),
+                    &mut obs,
+                );
+                for &(i, _) in &obs.cells {
+                    assert_ne!(
+                        s.known()[i as usize],
+                        grid::Occ::Unknown,
+                        "{preset}: robot {r} decides at {cell} without having seen cell {i}"
+                    );
+                }
+            }
+            s.choose(&goals).expect("a proposed goal is reachable");
+            decisions += 1;
+        }
+        assert!(decisions > 5, "{preset}: {decisions} decisions");
+        if robots > 1 {
+            assert!(mid_path > 0, "{preset}: no decision mid-path");
+        }
+        assert_eq!(s.finish().reason, EndReason::Complete, "{preset}");
+    }
+}
