@@ -5,8 +5,11 @@
 //!
 //! A scan walks the shared [`LosTemplate`] prefix tree, skipping the subtree of every
 //! blocked cell or vertex, so its cost grows with what is seen (see [`LosTemplate`] for
-//! the measured constant). Its result equals
-//! [`los_visible`](crate::los_visible) for every cell (checked by property tests).
+//! the measured constant). From [`FASTER_FROM_RANGE`] cells of range on, where the walk
+//! visits about 0.9 r³ nodes, the scan is computed by shadow casting instead and put back
+//! in the walk's order through the template's ranks: the same list of cells either way.
+//! Its result equals [`los_visible`](crate::los_visible) for every cell (checked by
+//! property tests).
 //! A predicted scan ([`Sensor::predict`]) walks the same template on a belief with Unknown
 //! cells transparent.
 
@@ -17,6 +20,7 @@ use grid::{Cell, Grid, Occ};
 use crate::error::SenseError;
 use crate::ray_template::{LosNode, LosTemplate};
 use crate::sensor::{Observation, Pose, Sensor, observed, predicted_transparent};
+use crate::shadow::{self, FASTER_FROM_RANGE, ShadowScratch};
 
 /// The ideal line-of-sight sensor (360°, range in cells), backed by a shared ray template.
 #[derive(Clone, Debug)]
@@ -130,10 +134,83 @@ fn walk(
     }
 }
 
+thread_local! {
+    /// Buffers of the shadow-casting scan, kept per thread so that a scan allocates nothing
+    /// once it has run.
+    static SCAN: std::cell::RefCell<ShadowScan> = std::cell::RefCell::new(ShadowScan::default());
+}
+
+/// Scratch of a shadow-casting scan: the sweep's buffers and the seen cells by rank.
+#[derive(Default)]
+struct ShadowScan {
+    shadows: ShadowScratch,
+    /// Per rank: the seen cell and its state, valid where `stamp == epoch`.
+    slot: Vec<(u32, Occ)>,
+    stamp: Vec<u32>,
+    epoch: u32,
+}
+
+impl LosSensor {
+    /// [`Sensor::scan`] by shadow casting ([`crate::shadow`]), which from
+    /// [`FASTER_FROM_RANGE`] cells on looks at fewer cells than the template walk: the same
+    /// cells (both are `segment_clear`'s), put back in the walk's order through the
+    /// template's ranks, so that an observation is the same list either way.
+    fn scan_by_shadows(&self, truth: &Grid<Occ>, origin: Cell, out: &mut Vec<(u32, Occ)>) {
+        let t = &self.template;
+        let w = truth.width() as i64;
+        let (ox, oy) = (i64::from(origin.x), i64::from(origin.y));
+        SCAN.with(|scan| {
+            let mut scan = scan.borrow_mut();
+            let ShadowScan {
+                shadows,
+                slot,
+                stamp,
+                epoch,
+            } = &mut *scan;
+            if slot.len() < t.targets() {
+                slot.resize(t.targets(), (0, Occ::Unknown));
+                stamp.resize(t.targets(), 0);
+            }
+            if *epoch == u32::MAX {
+                stamp.fill(0);
+                *epoch = 0;
+            }
+            *epoch += 1;
+            let e = *epoch;
+            let mut last = 0usize;
+            shadow::visible(
+                truth,
+                origin,
+                t.range(),
+                |s| s == Occ::Free,
+                shadows,
+                |i, s| {
+                    let (x, y) = (i64::from(i) % w, i64::from(i) / w);
+                    if let Some(k) = t.rank((x - ox) as i32, (y - oy) as i32) {
+                        let k = k as usize;
+                        slot[k] = (i, observed(s));
+                        stamp[k] = e;
+                        last = last.max(k + 1);
+                    }
+                },
+            );
+            for k in 0..last {
+                if stamp[k] == e {
+                    out.push(slot[k]);
+                }
+            }
+        });
+    }
+}
+
 impl Sensor for LosSensor {
     fn scan(&self, truth: &Grid<Occ>, pose: Pose, out: &mut Observation) {
         out.clear();
         out.origin = pose.cell;
+        if self.template.range() >= FASTER_FROM_RANGE {
+            self.scan_by_shadows(truth, pose.cell, &mut out.cells);
+            return;
+        }
         let cells = &mut out.cells;
         self.for_each_seen(truth, pose.cell, |i, s| cells.push((i, s)));
     }

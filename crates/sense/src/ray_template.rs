@@ -122,6 +122,11 @@ pub struct LosTemplate {
     max_d2: i64,
     targets: usize,
     nodes: Vec<LosNode>,
+    /// ⌊range⌋: offsets run over `-reach..=reach` on both axes.
+    reach: i32,
+    /// Per offset `(dx, dy)` (row-major over the `(2 reach + 1)²` box): the position of
+    /// its target in the walk's pre-order, or `u32::MAX` outside the range.
+    rank: Vec<u32>,
 }
 
 impl LosTemplate {
@@ -208,12 +213,32 @@ impl LosTemplate {
                 stack.pop();
             }
         }
+        let side = (2 * reach + 1) as usize;
+        let mut rank = vec![u32::MAX; side * side];
+        for (t, n) in nodes.iter().filter(|n| n.is_target()).enumerate() {
+            let at = (i32::from(n.dy) + reach) as usize * side + (i32::from(n.dx) + reach) as usize;
+            rank[at] = t as u32;
+        }
         Ok(Self {
             range: r,
             max_d2: max_d2.unwrap_or(0),
             targets: targets.len(),
             nodes,
+            reach,
+            rank,
         })
+    }
+
+    /// The position of offset `(dx, dy)`'s target in the walk's pre-order (the order in
+    /// which a scan reports cells), or `None` outside the range.
+    #[inline]
+    pub fn rank(&self, dx: i32, dy: i32) -> Option<u32> {
+        let (r, side) = (self.reach, 2 * self.reach + 1);
+        if dx.abs() > r || dy.abs() > r {
+            return None;
+        }
+        let k = self.rank[((dy + r) * side + dx + r) as usize];
+        (k != u32::MAX).then_some(k)
     }
 
     /// The template for range `r` cells, shared with every other live sensor of the same

@@ -159,3 +159,48 @@ fn worked_example_small_room() {
         );
     }
 }
+
+/// A random map for the long ranges: `density`% of cells blocked, a fifth of them Unknown.
+fn arb_large_map() -> impl Strategy<Value = Grid<Occ>> {
+    (20usize..=64, 20usize..=64, 0u32..=40).prop_flat_map(|(w, h, density)| {
+        proptest::collection::vec(0u32..100, w * h).prop_map(move |rolls| {
+            let data = rolls
+                .iter()
+                .map(|&roll| match roll {
+                    r if r < density && r % 5 == 0 => Occ::Unknown,
+                    r if r < density => Occ::Occupied,
+                    _ => Occ::Free,
+                })
+                .collect();
+            Grid::from_vec(w, h, data).expect("w*h cells")
+        })
+    })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(96))]
+
+    /// From 20 cells of range on, a scan is computed by shadow casting: the same cells,
+    /// in the same order, as the template walk, and those `los_visible` sees.
+    #[test]
+    fn long_range_scan_equals_the_template_walk_in_order(
+        truth in arb_large_map(),
+        r in prop_oneof![20.0f64..48.0, (400u32..2304).prop_map(|k| f64::from(k).sqrt())],
+        sx in -1i32..65,
+        sy in -1i32..65,
+    ) {
+        let sensor = LosSensor::new(r).expect("valid range");
+        let o = Cell::new(sx, sy);
+        let mut obs = Observation::new();
+        sensor.scan(&truth, Pose::new(o, 0.0), &mut obs);
+        let mut walk = Vec::new();
+        sensor.for_each_seen(&truth, o, |i, s| walk.push((i, s)));
+        prop_assert_eq!(&obs.cells, &walk);
+        let want: Vec<(u32, Occ)> = truth
+            .cells()
+            .filter(|&c| truth.contains(o) && los_visible(&truth, o, c, r))
+            .map(|c| (truth.index(c) as u32, observed(*truth.get(c))))
+            .collect();
+        prop_assert_eq!(sorted(&obs), want);
+    }
+}
