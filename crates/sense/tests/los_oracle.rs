@@ -48,6 +48,15 @@ fn observed(s: Occ) -> Occ {
     }
 }
 
+/// Every cell `los_visible` sees from `o` within `r`, with its observed state, by index.
+fn seen_by_segment_test(truth: &Grid<Occ>, o: Cell, r: f64) -> Vec<(u32, Occ)> {
+    truth
+        .cells()
+        .filter(|&c| truth.contains(o) && los_visible(truth, o, c, r))
+        .map(|c| (truth.index(c) as u32, observed(*truth.get(c))))
+        .collect()
+}
+
 fn sorted(obs: &Observation) -> Vec<(u32, Occ)> {
     let mut v = obs.cells.clone();
     v.sort_unstable();
@@ -73,11 +82,7 @@ proptest! {
         let mut dedup = got.clone();
         dedup.dedup_by_key(|c| c.0);
         prop_assert_eq!(dedup.len(), got.len(), "duplicates");
-        let want: Vec<(u32, Occ)> = truth
-            .cells()
-            .filter(|&c| truth.contains(o) && los_visible(&truth, o, c, r))
-            .map(|c| (truth.index(c) as u32, observed(*truth.get(c))))
-            .collect();
+        let want = seen_by_segment_test(&truth, o, r);
         prop_assert_eq!(got, want);
     }
 
@@ -196,11 +201,7 @@ proptest! {
         let mut walk = Vec::new();
         sensor.for_each_seen(&truth, o, |i, s| walk.push((i, s)));
         prop_assert_eq!(&obs.cells, &walk);
-        let want: Vec<(u32, Occ)> = truth
-            .cells()
-            .filter(|&c| truth.contains(o) && los_visible(&truth, o, c, r))
-            .map(|c| (truth.index(c) as u32, observed(*truth.get(c))))
-            .collect();
+        let want = seen_by_segment_test(&truth, o, r);
         prop_assert_eq!(sorted(&obs), want);
     }
 }
