@@ -48,11 +48,10 @@ pub struct State {
     /// Goals ordered by cluster: cluster j is `order[cstart[j]..cstart[j + 1]]`.
     order: Vec<u32>,
     cstart: Vec<usize>,
-    /// Node list and matrix of one route.
-    nodes: Vec<u32>,
+    /// Matrix of one route.
     dm: Vec<f64>,
     /// The goal-to-goal bounds within each cluster: cluster j's (cluster order, row-major)
-    /// start at `gm[goff[j]]`; and the cluster positions of a route's nodes.
+    /// start at `gm[goff[j]]`; and the cluster positions of a route's goals.
     gm: Vec<f64>,
     goff: Vec<usize>,
     at: Vec<usize>,
@@ -76,7 +75,6 @@ impl Default for State {
             kmeans: KMeans::new(),
             order: Vec::new(),
             cstart: Vec::new(),
-            nodes: Vec::new(),
             dm: Vec::new(),
             gm: Vec::new(),
             goff: Vec::new(),
@@ -302,30 +300,24 @@ fn bounds(st: &mut State, width: usize) {
 /// goals) and the first goal (index into `st.goals`). `full` selects the thorough solver.
 fn route(st: &mut State, p: usize, j: usize, full: bool) -> (f64, Option<usize>) {
     let ng = st.goals.len();
-    st.nodes.clear();
+    let cluster = &st.order[st.cstart[j]..st.cstart[j + 1]];
+    // The route's nodes: the cluster positions of the goals participant p reaches.
+    st.at.clear();
     let mut penalty = 0.0;
-    for &g in &st.order[st.cstart[j]..st.cstart[j + 1]] {
+    for (a, &g) in cluster.iter().enumerate() {
         if st.dist[p * ng + g as usize].is_finite() {
-            st.nodes.push(g);
+            st.at.push(a);
         } else {
             penalty += UNREACHABLE;
         }
     }
     // The goal-to-goal bounds do not depend on the participant (see `bounds`).
-    let off = st.goff[j];
-    let c = st.cstart[j + 1] - st.cstart[j];
-    // The cluster positions of the route's nodes (the goals participant p reaches).
-    st.at.clear();
-    for (a, &g) in st.order[st.cstart[j]..st.cstart[j + 1]].iter().enumerate() {
-        if st.dist[p * ng + g as usize].is_finite() {
-            st.at.push(a);
-        }
-    }
-    let n = st.nodes.len() + 1;
+    let (off, c) = (st.goff[j], cluster.len());
+    let n = st.at.len() + 1;
     st.dm.clear();
     st.dm.resize(n * n, 0.0);
     for a in 1..n {
-        let d0 = st.dist[p * ng + st.nodes[a - 1] as usize];
+        let d0 = st.dist[p * ng + cluster[st.at[a - 1]] as usize];
         st.dm[a] = d0;
         st.dm[a * n] = d0;
         let row = off + st.at[a - 1] * c;
@@ -338,6 +330,6 @@ fn route(st: &mut State, p: usize, j: usize, full: bool) -> (f64, Option<usize>)
     let first = solver
         .route()
         .get(1)
-        .map(|&v| st.nodes[v as usize - 1] as usize);
+        .map(|&v| cluster[st.at[v as usize - 1]] as usize);
     (c + penalty, first)
 }
