@@ -11,6 +11,15 @@
 //! reasons "every pair not seen yet costs at least k + 1" decides exactly as on the full
 //! matrix. The cost of a decision then follows the area within the chosen goals, not the
 //! map.
+//!
+//! A search also ends, for the assigners, once it has settled every candidate its robot can
+//! reach at all: without that, a robot that must know it has found all its goals (fewer
+//! free goals than robots, or goals behind walls no robot reaches) searched the whole map
+//! past its last goal. The count comes from the decision's flood fill of the robot's
+//! component ([`Planner::component`](crate::decision::Planner::component)), asked only
+//! once a search has grown past [`COUNT_FROM`] cells (or an eighth of a smaller map), so
+//! that small searches never pay for it. The pairs found are the same either way; only the cells beyond the last goal are
+//! left unsearched.
 
 use crate::candidates::CandidateSet;
 use crate::decision::DecisionCtx;
@@ -25,12 +34,18 @@ pub struct Pair {
     pub col: usize,
 }
 
+/// Settled cells after which a growing search asks how many candidates its robot can
+/// reach (a flood fill of its component, unless the decision has one already).
+pub const COUNT_FROM: usize = 1 << 14;
+
 /// Per robot, the candidates its search has settled so far, in the order settled.
 #[derive(Clone, Debug, Default)]
 pub struct LazyCosts {
     found: Vec<Vec<Pair>>,
     /// Per robot: how much of its search's settled list has been looked at.
     scanned: Vec<usize>,
+    /// Per robot: how many candidates its component holds (`None`: not counted yet).
+    reachable: Vec<Option<usize>>,
 }
 
 impl LazyCosts {
@@ -43,11 +58,14 @@ impl LazyCosts {
         }
         self.scanned.clear();
         self.scanned.resize(robots, 0);
+        self.reachable.clear();
+        self.reachable.resize(robots, None);
     }
 
     /// Grow robot `r`'s search through bucket `through` (every cell of cost below
-    /// `through + 1` settled) and record the candidates newly settled. Returns whether its
-    /// search is complete (every pair of robot `r` is then known).
+    /// `through + 1` settled) and record the candidates newly settled. Returns whether every
+    /// pair of robot `r` is known: its search is complete, or has settled every candidate
+    /// robot `r` can reach (then the search may stop short of `through`).
     pub fn grow(
         &mut self,
         ctx: &mut DecisionCtx<'_>,
@@ -55,6 +73,9 @@ impl LazyCosts {
         r: usize,
         through: usize,
     ) -> bool {
+        if self.has_all(r) {
+            return true;
+        }
         let done = ctx
             .planner
             .grow(r, ctx.robots[r], ctx.known, ctx.upkeep, through);
@@ -72,7 +93,25 @@ impl LazyCosts {
             }
         }
         self.scanned[r] = settled.len();
-        done
+        let count_from = COUNT_FROM.min(ctx.known.len() / 8);
+        if !done && self.reachable[r].is_none() && settled.len() >= count_from {
+            let reach = ctx
+                .planner
+                .component(r, ctx.robots[r], ctx.known, ctx.upkeep);
+            let n = candidates
+                .cells()
+                .iter()
+                .filter(|&&c| reach.contains(c as usize))
+                .count();
+            self.reachable[r] = Some(n);
+        }
+        done || self.has_all(r)
+    }
+
+    /// Whether robot `r`'s search has settled every candidate its robot can reach (as far
+    /// as counted).
+    fn has_all(&self, r: usize) -> bool {
+        self.reachable[r] == Some(self.found[r].len())
     }
 
     /// Grow robot `r`'s search by at least one bucket (to its end if `to_end`). Returns
