@@ -42,8 +42,10 @@ use crate::scenario::{ScenarioFile, Source};
 /// and gate predicted rays at unseen wall cells; v3: the segmenting presets segment maps
 /// finer than 0.1 m on 0.1 m blocks; v4: CC covers a frontier cell from where the unknown
 /// next to it is seen; v5: CC covers maps finer than 0.1 m on 0.1 m blocks; v6:
-/// MA's routes are optimal up to 12 nodes and searched over neighbour lists beyond 24).
-pub const STRATEGY_REVISION: u32 = 6;
+/// MA's routes are optimal up to 12 nodes and searched over neighbour lists beyond 24; v7:
+/// HA's searches grow by a quarter instead of doubling, which may break ties between
+/// assignments of equal total differently).
+pub const STRATEGY_REVISION: u32 = 7;
 
 /// A resolved study: environments, variants, common settings and the flat trial list.
 #[derive(Clone, Debug)]
