@@ -1,4 +1,5 @@
-//! Planning on a 2000 × 2000 map: nearest frontier (near and far), full reachability, A*, EDT.
+//! Planning on a 2000 × 2000 map: nearest frontier (near and far), full reachability, the
+//! resumable search (whole, and to far goals with and without guidance), A*, EDT.
 
 mod common;
 
@@ -48,6 +49,29 @@ fn bench(c: &mut Criterion) {
     g.bench_function("compute_full_known", |b| {
         b.iter(|| r.compute(mid, truth_passable))
     });
+    // the resumable search a team decision grows: the whole map by buckets, and guided
+    // toward a few frontier cells ~1000 cells away until they are settled
+    g.bench_function("advance_full_known", |b| {
+        b.iter(|| {
+            r.begin(mid, truth_passable);
+            r.advance(usize::MAX, truth_passable)
+        })
+    });
+    let goals: Vec<u32> = up.frontiers.cells().iter().step_by(997).copied().collect();
+    let last = |r: &Reachability| goals.iter().all(|&c| r.is_settled(c as usize));
+    let grow = |r: &mut Reachability, guided: bool| {
+        if guided {
+            r.begin_guided(far, passable, &goals);
+        } else {
+            r.begin(far, passable);
+        }
+        while !last(r) && !r.advance(r.next_bucket(), passable) {}
+        r.settled().len()
+    };
+    for (name, guided) in [("advance_to_far_goals", false), ("guided_to_far_goals", true)] {
+        eprintln!("{name}: {} goals, settled {}", goals.len(), grow(&mut r, guided));
+        g.bench_function(name, |b| b.iter(|| black_box(grow(&mut r, guided))));
+    }
     let mut a = AStar::new(n, n);
     let mut path = Vec::new();
     let goal = (n * (n - 20) + n - 20..n * (n - 20) + n - 10)

@@ -5,7 +5,8 @@
 //! Costs come from one reachability map per robot per decision (Holz et al.'s
 //! "path search without goal specification"), computed lazily: a nearest-frontier
 //! query stops at the first candidate it settles, and the team assigners grow each
-//! robot's search bucket by bucket only as far as their rule needs (see
+//! robot's search, guided toward the candidates, bucket by bucket only as far as their rule
+//! needs (see
 //! [`crate::assign::costs`]); the questions "reachable at all?" are answered by one flood
 //! fill shared by the robots of a component.
 //!
@@ -99,15 +100,18 @@ impl Planner {
         &self.maps[r]
     }
 
-    /// Grow robot `r`'s search from cell `from` until every cell of cost below
-    /// `through + 1` is settled (a new resumable search if this decision has none yet;
-    /// nothing if its map is full). Returns whether its map is complete.
+    /// Grow robot `r`'s search from cell `from` until every goal of cost below
+    /// `through + 1` is settled (a new resumable search guided toward `goals` if this
+    /// decision has none yet, see [`Reachability::begin_guided`]; nothing if its map is
+    /// full). Returns whether its map is complete. Every call of a decision must give the
+    /// same goals.
     pub fn grow(
         &mut self,
         r: usize,
         from: u32,
         known: &Grid<Occ>,
         upkeep: &FrontierUpkeep,
+        goals: &[u32],
         through: usize,
     ) -> bool {
         let pass = |i| upkeep.is_traversable(known, i);
@@ -115,7 +119,7 @@ impl Planner {
             Extent::Full => return true,
             Extent::Growing => {}
             Extent::Stale | Extent::Partial => {
-                self.maps[r].begin(from as usize, pass);
+                self.maps[r].begin_guided(from as usize, pass, goals);
                 self.extent[r] = Extent::Growing;
             }
         }

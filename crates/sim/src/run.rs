@@ -449,7 +449,8 @@ impl<'a> Session<'a> {
         let mut seen = 0;
         let mut through = 0;
         loop {
-            let done = team.planner.grow(r, from, known, &team.upkeep, through);
+            let goals = team.offer.candidates.cells();
+            let done = team.planner.grow(r, from, known, &team.upkeep, goals, through);
             let map = team.planner.map(r);
             let settled = map.settled();
             for &c in &settled[seen.min(settled.len())..] {

@@ -10,7 +10,10 @@
 //! search gives (each cost is the minimum over final neighbour costs), so a rule that
 //! reasons "every pair not seen yet costs at least k + 1" decides exactly as on the full
 //! matrix. The cost of a decision then follows the area within the chosen goals, not the
-//! map.
+//! map. The searches are guided toward the candidates
+//! ([`Reachability::begin_guided`](crate::Reachability::begin_guided)): the same costs and
+//! bounds, but when the candidates are few (RFE's representatives, CC's covering cells) a
+//! robot's search to goals far away covers the way to them, not the disk around the robot.
 //!
 //! A search also ends, for the assigners, once it has settled every candidate its robot can
 //! reach at all: without that, a robot that must know it has found all its goals (fewer
@@ -46,11 +49,16 @@ pub struct LazyCosts {
     scanned: Vec<usize>,
     /// Per robot: how many candidates its component holds (`None`: not counted yet).
     reachable: Vec<Option<usize>>,
+    /// Whether the searches are guided toward the candidates.
+    guided: bool,
 }
 
 impl LazyCosts {
-    /// Forget the last decision's pairs; ready for `robots` robots.
-    pub fn reset(&mut self, robots: usize) {
+    /// Forget the last decision's pairs; ready for `robots` robots, whose searches are
+    /// guided toward the candidates if `guided` (a rule that needs every candidate's cost,
+    /// as MA's, gains nothing from guidance and pays for its bound).
+    pub fn reset(&mut self, robots: usize, guided: bool) {
+        self.guided = guided;
         self.found.resize_with(robots, Vec::new);
         self.found.truncate(robots);
         for f in &mut self.found {
@@ -76,9 +84,10 @@ impl LazyCosts {
         if self.has_all(r) {
             return true;
         }
+        let goals = if self.guided { candidates.cells() } else { &[] };
         let done = ctx
             .planner
-            .grow(r, ctx.robots[r], ctx.known, ctx.upkeep, through);
+            .grow(r, ctx.robots[r], ctx.known, ctx.upkeep, goals, through);
         let map = ctx.planner.map(r);
         let settled = map.settled();
         if self.scanned[r] > settled.len() {

@@ -136,7 +136,7 @@ impl Scratch {
     /// free, no row assigned.
     pub fn start(&mut self, ctx: &DecisionCtx<'_>, candidates: &CandidateSet, all_robots: bool) {
         self.matrix.frame(ctx, candidates, all_robots);
-        self.lazy.reset(ctx.robots.len());
+        self.lazy.reset(ctx.robots.len(), true);
         let rows = self.matrix.rows.len();
         self.free.clear();
         self.free.extend(self.matrix.taken.iter().map(|&t| !t));

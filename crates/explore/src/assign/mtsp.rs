@@ -147,7 +147,7 @@ fn run(
     }
     // Each robot's search grows until it has settled every candidate (or all it can
     // reach): the costs MA reads are then final, and the cells beyond are never searched.
-    st.lazy.reset(m);
+    st.lazy.reset(m, false);
     for r in 0..m {
         while !st.lazy.step(ctx, candidates, r, false) && st.lazy.found(r).len() < candidates.len()
         {

@@ -97,7 +97,7 @@ fn run(
     if candidates.is_empty() {
         return;
     }
-    st.lazy.reset(m);
+    st.lazy.reset(m, true);
     let (w, h) = (ctx.known.width(), ctx.known.height());
     let delta = ((w * w + h * h) as f64).sqrt();
     let rho = ctx.sensor_range_cells.max(0.0);

@@ -10,6 +10,7 @@
 
 pub mod astar;
 pub mod component;
+pub mod guide;
 pub mod reachability;
 
 pub use astar::AStar;

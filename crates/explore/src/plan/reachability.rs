@@ -27,16 +27,33 @@
 //! row-major arrays (costs, labelled and settled stamps) and `passable` asked at each step,
 //! which was itself about 1.7 × as fast as the heap.
 //!
+//! A resumable search may be guided toward a set of goal cells ([`Reachability::begin_guided`],
+//! A* toward a set, the bound of [`Guide`]): its buckets hold the cells by cost plus a lower
+//! bound of their cost to the nearest goal, so it settles the goals in cost order while
+//! leaving out the cells that lead away from every goal; a team assigner that needs a robot's
+//! few cheapest goals far away searches toward them instead of around the robot. A bucket one
+//! cell-step wide is no longer final when first taken (a step may leave cost plus bound
+//! unchanged), so its cells are taken first in, first out, and a cell that gets a lower cost
+//! from one taken after it in the same bucket is settled again, until none does: then every
+//! cost in the bucket is the least over its neighbours' final costs, which is the unique
+//! solution Dijkstra's search finds too. The guided search gives Dijkstra's costs bit for bit
+//! and the same predecessors (every neighbour that gives a cell its cost is no farther from
+//! the goals, so it is settled by then), and settles every goal below a bucket that
+//! Dijkstra's does; only the other cells it settles differ.
+//!
 //! The states are generation-stamped per tile (a tile met first in a search has its states
 //! cleared then), so a new search does not clear O(map) memory, and the buckets and the
 //! settled list keep their capacity: in steady state a search allocates nothing and touches
 //! only the tiles of the cells it meets.
 
+use super::guide::Guide;
 use crate::upkeep::next_gen;
 use grid::SQRT2;
 
-/// Buckets in use at once: a step costs at most √2 < 2, so labels reach two buckets ahead.
-const BUCKETS: usize = 3;
+/// Buckets in use at once: a step costs at most √2 < 2, so Dijkstra's labels reach two
+/// buckets ahead, a guided search's (cost plus a bound that changes by at most the step's
+/// cost) three.
+const BUCKETS: usize = 4;
 
 /// State flag: the search met the cell (labelled it, or found it impassable).
 const MET: u8 = 1;
@@ -44,6 +61,13 @@ const MET: u8 = 1;
 const DONE: u8 = 2;
 /// State flag: the cell is impassable (only the start is ever both this and labelled).
 const BLOCKED: u8 = 4;
+/// State flag: the cell is in the settled list (a guided search may settle a cell again).
+const LISTED: u8 = 8;
+
+/// A guided search with goals in more blocks than this is Dijkstra's: goals all around
+/// (every frontier cell of a large map) make the bound weak, and the bound's cost per cell
+/// then outweighs the cells it saves.
+pub const MAX_GUIDE_BLOCKS: usize = 64;
 
 /// The per-cell arrays are stored in tiles of `TILE × TILE` cells (`TILE = 1 << TILE_SHIFT`),
 /// one tile after the other by rows of tiles, each tile row-major.
@@ -65,16 +89,66 @@ fn slot_xy(tile_row: usize, x: usize, y: usize) -> usize {
         + (x & TILE_MASK)
 }
 
+/// Where a search puts the cells it labels.
+trait Queue {
+    /// Cell `xy` was labelled with cost `c`.
+    fn push(&mut self, c: f64, xy: Entry);
+    /// Whether settled cell `xy`, of cost `c`, may still get a lower cost.
+    fn reopens(&mut self, c: f64, xy: Entry) -> bool;
+}
+
+/// Dijkstra's: the bucket of its cost; a settled cell is final.
+impl Queue for &mut [Vec<Entry>; BUCKETS] {
+    #[inline(always)]
+    fn push(&mut self, c: f64, xy: Entry) {
+        self[c as usize % BUCKETS].push(xy);
+    }
+
+    #[inline(always)]
+    fn reopens(&mut self, _: f64, _: Entry) -> bool {
+        false
+    }
+}
+
+/// A guided search's: the bucket of its cost plus the guide's bound, never one before
+/// the bucket `current` being settled; a cell settled in that bucket may be settled again.
+struct Guided<'a> {
+    buckets: &'a mut [Vec<Entry>; BUCKETS],
+    guide: &'a mut Guide,
+    current: usize,
+}
+
+impl Guided<'_> {
+    /// The bucket of cost `c` plus the bound at `(x, y)`.
+    #[inline(always)]
+    fn bucket(&mut self, c: f64, (x, y): Entry) -> usize {
+        (c + self.guide.bound(x as usize, y as usize)) as usize
+    }
+}
+
+impl Queue for Guided<'_> {
+    #[inline(always)]
+    fn push(&mut self, c: f64, xy: Entry) {
+        let k = self.bucket(c, xy).max(self.current);
+        self.buckets[k % BUCKETS].push(xy);
+    }
+
+    #[inline(always)]
+    fn reopens(&mut self, c: f64, xy: Entry) -> bool {
+        self.bucket(c, xy) >= self.current
+    }
+}
+
 /// The per-cell arrays of a running search.
-struct Wave<'a> {
+struct Wave<'a, Q> {
     epoch: u32,
     tile_epoch: &'a mut [u32],
     state: &'a mut [u8],
     cost: &'a mut [f64],
-    buckets: &'a mut [Vec<Entry>; BUCKETS],
+    queue: Q,
 }
 
-impl Wave<'_> {
+impl<Q: Queue> Wave<'_, Q> {
     /// Make the states of slot `q`'s tile valid for this search: the first time the search
     /// meets one of its cells, forget the older states.
     #[inline(always)]
@@ -102,19 +176,79 @@ impl Wave<'_> {
             if s & BLOCKED != 0 {
                 return false;
             }
-            if s & DONE == 0 && c < self.cost[q] {
+            if c < self.cost[q] && (s & DONE == 0 || self.queue.reopens(self.cost[q], xy)) {
+                self.state[q] = s & !DONE;
                 self.cost[q] = c;
-                self.buckets[c as usize % BUCKETS].push(xy);
+                self.queue.push(c, xy);
             }
             true
         } else if passable(j) {
             self.state[q] = MET;
             self.cost[q] = c;
-            self.buckets[c as usize % BUCKETS].push(xy);
+            self.queue.push(c, xy);
             true
         } else {
             self.state[q] = MET | BLOCKED;
             false
+        }
+    }
+}
+
+impl<Q: Queue> Wave<'_, Q> {
+    /// Label the neighbours of the settled cell at column and row `(xu, yu)` (slot `p`) on a
+    /// grid of `dims = (width, height, slots per row of tiles)`.
+    #[inline(always)]
+    fn relax(
+        &mut self,
+        passable: &impl Fn(usize) -> bool,
+        (w, h, tile_row): (usize, usize, usize),
+        (xu, yu): Entry,
+        p: usize,
+    ) {
+        let (x, y) = (xu as usize, yu as usize);
+        let i = y * w + x;
+        let ci = self.cost[p];
+        let (left, right, up, down) = (x > 0, x + 1 < w, y > 0, y + 1 < h);
+        // slot offsets of the steps right, left, down and up (wrapping: negative)
+        let (xm, ym) = (x & TILE_MASK, y & TILE_MASK);
+        let dr = if xm == TILE_MASK {
+            TILE_CELLS - TILE_MASK
+        } else {
+            1
+        };
+        let dl = if xm == 0 { TILE_CELLS - TILE_MASK } else { 1 }.wrapping_neg();
+        let dd = if ym == TILE_MASK {
+            tile_row - TILE_MASK * TILE
+        } else {
+            TILE
+        };
+        let du = if ym == 0 {
+            tile_row - TILE_MASK * TILE
+        } else {
+            TILE
+        }
+        .wrapping_neg();
+        let (sr, sl) = (p.wrapping_add(dr), p.wrapping_add(dl));
+        // the neighbours' columns and rows (wrapping: only used inside the grid)
+        let (xr, xl) = (xu.wrapping_add(1), xu.wrapping_sub(1));
+        let (yd, ya) = (yu.wrapping_add(1), yu.wrapping_sub(1));
+        let c1 = ci + 1.0;
+        let pr = right && self.visit(passable, (sr, i + 1, (xr, yu)), c1);
+        let pd = down && self.visit(passable, (p.wrapping_add(dd), i + w, (xu, yd)), c1);
+        let pl = left && self.visit(passable, (sl, i - 1, (xl, yu)), c1);
+        let pu = up && self.visit(passable, (p.wrapping_add(du), i - w, (xu, ya)), c1);
+        let c2 = ci + SQRT2;
+        if right && down && (pr || pd) {
+            self.visit(passable, (sr.wrapping_add(dd), i + w + 1, (xr, yd)), c2);
+        }
+        if left && down && (pl || pd) {
+            self.visit(passable, (sl.wrapping_add(dd), i + w - 1, (xl, yd)), c2);
+        }
+        if left && up && (pl || pu) {
+            self.visit(passable, (sl.wrapping_add(du), i - w - 1, (xl, ya)), c2);
+        }
+        if right && up && (pr || pu) {
+            self.visit(passable, (sr.wrapping_add(du), i - w + 1, (xr, ya)), c2);
         }
     }
 }
@@ -147,6 +281,10 @@ pub struct Reachability {
     exhausted: bool,
     /// Whether the last search was started by `begin` (and may be advanced).
     resumable: bool,
+    /// Whether the last search is guided ([`begin_guided`](Reachability::begin_guided)):
+    /// its buckets are by cost plus `guide`'s bound.
+    guided: bool,
+    guide: Guide,
 }
 
 impl Reachability {
@@ -169,6 +307,8 @@ impl Reachability {
             next: 0,
             exhausted: true,
             resumable: false,
+            guided: false,
+            guide: Guide::default(),
         }
     }
 
@@ -210,6 +350,35 @@ impl Reachability {
         }
     }
 
+    /// Start a resumable search from `start` guided toward the cells `goals` (see the module
+    /// docs): [`advance`](Self::advance) then settles every *goal* of cost below
+    /// `through + 1`, with [`begin`](Self::begin)'s costs and paths, and
+    /// [`next_bucket`](Self::next_bucket) bounds the cost of every goal not settled; other
+    /// cells are settled only toward the goals. Without goals, or with goals in more than
+    /// [`MAX_GUIDE_BLOCKS`] blocks, it is `begin`'s search.
+    pub fn begin_guided(&mut self, start: usize, passable: impl Fn(usize) -> bool, goals: &[u32]) {
+        self.guide.set(self.width, self.height, goals);
+        self.begin(start, &passable);
+        if self.guide.is_empty() || self.guide.len() > MAX_GUIDE_BLOCKS {
+            return;
+        }
+        if self.exhausted {
+            return;
+        }
+        // `begin` labelled the start alone; its bucket is the first.
+        self.guided = true;
+        let start = self.buckets[0][0];
+        self.buckets[0].clear();
+        let mut queue = Guided {
+            buckets: &mut self.buckets,
+            guide: &mut self.guide,
+            current: 0,
+        };
+        queue.current = queue.bucket(0.0, start);
+        queue.push(0.0, start);
+        self.next = queue.current;
+    }
+
     /// Settle every bucket up to and including bucket `through` of the search started by
     /// [`begin`](Self::begin): afterwards every cell of cost below `through + 1` is settled
     /// with its final cost (and nothing beyond the buckets settled). Returns whether the
@@ -223,6 +392,8 @@ impl Reachability {
                     self.exhausted = true;
                     break;
                 }
+            } else if self.guided {
+                self.expand_guided(k, &passable);
             } else {
                 self.expand(k, &passable);
             }
@@ -315,6 +486,7 @@ impl Reachability {
         for b in &mut self.buckets {
             b.clear();
         }
+        self.guided = false;
         self.settled.clear();
         let (w, h) = (self.width, self.height);
         self.start = match starts {
@@ -327,7 +499,7 @@ impl Reachability {
             tile_epoch: &mut self.tile_epoch,
             state: &mut self.state,
             cost: &mut self.cost,
-            buckets: &mut self.buckets,
+            queue: &mut self.buckets,
         };
         // The start is always left, but a diagonal step may pass beside it only if it is
         // passable: an impassable start is labelled and marked impassable.
@@ -340,7 +512,7 @@ impl Reachability {
             }
             wave.state[s0] = if passable(start) { MET } else { MET | BLOCKED };
             wave.cost[s0] = 0.0;
-            wave.buckets[0].push((x0 as u32, y0 as u32));
+            wave.queue[0].push((x0 as u32, y0 as u32));
         }
         self.next = 0;
         self.exhausted = false;
@@ -350,8 +522,7 @@ impl Reachability {
     /// Settle bucket `k`: every cell labelled in it is final; label its neighbours.
     #[inline]
     fn expand(&mut self, k: usize, passable: &impl Fn(usize) -> bool) {
-        let (w, h) = (self.width, self.height);
-        let tile_row = self.tiles_x * TILE_CELLS;
+        let dims = (self.width, self.height, self.tiles_x * TILE_CELLS);
         let slot = k % BUCKETS;
         let mut bucket = std::mem::take(&mut self.buckets[slot]);
         let mut wave = Wave {
@@ -359,66 +530,56 @@ impl Reachability {
             tile_epoch: &mut self.tile_epoch,
             state: &mut self.state,
             cost: &mut self.cost,
-            buckets: &mut self.buckets,
+            queue: &mut self.buckets,
         };
-        let settled = &mut self.settled;
-        for &(xu, yu) in &bucket {
-            let (x, y) = (xu as usize, yu as usize);
-            let p = slot_xy(tile_row, x, y);
+        for &xy in &bucket {
+            let p = slot_xy(dims.2, xy.0 as usize, xy.1 as usize);
             let state = wave.state[p];
             if state & DONE != 0 {
                 continue; // labelled again more cheaply, or listed twice
             }
-            let ci = wave.cost[p];
-            debug_assert_eq!(ci as usize, k);
+            debug_assert_eq!(wave.cost[p] as usize, k);
             wave.state[p] = state | DONE;
-            let i = y * w + x;
-            settled.push(i as u32);
-            let (left, right, up, down) = (x > 0, x + 1 < w, y > 0, y + 1 < h);
-            // slot offsets of the steps right, left, down and up (wrapping: negative)
-            let (xm, ym) = (x & TILE_MASK, y & TILE_MASK);
-            let dr = if xm == TILE_MASK {
-                TILE_CELLS - TILE_MASK
-            } else {
-                1
-            };
-            let dl = if xm == 0 { TILE_CELLS - TILE_MASK } else { 1 }.wrapping_neg();
-            let dd = if ym == TILE_MASK {
-                tile_row - TILE_MASK * TILE
-            } else {
-                TILE
-            };
-            let du = if ym == 0 {
-                tile_row - TILE_MASK * TILE
-            } else {
-                TILE
-            }
-            .wrapping_neg();
-            let (sr, sl) = (p.wrapping_add(dr), p.wrapping_add(dl));
-            // the neighbours' columns and rows (wrapping: only used inside the grid)
-            let (xr, xl) = (xu.wrapping_add(1), xu.wrapping_sub(1));
-            let (yd, ya) = (yu.wrapping_add(1), yu.wrapping_sub(1));
-            let c1 = ci + 1.0;
-            let pr = right && wave.visit(passable, (sr, i + 1, (xr, yu)), c1);
-            let pd = down && wave.visit(passable, (p.wrapping_add(dd), i + w, (xu, yd)), c1);
-            let pl = left && wave.visit(passable, (sl, i - 1, (xl, yu)), c1);
-            let pu = up && wave.visit(passable, (p.wrapping_add(du), i - w, (xu, ya)), c1);
-            let c2 = ci + SQRT2;
-            if right && down && (pr || pd) {
-                wave.visit(passable, (sr.wrapping_add(dd), i + w + 1, (xr, yd)), c2);
-            }
-            if left && down && (pl || pd) {
-                wave.visit(passable, (sl.wrapping_add(dd), i + w - 1, (xl, yd)), c2);
-            }
-            if left && up && (pl || pu) {
-                wave.visit(passable, (sl.wrapping_add(du), i - w - 1, (xl, ya)), c2);
-            }
-            if right && up && (pr || pu) {
-                wave.visit(passable, (sr.wrapping_add(du), i - w + 1, (xr, ya)), c2);
-            }
+            self.settled.push(xy.1 * dims.0 as u32 + xy.0);
+            wave.relax(passable, dims, xy, p);
         }
         bucket.clear();
         self.buckets[slot] = bucket;
+    }
+
+    /// Settle bucket `k` of a guided search (cells of cost plus bound in `[k, k + 1)`): a
+    /// cell may get a lower cost from another of the bucket settled after it, and is then
+    /// settled again, until none does; then every cost in it is final.
+    fn expand_guided(&mut self, k: usize, passable: &impl Fn(usize) -> bool) {
+        let dims = (self.width, self.height, self.tiles_x * TILE_CELLS);
+        let slot = k % BUCKETS;
+        let mut wave = Wave {
+            epoch: self.epoch,
+            tile_epoch: &mut self.tile_epoch,
+            state: &mut self.state,
+            cost: &mut self.cost,
+            queue: Guided {
+                buckets: &mut self.buckets,
+                guide: &mut self.guide,
+                current: k,
+            },
+        };
+        // First in, first out: cells labelled in this bucket are taken after the others.
+        let mut n = 0;
+        while let Some(&xy) = wave.queue.buckets[slot].get(n) {
+            n += 1;
+            let p = slot_xy(dims.2, xy.0 as usize, xy.1 as usize);
+            let state = wave.state[p];
+            if state & DONE != 0 {
+                continue; // labelled again more cheaply, or listed twice
+            }
+            wave.state[p] = state | DONE | LISTED;
+            if state & LISTED == 0 {
+                self.settled.push(xy.1 * dims.0 as u32 + xy.0);
+            }
+            wave.relax(passable, dims, xy, p);
+        }
+        wave.queue.buckets[slot].clear();
     }
 
     /// The slot of cell `i < width * height`.

@@ -1,0 +1,120 @@
+//! A search guided toward a set of goals (`Reachability::begin_guided`) against the full
+//! Dijkstra search on random maps: advanced bucket by bucket it settles every goal of cost
+//! below its next bucket, and every cell it settles has the full search's cost bit for bit
+//! and the same path; advanced to the end it is the full search.
+
+use explore::Reachability;
+use explore::plan::reachability::MAX_GUIDE_BLOCKS;
+use proptest::prelude::*;
+
+const W: usize = 61;
+const H: usize = 47;
+
+/// Walls: `rects` blocked rectangles `(x, y, w, h)` and scattered blocked cells.
+fn passable(rects: &[(usize, usize, usize, usize)], scatter: &[usize]) -> Vec<bool> {
+    let mut pass = vec![true; W * H];
+    for &(x, y, w, h) in rects {
+        for yy in y..(y + h).min(H) {
+            for xx in x..(x + w).min(W) {
+                pass[yy * W + xx] = false;
+            }
+        }
+    }
+    for &i in scatter {
+        pass[i] = false;
+    }
+    pass
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(150))]
+
+    #[test]
+    fn guided_search_equals_the_full_search_on_its_goals(
+        rects in prop::collection::vec((0usize..W, 0usize..H, 1usize..20, 1usize..20), 0..8),
+        scatter in prop::collection::vec(0usize..W * H, 0..300),
+        start in 0usize..W * H,
+        goals in prop::collection::vec(0u32..(W * H) as u32, 1..30),
+        steps in prop::collection::vec(0usize..12, 1..12),
+    ) {
+        let pass = passable(&rects, &scatter);
+        let mut full = Reachability::new(W, H);
+        full.compute(start, |i| pass[i]);
+        let mut part = Reachability::new(W, H);
+        // a search left in another state first: the buffers are reused
+        part.begin_guided((start + 101) % (W * H), |i| pass[i], &goals[..1]);
+        part.advance(5, |i| pass[i]);
+        part.begin_guided(start, |i| pass[i], &goals);
+        let (mut a, mut b) = (Vec::new(), Vec::new());
+        let mut through = 0;
+        for s in steps {
+            through += s;
+            let done = part.advance(through, |i| pass[i]);
+            prop_assert!(part.next_bucket() > through || done);
+            prop_assert_eq!(done, part.is_complete());
+            for &g in &goals {
+                let g = g as usize;
+                if full.cost(g).is_some_and(|c| (c as usize) < part.next_bucket()) || done {
+                    prop_assert_eq!(
+                        part.cost(g).map(f64::to_bits),
+                        full.cost(g).map(f64::to_bits),
+                        "goal {}", g
+                    );
+                }
+            }
+            for i in 0..W * H {
+                if let Some(c) = part.cost(i) {
+                    prop_assert_eq!(Some(c.to_bits()), full.cost(i).map(f64::to_bits));
+                    prop_assert!(part.path_to(i, &mut a) && full.path_to(i, &mut b));
+                    prop_assert_eq!(&a, &b);
+                }
+            }
+        }
+        part.advance(usize::MAX, |i| pass[i]);
+        prop_assert!(part.is_complete());
+        for i in 0..W * H {
+            prop_assert_eq!(part.cost(i).map(f64::to_bits), full.cost(i).map(f64::to_bits));
+        }
+    }
+}
+
+/// With goals far one way, the guided search settles them having settled fewer cells than
+/// the full search settles below their cost; with goals in too many blocks it is the full
+/// search, cell for cell.
+#[test]
+fn a_guided_search_looks_toward_its_goals() {
+    let pass = vec![true; W * H];
+    let goal = (H / 2 * W + W - 2) as u32;
+    let mut guided = Reachability::new(W, H);
+    guided.begin_guided(H / 2 * W + 1, |i| pass[i], &[goal]);
+    let cost = loop {
+        let done = guided.advance(guided.next_bucket(), |i| pass[i]);
+        if let Some(c) = guided.cost(goal as usize) {
+            break c;
+        }
+        assert!(!done);
+    };
+    let mut full = Reachability::new(W, H);
+    full.compute(H / 2 * W + 1, |i| pass[i]);
+    let nearer = (0..W * H).filter(|&i| full.cost(i).is_some_and(|c| c <= cost)).count();
+    assert!(
+        guided.settled().len() * 3 < nearer,
+        "guided {} cells, full {} below the goal's cost",
+        guided.settled().len(),
+        nearer
+    );
+
+    let (w, h) = (128usize, 96usize);
+    let open = |_: usize| true;
+    let everywhere: Vec<u32> = (0..(w * h) as u32).step_by(5).collect();
+    assert!((w / 8) * (h / 8) > MAX_GUIDE_BLOCKS);
+    let mut wide = Reachability::new(w, h);
+    wide.begin_guided(0, open, &everywhere);
+    let mut plain = Reachability::new(w, h);
+    plain.begin(0, open);
+    for through in [0, 3, 9, 40, usize::MAX] {
+        wide.advance(through, open);
+        plain.advance(through, open);
+        assert_eq!(wide.settled(), plain.settled());
+    }
+}
