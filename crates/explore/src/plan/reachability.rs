@@ -130,6 +130,8 @@ impl Queue for Guided<'_> {
     #[inline(always)]
     fn push(&mut self, c: f64, xy: Entry) {
         let k = self.bucket(c, xy).max(self.current);
+        // a step adds at most √2 to the cost and to the bound: at most 2√2 to their sum
+        debug_assert!(k < self.current + BUCKETS);
         self.buckets[k % BUCKETS].push(xy);
     }
 
