@@ -68,8 +68,15 @@ fn bench(c: &mut Criterion) {
         while !last(r) && !r.advance(r.next_bucket(), passable) {}
         r.settled().len()
     };
-    for (name, guided) in [("advance_to_far_goals", false), ("guided_to_far_goals", true)] {
-        eprintln!("{name}: {} goals, settled {}", goals.len(), grow(&mut r, guided));
+    for (name, guided) in [
+        ("advance_to_far_goals", false),
+        ("guided_to_far_goals", true),
+    ] {
+        eprintln!(
+            "{name}: {} goals, settled {}",
+            goals.len(),
+            grow(&mut r, guided)
+        );
         g.bench_function(name, |b| b.iter(|| black_box(grow(&mut r, guided))));
     }
     let mut a = AStar::new(n, n);

@@ -96,7 +96,9 @@ fn a_guided_search_looks_toward_its_goals() {
     };
     let mut full = Reachability::new(W, H);
     full.compute(H / 2 * W + 1, |i| pass[i]);
-    let nearer = (0..W * H).filter(|&i| full.cost(i).is_some_and(|c| c <= cost)).count();
+    let nearer = (0..W * H)
+        .filter(|&i| full.cost(i).is_some_and(|c| c <= cost))
+        .count();
     assert!(
         guided.settled().len() * 3 < nearer,
         "guided {} cells, full {} below the goal's cost",

@@ -450,7 +450,9 @@ impl<'a> Session<'a> {
         let mut through = 0;
         loop {
             let goals = team.offer.candidates.cells();
-            let done = team.planner.grow(r, from, known, &team.upkeep, goals, through);
+            let done = team
+                .planner
+                .grow(r, from, known, &team.upkeep, goals, through);
             let map = team.planner.map(r);
             let settled = map.settled();
             for &c in &settled[seen.min(settled.len())..] {

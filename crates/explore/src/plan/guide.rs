@@ -83,10 +83,8 @@ impl Guide {
             let b = y * bx + x;
             if self.block_mark[b] != self.epoch {
                 self.block_mark[b] = self.epoch;
-                self.points.push((
-                    (x * BLOCK) as f64 + half,
-                    (y * BLOCK) as f64 + half,
-                ));
+                self.points
+                    .push(((x * BLOCK) as f64 + half, (y * BLOCK) as f64 + half));
             }
         }
     }
@@ -128,7 +126,11 @@ impl Guide {
             let dy = (y0 - py).max(py - y1).max(0.0);
             octile(dx, dy)
         };
-        let least = self.points.iter().map(from_tile).fold(f64::INFINITY, f64::min);
+        let least = self
+            .points
+            .iter()
+            .map(from_tile)
+            .fold(f64::INFINITY, f64::min);
         let a = self.lists.len() as u32;
         for (k, p) in self.points.iter().enumerate() {
             if from_tile(p) <= least + TILE_DIAMETER {
