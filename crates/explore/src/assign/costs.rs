@@ -6,8 +6,8 @@
 //! robots' distances up to the goal it settles on: each robot's Dijkstra search is
 //! resumable ([`Reachability::begin`](crate::Reachability::begin)) and grown bucket by
 //! bucket (one cell-step of cost per bucket) until the rule can decide. When a search has
-//! settled bucket k, every cell of cost below k + 1 has its final cost, the same bits a full
-//! search gives (each cost is the minimum over final neighbour costs), so a rule that
+//! settled bucket k, every candidate of cost below k + 1 has its final cost, the same bits
+//! a full search gives (each cost is the minimum over final neighbour costs), so a rule that
 //! reasons "every pair not seen yet costs at least k + 1" decides exactly as on the full
 //! matrix. The cost of a decision then follows the area within the chosen goals, not the
 //! map. The searches are guided toward the candidates
@@ -21,8 +21,8 @@
 //! past its last goal. The count comes from the decision's flood fill of the robot's
 //! component ([`Planner::component`](crate::decision::Planner::component)), asked only
 //! once a search has grown past [`COUNT_FROM`] cells (or an eighth of a smaller map), so
-//! that small searches never pay for it. The pairs found are the same either way; only the cells beyond the last goal are
-//! left unsearched.
+//! that small searches never pay for it. The pairs found are the same either way; only the
+//! cells beyond the last goal are left unsearched.
 
 use crate::candidates::CandidateSet;
 use crate::decision::DecisionCtx;
@@ -70,7 +70,7 @@ impl LazyCosts {
         self.reachable.resize(robots, None);
     }
 
-    /// Grow robot `r`'s search through bucket `through` (every cell of cost below
+    /// Grow robot `r`'s search through bucket `through` (every candidate of cost below
     /// `through + 1` settled) and record the candidates newly settled. Returns whether every
     /// pair of robot `r` is known: its search is complete, or has settled every candidate
     /// robot `r` can reach (then the search may stop short of `through`).

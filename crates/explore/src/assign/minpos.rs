@@ -154,7 +154,7 @@ fn best_lazy(
                     if k == r {
                         continue;
                     }
-                    // every cell closer to robot k than the threshold is then settled
+                    // every goal closer to robot k than the threshold is then settled
                     lazy.grow(ctx, candidates, k, threshold as usize);
                     if ctx.planner.map(k).cost(cell).is_some_and(|d| d < threshold) {
                         rank += 1;
@@ -188,7 +188,7 @@ fn best_lazy(
 }
 
 /// Whether every allowed goal robot `r` has not settled ranks at least `p` for it, when its
-/// search has settled every cell of cost below `bound`: such a goal costs robot `r` at
+/// search has settled every goal of cost below `bound`: such a goal costs robot `r` at
 /// least `bound`, so every other robot closer to it than `bound` − [`TIE_CELLS`] is strictly
 /// closer than robot `r` (the other searches grow that far to tell).
 fn ranks_at_least(
