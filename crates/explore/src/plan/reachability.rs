@@ -6,7 +6,8 @@
 //! bucket k holds the cells whose cost lies in [k, k + 1). Every step costs at least 1, so a
 //! cell settled from bucket k only labels cells in buckets k + 1 and k + 2, and when bucket k
 //! is reached every cost in it is final: the search is exact, not an approximation, and
-//! three buckets used in turn hold the whole wavefront. Within a bucket the cells are taken
+//! three buckets used in turn hold the whole wavefront (a ring of four serves the guided
+//! search below too). Within a bucket the cells are taken
 //! in the order they were labelled, except in the bucket where a nearest-goal search ends:
 //! that one is taken in (cost, index) order up to the goal.
 //!
