@@ -38,7 +38,8 @@ impl std::str::FromStr for SensingMode {
     fn from_str(s: &str) -> Result<Self, String> {
         let bad = || {
             format!(
-                "sensing mode: expected 'continuous', 'on-arrival' or 'every-N' (a scan at                  every N-th cell, N from 1 to {MAX_SENSING_INTERVAL}), found '{s}'"
+                "sensing mode: expected 'continuous', 'on-arrival' or 'every-N' (a scan at \
+                 every N-th cell, N from 1 to {MAX_SENSING_INTERVAL}), found '{s}'"
             )
         };
         match s {

@@ -26,6 +26,17 @@ fn run(map: &GridMap, preset: &str, robots: usize, sensing: Option<SensingMode>)
     sim::run(map, &cfg).expect("run")
 }
 
+/// Regression: the message once carried the source line's indentation in its middle.
+#[test]
+fn a_bad_sensing_mode_is_named_in_one_plain_sentence() {
+    let e = "every-0".parse::<SensingMode>().expect_err("every-0");
+    assert_eq!(
+        e,
+        "sensing mode: expected 'continuous', 'on-arrival' or 'every-N' (a scan at every N-th \
+         cell, N from 1 to 1000000), found 'every-0'"
+    );
+}
+
 #[test]
 fn every_one_is_continuous_sensing() {
     assert_eq!(
