@@ -346,6 +346,15 @@ impl OpenTsp {
         }
     }
 
+    /// Set `pos` to the position of each of the `n` nodes in `route`.
+    fn index_route(&mut self, n: usize) {
+        self.pos.clear();
+        self.pos.resize(n, 0);
+        for (p, &v) in self.route.iter().enumerate() {
+            self.pos[v as usize] = p;
+        }
+    }
+
     /// Reverse `route[i..=j]` and keep `pos` up to date.
     fn reverse(&mut self, i: usize, j: usize) {
         self.route[i..=j].reverse();
@@ -370,11 +379,7 @@ impl OpenTsp {
         let len = self.route.len();
         let k = NEIGHBOURS.min(n - 1);
         let c = |a: u32, b: u32| d[a as usize * n + b as usize];
-        self.pos.clear();
-        self.pos.resize(n, 0);
-        for (p, &v) in self.route.iter().enumerate() {
-            self.pos[v as usize] = p;
-        }
+        self.index_route(n);
         self.queued.clear();
         self.queued.resize(n, false);
         self.queue.clear();
@@ -548,11 +553,7 @@ impl OpenTsp {
         let c = |a: u32, b: u32| d[a as usize * n + b as usize];
         let len = self.route.len();
         let k = NEIGHBOURS.min(n - 1);
-        self.pos.clear();
-        self.pos.resize(n, 0);
-        for (p, &v) in self.route.iter().enumerate() {
-            self.pos[v as usize] = p;
-        }
+        self.index_route(n);
         let mut any = false;
         let mut improved = true;
         while improved {
@@ -583,7 +584,7 @@ impl OpenTsp {
         } else {
             c(prev, first)
         };
-        // positions of the nodes, by a scan of the segment's neighbours
+        // whether a route position lies within the segment
         let inside = |p: usize| (i..e).contains(&p);
         for (u, v, u_first) in [(first, last, true), (last, first, false)] {
             for &b in &self.nbrs[u as usize * k..(u as usize + 1) * k] {

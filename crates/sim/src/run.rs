@@ -780,6 +780,17 @@ impl Team<'_> {
         }
     }
 
+    /// Robot `r` senses from `cell` with its heading at its clock (see [`sense`](Self::sense));
+    /// its count of cells entered unsensed starts again.
+    fn look(&mut self, robots: &mut [Robot], r: usize, cell: Cell, sweep: bool) {
+        let pose = Pose {
+            cell,
+            heading: robots[r].heading,
+        };
+        self.sense((r, robots[r].clock), pose, sweep);
+        robots[r].unsensed = 0;
+    }
+
     /// Sense from `pose` (with the 360° sweep if `sweep`), integrate, keep frontiers and
     /// coverage up to date.
     fn sense(&mut self, who: (usize, f64), pose: Pose, sweep: bool) {
@@ -972,12 +983,8 @@ impl Team<'_> {
     /// not approached for the no-progress limit goes on the inaccessible list.
     fn bump(&mut self, robots: &mut [Robot], r: usize, blocked: &[u32]) {
         robots[r].clock += BUMP_S;
-        let pose = Pose {
-            cell: self.truth.cells.cell(robots[r].cell as usize),
-            heading: robots[r].heading,
-        };
-        self.sense((r, robots[r].clock), pose, false);
-        robots[r].unsensed = 0;
+        let cell = self.truth.cells.cell(robots[r].cell as usize);
+        self.look(robots, r, cell, false);
         self.changed.clear();
         for &i in blocked {
             self.belief
@@ -1035,12 +1042,8 @@ impl Team<'_> {
             // Sensing every n-th cell: a robot looks before it decides where it stands.
             for &r in who {
                 if robots[r].unsensed > 0 {
-                    let pose = Pose {
-                        cell: self.truth.cells.cell(robots[r].cell as usize),
-                        heading: robots[r].heading,
-                    };
-                    self.sense((r, robots[r].clock), pose, false);
-                    robots[r].unsensed = 0;
+                    let cell = self.truth.cells.cell(robots[r].cell as usize);
+                    self.look(robots, r, cell, false);
                     self.record(robots, r);
                 }
             }
@@ -1249,14 +1252,7 @@ impl Team<'_> {
         let goal = robots[r].goal.expect("arriving robot has a goal");
         let cell = self.truth.cells.cell(goal as usize);
         if self.cfg.sensing_mode() == SensingMode::OnArrival {
-            self.sense(
-                (r, robots[r].clock),
-                Pose {
-                    cell,
-                    heading: robots[r].heading,
-                },
-                true,
-            );
+            self.look(robots, r, cell, true);
             self.record(robots, r);
         } else if self.is_open_frontier(goal) && !self.sensor.is_omnidirectional() {
             // Turn towards the unknown it is next to and look again.
@@ -1269,10 +1265,8 @@ impl Team<'_> {
                     sy += f64::from(c.y - cell.y);
                 }
             }
-            let heading = sy.atan2(sx);
-            robots[r].heading = heading;
-            self.sense((r, robots[r].clock), Pose { cell, heading }, false);
-            robots[r].unsensed = 0;
+            robots[r].heading = sy.atan2(sx);
+            self.look(robots, r, cell, false);
             self.record(robots, r);
         }
         self.lists.mark_visited(goal);
@@ -1339,15 +1333,7 @@ impl Team<'_> {
             SensingMode::Every(n) => robots[r].unsensed >= n || Some(next) == robots[r].goal,
         };
         if scan {
-            self.sense(
-                (r, robots[r].clock),
-                Pose {
-                    cell: b,
-                    heading: robots[r].heading,
-                },
-                false,
-            );
-            robots[r].unsensed = 0;
+            self.look(robots, r, b, false);
         }
         self.pin_free(next);
         if let Some(i) = passed_beside {
