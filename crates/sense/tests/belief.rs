@@ -57,6 +57,28 @@ proptest! {
     }
 
     #[test]
+    fn reflection_classes_follow_the_counts_at_any_threshold(steps in arb_observations()) {
+        for p_free in [0.0, 0.1, 0.25, 0.5, 0.9, 1.0] {
+            let mut refl = ReflectionMap::with_p_free(W, H, p_free).expect("a probability");
+            let mut changed = Vec::new();
+            for obs in &steps {
+                refl.integrate(obs, &mut changed);
+            }
+            for i in 0..W * H {
+                let (h, m) = (f64::from(refl.hits(i)), f64::from(refl.misses(i)));
+                let want = if h + m == 0.0 {
+                    Occ::Unknown
+                } else if h / (h + m) <= p_free {
+                    Occ::Free
+                } else {
+                    Occ::Occupied
+                };
+                prop_assert_eq!(refl.known()[i], want, "p_free {} cell {}", p_free, i);
+            }
+        }
+    }
+
+    #[test]
     fn models_match_their_oracles(steps in arb_observations()) {
         let mut known = KnownGrid::new(W, H);
         let mut refl = ReflectionMap::new(W, H);

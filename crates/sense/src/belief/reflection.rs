@@ -91,8 +91,12 @@ impl Belief for ReflectionMap {
                 Occ::Free => self.misses[i] = self.misses[i].saturating_add(1),
                 Occ::Unknown => continue,
             }
-            let class = self.classify(i);
-            set_class(&mut self.known, i, class, changed);
+            // One more hit only raises p and one more miss only lowers it, so a cell already
+            // of the class observed keeps it: only the others are classified again.
+            if self.known[i] != o {
+                let class = self.classify(i);
+                set_class(&mut self.known, i, class, changed);
+            }
         }
     }
 
