@@ -54,6 +54,42 @@ impl CellBits {
         assert!(i < self.len, "cell {i} outside a set of {} cells", self.len);
         self.words[i >> 6] &= !(1 << (i & 63));
     }
+
+    /// Add cell `i < len` if `present`, else remove it.
+    #[inline]
+    pub fn set(&mut self, i: usize, present: bool) {
+        if present {
+            self.insert(i);
+        } else {
+            self.remove(i);
+        }
+    }
+
+    /// Add (`present`) or remove every cell of `a..=b` (`a ≤ b < len`), a word at a time.
+    pub fn set_range(&mut self, a: usize, b: usize, present: bool) {
+        assert!(
+            a <= b && b < self.len,
+            "cells {a}..={b} outside a set of {}",
+            self.len
+        );
+        let (ka, kb) = (a >> 6, b >> 6);
+        for k in ka..=kb {
+            let lo = if k == ka { a & 63 } else { 0 };
+            let hi = if k == kb { b & 63 } else { 63 };
+            let mask = (u64::MAX << lo) & (u64::MAX >> (63 - hi));
+            if present {
+                self.words[k] |= mask;
+            } else {
+                self.words[k] &= !mask;
+            }
+        }
+    }
+
+    /// The 64 cells `64 k..64 k + 64` as a word (bit j: cell `64 k + j`).
+    #[inline]
+    pub fn word(&self, k: usize) -> u64 {
+        self.words[k]
+    }
 }
 
 #[cfg(test)]
@@ -86,6 +122,25 @@ mod tests {
                 }
             }
             prop_assert_eq!(bits.len(), len);
+        }
+
+        /// Ranges set and cleared a word at a time: the bits hold what a `Vec<bool>` holds.
+        #[test]
+        fn ranges_behave_as_a_bool_per_cell(
+            len in 1usize..300,
+            ops in proptest::collection::vec((0usize..300, 0usize..300, any::<bool>()), 0..40),
+        ) {
+            let mut bits = CellBits::new(len);
+            let mut oracle = vec![false; len];
+            for (a, b, add) in ops {
+                let (a, b) = (a.min(b) % len, a.max(b) % len);
+                let (a, b) = (a.min(b), a.max(b));
+                bits.set_range(a, b, add);
+                oracle[a..=b].fill(add);
+                for (c, &o) in oracle.iter().enumerate() {
+                    prop_assert_eq!(bits.contains(c), o, "cell {}", c);
+                }
+            }
         }
     }
 }

@@ -139,7 +139,8 @@ impl Planner {
         known: &Grid<Occ>,
         upkeep: &FrontierUpkeep,
     ) -> &Component {
-        let pass = |i| upkeep.is_traversable(known, i);
+        debug_assert_eq!(known.len(), upkeep.trav.passable().len());
+        let pass = upkeep.trav.passable();
         let fresh = match self.component_of {
             Some(q) if q == r => true,
             Some(_) => self.component.same_from(from as usize, pass),

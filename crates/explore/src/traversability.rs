@@ -27,6 +27,9 @@ pub struct Traversability {
     count: Counts,
     /// The cells currently counted as Occupied.
     counted: CellBits,
+    /// The traversable cells, kept with the counts (a flood fill reads them a word at a
+    /// time).
+    passable: CellBits,
     /// Whether anything was ever counted (else the counts are still the zeroed allocation).
     dirty: bool,
 }
@@ -45,6 +48,7 @@ impl Traversability {
             count: Counts::for_disk(disk.len(), n),
             disk,
             counted: CellBits::new(n),
+            passable: CellBits::new(n),
             dirty: false,
         }
     }
@@ -61,6 +65,7 @@ impl Traversability {
         if self.dirty {
             self.count = Counts::for_disk(self.disk.len(), n);
             self.counted = CellBits::new(n);
+            self.passable = CellBits::new(n);
         }
         self.dirty = true;
         let (w, h) = (self.width, self.height);
@@ -71,6 +76,11 @@ impl Traversability {
             Counts::U8(count) => count_from_scratch(count, &self.spans, data, w, h, counted),
             Counts::U32(count) => count_from_scratch(count, &self.spans, data, w, h, counted),
         }
+        for (i, o) in data[..w * h].iter().enumerate() {
+            if o.is_free() && self.count.is_zero(i) == Some(true) {
+                self.passable.insert(i);
+            }
+        }
     }
 
     /// Account for cells whose class changed (flat indices), given the belief AFTER the change;
@@ -80,6 +90,7 @@ impl Traversability {
     pub fn update(&mut self, known: &Grid<Occ>, changed: &[u32], touched: &mut Vec<u32>) {
         let n = self.width * self.height;
         self.dirty = true;
+        let from = touched.len();
         for &c in changed {
             let i = c as usize;
             if i >= n || i >= known.len() {
@@ -103,12 +114,25 @@ impl Traversability {
                 Counts::U32(count) => count_disk(count, &self.disk, (x, y), (w, h), occ, touched),
             }
         }
+        // A cell's traversability changes only with its own class or when its count
+        // becomes or stops being zero: the cells just touched.
+        for &c in &touched[from..] {
+            let i = c as usize;
+            let free = known[i].is_free() && self.count.is_zero(i) == Some(true);
+            self.passable.set(i, free);
+        }
     }
 
     /// Whether cell `i` is traversable: known Free and no known Occupied cell within clearance.
     #[inline]
     pub fn is_traversable(&self, known: &Grid<Occ>, i: usize) -> bool {
         known.data().get(i).is_some_and(|o| o.is_free()) && self.count.is_zero(i) == Some(true)
+    }
+
+    /// The traversable cells (as of the last update): [`is_traversable`](Self::is_traversable)
+    /// of the belief that update was given, for every cell.
+    pub fn passable(&self) -> &CellBits {
+        &self.passable
     }
 
     /// Whether some counted Occupied cell lies within the clearance of cell `i`.

@@ -188,6 +188,7 @@ fn check_walk(
         let trav = brute_traversable(&known, clearance);
         for (i, &t) in trav.iter().enumerate() {
             prop_assert_eq!(up.is_traversable(&known, i), t, "traversable({})", i);
+            prop_assert_eq!(up.trav.passable().contains(i), t, "passable bit {}", i);
         }
         let want = brute_frontiers(&known, &trav);
         let scratch = frontiers_from_scratch(&known, &up.trav);
@@ -329,6 +330,7 @@ proptest! {
             let trav = brute_traversable(&known, clearance);
             for (i, &t) in trav.iter().enumerate() {
                 prop_assert_eq!(up.is_traversable(&known, i), t, "traversable({})", i);
+                prop_assert_eq!(up.trav.passable().contains(i), t, "passable bit {}", i);
             }
             let want = brute_frontiers(&known, &trav);
             prop_assert_eq!(up.frontiers.cells(), &want[..]);
@@ -341,6 +343,9 @@ proptest! {
                 .collect();
             up.update(&next, &changed);
             let trav = brute_traversable(&next, clearance);
+            for (i, &t) in trav.iter().enumerate() {
+                prop_assert_eq!(up.trav.passable().contains(i), t, "passable bit {}", i);
+            }
             let mut got = up.frontiers.cells().to_vec();
             got.sort_unstable();
             prop_assert_eq!(got, brute_frontiers(&next, &trav));

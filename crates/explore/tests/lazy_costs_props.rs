@@ -9,6 +9,7 @@
 use explore::Reachability;
 use explore::assign::greedy::CostMatrix;
 use explore::assign::{AssignerKind, greedy, greedy_utility, hungarian, minpos, random_order};
+use explore::bits::CellBits;
 use explore::candidates::{CandidateKind, CandidateSet};
 use explore::decision::{DecisionCtx, Goal, GoalLists, Memory, Planner};
 use explore::plan::Component;
@@ -219,7 +220,11 @@ proptest! {
         }
         // the flood fill reaches what the search settles
         let mut comp = Component::new(W, H);
-        comp.compute(start, |i| pass[i]);
+        let mut bits = CellBits::new(W * H);
+        for (i, &p) in pass.iter().enumerate() {
+            bits.set(i, p);
+        }
+        comp.compute(start, &bits);
         for i in 0..W * H {
             prop_assert_eq!(comp.contains(i), full.is_settled(i), "cell {}", i);
         }

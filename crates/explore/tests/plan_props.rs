@@ -1,8 +1,11 @@
 //! Planners against slow oracles on random small maps: Dijkstra == Bellman–Ford (with the
 //! no-corner-squeezing rule), `nearest` finds a goal of minimal cost, A* == Dijkstra, and
 //! extracted paths are valid 8-connected paths whose step costs sum to the reported cost;
-//! the bucket queue settles exactly what a binary heap on (cost, index) settles.
+//! the bucket queue settles exactly what a binary heap on (cost, index) settles; the flood
+//! fill reaches what Bellman–Ford reaches.
 
+use explore::bits::CellBits;
+use explore::plan::Component;
 use explore::{AStar, Reachability};
 use grid::SQRT2;
 use proptest::prelude::*;
@@ -166,6 +169,31 @@ fn map() -> impl Strategy<Value = (usize, usize, Vec<bool>)> {
 
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(192))]
+
+    /// Rows wider than a word, fills one after the other on the same buffers: the flood
+    /// fill holds exactly the cells Bellman–Ford reaches (an impassable start included).
+    #[test]
+    fn the_fill_reaches_what_bellman_ford_reaches(
+        (w, h, pass) in (1usize..150, 1usize..12, 0.5f64..0.97).prop_flat_map(|(w, h, p)| {
+            (Just(w), Just(h), proptest::collection::vec(prop::bool::weighted(p), w * h))
+        }),
+        starts in proptest::collection::vec(any::<prop::sample::Index>(), 1..4),
+    ) {
+        let mut bits = CellBits::new(w * h);
+        for (i, &p) in pass.iter().enumerate() {
+            bits.set(i, p);
+        }
+        let mut comp = Component::new(w, h);
+        for s in starts {
+            let start = s.index(w * h);
+            comp.compute(start, &bits);
+            let bf = bellman_ford(w, h, &pass, start);
+            for (i, d) in bf.iter().enumerate() {
+                prop_assert_eq!(comp.contains(i), d.is_finite(), "cell {} from {}", i, start);
+            }
+            prop_assert_eq!(comp.len(), bf.iter().filter(|d| d.is_finite()).count());
+        }
+    }
 
     #[test]
     fn dijkstra_matches_bellman_ford((w, h, pass) in map(), starts in proptest::collection::vec(any::<prop::sample::Index>(), 1..4)) {

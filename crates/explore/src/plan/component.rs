@@ -6,23 +6,26 @@
 //! ends by straight steps. So the cells a search from a passable start settles are exactly
 //! the start's 4-connected component of passable cells; from an impassable start (which is
 //! always left) they are the start and the components of its passable straight neighbours.
-//! A scanline fill finds that set touching each cell a few times with no costs and no
-//! queue of cells, several times faster than a full Dijkstra search on a floor plan.
+//! A scanline fill finds that set with no costs and no queue of cells, reading the passable
+//! cells as bits ([`Traversability::passable`](crate::Traversability::passable)): a run of
+//! a row is found, marked and its neighbours' runs seeded a word of 64 cells at a time, so
+//! a fill costs about the runs of its component, not its cells.
 //!
-//! The marks are generation-stamped, so a new fill does not clear O(map) memory, and the
-//! run stack keeps its capacity: in steady state a fill allocates nothing.
+//! The marks are bits too, and a new fill clears only the runs the last one marked; the
+//! run lists keep their capacity: in steady state a fill allocates nothing.
 
-use crate::upkeep::next_gen;
+use crate::bits::CellBits;
 
 /// The cells reachable from one start (see the module docs).
 #[derive(Clone, Debug)]
 pub struct Component {
     width: usize,
     height: usize,
-    /// `mark[i] == epoch` iff cell i is in the component of the last fill (allocated by
-    /// the first fill: strategies that never ask "reachable?" never pay for it).
-    mark: Vec<u32>,
-    epoch: u32,
+    /// The cells of the last fill (allocated by the first fill: strategies that never ask
+    /// "reachable?" never pay for it).
+    mark: CellBits,
+    /// The runs marked by the last fill, as inclusive flat ranges.
+    runs: Vec<(usize, usize)>,
     /// Seeds of runs still to fill: `(x, y)`.
     stack: Vec<(u32, u32)>,
     start: Option<usize>,
@@ -36,8 +39,8 @@ impl Component {
         Self {
             width,
             height,
-            mark: Vec::new(),
-            epoch: 0,
+            mark: CellBits::default(),
+            runs: Vec::new(),
             stack: Vec::new(),
             start: None,
             start_passable: false,
@@ -45,28 +48,34 @@ impl Component {
         }
     }
 
-    /// Fill the cells reachable from `start` over cells where `passable(i)` (the start itself
-    /// is always included). A start outside the grid gives an empty set.
-    pub fn compute(&mut self, start: usize, passable: impl Fn(usize) -> bool) {
-        if self.mark.len() != self.width * self.height {
-            self.mark = vec![0; self.width * self.height];
+    /// Fill the cells reachable from `start` over the cells in `passable` (a set for this
+    /// grid's cells; the start itself is always included). A start outside the grid gives
+    /// an empty set.
+    pub fn compute(&mut self, start: usize, passable: &CellBits) {
+        let (w, h) = (self.width, self.height);
+        if self.mark.len() != w * h {
+            self.mark = CellBits::new(w * h);
+            self.runs.clear();
         }
-        self.epoch = next_gen(self.epoch, &mut self.mark);
+        for &(a, b) in &self.runs {
+            self.mark.set_range(a, b, false);
+        }
+        self.runs.clear();
         self.stack.clear();
         self.len = 0;
-        let (w, h) = (self.width, self.height);
-        if start >= w * h {
-            self.start = None;
-            self.start_passable = false;
+        self.start = None;
+        self.start_passable = false;
+        if start >= w * h || passable.len() != w * h {
             return;
         }
         self.start = Some(start);
         let (x0, y0) = ((start % w) as u32, (start / w) as u32);
-        self.start_passable = passable(start);
+        self.start_passable = passable.contains(start);
         if self.start_passable {
             self.stack.push((x0, y0));
         } else {
-            self.mark[start] = self.epoch;
+            self.mark.insert(start);
+            self.runs.push((start, start));
             self.len = 1;
             let (x, y) = (x0 as usize, y0 as usize);
             let around = [
@@ -76,26 +85,23 @@ impl Component {
                 (y > 0).then(|| (x0, y0 - 1)),
             ];
             for (nx, ny) in around.into_iter().flatten() {
-                if passable(ny as usize * w + nx as usize) {
+                if passable.contains(ny as usize * w + nx as usize) {
                     self.stack.push((nx, ny));
                 }
             }
         }
+        let open = |mark: &CellBits, k: usize| passable.word(k) & !mark.word(k);
         while let Some((x, y)) = self.stack.pop() {
             let (x, y) = (x as usize, y as usize);
             let row = y * w;
-            if self.mark[row + x] == self.epoch {
+            if self.mark.contains(row + x) {
                 continue;
             }
             // The run of unmarked passable cells through (x, y).
-            let (mut a, mut b) = (x, x);
-            while a > 0 && self.mark[row + a - 1] != self.epoch && passable(row + a - 1) {
-                a -= 1;
-            }
-            while b + 1 < w && self.mark[row + b + 1] != self.epoch && passable(row + b + 1) {
-                b += 1;
-            }
-            self.mark[row + a..=row + b].fill(self.epoch);
+            let a = run_start(|k| open(&self.mark, k), row + x, row);
+            let b = run_end(|k| open(&self.mark, k), row + x, row + w - 1);
+            self.mark.set_range(a, b, true);
+            self.runs.push((a, b));
             self.len += b - a + 1;
             // One seed per run of fillable cells in the rows above and below.
             for ny in [y.wrapping_sub(1), y + 1] {
@@ -103,15 +109,14 @@ impl Component {
                     continue;
                 }
                 let nrow = ny * w;
-                let mut in_run = false;
-                for nx in a..=b {
-                    let j = nrow + nx;
-                    let open = self.mark[j] != self.epoch && passable(j);
-                    if open && !in_run {
-                        self.stack.push((nx as u32, ny as u32));
-                    }
-                    in_run = open;
-                }
+                let (lo, hi) = (nrow + a - row, nrow + b - row);
+                let stack = &mut self.stack;
+                run_starts(
+                    |k| open(&self.mark, k),
+                    lo,
+                    hi,
+                    |s| stack.push(((s - nrow) as u32, ny as u32)),
+                );
             }
         }
     }
@@ -119,7 +124,7 @@ impl Component {
     /// Whether cell `i` is reachable from the start of the last fill.
     #[inline]
     pub fn contains(&self, i: usize) -> bool {
-        self.epoch != 0 && self.mark.get(i) == Some(&self.epoch)
+        self.mark.contains(i)
     }
 
     /// Number of cells in the component.
@@ -140,7 +145,74 @@ impl Component {
     /// Whether a fill from `other` gives the same set as the last one: both starts are
     /// passable and `other` is in this component (the components of passable cells
     /// partition them).
-    pub fn same_from(&self, other: usize, passable: impl Fn(usize) -> bool) -> bool {
-        self.start.is_some() && self.start_passable && self.contains(other) && passable(other)
+    pub fn same_from(&self, other: usize, passable: &CellBits) -> bool {
+        self.start.is_some()
+            && self.start_passable
+            && self.contains(other)
+            && passable.contains(other)
+    }
+}
+
+/// The first cell of the run of open cells through open cell `p`, not before `lo`; `open(k)`
+/// is word k of the open cells.
+#[inline]
+fn run_start(open: impl Fn(usize) -> u64, p: usize, lo: usize) -> usize {
+    let mut q = p;
+    loop {
+        let off = q & 63;
+        // bit q at the top: the open cells from q down are the leading ones
+        let ones = (!(open(q >> 6) << (63 - off))).leading_zeros() as usize;
+        let start = q + 1 - ones;
+        if start <= lo {
+            return lo;
+        }
+        if ones <= off {
+            return start;
+        }
+        q = start - 1;
+    }
+}
+
+/// The last cell of the run of open cells through open cell `p`, not after `hi`.
+#[inline]
+fn run_end(open: impl Fn(usize) -> u64, p: usize, hi: usize) -> usize {
+    let mut q = p;
+    loop {
+        let off = q & 63;
+        // bit q at the bottom: the open cells from q up are the trailing ones
+        let ones = (!(open(q >> 6) >> off)).trailing_zeros() as usize;
+        if ones == 0 {
+            return q - 1;
+        }
+        let end = q + ones - 1;
+        if end >= hi {
+            return hi;
+        }
+        if off + ones < 64 {
+            return end;
+        }
+        q = end + 1;
+    }
+}
+
+/// Call `seed(s)` for the first cell s of every run of open cells within `lo..=hi` (a run
+/// that starts before `lo` is seeded at `lo`).
+#[inline]
+fn run_starts(open: impl Fn(usize) -> u64, lo: usize, hi: usize, mut seed: impl FnMut(usize)) {
+    let mut carry = 0u64;
+    for k in lo >> 6..=hi >> 6 {
+        let mut word = open(k);
+        if k == lo >> 6 {
+            word &= u64::MAX << (lo & 63);
+        }
+        if k == hi >> 6 {
+            word &= u64::MAX >> (63 - (hi & 63));
+        }
+        let mut starts = word & !((word << 1) | carry);
+        carry = word >> 63;
+        while starts != 0 {
+            seed(k * 64 + starts.trailing_zeros() as usize);
+            starts &= starts - 1;
+        }
     }
 }
