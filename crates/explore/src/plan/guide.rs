@@ -45,10 +45,11 @@ pub struct Guide {
     points: Vec<(f64, f64)>,
     /// Per block: the goal set it was last marked for (deduplication).
     block_mark: Vec<u32>,
-    /// Per tile: the goal set its list was made for; its list is `lists[range]`.
+    /// Per tile: the goal set its list was made for; its list is `lists[range]`, the
+    /// centres themselves (not indices: the bound reads them in a row).
     tile_mark: Vec<u32>,
     tile_range: Vec<(u32, u32)>,
-    lists: Vec<u32>,
+    lists: Vec<(f64, f64)>,
     epoch: u32,
 }
 
@@ -109,9 +110,10 @@ impl Guide {
         let (a, b) = self.tile_range[t];
         let (fx, fy) = (x as f64, y as f64);
         let mut best = f64::INFINITY;
-        for &k in &self.lists[a as usize..b as usize] {
-            let (px, py) = self.points[k as usize];
-            best = best.min(octile((fx - px).abs(), (fy - py).abs()));
+        for &(px, py) in &self.lists[a as usize..b as usize] {
+            let d = octile((fx - px).abs(), (fy - py).abs());
+            // distances are never NaN: a plain comparison, not `f64::min`
+            best = if d < best { d } else { best };
         }
         (best - SLACK).max(0.0)
     }
@@ -132,9 +134,9 @@ impl Guide {
             .map(from_tile)
             .fold(f64::INFINITY, f64::min);
         let a = self.lists.len() as u32;
-        for (k, p) in self.points.iter().enumerate() {
+        for p in &self.points {
             if from_tile(p) <= least + TILE_DIAMETER {
-                self.lists.push(k as u32);
+                self.lists.push(*p);
             }
         }
         self.tile_mark[t] = self.epoch;
