@@ -44,6 +44,7 @@
 #![warn(missing_docs)]
 
 pub mod assign;
+mod belief_rows;
 pub mod bits;
 pub mod candidates;
 pub mod decision;

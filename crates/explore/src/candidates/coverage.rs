@@ -64,6 +64,7 @@ use sense::{LosSensor, MAX_TEMPLATE_RANGE_CELLS};
 use grid::{Grid, Occ};
 
 use super::CandidateSet;
+use crate::belief_rows::sync_rows;
 use crate::decision::DecisionCtx;
 
 /// Fraction of the sensor range used for covering (Faigl & Kulich: 0.8 ρ).
@@ -188,7 +189,7 @@ impl Visibility {
             return;
         }
         let (changed_at, blocks_x, decision) = (&mut self.changed_at, self.blocks_x, self.decision);
-        sync_rows(known, &mut self.prev, BLOCK, |y, bx| {
+        sync_rows(known, &mut self.prev, BLOCK, |y, bx, _, _| {
             changed_at[(y / BLOCK) * blocks_x + bx] = decision;
         });
     }
@@ -321,7 +322,7 @@ impl Coarse {
             return;
         }
         let (marked, dirty) = (&mut self.marked, &mut self.dirty);
-        sync_rows(known, &mut self.fine, block, |y, bx| {
+        sync_rows(known, &mut self.fine, block, |y, bx, _, _| {
             let b = (y / block) * cw + bx;
             if !marked[b] {
                 marked[b] = true;
@@ -339,34 +340,6 @@ impl Coarse {
     #[inline]
     fn of(&self, i: usize, w: usize) -> usize {
         (i / w / self.block) * self.grid.width() + (i % w) / self.block
-    }
-}
-
-/// Bring `prev` (a copy of an earlier belief of the same size) up to `known` row by row,
-/// calling `changed(y, k)` for each chunk k of `chunk` cells of row y that differed (work ∝
-/// the rows that changed: equal rows are compared whole).
-fn sync_rows(
-    known: &Grid<Occ>,
-    prev: &mut Grid<Occ>,
-    chunk: usize,
-    mut changed: impl FnMut(usize, usize),
-) {
-    let w = known.width();
-    for (y, (row, old)) in known
-        .data()
-        .chunks(w)
-        .zip(prev.data_mut().chunks_mut(w))
-        .enumerate()
-    {
-        if row == old {
-            continue;
-        }
-        for (k, (a, b)) in row.chunks(chunk).zip(old.chunks(chunk)).enumerate() {
-            if a != b {
-                changed(y, k);
-            }
-        }
-        old.copy_from_slice(row);
     }
 }
 
