@@ -165,15 +165,20 @@ impl<Q: Queue> Wave<'_, Q> {
 
     /// Meet cell `j` (column and row `xy`, slot `q`) at cost `c` from a settled neighbour:
     /// label it (or lower its label) if it is passable and not settled; its passability is
-    /// looked up once per search and kept. Returns whether `j` is passable.
+    /// looked up once per search and kept. `other_tile`: `j` may lie in a tile the search
+    /// has not entered (a neighbour in the settled cell's own tile never does). Returns
+    /// whether `j` is passable.
     #[inline(always)]
     fn visit(
         &mut self,
         passable: &impl Fn(usize) -> bool,
         (q, j, xy): (usize, usize, Entry),
         c: f64,
+        other_tile: bool,
     ) -> bool {
-        self.enter_tile(q);
+        if other_tile {
+            self.enter_tile(q);
+        }
         let s = self.state[q];
         if s & MET != 0 {
             if s & BLOCKED != 0 {
@@ -235,23 +240,30 @@ impl<Q: Queue> Wave<'_, Q> {
         // the neighbours' columns and rows (wrapping: only used inside the grid)
         let (xr, xl) = (xu.wrapping_add(1), xu.wrapping_sub(1));
         let (yd, ya) = (yu.wrapping_add(1), yu.wrapping_sub(1));
+        // whether a step right, left, down or up leaves the settled cell's tile
+        let (xr_out, xl_out) = (xm == TILE_MASK, xm == 0);
+        let (yd_out, yu_out) = (ym == TILE_MASK, ym == 0);
         let c1 = ci + 1.0;
-        let pr = right && self.visit(passable, (sr, i + 1, (xr, yu)), c1);
-        let pd = down && self.visit(passable, (p.wrapping_add(dd), i + w, (xu, yd)), c1);
-        let pl = left && self.visit(passable, (sl, i - 1, (xl, yu)), c1);
-        let pu = up && self.visit(passable, (p.wrapping_add(du), i - w, (xu, ya)), c1);
+        let pr = right && self.visit(passable, (sr, i + 1, (xr, yu)), c1, xr_out);
+        let pd = down && self.visit(passable, (p.wrapping_add(dd), i + w, (xu, yd)), c1, yd_out);
+        let pl = left && self.visit(passable, (sl, i - 1, (xl, yu)), c1, xl_out);
+        let pu = up && self.visit(passable, (p.wrapping_add(du), i - w, (xu, ya)), c1, yu_out);
         let c2 = ci + SQRT2;
         if right && down && (pr || pd) {
-            self.visit(passable, (sr.wrapping_add(dd), i + w + 1, (xr, yd)), c2);
+            let q = sr.wrapping_add(dd);
+            self.visit(passable, (q, i + w + 1, (xr, yd)), c2, xr_out || yd_out);
         }
         if left && down && (pl || pd) {
-            self.visit(passable, (sl.wrapping_add(dd), i + w - 1, (xl, yd)), c2);
+            let q = sl.wrapping_add(dd);
+            self.visit(passable, (q, i + w - 1, (xl, yd)), c2, xl_out || yd_out);
         }
         if left && up && (pl || pu) {
-            self.visit(passable, (sl.wrapping_add(du), i - w - 1, (xl, ya)), c2);
+            let q = sl.wrapping_add(du);
+            self.visit(passable, (q, i - w - 1, (xl, ya)), c2, xl_out || yu_out);
         }
         if right && up && (pr || pu) {
-            self.visit(passable, (sr.wrapping_add(du), i - w + 1, (xr, ya)), c2);
+            let q = sr.wrapping_add(du);
+            self.visit(passable, (q, i - w + 1, (xr, ya)), c2, xr_out || yu_out);
         }
     }
 }
