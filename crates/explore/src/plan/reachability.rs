@@ -92,6 +92,8 @@ fn slot_xy(tile_row: usize, x: usize, y: usize) -> usize {
 
 /// Where a search puts the cells it labels.
 trait Queue {
+    /// Whether a settled cell is final (never labelled again).
+    const FINAL: bool;
     /// Cell `xy` was labelled with cost `c`.
     fn push(&mut self, c: f64, xy: Entry);
     /// Whether settled cell `xy`, of cost `c`, may still get a lower cost.
@@ -100,6 +102,8 @@ trait Queue {
 
 /// Dijkstra's: the bucket of its cost; a settled cell is final.
 impl Queue for &mut [Vec<Entry>; BUCKETS] {
+    const FINAL: bool = true;
+
     #[inline(always)]
     fn push(&mut self, c: f64, xy: Entry) {
         self[c as usize % BUCKETS].push(xy);
@@ -128,6 +132,8 @@ impl Guided<'_> {
 }
 
 impl Queue for Guided<'_> {
+    const FINAL: bool = false;
+
     #[inline(always)]
     fn push(&mut self, c: f64, xy: Entry) {
         let k = self.bucket(c, xy).max(self.current);
@@ -183,6 +189,9 @@ impl<Q: Queue> Wave<'_, Q> {
         if s & MET != 0 {
             if s & BLOCKED != 0 {
                 return false;
+            }
+            if Q::FINAL && s & DONE != 0 {
+                return true; // settled for good: its cost is not even read
             }
             if c < self.cost[q] && (s & DONE == 0 || self.queue.reopens(self.cost[q], xy)) {
                 self.state[q] = s & !DONE;
