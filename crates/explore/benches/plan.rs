@@ -1,10 +1,12 @@
 //! Planning on a 2000 × 2000 map: nearest frontier (near and far), full reachability, the
-//! resumable search (whole, and to far goals with and without guidance), A*, EDT.
+//! resumable search (whole, and to far goals with and without guidance), the reachability
+//! flood fill, A*, EDT.
 
 mod common;
 
 use common::{half_explored, truth};
 use criterion::{Criterion, criterion_group, criterion_main};
+use explore::plan::Component;
 use explore::{AStar, Reachability};
 use grid::edt::{EdtScratch, edt_squared_into};
 use grid::{Grid, Occ};
@@ -79,6 +81,17 @@ fn bench(c: &mut Criterion) {
         );
         g.bench_function(name, |b| b.iter(|| black_box(grow(&mut r, guided))));
     }
+    // the flood fill behind "reachable?", over the traversable cells of the half-explored
+    // belief, from the far start
+    let mut comp = Component::new(n, n);
+    comp.compute(far, up.trav.passable());
+    eprintln!("component: {} cells", comp.len());
+    g.bench_function("component_half_explored", |b| {
+        b.iter(|| {
+            comp.compute(far, up.trav.passable());
+            black_box(comp.len())
+        })
+    });
     let mut a = AStar::new(n, n);
     let mut path = Vec::new();
     let goal = (n * (n - 20) + n - 20..n * (n - 20) + n - 10)
