@@ -37,18 +37,6 @@ enum Extent {
     Full,
 }
 
-/// The cells a search may enter: the traversable cells, read from the bits the upkeep
-/// keeps with its clearance counts (one bit per cell instead of the class and the count).
-#[inline]
-fn passable<'a>(
-    known: &Grid<Occ>,
-    upkeep: &'a FrontierUpkeep,
-) -> impl Fn(usize) -> bool + Copy + 'a {
-    debug_assert_eq!(known.len(), upkeep.trav.passable().len());
-    let bits = upkeep.trav.passable();
-    move |i| bits.contains(i)
-}
-
 /// Per-robot reachability maps, reused across decisions (no allocation in steady state).
 pub struct Planner {
     maps: Vec<Reachability>,
@@ -100,7 +88,7 @@ impl Planner {
         known: &Grid<Occ>,
         upkeep: &FrontierUpkeep,
     ) -> &Reachability {
-        let pass = passable(known, upkeep);
+        let pass = |i| upkeep.is_traversable(known, i);
         match self.extent[r] {
             Extent::Full => {}
             Extent::Growing => {
@@ -126,7 +114,7 @@ impl Planner {
         goals: &[u32],
         through: usize,
     ) -> bool {
-        let pass = passable(known, upkeep);
+        let pass = |i| upkeep.is_traversable(known, i);
         match self.extent[r] {
             Extent::Full => return true,
             Extent::Growing => {}
@@ -175,7 +163,8 @@ impl Planner {
         upkeep: &FrontierUpkeep,
         is_goal: impl Fn(usize) -> bool,
     ) -> Option<u32> {
-        let found = self.maps[r].nearest(from as usize, passable(known, upkeep), is_goal);
+        let pass = |i| upkeep.is_traversable(known, i);
+        let found = self.maps[r].nearest(from as usize, pass, is_goal);
         self.extent[r] = Extent::Partial;
         found.map(|g| g as u32)
     }

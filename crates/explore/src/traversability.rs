@@ -123,10 +123,19 @@ impl Traversability {
         }
     }
 
-    /// Whether cell `i` is traversable: known Free and no known Occupied cell within clearance.
+    /// Whether cell `i` is traversable: known Free and no known Occupied cell within
+    /// clearance. `known` is the belief last given to [`update`](Self::update) or
+    /// [`rebuild`](Self::rebuild); the answer is the cell's bit in
+    /// [`passable`](Self::passable) (debug builds check it against `known` and the counts).
     #[inline]
     pub fn is_traversable(&self, known: &Grid<Occ>, i: usize) -> bool {
-        known.data().get(i).is_some_and(|o| o.is_free()) && self.count.is_zero(i) == Some(true)
+        let bit = self.passable.contains(i);
+        debug_assert_eq!(
+            bit,
+            known.data().get(i).is_some_and(|o| o.is_free()) && self.count.is_zero(i) == Some(true),
+            "cell {i}: the belief was changed without an update"
+        );
+        bit
     }
 
     /// The traversable cells (as of the last update): [`is_traversable`](Self::is_traversable)
