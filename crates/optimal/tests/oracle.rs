@@ -1,10 +1,12 @@
 //! The A* search against an exhaustive uniform-cost search written independently from the
 //! problem statement (slow visibility from `sense::los_visible`, Floyd–Warshall paths in the
 //! perceived free space, states as `(cell, Vec<bool>)` in a `BTreeMap`), on tiny random maps.
+//! The Floyd–Warshall table depends only on what is perceived, so one search computes it
+//! once per perceived set ([`Paths`]), not once per state.
 
 #![allow(clippy::needless_range_loop)] // Floyd–Warshall reads best with indices.
 
-use std::collections::{BTreeMap, BTreeSet};
+use std::collections::{BTreeMap, BTreeSet, HashMap};
 use std::time::Duration;
 
 use grid::{Cell, Grid, Occ};
@@ -107,17 +109,41 @@ fn perceived_targets(pl: &Plain, perceived: &[bool]) -> usize {
     pl.targets.iter().filter(|&&t| perceived[t]).count()
 }
 
+/// The all-pairs paths through the perceived reachable free cells, per perceived set.
+#[derive(Default)]
+struct Paths(HashMap<Vec<bool>, Vec<Vec<f64>>>);
+
+impl Paths {
+    /// Floyd–Warshall over the cells perceived in `perceived` that are reachable and free.
+    fn get(&mut self, pl: &Plain, perceived: &[bool]) -> &Vec<Vec<f64>> {
+        self.0.entry(perceived.to_vec()).or_insert_with(|| {
+            let map = &pl.map;
+            let known_free = |c: Cell| {
+                map.checked_index(c)
+                    .is_some_and(|i| pl.reach[i] && perceived[i])
+            };
+            all_pairs(map, &known_free)
+        })
+    }
+}
+
 /// The moves from `pos` with `perceived` (indexed by cell) and their costs. A boundary
 /// cell is a perceived reachable free cell with an unperceived 8-neighbour of any kind (the
 /// paper's "unknown"); when no boundary move perceives a new target, every perceived
 /// reachable cell is a move.
-fn actions(pl: &Plain, pos: usize, perceived: &[bool], set: ActionSet) -> Vec<(usize, f64)> {
+fn actions(
+    pl: &Plain,
+    paths: &mut Paths,
+    pos: usize,
+    perceived: &[bool],
+    set: ActionSet,
+) -> Vec<(usize, f64)> {
     let map = &pl.map;
     let known_free = |c: Cell| {
         map.checked_index(c)
             .is_some_and(|i| pl.reach[i] && perceived[i])
     };
-    let d = all_pairs(map, &known_free);
+    let d = paths.get(pl, perceived);
     let boundary = |i: usize| {
         let c = map.cell(i);
         grid::NEIGHBOURS8.iter().any(|&(dx, dy)| {
@@ -147,6 +173,7 @@ fn actions(pl: &Plain, pos: usize, perceived: &[bool], set: ActionSet) -> Vec<(u
 /// Exhaustive uniform-cost search from (pos, perceived); `None` if the goal is unreachable.
 fn oracle(
     pl: &Plain,
+    paths: &mut Paths,
     pos: usize,
     perceived: Vec<bool>,
     need: usize,
@@ -166,7 +193,7 @@ fn oracle(
         if perceived_targets(pl, &m) >= need {
             return Some(c);
         }
-        for (q, step) in actions(pl, p, &m, set) {
+        for (q, step) in actions(pl, paths, p, &m, set) {
             let mut m2 = m.clone();
             for &k in &pl.sees[q] {
                 m2[k] = true;
@@ -260,7 +287,7 @@ fn arb_case() -> impl Strategy<Value = (Grid<Occ>, Cell, SensorModel, f64)> {
 fn early_states(pl: &Plain, s: usize, children: usize) -> Vec<(usize, Vec<bool>)> {
     let m0 = initial(pl, s);
     let mut states = vec![(s, m0.clone())];
-    for (q, _) in actions(pl, s, &m0, ActionSet::All)
+    for (q, _) in actions(pl, &mut Paths::default(), s, &m0, ActionSet::All)
         .into_iter()
         .take(children)
     {
@@ -329,13 +356,14 @@ proptest! {
         let heuristic = [HeuristicKind::Zero, HeuristicKind::Paper, HeuristicKind::Landmarks][hk];
         let problem = Problem::new(&map, start, model).expect("valid problem");
         let pl = plain(&map, start, model);
+        let mut paths = Paths::default();
         prop_assert_eq!(problem.targets().len(), pl.targets.len());
         let need = problem.needed(g);
         let s = map.index(start);
-        let expected = oracle(&pl, s, initial(&pl, s), need, set);
+        let expected = oracle(&pl, &mut paths, s, initial(&pl, s), need, set);
         if !all {
             // The boundary actions are complete: they reach the goal whenever any sequence does.
-            let any = oracle(&pl, s, initial(&pl, s), need, ActionSet::All);
+            let any = oracle(&pl, &mut paths, s, initial(&pl, s), need, ActionSet::All);
             prop_assert_eq!(any.is_some(), expected.is_some());
         }
         let out = optimal::solve(&problem, &cfg(g, set, heuristic)).expect("solve");
@@ -360,9 +388,10 @@ proptest! {
     fn heuristics_are_admissible((map, start, model, g) in arb_case()) {
         let problem = Problem::new(&map, start, model).expect("valid problem");
         let pl = plain(&map, start, model);
+        let mut paths = Paths::default();
         let need = problem.needed(g);
         for (p, m) in early_states(&pl, map.index(start), 6) {
-            let Some(exact) = oracle(&pl, p, m.clone(), need, ActionSet::All) else { continue };
+            let Some(exact) = oracle(&pl, &mut paths, p, m.clone(), need, ActionSet::All) else { continue };
             for hk in [HeuristicKind::Paper, HeuristicKind::Landmarks] {
                 let by_target: Vec<bool> = pl.targets.iter().map(|&t| m[t]).collect();
                 let h = heuristic_value(&problem, &cfg(g, ActionSet::All, hk), map.cell(p), &by_target);
@@ -439,15 +468,16 @@ proptest! {
     fn weaker_goal_bounds_hold_on_corridors((map, start, model, g) in arb_corridor_case()) {
         let problem = Problem::new(&map, start, model).expect("valid problem");
         let pl = plain(&map, start, model);
+        let mut paths = Paths::default();
         let need = problem.needed(g);
         let s = map.index(start);
         for (p, m) in early_states(&pl, s, 4) {
-            let Some(exact) = oracle(&pl, p, m.clone(), need, ActionSet::All) else { continue };
+            let Some(exact) = oracle(&pl, &mut paths, p, m.clone(), need, ActionSet::All) else { continue };
             let by_target: Vec<bool> = pl.targets.iter().map(|&t| m[t]).collect();
             let h = heuristic_value(&problem, &cfg(g, ActionSet::All, HeuristicKind::Landmarks), map.cell(p), &by_target);
             prop_assert!(h <= exact + TOL, "h = {} > h* = {} at {}", h, exact, map.cell(p));
         }
-        let expected = oracle(&pl, s, initial(&pl, s), need, ActionSet::Boundary);
+        let expected = oracle(&pl, &mut paths, s, initial(&pl, s), need, ActionSet::Boundary);
         let out = optimal::solve(&problem, &cfg(g, ActionSet::Boundary, HeuristicKind::Landmarks)).expect("solve");
         match expected {
             None => prop_assert_eq!(out.status, Status::NoSolution),
