@@ -25,11 +25,14 @@
 //! copy of the belief (unknown cells are opaque) — by shadow casting ([`sense::shadow`],
 //! time ∝ the cells looked at) from 20 cells of range on, by the shared ray template below
 //! — keeping free cells that are traversable, reachable and not on the goal lists. C_i is
-//! the union of the scans of f_i's unknown neighbours. The incidences go into two flat
-//! adjacency arrays (frontier → covering cells, covering cell → frontiers), and the greedy
-//! choice uses a lazy max-heap on the uncovered counts (counts only fall, so a popped entry
-//! whose count is current is the maximum). Cost ∝ the number of (frontier, covering cell)
-//! pairs; all buffers live in [`State`] and are reused.
+//! the union of the scans of f_i's unknown neighbours. Each unknown cell is scanned once
+//! per decision however many frontier cells it borders, and every cell its scan reports
+//! gets those frontier cells in a bit set per covering cell (one bit per frontier cell, so
+//! a union needs no deduplication). The greedy choice uses a lazy max-heap on the
+//! uncovered counts, recounted from the bit sets when popped (counts only fall, so a popped
+//! entry whose count is current is the maximum). Cost ∝ the number of (unknown cell,
+//! covering cell) pairs, plus covering cells × frontier cells / 64; all buffers live in
+//! [`State`] and are reused.
 //!
 //! Choices where the paper is silent:
 //! - "covered" is as above;
@@ -94,9 +97,11 @@ pub struct State {
     key_start: Vec<u32>,
     /// The cells of the scanned grid whose scans cover the key at hand.
     targets: Vec<u32>,
-    /// Key k's covering candidates are `f_cov[f_start[k]..f_start[k + 1]]` (ids).
-    f_start: Vec<u32>,
-    f_cov: Vec<u32>,
+    /// (target, key) incidences: key k is covered from any cell that sees its target (a
+    /// cell of the scanned grid), sorted by target.
+    pairs: Vec<(u32, u32)>,
+    /// The keys of the target at hand, as (word, bits) of a key bit set.
+    masks: Vec<(usize, u64)>,
     /// The blocks of fine maps (unused when the cover is cell by cell).
     coarse: Coarse,
     /// Candidate id of each scanned cell (or `NOT_ELIGIBLE`), valid where `stamp == epoch`.
@@ -105,16 +110,15 @@ pub struct State {
     epoch: u32,
     /// Candidate id → map cell (a block's representative cell on fine maps).
     cands: Vec<u32>,
-    /// Candidate id → number of uncovered frontiers it covers.
-    count: Vec<u32>,
-    /// Candidate id → 1 + the index of the last key that counted it (deduplicates the
-    /// union over a key's unknown neighbours).
-    last: Vec<u32>,
-    /// Candidate id → the keys it covers, flat.
-    c_start: Vec<u32>,
-    c_front: Vec<u32>,
-    fill: Vec<u32>,
-    covered: Vec<bool>,
+    /// Per row of the scanned grid, and one more: the keys in the rows above it.
+    row_keys: Vec<u32>,
+    /// Candidate id → where its set of the keys it covers lies in `bits`.
+    spans: Vec<Span>,
+    /// The candidates' key bit sets (only the words of the keys near each), flat.
+    bits: Vec<u64>,
+    /// The keys some candidate covers, and those covered by the candidates chosen so far.
+    coverable: Vec<u64>,
+    covered: Vec<u64>,
     heap: BinaryHeap<(u32, Reverse<u32>, u32)>,
     /// The chosen candidates in order, and the frontier cells credited to each.
     chosen: Vec<u32>,
@@ -394,10 +398,10 @@ pub fn generate(ctx: &mut DecisionCtx<'_>, out: &mut CandidateSet) {
 fn cover(ctx: &mut DecisionCtx<'_>, st: &mut State) {
     st.front.clear();
     st.key_start.clear();
-    st.f_start.clear();
-    st.f_cov.clear();
+    st.pairs.clear();
     st.cands.clear();
-    st.count.clear();
+    st.bits.clear();
+    st.spans.clear();
     st.chosen.clear();
     st.credit.clear();
     st.credit_start.clear();
@@ -464,31 +468,65 @@ fn cover(ctx: &mut DecisionCtx<'_>, st: &mut State) {
         }
     }
     st.key_start.push(st.front.len() as u32);
-    let (cid, stamp, epoch) = (&mut st.cid, &mut st.stamp, st.epoch);
-    let (cands, count, last, f_cov, f_start, targets) = (
-        &mut st.cands,
-        &mut st.count,
-        &mut st.last,
-        &mut st.f_cov,
-        &mut st.f_start,
-        &mut st.targets,
-    );
-    last.clear();
-    let template = st.template.as_ref().map(|t| &t.1);
-    for kk in 0..st.key_start.len() - 1 {
-        f_start.push(f_cov.len() as u32);
-        let tag = kk as u32 + 1;
-        targets.clear();
+    let nk = st.key_start.len() - 1;
+    // The (target, key) incidences: key k is covered from what sees one of its targets.
+    for kk in 0..nk {
+        st.targets.clear();
         for &f in &st.front[st.key_start[kk] as usize..st.key_start[kk + 1] as usize] {
             for u in known.neighbours8(f as usize) {
                 let t = key(u as u32);
-                if known[u] == Occ::Unknown && !targets.contains(&t) {
-                    targets.push(t);
+                if known[u] == Occ::Unknown && !st.targets.contains(&t) {
+                    st.targets.push(t);
                 }
             }
         }
-        for &t in targets.iter() {
-            let k = st.vis.get(t, range, template);
+        st.pairs.extend(st.targets.iter().map(|&t| (t, kk as u32)));
+    }
+    st.pairs.sort_unstable();
+    // Each candidate's keys as a bit set; one scan per target, whose cells all get the
+    // target's keys. A candidate's set spans only the words of the keys whose rows it can
+    // cover (a scan reports cells within `range` rows of its target, and a key lies within
+    // a row of its target), so the sets take memory ∝ the keys near each candidate.
+    let words = nk.div_ceil(64).max(1);
+    let (sw, sh) = (scanned.width(), scanned.height());
+    st.row_keys.clear();
+    st.row_keys.resize(sh + 1, 0);
+    for kk in 0..nk {
+        let kc = key(st.front[st.key_start[kk] as usize]) as usize;
+        st.row_keys[kc / sw + 1] += 1;
+    }
+    for y in 0..sh {
+        st.row_keys[y + 1] += st.row_keys[y];
+    }
+    let rows = range.ceil() as usize + 1;
+    st.covered.clear();
+    st.covered.resize(words, 0);
+    let template = st.template.as_ref().map(|t| &t.1);
+    // Spans of every key, if a key ever fell outside a candidate's rows (it cannot).
+    let mut full = false;
+    loop {
+        st.cands.clear();
+        st.bits.clear();
+        st.spans.clear();
+        st.coverable.clear();
+        st.coverable.resize(words, 0);
+        let mut spilled = false;
+        let (cid, stamp, epoch) = (&mut st.cid, &mut st.stamp, st.epoch);
+        let (cands, bits, spans, masks) =
+            (&mut st.cands, &mut st.bits, &mut st.spans, &mut st.masks);
+        let row_keys = &st.row_keys;
+        for group in st.pairs.chunk_by(|a, b| a.0 == b.0) {
+            // the target's keys as (word, bits), words ascending (keys are)
+            masks.clear();
+            for &(_, kk) in group {
+                let (w, b) = (kk as usize / 64, 1u64 << (kk % 64));
+                match masks.last_mut() {
+                    Some((lw, lm)) if *lw == w => *lm |= b,
+                    _ => masks.push((w, b)),
+                }
+            }
+            let k = st.vis.get(group[0].0, range, template);
+            let mut seen_by_any = false;
             for &i in &st.vis.entries[k as usize].free {
                 let iu = i as usize;
                 let id = if stamp[iu] == epoch {
@@ -507,80 +545,120 @@ fn cover(ctx: &mut DecisionCtx<'_>, st: &mut State) {
                     let id = cands.len() as u32;
                     cid[iu] = id;
                     cands.push(cell);
-                    count.push(0);
-                    last.push(0);
+                    let (w0, w1) = if full {
+                        (0, words)
+                    } else {
+                        let y = iu / sw;
+                        let lo = row_keys[y.saturating_sub(rows)] as usize;
+                        let hi = row_keys[(y + rows + 1).min(sh)] as usize;
+                        (lo / 64, hi.div_ceil(64).max(lo / 64))
+                    };
+                    spans.push(Span {
+                        word: w0 as u32,
+                        at: bits.len() as u32,
+                        len: (w1 - w0) as u32,
+                    });
+                    bits.resize(bits.len() + w1 - w0, 0);
                     id
                 };
-                if id == NOT_ELIGIBLE || last[id as usize] == tag {
+                if id == NOT_ELIGIBLE {
                     continue;
                 }
-                last[id as usize] = tag;
-                count[id as usize] += 1;
-                f_cov.push(id);
+                seen_by_any = true;
+                let sp = spans[id as usize];
+                for &(w, m) in masks.iter() {
+                    let j = w.wrapping_sub(sp.word as usize);
+                    if j < sp.len as usize {
+                        bits[sp.at as usize + j] |= m;
+                    } else {
+                        spilled = true;
+                    }
+                }
+            }
+            if seen_by_any {
+                for &(w, m) in masks.iter() {
+                    st.coverable[w] |= m;
+                }
             }
         }
+        if !spilled || full {
+            break;
+        }
+        debug_assert!(false, "a key outside the rows its covering cell can see");
+        full = true;
+        st.epoch = crate::upkeep::next_gen(st.epoch, &mut st.stamp);
     }
     st.vis.sweep();
-    f_start.push(f_cov.len() as u32);
 
-    // Lines 5–8: the keys each covering cell covers (transpose).
-    let nk = st.key_start.len() - 1;
-    let nc = st.cands.len();
-    st.c_start.clear();
-    st.c_start.reserve(nc + 1);
-    let mut acc = 0u32;
-    st.c_start.push(0);
-    for &c in &st.count {
-        acc += c;
-        st.c_start.push(acc);
-    }
-    st.c_front.clear();
-    st.c_front.resize(acc as usize, 0);
-    st.fill.clear();
-    st.fill.extend_from_slice(&st.c_start[..nc]);
-    for k in 0..nk {
-        for &id in &st.f_cov[st.f_start[k] as usize..st.f_start[k + 1] as usize] {
-            let slot = &mut st.fill[id as usize];
-            st.c_front[*slot as usize] = k as u32;
-            *slot += 1;
-        }
-    }
-
-    // Lines 9–13: greedy cover with a lazy max-heap, ties to the lower cell index.
-    st.covered.clear();
-    st.covered.resize(nk, false);
-    st.heap.clear();
-    for (id, (&c, &cnt)) in st.cands.iter().zip(&st.count).enumerate() {
-        st.heap.push((cnt, Reverse(c), id as u32));
-    }
-    while let Some((cnt, Reverse(cell), id)) = st.heap.pop() {
-        let now = st.count[id as usize];
+    // Lines 9–13: greedy cover with a lazy max-heap on the counts of uncovered keys, ties
+    // to the lower cell index. Counts only fall, so a popped entry whose count is current
+    // is the maximum; it stops once every key that some candidate covers is covered.
+    let mut heap = std::mem::take(&mut st.heap).into_vec();
+    heap.clear();
+    heap.extend(
+        st.cands
+            .iter()
+            .enumerate()
+            .map(|(id, &c)| (ones(st.spans[id].of(&st.bits)), Reverse(c), id as u32)),
+    );
+    let mut heap = BinaryHeap::from(heap);
+    let mut left = ones(&st.coverable);
+    while left > 0 {
+        let Some((cnt, Reverse(cell), id)) = heap.pop() else {
+            break;
+        };
+        let sp = st.spans[id as usize];
+        let row = sp.of(&st.bits);
+        let covered = &mut st.covered[sp.word as usize..][..row.len()];
+        let now: u32 = row
+            .iter()
+            .zip(covered.iter())
+            .map(|(b, c)| (b & !c).count_ones())
+            .sum();
         if now == 0 {
             continue;
         }
         if now != cnt {
-            st.heap.push((now, Reverse(cell), id));
+            heap.push((now, Reverse(cell), id));
             continue;
         }
         st.chosen.push(cell);
-        let (a, b) = (
-            st.c_start[id as usize] as usize,
-            st.c_start[id as usize + 1] as usize,
-        );
-        for &k in &st.c_front[a..b] {
-            let k = k as usize;
-            if st.covered[k] {
-                continue;
-            }
-            st.covered[k] = true;
-            let (f0, f1) = (st.key_start[k] as usize, st.key_start[k + 1] as usize);
-            st.credit.extend_from_slice(&st.front[f0..f1]);
-            for &other in &st.f_cov[st.f_start[k] as usize..st.f_start[k + 1] as usize] {
-                st.count[other as usize] -= 1;
+        for (w, (&b, c)) in row.iter().zip(covered.iter_mut()).enumerate() {
+            let mut new = b & !*c;
+            *c |= new;
+            while new != 0 {
+                let k = (sp.word as usize + w) * 64 + new.trailing_zeros() as usize;
+                new &= new - 1;
+                let (f0, f1) = (st.key_start[k] as usize, st.key_start[k + 1] as usize);
+                st.credit.extend_from_slice(&st.front[f0..f1]);
             }
         }
+        left -= now;
         st.credit_start.push(st.credit.len() as u32);
     }
+    st.heap = heap;
+}
+
+/// Where a candidate's key bit set lies: it holds the words `word..word + len` of a set
+/// over all keys, stored at `bits[at..at + len]`.
+#[derive(Clone, Copy, Debug, Default)]
+struct Span {
+    word: u32,
+    at: u32,
+    len: u32,
+}
+
+impl Span {
+    /// The stored words of this set in `bits`.
+    #[inline]
+    fn of(self, bits: &[u64]) -> &[u64] {
+        &bits[self.at as usize..(self.at + self.len) as usize]
+    }
+}
+
+/// The number of bits set in `words`.
+fn ones(words: &[u64]) -> u32 {
+    words.iter().map(|w| w.count_ones()).sum()
 }
 
 /// The cell through which free block `b` (`cw` blocks a row) is a candidate: its eligible
