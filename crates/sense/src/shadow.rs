@@ -155,9 +155,6 @@ pub fn visible(
     // Blockers beyond the range cannot lie on a segment to a target within it; one cell
     // more is read as a margin (reading a cell is always safe).
     let blocker_reach2 = (reach + 1) * (reach + 1);
-    let state = |gx: i64, gy: i64| -> Option<Occ> {
-        (gx >= 0 && gy >= 0 && gx < w && gy < h).then(|| data[(gy * w + gx) as usize])
-    };
     for octant in 0..8u8 {
         let swap = octant & 4 != 0;
         let sx = if octant & 1 == 0 { 1 } else { -1 };
@@ -167,6 +164,20 @@ pub fn visible(
             let (a, b) = if swap { (y, x) } else { (x, y) };
             (ox + sx * a, oy + sy * b)
         };
+        // The flat index of local (x, y) is o + x·dx + y·dy; a local cell lies in the grid
+        // iff x ≤ xin and y ≤ yin (x and y are never negative).
+        let (dx, dy) = if swap { (sy * w, sx) } else { (sx, sy * w) };
+        let room = |o: i64, s: i64, n: i64| if s > 0 { n - 1 - o } else { o };
+        let (xin, yin) = if swap {
+            (room(oy, sy, h), room(ox, sx, w))
+        } else {
+            (room(ox, sx, w), room(oy, sy, h))
+        };
+        let index = |x: i64, y: i64| (o as i64 + x * dx + y * dy) as usize;
+        let state = |x: i64, y: i64| (x <= xin && y <= yin).then(|| data[index(x, y)]);
+        // Each boundary cell once: the axes in one octant of each pair, the diagonals in
+        // the unswapped ones.
+        let skip_axis = if swap { sx != 1 } else { sy != 1 };
         // The local box of the cells read: columns 0..=xmax, rows ymin..=ymax.
         let (mut xmax, mut ymin, mut ymax) = (0i64, 0i64, 0i64);
         let sh = &mut scratch.shadows;
@@ -219,18 +230,14 @@ pub fn visible(
                         break;
                     }
                     // (Its closed cone meets an unblocked slope, so it is not hidden.)
-                    let (gx, gy) = to_grid(x, y);
-                    if state(gx, gy).is_some_and(&transparent) {
+                    if state(x, y).is_some_and(&transparent) {
                         continue;
                     }
                     scratch.blocking.push(y);
                     // The vertex at its upper-left corner (local), between it and the
                     // cell diagonally up-left, when that ray is in this octant.
-                    if y < x {
-                        let (ux, uy) = to_grid(x - 1, y + 1);
-                        if !state(ux, uy).is_some_and(&transparent) {
-                            sh.add_point(Slope::new(2 * y + 1, 2 * x - 1));
-                        }
+                    if y < x && !state(x - 1, y + 1).is_some_and(&transparent) {
+                        sh.add_point(Slope::new(2 * y + 1, 2 * x - 1));
                     }
                 }
             }
@@ -242,9 +249,7 @@ pub fn visible(
                     if x * x + y * y > r2 {
                         break;
                     }
-                    // Each boundary cell once: the axes in one octant of each pair, the
-                    // diagonals in the unswapped ones.
-                    if (y == 0 && (if swap { sx != 1 } else { sy != 1 })) || (y == x && swap) {
+                    if (y == 0 && skip_axis) || (y == x && swap) {
                         continue;
                     }
                     let t = Slope::new(y, x);
@@ -259,9 +264,8 @@ pub fn visible(
                     {
                         continue;
                     }
-                    let (gx, gy) = to_grid(x, y);
-                    if let Some(s) = state(gx, gy) {
-                        seen((gy * w + gx) as u32, s);
+                    if let Some(s) = state(x, y) {
+                        seen(index(x, y) as u32, s);
                     }
                 }
             }
