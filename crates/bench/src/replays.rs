@@ -28,10 +28,12 @@ pub fn representative<'a>(rows: &'a [TrialRow], env: &str) -> Option<&'a TrialRo
 /// The ground truth drawn in `pic` ([`viz::map_from_picture`]).
 pub fn truth_from_picture(pic: &EnvPicture) -> Result<GridMap, BenchError> {
     let bad = |why: String| BenchError::Other(format!("picture of {}: {why}", pic.name));
-    let img = image::load_from_memory(&pic.png)
-        .map_err(|e| bad(e.to_string()))?
-        .to_rgb8();
     let (w, h) = (pic.width as usize, pic.height as usize);
+    let s = u64::from(viz::scale_for(w, h));
+    let expected = (w as u64)
+        .saturating_mul(s)
+        .saturating_mul((h as u64).saturating_mul(s));
+    let img = viz::Picture::from_png(&pic.png, expected).map_err(|e| bad(e.to_string()))?;
     let cells = viz::map_from_picture(&img, w, h).ok_or_else(|| {
         bad(format!(
             "{}x{} pixels do not draw {w}x{h} cells",

@@ -304,9 +304,8 @@ fn with_optimal(
 
 /// The ground truth of `env` as a PNG picture.
 pub fn env_picture(env: &crate::plan::EnvInstance) -> Result<crate::store::EnvPicture, BenchError> {
-    let img = viz::map_picture(&env.map.cells);
-    let mut png = Vec::new();
-    img.write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
+    let png = viz::map_picture(&env.map.cells)
+        .to_png()
         .map_err(|e| BenchError::Other(format!("picture of {}: {e}", env.name)))?;
     Ok(crate::store::EnvPicture {
         name: env.name.clone(),

@@ -11,7 +11,6 @@ use anyhow::{Context, Result, bail};
 use clap::Args;
 use explore::strategy::{SensingMode, Strategy};
 use grid::{Cell, Occ};
-use image::{Rgb, RgbImage};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use optimal::{
     ActionSet, Config, HeuristicKind, Outcome, Progress, SensorModel, coarsen_problem, solve_with,
@@ -19,6 +18,7 @@ use optimal::{
 use sense::SensorSpec;
 use serde_json::{Value, json};
 use sim::RunConfig;
+use viz::Picture;
 
 use crate::args::{MapSource, parse_cell};
 
@@ -529,7 +529,7 @@ fn to_json(
 
 /// The paper's Figure 2: unperceived cells black, obstacles light grey, perceived free
 /// cells white, sensing positions dark grey, the path red.
-fn picture(co: &optimal::Coarsened, out: &Outcome) -> RgbImage {
+fn picture(co: &optimal::Coarsened, out: &Outcome) -> Picture {
     let cells = co.problem.cells();
     let (w, h) = (cells.width(), cells.height());
     let scale = (800 / w.max(h).max(1)).clamp(1, 16) as u32;
@@ -546,22 +546,22 @@ fn picture(co: &optimal::Coarsened, out: &Outcome) -> RgbImage {
             }
         }
     }
-    let mut colour: Vec<Rgb<u8>> = (0..cells.len())
+    let mut colour: Vec<[u8; 3]> = (0..cells.len())
         .map(|i| match cells[i] {
-            Occ::Free if perceived[i] => Rgb([255, 255, 255]),
-            Occ::Free => Rgb([0, 0, 0]),
-            _ => Rgb([200, 200, 200]),
+            Occ::Free if perceived[i] => [255, 255, 255],
+            Occ::Free => [0, 0, 0],
+            _ => [200, 200, 200],
         })
         .collect();
     if let Some(sol) = &out.solution {
         for &c in &sol.path {
-            colour[cells.index(c)] = Rgb([220, 30, 30]);
+            colour[cells.index(c)] = [220, 30, 30];
         }
         for &c in &sol.positions {
-            colour[cells.index(c)] = Rgb([90, 90, 90]);
+            colour[cells.index(c)] = [90, 90, 90];
         }
     }
-    RgbImage::from_fn(w as u32 * scale, h as u32 * scale, |x, y| {
+    Picture::from_fn(w as u32 * scale, h as u32 * scale, |x, y| {
         colour[(y / scale) as usize * w + (x / scale) as usize]
     })
 }

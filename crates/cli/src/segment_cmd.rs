@@ -13,8 +13,8 @@ use explore::segment::score::{RoomScores, score};
 use explore::segment::{NONE, Rule, Segmentation, segment};
 use grid::components::{Connectivity, label};
 use grid::{Grid, GridMap, Occ};
-use image::{Rgb, RgbImage};
 use serde_json::json;
+use viz::Picture;
 use world::{EnvKind, EnvSpec};
 
 use crate::args::{MapSource, parse_resolution, parse_size};
@@ -208,10 +208,10 @@ fn colour(label: u32) -> [u8; 3] {
 }
 
 /// The segments in colour over the map, critical points in red.
-fn picture(map: &GridMap, seg: &Segmentation) -> RgbImage {
+fn picture(map: &GridMap, seg: &Segmentation) -> Picture {
     let (w, h) = (map.width(), map.height());
     let s = viz::scale_for(w, h);
-    let mut img = RgbImage::new(w as u32 * s, h as u32 * s);
+    let mut img = Picture::new(w as u32 * s, h as u32 * s);
     let mut critical = vec![false; w * h];
     for cp in &seg.critical {
         critical[cp.cell as usize] = true;
@@ -231,7 +231,7 @@ fn picture(map: &GridMap, seg: &Segmentation) -> RgbImage {
             };
             for dy in 0..s {
                 for dx in 0..s {
-                    img.put_pixel(x as u32 * s + dx, y as u32 * s + dy, Rgb(px));
+                    img.put_pixel(x as u32 * s + dx, y as u32 * s + dy, px);
                 }
             }
         }

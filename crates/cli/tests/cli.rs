@@ -105,7 +105,8 @@ fn explore_writes_pictures_and_trace() {
         out.to_str().unwrap(),
     ]);
     assert!(text.contains("ended: complete"), "{text}");
-    let png = image::open(out.join("final.png")).unwrap();
+    let bytes = std::fs::read(out.join("final.png")).unwrap();
+    let png = viz::Picture::from_png(&bytes, 1 << 24).unwrap();
     assert!(png.width() >= 500, "upscaled picture, got {}", png.width());
     let trace: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("trace.json")).unwrap()).unwrap();
@@ -1077,7 +1078,6 @@ fn a_run_recorded_as_mcap_is_a_map_again() {
 
 #[test]
 fn a_dungeon_png_gives_its_marked_start() {
-    use image::{ExtendedColorType, ImageEncoder, codecs::png::PngEncoder};
     // A 12 x 8 room: walls (0) around free space (255), a start blob (208) of two pixels.
     let (w, h) = (12u32, 8u32);
     let mut pixels = vec![255u8; (w * h) as usize];
@@ -1092,10 +1092,7 @@ fn a_dungeon_png_gives_its_marked_start() {
     pixels[(3 * w + 5) as usize] = 208;
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("dungeon.png");
-    let mut bytes = Vec::new();
-    PngEncoder::new(&mut bytes)
-        .write_image(&pixels, w, h, ExtendedColorType::L8)
-        .unwrap();
+    let bytes = grid::io::png::encode_grey(&pixels, w, h).unwrap();
     std::fs::write(&path, bytes).unwrap();
     let p = path.to_str().unwrap();
     let out = ok(&[
@@ -1118,10 +1115,7 @@ fn a_dungeon_png_gives_its_marked_start() {
     // Without a marker: an error naming the file.
     pixels[(3 * w + 4) as usize] = 255;
     pixels[(3 * w + 5) as usize] = 255;
-    let mut bytes = Vec::new();
-    PngEncoder::new(&mut bytes)
-        .write_image(&pixels, w, h, ExtendedColorType::L8)
-        .unwrap();
+    let bytes = grid::io::png::encode_grey(&pixels, w, h).unwrap();
     std::fs::write(&path, bytes).unwrap();
     let msg = err(&["explore", "--map", p, "--dungeon", "--resolution", "0.1"]);
     assert!(msg.contains("dungeon.png") && msg.contains("208"), "{msg}");

@@ -93,6 +93,24 @@ fn ros_sixteen_bit_pgm_scales_by_maxval() {
     let _ = std::fs::remove_dir_all(dir);
 }
 
+/// A `w × h` PNG of `colour` and `depth` holding the samples `data` (big-endian if 16-bit).
+fn encode_png(
+    w: u32,
+    h: u32,
+    colour: png::ColorType,
+    depth: png::BitDepth,
+    data: &[u8],
+) -> Vec<u8> {
+    let mut out = Vec::new();
+    let mut encoder = png::Encoder::new(&mut out, w, h);
+    encoder.set_color(colour);
+    encoder.set_depth(depth);
+    let mut writer = encoder.write_header().expect("header");
+    writer.write_image_data(data).expect("pixels");
+    writer.finish().expect("end");
+    out
+}
+
 #[test]
 fn ros_png_colour_and_alpha() {
     let dir = scratch("png");
@@ -103,8 +121,14 @@ fn ros_png_colour_and_alpha() {
         [205, 205, 205, 255],
         [0, 0, 0, 1], // barely opaque black: occupied
     ];
-    let img = image::RgbaImage::from_raw(5, 1, px.concat()).expect("image");
-    img.save(dir.join("m.png")).expect("save png");
+    let rgba = encode_png(
+        5,
+        1,
+        png::ColorType::Rgba,
+        png::BitDepth::Eight,
+        &px.concat(),
+    );
+    std::fs::write(dir.join("m.png"), rgba).expect("save png");
     let yaml = dir.join("m.yaml");
     for mode in ["trinary", "scale"] {
         std::fs::write(
@@ -116,9 +140,18 @@ fn ros_png_colour_and_alpha() {
         assert_eq!(row(&map), vec![U, O, F, U, O], "mode {mode}");
     }
     // A 16-bit grey PNG.
-    let img = image::ImageBuffer::<image::Luma<u16>, _>::from_raw(3, 1, vec![0u16, 65535, 52685])
-        .expect("image");
-    img.save(dir.join("g.png")).expect("save png");
+    let wide: Vec<u8> = [0u16, 65535, 52685]
+        .iter()
+        .flat_map(|v| v.to_be_bytes())
+        .collect();
+    let grey16 = encode_png(
+        3,
+        1,
+        png::ColorType::Grayscale,
+        png::BitDepth::Sixteen,
+        &wide,
+    );
+    std::fs::write(dir.join("g.png"), grey16).expect("save png");
     std::fs::write(&yaml, ros_yaml("g.png", "negate: 0\n")).expect("write");
     assert_eq!(
         row(&load_map(&yaml, &LoadOptions::default()).expect("load")),
@@ -161,8 +194,16 @@ fn ros_yaml_written_for_ros_tools() {
     // A PNG is 8-bit grey with the same levels.
     let png = dir.join("office.png");
     save_map(&map, &png).expect("save");
-    let img = image::open(&png).expect("open").into_luma8();
-    assert_eq!(img.as_raw(), &vec![254, 0, 205]);
+    let mut reader = png::Decoder::new(std::io::Cursor::new(std::fs::read(&png).expect("read")))
+        .read_info()
+        .expect("a PNG");
+    let mut px = vec![0; reader.output_buffer_size().expect("size")];
+    let frame = reader.next_frame(&mut px).expect("decode");
+    assert_eq!(
+        (frame.color_type, frame.bit_depth),
+        (png::ColorType::Grayscale, png::BitDepth::Eight)
+    );
+    assert_eq!(&px[..frame.buffer_size()], &[254, 0, 205]);
     let _ = std::fs::remove_dir_all(dir);
 }
 

@@ -5,7 +5,8 @@
 //! own colour, its start (ring) and its end (square). Pictures are upscaled by a whole
 //! factor so that small maps stay legible. [`animate::animate_gif`] makes an animated GIF
 //! of a run and [`replay::replay_html`] a self-contained HTML page that replays it. `viz`
-//! only draws into memory; the caller writes files.
+//! draws into memory ([`Picture`], RGB, PNG through the `png` crate); the caller decides
+//! what to write where.
 //!
 //! ```
 //! use explore::strategy::Strategy;
@@ -18,7 +19,10 @@
 #![warn(missing_docs)]
 
 pub mod animate;
+pub mod picture;
 pub mod replay;
+
+pub use picture::Picture;
 
 /// Why a picture could not be made.
 #[derive(Debug, thiserror::Error)]
@@ -32,10 +36,15 @@ pub enum VizError {
     /// The GIF encoder failed.
     #[error("GIF encoding: {0}")]
     Gif(String),
+    /// A PNG could not be encoded or decoded.
+    #[error("PNG: {0}")]
+    Png(String),
+    /// A picture could not be written.
+    #[error(transparent)]
+    Io(#[from] std::io::Error),
 }
 
 use grid::{Cell, Grid, GridMap, Occ};
-use image::{Rgb, RgbImage};
 use sim::RunResult;
 
 /// Colours of segments (label modulo the list), in the GIF and the replay page.
@@ -107,9 +116,9 @@ pub fn scale_for(width: usize, height: usize) -> u32 {
 }
 
 /// Draw a ground-truth map alone (free white, occupied black, outside grey).
-pub fn map_picture(map: &Grid<Occ>) -> RgbImage {
+pub fn map_picture(map: &Grid<Occ>) -> Picture {
     let s = scale_for(map.width(), map.height());
-    let mut img = RgbImage::new(map.width() as u32 * s, map.height() as u32 * s);
+    let mut img = Picture::new(map.width() as u32 * s, map.height() as u32 * s);
     for i in 0..map.len() {
         let colour = match map[i] {
             Occ::Free => KNOWN_FREE,
@@ -124,7 +133,7 @@ pub fn map_picture(map: &Grid<Occ>) -> RgbImage {
 /// Read back a map drawn by [`map_picture`] as `width × height` cells: free where the
 /// cell's pixels are free white, occupied where occupied black, unknown otherwise; `None`
 /// if the picture is not of that size at [`scale_for`]'s scale.
-pub fn map_from_picture(img: &RgbImage, width: usize, height: usize) -> Option<Grid<Occ>> {
+pub fn map_from_picture(img: &Picture, width: usize, height: usize) -> Option<Grid<Occ>> {
     let s = scale_for(width, height);
     if img.width() != width as u32 * s || img.height() != height as u32 * s {
         return None;
@@ -132,7 +141,7 @@ pub fn map_from_picture(img: &RgbImage, width: usize, height: usize) -> Option<G
     let mut data = Vec::with_capacity(width * height);
     for y in 0..height as u32 {
         for x in 0..width as u32 {
-            data.push(match img.get_pixel(x * s, y * s).0 {
+            data.push(match img.get_pixel(x * s, y * s) {
                 KNOWN_FREE => Occ::Free,
                 KNOWN_OCCUPIED => Occ::Occupied,
                 _ => Occ::Unknown,
@@ -146,10 +155,10 @@ pub fn map_from_picture(img: &RgbImage, width: usize, height: usize) -> Option<G
 /// Trajectories need the run's trace; without it only starts and ends are marked. Off-plane
 /// clutter is drawn in its own colours: tan where unseen, orange where believed free (the
 /// laser missed it), brown where believed occupied.
-pub fn final_picture(truth: &GridMap, result: &RunResult) -> RgbImage {
+pub fn final_picture(truth: &GridMap, result: &RunResult) -> Picture {
     let cells = &truth.cells;
     let s = scale_for(cells.width(), cells.height());
-    let mut img = RgbImage::new(cells.width() as u32 * s, cells.height() as u32 * s);
+    let mut img = Picture::new(cells.width() as u32 * s, cells.height() as u32 * s);
     for i in 0..cells.len() {
         let colour = match (result.belief[i], cells[i]) {
             (Occ::Free, _) => KNOWN_FREE,
@@ -190,17 +199,17 @@ fn centre(c: Cell, s: u32) -> (i64, i64) {
     (i64::from(c.x) * s + s / 2, i64::from(c.y) * s + s / 2)
 }
 
-fn fill_cell(img: &mut RgbImage, c: Cell, s: u32, colour: [u8; 3]) {
+fn fill_cell(img: &mut Picture, c: Cell, s: u32, colour: [u8; 3]) {
     for dy in 0..s {
         for dx in 0..s {
-            img.put_pixel(c.x as u32 * s + dx, c.y as u32 * s + dy, Rgb(colour));
+            img.put_pixel(c.x as u32 * s + dx, c.y as u32 * s + dy, colour);
         }
     }
 }
 
-fn put(img: &mut RgbImage, x: i64, y: i64, colour: [u8; 3]) {
+fn put(img: &mut Picture, x: i64, y: i64, colour: [u8; 3]) {
     if x >= 0 && y >= 0 && (x as u32) < img.width() && (y as u32) < img.height() {
-        img.put_pixel(x as u32, y as u32, Rgb(colour));
+        img.put_pixel(x as u32, y as u32, colour);
     }
 }
 
@@ -233,7 +242,7 @@ pub(crate) fn bresenham(
 }
 
 /// A line, two pixels thick when `thick`.
-fn line(img: &mut RgbImage, p0: (i64, i64), p1: (i64, i64), colour: [u8; 3], thick: bool) {
+fn line(img: &mut Picture, p0: (i64, i64), p1: (i64, i64), colour: [u8; 3], thick: bool) {
     bresenham(p0, p1, |x, y| {
         put(img, x, y, colour);
         if thick {
@@ -243,7 +252,7 @@ fn line(img: &mut RgbImage, p0: (i64, i64), p1: (i64, i64), colour: [u8; 3], thi
     });
 }
 
-fn ring(img: &mut RgbImage, (cx, cy): (i64, i64), r: i64, colour: [u8; 3]) {
+fn ring(img: &mut Picture, (cx, cy): (i64, i64), r: i64, colour: [u8; 3]) {
     for y in -r..=r {
         for x in -r..=r {
             let d2 = x * x + y * y;
@@ -254,7 +263,7 @@ fn ring(img: &mut RgbImage, (cx, cy): (i64, i64), r: i64, colour: [u8; 3]) {
     }
 }
 
-fn square(img: &mut RgbImage, (cx, cy): (i64, i64), r: i64, colour: [u8; 3]) {
+fn square(img: &mut Picture, (cx, cy): (i64, i64), r: i64, colour: [u8; 3]) {
     let r = (r * 2 / 3).max(2);
     for y in -r..=r {
         for x in -r..=r {

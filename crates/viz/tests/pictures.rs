@@ -166,7 +166,7 @@ fn furniture_off_the_laser_plane_is_drawn_in_every_picture() {
     let s = viz::scale_for(env.map.width(), env.map.height());
     let colour_of = |i: usize| {
         let c = env.map.cells.cell(i);
-        img.get_pixel(c.x as u32 * s, c.y as u32 * s).0
+        img.get_pixel(c.x as u32 * s, c.y as u32 * s)
     };
     let tables: Vec<usize> = (0..clutter.len()).filter(|&i| clutter[i]).collect();
     assert!(!tables.is_empty());

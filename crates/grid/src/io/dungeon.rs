@@ -81,14 +81,9 @@ pub fn parse_dungeon(bytes: &[u8], name: &Path, resolution: f64) -> Result<Dunge
 #[cfg(test)]
 mod tests {
     use super::*;
-    use image::{ExtendedColorType, ImageEncoder, codecs::png::PngEncoder};
 
     fn png(w: u32, h: u32, pixels: &[u8]) -> Vec<u8> {
-        let mut out = Vec::new();
-        PngEncoder::new(&mut out)
-            .write_image(pixels, w, h, ExtendedColorType::L8)
-            .expect("encode");
-        out
+        crate::io::png::encode_grey(pixels, w, h).expect("encode")
     }
 
     #[test]

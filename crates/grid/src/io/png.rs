@@ -1,4 +1,4 @@
-//! PNG images, through the `image` crate: any PNG in, 8-bit greyscale out.
+//! PNG images, through the `png` crate: any PNG in, 8-bit greyscale out.
 //!
 //! Grey, grey+alpha, RGB, RGBA and palette images of 1 to 16 bits are read; a colour pixel's
 //! brightness is the mean of its colour channels (ROS 1 map_server) and alpha 0 marks a
@@ -7,8 +7,7 @@
 use std::io::Cursor;
 use std::path::Path;
 
-use image::codecs::png::{PngDecoder, PngEncoder};
-use image::{DynamicImage, ExtendedColorType, ImageDecoder, ImageEncoder};
+use ::png::{BitDepth, ColorType, Transformations};
 
 use super::error::{MapError, MapErrorKind};
 use super::pgm::describe_magic;
@@ -37,21 +36,39 @@ pub(crate) fn decode_png(bytes: &[u8], name: &Path, fits: &SizeCheck) -> Result<
             found: describe_png(bytes),
         }));
     }
-    let decoder = PngDecoder::new(Cursor::new(bytes)).map_err(|e| err(png_error(e)))?;
-    let (w, h) = decoder.dimensions();
+    let mut decoder = ::png::Decoder::new(Cursor::new(bytes));
+    // Palette to RGB, grey of 1, 2 or 4 bits to 8 (scaled to 0..=255), tRNS to alpha.
+    decoder.set_transformations(Transformations::EXPAND);
+    let mut reader = decoder.read_info().map_err(|e| err(png_error(e)))?;
+    let (w, h) = reader.info().size();
     fits(u64::from(w), u64::from(h), name)?;
-    let image = DynamicImage::from_decoder(decoder).map_err(|e| err(png_error(e)))?;
+    let size = reader
+        .output_buffer_size()
+        .ok_or_else(|| err(MapErrorKind::Png(format!("a {w}x{h} image is too large"))))?;
+    let mut buf = vec![0u8; size];
+    let frame = reader.next_frame(&mut buf).map_err(|e| err(png_error(e)))?;
+    buf.truncate(frame.buffer_size());
     let (w, h) = (w as usize, h as usize);
-    let (maxval, values, transparent) = match &image {
-        DynamicImage::ImageLuma8(i) => samples(i.as_raw(), 1, false, 255),
-        DynamicImage::ImageLumaA8(i) => samples(i.as_raw(), 2, true, 255),
-        DynamicImage::ImageRgb8(i) => samples(i.as_raw(), 3, false, 255),
-        DynamicImage::ImageRgba8(i) => samples(i.as_raw(), 4, true, 255),
-        DynamicImage::ImageLuma16(i) => samples(i.as_raw(), 1, false, 65535),
-        DynamicImage::ImageLumaA16(i) => samples(i.as_raw(), 2, true, 65535),
-        DynamicImage::ImageRgb16(i) => samples(i.as_raw(), 3, false, 65535),
-        DynamicImage::ImageRgba16(i) => samples(i.as_raw(), 4, true, 65535),
-        other => samples(other.to_rgba16().as_raw(), 4, true, 65535),
+    let (channels, alpha) = match frame.color_type {
+        ColorType::Grayscale => (1, false),
+        ColorType::GrayscaleAlpha => (2, true),
+        ColorType::Rgb => (3, false),
+        ColorType::Rgba => (4, true),
+        ColorType::Indexed => {
+            return Err(err(MapErrorKind::Png(
+                "a palette image was not expanded".to_string(),
+            )));
+        }
+    };
+    let (maxval, values, transparent) = if frame.bit_depth == BitDepth::Sixteen {
+        // Samples are big-endian.
+        let wide: Vec<u16> = buf
+            .chunks_exact(2)
+            .map(|b| u16::from_be_bytes([b[0], b[1]]))
+            .collect();
+        samples(&wide, channels, alpha, 65535)
+    } else {
+        samples(&buf, channels, alpha, 255)
     };
     if values.len() != w * h {
         return Err(err(MapErrorKind::Png(format!(
@@ -69,9 +86,9 @@ pub(crate) fn decode_png(bytes: &[u8], name: &Path, fits: &SizeCheck) -> Result<
 }
 
 /// What a PNG decoding error means for the user.
-fn png_error(e: image::ImageError) -> MapErrorKind {
+fn png_error(e: ::png::DecodingError) -> MapErrorKind {
     match e {
-        image::ImageError::IoError(io) if io.kind() == std::io::ErrorKind::UnexpectedEof => {
+        ::png::DecodingError::IoError(io) if io.kind() == std::io::ErrorKind::UnexpectedEof => {
             MapErrorKind::Png("truncated: the file ends before the image data does".to_string())
         }
         e => MapErrorKind::Png(e.to_string()),
@@ -114,9 +131,18 @@ fn samples<T: Copy + Into<u32>>(
 pub fn encode_png(cells: &Grid<Occ>, name: &Path) -> Result<Vec<u8>, MapError> {
     check_size(cells.width() as u64, cells.height() as u64, name)?;
     let (w, h) = (cells.width() as u32, cells.height() as u32);
+    encode_grey(&grey_bytes(cells), w, h)
+        .map_err(|e| MapError::new(name, MapErrorKind::Encode(e.to_string())))
+}
+
+/// Encode `pixels` (row-major, one byte a pixel) as an 8-bit greyscale PNG of `w × h`.
+pub fn encode_grey(pixels: &[u8], w: u32, h: u32) -> Result<Vec<u8>, ::png::EncodingError> {
     let mut out = Vec::new();
-    PngEncoder::new(&mut out)
-        .write_image(&grey_bytes(cells), w, h, ExtendedColorType::L8)
-        .map_err(|e| MapError::new(name, MapErrorKind::Encode(e.to_string())))?;
+    let mut encoder = ::png::Encoder::new(&mut out, w, h);
+    encoder.set_color(ColorType::Grayscale);
+    encoder.set_depth(BitDepth::Eight);
+    let mut writer = encoder.write_header()?;
+    writer.write_image_data(pixels)?;
+    writer.finish()?;
     Ok(out)
 }
