@@ -116,14 +116,16 @@ struct Paths(HashMap<Vec<bool>, Vec<Vec<f64>>>);
 impl Paths {
     /// Floyd–Warshall over the cells perceived in `perceived` that are reachable and free.
     fn get(&mut self, pl: &Plain, perceived: &[bool]) -> &Vec<Vec<f64>> {
-        self.0.entry(perceived.to_vec()).or_insert_with(|| {
+        if !self.0.contains_key(perceived) {
             let map = &pl.map;
             let known_free = |c: Cell| {
                 map.checked_index(c)
                     .is_some_and(|i| pl.reach[i] && perceived[i])
             };
-            all_pairs(map, &known_free)
-        })
+            self.0
+                .insert(perceived.to_vec(), all_pairs(map, &known_free));
+        }
+        &self.0[perceived]
     }
 }
 

@@ -56,22 +56,10 @@ impl Picture {
         self.data[k..k + 3].copy_from_slice(&colour);
     }
 
-    /// The samples, R G B per pixel, row by row.
-    pub fn as_raw(&self) -> &[u8] {
-        &self.data
-    }
-
     /// The picture as a PNG file's bytes.
     pub fn to_png(&self) -> Result<Vec<u8>, VizError> {
-        let mut out = Vec::new();
-        let mut encoder = png::Encoder::new(&mut out, self.width, self.height);
-        encoder.set_color(png::ColorType::Rgb);
-        encoder.set_depth(png::BitDepth::Eight);
-        let png = |e: png::EncodingError| VizError::Png(e.to_string());
-        let mut writer = encoder.write_header().map_err(png)?;
-        writer.write_image_data(&self.data).map_err(png)?;
-        writer.finish().map_err(png)?;
-        Ok(out)
+        grid::io::png::encode_rgb(&self.data, self.width, self.height)
+            .map_err(|e| VizError::Png(e.to_string()))
     }
 
     /// Write the picture to `path` as PNG.

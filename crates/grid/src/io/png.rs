@@ -137,9 +137,24 @@ pub fn encode_png(cells: &Grid<Occ>, name: &Path) -> Result<Vec<u8>, MapError> {
 
 /// Encode `pixels` (row-major, one byte a pixel) as an 8-bit greyscale PNG of `w × h`.
 pub fn encode_grey(pixels: &[u8], w: u32, h: u32) -> Result<Vec<u8>, ::png::EncodingError> {
+    encode_8bit(pixels, w, h, ColorType::Grayscale)
+}
+
+/// Encode `pixels` (row-major, R G B bytes a pixel) as an 8-bit RGB PNG of `w × h`.
+pub fn encode_rgb(pixels: &[u8], w: u32, h: u32) -> Result<Vec<u8>, ::png::EncodingError> {
+    encode_8bit(pixels, w, h, ColorType::Rgb)
+}
+
+/// Encode row-major 8-bit samples of `colour` as a PNG of `w × h`.
+fn encode_8bit(
+    pixels: &[u8],
+    w: u32,
+    h: u32,
+    colour: ColorType,
+) -> Result<Vec<u8>, ::png::EncodingError> {
     let mut out = Vec::new();
     let mut encoder = ::png::Encoder::new(&mut out, w, h);
-    encoder.set_color(ColorType::Grayscale);
+    encoder.set_color(colour);
     encoder.set_depth(BitDepth::Eight);
     let mut writer = encoder.write_header()?;
     writer.write_image_data(pixels)?;
