@@ -19,6 +19,11 @@
 //!   laser-limited sonar ([`sonar`]). It fires with a caller's RNG (range noise) and
 //!   integrates graded evidence, so it is driven directly rather than through [`Sensor`].
 //!
+//! [`Unseen`] keeps the blocks of a belief that still hold a cell some ray could reveal;
+//! [`Sensor::scan_unseen`] may leave the others out (the line-of-sight sensor stops each
+//! octant's shadow casting after the last such block), so that a single robot crossing
+//! explored space pays for little of its range.
+//!
 //! Information gain ([`gain`]): the expected entropy drop of a predicted scan on a belief
 //! ([`Sensor::predict`]), for decision-theoretic exploration.
 //!
@@ -57,6 +62,7 @@ pub mod shadow;
 pub mod sonar;
 pub mod spec;
 pub mod square;
+pub mod unseen;
 
 pub use belief::{Belief, BeliefKind, EvidenceGrid, KnownGrid, ReflectionMap};
 pub use error::SenseError;
@@ -70,3 +76,4 @@ pub use sensor::{Observation, Pose, Sensor};
 pub use sonar::{SonarError, SonarMode, SonarParams, SonarReading, SonarSensor};
 pub use spec::{Range, SensorSpec, YAMAUCHI_RANGE};
 pub use square::SquareSensor;
+pub use unseen::Unseen;

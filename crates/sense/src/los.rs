@@ -21,6 +21,7 @@ use crate::error::SenseError;
 use crate::ray_template::{LosNode, LosTemplate};
 use crate::sensor::{Observation, Pose, Sensor, observed, predicted_transparent};
 use crate::shadow::{self, FASTER_FROM_RANGE, ShadowScratch};
+use crate::unseen::Unseen;
 
 /// The ideal line-of-sight sensor (360°, range in cells), backed by a shared ray template.
 #[derive(Clone, Debug)]
@@ -155,7 +156,13 @@ impl LosSensor {
     /// [`FASTER_FROM_RANGE`] cells on looks at fewer cells than the template walk: the same
     /// cells (both are `segment_clear`'s), put back in the walk's order through the
     /// template's ranks, so that an observation is the same list either way.
-    fn scan_by_shadows(&self, truth: &Grid<Occ>, origin: Cell, out: &mut Vec<(u32, Occ)>) {
+    fn scan_by_shadows(
+        &self,
+        truth: &Grid<Occ>,
+        origin: Cell,
+        columns: &[i64; 8],
+        out: &mut Vec<(u32, Occ)>,
+    ) {
         let t = &self.template;
         let w = truth.width() as i64;
         let (ox, oy) = (i64::from(origin.x), i64::from(origin.y));
@@ -178,10 +185,11 @@ impl LosSensor {
             *epoch += 1;
             let e = *epoch;
             let mut last = 0usize;
-            shadow::visible(
+            shadow::visible_within(
                 truth,
                 origin,
                 t.range(),
+                columns,
                 |s| s == Occ::Free,
                 shadows,
                 |i, s| {
@@ -208,11 +216,36 @@ impl Sensor for LosSensor {
         out.clear();
         out.origin = pose.cell;
         if self.template.range() >= FASTER_FROM_RANGE {
-            self.scan_by_shadows(truth, pose.cell, &mut out.cells);
+            self.scan_by_shadows(truth, pose.cell, &[i64::MAX; 8], &mut out.cells);
             return;
         }
         let cells = &mut out.cells;
         self.for_each_seen(truth, pose.cell, |i, s| cells.push((i, s)));
+    }
+
+    fn skips_known(&self) -> bool {
+        true
+    }
+
+    /// Shadow casting stops each octant after the last column holding a block still to be
+    /// seen; the template walk scans all or, with no such block in range, nothing.
+    fn scan_unseen(&self, truth: &Grid<Occ>, pose: Pose, unseen: &Unseen, out: &mut Observation) {
+        let columns = shadow::octant_columns(pose.cell, self.template.range(), unseen);
+        if columns.iter().any(|&c| c > 0) {
+            if self.template.range() >= FASTER_FROM_RANGE {
+                out.clear();
+                out.origin = pose.cell;
+                self.scan_by_shadows(truth, pose.cell, &columns, &mut out.cells);
+            } else {
+                self.scan(truth, pose, out);
+            }
+            return;
+        }
+        out.clear();
+        out.origin = pose.cell;
+        if let Some(i) = truth.checked_index(pose.cell) {
+            out.cells.push((i as u32, observed(truth.data()[i])));
+        }
     }
 
     fn range_cells(&self) -> f64 {

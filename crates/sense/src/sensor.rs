@@ -1,6 +1,7 @@
 //! What every sensor shares: the pose it senses from, the observation it fills, and the
 //! [`Sensor`] trait.
 
+use crate::unseen::Unseen;
 use grid::{Cell, Grid, Occ};
 
 /// Where a sensor senses from: a cell (the sensor sits at its centre) and a heading.
@@ -66,6 +67,18 @@ impl Observation {
 pub trait Sensor: Send + Sync {
     /// Clears `out`, then fills it with what is seen from `pose` in `truth`.
     fn scan(&self, truth: &Grid<Occ>, pose: Pose, out: &mut Observation);
+    /// Like [`scan`](Self::scan), but cells in blocks that `unseen` says hold nothing still
+    /// to be seen may be left out (they are all known, so a belief whose classes do not
+    /// change once known gains nothing from them). The default scans everything.
+    fn scan_unseen(&self, truth: &Grid<Occ>, pose: Pose, unseen: &Unseen, out: &mut Observation) {
+        let _ = unseen;
+        self.scan(truth, pose, out);
+    }
+    /// Whether [`scan_unseen`](Self::scan_unseen) leaves anything out (so that keeping an
+    /// [`Unseen`] for it is worth its upkeep).
+    fn skips_known(&self) -> bool {
+        false
+    }
     /// The sensor's range in cells.
     fn range_cells(&self) -> f64;
     /// The field of view in degrees, centred on the heading (360 for sensors that see all

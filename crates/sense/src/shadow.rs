@@ -25,6 +25,8 @@
 
 use grid::{Grid, Occ};
 
+use crate::unseen::Unseen;
+
 /// The range (cells) from which shadow casting is faster than the ray template: per scan
 /// on a 400 × 400 map (`cargo bench -p sense --bench scan -- visible_`), open space /
 /// rooms, template against shadow casting: r = 12: 4.8 / 4.8 µs against 8.6 / 7.1 µs;
@@ -130,6 +132,30 @@ pub fn visible(
     range: f64,
     transparent: impl Fn(Occ) -> bool,
     scratch: &mut ShadowScratch,
+    seen: impl FnMut(u32, Occ),
+) -> Option<ReadBox> {
+    visible_within(
+        grid,
+        origin,
+        range,
+        &[i64::MAX; 8],
+        transparent,
+        scratch,
+        seen,
+    )
+}
+
+/// [`visible`], leaving out the cells beyond column `columns[k]` of octant `k` (columns
+/// counted from the origin along the octant's main axis; see [`octant_columns`]). A column
+/// depends only on the columns before it, so the cells reported are exactly `visible`'s
+/// up to those columns.
+pub fn visible_within(
+    grid: &Grid<Occ>,
+    origin: grid::Cell,
+    range: f64,
+    columns: &[i64; 8],
+    transparent: impl Fn(Occ) -> bool,
+    scratch: &mut ShadowScratch,
     mut seen: impl FnMut(u32, Occ),
 ) -> Option<ReadBox> {
     let (w, h) = (grid.width() as i64, grid.height() as i64);
@@ -182,7 +208,7 @@ pub fn visible(
         let (mut xmax, mut ymin, mut ymax) = (0i64, 0i64, 0i64);
         let sh = &mut scratch.shadows;
         sh.clear();
-        for x in 1..=reach + 1 {
+        for x in 1..=(reach + 1).min(columns[usize::from(octant)]) {
             // Rows whose closed cone meets an unblocked slope of [0, 1].
             scratch.rows.clear();
             let push_gap = |g0: Slope, g1: Slope, rows: &mut Vec<(i64, i64)>| {
@@ -287,6 +313,52 @@ pub fn visible(
         }
     }
     Some(rb)
+}
+
+/// Per octant of [`visible`] from `origin` (range `range` cells), the last column that
+/// holds a cell of a block `unseen` says is still to be seen: the columns
+/// [`visible_within`] needs so that every cell it leaves out is known.
+pub fn octant_columns(origin: grid::Cell, range: f64, unseen: &Unseen) -> [i64; 8] {
+    let mut columns = [0i64; 8];
+    let (ox, oy) = (i64::from(origin.x), i64::from(origin.y));
+    let reach = range.floor() as i64 + 1;
+    let r2 = (range * range).floor() as i64;
+    unseen.for_each_pending_block(
+        (ox - reach, oy - reach),
+        (ox + reach, oy + reach),
+        |x0, y0, x1, y1| {
+            let (dx0, dx1, dy0, dy1) = (x0 - ox, x1 - ox, y0 - oy, y1 - oy);
+            // Its nearest cell out of range: nothing in it is a target.
+            let (nx, ny) = (dx0.max(0).max(-dx1), dy0.max(0).max(-dy1));
+            if nx * nx + ny * ny > r2 {
+                return;
+            }
+            for (octant, column) in columns.iter_mut().enumerate() {
+                let swap = octant & 4 != 0;
+                // The block's range of local coordinates a = sx·dx, b = sy·dy.
+                let (a0, a1) = if octant & 1 == 0 {
+                    (dx0, dx1)
+                } else {
+                    (-dx1, -dx0)
+                };
+                let (b0, b1) = if octant & 2 == 0 {
+                    (dy0, dy1)
+                } else {
+                    (-dy1, -dy0)
+                };
+                let ((_, xhi), (ylo, yhi)) = if swap {
+                    ((b0, b1), (a0, a1))
+                } else {
+                    ((a0, a1), (b0, b1))
+                };
+                // Some cell with 0 ≤ y ≤ x.
+                if xhi >= 0 && yhi >= 0 && ylo <= xhi {
+                    *column = (*column).max(xhi);
+                }
+            }
+        },
+    );
+    columns
 }
 
 #[cfg(test)]

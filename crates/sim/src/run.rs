@@ -39,6 +39,7 @@ use crate::motion::{Motion, any_angle_length};
 use explore::upkeep::FrontierUpkeep;
 use grid::{Cell, Grid, GridMap, Occ, step_cost};
 use rand_pcg::Pcg64Mcg;
+use sense::Unseen;
 use sense::{Belief, Observation, Pose, Sensor, SonarMode, SonarReading, SonarSensor};
 
 use crate::config::{CoverageKind, RunConfig, SimError};
@@ -96,6 +97,10 @@ struct Team<'a> {
     sensor: Box<dyn Sensor>,
     sweep: Box<dyn Sensor>,
     belief: Box<dyn Belief>,
+    /// Where a scan can still reveal something (`None` where every cell a scan sees must
+    /// be reported: teams count overlap, sonar and clutter are not exact, an evidence
+    /// grid grades repeated observations).
+    unseen: Option<Unseen>,
     upkeep: FrontierUpkeep,
     planner: Planner,
     lists: GoalLists,
@@ -280,11 +285,20 @@ impl<'a> Session<'a> {
             starts: starts.iter().map(|&c| cells.index(c) as u32).collect(),
             ..Trace::default()
         });
+        let belief = cfg.belief.build(w, h);
+        let exact = m == 1 && !imperfect && cfg.belief != sense::BeliefKind::Evidence;
+        let unseen = (exact && (sensor.skips_known() || sweep.skips_known())).then(|| {
+            // Blocks of 8 cells (16 from 64 cells of range): fine enough to leave much of a
+            // scan out, coarse enough that listing them costs little beside it.
+            let shift = if sensor.range_cells() < 64.0 { 3 } else { 4 };
+            Unseen::new(cells, belief.known(), shift)
+        });
         let team = Team {
             range_cells: sensor.range_cells(),
             sensor,
             sweep,
-            belief: cfg.belief.build(w, h),
+            belief,
+            unseen,
             upkeep: FrontierUpkeep::new(w, h, clearance_cells),
             planner: Planner::new(w, h, m),
             lists: GoalLists::new(len),
@@ -824,7 +838,10 @@ impl Team<'_> {
             );
         } else {
             let sensor = if sweep { &self.sweep } else { &self.sensor };
-            sensor.scan(&self.truth.cells, pose, &mut self.obs);
+            match &self.unseen {
+                Some(u) => sensor.scan_unseen(&self.truth.cells, pose, u, &mut self.obs),
+                None => sensor.scan(&self.truth.cells, pose, &mut self.obs),
+            }
             self.belief.integrate(&self.obs, &mut self.changed);
         }
         if !self.first_sensed_by.is_empty() {
@@ -862,6 +879,9 @@ impl Team<'_> {
         let t1 = Instant::now();
         let known = self.belief.known();
         self.upkeep.update(known, &self.changed);
+        if let Some(u) = &mut self.unseen {
+            u.update(known, &self.changed);
+        }
         let t2 = Instant::now();
         if let Some(t) = self.trace.as_mut() {
             t.changes
