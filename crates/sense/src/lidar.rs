@@ -23,6 +23,7 @@ use grid::{Grid, Occ};
 use crate::error::SenseError;
 use crate::footprint::check_plain_range;
 use crate::sensor::{Observation, Pose, Sensor, observed};
+use crate::unseen::Unseen;
 
 /// The smallest angular resolution accepted, in degrees (at most 36,000 beams).
 pub const MIN_LIDAR_RES_DEG: f64 = 0.01;
@@ -246,6 +247,36 @@ impl Sensor for LidarSensor {
             let data = truth.data();
             window.drain(&bits, |i| out.cells.push((i as u32, observed(data[i]))));
         });
+    }
+
+    /// Every beam is walked (it is the walk that finds what hides what), but only the cells
+    /// still to be seen are reported: on a real plan most of a scan is known already.
+    fn scan_unseen(&self, truth: &Grid<Occ>, pose: Pose, unseen: &Unseen, out: &mut Observation) {
+        out.clear();
+        out.origin = pose.cell;
+        let Some(window) = Window::around(truth, pose.cell, self.range) else {
+            return;
+        };
+        SEEN.with(|bits| {
+            let mut bits = bits.borrow_mut();
+            window.reset(&mut bits);
+            self.trace(
+                truth,
+                pose,
+                |_, s| s == Occ::Free,
+                |i, x, y, _| {
+                    if unseen.is_pending_at(i) {
+                        window.mark(&mut bits, x, y);
+                    }
+                },
+            );
+            let data = truth.data();
+            window.drain(&bits, |i| out.cells.push((i as u32, observed(data[i]))));
+        });
+    }
+
+    fn skips_known(&self) -> bool {
+        true
     }
 
     fn range_cells(&self) -> f64 {

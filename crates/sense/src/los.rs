@@ -161,6 +161,7 @@ impl LosSensor {
         truth: &Grid<Occ>,
         origin: Cell,
         columns: &[i64; 8],
+        keep: impl Fn(usize) -> bool,
         out: &mut Vec<(u32, Occ)>,
     ) {
         let t = &self.template;
@@ -193,6 +194,9 @@ impl LosSensor {
                 |s| s == Occ::Free,
                 shadows,
                 |i, s| {
+                    if !keep(i as usize) {
+                        return;
+                    }
                     let (x, y) = (i64::from(i) % w, i64::from(i) / w);
                     if let Some(k) = t.rank((x - ox) as i32, (y - oy) as i32) {
                         let k = k as usize;
@@ -216,7 +220,7 @@ impl Sensor for LosSensor {
         out.clear();
         out.origin = pose.cell;
         if self.template.range() >= FASTER_FROM_RANGE {
-            self.scan_by_shadows(truth, pose.cell, &[i64::MAX; 8], &mut out.cells);
+            self.scan_by_shadows(truth, pose.cell, &[i64::MAX; 8], |_| true, &mut out.cells);
             return;
         }
         let cells = &mut out.cells;
@@ -227,24 +231,31 @@ impl Sensor for LosSensor {
         true
     }
 
-    /// Shadow casting stops each octant after the last column holding a block still to be
-    /// seen; the template walk scans all or, with no such block in range, nothing.
+    /// Only the cells still to be seen are reported; shadow casting also stops each octant
+    /// after the last column holding a block with such cells, and with none in range the
+    /// template walk is not started.
     fn scan_unseen(&self, truth: &Grid<Occ>, pose: Pose, unseen: &Unseen, out: &mut Observation) {
+        out.clear();
+        out.origin = pose.cell;
         let columns = shadow::octant_columns(pose.cell, self.template.range(), unseen);
-        if columns.iter().any(|&c| c > 0) {
-            if self.template.range() >= FASTER_FROM_RANGE {
-                out.clear();
-                out.origin = pose.cell;
-                self.scan_by_shadows(truth, pose.cell, &columns, &mut out.cells);
-            } else {
-                self.scan(truth, pose, out);
+        if columns.iter().all(|&c| c == 0) {
+            if let Some(i) = truth.checked_index(pose.cell)
+                && unseen.is_pending_at(i)
+            {
+                out.cells.push((i as u32, observed(truth.data()[i])));
             }
             return;
         }
-        out.clear();
-        out.origin = pose.cell;
-        if let Some(i) = truth.checked_index(pose.cell) {
-            out.cells.push((i as u32, observed(truth.data()[i])));
+        let keep = |i: usize| unseen.is_pending_at(i);
+        if self.template.range() >= FASTER_FROM_RANGE {
+            self.scan_by_shadows(truth, pose.cell, &columns, keep, &mut out.cells);
+        } else {
+            let cells = &mut out.cells;
+            self.for_each_seen(truth, pose.cell, |i, s| {
+                if keep(i as usize) {
+                    cells.push((i, s));
+                }
+            });
         }
     }
 

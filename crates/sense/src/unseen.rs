@@ -7,10 +7,11 @@
 //! inside of a wall, the world outside the plan) is never seen, and a block holding only
 //! known cells and such cells has nothing left to show. A scan whose belief classes cannot
 //! change once known (a ternary or reflection belief with an exact sensor: a free cell is
-//! only ever passed, an obstacle only ever hit) may therefore leave out every cell of such
-//! blocks: [`Sensor::scan_unseen`](crate::Sensor::scan_unseen). Most scans of a robot
-//! crossing explored space look at nothing else, so this is what makes sensing cost follow
-//! what is new rather than the range's area.
+//! only ever passed, an obstacle only ever hit) may therefore leave out every known cell,
+//! and stop looking where only such blocks are left:
+//! [`Sensor::scan_unseen`](crate::Sensor::scan_unseen). Most of what a robot crossing
+//! explored space sees is known, so its scans report little, and the belief little to
+//! integrate.
 
 use grid::{Grid, Occ};
 
@@ -112,8 +113,13 @@ impl Unseen {
 
     /// Whether cell `(x, y)` is still to be seen.
     pub fn is_pending(&self, x: usize, y: usize) -> bool {
-        let i = y * self.width + x;
-        x < self.width && y < self.height && self.pending[i / 64] & (1 << (i % 64)) != 0
+        x < self.width && y < self.height && self.is_pending_at(y * self.width + x)
+    }
+
+    /// Whether the cell of flat index `i` (in the grid) is still to be seen.
+    #[inline]
+    pub fn is_pending_at(&self, i: usize) -> bool {
+        self.pending[i / 64] & (1 << (i % 64)) != 0
     }
 
     /// Call `f(x0, y0, x1, y1)` with the cell box (inclusive, clipped to the grid) of every

@@ -1,10 +1,10 @@
-//! `Sensor::scan_unseen` of the line-of-sight sensor against its full scan on random maps
-//! and beliefs: it reports a subset of the full scan's cells, and every cell the full scan
+//! `Sensor::scan_unseen` of the lidar and the line-of-sight sensor against their full scans
+//! on random maps and beliefs: it reports a subset of the full scan's cells, and every cell the full scan
 //! reports that the belief does not know yet.
 
 use grid::{Cell, Grid, Occ};
 use proptest::prelude::*;
-use sense::{LosSensor, Observation, Pose, Sensor, Unseen};
+use sense::{LidarSensor, LosSensor, Observation, Pose, Sensor, Unseen};
 
 /// A random ground truth (some of it Unknown, the outside of a plan) and a belief that
 /// knows a random part of what could be seen, as the truth shows it.
@@ -74,6 +74,22 @@ proptest! {
     #![proptest_config(ProptestConfig::with_cases(256))]
 
     #[test]
+    fn lidar_scan_unseen_keeps_every_unknown_cell(
+        (truth, belief) in arb_case(),
+        r in prop_oneof![0.0f64..12.0, 12.0f64..60.0],
+        fov in prop_oneof![Just(360.0), Just(180.0), 1.0f64..360.0],
+        res in prop_oneof![Just(1.0), 0.25f64..20.0],
+        heading in -7.0f64..7.0,
+        shift in 0u32..=4,
+        (sx, sy) in (0i32..40, 0i32..40),
+    ) {
+        let o = Cell::new(sx, sy);
+        prop_assume!(truth.contains(o));
+        let sensor = LidarSensor::new(r, fov, res).expect("valid");
+        check(&sensor, &truth, &belief, shift, Pose::new(o, heading))?;
+    }
+
+    #[test]
     fn los_scan_unseen_keeps_every_unknown_cell(
         (truth, belief) in arb_case(),
         // Below 20 cells the ray template scans, from 20 on shadow casting.
@@ -86,5 +102,4 @@ proptest! {
         let sensor = LosSensor::new(r).expect("valid");
         check(&sensor, &truth, &belief, shift, Pose::new(o, 0.0))?;
     }
-
 }
