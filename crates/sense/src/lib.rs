@@ -19,10 +19,10 @@
 //!   laser-limited sonar ([`sonar`]). It fires with a caller's RNG (range noise) and
 //!   integrates graded evidence, so it is driven directly rather than through [`Sensor`].
 //!
-//! [`Unseen`] keeps the cells of a belief that some ray could still reveal, and the blocks
-//! holding them; [`Sensor::scan_unseen`] reports only those cells (the lidar and the
-//! line-of-sight sensor; the latter also stops each octant's shadow casting after the last
-//! such block), so that a single robot crossing explored space pays little for it.
+//! [`Unseen`] keeps which robot of a team sensed which cell, and so what a scan could still
+//! tell; [`Sensor::scan_unseen`] reports only such cells (the lidar and the line-of-sight
+//! sensor; the latter also stops each octant's shadow casting after the last block holding
+//! one), so that a robot crossing explored space pays little for it.
 //!
 //! Information gain ([`gain`]): the expected entropy drop of a predicted scan on a belief
 //! ([`Sensor::predict`]), for decision-theoretic exploration.

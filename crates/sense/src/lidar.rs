@@ -250,7 +250,8 @@ impl Sensor for LidarSensor {
     }
 
     /// Every beam is walked (it is the walk that finds what hides what), but only the cells
-    /// still to be seen are reported: on a real plan most of a scan is known already.
+    /// that tell the robot scanning something are reported: on a real plan most of a scan
+    /// is known already.
     fn scan_unseen(&self, truth: &Grid<Occ>, pose: Pose, unseen: &Unseen, out: &mut Observation) {
         out.clear();
         out.origin = pose.cell;
@@ -265,7 +266,7 @@ impl Sensor for LidarSensor {
                 pose,
                 |_, s| s == Occ::Free,
                 |i, x, y, _| {
-                    if unseen.is_pending_at(i) {
+                    if unseen.tells(i) {
                         window.mark(&mut bits, x, y);
                     }
                 },

@@ -231,22 +231,22 @@ impl Sensor for LosSensor {
         true
     }
 
-    /// Only the cells still to be seen are reported; shadow casting also stops each octant
-    /// after the last column holding a block with such cells, and with none in range the
-    /// template walk is not started.
+    /// Only the cells that tell the robot scanning something are reported; shadow casting
+    /// also stops each octant after the last column holding a block with such cells, and
+    /// with none in range the template walk is not started.
     fn scan_unseen(&self, truth: &Grid<Occ>, pose: Pose, unseen: &Unseen, out: &mut Observation) {
         out.clear();
         out.origin = pose.cell;
         let columns = shadow::octant_columns(pose.cell, self.template.range(), unseen);
         if columns.iter().all(|&c| c == 0) {
             if let Some(i) = truth.checked_index(pose.cell)
-                && unseen.is_pending_at(i)
+                && unseen.tells(i)
             {
                 out.cells.push((i as u32, observed(truth.data()[i])));
             }
             return;
         }
-        let keep = |i: usize| unseen.is_pending_at(i);
+        let keep = |i: usize| unseen.tells(i);
         if self.template.range() >= FASTER_FROM_RANGE {
             self.scan_by_shadows(truth, pose.cell, &columns, keep, &mut out.cells);
         } else {

@@ -67,9 +67,10 @@ impl Observation {
 pub trait Sensor: Send + Sync {
     /// Clears `out`, then fills it with what is seen from `pose` in `truth`.
     fn scan(&self, truth: &Grid<Occ>, pose: Pose, out: &mut Observation);
-    /// Like [`scan`](Self::scan), but cells that `unseen` does not hold as still to be seen
-    /// may be left out (they are known, so a belief whose classes do not change once known
-    /// gains nothing from them). The default scans everything.
+    /// Like [`scan`](Self::scan), but cells that tell the robot scanning nothing
+    /// ([`Unseen::tells`]: it sensed them before, or two robots did) may be left out; a
+    /// belief whose classes do not change once known gains nothing from them. The default
+    /// scans everything.
     fn scan_unseen(&self, truth: &Grid<Occ>, pose: Pose, unseen: &Unseen, out: &mut Observation) {
         let _ = unseen;
         self.scan(truth, pose, out);

@@ -316,14 +316,14 @@ pub fn visible_within(
 }
 
 /// Per octant of [`visible`] from `origin` (range `range` cells), the last column that
-/// holds a cell of a block `unseen` says is still to be seen: the columns
-/// [`visible_within`] needs so that every cell it leaves out is known.
+/// holds a cell of a block where `unseen` has something to tell the robot scanning: the
+/// columns [`visible_within`] needs so that every cell it leaves out tells it nothing.
 pub fn octant_columns(origin: grid::Cell, range: f64, unseen: &Unseen) -> [i64; 8] {
     let mut columns = [0i64; 8];
     let (ox, oy) = (i64::from(origin.x), i64::from(origin.y));
     let reach = range.floor() as i64 + 1;
     let r2 = (range * range).floor() as i64;
-    unseen.for_each_pending_block(
+    unseen.for_each_telling_block(
         (ox - reach, oy - reach),
         (ox + reach, oy + reach),
         |x0, y0, x1, y1| {

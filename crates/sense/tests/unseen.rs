@@ -6,65 +6,108 @@ use grid::{Cell, Grid, Occ};
 use proptest::prelude::*;
 use sense::{LidarSensor, LosSensor, Observation, Pose, Sensor, Unseen};
 
-/// A random ground truth (some of it Unknown, the outside of a plan) and a belief that
-/// knows a random part of what could be seen, as the truth shows it.
-fn arb_case() -> impl Strategy<Value = (Grid<Occ>, Grid<Occ>)> {
-    (1usize..=40, 1usize..=40, 0u32..=60, 0u32..=100).prop_flat_map(|(w, h, density, known)| {
-        proptest::collection::vec((0u32..100, 0u32..100), w * h).prop_map(move |rolls| {
-            let truth: Vec<Occ> = rolls
-                .iter()
-                .map(|&(roll, _)| match roll {
-                    r if r < density && r % 4 == 0 => Occ::Unknown,
-                    r if r < density => Occ::Occupied,
-                    _ => Occ::Free,
-                })
-                .collect();
-            let belief = truth
-                .iter()
-                .zip(&rolls)
-                .map(|(&t, &(_, k))| match (k < known, t) {
-                    (false, _) => Occ::Unknown,
-                    (true, Occ::Free) => Occ::Free,
-                    (true, _) => Occ::Occupied,
-                })
-                .collect();
-            (
-                Grid::from_vec(w, h, truth).expect("w*h cells"),
-                Grid::from_vec(w, h, belief).expect("w*h cells"),
-            )
-        })
-    })
+/// Who sensed a cell before the scan: nobody, one robot, or two.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Sensed {
+    None,
+    One(usize),
+    Two(usize, usize),
 }
 
-/// The two scans agree on what the belief does not know, and the short one reports only
-/// what the full one does.
+/// A random ground truth (some of it Unknown, the outside of a plan), the number of robots
+/// and, per cell, who of them has sensed it.
+fn arb_case() -> impl Strategy<Value = (Grid<Occ>, usize, Vec<Sensed>)> {
+    (1usize..=40, 1usize..=40, 0u32..=60, 1usize..=3, 0u32..=100).prop_flat_map(
+        |(w, h, density, robots, known)| {
+            proptest::collection::vec((0u32..100, 0u32..100, 0usize..3, 0usize..3), w * h).prop_map(
+                move |rolls| {
+                    let truth: Vec<Occ> = rolls
+                        .iter()
+                        .map(|&(roll, ..)| match roll {
+                            r if r < density && r % 4 == 0 => Occ::Unknown,
+                            r if r < density => Occ::Occupied,
+                            _ => Occ::Free,
+                        })
+                        .collect();
+                    let sensed = rolls
+                        .iter()
+                        .map(|&(_, k, a, b)| {
+                            let (a, b) = (a % robots, b % robots);
+                            match k {
+                                k if k >= known => Sensed::None,
+                                k if k % 3 == 0 && a != b => Sensed::Two(a, b),
+                                _ => Sensed::One(a),
+                            }
+                        })
+                        .collect();
+                    (
+                        Grid::from_vec(w, h, truth).expect("w*h cells"),
+                        robots,
+                        sensed,
+                    )
+                },
+            )
+        },
+    )
+}
+
+/// For every robot: the two scans agree on the cells that would tell it something (nobody
+/// sensed them, or one other robot did), and the short one reports only what the full one
+/// does.
 fn check(
     sensor: &dyn Sensor,
     truth: &Grid<Occ>,
-    belief: &Grid<Occ>,
+    robots: usize,
+    sensed: &[Sensed],
     shift: u32,
     pose: Pose,
 ) -> Result<(), TestCaseError> {
-    let unseen = Unseen::new(truth, belief, shift);
-    let (mut full, mut short) = (Observation::new(), Observation::new());
+    let mut unseen = Unseen::new(truth, robots, shift);
+    for (i, &s) in sensed.iter().enumerate() {
+        match s {
+            Sensed::None => {}
+            Sensed::One(a) => {
+                unseen.record(a, [i as u32]);
+            }
+            Sensed::Two(a, b) => {
+                unseen.record(a, [i as u32]);
+                unseen.record(b, [i as u32]);
+            }
+        }
+    }
+    let mut full = Observation::new();
     sensor.scan(truth, pose, &mut full);
-    sensor.scan_unseen(truth, pose, &unseen, &mut short);
-    prop_assert_eq!(short.origin, full.origin);
     let mut all = full.cells.clone();
     all.sort_unstable();
     all.dedup();
-    for c in &short.cells {
-        prop_assert!(
-            all.binary_search(c).is_ok(),
-            "{:?} is not in the full scan",
-            c
-        );
-    }
-    let mut kept = short.cells.clone();
-    kept.sort_unstable();
-    for c in &all {
-        if belief[c.0 as usize] == Occ::Unknown {
-            prop_assert!(kept.binary_search(c).is_ok(), "{:?} left out", c);
+    for r in 0..robots {
+        unseen.look_as(r);
+        let mut short = Observation::new();
+        sensor.scan_unseen(truth, pose, &unseen, &mut short);
+        prop_assert_eq!(short.origin, full.origin);
+        for c in &short.cells {
+            prop_assert!(
+                all.binary_search(c).is_ok(),
+                "{:?} is not in the full scan",
+                c
+            );
+        }
+        let mut kept = short.cells.clone();
+        kept.sort_unstable();
+        for c in &all {
+            let tells = match sensed[c.0 as usize] {
+                Sensed::None => true,
+                Sensed::One(a) => a != r,
+                Sensed::Two(..) => false,
+            };
+            if tells {
+                prop_assert!(
+                    kept.binary_search(c).is_ok(),
+                    "{:?} left out for robot {}",
+                    c,
+                    r
+                );
+            }
         }
     }
     Ok(())
@@ -75,7 +118,7 @@ proptest! {
 
     #[test]
     fn lidar_scan_unseen_keeps_every_unknown_cell(
-        (truth, belief) in arb_case(),
+        (truth, robots, sensed) in arb_case(),
         r in prop_oneof![0.0f64..12.0, 12.0f64..60.0],
         fov in prop_oneof![Just(360.0), Just(180.0), 1.0f64..360.0],
         res in prop_oneof![Just(1.0), 0.25f64..20.0],
@@ -86,12 +129,12 @@ proptest! {
         let o = Cell::new(sx, sy);
         prop_assume!(truth.contains(o));
         let sensor = LidarSensor::new(r, fov, res).expect("valid");
-        check(&sensor, &truth, &belief, shift, Pose::new(o, heading))?;
+        check(&sensor, &truth, robots, &sensed, shift, Pose::new(o, heading))?;
     }
 
     #[test]
     fn los_scan_unseen_keeps_every_unknown_cell(
-        (truth, belief) in arb_case(),
+        (truth, robots, sensed) in arb_case(),
         // Below 20 cells the ray template scans, from 20 on shadow casting.
         r in prop_oneof![0.0f64..20.0, 20.0f64..45.0],
         shift in 0u32..=4,
@@ -100,6 +143,6 @@ proptest! {
         let o = Cell::new(sx, sy);
         prop_assume!(truth.contains(o));
         let sensor = LosSensor::new(r).expect("valid");
-        check(&sensor, &truth, &belief, shift, Pose::new(o, 0.0))?;
+        check(&sensor, &truth, robots, &sensed, shift, Pose::new(o, 0.0))?;
     }
 }

@@ -97,10 +97,13 @@ struct Team<'a> {
     sensor: Box<dyn Sensor>,
     sweep: Box<dyn Sensor>,
     belief: Box<dyn Belief>,
-    /// Where a scan can still reveal something (`None` where every cell a scan sees must
-    /// be reported: teams count overlap, sonar and clutter are not exact, an evidence
-    /// grid grades repeated observations).
+    /// Who sensed which cell: a team's overlap, and what a scan could still tell (`None`
+    /// for a single robot whose scans report everything).
     unseen: Option<Unseen>,
+    /// Whether scans report only what tells the robot something (not with sonar or
+    /// clutter, which are not exact, nor with an evidence grid, which grades repeated
+    /// observations).
+    skip_known: bool,
     upkeep: FrontierUpkeep,
     planner: Planner,
     lists: GoalLists,
@@ -156,10 +159,7 @@ struct Team<'a> {
     milestones: Vec<Milestone>,
     /// The robot sensing now and its clock (for milestones and overlap).
     now: (usize, f64),
-    /// Teams: the first robot that sensed each cell (`u32::MAX`: none; empty for one
-    /// robot), whether a second one did, and the counts of both.
-    first_sensed_by: Vec<u32>,
-    sensed_twice: Vec<bool>,
+    /// The cells sensed first and sensed by a second robot (teams), from `unseen`.
     sensed_cells: usize,
     overlap_cells: usize,
     /// Scans taken.
@@ -286,12 +286,14 @@ impl<'a> Session<'a> {
             ..Trace::default()
         });
         let belief = cfg.belief.build(w, h);
-        let exact = m == 1 && !imperfect && cfg.belief != sense::BeliefKind::Evidence;
-        let unseen = (exact && (sensor.skips_known() || sweep.skips_known())).then(|| {
+        let skip_known = !imperfect
+            && cfg.belief != sense::BeliefKind::Evidence
+            && (sensor.skips_known() || sweep.skips_known());
+        let unseen = (m > 1 || skip_known).then(|| {
             // Blocks of 8 cells (16 from 64 cells of range): fine enough to leave much of a
             // scan out, coarse enough that listing them costs little beside it.
             let shift = if sensor.range_cells() < 64.0 { 3 } else { 4 };
-            Unseen::new(cells, belief.known(), shift)
+            Unseen::new(cells, m, shift)
         });
         let team = Team {
             range_cells: sensor.range_cells(),
@@ -299,6 +301,7 @@ impl<'a> Session<'a> {
             sweep,
             belief,
             unseen,
+            skip_known,
             upkeep: FrontierUpkeep::new(w, h, clearance_cells),
             planner: Planner::new(w, h, m),
             lists: GoalLists::new(len),
@@ -346,12 +349,6 @@ impl<'a> Session<'a> {
             curve: vec![(0.0, 0.0)],
             milestones: Vec::new(),
             now: (0, 0.0),
-            first_sensed_by: if m > 1 {
-                vec![u32::MAX; len]
-            } else {
-                Vec::new()
-            },
-            sensed_twice: if m > 1 { vec![false; len] } else { Vec::new() },
             sensed_cells: 0,
             overlap_cells: 0,
             scans: 0,
@@ -838,40 +835,27 @@ impl Team<'_> {
             );
         } else {
             let sensor = if sweep { &self.sweep } else { &self.sensor };
-            match &self.unseen {
-                Some(u) => sensor.scan_unseen(&self.truth.cells, pose, u, &mut self.obs),
-                None => sensor.scan(&self.truth.cells, pose, &mut self.obs),
+            match &mut self.unseen {
+                Some(u) if self.skip_known => {
+                    u.look_as(who.0);
+                    sensor.scan_unseen(&self.truth.cells, pose, u, &mut self.obs);
+                }
+                _ => sensor.scan(&self.truth.cells, pose, &mut self.obs),
             }
             self.belief.integrate(&self.obs, &mut self.changed);
         }
-        if !self.first_sensed_by.is_empty() {
-            self.count_overlap();
+        if let Some(u) = &mut self.unseen {
+            // What the scan sensed (for sonar, the cells it changed).
+            let (first, overlap) = if self.sonar.is_some() {
+                u.record(who.0, self.changed.iter().copied())
+            } else {
+                u.record(who.0, self.obs.cells.iter().map(|&(i, _)| i))
+            };
+            self.sensed_cells += first;
+            self.overlap_cells += overlap;
         }
         self.times.sense_s += t0.elapsed().as_secs_f64();
         self.absorb_changes();
-    }
-
-    /// Teams: count the cells of the last scan (for sonar, the cells it changed) that robot
-    /// `now.0` senses first, or senses after another robot did.
-    fn count_overlap(&mut self) {
-        let r = self.now.0 as u32;
-        let (first, twice) = (&mut self.first_sensed_by, &mut self.sensed_twice);
-        let (sensed, overlap) = (&mut self.sensed_cells, &mut self.overlap_cells);
-        let mut see = |i: u32| {
-            let i = i as usize;
-            if first[i] == u32::MAX {
-                first[i] = r;
-                *sensed += 1;
-            } else if first[i] != r && !twice[i] {
-                twice[i] = true;
-                *overlap += 1;
-            }
-        };
-        if self.sonar.is_some() {
-            self.changed.iter().for_each(|&i| see(i));
-        } else {
-            self.obs.cells.iter().for_each(|&(i, _)| see(i));
-        }
     }
 
     /// Bring frontiers, trace and coverage up to date with the cells in `changed`.
@@ -879,9 +863,6 @@ impl Team<'_> {
         let t1 = Instant::now();
         let known = self.belief.known();
         self.upkeep.update(known, &self.changed);
-        if let Some(u) = &mut self.unseen {
-            u.update(known, &self.changed);
-        }
         let t2 = Instant::now();
         if let Some(t) = self.trace.as_mut() {
             t.changes
