@@ -149,6 +149,8 @@ struct ShadowScan {
     slot: Vec<(u32, Occ)>,
     stamp: Vec<u32>,
     epoch: u32,
+    /// The ranks filled, for a scan that reports few cells.
+    ranks: Vec<u32>,
 }
 
 impl LosSensor {
@@ -174,6 +176,7 @@ impl LosSensor {
                 slot,
                 stamp,
                 epoch,
+                ranks,
             } = &mut *scan;
             if slot.len() < t.targets() {
                 slot.resize(t.targets(), (0, Occ::Unknown));
@@ -186,6 +189,7 @@ impl LosSensor {
             *epoch += 1;
             let e = *epoch;
             let mut last = 0usize;
+            ranks.clear();
             shadow::visible_within(
                 truth,
                 origin,
@@ -203,12 +207,20 @@ impl LosSensor {
                         slot[k] = (i, observed(s));
                         stamp[k] = e;
                         last = last.max(k + 1);
+                        ranks.push(k as u32);
                     }
                 },
             );
-            for k in 0..last {
-                if stamp[k] == e {
-                    out.push(slot[k]);
+            // Few cells (scans of what is new): sort their ranks rather than read every
+            // rank up to the last.
+            if ranks.len() * 16 < last {
+                ranks.sort_unstable();
+                out.extend(ranks.iter().map(|&k| slot[k as usize]));
+            } else {
+                for k in 0..last {
+                    if stamp[k] == e {
+                        out.push(slot[k]);
+                    }
                 }
             }
         });
