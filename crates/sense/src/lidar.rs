@@ -228,31 +228,16 @@ impl Window {
     }
 }
 
-impl Sensor for LidarSensor {
-    fn scan(&self, truth: &Grid<Occ>, pose: Pose, out: &mut Observation) {
-        out.clear();
-        out.origin = pose.cell;
-        let Some(window) = Window::around(truth, pose.cell, self.range) else {
-            return;
-        };
-        SEEN.with(|bits| {
-            let mut bits = bits.borrow_mut();
-            window.reset(&mut bits);
-            self.trace(
-                truth,
-                pose,
-                |_, s| s == Occ::Free,
-                |_, x, y, _| window.mark(&mut bits, x, y),
-            );
-            let data = truth.data();
-            window.drain(&bits, |i| out.cells.push((i as u32, observed(data[i]))));
-        });
-    }
-
-    /// Every beam is walked (it is the walk that finds what hides what), but only the cells
-    /// that tell the robot scanning something are reported: on a real plan most of a scan
-    /// is known already.
-    fn scan_unseen(&self, truth: &Grid<Occ>, pose: Pose, unseen: &Unseen, out: &mut Observation) {
+impl LidarSensor {
+    /// The scan, reporting only the cells `keep` accepts (by flat index), each once, by
+    /// increasing index.
+    fn scan_keeping(
+        &self,
+        truth: &Grid<Occ>,
+        pose: Pose,
+        keep: impl Fn(usize) -> bool,
+        out: &mut Observation,
+    ) {
         out.clear();
         out.origin = pose.cell;
         let Some(window) = Window::around(truth, pose.cell, self.range) else {
@@ -266,7 +251,7 @@ impl Sensor for LidarSensor {
                 pose,
                 |_, s| s == Occ::Free,
                 |i, x, y, _| {
-                    if unseen.tells(i) {
+                    if keep(i) {
                         window.mark(&mut bits, x, y);
                     }
                 },
@@ -274,6 +259,19 @@ impl Sensor for LidarSensor {
             let data = truth.data();
             window.drain(&bits, |i| out.cells.push((i as u32, observed(data[i]))));
         });
+    }
+}
+
+impl Sensor for LidarSensor {
+    fn scan(&self, truth: &Grid<Occ>, pose: Pose, out: &mut Observation) {
+        self.scan_keeping(truth, pose, |_| true, out);
+    }
+
+    /// Every beam is walked (it is the walk that finds what hides what), but only the cells
+    /// that tell the robot scanning something are reported: on a real plan most of a scan
+    /// is known already.
+    fn scan_unseen(&self, truth: &Grid<Occ>, pose: Pose, unseen: &Unseen, out: &mut Observation) {
+        self.scan_keeping(truth, pose, |i| unseen.tells(i), out);
     }
 
     fn skips_known(&self) -> bool {
