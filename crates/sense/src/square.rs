@@ -16,6 +16,7 @@ use grid::{Grid, Occ};
 use crate::error::SenseError;
 use crate::footprint::check_plain_range;
 use crate::sensor::{Observation, Pose, Sensor, observed, predicted_transparent};
+use crate::unseen::Unseen;
 
 /// The square-window sensor of Explore-Bench (module doc).
 #[derive(Clone, Debug)]
@@ -110,8 +111,16 @@ impl SquareSensor {
     }
 }
 
-impl Sensor for SquareSensor {
-    fn scan(&self, truth: &Grid<Occ>, pose: Pose, out: &mut Observation) {
+impl SquareSensor {
+    /// The scan, reporting only the cells `keep` accepts (by flat index), each once, by
+    /// increasing index.
+    fn scan_keeping(
+        &self,
+        truth: &Grid<Occ>,
+        pose: Pose,
+        keep: impl Fn(usize) -> bool,
+        out: &mut Observation,
+    ) {
         out.clear();
         out.origin = pose.cell;
         let cells = &mut out.cells;
@@ -119,10 +128,30 @@ impl Sensor for SquareSensor {
             truth,
             pose,
             |_, s| s == Occ::Free,
-            |i, s| cells.push((i as u32, observed(s))),
+            |i, s| {
+                if keep(i) {
+                    cells.push((i as u32, observed(s)))
+                }
+            },
         );
         cells.sort_unstable_by_key(|&(i, _)| i);
         cells.dedup_by_key(|&mut (i, _)| i);
+    }
+}
+
+impl Sensor for SquareSensor {
+    fn scan(&self, truth: &Grid<Occ>, pose: Pose, out: &mut Observation) {
+        self.scan_keeping(truth, pose, |_| true, out);
+    }
+
+    /// Every ray is walked, but only the cells that tell the robot scanning something are
+    /// reported (and sorted).
+    fn scan_unseen(&self, truth: &Grid<Occ>, pose: Pose, unseen: &Unseen, out: &mut Observation) {
+        self.scan_keeping(truth, pose, |i| unseen.tells(i), out);
+    }
+
+    fn skips_known(&self) -> bool {
+        true
     }
 
     /// The radius of the circle around the window (`R·√2`): no seen cell is farther.

@@ -1,10 +1,10 @@
-//! `Sensor::scan_unseen` of the lidar and the line-of-sight sensor against their full scans
-//! on random maps and beliefs: it reports a subset of the full scan's cells, and every cell the full scan
-//! reports that the belief does not know yet.
+//! `Sensor::scan_unseen` of the lidar, line-of-sight and square sensors against their full
+//! scans on random maps and records of who sensed what: it reports a subset of the full
+//! scan's cells, and every cell of it that would tell the robot scanning something.
 
 use grid::{Cell, Grid, Occ};
 use proptest::prelude::*;
-use sense::{LidarSensor, LosSensor, Observation, Pose, Sensor, Unseen};
+use sense::{LidarSensor, LosSensor, Observation, Pose, Sensor, SquareSensor, Unseen};
 
 /// Who sensed a cell before the scan: nobody, one robot, or two.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -143,6 +143,19 @@ proptest! {
         let o = Cell::new(sx, sy);
         prop_assume!(truth.contains(o));
         let sensor = LosSensor::new(r).expect("valid");
+        check(&sensor, &truth, robots, &sensed, shift, Pose::new(o, 0.0))?;
+    }
+
+    #[test]
+    fn square_scan_unseen_keeps_every_unknown_cell(
+        (truth, robots, sensed) in arb_case(),
+        r in 0.0f64..30.0,
+        shift in 0u32..=4,
+        (sx, sy) in (0i32..40, 0i32..40),
+    ) {
+        let o = Cell::new(sx, sy);
+        prop_assume!(truth.contains(o));
+        let sensor = SquareSensor::new(r).expect("valid");
         check(&sensor, &truth, robots, &sensed, shift, Pose::new(o, 0.0))?;
     }
 }
