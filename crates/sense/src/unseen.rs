@@ -82,17 +82,7 @@ impl Unseen {
             },
         };
         let t = truth.data();
-        // The free cells as bits, then every cell that is free or next to a free one.
-        let mut free_rows = vec![0u64; words];
-        for (i, &s) in t.iter().enumerate() {
-            if s == Occ::Free {
-                free_rows[i / 64] |= 1 << (i % 64);
-            }
-        }
-        let is_free = |x: usize, y: usize| {
-            let i = y * w + x;
-            free_rows[i / 64] & (1 << (i % 64)) != 0
-        };
+        let is_free = |x: usize, y: usize| t[y * w + x] == Occ::Free;
         for y in 0..h {
             for x in 0..w {
                 let seeable = is_free(x, y)
@@ -172,11 +162,6 @@ impl Unseen {
     /// Whether cell `(x, y)` would tell the robot scanning now anything ([`tells`](Self::tells)).
     pub fn tells_at(&self, x: usize, y: usize) -> bool {
         x < self.width && y < self.height && self.tells(y * self.width + x)
-    }
-
-    /// The side of a block in cells.
-    pub fn block_side(&self) -> usize {
-        1 << self.shift
     }
 
     /// Call `f(x0, y0, x1, y1)` with the cell box (inclusive, clipped to the grid) of every
