@@ -497,6 +497,9 @@ impl<'a> Session<'a> {
                 t.offered.insert(c);
             }
         }
+        if assigner == AssignerKind::Nearest && t.nearest_from_searches(&self.robots) {
+            return &t.proposed;
+        }
         let mut ctx = DecisionCtx {
             known: t.belief.known(),
             upkeep: &mut t.upkeep,
@@ -774,6 +777,44 @@ fn validate(cfg: &RunConfig) -> Result<(), SimError> {
 }
 
 impl Team<'_> {
+    /// The nearest assigner's goals among the offered candidates, read from the searches
+    /// this pending decision already grew ([`Session::nearest_candidates`]) instead of a
+    /// new search per robot: each deciding robot's search must start at its cell and be
+    /// guided toward a superset of the offered cells (the decision's candidates), so every
+    /// offered cell cheaper than its next bucket is settled; the least (cost, cell) among
+    /// them is then the cell the nearest search would settle first, and its path the same.
+    /// Writes `proposed` and returns true only if that holds for every deciding robot.
+    fn nearest_from_searches(&mut self, robots: &[Robot]) -> bool {
+        let m = robots.len().min(self.proposed.len());
+        let mut found = [None; 8];
+        if m > found.len() {
+            return false;
+        }
+        for r in (0..m).filter(|&r| self.deciding[r]) {
+            let map = self.planner.map(r);
+            if !self.planner.is_searching(r) || map.start() != Some(robots[r].cell as usize) {
+                return false;
+            }
+            let best = self
+                .offered
+                .cells()
+                .iter()
+                .filter_map(|&c| map.cost(c as usize).map(|cost| (cost, c)))
+                .min_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+            found[r] = match best {
+                Some((cost, cell)) if map.is_complete() || cost < map.next_bucket() as f64 => {
+                    Some(Goal { cell, cost })
+                }
+                None if map.is_complete() || self.offered.is_empty() => None,
+                _ => return false,
+            };
+        }
+        for r in (0..m).filter(|&r| self.deciding[r]) {
+            self.proposed[r] = found[r];
+        }
+        true
+    }
+
     fn coverage(&self) -> f64 {
         let (covered, total) = self.coverage_counts();
         if total == 0 {

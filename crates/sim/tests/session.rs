@@ -128,3 +128,61 @@ fn goals_from_outside_are_checked() {
     assert!(matches!(s.advance(), Status::Ended(_)));
     assert!(s.choose(&[None]).is_err());
 }
+
+/// Regression test for reading the nearest assigner's choice from the searches a caller
+/// already grew with `nearest_candidates` (as the Python environment does before its
+/// baseline policies act): at every decision the proposal equals the one a fresh search
+/// gives, for offers of the cheapest candidates, of all but the cheapest, of every other
+/// candidate and of all of them, and the runs end the same.
+#[test]
+fn nearest_proposal_from_grown_searches_equals_a_fresh_search() {
+    let map = office();
+    for (preset, robots, k) in [
+        ("cf-rr", 1, 16),
+        ("cf", 1, 3),
+        ("yamauchi", 1, 1),
+        ("cf", 2, 5),
+    ] {
+        for seed in 0..2 {
+            let cfg = config(preset, robots, seed);
+            let start = || Session::start(Cow::Borrowed(&map), Cow::Borrowed(&cfg), true);
+            let (mut grown, mut fresh) = (start().expect("start"), start().expect("start"));
+            let mut decision = 0;
+            while grown.advance() == Status::Decide {
+                assert_eq!(fresh.advance(), Status::Decide, "{preset} seed {seed}");
+                let all = grown.candidates().to_vec();
+                let mut cheapest = Vec::new();
+                let deciding = grown.deciding().to_vec();
+                for r in (0..robots).filter(|&r| deciding[r]) {
+                    grown.nearest_candidates(r, k, &mut cheapest);
+                }
+                let offer: Vec<u32> = match decision % 4 {
+                    0 => cheapest.iter().map(|g| g.cell).collect(),
+                    1 => all
+                        .iter()
+                        .copied()
+                        .filter(|&c| c != cheapest[0].cell)
+                        .collect(),
+                    2 => all.iter().copied().step_by(2).collect(),
+                    _ => all.clone(),
+                };
+                let want = fresh.propose(cfg.strategy.assigner, &offer).to_vec();
+                let got = grown.propose(cfg.strategy.assigner, &offer).to_vec();
+                assert_eq!(got, want, "{preset} seed {seed} decision {decision}");
+                let goals: Vec<Option<u32>> = want.iter().map(|g| g.map(|g| g.cell)).collect();
+                grown.choose(&goals).expect("a proposed goal");
+                fresh.choose(&goals).expect("a proposed goal");
+                decision += 1;
+            }
+            eprintln!("{preset} seed {seed}: {decision} decisions");
+            assert!(decision > 1, "{preset} seed {seed}: {decision} decisions");
+            let (got, want) = (grown.finish(), fresh.finish());
+            assert_eq!(got.moves, want.moves, "{preset} seed {seed}");
+            assert_eq!(
+                got.path_length_m, want.path_length_m,
+                "{preset} seed {seed}"
+            );
+            assert_eq!(got.belief, want.belief, "{preset} seed {seed}");
+        }
+    }
+}
