@@ -100,6 +100,63 @@ impl Planner {
         &self.maps[r]
     }
 
+    /// Grow every robot's search (robot `r` from `froms[r]`, not guided) until it has
+    /// settled every cell of `goals` it can reach (a little beyond), or every cell it can
+    /// reach: the searches
+    /// an assigner that needs each robot's cost to every goal (MA) grows one after the other,
+    /// run side by side on rayon's threads. The maps are independent, so each is the one the
+    /// sequential growth leaves, whatever the thread count. A search already begun in this
+    /// decision is grown on; robots that reach no goal are left as they are.
+    pub fn settle_goals(
+        &mut self,
+        froms: &[u32],
+        known: &Grid<Occ>,
+        upkeep: &FrontierUpkeep,
+        goals: &[u32],
+    ) {
+        use rayon::prelude::*;
+        let m = self.maps.len().min(froms.len());
+        let want: Vec<usize> = (0..m)
+            .map(|r| {
+                let reach = self.component(r, froms[r], known, upkeep);
+                goals
+                    .iter()
+                    .filter(|&&g| reach.contains(g as usize))
+                    .count()
+            })
+            .collect();
+        let pass = |i| upkeep.is_traversable(known, i);
+        self.maps[..m]
+            .par_iter_mut()
+            .zip(self.extent[..m].par_iter_mut())
+            .enumerate()
+            .filter(|(r, (_, extent))| want[*r] > 0 && **extent != Extent::Full)
+            .for_each(|(r, (map, extent))| {
+                if matches!(*extent, Extent::Stale | Extent::Partial) {
+                    map.begin(froms[r] as usize, pass);
+                }
+                // The goals are counted each time the search has settled as many new
+                // cells as there are goals, so counting costs O(1) per settled cell.
+                let mut counted = 0;
+                loop {
+                    let done = map.advance(map.next_bucket(), pass);
+                    if done {
+                        *extent = Extent::Full;
+                        break;
+                    }
+                    *extent = Extent::Growing;
+                    let settled = map.settled().len();
+                    if settled - counted >= goals.len() {
+                        counted = settled;
+                        let found = goals.iter().filter(|&&g| map.is_settled(g as usize));
+                        if found.count() >= want[r] {
+                            break;
+                        }
+                    }
+                }
+            });
+    }
+
     /// Grow robot `r`'s search from cell `from` until every goal of cost below
     /// `through + 1` is settled (a new resumable search guided toward `goals` if this
     /// decision has none yet, see [`Reachability::begin_guided`]; nothing if its map is

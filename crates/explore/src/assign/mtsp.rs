@@ -147,7 +147,10 @@ fn run(
     }
     // Each robot's search grows until it has settled every candidate (or all it can
     // reach): the costs MA reads are then final, and the cells beyond are never searched.
+    // The searches are independent, so they grow side by side on rayon's threads first.
     st.lazy.reset(m, false);
+    ctx.planner
+        .settle_goals(ctx.robots, ctx.known, ctx.upkeep, candidates.cells());
     for r in 0..m {
         while !st.lazy.step(ctx, candidates, r, false) && st.lazy.found(r).len() < candidates.len()
         {

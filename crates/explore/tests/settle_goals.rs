@@ -1,0 +1,60 @@
+//! `Planner::settle_goals`, the searches MA grows side by side: every goal a robot can
+//! reach is settled at its full-search cost, and the maps are the same on one thread and
+//! on several.
+
+use explore::decision::Planner;
+use explore::{FrontierUpkeep, Reachability};
+use proptest::prelude::*;
+
+mod common;
+#[allow(unused_imports)]
+use common::*;
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(48))]
+
+    #[test]
+    fn settled_goals_have_full_search_costs_at_any_thread_count(
+        bits in prop::collection::vec(0u8..100, 41),
+        cut in 6usize..30,
+        m in 1usize..6,
+        every in 1usize..40,
+    ) {
+        let (w, h) = (48, 36);
+        let known = random_known(w, h, &bits, cut);
+        let mut up = FrontierUpkeep::new(w, h, 0.0);
+        up.rebuild(&known);
+        let Some(start) = largest_component_cell(&known, &up) else {
+            return Ok(());
+        };
+        let pass = |i| up.is_traversable(&known, i);
+        let mut reach = Reachability::new(w, h);
+        reach.compute(start, pass);
+        let settled = reach.settled().to_vec();
+        let robots: Vec<u32> = (0..m).map(|k| settled[(k * 7919) % settled.len()]).collect();
+        // goals: some free cells everywhere, also out of the robots' reach
+        let goals: Vec<u32> = (0..(w * h) as u32)
+            .filter(|&i| known[i as usize].is_free())
+            .step_by(every)
+            .collect();
+        let grown = |threads: usize| {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("pool");
+            let mut planner = Planner::new(w, h, m);
+            pool.install(|| planner.settle_goals(&robots, &known, &up, &goals));
+            planner
+        };
+        let (one, three) = (grown(1), grown(3));
+        for r in 0..m {
+            prop_assert_eq!(one.map(r).settled(), three.map(r).settled());
+            let mut full = Reachability::new(w, h);
+            full.compute(robots[r] as usize, pass);
+            for &g in &goals {
+                let want = full.cost(g as usize);
+                prop_assert_eq!(one.map(r).cost(g as usize).is_some(), want.is_some());
+                if want.is_some() {
+                    prop_assert_eq!(one.map(r).cost(g as usize), want);
+                }
+            }
+        }
+    }
+}
