@@ -102,11 +102,13 @@ impl Planner {
 
     /// Grow every robot's search (robot `r` from `froms[r]`, not guided) until it has
     /// settled every cell of `goals` it can reach (a little beyond), or every cell it can
-    /// reach: the searches
-    /// an assigner that needs each robot's cost to every goal (MA) grows one after the other,
-    /// run side by side on rayon's threads. The maps are independent, so each is the one the
-    /// sequential growth leaves, whatever the thread count. A search already begun in this
-    /// decision is grown on; robots that reach no goal are left as they are.
+    /// reach: the searches an assigner that needs each robot's cost to every goal (MA)
+    /// would grow one after the other, run side by side on rayon's threads. The maps are
+    /// independent, so each is the one the sequential growth leaves, whatever the thread
+    /// count. Called from a thread of a rayon pool (a bench's trials, a vector
+    /// environment's steps), which keeps the cores busy already, they grow one after the
+    /// other, so that no trial's wall time includes another's stolen work. A search already
+    /// begun in this decision is grown on; robots that reach no goal are left as they are.
     pub fn settle_goals(
         &mut self,
         froms: &[u32],
@@ -126,35 +128,41 @@ impl Planner {
             })
             .collect();
         let pass = |i| upkeep.is_traversable(known, i);
-        self.maps[..m]
-            .par_iter_mut()
-            .zip(self.extent[..m].par_iter_mut())
-            .enumerate()
-            .filter(|(r, (_, extent))| want[*r] > 0 && **extent != Extent::Full)
-            .for_each(|(r, (map, extent))| {
-                if matches!(*extent, Extent::Stale | Extent::Partial) {
-                    map.begin(froms[r] as usize, pass);
+        let wanted = |(r, (_, extent)): &(usize, (&mut Reachability, &mut Extent))| {
+            want[*r] > 0 && **extent != Extent::Full
+        };
+        let grow = |(r, (map, extent)): (usize, (&mut Reachability, &mut Extent))| {
+            if matches!(*extent, Extent::Stale | Extent::Partial) {
+                map.begin(froms[r] as usize, pass);
+            }
+            // The goals are counted each time the search has settled as many new cells
+            // as there are goals, so counting costs O(1) per settled cell.
+            let mut counted = 0;
+            loop {
+                let done = map.advance(map.next_bucket(), pass);
+                if done {
+                    *extent = Extent::Full;
+                    break;
                 }
-                // The goals are counted each time the search has settled as many new
-                // cells as there are goals, so counting costs O(1) per settled cell.
-                let mut counted = 0;
-                loop {
-                    let done = map.advance(map.next_bucket(), pass);
-                    if done {
-                        *extent = Extent::Full;
+                *extent = Extent::Growing;
+                let settled = map.settled().len();
+                if settled - counted >= goals.len() {
+                    counted = settled;
+                    let found = goals.iter().filter(|&&g| map.is_settled(g as usize));
+                    if found.count() >= want[r] {
                         break;
                     }
-                    *extent = Extent::Growing;
-                    let settled = map.settled().len();
-                    if settled - counted >= goals.len() {
-                        counted = settled;
-                        let found = goals.iter().filter(|&&g| map.is_settled(g as usize));
-                        if found.count() >= want[r] {
-                            break;
-                        }
-                    }
                 }
-            });
+            }
+        };
+        let (maps, extents) = (&mut self.maps[..m], &mut self.extent[..m]);
+        if rayon::current_thread_index().is_some() {
+            let each = maps.iter_mut().zip(extents.iter_mut()).enumerate();
+            each.filter(wanted).for_each(grow);
+        } else {
+            let each = maps.par_iter_mut().zip(extents.par_iter_mut()).enumerate();
+            each.filter(wanted).for_each(grow);
+        }
     }
 
     /// Grow robot `r`'s search from cell `from` until every goal of cost below
