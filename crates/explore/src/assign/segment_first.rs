@@ -58,6 +58,14 @@ pub fn assign(
         let own = seg
             .label(from as usize)
             .filter(|&s| max_neighbours.is_none_or(|m| state.neighbours(s) <= m));
+        // Without a candidate in the own segment that search would settle every cell the
+        // robot reaches and find nothing.
+        let own = own.filter(|&own| {
+            candidates
+                .cells()
+                .iter()
+                .any(|&c| seg.labels[c as usize] == own)
+        });
         if let Some(own) = own {
             found = ctx.planner.nearest(r, from, ctx.known, ctx.upkeep, |i| {
                 candidates.contains(i) && seg.labels[i] == own
