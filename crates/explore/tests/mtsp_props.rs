@@ -2,7 +2,6 @@
 //! permutations of the cost matrix), goals from the robot's own cluster, team semantics,
 //! determinism per seed.
 
-use explore::FrontierUpkeep;
 use explore::Reachability;
 use explore::assign::AssignerKind;
 use explore::candidates::{CandidateKind, CandidateSet};
@@ -99,9 +98,7 @@ proptest! {
         cc in any::<bool>(),
     ) {
         let (w, h) = (20, 20);
-        let known = random_known(w, h, &bits, cut);
-        let mut up = FrontierUpkeep::new(w, h, 0.0);
-        up.rebuild(&known);
+        let (known, up) = random_upkept(w, h, &bits, cut);
         let Some(start) = largest_component_cell(&known, &up) else {
             return Ok(());
         };

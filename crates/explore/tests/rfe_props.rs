@@ -2,9 +2,9 @@
 //! their edge's cells, determinism per seed.
 
 use explore::Reachability;
+use explore::Region;
 use explore::candidates::rfe::{DEFAULT_MIN_EDGE, representatives_for};
 use explore::candidates::{CandidateKind, CandidateSet};
-use explore::{FrontierUpkeep, Region};
 use grid::{Cell, Grid, Occ};
 use proptest::prelude::*;
 
@@ -74,9 +74,7 @@ proptest! {
         seed in 0u64..100,
     ) {
         let (w, h) = (20, 20);
-        let known = random_known(w, h, &bits, cut);
-        let mut up = FrontierUpkeep::new(w, h, 0.0);
-        up.rebuild(&known);
+        let (known, mut up) = random_upkept(w, h, &bits, cut);
         let Some(robot) = largest_component_cell(&known, &up) else {
             return Ok(());
         };

@@ -2,8 +2,8 @@
 //! reach is settled at its full-search cost, and the maps are the same grown side by side
 //! and one after the other.
 
+use explore::Reachability;
 use explore::decision::Planner;
-use explore::{FrontierUpkeep, Reachability};
 use proptest::prelude::*;
 
 mod common;
@@ -21,9 +21,7 @@ proptest! {
         every in 1usize..40,
     ) {
         let (w, h) = (48, 36);
-        let known = random_known(w, h, &bits, cut);
-        let mut up = FrontierUpkeep::new(w, h, 0.0);
-        up.rebuild(&known);
+        let (known, up) = random_upkept(w, h, &bits, cut);
         let Some(start) = largest_component_cell(&known, &up) else {
             return Ok(());
         };
@@ -47,16 +45,16 @@ proptest! {
             .build()
             .expect("pool")
             .install(|| one_by_one.settle_goals(&robots, &known, &up, &goals));
-        let (one, three) = (&one_by_one, &side_by_side);
-        for r in 0..m {
-            prop_assert_eq!(one.map(r).settled(), three.map(r).settled());
+        for (r, &robot) in robots.iter().enumerate() {
+            let (seq, par) = (one_by_one.map(r), side_by_side.map(r));
+            prop_assert_eq!(seq.settled(), par.settled());
             let mut full = Reachability::new(w, h);
-            full.compute(robots[r] as usize, pass);
+            full.compute(robot as usize, pass);
             for &g in &goals {
                 let want = full.cost(g as usize);
-                prop_assert_eq!(one.map(r).cost(g as usize).is_some(), want.is_some());
+                prop_assert_eq!(seq.cost(g as usize).is_some(), want.is_some());
                 if want.is_some() {
-                    prop_assert_eq!(one.map(r).cost(g as usize), want);
+                    prop_assert_eq!(seq.cost(g as usize), want);
                 }
             }
         }

@@ -2,7 +2,6 @@
 //! direct k-means of the unknown cells from the map centre, clusters are matched to the
 //! robots optimally, and goals equal a slow recomputation of Eq. 1 with its penalties.
 
-use explore::FrontierUpkeep;
 use explore::Reachability;
 use explore::assign::AssignerKind;
 use explore::assign::sga::block_side;
@@ -125,9 +124,7 @@ proptest! {
         range in 1.0f64..6.0,
     ) {
         let (w, h) = (20, 20);
-        let known = random_known(w, h, &bits, cut);
-        let mut up = FrontierUpkeep::new(w, h, 0.0);
-        up.rebuild(&known);
+        let (known, up) = random_upkept(w, h, &bits, cut);
         let Some(start) = largest_component_cell(&known, &up) else {
             return Ok(());
         };

@@ -89,6 +89,14 @@ pub fn random_known(w: usize, h: usize, bits: &[u8], cut: usize) -> Grid<Occ> {
     g
 }
 
+/// [`random_known`] with its frontier upkeep (no clearance) rebuilt from it.
+pub fn random_upkept(w: usize, h: usize, bits: &[u8], cut: usize) -> (Grid<Occ>, FrontierUpkeep) {
+    let known = random_known(w, h, bits, cut);
+    let mut up = FrontierUpkeep::new(w, h, 0.0);
+    up.rebuild(&known);
+    (known, up)
+}
+
 /// The lowest cell of the largest traversable component.
 pub fn largest_component_cell(known: &Grid<Occ>, up: &FrontierUpkeep) -> Option<usize> {
     let (w, h) = (known.width(), known.height());
