@@ -783,13 +783,10 @@ impl Team<'_> {
     /// guided toward a superset of the offered cells (the decision's candidates), so every
     /// offered cell cheaper than its next bucket is settled; the least (cost, cell) among
     /// them is then the cell the nearest search would settle first, and its path the same.
-    /// Writes `proposed` and returns true only if that holds for every deciding robot.
+    /// Returns false, when that fails for some deciding robot, with `proposed` partly
+    /// written: the assigner then writes every deciding robot's entry again.
     fn nearest_from_searches(&mut self, robots: &[Robot]) -> bool {
         let m = robots.len().min(self.proposed.len());
-        let mut found = [None; 8];
-        if m > found.len() {
-            return false;
-        }
         for r in (0..m).filter(|&r| self.deciding[r]) {
             let map = self.planner.map(r);
             if !self.planner.is_searching(r) || map.start() != Some(robots[r].cell as usize) {
@@ -801,16 +798,13 @@ impl Team<'_> {
                 .iter()
                 .filter_map(|&c| map.cost(c as usize).map(|cost| (cost, c)))
                 .min_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-            found[r] = match best {
+            self.proposed[r] = match best {
                 Some((cost, cell)) if map.is_complete() || cost < map.next_bucket() as f64 => {
                     Some(Goal { cell, cost })
                 }
                 None if map.is_complete() || self.offered.is_empty() => None,
                 _ => return false,
             };
-        }
-        for r in (0..m).filter(|&r| self.deciding[r]) {
-            self.proposed[r] = found[r];
         }
         true
     }
