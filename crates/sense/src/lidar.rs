@@ -213,12 +213,18 @@ impl Window {
         bits[ly * self.words + lx / 64] |= 1 << (lx % 64);
     }
 
-    /// Every marked cell's flat index, in increasing order.
-    fn drain(&self, bits: &[u64], mut f: impl FnMut(usize)) {
+    /// Every marked cell's flat index that `unseen` (if any) says tells the robot
+    /// scanning something, in increasing order.
+    fn drain(&self, bits: &[u64], unseen: Option<&Unseen>, mut f: impl FnMut(usize)) {
         for (ly, row) in bits.chunks_exact(self.words).enumerate() {
             let base = (self.y0 as usize + ly) * self.width + self.x0 as usize;
             for (k, &word) in row.iter().enumerate() {
                 let mut word = word;
+                if word != 0
+                    && let Some(u) = unseen
+                {
+                    word &= u.telling_bits(base + k * 64);
+                }
                 while word != 0 {
                     f(base + k * 64 + word.trailing_zeros() as usize);
                     word &= word - 1;
@@ -229,13 +235,15 @@ impl Window {
 }
 
 impl LidarSensor {
-    /// The scan, reporting only the cells `keep` accepts (by flat index), each once, by
-    /// increasing index.
+    /// The scan, reporting only the cells that tell the robot scanning something if
+    /// `unseen` is given, each once, by increasing index. The beams mark every cell they
+    /// enter; the question is asked when the marks are read, 64 cells at a time, so the
+    /// walk itself reads nothing but the ground truth.
     fn scan_keeping(
         &self,
         truth: &Grid<Occ>,
         pose: Pose,
-        keep: impl Fn(usize) -> bool,
+        unseen: Option<&Unseen>,
         out: &mut Observation,
     ) {
         out.clear();
@@ -250,28 +258,26 @@ impl LidarSensor {
                 truth,
                 pose,
                 |_, s| s == Occ::Free,
-                |i, x, y, _| {
-                    if keep(i) {
-                        window.mark(&mut bits, x, y);
-                    }
-                },
+                |_, x, y, _| window.mark(&mut bits, x, y),
             );
             let data = truth.data();
-            window.drain(&bits, |i| out.cells.push((i as u32, observed(data[i]))));
+            window.drain(&bits, unseen, |i| {
+                out.cells.push((i as u32, observed(data[i])))
+            });
         });
     }
 }
 
 impl Sensor for LidarSensor {
     fn scan(&self, truth: &Grid<Occ>, pose: Pose, out: &mut Observation) {
-        self.scan_keeping(truth, pose, |_| true, out);
+        self.scan_keeping(truth, pose, None, out);
     }
 
     /// Every beam is walked (it is the walk that finds what hides what), but only the cells
     /// that tell the robot scanning something are reported: on a real plan most of a scan
     /// is known already.
     fn scan_unseen(&self, truth: &Grid<Occ>, pose: Pose, unseen: &Unseen, out: &mut Observation) {
-        self.scan_keeping(truth, pose, |i| unseen.tells(i), out);
+        self.scan_keeping(truth, pose, Some(unseen), out);
     }
 
     fn skips_known(&self) -> bool {

@@ -38,6 +38,15 @@ pub struct Unseen {
     twice: Vec<u64>,
     /// Teams: per cell, the robot that sensed it first (`u32::MAX`: none).
     first: Vec<u32>,
+    /// Words per bitmap of one bit per cell.
+    words: usize,
+    /// Per robot (`robot * words + word`), one bit per cell: the cell tells that robot
+    /// nothing (it sensed the cell, or two robots did). The scans' only question, asked at
+    /// every cell a beam enters, is then one bit of a small bitmap instead of reads in
+    /// `sensed`, `first` (4 bytes per cell) and `twice`.
+    quiet: Vec<u64>,
+    /// Where the viewer's row of `quiet` starts.
+    viewer_row: usize,
     /// Per block (row-major): seeable cells nobody has sensed.
     unsensed: Vec<u32>,
     /// Teams: per block, the cells sensed by exactly one robot.
@@ -73,6 +82,9 @@ impl Unseen {
             } else {
                 Vec::new()
             },
+            words,
+            quiet: vec![0; words * robots],
+            viewer_row: 0,
             unsensed: vec![0; blocks],
             once: if team { vec![0; blocks] } else { Vec::new() },
             own: if team {
@@ -116,6 +128,7 @@ impl Unseen {
         let (mut first, mut overlap) = (0, 0);
         let team = !self.first.is_empty();
         let blocks = self.unsensed.len();
+        let own_row = self.row_of(r);
         for c in cells {
             let i = c as usize;
             if i >= self.width * self.height {
@@ -124,6 +137,7 @@ impl Unseen {
             let b = self.block_of(i);
             if !Self::bit(&self.sensed, i) {
                 self.sensed[i / 64] |= 1 << (i % 64);
+                self.quiet[own_row + i / 64] |= 1 << (i % 64);
                 if Self::bit(&self.seeable, i) {
                     self.unsensed[b] -= 1;
                 }
@@ -135,6 +149,9 @@ impl Unseen {
                 }
             } else if team && self.first[i] != r as u32 && !Self::bit(&self.twice, i) {
                 self.twice[i / 64] |= 1 << (i % 64);
+                for q in self.quiet.iter_mut().skip(i / 64).step_by(self.words) {
+                    *q |= 1 << (i % 64);
+                }
                 overlap += 1;
                 self.once[b] -= 1;
                 self.own[self.first[i] as usize * blocks + b] -= 1;
@@ -147,16 +164,37 @@ impl Unseen {
     /// [`for_each_telling_block`](Self::for_each_telling_block) answer for.
     pub fn look_as(&mut self, r: usize) {
         self.viewer = r;
+        self.viewer_row = self.row_of(r);
+    }
+
+    /// Where robot `r`'s row of `quiet` starts (a robot beyond the team's counts as the
+    /// last one, as a lone robot is robot 0).
+    fn row_of(&self, r: usize) -> usize {
+        r.min((self.quiet.len() / self.words.max(1)).saturating_sub(1)) * self.words
     }
 
     /// Whether reporting the cell of flat index `i` (in the grid) to the robot scanning now
     /// changes anything: nobody has sensed it, or one other robot has.
     #[inline]
     pub fn tells(&self, i: usize) -> bool {
-        if !Self::bit(&self.sensed, i) {
-            return true;
-        }
-        !self.first.is_empty() && self.first[i] != self.viewer as u32 && !Self::bit(&self.twice, i)
+        // quiet = sensed by the viewer, or by two robots (a team's second robot to sense a
+        // cell sets `twice`, so "sensed by another robot only" is exactly "not quiet")
+        !Self::bit(&self.quiet[self.viewer_row..], i)
+    }
+
+    /// Whether each of the 64 cells of flat indices `i..i + 64` would tell the robot
+    /// scanning now anything, as bit k for cell `i + k` ([`tells`](Self::tells); cells past
+    /// the grid's end tell).
+    #[inline]
+    pub fn telling_bits(&self, i: usize) -> u64 {
+        let row = &self.quiet[self.viewer_row..self.viewer_row + self.words];
+        let (w, s) = (i / 64, i % 64);
+        let lo = row.get(w).map_or(0, |&q| q >> s);
+        let hi = match row.get(w + 1) {
+            Some(&q) if s > 0 => q << (64 - s),
+            _ => 0,
+        };
+        !(lo | hi)
     }
 
     /// Whether cell `(x, y)` would tell the robot scanning now anything ([`tells`](Self::tells)).

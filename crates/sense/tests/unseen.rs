@@ -53,7 +53,7 @@ fn arb_case() -> impl Strategy<Value = (Grid<Occ>, usize, Vec<Sensed>)> {
 
 /// For every robot: the two scans agree on the cells that would tell it something (nobody
 /// sensed them, or one other robot did), and the short one reports only what the full one
-/// does.
+/// does; if `exact`, nothing else.
 fn check(
     sensor: &dyn Sensor,
     truth: &Grid<Occ>,
@@ -61,6 +61,7 @@ fn check(
     sensed: &[Sensed],
     shift: u32,
     pose: Pose,
+    exact: bool,
 ) -> Result<(), TestCaseError> {
     let mut unseen = Unseen::new(truth, robots, shift);
     for (i, &s) in sensed.iter().enumerate() {
@@ -107,6 +108,13 @@ fn check(
                     c,
                     r
                 );
+            } else if exact {
+                prop_assert!(
+                    kept.binary_search(c).is_err(),
+                    "{:?} tells robot {} nothing but is reported",
+                    c,
+                    r
+                );
             }
         }
     }
@@ -129,7 +137,7 @@ proptest! {
         let o = Cell::new(sx, sy);
         prop_assume!(truth.contains(o));
         let sensor = LidarSensor::new(r, fov, res).expect("valid");
-        check(&sensor, &truth, robots, &sensed, shift, Pose::new(o, heading))?;
+        check(&sensor, &truth, robots, &sensed, shift, Pose::new(o, heading), true)?;
     }
 
     #[test]
@@ -143,7 +151,7 @@ proptest! {
         let o = Cell::new(sx, sy);
         prop_assume!(truth.contains(o));
         let sensor = LosSensor::new(r).expect("valid");
-        check(&sensor, &truth, robots, &sensed, shift, Pose::new(o, 0.0))?;
+        check(&sensor, &truth, robots, &sensed, shift, Pose::new(o, 0.0), false)?;
     }
 
     #[test]
@@ -156,6 +164,45 @@ proptest! {
         let o = Cell::new(sx, sy);
         prop_assume!(truth.contains(o));
         let sensor = SquareSensor::new(r).expect("valid");
-        check(&sensor, &truth, robots, &sensed, shift, Pose::new(o, 0.0))?;
+        check(&sensor, &truth, robots, &sensed, shift, Pose::new(o, 0.0), false)?;
+    }
+
+    /// `tells` and `telling_bits` against the definition, after records in any order
+    /// (repeats, robots sensing a cell again, a third robot): a cell tells robot r
+    /// something iff nobody sensed it, or exactly one robot did and it is not r.
+    #[test]
+    fn tells_follows_who_sensed_what(
+        (w, h) in (1usize..=150, 1usize..=12),
+        robots in 1usize..=4,
+        records in proptest::collection::vec(
+            (0usize..4, proptest::collection::vec(0usize..1800, 0..40)),
+            0..12,
+        ),
+    ) {
+        let truth = Grid::new(w, h, Occ::Free);
+        let n = w * h;
+        let mut unseen = Unseen::new(&truth, robots, 2);
+        let mut who: Vec<Vec<usize>> = vec![Vec::new(); n];
+        for (r, cells) in &records {
+            let r = r % robots;
+            let cells: Vec<u32> = cells.iter().map(|&c| (c % n) as u32).collect();
+            unseen.record(r, cells.iter().copied());
+            for &c in &cells {
+                if !who[c as usize].contains(&r) {
+                    who[c as usize].push(r);
+                }
+            }
+        }
+        for r in 0..robots {
+            unseen.look_as(r);
+            let oracle = |i: usize| who[i].is_empty() || (who[i].len() == 1 && who[i][0] != r);
+            for i in 0..n {
+                prop_assert_eq!(unseen.tells(i), oracle(i), "cell {} robot {}", i, r);
+                let bits = unseen.telling_bits(i);
+                for k in 0..64.min(n - i) {
+                    prop_assert_eq!(bits >> k & 1 == 1, oracle(i + k), "bit {} of {}", k, i);
+                }
+            }
+        }
     }
 }
