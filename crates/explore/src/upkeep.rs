@@ -8,6 +8,7 @@
 //! became or stopped being Occupied and O(changed cells) otherwise, independent of the map size.
 //! [`crate::frontier::frontiers_from_scratch`] is the oracle it is tested against.
 
+use crate::belief_rows::RowLog;
 use crate::bits::CellBits;
 use crate::frontier::{FrontierSet, Region, is_frontier_xy};
 use crate::traversability::Traversability;
@@ -33,6 +34,8 @@ pub struct FrontierUpkeep {
     stack: Vec<u32>,
     /// Two rows' flags for [`rebuild`](Self::rebuild).
     row_buf: Vec<u8>,
+    /// The rows of the belief each update changed, for copies of it kept by decisions.
+    rows: RowLog,
 }
 
 impl FrontierUpkeep {
@@ -47,7 +50,13 @@ impl FrontierUpkeep {
             seen: CellBits::default(),
             stack: Vec::new(),
             row_buf: Vec::new(),
+            rows: RowLog::new(height),
         }
+    }
+
+    /// The rows of the belief each update changed (see [`crate::belief_rows`]).
+    pub(crate) fn row_log(&self) -> &RowLog {
+        &self.rows
     }
 
     /// Update traversability and the frontier set for the cells whose class changed (flat
@@ -59,6 +68,7 @@ impl FrontierUpkeep {
         if self.stamp.len() != cells {
             self.stamp = vec![0; cells];
         }
+        self.rows.note(self.trav.width(), changed);
         self.touched.clear();
         self.trav.update(known, changed, &mut self.touched);
         self.epoch = next_gen(self.epoch, &mut self.stamp);
@@ -92,6 +102,7 @@ impl FrontierUpkeep {
     pub fn rebuild(&mut self, known: &Grid<Occ>) {
         let (w, h) = (self.trav.width(), self.trav.height());
         debug_assert_eq!(known.len(), w * h, "belief size differs from upkeep size");
+        self.rows.restart();
         self.trav.rebuild(known);
         self.frontiers.clear();
         let data = known.data();

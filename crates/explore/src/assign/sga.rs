@@ -36,6 +36,7 @@
 //!   it has not settled would cost more than the best so far (path + o ≥ path). The
 //!   choice is that of the full cost list.
 
+use crate::belief_rows::{LogPos, RowLog};
 use crate::candidates::CandidateSet;
 use crate::decision::{DecisionCtx, Goal};
 use crate::kmeans::{Init, KMeans, Point};
@@ -52,8 +53,9 @@ pub struct State {
     /// Per block: the sums of the columns and rows of its unknown cells, and their number,
     /// as of `prev`.
     sums: Vec<(f64, f64, f64)>,
-    /// The belief the sums were made from.
+    /// The belief the sums were made from, and how far it followed the belief's row log.
     prev: grid::Grid<grid::Occ>,
+    pos: LogPos,
     kmeans: KMeans,
     penalty: Vec<f64>,
     label: Vec<u32>,
@@ -210,7 +212,8 @@ fn cluster_unknown(ctx: &mut DecisionCtx<'_>, st: &mut State) {
     let known = ctx.known;
     let (w, h) = (known.width(), known.height());
     let s = block_side(w, h);
-    pool_unknown(&mut st.sums, &mut st.prev, known, s);
+    let follow = (Some(ctx.upkeep.row_log()), &mut st.pos);
+    pool_unknown(&mut st.sums, &mut st.prev, follow, known, s);
     st.points.clear();
     st.weights.clear();
     for b in &st.sums {
@@ -258,11 +261,13 @@ fn cluster_unknown(ctx: &mut DecisionCtx<'_>, st: &mut State) {
 
 /// Bring `sums` (per block of side `s`: the sums of the columns and rows of its unknown
 /// cells, and their number) from the belief `prev` to `known`, redoing only the rows that
-/// changed; `prev` becomes a copy of `known`. Sums of whole numbers are exact in any order,
-/// so they equal a pass over `known`.
+/// changed (those `log` has changed since `pos`, if `prev` followed it); `prev` becomes a
+/// copy of `known`. Sums of whole numbers are exact in any order, so they equal a pass over
+/// `known`.
 fn pool_unknown(
     sums: &mut Vec<(f64, f64, f64)>,
     prev: &mut grid::Grid<grid::Occ>,
+    (log, pos): (Option<&RowLog>, &mut LogPos),
     known: &grid::Grid<grid::Occ>,
     s: usize,
 ) {
@@ -271,6 +276,7 @@ fn pool_unknown(
     if prev.width() != w || prev.height() != h || sums.len() != bw * bh {
         // Nothing counted yet: every cell of an all-unknown copy is unknown.
         *prev = grid::Grid::new(w, h, grid::Occ::Unknown);
+        *pos = LogPos::default();
         sums.clear();
         sums.resize(bw * bh, (0.0, 0.0, 0.0));
         for y in 0..h {
@@ -282,7 +288,7 @@ fn pool_unknown(
             }
         }
     }
-    crate::belief_rows::sync_rows(known, prev, s, |y, k, new, old| {
+    crate::belief_rows::sync_rows(known, prev, s, (log, pos), |y, k, new, old| {
         let b = &mut sums[(y / s) * bw + k];
         for (d, (&n, &o)) in new.iter().zip(old).enumerate() {
             let sign = match (n == grid::Occ::Unknown, o == grid::Occ::Unknown) {
@@ -331,11 +337,16 @@ mod tests {
         ) {
             let (mut sums, mut prev) = (Vec::new(), Grid::new(0, 0, Occ::Unknown));
             let mut known = Grid::new(w, h, Occ::Unknown);
+            // the copy follows a row log of the changes, as in a run
+            let (mut log, mut pos) = (RowLog::new(h), LogPos::default());
             for step in steps {
+                let mut cells = Vec::new();
                 for (i, o) in step {
                     known[i % (w * h)] = [Occ::Unknown, Occ::Free, Occ::Occupied][o as usize];
+                    cells.push((i % (w * h)) as u32);
                 }
-                pool_unknown(&mut sums, &mut prev, &known, s);
+                log.note(w, &cells);
+                pool_unknown(&mut sums, &mut prev, (Some(&log), &mut pos), &known, s);
                 let want = pooled(&known, s);
                 prop_assert_eq!(sums.len(), want.len());
                 for (g, e) in sums.iter().zip(&want) {

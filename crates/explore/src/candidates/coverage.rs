@@ -67,7 +67,7 @@ use sense::{LosSensor, MAX_TEMPLATE_RANGE_CELLS};
 use grid::{Grid, Occ};
 
 use super::CandidateSet;
-use crate::belief_rows::sync_rows;
+use crate::belief_rows::{LogPos, RowLog, sync_rows};
 use crate::decision::DecisionCtx;
 
 /// Fraction of the sensor range used for covering (Faigl & Kulich: 0.8 ρ).
@@ -142,6 +142,8 @@ struct Visibility {
     /// The belief at the last decision (equal to the current one once [`Self::start`] ran;
     /// scans read it, with their origin set free for the scan's duration).
     prev: Grid<Occ>,
+    /// How far `prev` has followed the scanned grid's row log.
+    pos: LogPos,
     /// Per block: the decision that last saw a change in it.
     changed_at: Vec<u32>,
     blocks_x: usize,
@@ -177,13 +179,15 @@ struct Seen {
 }
 
 impl Visibility {
-    /// Start a decision on `known`: note the blocks changed since the last one.
-    fn start(&mut self, known: &Grid<Occ>) {
+    /// Start a decision on `known` (whose changed rows `log` keeps): note the blocks
+    /// changed since the last one.
+    fn start(&mut self, known: &Grid<Occ>, log: &RowLog) {
         let (w, h) = (known.width(), known.height());
         let data = known.data();
         self.decision += 1;
         if self.prev.width() != w || self.prev.height() != h {
             self.prev = known.clone();
+            self.pos = LogPos::default();
             self.blocks_x = w.div_ceil(BLOCK);
             self.changed_at = vec![0; self.blocks_x * h.div_ceil(BLOCK)];
             self.slot = vec![NONE; data.len()];
@@ -193,7 +197,8 @@ impl Visibility {
             return;
         }
         let (changed_at, blocks_x, decision) = (&mut self.changed_at, self.blocks_x, self.decision);
-        sync_rows(known, &mut self.prev, BLOCK, |y, bx, _, _| {
+        let follow = (Some(log), &mut self.pos);
+        sync_rows(known, &mut self.prev, BLOCK, follow, |y, bx, _, _| {
             changed_at[(y / BLOCK) * blocks_x + bx] = decision;
         });
     }
@@ -301,24 +306,30 @@ impl Visibility {
 #[derive(Default)]
 struct Coarse {
     block: usize,
-    /// The fine belief it was made from.
+    /// The fine belief it was made from, and how far it has followed the belief's row log.
     fine: Grid<Occ>,
+    pos: LogPos,
     /// One cell per block: occupied if any cell is, else unknown if any is, else free.
     grid: Grid<Occ>,
+    /// The rows of `grid` each update changed.
+    log: RowLog,
     /// Blocks to recompute, and a mark per block against listing one twice.
     dirty: Vec<u32>,
     marked: Vec<bool>,
 }
 
 impl Coarse {
-    /// Bring the blocks up to `known` (work ∝ the rows that changed).
-    fn update(&mut self, known: &Grid<Occ>, block: usize) {
+    /// Bring the blocks up to `known`, whose changed rows `log` keeps (work ∝ the rows that
+    /// changed).
+    fn update(&mut self, known: &Grid<Occ>, block: usize, log: &RowLog) {
         let (w, h) = (known.width(), known.height());
         let cw = w.div_ceil(block);
         if self.block != block || self.fine.width() != w || self.fine.height() != h {
             self.block = block;
             self.fine = known.clone();
+            self.pos = LogPos::default();
             self.grid = Grid::new(cw, h.div_ceil(block), Occ::Free);
+            self.log = RowLog::new(self.grid.height());
             self.marked = vec![false; self.grid.len()];
             for b in 0..self.grid.len() {
                 self.grid[b] = block_state(known, block, cw, b);
@@ -326,15 +337,21 @@ impl Coarse {
             return;
         }
         let (marked, dirty) = (&mut self.marked, &mut self.dirty);
-        sync_rows(known, &mut self.fine, block, |y, bx, _, _| {
+        let follow = (Some(log), &mut self.pos);
+        sync_rows(known, &mut self.fine, block, follow, |y, bx, _, _| {
             let b = (y / block) * cw + bx;
             if !marked[b] {
                 marked[b] = true;
                 dirty.push(b as u32);
             }
         });
+        self.log.begin();
         for &b in &self.dirty {
-            self.grid[b as usize] = block_state(known, block, cw, b as usize);
+            let state = block_state(known, block, cw, b as usize);
+            if self.grid[b as usize] != state {
+                self.grid[b as usize] = state;
+                self.log.mark_row(b as usize / cw);
+            }
             self.marked[b as usize] = false;
         }
         self.dirty.clear();
@@ -424,7 +441,7 @@ fn cover(ctx: &mut DecisionCtx<'_>, st: &mut State) {
     let known = ctx.known;
     let w = known.width();
     if block > 1 {
-        st.coarse.update(known, block);
+        st.coarse.update(known, block, ctx.upkeep.row_log());
     }
     // The grid the laser looks over: the belief, or its blocks on fine maps.
     let scanned = if block > 1 { &st.coarse.grid } else { known };
@@ -439,7 +456,12 @@ fn cover(ctx: &mut DecisionCtx<'_>, st: &mut State) {
     let lists = ctx.lists;
     let reach = ctx.planner.component(r, ctx.robots[r], known, ctx.upkeep);
     let upkeep = &*ctx.upkeep;
-    st.vis.start(scanned);
+    let scanned_log = if block > 1 {
+        &st.coarse.log
+    } else {
+        upkeep.row_log()
+    };
+    st.vis.start(scanned, scanned_log);
     let coarse = &st.coarse;
     let key = |i: u32| -> u32 {
         if block > 1 {
