@@ -28,9 +28,9 @@
 //! the union of the scans of f_i's unknown neighbours. Each unknown cell is scanned once
 //! per decision however many frontier cells it borders, and every cell its scan reports
 //! gets those frontier cells in a bit set per covering cell (one bit per frontier cell, so
-//! a union needs no deduplication). The greedy choice uses a lazy max-heap on the
-//! uncovered counts, recounted from the bit sets when popped (counts only fall, so a popped
-//! entry whose count is current is the maximum). Cost ∝ the number of (unknown cell,
+//! a union needs no deduplication). The greedy choice takes candidates lazily from buckets
+//! by their uncovered counts, recounted from the bit sets when taken (counts only fall, so
+//! an entry whose count is current is the maximum). Cost ∝ the number of (unknown cell,
 //! covering cell) pairs, plus covering cells × frontier cells / 64; all buffers live in
 //! [`State`] and are reused.
 //!
@@ -57,9 +57,6 @@
 //! block with range 0.8 ρ / b; and a free block is a candidate through its eligible cell
 //! nearest the block's centre (ties to the lower index). Maps at 0.1 m or coarser, the
 //! `faigl2013` suite's among them, are covered cell by cell as above.
-
-use std::cmp::Reverse;
-use std::collections::BinaryHeap;
 
 use sense::shadow::{self, ShadowScratch};
 use sense::{LosSensor, MAX_TEMPLATE_RANGE_CELLS};
@@ -119,7 +116,8 @@ pub struct State {
     /// The keys some candidate covers, and those covered by the candidates chosen so far.
     coverable: Vec<u64>,
     covered: Vec<u64>,
-    heap: BinaryHeap<(u32, Reverse<u32>, u32)>,
+    /// The greedy cover's candidates by count: bucket n holds `(cell, candidate id)`.
+    buckets: Vec<Vec<(u32, u32)>>,
     /// The chosen candidates in order, and the frontier cells credited to each.
     chosen: Vec<u32>,
     credit_start: Vec<u32>,
@@ -612,23 +610,45 @@ fn cover(ctx: &mut DecisionCtx<'_>, st: &mut State) {
     }
     st.vis.sweep();
 
-    // Lines 9–13: greedy cover with a lazy max-heap on the counts of uncovered keys, ties
-    // to the lower cell index. Counts only fall, so a popped entry whose count is current
-    // is the maximum; it stops once every key that some candidate covers is covered.
-    let mut heap = std::mem::take(&mut st.heap).into_vec();
-    heap.clear();
-    heap.extend(
-        st.cands
-            .iter()
-            .enumerate()
-            .map(|(id, &c)| (ones(st.spans[id].of(&st.bits)), Reverse(c), id as u32)),
-    );
-    let mut heap = BinaryHeap::from(heap);
+    // Lines 9–13: greedy cover, lazily, on buckets of candidates by their count of
+    // uncovered keys as last counted, ties to the lower cell index. Counts only fall, so a
+    // taken entry whose count is current is the maximum; one whose count fell goes to a
+    // lower bucket. No entry ever enters the bucket being taken from or one above it, so
+    // each bucket is sorted once, when it is reached, and the order is a max-heap's on
+    // (count, lower cell) without its cost per entry. It stops once every key that some
+    // candidate covers is covered.
+    let buckets = &mut st.buckets;
+    for b in buckets.iter_mut() {
+        b.clear();
+    }
+    for (id, &c) in st.cands.iter().enumerate() {
+        let n = ones(st.spans[id].of(&st.bits)) as usize;
+        if n > 0 {
+            if buckets.len() <= n {
+                buckets.resize_with(n + 1, Vec::new);
+            }
+            buckets[n].push((c, id as u32));
+        }
+    }
+    let mut k = buckets.len().saturating_sub(1);
+    let mut sorted = usize::MAX;
     let mut left = ones(&st.coverable);
     while left > 0 {
-        let Some((cnt, Reverse(cell), id)) = heap.pop() else {
+        while k > 0 && buckets[k].is_empty() {
+            k -= 1;
+        }
+        if k == 0 {
+            break;
+        }
+        if sorted != k {
+            // descending by cell: the lowest is taken first, from the end
+            buckets[k].sort_unstable_by_key(|&(c, _)| std::cmp::Reverse(c));
+            sorted = k;
+        }
+        let Some((cell, id)) = buckets[k].pop() else {
             break;
         };
+        let cnt = k as u32;
         let sp = st.spans[id as usize];
         let row = sp.of(&st.bits);
         let covered = &mut st.covered[sp.word as usize..][..row.len()];
@@ -641,7 +661,7 @@ fn cover(ctx: &mut DecisionCtx<'_>, st: &mut State) {
             continue;
         }
         if now != cnt {
-            heap.push((now, Reverse(cell), id));
+            buckets[now as usize].push((cell, id));
             continue;
         }
         st.chosen.push(cell);
@@ -658,7 +678,6 @@ fn cover(ctx: &mut DecisionCtx<'_>, st: &mut State) {
         left -= now;
         st.credit_start.push(st.credit.len() as u32);
     }
-    st.heap = heap;
 }
 
 /// Where a candidate's key bit set lies: it holds the words `word..word + len` of a set
