@@ -12,7 +12,9 @@
 //!   Or-opt (segments of 1–3 nodes moved elsewhere, forwards or reversed) beyond, over
 //!   neighbour lists: a move must join a node to one of its [`NEIGHBOURS`] nearest, and
 //!   2-opt looks again only at nodes whose edges changed (Bentley's neighbour lists and
-//!   don't-look bits). Each pass of the plain moves was O(n²), and MA on all frontier
+//!   don't-look bits); the nearest-neighbour routes read the lists too (a node's first
+//!   unvisited neighbour is its nearest unvisited node; only when all are visited is its
+//!   row scanned). Each pass of the plain moves was O(n²), and MA on all frontier
 //!   cells (routes of hundreds of goals) spent 93 % of a run in them;
 //! - then [`DEFAULT_KICKS`] perturbations of the best route (double bridges and other
 //!   random 3-opt reconnections from a fixed-seed generator), each followed by the local
@@ -139,6 +141,31 @@ impl Default for OpenTsp {
     }
 }
 
+/// The goals' neighbour lists of an `n`-node instance for
+/// [`OpenTsp::solve_sharing`]: for each goal `1..n` in turn, its `min(NEIGHBOURS, n - 2)`
+/// nearest other goals by (cost, index), nearest first, into `out`. Row and column 0 of
+/// `d` (the start) are not read, so one set of lists serves every start.
+pub fn goal_neighbours(n: usize, d: &[f64], out: &mut Vec<u32>) {
+    out.clear();
+    let kg = NEIGHBOURS.min(n.saturating_sub(2));
+    let mut near: Vec<(f64, u32)> = Vec::with_capacity(n);
+    let by = |x: &(f64, u32), y: &(f64, u32)| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1));
+    for a in 1..n {
+        near.clear();
+        near.extend(
+            (1..n as u32)
+                .filter(|&b| b as usize != a)
+                .map(|b| (d[a * n + b as usize], b)),
+        );
+        if kg > 0 && near.len() > kg {
+            near.select_nth_unstable_by(kg - 1, by);
+        }
+        near.truncate(kg);
+        near.sort_unstable_by(by);
+        out.extend(near.iter().map(|&(_, b)| b));
+    }
+}
+
 /// Cost of the open route `route` (consecutive nodes) under the `n × n` matrix `d`.
 pub fn route_cost(n: usize, d: &[f64], route: &[u32]) -> f64 {
     route
@@ -178,6 +205,18 @@ impl OpenTsp {
     /// # Panics
     /// If `d.len() != n * n`.
     pub fn solve(&mut self, n: usize, d: &[f64]) -> f64 {
+        self.solve_sharing(n, d, None)
+    }
+
+    /// [`solve`](Self::solve), given the goals' neighbour lists [`goal_neighbours`] made
+    /// from a matrix equal to `d` but for row and column 0: the same route and cost, without
+    /// the O(n²) selection of every node's nearest (when many starts share their goals,
+    /// as MA's robots routed through one cluster do, the lists are made once).
+    ///
+    /// # Panics
+    /// If `d.len() != n * n`, or the lists are not `n - 1` lists of
+    /// `min(NEIGHBOURS, n - 2)` nodes.
+    pub fn solve_sharing(&mut self, n: usize, d: &[f64], goal_lists: Option<&[u32]>) -> f64 {
         assert_eq!(d.len(), n * n, "cost matrix must be n × n");
         self.route.clear();
         if n == 0 {
@@ -187,7 +226,10 @@ impl OpenTsp {
             return self.held_karp(n, d);
         }
         if n > FULL_3OPT_UP_TO {
-            self.build_neighbours(n, d);
+            match goal_lists {
+                Some(lists) => self.merge_neighbours(n, d, lists),
+                None => self.build_neighbours(n, d),
+            }
         }
         // Multi-start: nearest neighbour after each of the first nodes nearest to the start,
         // each improved by local search; keep the best.
@@ -347,6 +389,43 @@ impl OpenTsp {
         }
     }
 
+    /// [`build_neighbours`](Self::build_neighbours)' lists from the goals' own lists (see
+    /// [`goal_neighbours`]): node 0 joins a goal's list where its cost places it (before
+    /// goals of equal cost: it has the lowest index), and its own list is selected from
+    /// row 0.
+    fn merge_neighbours(&mut self, n: usize, d: &[f64], goal_lists: &[u32]) {
+        let k = NEIGHBOURS.min(n - 1);
+        let kg = NEIGHBOURS.min(n.saturating_sub(2));
+        assert_eq!(
+            goal_lists.len(),
+            (n - 1) * kg,
+            "goal lists for another instance"
+        );
+        self.nbrs.clear();
+        self.near.clear();
+        self.near.extend((1..n as u32).map(|b| (d[b as usize], b)));
+        let by = |x: &(f64, u32), y: &(f64, u32)| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1));
+        if self.near.len() > k {
+            self.near.select_nth_unstable_by(k - 1, by);
+            self.near.truncate(k);
+        }
+        self.near.sort_unstable_by(by);
+        self.nbrs.extend(self.near.iter().map(|&(_, b)| b));
+        for a in 1..n {
+            let list = &goal_lists[(a - 1) * kg..a * kg];
+            let d0 = d[a * n];
+            let at = list
+                .iter()
+                .position(|&b| d0.total_cmp(&d[a * n + b as usize]).is_le())
+                .unwrap_or(kg);
+            let start = self.nbrs.len();
+            self.nbrs.extend_from_slice(&list[..at]);
+            self.nbrs.push(0);
+            self.nbrs.extend_from_slice(&list[at..]);
+            self.nbrs.truncate(start + k);
+        }
+    }
+
     /// Set `pos` to the position of each of the `n` nodes in `route`.
     fn index_route(&mut self, n: usize) {
         self.pos.clear();
@@ -480,7 +559,24 @@ impl OpenTsp {
         self.route.push(0);
         self.route.push(first as u32);
         let mut at = first;
+        // The neighbour lists (made for this instance beyond full 3-opt's sizes) hold each
+        // node's nearest by (cost, index): their first unvisited node is the nearest
+        // unvisited one; only when all are visited is the row scanned.
+        let k = if n > FULL_3OPT_UP_TO {
+            NEIGHBOURS.min(n - 1)
+        } else {
+            0
+        };
         for _ in 2..n {
+            if let Some(&b) = self.nbrs[at * k..(at + 1) * k]
+                .iter()
+                .find(|&&b| !self.used[b as usize])
+            {
+                self.used[b as usize] = true;
+                self.route.push(b);
+                at = b as usize;
+                continue;
+            }
             let mut best = usize::MAX;
             let mut bd = f64::INFINITY;
             for j in 1..n {
@@ -749,6 +845,102 @@ mod tests {
                 if !moved {
                     break;
                 }
+            }
+        }
+    }
+
+    /// A random symmetric `n × n` instance: integer costs (many ties) or real ones, some
+    /// pairs unreachable (infinite) if `holes`.
+    fn instance(n: usize, seed: u64, integer: bool, holes: bool) -> Vec<f64> {
+        let mut state = seed | 1;
+        let mut d = vec![0.0; n * n];
+        for a in 0..n {
+            for b in a + 1..n {
+                let v = next(&mut state) % 1000;
+                let v = if holes && v.is_multiple_of(13) {
+                    f64::INFINITY
+                } else if integer {
+                    (v % 7) as f64
+                } else {
+                    v as f64 * 0.37 + 0.1
+                };
+                d[a * n + b] = v;
+                d[b * n + a] = v;
+            }
+        }
+        d
+    }
+
+    /// The nearest-neighbour route by scanning every row: the oracle of the walk over the
+    /// neighbour lists.
+    fn nearest_neighbour_plain(n: usize, d: &[f64], first: usize) -> Vec<u32> {
+        let mut used = vec![false; n];
+        let (mut route, mut at) = (vec![0, first as u32], first);
+        used[0] = true;
+        used[first] = true;
+        for _ in 2..n {
+            let mut best = usize::MAX;
+            for j in 1..n {
+                if !used[j] && (best == usize::MAX || d[at * n + j] < d[at * n + best]) {
+                    best = j;
+                }
+            }
+            used[best] = true;
+            route.push(best as u32);
+            at = best;
+        }
+        route
+    }
+
+    proptest! {
+        /// The nearest-neighbour route read from the neighbour lists is the one scanning
+        /// every row gives, ties and unreachable pairs included (taking a list's first entry
+        /// whether visited or not, or scanning only the lists, fails it).
+        #[test]
+        fn nearest_neighbour_over_lists_is_the_row_scans(
+            n in (FULL_3OPT_UP_TO + 1)..90,
+            seed in any::<u64>(),
+            integer in any::<bool>(),
+            holes in any::<bool>(),
+            first in any::<prop::sample::Index>(),
+        ) {
+            let d = instance(n, seed, integer, holes);
+            let first = 1 + first.index(n - 1);
+            let mut tsp = OpenTsp::new();
+            tsp.build_neighbours(n, &d);
+            tsp.nearest_neighbour(n, &d, first);
+            prop_assert_eq!(&tsp.route, &nearest_neighbour_plain(n, &d, first));
+        }
+
+        /// Routes on neighbour lists merged from the goals' own lists equal routes on lists
+        /// built whole, for any start row, with both efforts: the same nodes and cost bits.
+        #[test]
+        fn shared_goal_lists_give_the_same_routes(
+            n in (FULL_3OPT_UP_TO + 1)..70,
+            seed in any::<u64>(),
+            integer in any::<bool>(),
+            holes in any::<bool>(),
+            other_start in any::<u64>(),
+        ) {
+            let d = instance(n, seed, integer, holes);
+            // the lists come from the same goals under another start's row
+            let mut e = d.clone();
+            let row0 = instance(n, other_start, integer, false);
+            for b in 1..n {
+                e[b] = row0[b];
+                e[b * n] = row0[b];
+            }
+            let mut lists = Vec::new();
+            goal_neighbours(n, &e, &mut lists);
+            for (mut plain, mut shared) in [
+                (OpenTsp::with_effort(1, 0), OpenTsp::with_effort(1, 0)),
+                (OpenTsp::new(), OpenTsp::new()),
+            ] {
+                let a = plain.solve(n, &d);
+                let b = shared.solve_sharing(n, &d, Some(&lists));
+                prop_assert_eq!(a.to_bits(), b.to_bits());
+                prop_assert_eq!(plain.route(), shared.route());
+                prop_assert_eq!(&plain.nbrs, &shared.nbrs);
             }
         }
     }

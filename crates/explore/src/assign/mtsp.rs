@@ -17,6 +17,10 @@
 //! - Routes for the robot × cluster cost matrix are nearest neighbour + local search
 //!   (`OpenTsp::with_effort(1, 0)`); the assigned robot's own route is then re-solved with
 //!   the full effort of [`crate::tsp`]. The paper used Chained Lin–Kernighan (Concorde).
+//!   Every participant's route through a cluster shares its goal-to-goal part, so each
+//!   cluster keeps one route matrix (the participant's costs written into row 0) and its
+//!   goals' neighbour lists, made once per decision: the routes are those of a matrix and
+//!   lists per route, without the O(goals²) copies and selections per route.
 //! - The optimal cluster-to-robot assignment is the `lsap` solver (SciPy's shortest
 //!   augmenting path) on that matrix; goals a robot cannot reach add a large finite penalty.
 //! - **Team semantics**: every robot that reaches a goal takes part in the clustering and the
@@ -50,11 +54,19 @@ pub struct State {
     cstart: Vec<usize>,
     /// Matrix of one route.
     dm: Vec<f64>,
-    /// The goal-to-goal bounds within each cluster: cluster j's (cluster order, row-major)
-    /// start at `gm[goff[j]]`; and the cluster positions of a route's goals.
+    /// Each cluster's route matrix: cluster j's, `(c + 1) × (c + 1)` for its c goals
+    /// (node a + 1 = the cluster's goal a, row-major), starts at `gm[goff[j]]`; its goal
+    /// part holds the goal-to-goal bounds, row and column 0 the costs of the participant
+    /// routed last. And the cluster positions of a route's goals.
     gm: Vec<f64>,
     goff: Vec<usize>,
     at: Vec<usize>,
+    /// Each cluster's goals' neighbour lists ([`crate::tsp::goal_neighbours`]), at
+    /// `lists[loff[j]..loff[j + 1]]`: made once per decision, shared by every participant
+    /// that reaches all of the cluster's goals.
+    lists: Vec<u32>,
+    loff: Vec<usize>,
+    list_buf: Vec<u32>,
     /// Participants × clusters route costs, row-major.
     cost: Vec<f64>,
     /// Cluster of each participant (`usize::MAX` for none) from the last decision.
@@ -79,6 +91,9 @@ impl Default for State {
             gm: Vec::new(),
             goff: Vec::new(),
             at: Vec::new(),
+            lists: Vec::new(),
+            loff: Vec::new(),
+            list_buf: Vec::new(),
             cost: Vec::new(),
             cluster_of: Vec::new(),
             fast: OpenTsp::with_effort(1, 0),
@@ -262,17 +277,22 @@ fn run(
 }
 
 /// The goal-to-goal distances of each cluster, once per decision: the lower bound
-/// max(octile, max_q |d_q(a) − d_q(b)|) of the module documentation.
+/// max(octile, max_q |d_q(a) − d_q(b)|) of the module documentation, in the goal part of
+/// the cluster's route matrix; and the goals' neighbour lists where routes use them.
 fn bounds(st: &mut State, width: usize) {
     let ng = st.goals.len();
     let np = st.part.len();
     st.gm.clear();
     st.goff.clear();
+    st.lists.clear();
+    st.loff.clear();
+    st.loff.push(0);
     for j in 0..st.cstart.len() - 1 {
         let cluster = &st.order[st.cstart[j]..st.cstart[j + 1]];
         let (c, off) = (cluster.len(), st.gm.len());
         st.goff.push(off);
-        st.gm.resize(off + c * c, 0.0);
+        let n = c + 1;
+        st.gm.resize(off + n * n, 0.0);
         for (a, &ga) in cluster.iter().enumerate() {
             let ga = ga as usize;
             let ca = grid::Cell::new(
@@ -292,10 +312,15 @@ fn bounds(st: &mut State, width: usize) {
                         d = d.max((x - y).abs());
                     }
                 }
-                st.gm[off + a * c + b] = d;
-                st.gm[off + b * c + a] = d;
+                st.gm[off + (a + 1) * n + b + 1] = d;
+                st.gm[off + (b + 1) * n + a + 1] = d;
             }
         }
+        if n > crate::tsp::FULL_3OPT_UP_TO {
+            crate::tsp::goal_neighbours(n, &st.gm[off..off + n * n], &mut st.list_buf);
+            st.lists.extend_from_slice(&st.list_buf);
+        }
+        st.loff.push(st.lists.len());
     }
 }
 
@@ -314,22 +339,36 @@ fn route(st: &mut State, p: usize, j: usize, full: bool) -> (f64, Option<usize>)
             penalty += UNREACHABLE;
         }
     }
-    // The goal-to-goal bounds do not depend on the participant (see `bounds`).
+    // The goal-to-goal bounds do not depend on the participant (see `bounds`): one who
+    // reaches every goal of the cluster is routed on the cluster's matrix with its own row
+    // 0 and the shared neighbour lists; another on a matrix of the goals it reaches.
     let (off, c) = (st.goff[j], cluster.len());
     let n = st.at.len() + 1;
-    st.dm.clear();
-    st.dm.resize(n * n, 0.0);
-    for a in 1..n {
-        let d0 = st.dist[p * ng + cluster[st.at[a - 1]] as usize];
-        st.dm[a] = d0;
-        st.dm[a * n] = d0;
-        let row = off + st.at[a - 1] * c;
-        for b in 1..n {
-            st.dm[a * n + b] = st.gm[row + st.at[b - 1]];
-        }
-    }
     let solver = if full { &mut st.full } else { &mut st.fast };
-    let c = solver.solve(n, &st.dm);
+    let c = if n == c + 1 {
+        let m = &mut st.gm[off..off + n * n];
+        for a in 1..n {
+            let d0 = st.dist[p * ng + cluster[a - 1] as usize];
+            m[a] = d0;
+            m[a * n] = d0;
+        }
+        let lists = &st.lists[st.loff[j]..st.loff[j + 1]];
+        solver.solve_sharing(n, m, (!lists.is_empty()).then_some(lists))
+    } else {
+        st.dm.clear();
+        st.dm.resize(n * n, 0.0);
+        let stride = c + 1;
+        for a in 1..n {
+            let d0 = st.dist[p * ng + cluster[st.at[a - 1]] as usize];
+            st.dm[a] = d0;
+            st.dm[a * n] = d0;
+            let row = off + (st.at[a - 1] + 1) * stride + 1;
+            for b in 1..n {
+                st.dm[a * n + b] = st.gm[row + st.at[b - 1]];
+            }
+        }
+        solver.solve(n, &st.dm)
+    };
     let first = solver
         .route()
         .get(1)
