@@ -149,7 +149,6 @@ pub fn goal_neighbours(n: usize, d: &[f64], out: &mut Vec<u32>) {
     out.clear();
     let kg = NEIGHBOURS.min(n.saturating_sub(2));
     let mut near: Vec<(f64, u32)> = Vec::with_capacity(n);
-    let by = |x: &(f64, u32), y: &(f64, u32)| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1));
     for a in 1..n {
         near.clear();
         near.extend(
@@ -157,13 +156,19 @@ pub fn goal_neighbours(n: usize, d: &[f64], out: &mut Vec<u32>) {
                 .filter(|&b| b as usize != a)
                 .map(|b| (d[a * n + b as usize], b)),
         );
-        if kg > 0 && near.len() > kg {
-            near.select_nth_unstable_by(kg - 1, by);
-        }
-        near.truncate(kg);
-        near.sort_unstable_by(by);
+        keep_nearest(&mut near, kg);
         out.extend(near.iter().map(|&(_, b)| b));
     }
+}
+
+/// Keep the `k` least of `near` by (cost, node), least first: a node's neighbour list.
+fn keep_nearest(near: &mut Vec<(f64, u32)>, k: usize) {
+    let by = |x: &(f64, u32), y: &(f64, u32)| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1));
+    if k > 0 && near.len() > k {
+        near.select_nth_unstable_by(k - 1, by);
+    }
+    near.truncate(k);
+    near.sort_unstable_by(by);
 }
 
 /// Cost of the open route `route` (consecutive nodes) under the `n × n` matrix `d`.
@@ -379,12 +384,7 @@ impl OpenTsp {
                     .filter(|&b| b as usize != a)
                     .map(|b| (d[a * n + b as usize], b)),
             );
-            let by = |x: &(f64, u32), y: &(f64, u32)| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1));
-            if self.near.len() > k {
-                self.near.select_nth_unstable_by(k - 1, by);
-                self.near.truncate(k);
-            }
-            self.near.sort_unstable_by(by);
+            keep_nearest(&mut self.near, k);
             self.nbrs.extend(self.near.iter().map(|&(_, b)| b));
         }
     }
@@ -404,12 +404,7 @@ impl OpenTsp {
         self.nbrs.clear();
         self.near.clear();
         self.near.extend((1..n as u32).map(|b| (d[b as usize], b)));
-        let by = |x: &(f64, u32), y: &(f64, u32)| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1));
-        if self.near.len() > k {
-            self.near.select_nth_unstable_by(k - 1, by);
-            self.near.truncate(k);
-        }
-        self.near.sort_unstable_by(by);
+        keep_nearest(&mut self.near, k);
         self.nbrs.extend(self.near.iter().map(|&(_, b)| b));
         for a in 1..n {
             let list = &goal_lists[(a - 1) * kg..a * kg];
