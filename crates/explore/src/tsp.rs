@@ -131,6 +131,17 @@ pub struct OpenTsp {
     best: Vec<u32>,
     used: Vec<bool>,
     firsts: Vec<u32>,
+    /// Or-opt's memory of moves that failed (see [`or_opt`](Self::or_opt)): a clock that
+    /// ticks at every change of the route, per node the tick its predecessor or successor
+    /// last changed, per (segment's first node, length − 1) the tick its moves were last
+    /// found to fail, and the tick the current local search began.
+    clock: u64,
+    changed_at: Vec<u64>,
+    failed_at: Vec<u64>,
+    floor: u64,
+    /// Whether Or-opt skips the moves it knows fail (always, but in the test comparing the
+    /// two).
+    remember: bool,
     starts: usize,
     kicks: usize,
 }
@@ -199,6 +210,11 @@ impl OpenTsp {
             best: Vec::new(),
             used: Vec::new(),
             firsts: Vec::new(),
+            clock: 0,
+            changed_at: Vec::new(),
+            failed_at: Vec::new(),
+            floor: 0,
+            remember: true,
             starts: starts.max(1),
             kicks,
         }
@@ -364,6 +380,13 @@ impl OpenTsp {
             while self.three_opt(n, d) {}
             return;
         }
+        // A new route: nothing remembered from earlier ones holds.
+        self.clock += 1;
+        self.floor = self.clock;
+        if self.changed_at.len() < n {
+            self.changed_at.resize(n, 0);
+            self.failed_at.resize(3 * n, 0);
+        }
         loop {
             let a = self.two_opt(n, d);
             let b = self.or_opt(n, d);
@@ -430,11 +453,19 @@ impl OpenTsp {
         }
     }
 
-    /// Reverse `route[i..=j]` and keep `pos` up to date.
+    /// Reverse `route[i..=j]` and keep `pos` up to date (and the ticks of the nodes whose
+    /// neighbours changed: all of them, and the nodes on either side).
     fn reverse(&mut self, i: usize, j: usize) {
         self.route[i..=j].reverse();
+        self.clock += 1;
         for p in i..=j {
             self.pos[self.route[p] as usize] = p;
+            self.changed_at[self.route[p] as usize] = self.clock;
+        }
+        for p in [i.wrapping_sub(1), j + 1] {
+            if let Some(&v) = self.route.get(p) {
+                self.changed_at[v as usize] = self.clock;
+            }
         }
     }
 
@@ -659,7 +690,10 @@ impl OpenTsp {
 
     /// Or-opt over neighbour lists: move a segment of 1–3 nodes, forwards or reversed, next
     /// to a near neighbour of one of its ends (between that neighbour and the node before or
-    /// after it). Passes until none improves. Returns whether anything changed.
+    /// after it). Passes until none improves; a segment whose moves failed is looked at
+    /// again only once something they read has changed ([`still_fails`](Self::still_fails):
+    /// the same moves, without re-reading the cost matrix for the ones known to fail).
+    /// Returns whether anything changed.
     fn or_opt(&mut self, n: usize, d: &[f64]) -> bool {
         let c = |a: u32, b: u32| d[a as usize * n + b as usize];
         let len = self.route.len();
@@ -673,15 +707,41 @@ impl OpenTsp {
                 let mut i = 1;
                 while i + seg <= len {
                     let e = i + seg; // the segment is route[i..e]
+                    let key = self.route[i] as usize * 3 + seg - 1;
+                    if self.remember && self.still_fails(i, e, k, self.failed_at[key]) {
+                        i += 1;
+                        continue;
+                    }
                     if self.or_move(i, e, k, &c) {
                         improved = true;
                         any = true;
+                    } else {
+                        self.failed_at[key] = self.clock;
                     }
                     i += 1;
                 }
             }
         }
         any
+    }
+
+    /// Whether the Or-opt moves of `route[i..e]`, found to fail at tick `failed` (of this
+    /// local search), still fail: what [`or_move`](Self::or_move) reads is the segment's
+    /// nodes and their neighbours and the neighbours of the nodes on its ends' lists, so if
+    /// none of those nodes' neighbours changed since, the same segment meets the same
+    /// costs and fails again. Skipping it then changes nothing but the time.
+    fn still_fails(&self, i: usize, e: usize, k: usize, failed: u64) -> bool {
+        if failed < self.floor {
+            return false;
+        }
+        let quiet = |v: u32| self.changed_at[v as usize] <= failed;
+        let (first, last) = (self.route[i], self.route[e - 1]);
+        self.route[i..e].iter().all(|&v| quiet(v))
+            && [first, last].iter().all(|&u| {
+                self.nbrs[u as usize * k..(u as usize + 1) * k]
+                    .iter()
+                    .all(|&b| quiet(b))
+            })
     }
 
     /// Try Or-opt moves of `route[i..e]` next to near neighbours of its ends; make the first
@@ -726,8 +786,16 @@ impl OpenTsp {
         false
     }
 
-    /// [`move_segment`](Self::move_segment), keeping `pos` up to date for the nodes moved.
+    /// [`move_segment`](Self::move_segment), keeping `pos` up to date for the nodes moved
+    /// and the ticks of those whose neighbours change: the segment's, the nodes on either
+    /// side of it and of the place it goes to.
     fn move_segment_tracked(&mut self, i: usize, e: usize, p: usize, reversed: bool) {
+        self.clock += 1;
+        for q in [i - 1, e, p, p + 1].into_iter().chain(i..e) {
+            if let Some(&v) = self.route.get(q) {
+                self.changed_at[v as usize] = self.clock;
+            }
+        }
         self.move_segment(i, e, p, reversed);
         let (a, b) = if p < i { (p + 1, e) } else { (i, p + 1) };
         for q in a..b {
@@ -936,6 +1004,31 @@ mod tests {
                 prop_assert_eq!(a.to_bits(), b.to_bits());
                 prop_assert_eq!(plain.route(), shared.route());
                 prop_assert_eq!(&plain.nbrs, &shared.nbrs);
+            }
+        }
+    }
+
+    proptest! {
+        /// Or-opt remembering the moves that failed makes the moves of Or-opt trying every
+        /// segment again: the same routes and cost bits, both efforts, on instances large
+        /// enough for 2-opt and Or-opt (ties and unreachable pairs included; not marking
+        /// the nodes beside a moved segment, or those of a reversed stretch, fails it).
+        #[test]
+        fn or_opt_remembering_failures_makes_the_same_moves(
+            n in (FULL_3OPT_UP_TO + 1)..90,
+            seed in any::<u64>(),
+            integer in any::<bool>(),
+            holes in any::<bool>(),
+        ) {
+            let d = instance(n, seed, integer, holes);
+            for effort in [(1, 0), (MAX_STARTS, DEFAULT_KICKS)] {
+                let mut plain = OpenTsp::with_effort(effort.0, effort.1);
+                plain.remember = false;
+                let mut quick = OpenTsp::with_effort(effort.0, effort.1);
+                let a = plain.solve(n, &d);
+                let b = quick.solve(n, &d);
+                prop_assert_eq!(a.to_bits(), b.to_bits());
+                prop_assert_eq!(plain.route(), quick.route());
             }
         }
     }
