@@ -93,7 +93,7 @@ impl RowLog {
 }
 
 /// How far a copy has followed a [`RowLog`] (the default: not at all).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default)]
 pub(crate) struct LogPos {
     lineage: u64,
     updates: u64,
@@ -101,25 +101,21 @@ pub(crate) struct LogPos {
 
 /// Bring `prev` (a copy of an earlier state of `known`, of the same size) up to `known` row
 /// by row, calling `changed(y, k, new, old)` for each chunk k of `chunk` cells of row y that
-/// differed, with the chunk's cells now and before. With `log` (kept for `known`) and a
-/// copy that followed it to `pos`, only the rows the log has changed since are compared;
-/// otherwise every row is (equal rows are compared whole). `pos` is left where the log is.
+/// differed, with the chunk's cells now and before. If the copy followed `log` (kept for
+/// `known`) to `pos`, only the rows the log has changed since are compared; otherwise every
+/// row is (equal rows are compared whole). `pos` is left where the log is.
 pub(crate) fn sync_rows(
     known: &Grid<Occ>,
     prev: &mut Grid<Occ>,
     chunk: usize,
-    (log, pos): (Option<&RowLog>, &mut LogPos),
+    (log, pos): (&RowLog, &mut LogPos),
     mut changed: impl FnMut(usize, usize, &[Occ], &[Occ]),
 ) {
     let w = known.width();
-    let follows = log.filter(|l| {
-        l.lineage == pos.lineage
-            && l.row_changed.len() == known.height()
-            && pos.updates <= l.updates
-    });
+    let follows = log.lineage == pos.lineage && log.row_changed.len() == known.height();
     let rows = known.data().chunks(w).zip(prev.data_mut().chunks_mut(w));
     for (y, (row, old)) in rows.enumerate() {
-        if follows.is_some_and(|l| l.row_changed[y] <= pos.updates) || row == old {
+        if (follows && log.row_changed[y] <= pos.updates) || row == old {
             continue;
         }
         for (k, (a, b)) in row.chunks(chunk).zip(old.chunks(chunk)).enumerate() {
@@ -129,7 +125,7 @@ pub(crate) fn sync_rows(
         }
         old.copy_from_slice(row);
     }
-    *pos = log.map(RowLog::now).unwrap_or_default();
+    *pos = log.now();
 }
 
 #[cfg(test)]
@@ -142,7 +138,7 @@ mod tests {
         known: &Grid<Occ>,
         prev: &mut Grid<Occ>,
         chunk: usize,
-        follow: (Option<&RowLog>, &mut LogPos),
+        follow: (&RowLog, &mut LogPos),
     ) -> Vec<(usize, usize, Vec<Occ>, Vec<Occ>)> {
         let mut v = Vec::new();
         sync_rows(known, prev, chunk, follow, |y, k, a, b| {
@@ -185,8 +181,9 @@ mod tests {
                     1 => log.restart(),
                     _ => {}
                 }
-                let a = calls(&known, &mut followed, chunk, (Some(&log), &mut pos));
-                let b = calls(&known, &mut whole, chunk, (None, &mut LogPos::default()));
+                let a = calls(&known, &mut followed, chunk, (&log, &mut pos));
+                // a copy that followed no log is compared whole
+                let b = calls(&known, &mut whole, chunk, (&log, &mut LogPos::default()));
                 prop_assert_eq!(a, b);
                 prop_assert_eq!(followed.data(), known.data());
             }
@@ -208,7 +205,7 @@ mod tests {
                 known[c as usize] = Occ::Free;
             }
             log.note(w, &cells);
-            sync_rows(&known, &mut copy, 4, (Some(&log), &mut pos), |_, _, _, _| {});
+            sync_rows(&known, &mut copy, 4, (&log, &mut pos), |_, _, _, _| {});
             // another history: a clone changes cells the original's copy never saw
             let mut other = log.clone();
             let mut known2 = known.clone();
@@ -218,7 +215,7 @@ mod tests {
             }
             // the clone notes nothing: only a whole compare can find the change
             other.begin();
-            sync_rows(&known2, &mut copy, 4, (Some(&other), &mut pos), |_, _, _, _| {});
+            sync_rows(&known2, &mut copy, 4, (&other, &mut pos), |_, _, _, _| {});
             prop_assert_eq!(copy.data(), known2.data());
         }
     }

@@ -152,26 +152,6 @@ impl Default for OpenTsp {
     }
 }
 
-/// The goals' neighbour lists of an `n`-node instance for
-/// [`OpenTsp::solve_sharing`]: for each goal `1..n` in turn, its `min(NEIGHBOURS, n - 2)`
-/// nearest other goals by (cost, index), nearest first, into `out`. Row and column 0 of
-/// `d` (the start) are not read, so one set of lists serves every start.
-pub fn goal_neighbours(n: usize, d: &[f64], out: &mut Vec<u32>) {
-    out.clear();
-    let kg = NEIGHBOURS.min(n.saturating_sub(2));
-    let mut near: Vec<(f64, u32)> = Vec::with_capacity(n);
-    for a in 1..n {
-        near.clear();
-        near.extend(
-            (1..n as u32)
-                .filter(|&b| b as usize != a)
-                .map(|b| (d[a * n + b as usize], b)),
-        );
-        keep_nearest(&mut near, kg);
-        out.extend(near.iter().map(|&(_, b)| b));
-    }
-}
-
 /// Keep the `k` least of `near` by (cost, node), least first: a node's neighbour list.
 fn keep_nearest(near: &mut Vec<(f64, u32)>, k: usize) {
     let by = |x: &(f64, u32), y: &(f64, u32)| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1));
@@ -229,7 +209,8 @@ impl OpenTsp {
         self.solve_sharing(n, d, None)
     }
 
-    /// [`solve`](Self::solve), given the goals' neighbour lists [`goal_neighbours`] made
+    /// [`solve`](Self::solve), given the goals' neighbour lists
+    /// ([`goal_neighbours`](Self::goal_neighbours)) made
     /// from a matrix equal to `d` but for row and column 0: the same route and cost, without
     /// the O(n²) selection of every node's nearest (when many starts share their goals,
     /// as MA's robots routed through one cluster do, the lists are made once).
@@ -412,8 +393,27 @@ impl OpenTsp {
         }
     }
 
+    /// The goals' neighbour lists of an `n`-node instance for
+    /// [`solve_sharing`](Self::solve_sharing): for each goal `1..n` in turn, its
+    /// `min(NEIGHBOURS, n - 2)` nearest other goals by (cost, index), nearest first,
+    /// appended to `out`. Row and column 0 of `d` (the start) are not read, so one set of
+    /// lists serves every start.
+    pub fn goal_neighbours(&mut self, n: usize, d: &[f64], out: &mut Vec<u32>) {
+        let kg = NEIGHBOURS.min(n.saturating_sub(2));
+        for a in 1..n {
+            self.near.clear();
+            self.near.extend(
+                (1..n as u32)
+                    .filter(|&b| b as usize != a)
+                    .map(|b| (d[a * n + b as usize], b)),
+            );
+            keep_nearest(&mut self.near, kg);
+            out.extend(self.near.iter().map(|&(_, b)| b));
+        }
+    }
+
     /// [`build_neighbours`](Self::build_neighbours)' lists from the goals' own lists (see
-    /// [`goal_neighbours`]): node 0 joins a goal's list where its cost places it (before
+    /// [`goal_neighbours`](Self::goal_neighbours)): node 0 joins a goal's list where its cost places it (before
     /// goals of equal cost: it has the lowest index), and its own list is selected from
     /// row 0.
     fn merge_neighbours(&mut self, n: usize, d: &[f64], goal_lists: &[u32]) {
@@ -994,7 +994,7 @@ mod tests {
                 e[b * n] = row0[b];
             }
             let mut lists = Vec::new();
-            goal_neighbours(n, &e, &mut lists);
+            OpenTsp::new().goal_neighbours(n, &e, &mut lists);
             for (mut plain, mut shared) in [
                 (OpenTsp::with_effort(1, 0), OpenTsp::with_effort(1, 0)),
                 (OpenTsp::new(), OpenTsp::new()),

@@ -52,6 +52,7 @@ proptest! {
             full.compute(robot as usize, pass);
             for &g in &goals {
                 let want = full.cost(g as usize);
+                prop_assert_eq!(par.cost(g as usize), seq.cost(g as usize));
                 prop_assert_eq!(seq.cost(g as usize).is_some(), want.is_some());
                 if want.is_some() {
                     prop_assert_eq!(seq.cost(g as usize), want);

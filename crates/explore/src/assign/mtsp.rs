@@ -61,12 +61,11 @@ pub struct State {
     gm: Vec<f64>,
     goff: Vec<usize>,
     at: Vec<usize>,
-    /// Each cluster's goals' neighbour lists ([`crate::tsp::goal_neighbours`]), at
+    /// Each cluster's goals' neighbour lists ([`OpenTsp::goal_neighbours`]), at
     /// `lists[loff[j]..loff[j + 1]]`: made once per decision, shared by every participant
     /// that reaches all of the cluster's goals.
     lists: Vec<u32>,
     loff: Vec<usize>,
-    list_buf: Vec<u32>,
     /// Participants × clusters route costs, row-major.
     cost: Vec<f64>,
     /// Cluster of each participant (`usize::MAX` for none) from the last decision.
@@ -93,7 +92,6 @@ impl Default for State {
             at: Vec::new(),
             lists: Vec::new(),
             loff: Vec::new(),
-            list_buf: Vec::new(),
             cost: Vec::new(),
             cluster_of: Vec::new(),
             fast: OpenTsp::with_effort(1, 0),
@@ -317,8 +315,8 @@ fn bounds(st: &mut State, width: usize) {
             }
         }
         if n > crate::tsp::FULL_3OPT_UP_TO {
-            crate::tsp::goal_neighbours(n, &st.gm[off..off + n * n], &mut st.list_buf);
-            st.lists.extend_from_slice(&st.list_buf);
+            st.fast
+                .goal_neighbours(n, &st.gm[off..off + n * n], &mut st.lists);
         }
         st.loff.push(st.lists.len());
     }

@@ -212,7 +212,7 @@ fn cluster_unknown(ctx: &mut DecisionCtx<'_>, st: &mut State) {
     let known = ctx.known;
     let (w, h) = (known.width(), known.height());
     let s = block_side(w, h);
-    let follow = (Some(ctx.upkeep.row_log()), &mut st.pos);
+    let follow = (ctx.upkeep.row_log(), &mut st.pos);
     pool_unknown(&mut st.sums, &mut st.prev, follow, known, s);
     st.points.clear();
     st.weights.clear();
@@ -267,7 +267,7 @@ fn cluster_unknown(ctx: &mut DecisionCtx<'_>, st: &mut State) {
 fn pool_unknown(
     sums: &mut Vec<(f64, f64, f64)>,
     prev: &mut grid::Grid<grid::Occ>,
-    (log, pos): (Option<&RowLog>, &mut LogPos),
+    (log, pos): (&RowLog, &mut LogPos),
     known: &grid::Grid<grid::Occ>,
     s: usize,
 ) {
@@ -346,7 +346,7 @@ mod tests {
                     cells.push((i % (w * h)) as u32);
                 }
                 log.note(w, &cells);
-                pool_unknown(&mut sums, &mut prev, (Some(&log), &mut pos), &known, s);
+                pool_unknown(&mut sums, &mut prev, (&log, &mut pos), &known, s);
                 let want = pooled(&known, s);
                 prop_assert_eq!(sums.len(), want.len());
                 for (g, e) in sums.iter().zip(&want) {

@@ -195,7 +195,7 @@ impl Visibility {
             return;
         }
         let (changed_at, blocks_x, decision) = (&mut self.changed_at, self.blocks_x, self.decision);
-        let follow = (Some(log), &mut self.pos);
+        let follow = (log, &mut self.pos);
         sync_rows(known, &mut self.prev, BLOCK, follow, |y, bx, _, _| {
             changed_at[(y / BLOCK) * blocks_x + bx] = decision;
         });
@@ -335,7 +335,7 @@ impl Coarse {
             return;
         }
         let (marked, dirty) = (&mut self.marked, &mut self.dirty);
-        let follow = (Some(log), &mut self.pos);
+        let follow = (log, &mut self.pos);
         sync_rows(known, &mut self.fine, block, follow, |y, bx, _, _| {
             let b = (y / block) * cw + bx;
             if !marked[b] {
