@@ -68,9 +68,17 @@ impl CandidateSet {
     /// The position of `cell` in [`cells`](Self::cells), if it is a candidate.
     #[inline]
     pub fn index_of(&self, cell: usize) -> Option<usize> {
+        // Asked for every cell a search settles: the membership bit is the inlined fast
+        // path, the look-up of a member's position the call.
         if !self.contains(cell) {
             return None;
         }
+        Some(self.position(cell))
+    }
+
+    /// The position of member `cell`, indexing the candidates added since the last call.
+    #[inline(never)]
+    fn position(&self, cell: usize) -> usize {
         let mut index = self.index.borrow_mut();
         let from = self.indexed.get();
         if from < self.cells.len() {
@@ -82,7 +90,7 @@ impl CandidateSet {
             }
             self.indexed.set(self.cells.len());
         }
-        Some(index[cell] as usize)
+        index[cell] as usize
     }
 
     /// The candidates, in the order they were added (deterministic).
