@@ -41,6 +41,8 @@ enum Extent {
 pub struct Planner {
     maps: Vec<Reachability>,
     extent: Vec<Extent>,
+    /// Per robot: how many goals its growing search was guided toward.
+    guided_toward: Vec<usize>,
     /// The reachable set of one robot's cell, shared by the robots of its component.
     component: Component,
     /// The robot the component was filled from in this decision (`None`: stale).
@@ -57,6 +59,7 @@ impl Planner {
                 .map(|_| Reachability::new(width, height))
                 .collect(),
             extent: vec![Extent::Stale; robots],
+            guided_toward: vec![0; robots],
             component: Component::new(width, height),
             component_of: None,
             width,
@@ -127,6 +130,11 @@ impl Planner {
                     .count()
             })
             .collect();
+        for r in 0..m {
+            if matches!(self.extent[r], Extent::Stale | Extent::Partial) {
+                self.guided_toward[r] = 0; // begun below without a guide
+            }
+        }
         let pass = |i| upkeep.is_traversable(known, i);
         let wanted = |(r, (_, extent)): &(usize, (&mut Reachability, &mut Extent))| {
             want[*r] > 0 && **extent != Extent::Full
@@ -168,8 +176,9 @@ impl Planner {
     /// Grow robot `r`'s search from cell `from` until every goal of cost below
     /// `through + 1` is settled (a new resumable search guided toward `goals` if this
     /// decision has none yet, see [`Reachability::begin_guided`]; nothing if its map is
-    /// full). Returns whether its map is complete. Every call of a decision must give the
-    /// same goals.
+    /// full). Returns whether its map is complete. A search guided toward another number
+    /// of goals (a caller that guided it toward some of the candidates only) is begun
+    /// again, so that every goal given is settled below the bucket.
     pub fn grow(
         &mut self,
         r: usize,
@@ -180,11 +189,13 @@ impl Planner {
         through: usize,
     ) -> bool {
         let pass = |i| upkeep.is_traversable(known, i);
+        let other_goals = self.guided_toward[r] != goals.len();
         match self.extent[r] {
             Extent::Full => return true,
-            Extent::Growing => {}
-            Extent::Stale | Extent::Partial => {
+            Extent::Growing if !other_goals => {}
+            Extent::Growing | Extent::Stale | Extent::Partial => {
                 self.maps[r].begin_guided(from as usize, pass, goals);
+                self.guided_toward[r] = goals.len();
                 self.extent[r] = Extent::Growing;
             }
         }

@@ -51,6 +51,10 @@ pub struct LazyCosts {
     reachable: Vec<Option<usize>>,
     /// Whether the searches are guided toward the candidates.
     guided: bool,
+    /// The goals searches begun from now on are guided toward, if `toward_some` (else
+    /// every candidate; see [`guide_toward`](Self::guide_toward)).
+    toward: Vec<u32>,
+    toward_some: bool,
 }
 
 impl LazyCosts {
@@ -68,6 +72,19 @@ impl LazyCosts {
         self.scanned.resize(robots, 0);
         self.reachable.clear();
         self.reachable.resize(robots, None);
+        self.toward.clear();
+        self.toward_some = false;
+    }
+
+    /// Guide the searches begun from now on toward `goals` (a subset of the candidates)
+    /// instead of every candidate: for a rule that wants a robot's cheapest goal among
+    /// those it may still take (GA's free goals), the goals it may not take no longer hold
+    /// the bound near 0 around the robot. The costs and the goals settled below a bucket are
+    /// the same; a search already begun keeps its guide.
+    pub fn guide_toward(&mut self, goals: impl IntoIterator<Item = u32>) {
+        self.toward.clear();
+        self.toward.extend(goals);
+        self.toward_some = true;
     }
 
     /// Grow robot `r`'s search through bucket `through` (every candidate of cost below
@@ -84,7 +101,11 @@ impl LazyCosts {
         if self.has_all(r) {
             return true;
         }
-        let goals = if self.guided { candidates.cells() } else { &[] };
+        let goals = match (self.guided, self.toward_some) {
+            (false, _) => &[][..],
+            (true, true) => &self.toward[..],
+            (true, false) => candidates.cells(),
+        };
         let done = ctx
             .planner
             .grow(r, ctx.robots[r], ctx.known, ctx.upkeep, goals, through);

@@ -10,9 +10,9 @@
 //!   (seed 002 Alg. 2) the goal set is then refilled, so that robot takes its cheapest goal
 //!   overall (later robots again prefer goals nobody took since the refill);
 //! - ties between goals of equal cost go to the earlier candidate;
-//! - each robot's search grows only until it settles a free goal (see
-//!   [`crate::assign::costs`]); a single deciding robot takes its nearest free goal by an
-//!   early-stopping search ([`greedy::assign_single`]).
+//! - each robot's search, guided toward the goals free at its turn, grows only until it
+//!   settles one (see [`crate::assign::costs`]); a single deciding robot takes its nearest
+//!   free goal by an early-stopping search ([`greedy::assign_single`]).
 
 use rand::RngExt;
 
@@ -98,6 +98,12 @@ pub fn assign(ctx: &mut DecisionCtx<'_>, candidates: &CandidateSet, out: &mut [O
         for n in 0..k {
             let i = s.order[n];
             let r = s.matrix.rows[i];
+            // The robot wants its cheapest free goal, and nothing is freed during its turn:
+            // its search heads for the free goals only (the same pick, fewer cells when the
+            // goals near it are taken).
+            let free = s.matrix.cols.iter().zip(&s.free);
+            s.lazy
+                .guide_toward(free.filter(|&(_, &f)| f).map(|(&c, _)| c));
             let mut seen = 0;
             let mut pick = loop {
                 let done = s.lazy.step(ctx, candidates, r, false);

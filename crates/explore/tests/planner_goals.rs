@@ -1,0 +1,56 @@
+//! `Planner::grow` asked for one goal set and then for another in the same decision (GA
+//! guides a robot's search toward the goals still free at its turn, while another caller
+//! may want every candidate): every goal of the set asked for last, of cost below the
+//! bucket grown through, is settled at its full-search cost.
+
+use explore::Reachability;
+use explore::decision::Planner;
+use proptest::prelude::*;
+
+mod common;
+#[allow(unused_imports)]
+use common::*;
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    #[test]
+    fn a_search_guided_toward_some_goals_settles_the_others_when_asked(
+        bits in prop::collection::vec(0u8..100, 41),
+        cut in 6usize..30,
+        every in 1usize..40,
+        keep in 2usize..6,
+        first in 0usize..40,
+        then in 0usize..60,
+    ) {
+        let (w, h) = (48, 36);
+        let (known, up) = random_upkept(w, h, &bits, cut);
+        let Some(start) = largest_component_cell(&known, &up) else {
+            return Ok(());
+        };
+        let pass = |i| up.is_traversable(&known, i);
+        let goals: Vec<u32> = (0..(w * h) as u32)
+            .filter(|&i| known[i as usize].is_free())
+            .step_by(every)
+            .collect();
+        // some of the goals, as a rule that may take only those would ask
+        let some: Vec<u32> = goals.iter().copied().step_by(keep).collect();
+        let mut planner = Planner::new(w, h, 1);
+        planner.invalidate();
+        planner.grow(0, start as u32, &known, &up, &some, first);
+        let done = planner.grow(0, start as u32, &known, &up, &goals, first + then);
+        let mut full = Reachability::new(w, h);
+        full.compute(start, pass);
+        let map = planner.map(0);
+        for &g in &goals {
+            let g = g as usize;
+            if full.cost(g).is_some_and(|c| (c as usize) <= first + then) || done {
+                prop_assert_eq!(
+                    map.cost(g).map(f64::to_bits),
+                    full.cost(g).map(f64::to_bits),
+                    "goal {}", g
+                );
+            }
+        }
+    }
+}
