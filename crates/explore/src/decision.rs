@@ -41,8 +41,9 @@ enum Extent {
 pub struct Planner {
     maps: Vec<Reachability>,
     extent: Vec<Extent>,
-    /// Per robot: how many goals its growing search was guided toward.
-    guided_toward: Vec<usize>,
+    /// Per robot: the subset of the candidates its growing search was guided toward
+    /// ([`grow_toward`](Self::grow_toward)'s id), `None` if every candidate.
+    guided_toward: Vec<Option<u64>>,
     /// The reachable set of one robot's cell, shared by the robots of its component.
     component: Component,
     /// The robot the component was filled from in this decision (`None`: stale).
@@ -59,7 +60,7 @@ impl Planner {
                 .map(|_| Reachability::new(width, height))
                 .collect(),
             extent: vec![Extent::Stale; robots],
-            guided_toward: vec![0; robots],
+            guided_toward: vec![None; robots],
             component: Component::new(width, height),
             component_of: None,
             width,
@@ -80,6 +81,7 @@ impl Planner {
     /// Forget all maps: the belief or the robots moved since they were computed.
     pub fn invalidate(&mut self) {
         self.extent.fill(Extent::Stale);
+        self.guided_toward.fill(None);
         self.component_of = None;
     }
 
@@ -132,7 +134,7 @@ impl Planner {
             .collect();
         for r in 0..m {
             if matches!(self.extent[r], Extent::Stale | Extent::Partial) {
-                self.guided_toward[r] = 0; // begun below without a guide
+                self.guided_toward[r] = None; // begun below toward every candidate
             }
         }
         let pass = |i| upkeep.is_traversable(known, i);
@@ -176,9 +178,9 @@ impl Planner {
     /// Grow robot `r`'s search from cell `from` until every goal of cost below
     /// `through + 1` is settled (a new resumable search guided toward `goals` if this
     /// decision has none yet, see [`Reachability::begin_guided`]; nothing if its map is
-    /// full). Returns whether its map is complete. A search guided toward another number
-    /// of goals (a caller that guided it toward some of the candidates only) is begun
-    /// again, so that every goal given is settled below the bucket.
+    /// full). Returns whether its map is complete. Every call of a decision gives the same
+    /// goals, the candidates; a search [`grow_toward`](Self::grow_toward) guided toward
+    /// some of them only is begun again.
     pub fn grow(
         &mut self,
         r: usize,
@@ -188,14 +190,40 @@ impl Planner {
         goals: &[u32],
         through: usize,
     ) -> bool {
+        self.grow_guided(r, from, (known, upkeep), (goals, None), through)
+    }
+
+    /// [`grow`](Self::grow) guided toward `goals`, a subset of the candidates named `id`
+    /// (ids differ between subsets within a decision): a rule that may take only some of
+    /// the candidates searches toward those. A search begun toward another set is begun
+    /// again, so that every goal given is settled below the bucket.
+    pub fn grow_toward(
+        &mut self,
+        r: usize,
+        from: u32,
+        known: &Grid<Occ>,
+        upkeep: &FrontierUpkeep,
+        (goals, id): (&[u32], u64),
+        through: usize,
+    ) -> bool {
+        self.grow_guided(r, from, (known, upkeep), (goals, Some(id)), through)
+    }
+
+    fn grow_guided(
+        &mut self,
+        r: usize,
+        from: u32,
+        (known, upkeep): (&Grid<Occ>, &FrontierUpkeep),
+        (goals, id): (&[u32], Option<u64>),
+        through: usize,
+    ) -> bool {
         let pass = |i| upkeep.is_traversable(known, i);
-        let other_goals = self.guided_toward[r] != goals.len();
         match self.extent[r] {
             Extent::Full => return true,
-            Extent::Growing if !other_goals => {}
+            Extent::Growing if self.guided_toward[r] == id => {}
             Extent::Growing | Extent::Stale | Extent::Partial => {
                 self.maps[r].begin_guided(from as usize, pass, goals);
-                self.guided_toward[r] = goals.len();
+                self.guided_toward[r] = id;
                 self.extent[r] = Extent::Growing;
             }
         }

@@ -1,6 +1,6 @@
-//! `Planner::grow` asked for one goal set and then for another in the same decision (GA
-//! guides a robot's search toward the goals still free at its turn, while another caller
-//! may want every candidate): every goal of the set asked for last, of cost below the
+//! `Planner::grow_toward` (a search guided toward some of the candidates: GA's free goals,
+//! SGA's own cluster) and `Planner::grow` (toward every candidate) asked one after the
+//! other in the same decision: every goal of the set asked for last, of cost below the
 //! bucket grown through, is settled at its full-search cost.
 
 use explore::Reachability;
@@ -35,21 +35,41 @@ proptest! {
             .collect();
         // some of the goals, as a rule that may take only those would ask
         let some: Vec<u32> = goals.iter().copied().step_by(keep).collect();
-        let mut planner = Planner::new(w, h, 1);
-        planner.invalidate();
-        planner.grow(0, start as u32, &known, &up, &some, first);
-        let done = planner.grow(0, start as u32, &known, &up, &goals, first + then);
+        let others: Vec<u32> = goals.iter().copied().skip(1).step_by(keep).collect();
         let mut full = Reachability::new(w, h);
         full.compute(start, pass);
-        let map = planner.map(0);
-        for &g in &goals {
-            let g = g as usize;
-            if full.cost(g).is_some_and(|c| (c as usize) <= first + then) || done {
-                prop_assert_eq!(
-                    map.cost(g).map(f64::to_bits),
-                    full.cost(g).map(f64::to_bits),
-                    "goal {}", g
-                );
+        let from = start as u32;
+        // toward some, then toward all; toward all, then toward some; toward some, then
+        // toward others
+        for case in 0..3 {
+            let mut planner = Planner::new(w, h, 1);
+            planner.invalidate();
+            let (last, done) = match case {
+                0 => {
+                    planner.grow_toward(0, from, &known, &up, (&some, 1), first);
+                    (&goals, planner.grow(0, from, &known, &up, &goals, first + then))
+                }
+                1 => {
+                    planner.grow(0, from, &known, &up, &goals, first);
+                    let last = (&some[..], 1);
+                    (&some, planner.grow_toward(0, from, &known, &up, last, first + then))
+                }
+                _ => {
+                    planner.grow_toward(0, from, &known, &up, (&some, 1), first);
+                    let last = (&others[..], 2);
+                    (&others, planner.grow_toward(0, from, &known, &up, last, first + then))
+                }
+            };
+            let map = planner.map(0);
+            for &g in last {
+                let g = g as usize;
+                if full.cost(g).is_some_and(|c| (c as usize) <= first + then) || done {
+                    prop_assert_eq!(
+                        map.cost(g).map(f64::to_bits),
+                        full.cost(g).map(f64::to_bits),
+                        "case {}, goal {}", case, g
+                    );
+                }
             }
         }
     }

@@ -187,6 +187,44 @@ proptest! {
     }
 }
 
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(48))]
+
+    /// On maps large enough that a robot's cluster lies far from goals of other clusters
+    /// (each robot's search is guided toward its own cluster's goals), the goals are still
+    /// Eq. 1's.
+    #[test]
+    fn eq1_on_larger_maps(
+        bits in prop::collection::vec(0u8..100, 53),
+        cut in 20usize..60,
+        m in 2usize..5,
+        seed in 0u64..100,
+        range in 1.0f64..6.0,
+    ) {
+        let (w, h) = (72, 40);
+        let (known, up) = random_upkept(w, h, &bits, cut);
+        let Some(start) = largest_component_cell(&known, &up) else {
+            return Ok(());
+        };
+        let mut reach = Reachability::new(w, h);
+        reach.compute(start, |i| up.is_traversable(&known, i));
+        let settled = reach.settled().to_vec();
+        let robots: Vec<u32> = (0..m).map(|k| settled[(k * 7919) % settled.len()]).collect();
+        let mut fx = Fixture::new(known, robots, range, seed);
+        let (cands, out) = decide(&mut fx);
+        let centres = fx.memory.sga.centres().to_vec();
+        let goals: Vec<Option<u32>> = out.iter().map(|g| g.map(|g| g.cell)).collect();
+        prop_assert_eq!(&goals, &oracle(&fx, cands.cells(), &centres));
+        let mut full = Reachability::new(w, h);
+        for (r, g) in out.iter().enumerate() {
+            if let Some(g) = g {
+                full.compute(fx.robots[r] as usize, |i| fx.upkeep.is_traversable(&fx.known, i));
+                prop_assert_eq!(Some(g.cost.to_bits()), full.cost(g.cell as usize).map(f64::to_bits));
+            }
+        }
+    }
+}
+
 fn permute(p: &mut Vec<usize>, k: usize, f: &mut dyn FnMut(&[usize])) {
     if k == p.len() {
         f(p);

@@ -45,16 +45,21 @@ pub const COUNT_FROM: usize = 1 << 14;
 #[derive(Clone, Debug, Default)]
 pub struct LazyCosts {
     found: Vec<Vec<Pair>>,
-    /// Per robot: how much of its search's settled list has been looked at.
+    /// Per robot: how much of its search's settled list has been looked at, and under
+    /// which guide (`None`: every candidate; else the id of a [`guide_toward`] set).
+    ///
+    /// [`guide_toward`]: Self::guide_toward
     scanned: Vec<usize>,
+    scanned_toward: Vec<Option<u64>>,
     /// Per robot: how many candidates its component holds (`None`: not counted yet).
     reachable: Vec<Option<usize>>,
     /// Whether the searches are guided toward the candidates.
     guided: bool,
     /// The goals searches begun from now on are guided toward, if `toward_some` (else
-    /// every candidate; see [`guide_toward`](Self::guide_toward)).
+    /// every candidate; see [`guide_toward`](Self::guide_toward)), and the set's id.
     toward: Vec<u32>,
     toward_some: bool,
+    toward_id: u64,
 }
 
 impl LazyCosts {
@@ -70,21 +75,24 @@ impl LazyCosts {
         }
         self.scanned.clear();
         self.scanned.resize(robots, 0);
+        self.scanned_toward.clear();
+        self.scanned_toward.resize(robots, None);
         self.reachable.clear();
         self.reachable.resize(robots, None);
         self.toward.clear();
         self.toward_some = false;
     }
 
-    /// Guide the searches begun from now on toward `goals` (a subset of the candidates)
+    /// Guide the searches grown from now on toward `goals` (a subset of the candidates)
     /// instead of every candidate: for a rule that wants a robot's cheapest goal among
     /// those it may still take (GA's free goals), the goals it may not take no longer hold
-    /// the bound near 0 around the robot. The costs and the goals settled below a bucket are
-    /// the same; a search already begun keeps its guide.
+    /// the bound near 0 around the robot. The costs, and the goals of the set settled below
+    /// a bucket, are the same; a search begun toward another set is begun again.
     pub fn guide_toward(&mut self, goals: impl IntoIterator<Item = u32>) {
         self.toward.clear();
         self.toward.extend(goals);
         self.toward_some = true;
+        self.toward_id += 1;
     }
 
     /// Grow robot `r`'s search through bucket `through` (every candidate of cost below
@@ -101,19 +109,26 @@ impl LazyCosts {
         if self.has_all(r) {
             return true;
         }
-        let goals = match (self.guided, self.toward_some) {
-            (false, _) => &[][..],
-            (true, true) => &self.toward[..],
-            (true, false) => candidates.cells(),
+        let (from, known, upkeep) = (ctx.robots[r], ctx.known, &*ctx.upkeep);
+        let done = match (self.guided, self.toward_some) {
+            (false, _) => ctx.planner.grow(r, from, known, upkeep, &[], through),
+            (true, true) => {
+                let goals = (&self.toward[..], self.toward_id);
+                ctx.planner
+                    .grow_toward(r, from, known, upkeep, goals, through)
+            }
+            (true, false) => {
+                let goals = candidates.cells();
+                ctx.planner.grow(r, from, known, upkeep, goals, through)
+            }
         };
-        let done = ctx
-            .planner
-            .grow(r, ctx.robots[r], ctx.known, ctx.upkeep, goals, through);
         let map = ctx.planner.map(r);
         let settled = map.settled();
-        if self.scanned[r] > settled.len() {
-            // the planner restarted this robot's search
+        let toward = (self.guided && self.toward_some).then_some(self.toward_id);
+        if self.scanned[r] > settled.len() || self.scanned_toward[r] != toward {
+            // the planner restarted this robot's search (toward another set of goals)
             self.scanned[r] = 0;
+            self.scanned_toward[r] = toward;
             self.found[r].clear();
         }
         for &c in &settled[self.scanned[r]..] {

@@ -32,9 +32,10 @@
 //!   penalised first); robots decide in index order; only frontiers the robot can reach are
 //!   considered. The paper re-plans every s_max = 7 steps; the loop does that.
 //! - Costs: a goal outside the robot's cluster needs only to be reachable (one flood fill
-//!   per component); goals in it are priced by the robot's search, grown until every goal
-//!   it has not settled would cost more than the best so far (path + o ≥ path). The
-//!   choice is that of the full cost list.
+//!   per component); goals in it are priced by the robot's search, guided toward them
+//!   only and grown until every goal it has not settled would cost more than the best so
+//!   far (path + o ≥ path). The choice is that of the full cost list. A chosen goal
+//!   outside the cluster gets its path from a search guided toward it alone.
 
 use crate::belief_rows::{LogPos, RowLog};
 use crate::candidates::CandidateSet;
@@ -160,8 +161,16 @@ fn run(
                 best = Some((cost, i));
             }
         }
-        // Goals in it cost their path plus penalty: grow the search until nothing it has
-        // not settled can be cheaper than the best so far, or all of them are settled.
+        // Goals in it cost their path plus penalty: grow the search, guided toward them
+        // only, until nothing it has not settled can be cheaper than the best so far, or
+        // all of them are settled.
+        if inside > 0 {
+            let own = cells
+                .iter()
+                .zip(&st.label)
+                .filter(|&(_, &l)| l as usize == r);
+            st.lazy.guide_toward(own.map(|(&c, _)| c));
+        }
         let mut seen = 0;
         while inside > 0 {
             let done = st.lazy.step(ctx, candidates, r, false);
@@ -185,6 +194,11 @@ fn run(
         // started yet when the robot's cluster holds no goal).
         let best = best.and_then(|(_, i)| {
             let cell = cells[i] as usize;
+            let settled = ctx.planner.is_searching(r) && ctx.planner.map(r).is_settled(cell);
+            if !settled {
+                // a goal outside the cluster: a search toward it alone
+                st.lazy.guide_toward([cells[i]]);
+            }
             st.lazy.grow(ctx, candidates, r, 0);
             loop {
                 if let Some(path) = ctx.planner.map(r).cost(cell) {
