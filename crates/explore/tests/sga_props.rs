@@ -124,14 +124,9 @@ proptest! {
         range in 1.0f64..6.0,
     ) {
         let (w, h) = (20, 20);
-        let (known, up) = random_upkept(w, h, &bits, cut);
-        let Some(start) = largest_component_cell(&known, &up) else {
+        let Some((known, robots)) = random_team(w, h, &bits, cut, m) else {
             return Ok(());
         };
-        let mut reach = Reachability::new(w, h);
-        reach.compute(start, |i| up.is_traversable(&known, i));
-        let settled = reach.settled().to_vec();
-        let robots: Vec<u32> = (0..m).map(|k| settled[(k * 7919) % settled.len()]).collect();
         let mut fx = Fixture::new(known.clone(), robots.clone(), range, seed);
         let (cands, out) = decide(&mut fx);
         // First clustering: a direct k-means of the unknown cells from the circle round
@@ -202,14 +197,9 @@ proptest! {
         range in 1.0f64..6.0,
     ) {
         let (w, h) = (72, 40);
-        let (known, up) = random_upkept(w, h, &bits, cut);
-        let Some(start) = largest_component_cell(&known, &up) else {
+        let Some((known, robots)) = random_team(w, h, &bits, cut, m) else {
             return Ok(());
         };
-        let mut reach = Reachability::new(w, h);
-        reach.compute(start, |i| up.is_traversable(&known, i));
-        let settled = reach.settled().to_vec();
-        let robots: Vec<u32> = (0..m).map(|k| settled[(k * 7919) % settled.len()]).collect();
         let mut fx = Fixture::new(known, robots, range, seed);
         let (cands, out) = decide(&mut fx);
         let centres = fx.memory.sga.centres().to_vec();
@@ -223,6 +213,26 @@ proptest! {
             }
         }
     }
+}
+
+/// A random belief of `w × h` cells and `m` robots spread over its largest traversable
+/// component (`None` if it has none).
+fn random_team(
+    w: usize,
+    h: usize,
+    bits: &[u8],
+    cut: usize,
+    m: usize,
+) -> Option<(Grid<Occ>, Vec<u32>)> {
+    let (known, up) = random_upkept(w, h, bits, cut);
+    let start = largest_component_cell(&known, &up)?;
+    let mut reach = Reachability::new(w, h);
+    reach.compute(start, |i| up.is_traversable(&known, i));
+    let settled = reach.settled();
+    let robots = (0..m)
+        .map(|k| settled[(k * 7919) % settled.len()])
+        .collect();
+    Some((known, robots))
 }
 
 fn permute(p: &mut Vec<usize>, k: usize, f: &mut dyn FnMut(&[usize])) {
