@@ -31,7 +31,7 @@ def test_same_seed_identical_episodes(office):
     assert play(env, 4, first) == play(env, 4, first)
 
 
-@pytest.mark.parametrize("preset", ["nearest", "greedy", "ha-cc"])
+@pytest.mark.parametrize("preset", ["nearest", "greedy", "ha-cc", "ga-rfe", "sga-rfe"])
 def test_team_baseline_equals_explore(office, preset):
     env = ExploreParallelEnv(office, robots=3, strategy=preset, k=4096)
     trace, info = play(env, 2, lambda env, obs: Baseline(preset)(env))
