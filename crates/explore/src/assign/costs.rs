@@ -41,6 +41,10 @@ pub struct Pair {
 /// reach (a flood fill of its component, unless the decision has one already).
 pub const COUNT_FROM: usize = 1 << 14;
 
+/// The next id of a set of goals guided toward ([`LazyCosts::guide_toward`]); ids are
+/// only compared, so results do not depend on them.
+static NEXT_GUIDE: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
+
 /// Per robot, the candidates its search has settled so far, in the order settled.
 #[derive(Clone, Debug, Default)]
 pub struct LazyCosts {
@@ -92,7 +96,9 @@ impl LazyCosts {
         self.toward.clear();
         self.toward.extend(goals);
         self.toward_some = true;
-        self.toward_id += 1;
+        // unique in the process, so that sets of two assigners asked in one decision (a
+        // Python policy comparing baselines) never share an id
+        self.toward_id = NEXT_GUIDE.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
     }
 
     /// Grow robot `r`'s search through bucket `through` (every candidate of cost below
