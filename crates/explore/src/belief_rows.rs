@@ -6,7 +6,7 @@
 //! frontier upkeep for the belief): a copy that followed the log up to some update compares
 //! only the rows changed since, so a decision's cost follows the cells that changed, not
 //! the map (comparing a 0.05 m floor plan whole at every decision was a tenth of a 5-robot
-//! CC run). Without a log, or when the copy did not follow this one, rows are compared whole.
+//! CC run). When the copy did not follow this log (a new lineage), rows are compared whole.
 
 use std::sync::atomic::{AtomicU64, Ordering};
 

@@ -162,6 +162,29 @@ fn keep_nearest(near: &mut Vec<(f64, u32)>, k: usize) {
     near.sort_unstable_by(by);
 }
 
+/// For each node `a` of `from..n` in turn, append its `k` nearest other nodes of
+/// `from..n` under the `n × n` matrix `d` ([`keep_nearest`]'s order) to `out`; `near` is
+/// scratch.
+fn nearest_lists(
+    near: &mut Vec<(f64, u32)>,
+    n: usize,
+    d: &[f64],
+    from: usize,
+    k: usize,
+    out: &mut Vec<u32>,
+) {
+    for a in from..n {
+        near.clear();
+        near.extend(
+            (from as u32..n as u32)
+                .filter(|&b| b as usize != a)
+                .map(|b| (d[a * n + b as usize], b)),
+        );
+        keep_nearest(near, k);
+        out.extend(near.iter().map(|&(_, b)| b));
+    }
+}
+
 /// Cost of the open route `route` (consecutive nodes) under the `n × n` matrix `d`.
 pub fn route_cost(n: usize, d: &[f64], route: &[u32]) -> f64 {
     route
@@ -379,18 +402,15 @@ impl OpenTsp {
 
     /// Each node's [`NEIGHBOURS`] nearest other nodes, nearest first (ties to the lower node).
     fn build_neighbours(&mut self, n: usize, d: &[f64]) {
-        let k = NEIGHBOURS.min(n - 1);
         self.nbrs.clear();
-        for a in 0..n {
-            self.near.clear();
-            self.near.extend(
-                (0..n as u32)
-                    .filter(|&b| b as usize != a)
-                    .map(|b| (d[a * n + b as usize], b)),
-            );
-            keep_nearest(&mut self.near, k);
-            self.nbrs.extend(self.near.iter().map(|&(_, b)| b));
-        }
+        nearest_lists(
+            &mut self.near,
+            n,
+            d,
+            0,
+            NEIGHBOURS.min(n - 1),
+            &mut self.nbrs,
+        );
     }
 
     /// The goals' neighbour lists of an `n`-node instance for
@@ -400,16 +420,7 @@ impl OpenTsp {
     /// lists serves every start.
     pub fn goal_neighbours(&mut self, n: usize, d: &[f64], out: &mut Vec<u32>) {
         let kg = NEIGHBOURS.min(n.saturating_sub(2));
-        for a in 1..n {
-            self.near.clear();
-            self.near.extend(
-                (1..n as u32)
-                    .filter(|&b| b as usize != a)
-                    .map(|b| (d[a * n + b as usize], b)),
-            );
-            keep_nearest(&mut self.near, kg);
-            out.extend(self.near.iter().map(|&(_, b)| b));
-        }
+        nearest_lists(&mut self.near, n, d, 1, kg, out);
     }
 
     /// [`build_neighbours`](Self::build_neighbours)' lists from the goals' own lists (see

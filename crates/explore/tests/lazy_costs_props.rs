@@ -7,6 +7,7 @@
 //!   full cost matrix gives; HA an assignment of the same total cost and size.
 
 use explore::Reachability;
+use explore::assign::costs::LazyCosts;
 use explore::assign::greedy::CostMatrix;
 use explore::assign::{AssignerKind, greedy, greedy_utility, hungarian, minpos, random_order};
 use explore::bits::CellBits;
@@ -228,6 +229,47 @@ proptest! {
         for i in 0..W * H {
             prop_assert_eq!(comp.contains(i), full.is_settled(i), "cell {}", i);
         }
+    }
+
+    /// A robot's pairs after the searches are guided toward another set of goals (its
+    /// search begun again) are those of the new search: every candidate it reaches once,
+    /// at its full-search cost, none left from the search before.
+    #[test]
+    fn pairs_follow_a_search_begun_again(
+        (cells, cut, picks, bits, goal_picks, seed) in inputs(),
+        first in 0usize..6,
+    ) {
+        let Some(mut c) = case(&cells, cut, &picks, bits, &goal_picks) else {
+            return Ok(());
+        };
+        let robot = c.robots[0] as usize;
+        let pass = |i: usize| c.upkeep.is_traversable(&c.known, i);
+        let mut full = Reachability::new(W, H);
+        full.compute(robot, pass);
+        let (found, want) = with_ctx(&mut c, seed, |ctx, cands| {
+            let mut lazy = LazyCosts::default();
+            lazy.reset(ctx.robots.len(), true);
+            lazy.guide_toward(cands.cells().iter().copied().step_by(2));
+            for _ in 0..first {
+                if lazy.step(ctx, cands, 0, false) {
+                    break;
+                }
+            }
+            lazy.guide_toward(cands.cells().iter().copied().skip(1).step_by(2));
+            while !lazy.step(ctx, cands, 0, true) {}
+            let found: Vec<(usize, u64)> =
+                lazy.found(0).iter().map(|p| (p.col, p.cost.to_bits())).collect();
+            let want: Vec<(usize, u64)> = cands
+                .cells()
+                .iter()
+                .enumerate()
+                .filter_map(|(j, &g)| full.cost(g as usize).map(|d| (j, d.to_bits())))
+                .collect();
+            (found, want)
+        });
+        let mut sorted = found.clone();
+        sorted.sort_unstable();
+        prop_assert_eq!(sorted, want, "pairs {:?}", found);
     }
 
     #[test]

@@ -49,12 +49,10 @@ static NEXT_GUIDE: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::
 #[derive(Clone, Debug, Default)]
 pub struct LazyCosts {
     found: Vec<Vec<Pair>>,
-    /// Per robot: how much of its search's settled list has been looked at, and under
-    /// which guide (`None`: every candidate; else the id of a [`guide_toward`] set).
-    ///
-    /// [`guide_toward`]: Self::guide_toward
+    /// Per robot: how much of its search's settled list has been looked at, and which
+    /// search that was ([`Reachability::search_id`](crate::Reachability::search_id)).
     scanned: Vec<usize>,
-    scanned_toward: Vec<Option<u64>>,
+    scanned_search: Vec<u32>,
     /// Per robot: how many candidates its component holds (`None`: not counted yet).
     reachable: Vec<Option<usize>>,
     /// Whether the searches are guided toward the candidates.
@@ -79,8 +77,8 @@ impl LazyCosts {
         }
         self.scanned.clear();
         self.scanned.resize(robots, 0);
-        self.scanned_toward.clear();
-        self.scanned_toward.resize(robots, None);
+        self.scanned_search.clear();
+        self.scanned_search.resize(robots, 0);
         self.reachable.clear();
         self.reachable.resize(robots, None);
         self.toward.clear();
@@ -130,11 +128,10 @@ impl LazyCosts {
         };
         let map = ctx.planner.map(r);
         let settled = map.settled();
-        let toward = (self.guided && self.toward_some).then_some(self.toward_id);
-        if self.scanned[r] > settled.len() || self.scanned_toward[r] != toward {
-            // the planner restarted this robot's search (toward another set of goals)
+        if self.scanned_search[r] != map.search_id() {
+            // the planner began this robot's search (again: toward another set of goals)
             self.scanned[r] = 0;
-            self.scanned_toward[r] = toward;
+            self.scanned_search[r] = map.search_id();
             self.found[r].clear();
         }
         for &c in &settled[self.scanned[r]..] {

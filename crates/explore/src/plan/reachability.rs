@@ -426,6 +426,13 @@ impl Reachability {
         self.exhausted
     }
 
+    /// An id of the last search begun, which changes whenever a search begins (0 before
+    /// the first): whoever reads [`settled`](Self::settled) piece by piece can tell a new
+    /// search from the one it read.
+    pub fn search_id(&self) -> u32 {
+        self.epoch
+    }
+
     /// The first bucket a resumable search has not settled: every cell of cost below it is
     /// settled (for a complete search, every reachable cell).
     pub fn next_bucket(&self) -> usize {
