@@ -68,6 +68,28 @@ impl Default for ExploreOptions {
     }
 }
 
+/// Refuse a run of `cfg` on `map` whose estimated peak memory exceeds `memory_mb` (the
+/// user's `--memory-mb`) or what the machine has available, before anything map-sized is
+/// allocated; the error says what would not fit, the limit and how to make it fit.
+pub fn check_memory(cfg: &RunConfig, map: &GridMap, memory_mb: Option<u64>) -> Result<(), String> {
+    let (w, h) = (map.width(), map.height());
+    let what = format!(
+        "exploring this {w}x{h} map with {} robot{} ({})",
+        cfg.robots,
+        if cfg.robots == 1 { "" } else { "s" },
+        cfg.strategy.name
+    );
+    sim::memory::check(
+        &what,
+        sim::memory::run_bytes(w * h, cfg),
+        memory_mb,
+        crate::machine::available_bytes(),
+        "use a map with fewer, larger cells (scale the image down and raise its resolution), \
+         fewer robots, or another candidate generator",
+    )
+    .map_err(|e| e.to_string())
+}
+
 /// Resolve `o` into a run configuration for `map` (with its off-plane `clutter`); the
 /// error names the flag, what was expected and what was found.
 pub fn config(

@@ -119,22 +119,7 @@ pub fn config(a: &ExploreArgs, truth: &Truth) -> Result<RunConfig> {
 /// Refuse a run whose estimated peak memory exceeds `--memory-mb` or what the machine has
 /// available, before anything map-sized is allocated.
 pub fn check_memory(cfg: &RunConfig, truth: &Truth, memory_mb: Option<u64>) -> Result<()> {
-    let (w, h) = (truth.map.width(), truth.map.height());
-    let what = format!(
-        "exploring this {w}x{h} map with {} robot{} ({})",
-        cfg.robots,
-        if cfg.robots == 1 { "" } else { "s" },
-        cfg.strategy.name
-    );
-    sim::memory::check(
-        &what,
-        sim::memory::run_bytes(w * h, cfg),
-        memory_mb,
-        bench::machine::available_bytes(),
-        "use a map with fewer, larger cells (scale the image down and raise its resolution), \
-         fewer robots, or another candidate generator",
-    )?;
-    Ok(())
+    bench::explore::check_memory(cfg, &truth.map, memory_mb).map_err(anyhow::Error::msg)
 }
 
 /// Run `frontier explore`.
