@@ -58,6 +58,10 @@ struct Spec {
     max_path_m: Option<f64>,
     max_steps: Option<u64>,
     gain: bool,
+    /// The largest map's width and height in cells, and the estimated peak bytes of one
+    /// run on it ([`sim::memory::run_bytes`]).
+    largest: (usize, usize),
+    run_bytes: u64,
 }
 
 /// SplitMix64: the next seed of a stream (episode seeds after an automatic reset).
@@ -523,10 +527,21 @@ fn spec(
         max_path_m,
         max_steps,
         gain,
+        largest: (0, 0),
+        run_bytes: 0,
     };
     // Check the options on the first map, and learn the observation's size.
     let (first, name) = py.detach(|| s.map(0)).map_err(value_error)?;
-    bench::explore::config(&s.options, &first, None).map_err(value_error)?;
+    let cfg = bench::explore::config(&s.options, &first, None).map_err(value_error)?;
+    s.largest = match &s.maps {
+        Maps::List(list) => list
+            .iter()
+            .map(|m| (m.map.width(), m.map.height()))
+            .max_by_key(|&(w, h)| w * h)
+            .unwrap_or((first.width(), first.height())),
+        Maps::Generated { .. } => (first.width(), first.height()),
+    };
+    s.run_bytes = sim::memory::run_bytes(s.largest.0 * s.largest.1, &cfg);
     s.shape = match view {
         Some(v) => (v, v),
         None => {
@@ -549,6 +564,47 @@ fn spec(
         }
     };
     Ok(s)
+}
+
+/// Bytes of one agent's observation, counted four times: the buffers Rust fills (which
+/// become the numpy arrays), the arrays the caller may still hold from the last step, and
+/// the observation space's low and high bounds, which have the same shapes.
+fn observation_bytes(spec: &Spec) -> u64 {
+    let cells = (spec.shape.0 as u64).saturating_mul(spec.shape.1 as u64);
+    let layers = cells.saturating_mul(2); // belief and frontier, one byte a cell
+    let candidates = (spec.k as u64).saturating_mul(FEATURES as u64 * 4 + 1); // f32s and the mask
+    layers
+        .saturating_add(candidates)
+        .saturating_add(12)
+        .saturating_mul(4)
+}
+
+/// Refuse `envs` environments of `agents` observations each whose runs and observations
+/// would need more memory than the machine has available, before any is allocated.
+fn check_memory(spec: &Spec, envs: usize, agents: usize) -> PyResult<()> {
+    let per_env = spec
+        .run_bytes
+        .saturating_add(observation_bytes(spec).saturating_mul(agents as u64));
+    let (w, h) = spec.largest;
+    let what = format!(
+        "{} ({w}x{h}-cell maps, {}x{}-cell observations, k = {})",
+        match (envs, agents) {
+            (1, 1) => "running this environment".to_string(),
+            (1, r) => format!("running this environment of {r} robots"),
+            (n, _) => format!("running these {n} environments"),
+        },
+        spec.shape.1,
+        spec.shape.0,
+        spec.k
+    );
+    sim::memory::check(
+        &what,
+        per_env.saturating_mul(envs as u64),
+        None,
+        bench::machine::available_bytes(),
+        "use a smaller k or view (a robot-centred crop), smaller maps, or fewer environments",
+    )
+    .map_err(|e| value_error(e.to_string()))
 }
 
 /// The state behind `m` (a panic inside never leaves it poisoned for good).
@@ -597,6 +653,7 @@ impl EnvCore {
             py, maps, generator, kwargs, candidates, k, view, lam, max_path_m, max_steps, gain,
             false,
         )?;
+        check_memory(&s, 1, 1)?;
         Ok(Self {
             state: Mutex::new(State::new(Arc::new(s))),
         })
@@ -759,6 +816,7 @@ impl VecEnvCore {
             py, maps, generator, kwargs, candidates, k, view, lam, max_path_m, max_steps, gain,
             false,
         )?);
+        check_memory(&s, n, 1)?;
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(threads.unwrap_or(0))
             .build()
@@ -971,6 +1029,7 @@ impl TeamEnvCore {
             py, maps, generator, kwargs, candidates, k, view, lam, max_path_m, max_steps, gain,
             true,
         )?;
+        check_memory(&s, 1, s.options.robots)?;
         Ok(Self {
             state: Mutex::new(State::new(Arc::new(s))),
         })

@@ -120,13 +120,15 @@ struct Job {
     cfg: RunConfig,
 }
 
-fn job(map: &Map, kw: Option<&Bound<'_, PyDict>>) -> PyResult<Job> {
+/// Resolve one run; `memory_mb` is the user's budget (the CLI's `--memory-mb`).
+fn job(map: &Map, kw: Option<&Bound<'_, PyDict>>, memory_mb: Option<u64>) -> PyResult<Job> {
     let o = options(kw)?;
     let clutter = match kw.map(|kw| kw.get_item("clutter")).transpose()?.flatten() {
         Some(v) if !v.is_none() => Some(clutter_layer(map, &v)?),
         _ => None,
     };
     let cfg = config(&o, &map.map, clutter).map_err(value_error)?;
+    bench::explore::check_memory(&cfg, &map.map, memory_mb).map_err(value_error)?;
     Ok(Job {
         map: map.clone(),
         cfg,
@@ -163,6 +165,37 @@ fn clutter_layer(map: &Map, v: &Bound<'_, PyAny>) -> PyResult<grid::Grid<bool>> 
     grid::Grid::from_vec(w, h, cells).ok_or_else(|| internal("clutter layer size".to_string()))
 }
 
+/// Refuse a batch whose largest runs, one per thread, would need more memory at once than
+/// `memory_mb` MiB or the machine has available (as `frontier bench` does for its trials).
+fn check_memory(jobs: &[Job], threads: Option<usize>, memory_mb: Option<u64>) -> PyResult<()> {
+    let workers = threads
+        .unwrap_or_else(rayon::current_num_threads)
+        .clamp(1, jobs.len().max(1));
+    let mut need: Vec<(u64, usize)> = jobs
+        .iter()
+        .enumerate()
+        .map(|(i, j)| (sim::memory::run_bytes(j.map.map.cells.len(), &j.cfg), i))
+        .collect();
+    need.sort_unstable_by(|a, b| b.0.cmp(&a.0).then(a.1.cmp(&b.1)));
+    let Some(&(largest, i)) = need.first() else {
+        return Ok(());
+    };
+    let what = format!(
+        "running {} runs on {workers} thread{} (the largest, run {i}, about {} MiB)",
+        jobs.len(),
+        if workers == 1 { "" } else { "s" },
+        largest.div_ceil(1 << 20)
+    );
+    sim::memory::check(
+        &what,
+        need.iter().take(workers).map(|n| n.0).sum(),
+        memory_mb,
+        bench::machine::available_bytes(),
+        "use fewer threads (threads=...) or maps with fewer cells",
+    )
+    .map_err(|e| value_error(e.to_string()))
+}
+
 /// Run a job (panics caught).
 fn execute(j: &Job) -> Result<RunResult, String> {
     guarded(|| sim::run(&j.map.map, &j.cfg))?.map_err(|e| e.to_string())
@@ -175,15 +208,18 @@ fn summary(j: &Job, r: &RunResult, timing: bool) -> String {
 
 /// One run: returns (summary JSON text, final belief (H, W) uint8, trajectories as a list
 /// of (n, 2) int32 arrays of (x, y) cells, or None when not recorded).
+/// A run whose estimated memory exceeds `memory_mb` MiB or what the machine has available
+/// is refused before it starts.
 #[pyfunction]
-#[pyo3(signature = (map, kwargs=None, timing=false))]
+#[pyo3(signature = (map, kwargs=None, timing=false, memory_mb=None))]
 pub fn explore<'py>(
     py: Python<'py>,
     map: &Map,
     kwargs: Option<&Bound<'py, PyDict>>,
     timing: bool,
+    memory_mb: Option<u64>,
 ) -> PyResult<(String, Bound<'py, PyAny>, Bound<'py, PyAny>)> {
-    let j = job(map, kwargs)?;
+    let j = job(map, kwargs, memory_mb)?;
     let r = py.detach(|| execute(&j)).map_err(|e| {
         if e.starts_with("internal error") {
             internal(e)
@@ -217,14 +253,16 @@ pub fn explore<'py>(
 
 /// Many runs in parallel on Rust threads with the GIL released: `runs` is a list of
 /// (map, kwargs) pairs; returns one summary JSON text per run, in order. Every run is
-/// checked before any starts; an error names the run's index.
+/// checked before any starts; an error names the run's index. The largest runs, one per
+/// thread, must fit in `memory_mb` MiB and in the memory the machine has available.
 #[pyfunction]
-#[pyo3(signature = (runs, threads=None, timing=false))]
+#[pyo3(signature = (runs, threads=None, timing=false, memory_mb=None))]
 pub fn explore_many(
     py: Python<'_>,
     runs: Vec<(PyRef<'_, Map>, Option<Bound<'_, PyDict>>)>,
     threads: Option<usize>,
     timing: bool,
+    memory_mb: Option<u64>,
 ) -> PyResult<Vec<String>> {
     let mut jobs = Vec::with_capacity(runs.len());
     for (i, (map, kw)) in runs.iter().enumerate() {
@@ -235,7 +273,7 @@ pub fn explore_many(
                 "run {i}: explore_many returns summaries only; drop 'trajectories'"
             )));
         }
-        let mut j = job(map, kw.as_ref()).map_err(|e| {
+        let mut j = job(map, kw.as_ref(), memory_mb).map_err(|e| {
             let msg = format!("run {i}: {}", e.value(py));
             if e.is_instance_of::<PyTypeError>(py) {
                 PyTypeError::new_err(msg)
@@ -249,6 +287,7 @@ pub fn explore_many(
     if threads == Some(0) {
         return Err(value_error("threads: expected at least 1, found 0"));
     }
+    check_memory(&jobs, threads, memory_mb)?;
     let out: Result<Vec<String>, String> = py.detach(|| {
         let work = || {
             jobs.par_iter()

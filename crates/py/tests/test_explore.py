@@ -156,6 +156,7 @@ def test_messages_equal_the_cli(cli, office, tmp_path):
         (["--sensor", "los:r=-2"], dict(sensor="los:r=-2")),
         (["--start", "500,2"], dict(start=(500, 2))),
         (["--start", "0,0"], dict(start=(0, 0))),
+        (["--memory-mb", "1"], dict(memory_mb=1)),
     ]:
         out = subprocess.run([cli, "explore", "--map", str(yaml), *flags], capture_output=True, text=True)
         assert out.returncode == 1
@@ -171,6 +172,24 @@ def test_explore_many_checks_every_run_first(office):
         frontier.explore_many([dict(seed=1)])
     with pytest.raises(TypeError, match="unexpected keyword argument 'colour'"):
         frontier.explore(office, **{"colour": "red"}) if False else frontier._native.explore(office, {"colour": "red"})
+
+
+def test_explore_many_checks_memory_first(office):
+    """Regression: the Python package estimated no run's memory, so a batch of large runs
+    could be killed half-way for lack of memory; now it is refused before any starts."""
+    # each run (about 17 MiB) fits in 20 MiB, two at once do not
+    with pytest.raises(ValueError, match=r"running 4 runs on 2 threads \(the largest, run 0, "
+                       r"about 17 MiB\) needs about 33 MiB, more than --memory-mb 20; "
+                       r"use fewer threads"):
+        frontier.explore_many([dict(map=office)] * 4, threads=2, memory_mb=20)
+    with pytest.raises(ValueError, match=r"run 0: exploring this 60x48 map with 1 robot \(cf-rr\) "
+                       r"needs about 17 MiB, more than --memory-mb 1"):
+        frontier.explore_many([dict(map=office)] * 4, threads=2, memory_mb=1)
+    with pytest.raises(ValueError, match="memory_mb: expected a positive number of MiB, found 0"):
+        frontier.explore(office, memory_mb=0)
+    with pytest.raises(TypeError, match="memory_mb: expected an int, found float"):
+        frontier.explore_many([dict(map=office)], memory_mb=2.5)
+    assert len(frontier.explore_many([dict(map=office)] * 2, threads=2, memory_mb=4096)) == 2
 
 
 def test_strategies_lists_the_presets():

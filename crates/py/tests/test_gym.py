@@ -1,5 +1,7 @@
 """frontier.gym: Gymnasium's checker, determinism, baselines equal to explore, vector env."""
 
+import os
+
 import gymnasium
 import numpy as np
 import pytest
@@ -86,6 +88,19 @@ def test_invalid_actions(office):
         ExploreEnv(office, candidates="all")
     with pytest.raises(ValueError, match="maps of different sizes need a robot-centred view"):
         ExploreEnv([office, frontier.Map.generate("cave", size=(8, 8), resolution=0.25)])
+
+
+@pytest.mark.skipif(not os.path.exists("/proc/meminfo"), reason="available memory unknown")
+def test_memory_is_estimated_before_it_is_spent():
+    """Regression: ExploreEnv(k=10**9) was killed by the kernel for lack of memory (and a
+    huge view or number of environments would have been); now the environment refuses."""
+    fits = r"needs about \d+ MiB, more than the \d+ MiB this machine has available; use a smaller k"
+    with pytest.raises(ValueError, match=r"running this environment \(.*k = 1000000000000\) " + fits):
+        ExploreEnv("office", k=10**12)
+    with pytest.raises(ValueError, match=r"1099511627776x1099511627776-cell observations"):
+        ExploreEnv("office", view=2**40)
+    with pytest.raises(ValueError, match=r"running these 1000000000 environments .* " + fits):
+        ExploreVectorEnv(10**9, maps="office")
 
 
 def test_vector_env_matches_single_envs(office):

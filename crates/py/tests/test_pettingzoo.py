@@ -1,5 +1,7 @@
 """frontier.pettingzoo: PettingZoo's API test, determinism, team baselines equal to explore."""
 
+import os
+
 import numpy as np
 import pytest
 
@@ -55,3 +57,10 @@ def test_only_deciding_agents_have_candidates(office):
     with pytest.raises(ValueError, match="--robots: expected at least 1, found 0"):
         ExploreParallelEnv(office, robots=0)
     assert np.all(obs["robot_0"]["team"] == obs["robot_1"]["team"])
+
+
+@pytest.mark.skipif(not os.path.exists("/proc/meminfo"), reason="available memory unknown")
+def test_memory_is_estimated_before_it_is_spent():
+    with pytest.raises(ValueError, match=r"running this environment of 5 robots \(.*k = 10000000000\) "
+                       r"needs about \d+ MiB"):
+        ExploreParallelEnv("office", robots=5, k=10**10)

@@ -116,6 +116,16 @@ def _kwargs(
     )
 
 
+def _check_memory_mb(memory_mb: Any) -> None:
+    """``memory_mb`` is None or a positive int (MiB), as the CLI's ``--memory-mb``."""
+    if memory_mb is None:
+        return
+    if isinstance(memory_mb, bool) or not isinstance(memory_mb, int):
+        raise TypeError(f"memory_mb: expected an int, found {type(memory_mb).__name__}")
+    if memory_mb < 1:
+        raise ValueError(f"memory_mb: expected a positive number of MiB, found {memory_mb}")
+
+
 def explore(
     map: Map,
     strategy: str = "cf-rr",
@@ -134,6 +144,7 @@ def explore(
     trajectories: bool = True,
     timing: bool = False,
     clutter: Optional[Map] = None,
+    memory_mb: Optional[int] = None,
 ) -> ExploreResult:
     """Explore ``map`` once, as ``frontier explore`` does with the same flags.
 
@@ -143,9 +154,12 @@ def explore(
     sensors miss them, sonar hears them, the robot's body bumps into them.
     ``timing=True`` fills the wall-clock fields
     (``decide_ms``, ``timing_ms``), which are ``None`` otherwise so that equal runs give
-    equal results. Raises ``ValueError`` with the CLI's message for a bad argument."""
+    equal results. A run whose estimated peak memory exceeds ``memory_mb`` MiB (the CLI's
+    ``--memory-mb``) or what the machine has available is refused before it starts. Raises
+    ``ValueError`` with the CLI's message for a bad argument."""
     if not isinstance(map, Map):
         raise TypeError(f"map: expected a frontier.Map, found {type(map).__name__}")
+    _check_memory_mb(memory_mb)
     kw = _kwargs(
         strategy, sensor, robots, seed, start, belief, sensing, clearance, speed, s_max, goal,
         max_moves,
@@ -153,7 +167,7 @@ def explore(
     kw["trajectories"] = trajectories
     if clutter is not None:
         kw["clutter"] = clutter
-    text, belief_arr, trails = _native.explore(map, kw, timing)
+    text, belief_arr, trails = _native.explore(map, kw, timing, memory_mb)
     return ExploreResult(json.loads(text), belief_arr, trails)
 
 
@@ -161,13 +175,16 @@ def explore_many(
     runs: Sequence[Mapping[str, Any]],
     threads: Optional[int] = None,
     timing: bool = False,
+    memory_mb: Optional[int] = None,
 ) -> List[Dict[str, Any]]:
     """Run many explorations in parallel on Rust threads (the GIL released).
 
     Each run is a mapping with a ``map`` (a :class:`Map`) and any keyword arguments of
     :func:`explore` but ``trajectories``; other keys (e.g. ``tag``) are copied into the
     run's row. Returns one flat row per run, in order — ``pandas.DataFrame(rows)`` makes the
-    table. All runs are checked before any starts."""
+    table. All runs are checked before any starts, and the batch is refused when its largest
+    runs, one per thread, would need more than ``memory_mb`` MiB or the memory the machine
+    has available."""
     keys = {
         "strategy", "sensor", "robots", "seed", "start", "belief", "sensing", "clearance",
         "speed", "s_max", "goal", "max_moves", "clutter",
@@ -184,7 +201,8 @@ def explore_many(
             raise TypeError(f"run {i}: map: expected a frontier.Map, found {type(m).__name__}")
         native_runs.append((m, {k: v for k, v in run.items() if k in keys}))
         extras.append({k: v for k, v in run.items() if k not in keys and k != "map"})
-    texts = _native.explore_many(native_runs, threads, timing)
+    _check_memory_mb(memory_mb)
+    texts = _native.explore_many(native_runs, threads, timing, memory_mb)
     rows = []
     for text, extra in zip(texts, extras):
         row = dict(extra)

@@ -58,7 +58,10 @@ class Map:
         """Number of free cells."""
 
 def explore(
-    map: Map, kwargs: Optional[Dict[str, Any]] = None, timing: bool = False
+    map: Map,
+    kwargs: Optional[Dict[str, Any]] = None,
+    timing: bool = False,
+    memory_mb: Optional[int] = None,
 ) -> Tuple[str, np.ndarray, Optional[List[np.ndarray]]]:
     """One run: (summary JSON, final belief, trajectories)."""
 
@@ -66,6 +69,7 @@ def explore_many(
     runs: Sequence[Tuple[Map, Optional[Dict[str, Any]]]],
     threads: Optional[int] = None,
     timing: bool = False,
+    memory_mb: Optional[int] = None,
 ) -> List[str]:
     """Many runs in parallel; one summary JSON per run, in order."""
 
