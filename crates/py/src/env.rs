@@ -479,8 +479,18 @@ fn spec(
         return Err(value_error("k: expected at least 1 candidate, found 0"));
     }
     if view == Some(0) {
+        return Err(value_error("view: expected at least 1 cell, found 0"));
+    }
+    if let Some(m) = max_path_m
+        && (m.is_nan() || m <= 0.0)
+    {
+        return Err(value_error(format!(
+            "max_path_m: expected a positive number of metres, found {m}"
+        )));
+    }
+    if max_steps == Some(0) {
         return Err(value_error(
-            "view: expected a crop of at least 1 cell, found 0",
+            "max_steps: expected at least 1 decision, found 0",
         ));
     }
     if !lambda.is_finite() {

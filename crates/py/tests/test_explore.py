@@ -192,6 +192,14 @@ def test_explore_many_checks_memory_first(office):
     assert len(frontier.explore_many([dict(map=office)] * 2, threads=2, memory_mb=4096)) == 2
 
 
+def test_explore_many_arguments(office):
+    with pytest.raises(TypeError, match=r"runs: expected a list of runs \(mappings with a 'map'\), found int"):
+        frontier.explore_many(5)
+    with pytest.raises(ValueError, match="threads: expected at least 1, found -1"):
+        frontier.explore_many([dict(map=office)], threads=-1)
+    assert len(frontier.explore_many(dict(map=office, seed=k) for k in range(2))) == 2
+
+
 def test_strategies_lists_the_presets():
     names = [n for n, _ in frontier.strategies()]
     assert {"cf-rr", "yamauchi", "dt500", "random"} <= set(names)

@@ -103,6 +103,55 @@ def test_memory_is_estimated_before_it_is_spent():
         ExploreVectorEnv(10**9, maps="office")
 
 
+@pytest.mark.parametrize(
+    "kwargs,error,message",
+    [
+        (dict(k=-1), ValueError, "k: expected at least 1 candidate, found -1"),
+        (dict(k=2.5), TypeError, "k: expected an int, found float"),
+        (dict(view=0), ValueError, "view: expected at least 1 cell, found 0"),
+        (dict(max_steps=0), ValueError, "max_steps: expected at least 1 decision, found 0"),
+        (dict(max_path_m=-1.0), ValueError, "max_path_m: expected a positive number of metres"),
+        (dict(max_path_m=float("nan")), ValueError, "max_path_m: expected a positive number"),
+        (dict(maps=42), TypeError, "maps: expected a frontier.Map, a list of maps, a generator kind"),
+        (dict(maps="no/such/folder"), ValueError, "maps: no/such/folder: no such folder or map file"),
+    ],
+)
+def test_bad_arguments_name_the_argument(office, kwargs, error, message):
+    """Regression: these gave pyo3's OverflowError, numpy's messages, a silent episode of no
+    steps, or "'int' object is not iterable"."""
+    kwargs = dict(dict(maps=office), **kwargs)
+    with pytest.raises(error, match=message):
+        ExploreEnv(**kwargs)
+
+
+def test_bad_actions_name_the_argument(office):
+    env = ExploreEnv(office)
+    env.reset(seed=0)
+    with pytest.raises(TypeError, match="action: expected an int, found float"):
+        env.step(1.5)
+    env.step(np.int64(0))
+    venv = ExploreVectorEnv(3, office)
+    venv.reset(seed=0)
+    with pytest.raises(ValueError, match=r"actions: expected one action per environment, shape \(3,\), "
+                       r"found shape \(2,\)"):
+        venv.step([0, 0])
+    with pytest.raises(TypeError, match="actions: expected integers, found dtype float64"):
+        venv.step(np.zeros(3))
+    with pytest.raises(ValueError, match="num_envs: expected at least 1, found -2"):
+        ExploreVectorEnv(-2, office)
+    with pytest.raises(ValueError, match="threads: expected at least 1, found -1"):
+        ExploreVectorEnv(2, office, threads=-1)
+
+
+def test_a_map_file_is_a_map_list(office, tmp_path):
+    office.save(tmp_path / "office.yaml")
+    obs, info = ExploreEnv(str(tmp_path / "office.yaml")).reset(seed=0)
+    assert info["map"] == "office"
+    same, _ = ExploreEnv([office]).reset(seed=0)
+    assert obs["belief"].tobytes() == same["belief"].tobytes()
+    assert obs["candidates"].tobytes() == same["candidates"].tobytes()
+
+
 def test_vector_env_matches_single_envs(office):
     n = 3
     venv = ExploreVectorEnv(n, [office], k=8, threads=2)

@@ -64,3 +64,14 @@ def test_memory_is_estimated_before_it_is_spent():
     with pytest.raises(ValueError, match=r"running this environment of 5 robots \(.*k = 10000000000\) "
                        r"needs about \d+ MiB"):
         ExploreParallelEnv("office", robots=5, k=10**10)
+
+
+def test_bad_actions_name_the_agent(office):
+    env = ExploreParallelEnv(office, robots=2)
+    env.reset(seed=0)
+    with pytest.raises(ValueError, match=r"actions: unknown agent 'robot_9' \(agents: robot_0, robot_1\)"):
+        env.step({"robot_9": 0})
+    with pytest.raises(TypeError, match="actions: expected a dict of agent -> action, found list"):
+        env.step([0, 0])
+    with pytest.raises(TypeError, match="action: expected an int, found str"):
+        env.step({"robot_0": "left"})

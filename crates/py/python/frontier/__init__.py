@@ -189,6 +189,10 @@ def explore_many(
         "strategy", "sensor", "robots", "seed", "start", "belief", "sensing", "clearance",
         "speed", "s_max", "goal", "max_moves", "clutter",
     }
+    if isinstance(runs, (str, bytes, Mapping)) or not isinstance(runs, Iterable):
+        raise TypeError(
+            f"runs: expected a list of runs (mappings with a 'map'), found {type(runs).__name__}"
+        )
     native_runs = []
     extras = []
     for i, run in enumerate(runs):
@@ -202,6 +206,11 @@ def explore_many(
         native_runs.append((m, {k: v for k, v in run.items() if k in keys}))
         extras.append({k: v for k, v in run.items() if k not in keys and k != "map"})
     _check_memory_mb(memory_mb)
+    if threads is not None:
+        if isinstance(threads, bool) or not isinstance(threads, int):
+            raise TypeError(f"threads: expected an int, found {type(threads).__name__}")
+        if threads < 1:
+            raise ValueError(f"threads: expected at least 1, found {threads}")
     texts = _native.explore_many(native_runs, threads, timing, memory_mb)
     rows = []
     for text, extra in zip(texts, extras):

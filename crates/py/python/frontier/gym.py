@@ -60,14 +60,45 @@ def _source(
     if isinstance(maps, Map):
         return [maps], None
     if isinstance(maps, (str, os.PathLike)):
-        if os.path.isdir(maps):
-            return load_folder(maps, resolution=resolution), None
-        return None, (os.fspath(maps), size, resolution)
+        path = os.fspath(maps)
+        if os.path.isdir(path):
+            return load_folder(path, resolution=resolution), None
+        if os.path.isfile(path):
+            return [Map.load(path, resolution=resolution)], None
+        if isinstance(maps, os.PathLike) or os.sep in path or path.endswith(_MAP_EXTENSIONS):
+            raise ValueError(f"maps: {path}: no such folder or map file")
+        return None, (path, size, resolution)
+    if not isinstance(maps, Sequence):
+        raise TypeError(
+            "maps: expected a frontier.Map, a list of maps, a generator kind, a map file or a "
+            "folder, "
+            f"found {type(maps).__name__}"
+        )
     maps = list(maps)
     for i, m in enumerate(maps):
         if not isinstance(m, Map):
             raise TypeError(f"maps[{i}]: expected a frontier.Map, found {type(m).__name__}")
     return maps, None
+
+
+def _count(name: str, value: Any, least: int, what: str = "") -> None:
+    """Raise TypeError unless ``value`` is an int (or None), ValueError if below ``least``
+    (the message names the argument, as the CLI's do)."""
+    if value is None:
+        return
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
+        raise TypeError(f"{name}: expected an int, found {type(value).__name__}")
+    if value < least:
+        raise ValueError(f"{name}: expected at least {least}{what}, found {value}")
+
+
+def _action(action: Any) -> int:
+    """An action as an int: a Python or numpy integer (TypeError for anything else)."""
+    if isinstance(action, bool) or not isinstance(action, (int, np.integer)):
+        if isinstance(action, np.ndarray) and action.ndim == 0 and action.dtype.kind in "iu":
+            return int(action)
+        raise TypeError(f"action: expected an int, found {type(action).__name__}")
+    return int(action)
 
 
 def _check_invalid_action(invalid_action: str) -> None:
@@ -91,6 +122,9 @@ def _core_args(
     gain: bool,
     run: Dict[str, Any],
 ) -> Dict[str, Any]:
+    _count("k", k, 1, " candidate")
+    _count("view", view, 1, " cell")
+    _count("max_steps", max_steps, 1, " decision")
     listed, generator = _source(maps, size, resolution)
     kwargs = dict(run)
     kwargs.update(strategy=strategy, sensor=sensor)
@@ -146,10 +180,11 @@ class ExploreEnv(gymnasium.Env):
     Args:
         maps: a :class:`~frontier.Map`, a list of maps (each episode picks one by its seed),
             a generator kind (``"office"``, ``"hospital"``, ``"cave"``, ``"maze"``,
-            ``"potholes"``, ``"empty"``; each episode generates one from its seed) or a folder
-            of map files. Default: generated offices.
+            ``"potholes"``, ``"empty"``; each episode generates one from its seed), a map file
+            or a folder of map files. Default: generated offices.
         size: (width, height) in metres of generated maps (default: the kind's).
-        resolution: metres per cell of generated maps, or of bare bitmaps in a folder.
+        resolution: metres per cell of generated maps, or of a bare bitmap (a file or in a
+            folder).
         strategy: the preset whose candidate generator, re-plan policy and sensing the
             environment uses (the agent replaces its assigner).
         sensor: sensor spec as the CLI takes it, e.g. ``"lidar:r=3.5,fov=360,res=1"``.
@@ -233,7 +268,7 @@ class ExploreEnv(gymnasium.Env):
         self, action: Any
     ) -> Tuple[Dict[str, np.ndarray], float, bool, bool, Dict[str, Any]]:
         """Send the robot to candidate ``action`` and run to the next decision."""
-        a = int(action)
+        a = _action(action)
         if self._wrap and self._obs is not None:
             n = int(self._obs["action_mask"].sum())
             if n > 0 and not 0 <= a < n:
@@ -283,6 +318,8 @@ class ExploreVectorEnv(VectorEnv):
         **run: Any,
     ) -> None:
         _check_invalid_action(invalid_action)
+        _count("num_envs", num_envs, 1)
+        _count("threads", threads, 1)
         self._core = _native.VecEnvCore(
             num_envs,
             threads=threads,
@@ -327,7 +364,15 @@ class ExploreVectorEnv(VectorEnv):
         self, actions: Any
     ) -> Tuple[Dict[str, np.ndarray], np.ndarray, np.ndarray, np.ndarray, Dict[str, Any]]:
         """Step every environment (an ended one resets instead)."""
-        acts = np.asarray(actions, dtype=np.int64).reshape(self.num_envs)
+        given = np.asarray(actions)
+        if given.shape != (self.num_envs,):
+            raise ValueError(
+                f"actions: expected one action per environment, shape ({self.num_envs},), "
+                f"found shape {given.shape}"
+            )
+        if given.dtype.kind not in "iu":
+            raise TypeError(f"actions: expected integers, found dtype {given.dtype}")
+        acts = given.astype(np.int64)
         if self._wrap and self._obs is not None:
             n = self._obs["action_mask"].sum(axis=1).astype(np.int64)
             bad = (n > 0) & ((acts < 0) | (acts >= n))

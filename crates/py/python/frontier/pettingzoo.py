@@ -13,7 +13,7 @@ preset's assigner chooses for the deciding robots together.
 
 from __future__ import annotations
 
-from typing import Any, Dict, List, Optional, Tuple
+from typing import Any, Dict, List, Mapping, Optional, Tuple
 
 import numpy as np
 from gymnasium import spaces
@@ -21,7 +21,7 @@ from gymnasium.utils import seeding
 from pettingzoo import ParallelEnv
 
 from . import _native
-from .gym import MapsArg, _core_args, _episode_seed, _spaces
+from .gym import MapsArg, _action, _core_args, _episode_seed, _spaces
 
 __all__ = ["ExploreParallelEnv"]
 
@@ -108,9 +108,16 @@ class ExploreParallelEnv(ParallelEnv):
     ]:
         """The team's next decision: deciding agents go to their candidates (an index beyond
         the offered ones is taken modulo their number)."""
+        if not isinstance(actions, Mapping):
+            raise TypeError(f"actions: expected a dict of agent -> action, found {type(actions).__name__}")
+        unknown = [a for a in actions if a not in self.possible_agents]
+        if unknown:
+            raise ValueError(
+                f"actions: unknown agent {unknown[0]!r} (agents: {', '.join(self.possible_agents)})"
+            )
         acts = []
         for agent, obs in zip(self.possible_agents, self._obs):
-            a = int(actions.get(agent, 0))
+            a = _action(actions.get(agent, 0))
             n = int(obs["action_mask"].sum())
             acts.append(a % n if n > 0 and not 0 <= a < n else a)
         self._obs, reward, terminated, truncated = self._core.step(acts)
