@@ -76,26 +76,9 @@ impl Truth {
     }
 }
 
-/// Recordings larger than this are refused before reading (the map message itself is at
-/// most [`record::occupancy::MAX_CELLS`] bytes).
-const MAX_MCAP_BYTES: u64 = 8 << 30;
-
 /// The last OccupancyGrid of an MCAP recording.
 pub fn load_mcap_map(path: &std::path::Path, topic: Option<&str>) -> Result<GridMap> {
-    let len = std::fs::metadata(path)
-        .with_context(|| format!("reading {}", path.display()))?
-        .len();
-    if len > MAX_MCAP_BYTES {
-        bail!(
-            "{}: expected a recording of at most {MAX_MCAP_BYTES} bytes, found {len}; record \
-             only the map topic (ros2 bag record /map)",
-            path.display()
-        );
-    }
-    let bytes = std::fs::read(path).with_context(|| format!("reading {}", path.display()))?;
-    let (map, _) =
-        record::last_map(&bytes, topic).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
-    Ok(map)
+    record::mcap_read::load_map(path, topic).map_err(anyhow::Error::msg)
 }
 
 /// Parse "R" or "RX,RY" (metres per cell).

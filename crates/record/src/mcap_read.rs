@@ -60,6 +60,27 @@ pub enum RecordError {
     },
 }
 
+/// Recordings larger than this are refused before reading (the map message itself is at
+/// most [`crate::occupancy::MAX_CELLS`] bytes).
+pub const MAX_FILE_BYTES: u64 = 8 << 30;
+
+/// The last OccupancyGrid on `topic` of the MCAP recording at `path` ([`last_map`]); the
+/// error names the file. Used by every front end that takes a recording as a map.
+pub fn load_map(path: &std::path::Path, topic: Option<&str>) -> Result<GridMap, String> {
+    let reading = |e: std::io::Error| format!("reading {}: {e}", path.display());
+    let len = std::fs::metadata(path).map_err(reading)?.len();
+    if len > MAX_FILE_BYTES {
+        return Err(format!(
+            "{}: expected a recording of at most {MAX_FILE_BYTES} bytes, found {len}; record \
+             only the map topic (ros2 bag record /map)",
+            path.display()
+        ));
+    }
+    let bytes = std::fs::read(path).map_err(reading)?;
+    let (map, _) = last_map(&bytes, topic).map_err(|e| format!("{}: {e}", path.display()))?;
+    Ok(map)
+}
+
 /// The last OccupancyGrid on `topic` (default: the recording's only OccupancyGrid topic, or
 /// `/map` among several) of the MCAP file in `bytes`, with its topic name.
 pub fn last_map(bytes: &[u8], topic: Option<&str>) -> Result<(GridMap, String), RecordError> {
