@@ -73,12 +73,12 @@ fn splitmix(x: u64) -> u64 {
 }
 
 impl Spec {
-    /// The ground truth of the episode with `seed`, and its name.
-    fn map(&self, seed: u64) -> Result<(GridMap, String), String> {
+    /// The ground truth of the episode with `seed`, its name and the start its file marks.
+    fn map(&self, seed: u64) -> Result<(GridMap, String, Option<grid::Cell>), String> {
         match &self.maps {
             Maps::List(maps) => {
                 let m = &maps[(splitmix(seed) % maps.len() as u64) as usize];
-                Ok(((*m.map).clone(), m.name.clone()))
+                Ok(((*m.map).clone(), m.name.clone(), m.start))
             }
             Maps::Generated {
                 kind,
@@ -92,7 +92,7 @@ impl Spec {
                     resolution: *resolution,
                 };
                 let env = world::generate(&spec).map_err(|e| format!("generating {kind}: {e}"))?;
-                Ok((env.map, env.name))
+                Ok((env.map, env.name, None))
             }
         }
     }
@@ -145,7 +145,7 @@ impl State {
 
     fn reset(&mut self, seed: u64) -> Result<(), String> {
         let spec = self.spec.clone();
-        let (map, name) = spec.map(seed)?;
+        let (map, name, marked) = spec.map(seed)?;
         if spec.view.is_none() && (map.height(), map.width()) != spec.shape {
             return Err(format!(
                 "map {name}: {}x{} cells, but the observation is {}x{}; maps of different \
@@ -158,6 +158,7 @@ impl State {
         }
         let mut o = spec.options.clone();
         o.seed = seed;
+        o.start = o.start.or(marked);
         o.record_trace = false;
         let mut cfg = bench::explore::config(&o, &map, None)?;
         if let Some(c) = spec.candidates {
@@ -541,7 +542,7 @@ fn spec(
         run_bytes: 0,
     };
     // Check the options on the first map, and learn the observation's size.
-    let (first, name) = py.detach(|| s.map(0)).map_err(value_error)?;
+    let (first, name, _) = py.detach(|| s.map(0)).map_err(value_error)?;
     let cfg = bench::explore::config(&s.options, &first, None).map_err(value_error)?;
     s.largest = match &s.maps {
         Maps::List(list) => list

@@ -21,6 +21,8 @@ pub struct Map {
     pub map: Arc<GridMap>,
     /// The name runs report: the file's stem or the environment's name.
     pub name: String,
+    /// The start the map file marks (a dungeon PNG's), used when a run gives none.
+    pub start: Option<grid::Cell>,
 }
 
 /// Metres per cell as the CLI's `--resolution` takes it: one number or (x, y).
@@ -67,6 +69,7 @@ impl Map {
         Self {
             map: Arc::new(map),
             name,
+            start: None,
         }
     }
 }
@@ -74,19 +77,58 @@ impl Map {
 #[pymethods]
 impl Map {
     /// Load a map file the CLI reads: ROS map_server YAML + PGM/PNG, a bare PGM/PNG bitmap
-    /// (needs `resolution`), MovingAI `.map` or ASCII `.txt`.
+    /// (needs `resolution`), MovingAI `.map`, HouseExpo `.json` (needs `resolution`), ASCII
+    /// `.txt`, or an MCAP recording (`.mcap`: its last OccupancyGrid, on `topic` if it has
+    /// several). `dungeon=True` reads a PNG as a dungeon map of learned-exploration work
+    /// (free above 150, the start marked by pixels of value 208, kept as `start`).
     #[staticmethod]
-    #[pyo3(signature = (path, resolution=None, border=false))]
-    fn load(path: PathBuf, resolution: Option<&Bound<'_, PyAny>>, border: bool) -> PyResult<Self> {
-        let opts = grid::io::LoadOptions {
-            resolution: resolution_arg(resolution)?,
-            border,
-        };
-        let map = grid::io::load_map(&path, &opts).map_err(value_error)?;
+    #[pyo3(signature = (path, resolution=None, border=false, *, topic=None, dungeon=false))]
+    fn load(
+        path: PathBuf,
+        resolution: Option<&Bound<'_, PyAny>>,
+        border: bool,
+        topic: Option<String>,
+        dungeon: bool,
+    ) -> PyResult<Self> {
+        let resolution = resolution_arg(resolution)?;
+        let is_mcap = path
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("mcap"));
+        if topic.is_some() && !is_mcap {
+            return Err(value_error(format!(
+                "topic: chooses the map topic of an MCAP recording (a .mcap file), found {}",
+                path.display()
+            )));
+        }
         let name = path
             .file_stem()
             .map(|s| s.to_string_lossy().into_owned())
             .unwrap_or_else(|| "map".into());
+        if is_mcap {
+            if resolution.is_some() || border || dungeon {
+                return Err(value_error(
+                    "resolution / border / dungeon: an MCAP recording's map carries its own \
+                     resolution",
+                ));
+            }
+            let map = record::mcap_read::load_map(&path, topic.as_deref()).map_err(value_error)?;
+            return Ok(Self::new(map, name));
+        }
+        if dungeon {
+            let Some((r, _)) = resolution.filter(|(x, y)| x == y) else {
+                return Err(value_error(
+                    "dungeon: expected one resolution (square cells) for the PNG",
+                ));
+            };
+            let bytes = std::fs::read(&path)
+                .map_err(|e| value_error(format!("{}: cannot read: {e}", path.display())))?;
+            let d = grid::io::parse_dungeon(&bytes, &path, r).map_err(value_error)?;
+            let mut m = Self::new(d.map, name);
+            m.start = Some(d.start);
+            return Ok(m);
+        }
+        let opts = grid::io::LoadOptions { resolution, border };
+        let map = grid::io::load_map(&path, &opts).map_err(value_error)?;
         Ok(Self::new(map, name))
     }
 
@@ -234,6 +276,13 @@ impl Map {
     #[getter]
     fn free_cells(&self) -> usize {
         self.map.cells.data().iter().filter(|o| o.is_free()).count()
+    }
+
+    /// The start the file marks, (x, y) in cells (a dungeon PNG's), or None; runs on the
+    /// map start there unless given a `start`.
+    #[getter]
+    fn start(&self) -> Option<(i32, i32)> {
+        self.start.map(|c| (c.x, c.y))
     }
 
     fn __repr__(&self) -> String {

@@ -63,3 +63,54 @@ def test_bad_values_raise_value_error(tmp_path):
         frontier.Map.load(png)
     with pytest.raises(ValueError, match="cannot read"):
         frontier.Map.load(tmp_path / "missing.yaml")
+
+
+def _png(path, pixels):
+    """Write a greyscale 8-bit PNG of the (h, w) uint8 array ``pixels``."""
+    import struct
+    import zlib
+
+    h, w = pixels.shape
+    raw = b"".join(b"\x00" + pixels[y].tobytes() for y in range(h))
+
+    def chunk(kind, data):
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
+
+    header = struct.pack(">IIBBBBB", w, h, 8, 0, 0, 0, 0)
+    path.write_bytes(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", header) + chunk(b"IDAT", zlib.compress(raw))
+                     + chunk(b"IEND", b""))
+
+
+def test_load_reads_what_the_cli_reads(cli, office, tmp_path):
+    """Regression: Map.load read neither MCAP recordings nor dungeon PNGs, which the CLI
+    reads (`--map run.mcap`, `--dungeon`)."""
+    import json
+    import subprocess
+
+    yaml = tmp_path / "office.yaml"
+    office.save(yaml)
+    rec = tmp_path / "run.mcap"
+    subprocess.run([cli, "explore", "--map", str(yaml), "--max-moves", "5", "--mcap", str(rec)],
+                   check=True, capture_output=True)
+    loaded = frontier.Map.load(rec, topic="/map")
+    assert np.array_equal(loaded.to_numpy(), office.to_numpy())
+    assert loaded.resolution == office.resolution and loaded.start is None
+    with pytest.raises(ValueError, match="an MCAP recording's map carries its own resolution"):
+        frontier.Map.load(rec, resolution=0.1)
+    with pytest.raises(ValueError, match="topic: chooses the map topic of an MCAP recording"):
+        frontier.Map.load(yaml, topic="/map")
+
+    # A 12 x 8 dungeon room: walls (0) around free space (255), a start (208) at (4, 3).
+    pixels = np.full((8, 12), 255, np.uint8)
+    pixels[[0, -1], :] = 0
+    pixels[:, [0, -1]] = 0
+    pixels[3, 4] = 208
+    png = tmp_path / "dungeon.png"
+    _png(png, pixels)
+    d = frontier.Map.load(png, resolution=0.1, dungeon=True)
+    assert d.start == (4, 3) and d.shape == (8, 12)
+    out = subprocess.run([cli, "explore", "--map", str(png), "--resolution", "0.1", "--dungeon",
+                          "--json", "--no-timing"], check=True, capture_output=True, text=True)
+    assert frontier.explore(d).summary == json.loads(out.stdout)
+    with pytest.raises(ValueError, match="dungeon: expected one resolution"):
+        frontier.Map.load(png, dungeon=True)

@@ -16,9 +16,14 @@ class Map:
         path: Union[str, PathLike[str]],
         resolution: Union[None, float, Tuple[float, float]] = None,
         border: bool = False,
+        *,
+        topic: Optional[str] = None,
+        dungeon: bool = False,
     ) -> Map:
         """Load a map file the CLI reads (ROS YAML + PGM/PNG, bare PGM/PNG with
-        `resolution`, MovingAI `.map`, ASCII `.txt`)."""
+        `resolution`, MovingAI `.map`, HouseExpo `.json`, ASCII `.txt`, the last
+        OccupancyGrid of an MCAP recording on `topic`; `dungeon=True`: a dungeon PNG and its
+        marked start)."""
     @staticmethod
     def from_numpy(array: np.ndarray, resolution: float, name: str = "array") -> Map:
         """A map from a 2-D bool (True = occupied) or uint8 (0 unknown, 1 free, 2 occupied)
@@ -56,6 +61,9 @@ class Map:
     @property
     def free_cells(self) -> int:
         """Number of free cells."""
+    @property
+    def start(self) -> Optional[Tuple[int, int]]:
+        """The start the file marks (x, y), or None; runs start there unless given one."""
 
 def explore(
     map: Map,
