@@ -225,30 +225,20 @@ fn check_memory(
     available: Option<u64>,
 ) -> Result<(), BenchError> {
     let workers = worker_threads(threads, pending.len()).unwrap_or_else(rayon::current_num_threads);
-    let mut need: Vec<(u64, &str)> = pending
+    let needs: Vec<(u64, String)> = pending
         .iter()
         .map(|t| {
             let cells = plan.envs[t.env].map.cells.len();
             (
                 sim::memory::run_bytes(cells, &plan.config(t)),
-                t.key.as_str(),
+                t.key.clone(),
             )
         })
         .collect();
-    need.sort_unstable_by(|a, b| b.cmp(a));
-    let Some(&(largest, key)) = need.first() else {
-        return Ok(());
-    };
-    let at_once: u64 = need.iter().take(workers).map(|n| n.0).sum();
-    let what = format!(
-        "running {} trials on {workers} thread{} (the largest, {key}, about {} MiB)",
-        pending.len(),
-        if workers == 1 { "" } else { "s" },
-        largest.div_ceil(1 << 20)
-    );
-    sim::memory::check(
-        &what,
-        at_once,
+    sim::memory::check_batch(
+        "trials",
+        &needs,
+        workers,
         None,
         available,
         "use fewer threads (-j) or maps with fewer cells",

@@ -171,25 +171,19 @@ fn clutter_layer(map: &Map, v: &Bound<'_, PyAny>) -> PyResult<grid::Grid<bool>> 
 fn check_memory(jobs: &[Job], threads: Option<usize>, memory_mb: Option<u64>) -> PyResult<()> {
     let workers = threads
         .unwrap_or_else(rayon::current_num_threads)
-        .clamp(1, jobs.len().max(1));
-    let mut need: Vec<(u64, usize)> = jobs
+        .min(jobs.len());
+    let needs: Vec<(u64, String)> = jobs
         .iter()
         .enumerate()
-        .map(|(i, j)| (sim::memory::run_bytes(j.map.map.cells.len(), &j.cfg), i))
+        .map(|(i, j)| {
+            let bytes = sim::memory::run_bytes(j.map.map.cells.len(), &j.cfg);
+            (bytes, format!("run {i}"))
+        })
         .collect();
-    need.sort_unstable_by(|a, b| b.0.cmp(&a.0).then(a.1.cmp(&b.1)));
-    let Some(&(largest, i)) = need.first() else {
-        return Ok(());
-    };
-    let what = format!(
-        "running {} runs on {workers} thread{} (the largest, run {i}, about {} MiB)",
-        jobs.len(),
-        if workers == 1 { "" } else { "s" },
-        largest.div_ceil(1 << 20)
-    );
-    sim::memory::check(
-        &what,
-        need.iter().take(workers).map(|n| n.0).sum(),
+    sim::memory::check_batch(
+        "runs",
+        &needs,
+        workers,
         memory_mb,
         bench::machine::available_bytes(),
         "use fewer threads (threads=...) or maps with fewer cells",

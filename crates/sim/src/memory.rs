@@ -87,6 +87,35 @@ pub fn check(
     Ok(())
 }
 
+/// A batch run on `workers` threads: the largest of `needs` (estimated bytes and name of
+/// each run), one per thread, must fit at once ([`check`]); `noun` names the runs in the
+/// message ("trials", "runs").
+pub fn check_batch(
+    noun: &str,
+    needs: &[(u64, String)],
+    workers: usize,
+    budget_mb: Option<u64>,
+    available: Option<u64>,
+    fix: &str,
+) -> Result<(), TooBig> {
+    let workers = workers.max(1);
+    let mut order: Vec<usize> = (0..needs.len()).collect();
+    // largest first, the earliest among equals
+    order.sort_by(|&a, &b| needs[b].0.cmp(&needs[a].0).then(a.cmp(&b)));
+    let Some(&first) = order.first() else {
+        return Ok(());
+    };
+    let (largest, name) = &needs[first];
+    let what = format!(
+        "running {} {noun} on {workers} thread{} (the largest, {name}, about {} MiB)",
+        needs.len(),
+        if workers == 1 { "" } else { "s" },
+        largest.div_ceil(1 << 20)
+    );
+    let at_once = order.iter().take(workers).map(|&k| needs[k].0).sum();
+    check(&what, at_once, budget_mb, available, fix)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -120,5 +149,33 @@ mod tests {
         );
         assert!(check("x", 1 << 30, Some(2048), Some(2 << 30), "").is_ok());
         assert!(check("x", u64::MAX, None, None, "").is_ok());
+    }
+
+    #[test]
+    fn a_batch_needs_its_largest_runs_one_per_thread() {
+        let mib = |n: u64| n << 20;
+        let needs: Vec<(u64, String)> = [
+            (mib(10), "a"),
+            (mib(30), "b"),
+            (mib(30), "c"),
+            (mib(5), "d"),
+        ]
+        .into_iter()
+        .map(|(b, n)| (b, n.to_string()))
+        .collect();
+        // two threads: b and c at once, 60 MiB; the largest named is the earliest, b
+        let e = check_batch("runs", &needs, 2, Some(59), None, "fewer").unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "running 4 runs on 2 threads (the largest, b, about 30 MiB) needs about 60 MiB, \
+             more than --memory-mb 59; fewer"
+        );
+        assert!(check_batch("runs", &needs, 2, Some(60), None, "").is_ok());
+        // one thread: the largest alone; zero threads count as one
+        assert!(check_batch("runs", &needs, 1, Some(30), None, "").is_ok());
+        assert!(check_batch("runs", &needs, 0, Some(30), None, "").is_ok());
+        // every thread busy: all four, 75 MiB
+        assert!(check_batch("runs", &needs, 8, Some(74), None, "").is_err());
+        assert!(check_batch("runs", &[], 2, Some(1), None, "").is_ok());
     }
 }
