@@ -23,6 +23,7 @@ const KEYS: &[&str] = &[
     "belief",
     "sensing",
     "motion",
+    "coverage",
     "clearance",
     "speed",
     "s_max",
@@ -44,7 +45,7 @@ pub(crate) fn options(kw: Option<&Bound<'_, PyDict>>) -> PyResult<ExploreOptions
         if v.is_none() {
             if matches!(
                 key.as_str(),
-                "start" | "belief" | "sensing" | "s_max" | "goal"
+                "start" | "belief" | "sensing" | "motion" | "coverage" | "s_max" | "goal"
             ) {
                 continue;
             }
@@ -65,6 +66,7 @@ pub(crate) fn options(kw: Option<&Bound<'_, PyDict>>) -> PyResult<ExploreOptions
             "belief" => o.belief = Some(v.extract().map_err(|_| typed("a str"))?),
             "sensing" => o.sensing = Some(v.extract().map_err(|_| typed("a str"))?),
             "motion" => o.motion = Some(v.extract().map_err(|_| typed("a str"))?),
+            "coverage" => o.coverage = Some(v.extract().map_err(|_| typed("a str"))?),
             "robots" => {
                 let n: i64 = v.extract().map_err(|_| typed("an int"))?;
                 if n < 1 {

@@ -53,6 +53,24 @@ def test_sensing_every_third_cell_equals_cli_json(cli, office, tmp_path, strateg
     assert every.summary == frontier.explore(office, strategy=strategy, robots=robots, seed=4).summary
 
 
+def test_motion_and_coverage_equal_cli_json(cli, office, tmp_path):
+    """Regression: explore() had no `motion` (TypeError) or `coverage`, and explore_many
+    took both for tags, silently running with the defaults."""
+    yaml = tmp_path / "office.yaml"
+    office.save(yaml)
+    want = cli_json(cli, "--map", str(yaml), "--motion", "any-angle", "--coverage", "known",
+                    "--sensor", "square:r=3")
+    assert (want["motion"], want["coverage_kind"]) == ("any-angle", "known")
+    m = frontier.Map.load(yaml)
+    got = frontier.explore(m, motion="any-angle", coverage="known", sensor="square:r=3")
+    assert got.summary == want
+    [row] = frontier.explore_many([dict(map=m, motion="any-angle", coverage="known", sensor="square:r=3")])
+    assert (row["motion"], row["coverage_kind"], row["path_length_m"]) == (
+        "any-angle", "known", want["path_length_m"])
+    with pytest.raises(ValueError, match="--coverage: "):
+        frontier.explore(m, coverage="all")
+
+
 def test_generated_map_equals_cli_env(cli, office):
     want = cli_json(cli, "--env", "office", "--seed", "3", "--size", "15x12", "--resolution", "0.25")
     assert frontier.explore(office, seed=3).summary == want

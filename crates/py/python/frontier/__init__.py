@@ -99,8 +99,12 @@ def _kwargs(
     s_max: Optional[int],
     goal: Optional[float],
     max_moves: int,
+    motion: Optional[str] = None,
+    coverage: Optional[str] = None,
 ) -> Dict[str, Any]:
     return dict(
+        motion=motion,
+        coverage=coverage,
         strategy=strategy,
         sensor=sensor,
         robots=robots,
@@ -141,6 +145,8 @@ def explore(
     s_max: Optional[int] = None,
     goal: Optional[float] = None,
     max_moves: int = 10_000_000,
+    motion: Optional[str] = None,
+    coverage: Optional[str] = None,
     trajectories: bool = True,
     timing: bool = False,
     clutter: Optional[Map] = None,
@@ -151,8 +157,10 @@ def explore(
     Defaults are the CLI's. ``start`` is the first robot's cell (x, y); the others start at
     the nearest free cells around it. ``clutter`` is a map of the same size whose occupied
     cells are obstacles off the laser plane (tables, chairs), as ``--clutter-map``: planar
-    sensors miss them, sonar hears them, the robot's body bumps into them.
-    ``timing=True`` fills the wall-clock fields
+    sensors miss them, sonar hears them, the robot's body bumps into them. ``motion``
+    (``"grid"`` or ``"any-angle"``) and ``coverage`` (``"reachable"`` or ``"known"``,
+    Explore-Bench's) are ``--motion`` and ``--coverage``. ``timing=True`` fills the
+    wall-clock fields
     (``decide_ms``, ``timing_ms``), which are ``None`` otherwise so that equal runs give
     equal results. A run whose estimated peak memory exceeds ``memory_mb`` MiB (the CLI's
     ``--memory-mb``) or what the machine has available is refused before it starts. Raises
@@ -162,7 +170,7 @@ def explore(
     _check_memory_mb(memory_mb)
     kw = _kwargs(
         strategy, sensor, robots, seed, start, belief, sensing, clearance, speed, s_max, goal,
-        max_moves,
+        max_moves, motion, coverage,
     )
     kw["trajectories"] = trajectories
     if clutter is not None:
@@ -187,7 +195,7 @@ def explore_many(
     has available."""
     keys = {
         "strategy", "sensor", "robots", "seed", "start", "belief", "sensing", "clearance",
-        "speed", "s_max", "goal", "max_moves", "clutter",
+        "speed", "s_max", "goal", "max_moves", "motion", "coverage", "clutter",
     }
     if isinstance(runs, (str, bytes, Mapping)) or not isinstance(runs, Iterable):
         raise TypeError(
