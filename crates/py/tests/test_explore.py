@@ -218,6 +218,18 @@ def test_explore_many_arguments(office):
     assert len(frontier.explore_many(dict(map=office, seed=k) for k in range(2))) == 2
 
 
+def test_explore_many_warns_of_a_misspelt_option(office):
+    with pytest.warns(UserWarning, match=r"run 1: 'stratgy' is not an option of explore .* "
+                      r"did you mean 'strategy'\?"):
+        rows = frontier.explore_many([dict(map=office), dict(map=office, stratgy="cf")])
+    assert rows[1]["stratgy"] == "cf" and rows[1]["strategy"] == "cf-rr"
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        frontier.explore_many([dict(map=office, tag="baseline", trial=3)])
+
+
 def test_strategies_lists_the_presets():
     names = [n for n, _ in frontier.strategies()]
     assert {"cf-rr", "yamauchi", "dt500", "random"} <= set(names)

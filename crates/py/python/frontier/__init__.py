@@ -9,7 +9,9 @@ PettingZoo environment for teams (:mod:`frontier.pettingzoo`).
 
 from __future__ import annotations
 
+import difflib
 import json
+import warnings
 from typing import Any, Dict, Iterable, List, Mapping, Optional, Sequence, Tuple
 
 import numpy as np
@@ -212,7 +214,16 @@ def explore_many(
         if not isinstance(m, Map):
             raise TypeError(f"run {i}: map: expected a frontier.Map, found {type(m).__name__}")
         native_runs.append((m, {k: v for k, v in run.items() if k in keys}))
-        extras.append({k: v for k, v in run.items() if k not in keys and k != "map"})
+        extra = {k: v for k, v in run.items() if k not in keys and k != "map"}
+        for k in extra:
+            near = difflib.get_close_matches(str(k), sorted(keys), n=1, cutoff=0.8)
+            if near:
+                warnings.warn(
+                    f"run {i}: {k!r} is not an option of explore and is copied into the row "
+                    f"as a tag; did you mean {near[0]!r}?",
+                    stacklevel=2,
+                )
+        extras.append(extra)
     _check_memory_mb(memory_mb)
     if threads is not None:
         if isinstance(threads, bool) or not isinstance(threads, int):
