@@ -321,6 +321,17 @@ fn bad_resolution() {
         e.ends_with("plan.pgm: --resolution is required for a bare bitmap"),
         "{e}"
     );
+    // Regression: a HouseExpo plan without a resolution was called a bare bitmap.
+    let house = dir.join("house.json");
+    std::fs::write(&house, br#"{"verts": [[0,0],[1,0],[0,1]]}"#).expect("write");
+    let e = msg(load_map(&house, &LoadOptions::default()));
+    assert!(
+        e.ends_with(
+            "house.json: --resolution is required for a HouseExpo floor plan (metres per cell \
+             to rasterise it at)"
+        ),
+        "{e}"
+    );
     let _ = std::fs::remove_dir_all(dir);
 }
 

@@ -51,9 +51,9 @@ pub enum MapErrorKind {
         "unknown map format {0:?}: expected .yaml, .yml, .pgm, .png, .map, .json (HouseExpo) or .txt"
     )]
     UnknownFormat(String),
-    /// A bare bitmap was loaded without a resolution.
-    #[error("--resolution is required for a bare bitmap")]
-    ResolutionRequired,
+    /// A bare bitmap or a HouseExpo plan (the file named) was loaded without a resolution.
+    #[error("--resolution is required for {0}")]
+    ResolutionRequired(&'static str),
     /// A resolution was zero, negative or not finite.
     #[error("resolution must be a positive finite number of metres per cell, found {0}")]
     BadResolution(f64),

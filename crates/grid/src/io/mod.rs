@@ -83,9 +83,9 @@ pub fn load_map(path: &Path, opts: &LoadOptions) -> Result<GridMap, MapError> {
             parse_ros_yaml(&text, path, opts)?
         }
         "pgm" | "png" => {
-            let (rx, ry) = opts
-                .resolution
-                .ok_or_else(|| MapError::new(path, MapErrorKind::ResolutionRequired))?;
+            let (rx, ry) = opts.resolution.ok_or_else(|| {
+                MapError::new(path, MapErrorKind::ResolutionRequired("a bare bitmap"))
+            })?;
             let bytes = read_bytes(path)?;
             let fits = finished_size_check((rx, ry), opts.border);
             let raster = if ext == "pgm" {
@@ -107,9 +107,14 @@ pub fn load_map(path: &Path, opts: &LoadOptions) -> Result<GridMap, MapError> {
             )?
         }
         "json" => {
-            let (rx, ry) = opts
-                .resolution
-                .ok_or_else(|| MapError::new(path, MapErrorKind::ResolutionRequired))?;
+            let (rx, ry) = opts.resolution.ok_or_else(|| {
+                MapError::new(
+                    path,
+                    MapErrorKind::ResolutionRequired(
+                        "a HouseExpo floor plan (metres per cell to rasterise it at)",
+                    ),
+                )
+            })?;
             let text = read_text(path)?;
             let map = parse_houseexpo(&text, path, rx.min(ry))?.map;
             finish(map, (rx.min(ry), rx.min(ry)), path, opts.border)?
