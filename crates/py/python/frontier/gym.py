@@ -70,9 +70,8 @@ def _source(
         return None, (path, size, resolution)
     if not isinstance(maps, Sequence):
         raise TypeError(
-            "maps: expected a frontier.Map, a list of maps, a generator kind, a map file or a "
-            "folder, "
-            f"found {type(maps).__name__}"
+            "maps: expected a frontier.Map, a list of maps, a generator kind, a map file or "
+            f"a folder, found {type(maps).__name__}"
         )
     maps = list(maps)
     for i, m in enumerate(maps):
@@ -93,10 +92,11 @@ def _count(name: str, value: Any, least: int, what: str = "") -> None:
 
 
 def _action(action: Any) -> int:
-    """An action as an int: a Python or numpy integer (TypeError for anything else)."""
+    """An action as an int: a Python or numpy integer, or a 0-d integer array (TypeError for
+    anything else, a float included)."""
+    if isinstance(action, np.ndarray) and action.ndim == 0 and action.dtype.kind in "iu":
+        return int(action)
     if isinstance(action, bool) or not isinstance(action, (int, np.integer)):
-        if isinstance(action, np.ndarray) and action.ndim == 0 and action.dtype.kind in "iu":
-            return int(action)
         raise TypeError(f"action: expected an int, found {type(action).__name__}")
     return int(action)
 
