@@ -124,6 +124,19 @@ def test_bad_arguments_name_the_argument(office, kwargs, error, message):
         ExploreEnv(**kwargs)
 
 
+def test_run_options_are_checked(office):
+    """Regression: a misspelt run option was refused as an argument of "explore()", and
+    seed, trajectories or clutter were taken and ignored."""
+    with pytest.raises(TypeError, match=r"ExploreEnv\(\) got an unexpected keyword argument "
+                       r"'clearence' .*did you mean 'clearance'\?"):
+        ExploreEnv(office, clearence=0.3)
+    with pytest.raises(TypeError, match=r"ExploreVectorEnv\(\) .* 'seed' .*reset\(seed=...\)'s"):
+        ExploreVectorEnv(2, office, seed=3)
+    with pytest.raises(TypeError, match="'trajectories'"):
+        ExploreEnv(office, trajectories=True)
+    ExploreEnv(office, clearance=0.25, motion="any-angle", sensing="every-3", coverage="known")
+
+
 def test_bad_actions_name_the_argument(office):
     env = ExploreEnv(office)
     env.reset(seed=0)

@@ -16,6 +16,7 @@ candidates, a baseline episode is exactly ``frontier.explore`` with the same see
 
 from __future__ import annotations
 
+import difflib
 import os
 from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 
@@ -99,6 +100,28 @@ def _action(action: Any) -> int:
     if isinstance(action, bool) or not isinstance(action, (int, np.integer)):
         raise TypeError(f"action: expected an int, found {type(action).__name__}")
     return int(action)
+
+
+#: The run options of :func:`frontier.explore` an environment takes as keyword arguments
+#: (the seed comes from ``reset``; trajectories and clutter are not recorded or taken).
+RUN_OPTIONS = (
+    "belief", "sensing", "clearance", "speed", "s_max", "motion", "coverage", "start", "goal",
+    "max_moves",
+)
+
+
+def _check_run(who: str, run: Dict[str, Any]) -> None:
+    """Raise TypeError for a keyword argument of ``who`` that is not a run option."""
+    for key in run:
+        if key not in RUN_OPTIONS:
+            near = difflib.get_close_matches(str(key), RUN_OPTIONS, n=1, cutoff=0.8)
+            hint = f"; did you mean {near[0]!r}?" if near else ""
+            if key == "seed":
+                hint = "; an episode's seed is reset(seed=...)'s"
+            raise TypeError(
+                f"{who}() got an unexpected keyword argument {key!r} (run options: "
+                f"{', '.join(RUN_OPTIONS)}){hint}"
+            )
 
 
 def _check_invalid_action(invalid_action: str) -> None:
@@ -203,7 +226,8 @@ class ExploreEnv(gymnasium.Env):
             their number, so every action of the space is legal) or ``"raise"``.
         render_mode: ``"rgb_array"`` or None.
         **run: more run options of :func:`frontier.explore` (``belief``, ``sensing``,
-            ``clearance``, ``speed``, ``s_max``).
+            ``clearance``, ``speed``, ``s_max``, ``motion``, ``coverage``, ``start``,
+            ``goal``, ``max_moves``; :data:`RUN_OPTIONS`).
 
     Observation (Dict): ``belief`` (H, W) uint8 (0 unknown, 1 free, 2 occupied),
     ``frontier`` (H, W) uint8 mask, ``pose`` (x, y, heading) float32 in cells and radians,
@@ -236,6 +260,7 @@ class ExploreEnv(gymnasium.Env):
         **run: Any,
     ) -> None:
         _check_invalid_action(invalid_action)
+        _check_run("ExploreEnv", run)
         if render_mode is not None and render_mode not in self.metadata["render_modes"]:
             raise ValueError(f"render_mode: expected 'rgb_array' or None, found {render_mode!r}")
         self._core = _native.EnvCore(
@@ -318,6 +343,7 @@ class ExploreVectorEnv(VectorEnv):
         **run: Any,
     ) -> None:
         _check_invalid_action(invalid_action)
+        _check_run("ExploreVectorEnv", run)
         _count("num_envs", num_envs, 1)
         _count("threads", threads, 1)
         self._core = _native.VecEnvCore(

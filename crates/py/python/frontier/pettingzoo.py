@@ -21,7 +21,7 @@ from gymnasium.utils import seeding
 from pettingzoo import ParallelEnv
 
 from . import _native
-from .gym import MapsArg, _action, _core_args, _episode_seed, _spaces
+from .gym import MapsArg, _action, _check_run, _core_args, _episode_seed, _spaces
 
 __all__ = ["ExploreParallelEnv"]
 
@@ -52,6 +52,7 @@ class ExploreParallelEnv(ParallelEnv):
         gain: bool = False,
         **run: Any,
     ) -> None:
+        _check_run("ExploreParallelEnv", run)
         run = dict(run, robots=robots)
         self._core = _native.TeamEnvCore(
             **_core_args(
