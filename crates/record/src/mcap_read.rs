@@ -10,6 +10,14 @@ use crate::cdr::decode;
 use crate::msgs::OccupancyGrid;
 use crate::occupancy::{MapMsgError, map_from_msg};
 
+/// The longest record read: the largest map message accepted
+/// ([`crate::occupancy::MAX_CELLS`] cells) and its header.
+const MAX_RECORD_BYTES: usize = crate::occupancy::MAX_CELLS + (1 << 20);
+
+/// How many times its own size a recording's records may add up to once decompressed (a
+/// map of unknown cells compresses about this well).
+const MAX_EXPANSION: usize = 1024;
+
 /// Schema names an OccupancyGrid channel may carry (rosbag2 writes the first).
 const GRID_SCHEMAS: [&str; 2] = ["nav_msgs/msg/OccupancyGrid", "nav_msgs/OccupancyGrid"];
 
@@ -81,15 +89,40 @@ pub fn load_map(path: &std::path::Path, topic: Option<&str>) -> Result<GridMap, 
     Ok(map)
 }
 
+/// The messages of the MCAP file in `bytes`, chunks decompressed, with every record's length
+/// bounded before its bytes are allocated: by [`MAX_RECORD_BYTES`] and by [`MAX_EXPANSION`]
+/// times the file's size. (`mcap::MessageStream` trusts a length read from a chunk's
+/// decompressed bytes, so a corrupt chunk could make it allocate exabytes and abort.)
+fn messages(bytes: &[u8]) -> impl Iterator<Item = mcap::McapResult<mcap::Message<'static>>> + '_ {
+    let limit = MAX_RECORD_BYTES.min(bytes.len().saturating_mul(MAX_EXPANSION).max(1 << 20));
+    let mut reader = mcap::sans_io::MessageReader::new_with_options(
+        mcap::sans_io::LinearReaderOptions::default().with_record_length_limit(limit),
+    );
+    let mut rest = bytes;
+    std::iter::from_fn(move || {
+        loop {
+            match reader.next_event()? {
+                Ok(mcap::sans_io::MessageReadEvent::ReadRequest(need)) => {
+                    let n = need.min(rest.len());
+                    reader.insert(n).copy_from_slice(&rest[..n]);
+                    reader.notify_read(n);
+                    rest = &rest[n..];
+                }
+                Ok(mcap::sans_io::MessageReadEvent::Message(m)) => return Some(Ok(m)),
+                Err(e) => return Some(Err(e)),
+            }
+        }
+    })
+}
+
 /// The last OccupancyGrid on `topic` (default: the recording's only OccupancyGrid topic, or
 /// `/map` among several) of the MCAP file in `bytes`, with its topic name.
 pub fn last_map(bytes: &[u8], topic: Option<&str>) -> Result<(GridMap, String), RecordError> {
-    let mcap_err = |e: mcap::McapError| RecordError::Mcap(e.to_string());
     // Pass 1: the topics and their types; the latest message on each grid topic.
     let mut topics: Vec<(String, String, String)> = Vec::new(); // topic, schema, encoding
     let mut latest: Vec<(String, u64, Vec<u8>)> = Vec::new();
-    for m in mcap::MessageStream::new(bytes).map_err(mcap_err)? {
-        let m = m.map_err(mcap_err)?;
+    for m in messages(bytes) {
+        let m = m.map_err(|e| RecordError::Mcap(e.to_string()))?;
         let ch = &m.channel;
         let schema = ch
             .schema
