@@ -89,30 +89,126 @@ pub fn load_map(path: &std::path::Path, topic: Option<&str>) -> Result<GridMap, 
     Ok(map)
 }
 
-/// The messages of the MCAP file in `bytes`, chunks decompressed, with every record's length
-/// bounded before its bytes are allocated: by [`MAX_RECORD_BYTES`] and by [`MAX_EXPANSION`]
-/// times the file's size. (`mcap::MessageStream` trusts a length read from a chunk's
-/// decompressed bytes, so a corrupt chunk could make it allocate exabytes and abort.)
-fn messages(bytes: &[u8]) -> impl Iterator<Item = mcap::McapResult<mcap::Message<'static>>> + '_ {
-    let limit = MAX_RECORD_BYTES.min(bytes.len().saturating_mul(MAX_EXPANSION).max(1 << 20));
-    let mut reader = mcap::sans_io::MessageReader::new_with_options(
-        mcap::sans_io::LinearReaderOptions::default().with_record_length_limit(limit),
-    );
-    let mut rest = bytes;
-    std::iter::from_fn(move || {
-        loop {
-            match reader.next_event()? {
-                Ok(mcap::sans_io::MessageReadEvent::ReadRequest(need)) => {
-                    let n = need.min(rest.len());
-                    reader.insert(n).copy_from_slice(&rest[..n]);
-                    reader.notify_read(n);
-                    rest = &rest[n..];
-                }
-                Ok(mcap::sans_io::MessageReadEvent::Message(m)) => return Some(Ok(m)),
-                Err(e) => return Some(Err(e)),
-            }
+/// A channel of a recording: its topic, its schema's name and its message encoding.
+struct Channel {
+    topic: String,
+    schema: String,
+    encoding: String,
+}
+
+/// The little-endian fields of a record's body, read front to back; every read checks the
+/// length against what is left (`None`: the record is shorter than its fields say).
+struct Fields<'a>(&'a [u8]);
+
+impl<'a> Fields<'a> {
+    fn take(&mut self, n: usize) -> Option<&'a [u8]> {
+        if self.0.len() < n {
+            return None;
         }
-    })
+        let (head, rest) = self.0.split_at(n);
+        self.0 = rest;
+        Some(head)
+    }
+
+    fn u16(&mut self) -> Option<u16> {
+        Some(u16::from_le_bytes(self.take(2)?.try_into().ok()?))
+    }
+
+    fn u32(&mut self) -> Option<u32> {
+        Some(u32::from_le_bytes(self.take(4)?.try_into().ok()?))
+    }
+
+    fn u64(&mut self) -> Option<u64> {
+        Some(u64::from_le_bytes(self.take(8)?.try_into().ok()?))
+    }
+
+    /// A string: its byte length (u32), then its bytes.
+    fn string(&mut self) -> Option<String> {
+        let n = usize::try_from(self.u32()?).ok()?;
+        Some(String::from_utf8_lossy(self.take(n)?).into_owned())
+    }
+}
+
+/// Call `each(channel, log_time, data)` for every message of the MCAP file in `bytes`, in
+/// file order, chunks decompressed. mcap's sans-io reader frames and decompresses the
+/// records with every record's length bounded before its bytes are allocated (by
+/// [`MAX_RECORD_BYTES`] and by [`MAX_EXPANSION`] times the file's size); the three records a
+/// map needs (schema, channel, message) are read here with every inner length checked
+/// against the record, and the others are skipped unread. (`mcap::MessageStream` trusts
+/// lengths read from the file, inside chunks and inside records, so a corrupt file could
+/// make it allocate gigabytes to exabytes and abort.)
+fn for_each_message(
+    bytes: &[u8],
+    mut each: impl FnMut(&Channel, u64, &[u8]),
+) -> Result<(), RecordError> {
+    use mcap::records::op;
+    use mcap::sans_io::{LinearReadEvent, LinearReader, LinearReaderOptions};
+    let limit = MAX_RECORD_BYTES.min(bytes.len().saturating_mul(MAX_EXPANSION).max(1 << 20));
+    let mut reader = LinearReader::new_with_options(
+        LinearReaderOptions::default().with_record_length_limit(limit),
+    );
+    let short = |what: &str| RecordError::Mcap(format!("a {what} record shorter than its fields"));
+    let mut schemas: std::collections::HashMap<u16, String> = Default::default();
+    let mut channels: std::collections::HashMap<u16, Channel> = Default::default();
+    let mut rest = bytes;
+    while let Some(event) = reader.next_event() {
+        match event.map_err(|e| RecordError::Mcap(e.to_string()))? {
+            LinearReadEvent::ReadRequest(need) => {
+                let n = need.min(rest.len());
+                reader.insert(n).copy_from_slice(&rest[..n]);
+                reader.notify_read(n);
+                rest = &rest[n..];
+            }
+            LinearReadEvent::Record { opcode, data } => match opcode {
+                op::SCHEMA => {
+                    let mut f = Fields(data);
+                    let (id, name) = (f.u16(), f.string());
+                    let (Some(id), Some(name)) = (id, name) else {
+                        return Err(short("schema"));
+                    };
+                    schemas.insert(id, name);
+                }
+                op::CHANNEL => {
+                    let mut f = Fields(data);
+                    let (id, schema_id) = (f.u16(), f.u16());
+                    let (topic, encoding) = (f.string(), f.string());
+                    let (Some(id), Some(schema_id), Some(topic), Some(encoding)) =
+                        (id, schema_id, topic, encoding)
+                    else {
+                        return Err(short("channel"));
+                    };
+                    let schema = match schema_id {
+                        0 => String::new(),
+                        s => schemas.get(&s).cloned().ok_or_else(|| {
+                            RecordError::Mcap(format!("channel {id} names unknown schema {s}"))
+                        })?,
+                    };
+                    channels.insert(
+                        id,
+                        Channel {
+                            topic,
+                            schema,
+                            encoding,
+                        },
+                    );
+                }
+                op::MESSAGE => {
+                    let mut f = Fields(data);
+                    let (channel, _sequence, log_time, _publish) =
+                        (f.u16(), f.u32(), f.u64(), f.u64());
+                    let (Some(channel), Some(log_time)) = (channel, log_time) else {
+                        return Err(short("message"));
+                    };
+                    let ch = channels.get(&channel).ok_or_else(|| {
+                        RecordError::Mcap(format!("a message on unknown channel {channel}"))
+                    })?;
+                    each(ch, log_time, f.0);
+                }
+                _ => {}
+            },
+        }
+    }
+    Ok(())
 }
 
 /// The last OccupancyGrid on `topic` (default: the recording's only OccupancyGrid topic, or
@@ -121,37 +217,27 @@ pub fn last_map(bytes: &[u8], topic: Option<&str>) -> Result<(GridMap, String), 
     // Pass 1: the topics and their types; the latest message on each grid topic.
     let mut topics: Vec<(String, String, String)> = Vec::new(); // topic, schema, encoding
     let mut latest: Vec<(String, u64, Vec<u8>)> = Vec::new();
-    for m in messages(bytes) {
-        let m = m.map_err(|e| RecordError::Mcap(e.to_string()))?;
-        let ch = &m.channel;
-        let schema = ch
-            .schema
-            .as_ref()
-            .map(|s| s.name.clone())
-            .unwrap_or_default();
+    for_each_message(bytes, |ch, log_time, data| {
         if !topics.iter().any(|(t, _, _)| *t == ch.topic) {
-            topics.push((
-                ch.topic.clone(),
-                schema.clone(),
-                ch.message_encoding.clone(),
-            ));
+            topics.push((ch.topic.clone(), ch.schema.clone(), ch.encoding.clone()));
         }
         let wanted = match topic {
             Some(t) => ch.topic == t,
-            None => GRID_SCHEMAS.contains(&schema.as_str()),
+            None => GRID_SCHEMAS.contains(&ch.schema.as_str()),
         };
         if !wanted {
-            continue;
+            return;
         }
         match latest.iter_mut().find(|(t, _, _)| *t == ch.topic) {
-            Some(slot) if slot.1 > m.log_time => {}
+            Some(slot) if slot.1 > log_time => {}
             Some(slot) => {
-                slot.1 = m.log_time;
-                slot.2 = m.data.into_owned();
+                slot.1 = log_time;
+                slot.2.clear();
+                slot.2.extend_from_slice(data);
             }
-            None => latest.push((ch.topic.clone(), m.log_time, m.data.into_owned())),
+            None => latest.push((ch.topic.clone(), log_time, data.to_vec())),
         }
-    }
+    })?;
     let listing = || {
         if topics.is_empty() {
             "no messages".to_string()
