@@ -57,11 +57,10 @@ pub struct LazyCosts {
     reachable: Vec<Option<usize>>,
     /// Whether the searches are guided toward the candidates.
     guided: bool,
-    /// The goals searches begun from now on are guided toward, if `toward_some` (else
-    /// every candidate; see [`guide_toward`](Self::guide_toward)), and the set's id.
+    /// The goals searches begun from now on are guided toward and the set's id, if
+    /// `toward_id` is set (else every candidate; see [`guide_toward`](Self::guide_toward)).
     toward: Vec<u32>,
-    toward_some: bool,
-    toward_id: u64,
+    toward_id: Option<u64>,
 }
 
 impl LazyCosts {
@@ -82,7 +81,7 @@ impl LazyCosts {
         self.reachable.clear();
         self.reachable.resize(robots, None);
         self.toward.clear();
-        self.toward_some = false;
+        self.toward_id = None;
     }
 
     /// Guide the searches grown from now on toward `goals` (a subset of the candidates)
@@ -93,10 +92,9 @@ impl LazyCosts {
     pub fn guide_toward(&mut self, goals: impl IntoIterator<Item = u32>) {
         self.toward.clear();
         self.toward.extend(goals);
-        self.toward_some = true;
         // unique in the process, so that sets of two assigners asked in one decision (a
         // Python policy comparing baselines) never share an id
-        self.toward_id = NEXT_GUIDE.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        self.toward_id = Some(NEXT_GUIDE.fetch_add(1, std::sync::atomic::Ordering::Relaxed));
     }
 
     /// Grow robot `r`'s search through bucket `through` (every candidate of cost below
@@ -114,14 +112,14 @@ impl LazyCosts {
             return true;
         }
         let (from, known, upkeep) = (ctx.robots[r], ctx.known, &*ctx.upkeep);
-        let done = match (self.guided, self.toward_some) {
+        let done = match (self.guided, self.toward_id) {
             (false, _) => ctx.planner.grow(r, from, known, upkeep, &[], through),
-            (true, true) => {
-                let goals = (&self.toward[..], self.toward_id);
+            (true, Some(id)) => {
+                let goals = (&self.toward[..], id);
                 ctx.planner
                     .grow_toward(r, from, known, upkeep, goals, through)
             }
-            (true, false) => {
+            (true, None) => {
                 let goals = candidates.cells();
                 ctx.planner.grow(r, from, known, upkeep, goals, through)
             }
