@@ -122,6 +122,17 @@ def _kwargs(
     )
 
 
+def _count(name: str, value: Any, least: int, what: str = "") -> None:
+    """Raise TypeError unless ``value`` is an int (or None), ValueError if below ``least``
+    (the message names the argument, as the CLI's do)."""
+    if value is None:
+        return
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
+        raise TypeError(f"{name}: expected an int, found {type(value).__name__}")
+    if value < least:
+        raise ValueError(f"{name}: expected at least {least}{what}, found {value}")
+
+
 def _check_memory_mb(memory_mb: Any) -> None:
     """``memory_mb`` is None or a positive int (MiB), as the CLI's ``--memory-mb``."""
     if memory_mb is None:
@@ -225,11 +236,7 @@ def explore_many(
                 )
         extras.append(extra)
     _check_memory_mb(memory_mb)
-    if threads is not None:
-        if isinstance(threads, bool) or not isinstance(threads, int):
-            raise TypeError(f"threads: expected an int, found {type(threads).__name__}")
-        if threads < 1:
-            raise ValueError(f"threads: expected at least 1, found {threads}")
+    _count("threads", threads, 1)
     texts = _native.explore_many(native_runs, threads, timing, memory_mb)
     rows = []
     for text, extra in zip(texts, extras):

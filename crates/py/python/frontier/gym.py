@@ -27,7 +27,7 @@ from gymnasium.utils import seeding
 from gymnasium.vector import AutoresetMode, VectorEnv
 from gymnasium.vector.utils import batch_space
 
-from . import _native
+from . import _count, _native
 from ._native import Map
 
 __all__ = ["ExploreEnv", "ExploreVectorEnv", "Baseline", "RandomPolicy", "load_folder"]
@@ -79,17 +79,6 @@ def _source(
         if not isinstance(m, Map):
             raise TypeError(f"maps[{i}]: expected a frontier.Map, found {type(m).__name__}")
     return maps, None
-
-
-def _count(name: str, value: Any, least: int, what: str = "") -> None:
-    """Raise TypeError unless ``value`` is an int (or None), ValueError if below ``least``
-    (the message names the argument, as the CLI's do)."""
-    if value is None:
-        return
-    if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
-        raise TypeError(f"{name}: expected an int, found {type(value).__name__}")
-    if value < least:
-        raise ValueError(f"{name}: expected at least {least}{what}, found {value}")
 
 
 def _action(action: Any) -> int:
