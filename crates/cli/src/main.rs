@@ -56,6 +56,7 @@ enum Command {
 }
 
 fn main() {
+    die_quietly_on_closed_pipe();
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Demo(a) => demo::run(a),
@@ -76,6 +77,22 @@ fn main() {
         std::process::exit(1);
     }
 }
+
+/// Restore the default action of SIGPIPE (end the process), which Rust's runtime sets to
+/// "ignore": `frontier explore --json | head` then ends quietly when `head` stops reading,
+/// as `cat` or `grep` do, instead of panicking in `println!` on the broken pipe.
+#[cfg(unix)]
+fn die_quietly_on_closed_pipe() {
+    // SAFETY: called first thing in `main`, before any other thread exists; `signal` with
+    // `SIG_DFL` installs no handler code of ours.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+    }
+}
+
+/// SIGPIPE exists only on Unix; elsewhere a closed pipe stays an I/O error.
+#[cfg(not(unix))]
+fn die_quietly_on_closed_pipe() {}
 
 fn list() {
     println!("strategies (--strategy):");

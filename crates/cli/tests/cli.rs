@@ -1217,3 +1217,29 @@ resolution = 0.5
     let msg = err(&["bench", s, "--db", d, "--trials", "0"]);
     assert!(msg.contains("--trials: expected at least 1"), "{msg}");
 }
+
+/// Regression: `frontier ... | head` panicked in `println!` ("failed printing to stdout:
+/// Broken pipe") with a backtrace once the reader had gone.
+#[cfg(unix)]
+#[test]
+fn regression_closed_stdout_pipe_ends_quietly() {
+    use std::os::unix::process::ExitStatusExt;
+    use std::process::Stdio;
+    let mut child = Command::new(env!("CARGO_BIN_EXE_frontier"))
+        .args(["explore", "--env", "office", "--seed", "1", "--json"])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("run frontier");
+    // Close the only read end before the run has printed anything.
+    drop(child.stdout.take());
+    let out = child.wait_with_output().expect("wait for frontier");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert_eq!(
+        out.status.signal(),
+        Some(13),
+        "ended by SIGPIPE: {:?}",
+        out.status
+    );
+}
