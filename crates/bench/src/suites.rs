@@ -12,7 +12,7 @@ use crate::scenario::Source;
 pub const SUITES: &[(&str, &str, &str)] = &[
     (
         "quick",
-        "a small cross-section that finishes in about a minute on 2 cores",
+        "a small cross-section that finishes in seconds on 2 cores",
         include_str!("../suites/quick.toml"),
     ),
     (
