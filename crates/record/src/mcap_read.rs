@@ -75,16 +75,16 @@ pub const MAX_FILE_BYTES: u64 = 8 << 30;
 /// The last OccupancyGrid on `topic` of the MCAP recording at `path` ([`last_map`]); the
 /// error names the file. Used by every front end that takes a recording as a map.
 pub fn load_map(path: &std::path::Path, topic: Option<&str>) -> Result<GridMap, String> {
-    let reading = |e: std::io::Error| format!("reading {}: {e}", path.display());
-    let len = std::fs::metadata(path).map_err(reading)?.len();
-    if len > MAX_FILE_BYTES {
-        return Err(format!(
-            "{}: expected a recording of at most {MAX_FILE_BYTES} bytes, found {len}; record \
+    // Bounded like a map file: a device, pipe or directory is refused unread (`/dev/zero`
+    // reports length 0 and reads without end), and so is a file over the limit.
+    let bytes = grid::io::read_bytes_at_most(path, MAX_FILE_BYTES).map_err(|e| match e.kind {
+        grid::io::MapErrorKind::FileTooLarge { size, .. } => format!(
+            "{}: expected a recording of at most {MAX_FILE_BYTES} bytes, found {size}; record \
              only the map topic (ros2 bag record /map)",
             path.display()
-        ));
-    }
-    let bytes = std::fs::read(path).map_err(reading)?;
+        ),
+        _ => e.to_string(),
+    })?;
     let (map, _) = last_map(&bytes, topic).map_err(|e| format!("{}: {e}", path.display()))?;
     Ok(map)
 }

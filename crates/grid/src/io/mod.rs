@@ -283,8 +283,18 @@ pub(crate) fn check_size(width: u64, height: u64, path: &Path) -> Result<(), Map
     }
 }
 
-/// Read a whole file, refusing ones larger than [`MAX_FILE_BYTES`].
-pub(crate) fn read_bytes(path: &Path) -> Result<Vec<u8>, MapError> {
+/// Read a whole regular file of at most [`MAX_FILE_BYTES`]; others are refused unread.
+pub fn read_bytes(path: &Path) -> Result<Vec<u8>, MapError> {
+    read_bytes_at_most(path, MAX_FILE_BYTES)
+}
+
+/// Read a whole regular file of at most `limit` bytes, as [`read_bytes`] with another limit.
+///
+/// Devices, pipes, sockets and directories are refused before reading: a device such as
+/// `/dev/zero` reads without end, a pipe can block for ever, and neither has a size to
+/// check. A file larger than `limit` is refused from its size, and one that grows past
+/// `limit` while read is refused once `limit` bytes have been read.
+pub fn read_bytes_at_most(path: &Path, limit: u64) -> Result<Vec<u8>, MapError> {
     let err = |e| MapError::new(path, MapErrorKind::Read(e));
     let meta = std::fs::metadata(path).map_err(err)?;
     if !meta.is_file() {
@@ -302,13 +312,10 @@ pub(crate) fn read_bytes(path: &Path) -> Result<Vec<u8>, MapError> {
         ));
     }
     let size = meta.len();
-    if size > MAX_FILE_BYTES {
+    if size > limit {
         return Err(MapError::new(
             path,
-            MapErrorKind::FileTooLarge {
-                size,
-                limit: MAX_FILE_BYTES,
-            },
+            MapErrorKind::FileTooLarge { size, limit },
         ));
     }
     // A device or a file growing while read (e.g. /dev/zero, whose size reads 0) must not be
@@ -316,16 +323,16 @@ pub(crate) fn read_bytes(path: &Path) -> Result<Vec<u8>, MapError> {
     let mut bytes = Vec::with_capacity(size as usize);
     let file = std::fs::File::open(path).map_err(err)?;
     std::io::Read::read_to_end(
-        &mut std::io::Read::take(file, MAX_FILE_BYTES + 1),
+        &mut std::io::Read::take(file, limit.saturating_add(1)),
         &mut bytes,
     )
     .map_err(err)?;
-    if bytes.len() as u64 > MAX_FILE_BYTES {
+    if bytes.len() as u64 > limit {
         return Err(MapError::new(
             path,
             MapErrorKind::FileTooLarge {
                 size: bytes.len() as u64,
-                limit: MAX_FILE_BYTES,
+                limit,
             },
         ));
     }

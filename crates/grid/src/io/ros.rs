@@ -27,7 +27,7 @@ use super::error::{MapError, MapErrorKind};
 use super::pgm::decode_pgm;
 use super::png::decode_png;
 use super::raster::Thresholds;
-use super::{LoadOptions, MAX_FILE_BYTES, check_resolution, finish, finished_size_check};
+use super::{LoadOptions, check_resolution, finish, finished_size_check, read_bytes};
 use crate::occ::GridMap;
 
 /// How map_server turns pixel values into occupancy.
@@ -224,29 +224,14 @@ pub fn parse_ros_yaml(
             },
         )
     };
-    let size = std::fs::metadata(&image).map_err(image_err)?.len();
-    if size > MAX_FILE_BYTES {
-        return Err(MapError::new(
-            &image,
-            MapErrorKind::FileTooLarge {
-                size,
-                limit: MAX_FILE_BYTES,
-            },
-        ));
-    }
-    let bytes = std::fs::read(&image).map_err(image_err)?;
     let ext = image
         .extension()
         .and_then(|e| e.to_str())
         .unwrap_or("")
         .to_ascii_lowercase();
-    let res = opts
-        .resolution
-        .unwrap_or((meta.resolution, meta.resolution));
-    let fits = finished_size_check(res, opts.border);
-    let raster = match ext.as_str() {
-        "pgm" | "pnm" => decode_pgm(&bytes, &image, &fits)?,
-        "png" => decode_png(&bytes, &image, &fits)?,
+    let decode = match ext.as_str() {
+        "pgm" | "pnm" => decode_pgm,
+        "png" => decode_png,
         _ => {
             return Err(MapError::new(
                 yaml_path,
@@ -258,6 +243,19 @@ pub fn parse_ros_yaml(
             ));
         }
     };
+    // The image may be anything the YAML names (a device, a pipe, a huge file): read it
+    // with the same bounds as a map file, reporting failures as the YAML's image.
+    let bytes = read_bytes(&image).map_err(|e| {
+        image_err(match e.kind {
+            MapErrorKind::Read(source) => source,
+            kind => std::io::Error::new(std::io::ErrorKind::InvalidInput, kind.to_string()),
+        })
+    })?;
+    let res = opts
+        .resolution
+        .unwrap_or((meta.resolution, meta.resolution));
+    let fits = finished_size_check(res, opts.border);
+    let raster = decode(&bytes, &image, &fits)?;
     let cells = match meta.mode {
         RosMode::Trinary | RosMode::Scale => meta.thresholds.classify_raster(&raster),
         RosMode::Raw => meta.thresholds.classify_raw(&raster),
