@@ -77,6 +77,25 @@ pub enum SenseError {
         /// The angle given, in degrees.
         found: f64,
     },
+    /// A sensor's range, at the map's resolution, is under one cell or over the kind's
+    /// largest: the robot would see only its own cell, or the scan could not be built.
+    #[error(
+        "sensor '{spec}': range {cells} cells at {resolution} m per cell: expected 1 to {max} \
+         cells ({min_m} to {max_m} m){why}",
+        min_m = resolution,
+        max_m = max * resolution,
+        why = if *cells < 1.0 { "; with less the robot sees only the cell it stands on" } else { "" }
+    )]
+    RangeOutOfBounds {
+        /// The spec as written back (`los:r=0.01`).
+        spec: String,
+        /// The range in cells at this resolution.
+        cells: f64,
+        /// The map's metres per cell.
+        resolution: f64,
+        /// The kind's largest range in cells.
+        max: f64,
+    },
     /// A map resolution (metres per cell) is not a positive finite number.
     #[error("map resolution: expected a positive number of metres per cell, found {0}")]
     BadResolution(f64),

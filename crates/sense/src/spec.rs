@@ -115,14 +115,33 @@ impl SensorSpec {
             return Err(SenseError::BadResolution(resolution));
         }
         let r = self.range_cells(resolution);
-        Ok(match *self {
-            SensorSpec::Los { .. } => Box::new(LosSensor::new(r)?),
-            SensorSpec::Footprint { .. } => Box::new(FootprintSensor::new(r)?),
-            SensorSpec::Square { .. } => Box::new(SquareSensor::new(r)?),
-            SensorSpec::Lidar {
-                fov_deg, res_deg, ..
-            } => Box::new(LidarSensor::new(r, fov_deg, res_deg)?),
-            SensorSpec::Sonar { .. } => Box::new(LidarSensor::new(r, 360.0, 1.0)?),
+        let out_of_bounds = |max| SenseError::RangeOutOfBounds {
+            spec: self.to_string(),
+            cells: r,
+            resolution,
+            max,
+        };
+        let max = match self {
+            SensorSpec::Los { .. } => crate::ray_template::MAX_TEMPLATE_RANGE_CELLS,
+            _ => crate::footprint::MAX_RANGE_CELLS,
+        };
+        if r.is_nan() || r < 1.0 {
+            return Err(out_of_bounds(max));
+        }
+        let built: Result<Box<dyn Sensor>, SenseError> = (|| {
+            Ok(match *self {
+                SensorSpec::Los { .. } => Box::new(LosSensor::new(r)?) as Box<dyn Sensor>,
+                SensorSpec::Footprint { .. } => Box::new(FootprintSensor::new(r)?),
+                SensorSpec::Square { .. } => Box::new(SquareSensor::new(r)?),
+                SensorSpec::Lidar {
+                    fov_deg, res_deg, ..
+                } => Box::new(LidarSensor::new(r, fov_deg, res_deg)?),
+                SensorSpec::Sonar { .. } => Box::new(LidarSensor::new(r, 360.0, 1.0)?),
+            })
+        })();
+        built.map_err(|e| match e {
+            SenseError::BadRange { max, .. } => out_of_bounds(max),
+            e => e,
         })
     }
 
@@ -451,6 +470,45 @@ mod tests {
         }
     }
 
+    /// Regression: `los:r=0.0001` was built as a sensor of 0.001 cells, which sees only the
+    /// robot's own cell: the run ended at once with "no reachable frontier" and exit 0.
+    #[test]
+    fn regression_sensor_range_under_a_cell_is_refused() {
+        for (spec, res) in [
+            ("los:r=0.0001", 0.1),
+            ("lidar:r=0.04", 0.05),
+            ("footprint:r=0.5c", 1.0),
+        ] {
+            let e = parse(spec)
+                .expect("valid")
+                .build(res)
+                .err()
+                .expect("refused");
+            assert!(
+                matches!(e, SenseError::RangeOutOfBounds { .. }),
+                "{spec}: {e}"
+            );
+            let msg = e.to_string();
+            assert!(msg.contains("expected 1 to"), "{msg}");
+            assert!(msg.contains("sees only the cell it stands on"), "{msg}");
+        }
+        assert!(parse("los:r=0.1").expect("valid").build(0.1).is_ok());
+    }
+
+    #[test]
+    fn too_long_a_range_is_named_in_cells_and_metres() {
+        let e = parse("los:r=200")
+            .expect("valid")
+            .build(0.5)
+            .err()
+            .expect("refused");
+        assert_eq!(
+            e.to_string(),
+            "sensor 'los:r=200': range 400 cells at 0.5 m per cell: expected 1 to 256 cells \
+             (0.5 to 128 m)"
+        );
+    }
+
     #[test]
     fn display_round_trips() {
         for s in [
@@ -496,7 +554,7 @@ mod tests {
         // 100 m at 5 cm is 2000 cells: too large for a template, an error and no panic.
         assert!(matches!(
             parse("los:r=100").expect("valid").build(0.05),
-            Err(SenseError::BadRange { .. })
+            Err(SenseError::RangeOutOfBounds { .. })
         ));
         assert!(parse("footprint:r=3").expect("valid").build(0.5).is_ok());
     }
