@@ -736,6 +736,10 @@ impl<'a> Session<'a> {
     }
 }
 
+/// The robot speeds accepted, in metres per second: a millimetre to a kilometre a second.
+/// Times are path lengths over the speed, so a speed near 0 made them infinite.
+pub const SPEED_RANGE: std::ops::RangeInclusive<f64> = 0.001..=1000.0;
+
 fn validate(cfg: &RunConfig) -> Result<(), SimError> {
     let bad = |field, expected, found: String| {
         Err(SimError::BadParameter {
@@ -754,10 +758,10 @@ fn validate(cfg: &RunConfig) -> Result<(), SimError> {
             cfg.belief.to_string(),
         );
     }
-    if !(cfg.speed.is_finite() && cfg.speed > 0.0) {
+    if !SPEED_RANGE.contains(&cfg.speed) {
         return bad(
             "--speed",
-            "a positive number of metres per second",
+            "a positive number of metres per second, from 0.001 to 1000",
             cfg.speed.to_string(),
         );
     }

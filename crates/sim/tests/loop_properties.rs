@@ -203,8 +203,13 @@ fn bad_parameters_are_named() {
     let e = sim::run(&env.map, &cfg).unwrap_err().to_string();
     assert_eq!(
         e,
-        "--speed: expected a positive number of metres per second, found 0"
+        "--speed: expected a positive number of metres per second, from 0.001 to 1000, found 0"
     );
+    // Regression: a speed of 1e-308 m/s was accepted and every time came out infinite.
+    let mut cfg = RunConfig::new(Strategy::preset("cf").unwrap());
+    cfg.speed = 1e-308;
+    let e = sim::run(&env.map, &cfg).unwrap_err().to_string();
+    assert!(e.starts_with("--speed: expected"), "{e}");
     let mut cfg = RunConfig::new(Strategy::preset("cf").unwrap());
     cfg.starts = vec![grid::Cell::new(0, 0)];
     let e = sim::run(&env.map, &cfg).unwrap_err().to_string();
