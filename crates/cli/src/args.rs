@@ -1,6 +1,6 @@
 //! Flags shared by several commands, and their resolution into maps and configurations.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result, bail};
 use clap::Args;
@@ -148,6 +148,9 @@ impl MapSource {
             if self.size.is_some() {
                 bail!("--size applies to generated environments (--env), not to --map");
             }
+            if self.env_seed.is_some() {
+                bail!("--env-seed applies to generated environments (--env), not to --map");
+            }
             let opts = grid::io::LoadOptions {
                 resolution,
                 border: self.border,
@@ -170,8 +173,7 @@ impl MapSource {
                 let Some((rx, _)) = resolution.filter(|(x, y)| x == y) else {
                     bail!("--dungeon: expected one --resolution (square cells) for the PNG");
                 };
-                let bytes = std::fs::read(path)
-                    .with_context(|| format!("{}: cannot read", path.display()))?;
+                let bytes = grid::io::read_bytes(path)?;
                 let d = grid::io::parse_dungeon(&bytes, path, rx)?;
                 start = Some(d.start);
                 d.map
@@ -195,6 +197,12 @@ impl MapSource {
                 clutter,
                 start,
             });
+        }
+        if self.border {
+            bail!("--border adds a wall around a bare bitmap --map, not to --env");
+        }
+        if self.dungeon {
+            bail!("--dungeon reads --map as a dungeon PNG; it does not apply to --env");
         }
         let kind: EnvKind = self
             .env
@@ -266,4 +274,37 @@ impl MapSource {
             .collect();
         Ok(Grid::from_vec(map.width(), map.height(), cells))
     }
+}
+
+/// Check, before a run, that the file `flag` names can be written: its folder exists and it
+/// is not itself a folder, so that a long run does not end in an error about its output.
+pub fn check_output_file(flag: &str, path: &Path) -> Result<()> {
+    if path.is_dir() {
+        bail!(
+            "{flag} {}: expected a file name, found a folder",
+            path.display()
+        );
+    }
+    let folder = match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => Path::new("."),
+    };
+    if !folder.is_dir() {
+        bail!(
+            "{flag} {}: expected a file in an existing folder, found no folder {}",
+            path.display(),
+            folder.display()
+        );
+    }
+    Ok(())
+}
+
+/// Create the output folder `flag` names before a run (or reuse it), so that a bad path is
+/// refused before the work rather than after it.
+pub fn make_output_folder(flag: &str, dir: &Path) -> Result<()> {
+    if dir.exists() && !dir.is_dir() {
+        bail!("{flag} {}: expected a folder, found a file", dir.display());
+    }
+    std::fs::create_dir_all(dir)
+        .with_context(|| format!("{flag} {}: cannot create the folder", dir.display()))
 }

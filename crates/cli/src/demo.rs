@@ -55,17 +55,39 @@ pub fn mean_sd(v: &[f64]) -> (f64, f64) {
     (mean, var.sqrt())
 }
 
+/// The most seeds `demo` and `sensors` take: they generate every environment before the
+/// first run, so a mistyped count (`--seeds 4294967296`) would fill the memory; larger
+/// studies belong in `frontier bench`, which plans and checks them first.
+pub const MAX_SEEDS: u64 = 1000;
+
+/// Refuse a seed count of 0 or over [`MAX_SEEDS`].
+pub fn check_seeds(seeds: u64) -> Result<()> {
+    if !(1..=MAX_SEEDS).contains(&seeds) {
+        bail!(
+            "--seeds: expected 1 to {MAX_SEEDS} (a larger study is a scenario for `frontier \
+             bench`), found {seeds}"
+        );
+    }
+    Ok(())
+}
+
 /// Run `frontier demo`.
 pub fn run(a: DemoArgs) -> Result<()> {
-    if a.seeds == 0 {
-        bail!("--seeds: expected at least 1, found 0");
-    }
+    check_seeds(a.seeds)?;
+    crate::args::make_output_folder("--out", &a.out)?;
     let kinds: Vec<EnvKind> = parse_list(&a.envs, "--envs", str::parse)?;
     let strategies = parse_list(&a.strategies, "--strategies", Strategy::preset)?;
     let sensor: SensorSpec = a
         .sensor
         .parse()
         .map_err(|e| anyhow::anyhow!("--sensor: {e}"))?;
+    if sensor.sonar_mode().is_some() {
+        bail!(
+            "--sensor: expected a range sensor the demo's known grid can take, found {sensor} \
+             (a sonar ring needs the evidence grid: `frontier explore --belief evidence`, or \
+             `frontier sensors`)"
+        );
+    }
     // One environment per (kind, seed), shared by all strategies.
     let envs: Vec<Vec<world::Environment>> = kinds
         .iter()
@@ -113,7 +135,6 @@ pub fn run(a: DemoArgs) -> Result<()> {
         .collect();
     let elapsed = started.elapsed().as_secs_f64();
 
-    std::fs::create_dir_all(&a.out).with_context(|| format!("creating {}", a.out.display()))?;
     let mut incomplete = Vec::new();
     let mut table = String::new();
     table += &format!(

@@ -124,11 +124,18 @@ pub fn check_memory(cfg: &RunConfig, truth: &Truth, memory_mb: Option<u64>) -> R
 
 /// Run `frontier explore`.
 pub fn run(a: ExploreArgs) -> Result<()> {
+    for (flag, path) in [("--gif", &a.gif), ("--html", &a.html), ("--mcap", &a.mcap)] {
+        if let Some(path) = path {
+            crate::args::check_output_file(flag, path)?;
+        }
+    }
+    if let Some(dir) = &a.out {
+        crate::args::make_output_folder("--out", dir)?;
+    }
     let truth = a.source.resolve(a.seed)?;
     let cfg = config(&a, &truth)?;
     let result = sim::run(&truth.map, &cfg)?;
     if let Some(dir) = &a.out {
-        std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
         let png = dir.join("final.png");
         viz::final_picture(&truth.map, &result)
             .save(&png)

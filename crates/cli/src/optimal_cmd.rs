@@ -157,6 +157,9 @@ fn default_start(map: &grid::GridMap) -> Option<Cell> {
 
 /// Run `frontier optimal`.
 pub fn run(a: OptimalArgs) -> Result<()> {
+    if let Some(dir) = &a.out {
+        crate::args::make_output_folder("--out", dir)?;
+    }
     let truth = a.source.resolve(a.seed)?.plane_only("optimal")?;
     let map = &truth.map;
     let spec: SensorSpec = a
@@ -282,7 +285,6 @@ pub fn run(a: OptimalArgs) -> Result<()> {
     }
 
     if let Some(dir) = &a.out {
-        std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
         let png = dir.join("optimal.png");
         picture(&co, &out)
             .save(&png)

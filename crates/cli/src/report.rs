@@ -63,11 +63,14 @@ pub fn summary_text(truth: &Truth, cfg: &RunConfig, r: &RunResult) -> String {
         cfg.sensing_mode(),
         cfg.seed
     );
+    let of = match cfg.coverage {
+        sim::CoverageKind::ReachableFree => format!("of {} reachable cells", r.reachable_cells),
+        sim::CoverageKind::Known => "of the cells the map knows (--coverage known)".to_string(),
+    };
     s += &format!(
-        "ended: {} · coverage {:.2} % of {} reachable cells\n",
+        "ended: {} · coverage {:.2} % {of}\n",
         r.reason.as_str(),
         r.coverage * 100.0,
-        r.reachable_cells
     );
     if r.path_length_m.len() == 1 {
         s += &format!(

@@ -48,9 +48,7 @@ pub struct SensorsArgs {
 
 /// Run `frontier sensors`.
 pub fn run(a: SensorsArgs) -> Result<()> {
-    if a.seeds == 0 {
-        bail!("--seeds: expected at least 1, found 0");
-    }
+    crate::demo::check_seeds(a.seeds)?;
     if !(a.resolution.is_finite() && a.resolution > 0.0) {
         bail!(
             "--resolution: expected a positive number of metres per cell, found {}",

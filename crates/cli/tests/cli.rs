@@ -1243,3 +1243,96 @@ fn regression_closed_stdout_pipe_ends_quietly() {
         out.status
     );
 }
+
+/// Regression: with `--coverage known` the summary said "coverage 98.95 % of 1525
+/// reachable cells", the denominator of the other coverage.
+#[test]
+fn regression_coverage_known_summary_names_what_it_counts() {
+    let out = ok(&["explore", "--env", "office", "--coverage", "known"]);
+    assert!(
+        out.contains("of the cells the map knows (--coverage known)"),
+        "{out}"
+    );
+    assert!(!out.contains("reachable cells"), "{out}");
+}
+
+/// Regression: `--border`, `--dungeon` and `--env-seed` were silently ignored where they do
+/// not apply.
+#[test]
+fn regression_map_flags_that_do_not_apply_are_refused() {
+    let e = err(&["explore", "--env", "office", "--border"]);
+    assert!(
+        e.contains("--border adds a wall around a bare bitmap --map"),
+        "{e}"
+    );
+    let e = err(&["explore", "--env", "office", "--dungeon"]);
+    assert!(e.contains("--dungeon reads --map as a dungeon PNG"), "{e}");
+    let dir = tempfile::tempdir().expect("temp dir");
+    let yaml = dir.path().join("o.yaml");
+    let y = yaml.to_str().expect("utf-8 path");
+    ok(&["env", "office", "--size", "12x10", "--out", y]);
+    let e = err(&["explore", "--map", y, "--env-seed", "3"]);
+    assert!(
+        e.contains("--env-seed applies to generated environments"),
+        "{e}"
+    );
+}
+
+/// Regression: `demo --seeds 4294967296` generated environments until the memory was gone,
+/// and `demo --sensor sonar` blamed a `--belief` flag demo does not have.
+#[test]
+fn regression_demo_refuses_what_it_cannot_run() {
+    let e = err(&["demo", "--seeds", "4294967296"]);
+    assert!(e.contains("--seeds: expected 1 to 1000"), "{e}");
+    let e = err(&["sensors", "--seeds", "100000"]);
+    assert!(e.contains("--seeds: expected 1 to 1000"), "{e}");
+    let e = err(&["demo", "--seeds", "1", "--sensor", "sonar"]);
+    assert!(e.contains("--sensor: expected a range sensor"), "{e}");
+}
+
+/// Regression: output paths were tried only after the run (`--out` naming a file failed
+/// with "File exists" once the exploration was done).
+#[test]
+fn regression_output_paths_are_checked_before_the_run() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let file = dir.path().join("afile");
+    std::fs::write(&file, b"x").expect("write");
+    let f = file.to_str().expect("utf-8 path");
+    let e = err(&["explore", "--env", "office", "--out", f]);
+    assert!(e.contains("expected a folder, found a file"), "{e}");
+    let e = err(&["optimal", "--env", "office", "--size", "6x5", "--out", f]);
+    assert!(e.contains("expected a folder, found a file"), "{e}");
+    let gif = dir.path().join("no-such-folder").join("run.gif");
+    let e = err(&[
+        "explore",
+        "--env",
+        "office",
+        "--gif",
+        gif.to_str().expect("utf-8"),
+    ]);
+    assert!(
+        e.contains("--gif") && e.contains("expected a file in an existing folder"),
+        "{e}"
+    );
+    let d = dir.path().to_str().expect("utf-8 path");
+    let e = err(&["explore", "--env", "office", "--html", d]);
+    assert!(e.contains("expected a file name, found a folder"), "{e}");
+}
+
+/// Regression: `--dungeon --map /dev/zero` read the device until the memory was gone.
+#[cfg(unix)]
+#[test]
+fn regression_dungeon_map_from_a_device_is_refused() {
+    let e = err(&[
+        "explore",
+        "--dungeon",
+        "--map",
+        "/dev/zero",
+        "--resolution",
+        "0.1",
+    ]);
+    assert!(
+        e.contains("/dev/zero") && e.contains("a device, pipe or socket"),
+        "{e}"
+    );
+}

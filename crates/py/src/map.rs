@@ -120,8 +120,7 @@ impl Map {
                     "dungeon: expected one resolution (square cells) for the PNG",
                 ));
             };
-            let bytes = std::fs::read(&path)
-                .map_err(|e| value_error(format!("{}: cannot read: {e}", path.display())))?;
+            let bytes = grid::io::read_bytes(&path).map_err(value_error)?;
             let d = grid::io::parse_dungeon(&bytes, &path, r).map_err(value_error)?;
             let mut m = Self::new(d.map, name);
             m.start = Some(d.start);
