@@ -313,7 +313,7 @@ fn negative_size() {
 fn bad_resolution() {
     assert_eq!(
         msg(parse_ascii("..", 0.0)),
-        "<memory>: resolution must be a positive finite number of metres per cell, found 0"
+        "<memory>: resolution must be a positive number of metres per cell, at most 1000, found 0"
     );
     assert_eq!(
         msg(parse_movingai(
@@ -321,8 +321,15 @@ fn bad_resolution() {
             Path::new("r.map"),
             -1.0
         )),
-        "r.map: resolution must be a positive finite number of metres per cell, found -1"
+        "r.map: resolution must be a positive number of metres per cell, at most 1000, found -1"
     );
+    // Regression: 1e308 m per cell was accepted and every path length came out infinite.
+    assert_eq!(
+        msg(parse_ascii("..", 1e6)),
+        "<memory>: resolution must be a positive number of metres per cell, at most 1000, \
+         found 1000000"
+    );
+    assert!(msg(parse_ascii("..", 1e308)).contains("at most 1000"));
     let dir = scratch("bad-resolution");
     let path = dir.join("a.txt");
     std::fs::write(&path, "..\n").expect("write");
@@ -333,7 +340,7 @@ fn bad_resolution() {
     let e = msg(load_map(&path, &opts));
     assert!(
         e.ends_with(
-            "a.txt: resolution must be a positive finite number of metres per cell, found NaN"
+            "a.txt: resolution must be a positive number of metres per cell, at most 1000, found NaN"
         ),
         "{e}"
     );

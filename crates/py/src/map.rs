@@ -42,13 +42,22 @@ fn resolution_arg(v: Option<&Bound<'_, PyAny>>) -> PyResult<Option<(f64, f64)>> 
         )));
     };
     for r in [x, y] {
-        if !(r.is_finite() && r > 0.0) {
-            return Err(value_error(format!(
-                "--resolution: expected a positive number of metres per cell, found '{r}'"
-            )));
-        }
+        check_resolution(r)?;
     }
     Ok(Some((x, y)))
+}
+
+/// The CLI's `--resolution` rule and message: a positive number of metres per cell, at most
+/// [`grid::io::MAX_RESOLUTION_M`].
+fn check_resolution(r: f64) -> PyResult<()> {
+    if r > 0.0 && r <= grid::io::MAX_RESOLUTION_M {
+        Ok(())
+    } else {
+        Err(value_error(format!(
+            "--resolution: expected a positive number of metres per cell, at most {}, found '{r}'",
+            grid::io::MAX_RESOLUTION_M
+        )))
+    }
 }
 
 /// A size in metres: (width, height).
@@ -136,11 +145,7 @@ impl Map {
     #[staticmethod]
     #[pyo3(signature = (array, resolution, name="array".to_string()))]
     fn from_numpy(array: &Bound<'_, PyAny>, resolution: f64, name: String) -> PyResult<Self> {
-        if !(resolution.is_finite() && resolution > 0.0) {
-            return Err(value_error(format!(
-                "--resolution: expected a positive number of metres per cell, found '{resolution}'"
-            )));
-        }
+        check_resolution(resolution)?;
         let cells: Vec<Occ>;
         let (h, w);
         if let Ok(a) = array.extract::<PyReadonlyArray2<'_, bool>>() {
@@ -202,12 +207,8 @@ impl Map {
         let kind: EnvKind = kind
             .parse()
             .map_err(|e| value_error(format!("--env: {e}")))?;
-        if let Some(r) = resolution
-            && !(r.is_finite() && r > 0.0)
-        {
-            return Err(value_error(format!(
-                "--resolution: expected a positive number of metres per cell, found '{r}'"
-            )));
+        if let Some(r) = resolution {
+            check_resolution(r)?;
         }
         let spec = EnvSpec {
             kind,

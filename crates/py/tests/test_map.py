@@ -55,6 +55,9 @@ def test_bad_values_raise_value_error(tmp_path):
         frontier.Map.from_numpy(a, 0.1)
     with pytest.raises(ValueError, match="--resolution: expected a positive number"):
         frontier.Map.from_numpy(np.ones((3, 3), dtype=np.uint8), -1.0)
+    # Regression: 1e308 m per cell was accepted and every length came out infinite.
+    with pytest.raises(ValueError, match="--resolution: expected a positive number of metres per cell, at most 1000"):
+        frontier.Map.from_numpy(np.ones((3, 3), dtype=np.uint8), 1e308)
     with pytest.raises(ValueError, match="--env: "):
         frontier.Map.generate("castle")
     with pytest.raises(ValueError, match="--resolution is required for a bare bitmap"):

@@ -54,8 +54,11 @@ pub enum MapErrorKind {
     /// A bare bitmap or a HouseExpo plan (the file named) was loaded without a resolution.
     #[error("--resolution is required for {0}")]
     ResolutionRequired(&'static str),
-    /// A resolution was zero, negative or not finite.
-    #[error("resolution must be a positive finite number of metres per cell, found {0}")]
+    /// A resolution was zero, negative, not finite or over [`super::MAX_RESOLUTION_M`].
+    #[error(
+        "resolution must be a positive number of metres per cell, at most {max}, found {0}",
+        max = super::MAX_RESOLUTION_M
+    )]
     BadResolution(f64),
     /// A map with no cells.
     #[error("empty map: width {width} and height {height} must both be positive")]

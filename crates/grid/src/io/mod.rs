@@ -43,6 +43,10 @@ use crate::grid::Grid;
 use crate::occ::{GridMap, Occ};
 use crate::resample;
 
+/// The coarsest cell a map may have, in metres: a kilometre. Lengths are cells times the
+/// resolution, so a resolution near the largest float made every path length infinite.
+pub const MAX_RESOLUTION_M: f64 = 1000.0;
+
 /// The largest map accepted, in cells (2²⁸ ≈ 268 million); larger ones are refused before
 /// allocating.
 pub const MAX_CELLS: u64 = 1 << 28;
@@ -253,9 +257,9 @@ pub(crate) fn finish(
     Ok(map)
 }
 
-/// Error unless `r` is a positive finite resolution.
+/// Error unless `r` is a positive resolution of at most [`MAX_RESOLUTION_M`].
 pub(crate) fn check_resolution(r: f64, path: &Path) -> Result<(), MapError> {
-    if r.is_finite() && r > 0.0 {
+    if r > 0.0 && r <= MAX_RESOLUTION_M {
         Ok(())
     } else {
         Err(MapError::new(path, MapErrorKind::BadResolution(r)))
