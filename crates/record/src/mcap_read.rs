@@ -7,12 +7,18 @@
 use grid::GridMap;
 
 use crate::cdr::decode;
-use crate::msgs::OccupancyGrid;
-use crate::occupancy::{MapMsgError, map_from_msg};
+use crate::msgs::{Header, MapMetaData, OccupancyGrid};
+use crate::occupancy::{MapMsgError, cells_of, map_from_msg};
+
+/// Bytes a map message record holds besides its cells: the record's own fields, the CDR
+/// header, the message's header and metadata (about 130 bytes) and its frame id. Kept
+/// small so that a map over the cell limit is refused from its record length, before its
+/// cells are decompressed; frame ids are a few characters.
+const MAX_MAP_FIELD_BYTES: usize = 4 << 10;
 
 /// The longest record read: the largest map message accepted
-/// ([`crate::occupancy::MAX_CELLS`] cells) and its header.
-const MAX_RECORD_BYTES: usize = crate::occupancy::MAX_CELLS + (1 << 20);
+/// ([`crate::occupancy::MAX_CELLS`] cells) and its other fields.
+const MAX_RECORD_BYTES: usize = crate::occupancy::MAX_CELLS + MAX_MAP_FIELD_BYTES;
 
 /// How many times its own size a recording's records may add up to once decompressed (a
 /// map of unknown cells compresses about this well).
@@ -54,6 +60,17 @@ pub enum RecordError {
         /// The message's log time.
         log_time: u64,
         /// What failed.
+        why: String,
+    },
+    /// A message longer than the largest map message accepted, or than the file could hold
+    /// compressed; refused from its length, before its bytes are decompressed.
+    #[error("expected messages of at most {limit} bytes ({why}), found one of {len} bytes")]
+    TooLong {
+        /// The message record's length in bytes.
+        len: u64,
+        /// The longest record read.
+        limit: usize,
+        /// Where the limit comes from.
         why: String,
     },
     /// The last message decodes but is not a usable map.
@@ -143,7 +160,21 @@ fn for_each_message(
 ) -> Result<(), RecordError> {
     use mcap::records::op;
     use mcap::sans_io::{LinearReadEvent, LinearReader, LinearReaderOptions};
-    let limit = MAX_RECORD_BYTES.min(bytes.len().saturating_mul(MAX_EXPANSION).max(1 << 20));
+    let expanded = bytes.len().saturating_mul(MAX_EXPANSION).max(1 << 20);
+    let limit = MAX_RECORD_BYTES.min(expanded);
+    let why = || {
+        if limit == MAX_RECORD_BYTES {
+            format!(
+                "a map of at most {} cells and its header",
+                crate::occupancy::MAX_CELLS
+            )
+        } else {
+            format!(
+                "{MAX_EXPANSION} times the file's {} bytes, as no map compresses better",
+                bytes.len()
+            )
+        }
+    };
     let mut reader = LinearReader::new_with_options(
         LinearReaderOptions::default().with_record_length_limit(limit),
     );
@@ -152,7 +183,20 @@ fn for_each_message(
     let mut channels: std::collections::HashMap<u16, Channel> = Default::default();
     let mut rest = bytes;
     while let Some(event) = reader.next_event() {
-        match event.map_err(|e| RecordError::Mcap(e.to_string()))? {
+        let event = event.map_err(|e| match e {
+            // A message this long is a map over the cell limit (or another topic's huge
+            // message): say so, rather than calling the file corrupt.
+            mcap::McapError::RecordTooLarge {
+                opcode: op::MESSAGE,
+                len,
+            } => RecordError::TooLong {
+                len,
+                limit,
+                why: why(),
+            },
+            e => RecordError::Mcap(e.to_string()),
+        })?;
+        match event {
             LinearReadEvent::ReadRequest(need) => {
                 let n = need.min(rest.len());
                 reader.insert(n).copy_from_slice(&rest[..n]);
@@ -211,12 +255,31 @@ fn for_each_message(
     Ok(())
 }
 
+/// The fields of an OccupancyGrid before its cells.
+#[derive(serde::Deserialize)]
+struct GridHead {
+    _header: Header,
+    info: MapMetaData,
+}
+
+/// The `(width, height)` an OccupancyGrid message on `ch` says it has, read from its header
+/// without its cells; `None` if `ch` does not carry CDR OccupancyGrids or the header does not
+/// decode (the whole message's decoding then says why).
+fn grid_size(ch: &Channel, data: &[u8]) -> Option<(u32, u32)> {
+    if !GRID_SCHEMAS.contains(&ch.schema.as_str()) || ch.encoding != "cdr" {
+        return None;
+    }
+    let head: GridHead = decode(data).ok()?;
+    Some((head.info.width, head.info.height))
+}
+
 /// The last OccupancyGrid on `topic` (default: the recording's only OccupancyGrid topic, or
 /// `/map` among several) of the MCAP file in `bytes`, with its topic name.
 pub fn last_map(bytes: &[u8], topic: Option<&str>) -> Result<(GridMap, String), RecordError> {
-    // Pass 1: the topics and their types; the latest message on each grid topic.
+    // Pass 1: the topics and their types; the latest message on each grid topic, or, for a
+    // map whose header is over the cell limit, why it is refused (its cells are not copied).
     let mut topics: Vec<(String, String, String)> = Vec::new(); // topic, schema, encoding
-    let mut latest: Vec<(String, u64, Vec<u8>)> = Vec::new();
+    let mut latest: Vec<(String, u64, Result<Vec<u8>, MapMsgError>)> = Vec::new();
     for_each_message(bytes, |ch, log_time, data| {
         if !topics.iter().any(|(t, _, _)| *t == ch.topic) {
             topics.push((ch.topic.clone(), ch.schema.clone(), ch.encoding.clone()));
@@ -228,14 +291,29 @@ pub fn last_map(bytes: &[u8], topic: Option<&str>) -> Result<(GridMap, String), 
         if !wanted {
             return;
         }
-        match latest.iter_mut().find(|(t, _, _)| *t == ch.topic) {
-            Some(slot) if slot.1 > log_time => {}
-            Some(slot) => {
-                slot.1 = log_time;
-                slot.2.clear();
-                slot.2.extend_from_slice(data);
+        if latest
+            .iter()
+            .any(|(t, time, _)| *t == ch.topic && *time > log_time)
+        {
+            return;
+        }
+        let size = grid_size(ch, data).map(|(w, h)| cells_of(w, h));
+        let slot = match latest.iter().position(|(t, _, _)| *t == ch.topic) {
+            Some(k) => &mut latest[k],
+            None => {
+                latest.push((ch.topic.clone(), log_time, Ok(Vec::new())));
+                latest.last_mut().expect("pushed")
             }
-            None => latest.push((ch.topic.clone(), log_time, data.to_vec())),
+        };
+        slot.1 = log_time;
+        match (size, &mut slot.2) {
+            (Some(Err(too_large)), kept) => *kept = Err(too_large),
+            // The previous message's buffer is reused: never two maps in memory at once.
+            (_, Ok(kept)) => {
+                kept.clear();
+                kept.extend_from_slice(data);
+            }
+            (_, kept) => *kept = Ok(data.to_vec()),
         }
     })?;
     let listing = || {
@@ -279,6 +357,11 @@ pub fn last_map(bytes: &[u8], topic: Option<&str>) -> Result<(GridMap, String), 
             found: format!("{schema} in {encoding} encoding"),
         });
     }
+    let data = data.map_err(|source| RecordError::BadMap {
+        topic: name.clone(),
+        log_time,
+        source,
+    })?;
     let msg: OccupancyGrid = decode(&data).map_err(|e| RecordError::Decode {
         topic: name.clone(),
         log_time,

@@ -15,8 +15,9 @@ use crate::msgs::{MapMetaData, OccupancyGrid, Pose, Quaternion};
 pub const OCCUPIED_MIN: i8 = 65;
 /// Occupancy at or below which a cell is Free (map_server's `free_thresh` 0.25).
 pub const FREE_MAX: i8 = 25;
-/// The largest map accepted, in cells (a 0.05 m map of 1.6 km × 1.6 km).
-pub const MAX_CELLS: usize = 1 << 30;
+/// The largest map accepted, in cells: grid's [`grid::io::MAX_CELLS`], so that a recorded
+/// map is refused exactly when a map file of its size would be (a 0.05 m map of 819 m × 819 m).
+pub const MAX_CELLS: usize = grid::io::MAX_CELLS as usize;
 
 /// Why an OccupancyGrid message is not a usable map.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -108,6 +109,14 @@ impl MapFrame {
     }
 }
 
+/// The number of cells of a `width × height` map, or why it is too large.
+pub(crate) fn cells_of(width: u32, height: u32) -> Result<usize, MapMsgError> {
+    (width as usize)
+        .checked_mul(height as usize)
+        .filter(|&n| n <= MAX_CELLS)
+        .ok_or(MapMsgError::TooLarge { width, height })
+}
+
 /// Check an OccupancyGrid's size, resolution and origin; returns its frame.
 pub fn frame_of(msg: &OccupancyGrid) -> Result<MapFrame, MapMsgError> {
     let info = &msg.info;
@@ -118,15 +127,7 @@ pub fn frame_of(msg: &OccupancyGrid) -> Result<MapFrame, MapMsgError> {
             height: h,
         });
     }
-    let cells = (w as usize)
-        .checked_mul(h as usize)
-        .filter(|&n| n <= MAX_CELLS);
-    let Some(expected) = cells else {
-        return Err(MapMsgError::TooLarge {
-            width: w,
-            height: h,
-        });
-    };
+    let expected = cells_of(w, h)?;
     if msg.data.len() != expected {
         return Err(MapMsgError::WrongSize {
             width: w,
