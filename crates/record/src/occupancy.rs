@@ -50,8 +50,11 @@ pub enum MapMsgError {
         /// data length.
         found: usize,
     },
-    /// The resolution is not a positive finite number.
-    #[error("map message: expected a positive finite resolution, found {0}")]
+    /// The resolution is not a positive number of at most [`grid::io::MAX_RESOLUTION_M`].
+    #[error(
+        "map message: expected a positive resolution of at most {max} m per cell, found {0}",
+        max = grid::io::MAX_RESOLUTION_M
+    )]
     BadResolution(f32),
     /// The origin has a non-finite coordinate or a non-unit orientation.
     #[error("map message: expected a finite origin with a unit quaternion, found {0}")]
@@ -136,7 +139,8 @@ pub fn frame_of(msg: &OccupancyGrid) -> Result<MapFrame, MapMsgError> {
             found: msg.data.len(),
         });
     }
-    if !(info.resolution.is_finite() && info.resolution > 0.0) {
+    let r = f64::from(info.resolution);
+    if !(r > 0.0 && r <= grid::io::MAX_RESOLUTION_M) {
         return Err(MapMsgError::BadResolution(info.resolution));
     }
     let (p, q) = (info.origin.position, info.origin.orientation);
@@ -283,6 +287,12 @@ mod tests {
             Err(MapMsgError::BadResolution(_))
         ));
         m.info.resolution = -0.05;
+        assert!(matches!(
+            map_from_msg(&m),
+            Err(MapMsgError::BadResolution(_))
+        ));
+        // Regression: a huge resolution was accepted and every length came out infinite.
+        m.info.resolution = 1e30;
         assert!(matches!(
             map_from_msg(&m),
             Err(MapMsgError::BadResolution(_))
