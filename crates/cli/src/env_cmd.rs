@@ -69,7 +69,7 @@ pub fn run(a: EnvArgs) -> Result<()> {
         resolution,
     };
     let env = world::generate(&spec)?;
-    grid::io::save_map(&env.map, out).with_context(|| format!("writing {}", out.display()))?;
+    grid::io::save_map(&env.map, out).context("--out")?;
     let (free, occ, unk) = env.map.counts();
     println!(
         "{}: {}x{} cells at {} m ({} free, {} occupied, {} unknown{}) written to {}",

@@ -546,6 +546,15 @@ fn missing_map_file_and_unknown_extension() {
         ),
         "{e}"
     );
+    // Regression: writing a HouseExpo .json was refused with a list that offered .json.
+    let e = msg(grid::io::save_map(
+        &grid::GridMap::new(Grid::new(2, 2, Occ::Free), 0.1),
+        Path::new("o.json"),
+    ));
+    assert_eq!(
+        e,
+        "o.json: cannot write map format \"json\": expected .yaml, .yml, .pgm, .png, .map or .txt"
+    );
     let _ = std::fs::remove_dir_all(dir);
 }
 

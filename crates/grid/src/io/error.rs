@@ -51,6 +51,9 @@ pub enum MapErrorKind {
         "unknown map format {0:?}: expected .yaml, .yml, .pgm, .png, .map, .json (HouseExpo) or .txt"
     )]
     UnknownFormat(String),
+    /// The extension names no format maps are written in (HouseExpo is read only).
+    #[error("cannot write map format {0:?}: expected .yaml, .yml, .pgm, .png, .map or .txt")]
+    UnwritableFormat(String),
     /// A bare bitmap or a HouseExpo plan (the file named) was loaded without a resolution.
     #[error("--resolution is required for {0}")]
     ResolutionRequired(&'static str),

@@ -162,7 +162,7 @@ pub fn save_map(map: &GridMap, path: &Path) -> Result<(), MapError> {
             write(&image, &pgm)?;
             write(path, yaml.as_bytes())
         }
-        _ => Err(MapError::new(path, MapErrorKind::UnknownFormat(ext))),
+        _ => Err(MapError::new(path, MapErrorKind::UnwritableFormat(ext))),
     }
 }
 
