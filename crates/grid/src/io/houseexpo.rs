@@ -50,6 +50,93 @@ fn numbers(v: &Value, n: usize) -> Option<Vec<f64>> {
         .flatten()
 }
 
+/// The cell centres along one axis: the `i`-th of `n` at `start + (i + 0.5) × step`, which
+/// increase with `i` (non-strictly, after rounding) as long as the last one is finite.
+#[derive(Clone, Copy)]
+struct Centres {
+    start: f64,
+    step: f64,
+    n: usize,
+}
+
+impl Centres {
+    /// The `i`-th centre.
+    fn at(self, i: usize) -> f64 {
+        self.start + (i as f64 + 0.5) * self.step
+    }
+
+    /// How many centres lie below `t`: the first index whose centre is at or above `t`.
+    ///
+    /// Guessed from the spacing and confirmed against the centres themselves (rounding can
+    /// put a centre on either side of the guess), else found by binary search.
+    fn below(self, t: f64) -> usize {
+        // The cast saturates: below the first centre (or NaN) is 0.
+        let guess = (((t - self.start) / self.step + 0.5) as usize).min(self.n);
+        let is_boundary =
+            |i: usize| (i == 0 || self.at(i - 1) < t) && (i == self.n || self.at(i) >= t);
+        if is_boundary(guess) {
+            return guess;
+        }
+        let (mut lo, mut hi) = (0, self.n);
+        while lo < hi {
+            let mid = lo + (hi - lo) / 2;
+            if self.at(mid) < t {
+                lo = mid + 1;
+            } else {
+                hi = mid;
+            }
+        }
+        lo
+    }
+}
+
+/// Mark Free the cells of the row-major grid `cells` whose centre is inside the polygon
+/// `poly` (even–odd rule): `xs` are the columns' centres and `ys` the rows', the bottom
+/// row (the grid's last) first.
+///
+/// A row's crossings come from the edges spanning its height only (an active-edge list,
+/// edges sorted by their lower end), and each pair of crossings fills its span of cells:
+/// the work is the rows times their crossings plus the cells filled, so that an outline of
+/// many vertices in a small file costs what its crossings do, not rows × edges × columns.
+fn fill_outline(poly: &[(f64, f64)], xs: Centres, ys: Centres, cells: &mut [Occ]) {
+    let (w, h) = (xs.n, ys.n);
+    // Edge k runs from poly[k] to poly[k + 1] and crosses heights in [lo, hi); horizontal
+    // edges cross none.
+    let mut edges: Vec<(f64, f64, usize)> = (0..poly.len())
+        .filter_map(|k| {
+            let (a, b) = (poly[k].1, poly[(k + 1) % poly.len()].1);
+            (a != b).then(|| (a.min(b), a.max(b), k))
+        })
+        .collect();
+    edges.sort_by(|p, q| p.0.total_cmp(&q.0));
+    let mut next = 0;
+    // (crossing x, edge) of the edges spanning the row, kept in the order of the previous
+    // row's crossings, which is nearly this row's.
+    let mut active: Vec<(f64, usize)> = Vec::new();
+    for r in 0..h {
+        let y = ys.at(r);
+        while next < edges.len() && edges[next].0 <= y {
+            active.push((0.0, next));
+            next += 1;
+        }
+        active.retain(|&(_, e)| y < edges[e].1);
+        for (cross, e) in &mut active {
+            let k = edges[*e].2;
+            let (a, b) = (poly[k], poly[(k + 1) % poly.len()]);
+            *cross = a.0 + (y - a.1) / (b.1 - a.1) * (b.0 - a.0);
+        }
+        active.sort_by(|p, q| p.0.total_cmp(&q.0));
+        let row = &mut cells[(h - 1 - r) * w..(h - r) * w];
+        for pair in active.chunks_exact(2) {
+            let first = xs.below(pair[0].0);
+            // Most pairs of a detailed outline hold no centre: no need to find the end.
+            if first < w && xs.at(first) < pair[1].0 {
+                row[first..xs.below(pair[1].0)].fill(Occ::Free);
+            }
+        }
+    }
+}
+
 /// Read a HouseExpo JSON text (`name` is the file named in errors) at `resolution` metres
 /// per cell.
 pub fn parse_houseexpo(text: &str, name: &Path, resolution: f64) -> Result<HouseExpoMap, MapError> {
@@ -96,34 +183,34 @@ pub fn parse_houseexpo(text: &str, name: &Path, resolution: f64) -> Result<House
     check_size(w as u64, h as u64, name)?;
     let (w, h) = (w as usize, h as usize);
     let (x0, y0) = (x_min - resolution, y_min - resolution);
-    // Row 0 is the top of the map: y grows downwards in cells, upwards in metres.
-    let centre = |cx: usize, cy: usize| {
-        (
-            x0 + (cx as f64 + 0.5) * resolution,
-            y0 + ((h - 1 - cy) as f64 + 0.5) * resolution,
-        )
+    // Row 0 is the top of the map: y grows downwards in cells, upwards in metres, so the
+    // rows' centres go from the bottom row (h − 1) up.
+    let xs = Centres {
+        start: x0,
+        step: resolution,
+        n: w,
     };
-    let mut cells = Grid::new(w, h, Occ::Occupied);
-    let mut crossings: Vec<f64> = Vec::new();
-    for cy in 0..h {
-        let (_, y) = centre(0, cy);
-        crossings.clear();
-        for k in 0..poly.len() {
-            let (a, b) = (poly[k], poly[(k + 1) % poly.len()]);
-            if (a.1 <= y) != (b.1 <= y) {
-                crossings.push(a.0 + (y - a.1) / (b.1 - a.1) * (b.0 - a.0));
-            }
-        }
-        crossings.sort_by(f64::total_cmp);
-        for pair in crossings.chunks_exact(2) {
-            for cx in 0..w {
-                let (x, _) = centre(cx, cy);
-                if x >= pair[0] && x < pair[1] {
-                    cells.data_mut()[cy * w + cx] = Occ::Free;
-                }
-            }
-        }
+    let ys = Centres {
+        start: y0,
+        step: resolution,
+        n: h,
+    };
+    // The spans are found from the centres' order: finite end centres give it (each centre
+    // is a correctly rounded, hence monotone, function of its index), and finite coordinates
+    // at a resolution of at most a kilometre have them.
+    if ![xs.at(0), xs.at(w - 1), ys.at(0), ys.at(h - 1)]
+        .iter()
+        .all(|v| v.is_finite())
+    {
+        return Err(bad(
+            name,
+            "verts",
+            "coordinates whose cell centres are finite numbers at this resolution",
+            format!("an outline from ({x_min}, {y_min}) to ({x_max}, {y_max})"),
+        ));
     }
+    let mut cells = Grid::new(w, h, Occ::Occupied);
+    fill_outline(&poly, xs, ys, cells.data_mut());
     let mut rooms = vec![0u32; w * h];
     let mut room_types = Vec::new();
     if let Some(cats) = json.get("room_category").and_then(Value::as_object) {
@@ -147,15 +234,14 @@ pub fn parse_houseexpo(text: &str, name: &Path, resolution: f64) -> Result<House
                 })?;
                 room_types.push(kind.clone());
                 let id = room_types.len() as u32;
-                for cy in 0..h {
-                    for cx in 0..w {
-                        let (x, y) = centre(cx, cy);
-                        let i = cy * w + cx;
-                        if rooms[i] == 0
-                            && cells.data()[i] == Occ::Free
-                            && (b[0]..b[2]).contains(&x)
-                            && (b[1]..b[3]).contains(&y)
-                        {
+                // The cells whose centre is in [b0, b2) × [b1, b3), free and in no room yet:
+                // only the box's own rows and columns are visited.
+                let columns = xs.below(b[0])..xs.below(b[2]);
+                let rows_up = ys.below(b[1])..ys.below(b[3]);
+                for r in rows_up {
+                    let row = (h - 1 - r) * w;
+                    for i in columns.clone().map(|cx| row + cx) {
+                        if rooms[i] == 0 && cells.data()[i] == Occ::Free {
                             rooms[i] = id;
                         }
                     }
