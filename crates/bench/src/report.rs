@@ -68,6 +68,22 @@ pub fn write(
     let mut blocks = build(&scenario, &fingerprint, &rows, &envs, opts)?;
     std::fs::create_dir_all(out.join("plots")).map_err(BenchError::io(out))?;
     std::fs::create_dir_all(out.join("envs")).map_err(BenchError::io(out))?;
+    // Every file the report writes, checked against the database it reads before any is
+    // written (with the directories made, so that each path resolves as it will).
+    let mut targets = vec![out.join("report.md"), out.join("report.html")];
+    for b in &blocks {
+        match b {
+            Block::Svg(name, _) => targets.push(out.join("plots").join(format!("{name}.svg"))),
+            Block::Png(name, _, _) => {
+                targets.push(out.join("envs").join(format!("{name}.png")));
+                targets.push(out.join("replays").join(format!("{name}.html")));
+            }
+            _ => {}
+        }
+    }
+    for t in &targets {
+        crate::store::refuse_overwriting(db, t, "the report")?;
+    }
     let mut files = Vec::new();
     // One replay page per environment picture, re-run from a stored trial.
     for b in &mut blocks {

@@ -298,6 +298,53 @@ fn has_meta_table(conn: &Connection, path: &Path) -> Result<bool, BenchError> {
     .map_err(BenchError::sql(path))
 }
 
+/// Whether `a` and `b` name the same existing file, however they are spelled (relative or
+/// absolute, with `..`, through symbolic or hard links). A path that does not exist is no
+/// existing file, so it is the same as none.
+fn same_file(a: &Path, b: &Path) -> bool {
+    let (Ok(ma), Ok(mb)) = (std::fs::metadata(a), std::fs::metadata(b)) else {
+        return false;
+    };
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::MetadataExt;
+        ma.dev() == mb.dev() && ma.ino() == mb.ino()
+    }
+    #[cfg(not(unix))]
+    {
+        let _ = (ma, mb);
+        matches!(
+            (std::fs::canonicalize(a), std::fs::canonicalize(b)),
+            (Ok(x), Ok(y)) if x == y
+        )
+    }
+}
+
+/// Refuse to write `out` when it is the database `db` or one of its SQLite files beside it
+/// (`-wal`, `-shm`, `-journal`): writing there would destroy the results being read.
+/// `what` names what was to be written ("the CSV", "the report"). Check right before
+/// anything is written, once the directories of `out` exist.
+pub fn refuse_overwriting(db: &Path, out: &Path, what: &str) -> Result<(), BenchError> {
+    for suffix in ["", "-wal", "-shm", "-journal"] {
+        if same_file(&sibling(db, suffix), out) {
+            let which = if suffix.is_empty() {
+                "the results database".to_string()
+            } else {
+                format!("SQLite's {suffix} file of the results database")
+            };
+            return Err(BenchError::Store {
+                path: out.to_path_buf(),
+                message: format!(
+                    "is {which} being read ({}); writing {what} there would destroy its \
+                     results: expected another output path",
+                    db.display()
+                ),
+            });
+        }
+    }
+    Ok(())
+}
+
 fn not_a_store(path: &Path) -> BenchError {
     BenchError::Store {
         path: path.to_path_buf(),
@@ -776,8 +823,10 @@ impl Store {
             .map_err(BenchError::sql(&self.path))
     }
 
-    /// Write every trial as CSV (header = column names, rows ordered by key).
+    /// Write every trial as CSV (header = column names, rows ordered by key); `out` must
+    /// not be this database (nor its journal), which is checked before anything is written.
     pub fn export_csv(&self, out: &Path) -> Result<usize, BenchError> {
+        refuse_overwriting(&self.path, out, "the CSV")?;
         let rows = self.rows()?;
         let mut w = csv::Writer::from_path(out)
             .map_err(|e| BenchError::Other(format!("{}: {e}", out.display())))?;

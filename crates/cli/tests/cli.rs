@@ -1319,6 +1319,51 @@ fn regression_output_paths_are_checked_before_the_run() {
     assert!(e.contains("expected a file name, found a folder"), "{e}");
 }
 
+/// Regression: `bench export --csv ok.sqlite ok.sqlite` overwrote the results database with
+/// CSV and exited 0; `bench report --out DIR` did the same to a database named `report.md`
+/// in DIR. Both are refused, and the database is left as it was.
+#[test]
+fn regression_bench_export_onto_its_own_database_is_refused() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let study = tiny_study(dir.path(), 1);
+    let out = dir.path().join("out");
+    std::fs::create_dir(&out).expect("mkdir");
+    let db = out.join("report.md");
+    let d = db.to_str().expect("utf-8 path");
+    let s = study.to_str().expect("utf-8 path");
+    ok(&[
+        "bench",
+        s,
+        "--db",
+        d,
+        "--trials",
+        "1",
+        "-j",
+        "1",
+        "--no-progress",
+    ]);
+    let before = std::fs::read(&db).expect("read the database");
+    let e = err(&["bench", "export", "--csv", d, d]);
+    assert!(
+        e.contains(&format!("{d}: is the results database being read")),
+        "{e}"
+    );
+    let e = err(&[
+        "bench",
+        "report",
+        d,
+        "--out",
+        out.to_str().expect("utf-8 path"),
+    ]);
+    assert!(
+        e.contains(&format!("{d}: is the results database being read")),
+        "{e}"
+    );
+    assert_eq!(std::fs::read(&db).expect("read the database"), before);
+    assert!(!out.join("report.html").exists());
+    assert_eq!(bench_rows(&db).len(), 2);
+}
+
 /// Regression: `--dungeon --map /dev/zero` read the device until the memory was gone.
 #[cfg(unix)]
 #[test]
