@@ -15,13 +15,14 @@ pub enum BenchError {
         /// toml's message, with line and column.
         message: String,
     },
-    /// A value in the scenario file is not acceptable.
-    #[error("{file}:{line}: key `{key}`: {message}")]
+    /// A value in the scenario file is not acceptable (`FILE:LINE: key ...`, or
+    /// `FILE: key ...` when the key is missing and so has no line).
+    #[error("{file}{}: key `{key}`: {message}", .line.map_or(String::new(), |l| format!(":{l}")))]
     Scenario {
         /// The scenario file (or `suite:NAME`).
         file: String,
-        /// 1-based line of the offending value (0 when the key is missing).
-        line: usize,
+        /// 1-based line of the offending value (`None` when the key is missing).
+        line: Option<usize>,
         /// The key, e.g. `strategies` or `env[2].map`.
         key: String,
         /// What is wrong.
@@ -34,6 +35,15 @@ pub enum BenchError {
         path: PathBuf,
         /// The cause.
         source: std::io::Error,
+    },
+    /// A file is not of the kind expected (a directory, a device, too large), found before
+    /// it is read.
+    #[error("{path}: {message}")]
+    File {
+        /// The file.
+        path: PathBuf,
+        /// What was expected and what was found.
+        message: String,
     },
     /// The results database failed.
     #[error("{path}: {source}")]

@@ -271,17 +271,39 @@ fn s_max_value(src: &Source, v: &toml::Spanned<i64>, key: &str) -> Result<Option
     }
 }
 
+/// The study's `name`, which is also the default database file (`NAME.sqlite`, beside
+/// where the study runs): a plain file name, neither empty, hidden, nor a path elsewhere.
+fn study_name(src: &Source, n: &toml::Spanned<String>) -> Result<String, BenchError> {
+    let name = n.get_ref();
+    if name.is_empty()
+        || name.starts_with('.')
+        || name.contains(['/', '\\'])
+        || name.chars().any(char::is_control)
+    {
+        return Err(src.error(
+            span_of(n),
+            "name",
+            format!(
+                "expected a plain file name (the default database is NAME.sqlite): not empty, \
+                 not starting with '.', without '/', '\\' or control characters; found {name:?}"
+            ),
+        ));
+    }
+    Ok(name.clone())
+}
+
 fn resolve(src: &Source, f: ScenarioFile, unbuilt: Unbuilt) -> Result<Plan, BenchError> {
     let master_seed = match &f.seed {
         Some(s) => nonneg(src, s, "seed", 0)?,
         None => 0,
     };
-    let name = f.name.clone().unwrap_or_else(|| {
-        std::path::Path::new(&src.file)
+    let name = match &f.name {
+        Some(n) => study_name(src, n)?,
+        None => std::path::Path::new(&src.file)
             .file_stem()
             .map(|s| s.to_string_lossy().into_owned())
-            .unwrap_or_else(|| "study".into())
-    });
+            .unwrap_or_else(|| "study".into()),
+    };
 
     // Common settings.
     let speed = match &f.speed {
@@ -387,7 +409,8 @@ fn resolve(src: &Source, f: ScenarioFile, unbuilt: Unbuilt) -> Result<Plan, Benc
         strategies.push((label, strategy));
         Ok(())
     };
-    for (i, s) in f.strategies.iter().enumerate() {
+    let listed: &[toml::Spanned<String>] = f.strategies.as_ref().map_or(&[], |l| l.get_ref());
+    for (i, s) in listed.iter().enumerate() {
         let key = format!("strategies[{i}]");
         let mut strategy = Strategy::preset(s.get_ref())
             .map_err(|e| src.error(span_of(s), &key, e.to_string()))?;
@@ -421,29 +444,45 @@ fn resolve(src: &Source, f: ScenarioFile, unbuilt: Unbuilt) -> Result<Plan, Benc
         add(label, strategy, span_of(&e.preset), &key)?;
     }
     if strategies.is_empty() && skipped.is_empty() {
-        return Err(src.error(None, "strategies", "no strategy given"));
+        return Err(src.error(
+            f.strategies.as_ref().and_then(span_of),
+            "strategies",
+            "expected at least one strategy (a preset name in `strategies`, or a \
+             [[strategy]] table), found none",
+        ));
     }
 
-    // Sensors and robot counts.
-    let sensors: Vec<SensorSpec> = match &f.sensors {
+    // Sensors and robot counts; each sensor with its key and place, for errors about it.
+    let mut sensors: Vec<SensorSpec> = Vec::new();
+    let mut sensor_at: Vec<(String, Option<std::ops::Range<usize>>)> = Vec::new();
+    match &f.sensors {
         Some(list) => {
             if list.get_ref().is_empty() {
                 return Err(src.error(span_of(list), "sensors", "expected at least one sensor"));
             }
-            list.get_ref()
-                .iter()
-                .enumerate()
-                .map(|(i, s)| {
-                    s.get_ref()
-                        .parse::<SensorSpec>()
-                        .map_err(|e| src.error(span_of(s), format!("sensors[{i}]"), e.to_string()))
-                })
-                .collect::<Result<_, _>>()?
+            let mut seen = BTreeSet::new();
+            for (i, s) in list.get_ref().iter().enumerate() {
+                let key = format!("sensors[{i}]");
+                let sensor = s
+                    .get_ref()
+                    .parse::<SensorSpec>()
+                    .map_err(|e| src.error(span_of(s), &key, e.to_string()))?;
+                // Trial keys name the sensor as written back: two spellings of one sensor
+                // would be the same trials.
+                if !seen.insert(sensor.to_string()) {
+                    return Err(src.error(span_of(s), &key, format!("{sensor} is listed twice")));
+                }
+                sensors.push(sensor);
+                sensor_at.push((key, span_of(s)));
+            }
         }
-        None => vec![SensorSpec::Los {
-            r: sense::Range::Metres(5.0),
-        }],
-    };
+        None => {
+            sensors.push(SensorSpec::Los {
+                r: sense::Range::Metres(5.0),
+            });
+            sensor_at.push(("sensors".into(), None));
+        }
+    }
     let robots: Vec<usize> = match &f.robots {
         Some(list) => {
             if list.get_ref().is_empty() {
@@ -506,13 +545,104 @@ fn resolve(src: &Source, f: ScenarioFile, unbuilt: Unbuilt) -> Result<Plan, Benc
         }
     };
 
-    // Environments.
+    // Variants: strategy-major, then sensor, then robots. Each is planned on every
+    // environment, so more variants than trials allowed is refused before listing them.
+    let lists = [
+        ("strategies", strategies.len()),
+        ("sensors", sensors.len()),
+        ("robots", robots.len()),
+    ];
+    let n_variants = lists
+        .iter()
+        .fold(1u64, |n, (_, len)| n.saturating_mul(*len as u64));
+    if n_variants > MAX_PLAN_TRIALS {
+        let (key, _) = lists
+            .iter()
+            .max_by_key(|(_, len)| *len)
+            .unwrap_or(&lists[0]);
+        let span = match *key {
+            "strategies" => f.strategies.as_ref().and_then(span_of),
+            "sensors" => f.sensors.as_ref().and_then(span_of),
+            _ => f.robots.as_ref().and_then(span_of),
+        };
+        return Err(src.error(
+            span,
+            *key,
+            format!(
+                "the study has {n_variants} variants ({} strategies x {} sensors x {} robot \
+                 counts), each run on every environment; expected at most {MAX_PLAN_TRIALS} \
+                 trials in one scenario (shorten the lists, or split the study)",
+                lists[0].1, lists[1].1, lists[2].1
+            ),
+        ));
+    }
+    let mut variants = Vec::new();
+    for (label, strategy) in &strategies {
+        for sensor in &sensors {
+            for &m in &robots {
+                variants.push(Variant {
+                    label: label.clone(),
+                    stochastic: is_stochastic(strategy),
+                    strategy: strategy.clone(),
+                    sensor: *sensor,
+                    robots: m,
+                });
+            }
+        }
+    }
+
+    // Environments: counted, with the trials they give and the memory their maps take,
+    // before any is generated or loaded (every environment of a plan is held in memory,
+    // and every trial with its key, in --dry-run too).
     if f.env.is_empty() {
         return Err(src.error(None, "env", "no [[env]] given"));
     }
-    let mut envs: Vec<EnvInstance> = Vec::new();
+    let mut extents = Vec::new();
+    let mut env_total: u64 = 0;
+    let mut total: u64 = 0;
     for (i, entry) in f.env.iter().enumerate() {
-        for mut env in load_env(src, i, entry)? {
+        let extent = env_extent(src, i, entry)?;
+        env_total += extent.count;
+        if env_total > MAX_PLAN_ENVS {
+            return Err(src.error(
+                extent.span.clone(),
+                &extent.key,
+                format!(
+                    "the study has {env_total} environments up to this [[env]]; expected at \
+                     most {MAX_PLAN_ENVS} in one scenario (give fewer seeds, or split the study)"
+                ),
+            ));
+        }
+        // Start variants: k perturbations, or one (fixed or drawn by each trial's seed).
+        let fixed = entry.get_ref().start.is_some() || perturbations > 0;
+        let starts = u64::from(perturbations.max(1));
+        let per_env = variants.iter().fold(0u64, |sum, v| {
+            let n = if !fixed || v.stochastic || common.repeat_deterministic {
+                common.trials
+            } else {
+                1
+            };
+            sum.saturating_add(starts.saturating_mul(u64::from(n)))
+        });
+        total = total.saturating_add(extent.count.saturating_mul(per_env));
+        extents.push(extent);
+    }
+    if total > MAX_PLAN_TRIALS {
+        return Err(src.error(
+            f.trials.as_ref().and_then(span_of),
+            "trials",
+            format!(
+                "the study has {total} trials; expected at most {MAX_PLAN_TRIALS} in one \
+                 scenario (lower trials, perturbations or the variants, or split the study)"
+            ),
+        ));
+    }
+    check_env_memory(src, &extents, crate::machine::available_bytes())?;
+
+    let mut envs: Vec<EnvInstance> = Vec::new();
+    let mut checked = BTreeSet::new();
+    for (i, (entry, extent)) in f.env.iter().zip(&extents).enumerate() {
+        for mut env in load_env(src, i, entry, &extent.seeds)? {
             let key = format!("env[{i}]");
             let start = entry
                 .get_ref()
@@ -556,61 +686,11 @@ fn resolve(src: &Source, f: ScenarioFile, unbuilt: Unbuilt) -> Result<Plan, Benc
                     format!("environment '{}' appears twice", env.name),
                 ));
             }
+            check_sensors(src, &sensors, &sensor_at, &env, &mut checked)?;
             envs.push(env);
         }
     }
 
-    // Variants: strategy-major, then sensor, then robots.
-    let mut variants = Vec::new();
-    for (label, strategy) in &strategies {
-        for sensor in &sensors {
-            for &m in &robots {
-                variants.push(Variant {
-                    label: label.clone(),
-                    stochastic: is_stochastic(strategy),
-                    strategy: strategy.clone(),
-                    sensor: *sensor,
-                    robots: m,
-                });
-            }
-        }
-    }
-    for env in &envs {
-        for v in &variants {
-            v.sensor.build(env.map.resolution).map_err(|e| {
-                src.error(
-                    None,
-                    "sensors",
-                    format!("{} on {}: {e}", v.sensor, env.name),
-                )
-            })?;
-        }
-    }
-
-    // Count before building: every trial of a plan is held in memory (and in --dry-run).
-    let mut total: u64 = 0;
-    for env in &envs {
-        for v in &variants {
-            for start in &env.starts {
-                let n = if start.is_none() || v.stochastic || common.repeat_deterministic {
-                    common.trials
-                } else {
-                    1
-                };
-                total += u64::from(n);
-            }
-        }
-    }
-    if total > MAX_PLAN_TRIALS {
-        return Err(src.error(
-            f.trials.as_ref().and_then(span_of),
-            "trials",
-            format!(
-                "the study has {total} trials; expected at most {MAX_PLAN_TRIALS} in one \
-                 scenario (lower trials, perturbations or the variants, or split the study)"
-            ),
-        ));
-    }
     let mut trials = Vec::new();
     let mut keys = BTreeSet::new();
     for (e, env) in envs.iter().enumerate() {
@@ -649,6 +729,11 @@ fn resolve(src: &Source, f: ScenarioFile, unbuilt: Unbuilt) -> Result<Plan, Benc
             }
         }
     }
+    debug_assert_eq!(
+        trials.len() as u64,
+        total,
+        "the trials counted before planning"
+    );
     let optimal = f
         .optimal
         .as_ref()
@@ -716,11 +801,13 @@ fn optimal_spec(
     Ok(spec)
 }
 
-/// Load or generate the environments of `[[env]]` number `i`.
+/// Load or generate the environments of `[[env]]` number `i` (a built-in kind with the
+/// `seeds` its [`EnvExtent`] lists).
 fn load_env(
     src: &Source,
     i: usize,
     entry: &toml::Spanned<crate::scenario::EnvEntry>,
+    seeds: &[u64],
 ) -> Result<Vec<EnvInstance>, BenchError> {
     let e = entry.get_ref();
     let key = format!("env[{i}]");
@@ -806,23 +893,6 @@ fn load_env(
                 },
                 None => None,
             };
-            let seeds: Vec<u64> = match (&e.seeds, &e.count) {
-                (Some(_), Some(c)) => {
-                    return Err(src.error(
-                        span_of(c),
-                        format!("{key}.count"),
-                        "give either `seeds` or `count`, not both",
-                    ));
-                }
-                (Some(list), None) => list
-                    .get_ref()
-                    .iter()
-                    .enumerate()
-                    .map(|(j, s)| nonneg(src, s, &format!("{key}.seeds[{j}]"), 0))
-                    .collect::<Result<_, _>>()?,
-                (None, Some(c)) => (0..nonneg(src, c, &format!("{key}.count"), 1)?).collect(),
-                (None, None) => vec![0],
-            };
             if e.name.is_some() && seeds.len() > 1 {
                 return Err(src.error(
                     e.name.as_ref().and_then(span_of),
@@ -831,7 +901,7 @@ fn load_env(
                 ));
             }
             let mut out = Vec::new();
-            for seed in seeds {
+            for &seed in seeds {
                 let spec = EnvSpec {
                     kind,
                     seed,
@@ -859,6 +929,196 @@ fn load_env(
 /// Most trials one scenario may plan (the `faigl2013` suite has 118,080); each is held in
 /// memory with its key.
 pub const MAX_PLAN_TRIALS: u64 = 2_000_000;
+
+/// Most environments one scenario may plan (the suites have up to 4); each is generated or
+/// loaded, held in memory and pictured in the results database.
+pub const MAX_PLAN_ENVS: u64 = 10_000;
+
+/// Bytes a planned environment holds per cell (its ground truth, one byte a cell).
+const ENV_HELD_BYTES_PER_CELL: u64 = 1;
+
+/// Peak bytes per cell while one environment is generated (measured: 8 for `empty`, 10
+/// for `office`, 18 for `cave`, on 25 M cells), rounded up.
+const ENV_GENERATE_BYTES_PER_CELL: u64 = 24;
+
+/// How many environments one `[[env]]` gives and how large they are, known before any is
+/// generated or loaded.
+#[derive(Clone, Debug)]
+struct EnvExtent {
+    /// Environments it gives (its seeds; one map file).
+    count: u64,
+    /// The seeds of a built-in kind (empty for a map file).
+    seeds: Vec<u64>,
+    /// Cells of each generated environment (0 for a map file or a spec the generator will
+    /// refuse: the loader and the generator bound those themselves).
+    cells: u64,
+    /// The key and place errors about its count name.
+    key: String,
+    span: Option<std::ops::Range<usize>>,
+}
+
+/// The [`EnvExtent`] of `[[env]]` number `i`: its seeds are checked here (at least one, and
+/// `count` at most [`MAX_PLAN_ENVS`]), the rest when it is generated or loaded.
+fn env_extent(
+    src: &Source,
+    i: usize,
+    entry: &toml::Spanned<crate::scenario::EnvEntry>,
+) -> Result<EnvExtent, BenchError> {
+    let e = entry.get_ref();
+    let key = format!("env[{i}]");
+    let (Some(k), None) = (&e.kind, &e.map) else {
+        return Ok(EnvExtent {
+            count: 1,
+            seeds: Vec::new(),
+            cells: 0,
+            key,
+            span: Some(entry.span()),
+        });
+    };
+    let kind: EnvKind = k
+        .get_ref()
+        .parse()
+        .map_err(|err| src.error(span_of(k), format!("{key}.kind"), format!("{err}")))?;
+    let (seeds, key, span) = match (&e.seeds, &e.count) {
+        (Some(_), Some(c)) => {
+            return Err(src.error(
+                span_of(c),
+                format!("{key}.count"),
+                "give either `seeds` or `count`, not both",
+            ));
+        }
+        (Some(list), None) => {
+            let k = format!("{key}.seeds");
+            if list.get_ref().is_empty() {
+                return Err(src.error(
+                    span_of(list),
+                    k,
+                    "expected at least one environment seed, found an empty list",
+                ));
+            }
+            let seeds = list
+                .get_ref()
+                .iter()
+                .enumerate()
+                .map(|(j, s)| nonneg(src, s, &format!("{key}.seeds[{j}]"), 0))
+                .collect::<Result<_, _>>()?;
+            (seeds, k, span_of(list))
+        }
+        (None, Some(c)) => {
+            let k = format!("{key}.count");
+            let n = nonneg(src, c, &k, 1)?;
+            if n > MAX_PLAN_ENVS {
+                return Err(src.error(
+                    span_of(c),
+                    k,
+                    format!(
+                        "expected at most {MAX_PLAN_ENVS} environments in one scenario, found \
+                         {n} (split the study)"
+                    ),
+                ));
+            }
+            ((0..n).collect(), k, span_of(c))
+        }
+        (None, None) => (vec![0], key, Some(entry.span())),
+    };
+    let info = kind.info();
+    let (w_m, h_m) = match e.size.as_ref().map(|s| s.get_ref().as_slice()) {
+        Some(&[w, h]) => (w, h),
+        _ => info.size_m,
+    };
+    let res = e
+        .resolution
+        .as_ref()
+        .map_or(info.resolution, |r| *r.get_ref());
+    let cells = (w_m / res).round() * (h_m / res).round();
+    let cells = if cells.is_finite() && cells >= 0.0 && cells <= world::MAX_CELLS as f64 {
+        cells as u64
+    } else {
+        0
+    };
+    Ok(EnvExtent {
+        count: seeds.len() as u64,
+        seeds,
+        cells,
+        key,
+        span,
+    })
+}
+
+/// Refuse a study whose environments would not fit in the memory `available` (all of them
+/// held, the largest being generated), naming the `[[env]]` with the most cells.
+fn check_env_memory(
+    src: &Source,
+    extents: &[EnvExtent],
+    available: Option<u64>,
+) -> Result<(), BenchError> {
+    let held = extents.iter().fold(0u64, |sum, x| {
+        sum.saturating_add(
+            x.count
+                .saturating_mul(x.cells)
+                .saturating_mul(ENV_HELD_BYTES_PER_CELL),
+        )
+    });
+    let Some((_, x)) = extents
+        .iter()
+        .enumerate()
+        .max_by_key(|(i, x)| (x.count.saturating_mul(x.cells), std::cmp::Reverse(*i)))
+    else {
+        return Ok(());
+    };
+    let peak = extents.iter().map(|x| x.cells).max().unwrap_or(0);
+    let needed = sim::memory::BASE_BYTES
+        .saturating_add(held)
+        .saturating_add(peak.saturating_mul(ENV_GENERATE_BYTES_PER_CELL));
+    let envs: u64 = extents.iter().map(|x| x.count).sum();
+    sim::memory::check(
+        &format!(
+            "holding the study's {envs} environment(s) (here {} of {} cells each)",
+            x.count, x.cells
+        ),
+        needed,
+        None,
+        available,
+        "give fewer seeds, smaller sizes or coarser resolutions, or split the study",
+    )
+    .map_err(|e| src.error(x.span.clone(), &x.key, e.to_string()))
+}
+
+/// Check that every sensor can run on `env` (its range in cells, its 360° sweep, a sonar's
+/// cell size), once per resolution: otherwise every trial would fail when it runs.
+fn check_sensors(
+    src: &Source,
+    sensors: &[SensorSpec],
+    sensor_at: &[(String, Option<std::ops::Range<usize>>)],
+    env: &EnvInstance,
+    checked: &mut BTreeSet<(u64, usize)>,
+) -> Result<(), BenchError> {
+    let res = env.map.resolution;
+    for (j, (sensor, (key, span))) in sensors.iter().zip(sensor_at).enumerate() {
+        if !checked.insert((res.to_bits(), j)) {
+            continue;
+        }
+        let problem = match sensor.sonar(res) {
+            Some(Err(sense::SenseError::SonarTooCoarse(_))) => Some(format!(
+                "sonar needs cells of at most {} m (on coarser cells its 25° cones paint \
+                 corridors occupied and exploration stops early), found {res} m: give the \
+                 [[env]] `resolution = {}` or finer, or a map of finer cells",
+                sense::spec::SONAR_MAX_CELL_M,
+                sense::spec::SONAR_MAX_CELL_M
+            )),
+            Some(Err(e)) => Some(e.to_string()),
+            _ => sensor
+                .build(res)
+                .and_then(|_| sensor.sweep().build(res))
+                .err()
+                .map(|e| e.to_string()),
+        };
+        if let Some(p) = problem {
+            return Err(src.error(span.clone(), key, format!("{sensor} on {}: {p}", env.name)));
+        }
+    }
+    Ok(())
+}
 
 /// The start variants of `env` (see the module doc).
 fn start_variants(
@@ -916,4 +1176,40 @@ fn start_variants(
             team(c).map(Some)
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Environments that together need more memory than is available are refused before
+    /// any is generated, naming the `[[env]]` that holds the most cells.
+    #[test]
+    fn environments_beyond_the_memory_available_are_refused() {
+        let text = "strategies = [\"cf\"]\n\n[[env]]\nkind = \"maze\"\n\n[[env]]\n\
+                    kind = \"empty\"\ncount = 100\nsize = [100, 100]\nresolution = 0.01\n";
+        let src = Source {
+            file: "s.toml".into(),
+            text: text.into(),
+            dir: None,
+        };
+        let f = src.parse().unwrap();
+        let extents: Vec<EnvExtent> = f
+            .env
+            .iter()
+            .enumerate()
+            .map(|(i, e)| env_extent(&src, i, e).unwrap())
+            .collect();
+        assert_eq!(extents[1].count, 100);
+        assert_eq!(extents[1].cells, 10_000 * 10_000);
+        // 100 maps of 10^8 cells held: about 9.3 GiB.
+        let e = check_env_memory(&src, &extents, Some(4 << 30))
+            .unwrap_err()
+            .to_string();
+        assert!(e.starts_with("s.toml:8: key `env[1].count`"), "{e}");
+        assert!(e.contains("101 environment(s)"), "{e}");
+        assert!(e.contains("more than the 4096 MiB"), "{e}");
+        check_env_memory(&src, &extents, Some(64 << 30)).unwrap();
+        check_env_memory(&src, &extents, None).unwrap();
+    }
 }

@@ -51,8 +51,8 @@ use crate::error::BenchError;
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ScenarioFile {
-    /// Name of the study (default: the file's stem).
-    pub name: Option<String>,
+    /// Name of the study (default: the file's stem); also the default database file name.
+    pub name: Option<Spanned<String>>,
     /// Free text, shown in reports.
     pub description: Option<String>,
     /// Master seed of every trial seed.
@@ -65,8 +65,7 @@ pub struct ScenarioFile {
     /// Sensor specs, e.g. `los:r=5` (default `["los:r=5"]`).
     pub sensors: Option<Spanned<Vec<Spanned<String>>>>,
     /// Preset names.
-    #[serde(default)]
-    pub strategies: Vec<Spanned<String>>,
+    pub strategies: Option<Spanned<Vec<Spanned<String>>>>,
     /// Presets with parameters, one `[[strategy]]` table each.
     #[serde(default)]
     pub strategy: Vec<Spanned<StrategyEntry>>,
@@ -159,10 +158,48 @@ pub struct Source {
     pub dir: Option<std::path::PathBuf>,
 }
 
+/// Largest scenario file read, in bytes: a scenario is a page of text, so anything larger
+/// is the wrong file (and a device such as `/dev/zero` is refused before it is read).
+pub const MAX_SCENARIO_BYTES: u64 = 16 << 20;
+
 impl Source {
-    /// Read a scenario file.
+    /// Read a scenario file: a regular file of at most [`MAX_SCENARIO_BYTES`] of UTF-8.
     pub fn read(path: &std::path::Path) -> Result<Source, BenchError> {
-        let text = std::fs::read_to_string(path).map_err(BenchError::io(path))?;
+        let refuse = |message: String| BenchError::File {
+            path: path.to_path_buf(),
+            message,
+        };
+        let meta = std::fs::metadata(path).map_err(BenchError::io(path))?;
+        if !meta.is_file() {
+            let found = if meta.is_dir() {
+                "a directory"
+            } else {
+                "a device, pipe or socket"
+            };
+            return Err(refuse(format!(
+                "expected a scenario file (TOML text), found {found}"
+            )));
+        }
+        let too_large = |found: String| {
+            refuse(format!(
+                "expected a scenario file (TOML text) of at most {} MiB, found {found}",
+                MAX_SCENARIO_BYTES >> 20
+            ))
+        };
+        if meta.len() > MAX_SCENARIO_BYTES {
+            return Err(too_large(format!("{} bytes", meta.len())));
+        }
+        // The file may grow between the check and the read: read no more than the limit.
+        let file = std::fs::File::open(path).map_err(BenchError::io(path))?;
+        let mut text = String::new();
+        std::io::Read::read_to_string(
+            &mut std::io::Read::take(file, MAX_SCENARIO_BYTES + 1),
+            &mut text,
+        )
+        .map_err(BenchError::io(path))?;
+        if text.len() as u64 > MAX_SCENARIO_BYTES {
+            return Err(too_large("more, growing while read".into()));
+        }
         Ok(Source {
             file: path.display().to_string(),
             text,
@@ -197,7 +234,7 @@ impl Source {
     ) -> BenchError {
         BenchError::Scenario {
             file: self.file.clone(),
-            line: span.map_or(0, |s| self.line_of(s.start)),
+            line: span.map(|s| self.line_of(s.start)),
             key: key.into(),
             message: message.into(),
         }

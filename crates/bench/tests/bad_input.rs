@@ -26,6 +26,13 @@ fn source(text: &str) -> Source {
     }
 }
 
+/// The error of resolving `text`.
+fn error_of(text: &str) -> String {
+    Plan::resolve(&source(text), Unbuilt::Error)
+        .expect_err("bad scenario must fail")
+        .to_string()
+}
+
 /// Run `text` into `db`.
 fn run(text: &str, db: &Path) {
     let plan = Plan::resolve(&source(text), Unbuilt::Error).expect("scenario resolves");
@@ -125,4 +132,140 @@ fn merge_into_one_of_its_inputs_keeps_every_trial() {
     let merged = Store::merge(&a, &[a.clone(), b.clone()]).unwrap();
     assert_eq!((merged.added, merged.total), (1, 2));
     assert_eq!(Store::open_read_only(&a).unwrap().count().unwrap(), 2);
+}
+
+/// Regression: `frontier bench /dev/zero --dry-run` read the "scenario" until memory ran
+/// out. Directories, devices and files over the limit are refused before they are read.
+#[test]
+fn regression_scenario_device_or_huge_file_is_refused_before_reading() {
+    let dir = tempfile::tempdir().unwrap();
+    let e = Source::read(dir.path()).unwrap_err().to_string();
+    assert!(e.starts_with(&dir.path().display().to_string()), "{e}");
+    assert!(
+        e.contains("expected a scenario file") && e.contains("a directory"),
+        "{e}"
+    );
+    #[cfg(unix)]
+    {
+        let e = Source::read(Path::new("/dev/zero"))
+            .unwrap_err()
+            .to_string();
+        assert!(e.starts_with("/dev/zero: expected a scenario file"), "{e}");
+        assert!(e.contains("a device, pipe or socket"), "{e}");
+    }
+    let big = dir.path().join("big.toml");
+    let f = std::fs::File::create(&big).unwrap();
+    f.set_len(bench::scenario::MAX_SCENARIO_BYTES + 1).unwrap();
+    let e = Source::read(&big).unwrap_err().to_string();
+    assert!(e.starts_with(&big.display().to_string()), "{e}");
+    assert!(
+        e.contains("at most 16 MiB") && e.contains("found 16777217 bytes"),
+        "{e}"
+    );
+    // A scenario of ordinary size still reads.
+    let ok = dir.path().join("ok.toml");
+    std::fs::write(&ok, ONE).unwrap();
+    assert_eq!(Source::read(&ok).unwrap().text, ONE);
+}
+
+/// Regression: `count = 1000000000` generated environments until memory ran out before
+/// the trial count was checked. The count is bounded before any environment is generated,
+/// and so is the sum over several `[[env]]`s.
+#[test]
+fn regression_huge_env_count_is_refused_before_generating() {
+    let e = error_of(&ONE.replace("size = [4, 4]", "count = 1000000000\nsize = [4, 4]"));
+    assert!(e.starts_with("s.toml:8: key `env[0].count`"), "{e}");
+    assert!(e.contains("expected at most 10000 environments"), "{e}");
+    assert!(e.contains("found 1000000000"), "{e}");
+    let two = format!(
+        "{}\n[[env]]\nkind = \"maze\"\ncount = 6000\n",
+        ONE.replace("size = [4, 4]", "count = 6000\nsize = [4, 4]")
+    );
+    let e = error_of(&two);
+    assert!(e.starts_with("s.toml:14: key `env[1].count`"), "{e}");
+    assert!(e.contains("12000 environments"), "{e}");
+    // Environments within the bound whose trials are too many: refused by the trial count
+    // before the environments are generated.
+    let e = error_of(
+        &ONE.replace("size = [4, 4]", "count = 10000\nsize = [4, 4]")
+            .replace("name = \"one\"", "name = \"one\"\ntrials = 300"),
+    );
+    assert!(e.starts_with("s.toml:3: key `trials`"), "{e}");
+    assert!(e.contains("the study has 3000000 trials"), "{e}");
+}
+
+/// Regression: `seeds = []` planned no environment and "0 trials", and the run succeeded
+/// doing nothing, while `robots = []` was refused. Every list that must not be empty is
+/// refused alike, naming its line.
+#[test]
+fn regression_empty_lists_are_refused() {
+    let e = error_of(&ONE.replace("size = [4, 4]", "seeds = []\nsize = [4, 4]"));
+    assert!(e.starts_with("s.toml:8: key `env[0].seeds`"), "{e}");
+    assert!(e.contains("expected at least one environment seed"), "{e}");
+    let e = error_of(&ONE.replace("[\"cf\"]", "[]"));
+    assert!(e.starts_with("s.toml:3: key `strategies`"), "{e}");
+    assert!(e.contains("expected at least one strategy"), "{e}");
+    let e = error_of(&ONE.replace("[\"los:r=3c\"]", "[]"));
+    assert!(e.starts_with("s.toml:4: key `sensors`"), "{e}");
+    let e = error_of(&ONE.replace("sensors", "robots = []\nsensors"));
+    assert!(e.starts_with("s.toml:4: key `robots`"), "{e}");
+    // A sensor listed twice (in two spellings) would plan the same trials twice.
+    let e = error_of(&ONE.replace("[\"los:r=3c\"]", "[\"los:r=5\", \"los:r=5.0\"]"));
+    assert!(e.starts_with("s.toml:4: key `sensors[1]`"), "{e}");
+    assert!(e.contains("listed twice"), "{e}");
+}
+
+/// Regression: the study's `name` made the default database path unchecked:
+/// `name = "../../etc/x"` wrote `../../etc/x.sqlite`, `name = ""` a hidden `.sqlite`.
+#[test]
+fn regression_study_name_that_is_a_path_is_refused() {
+    for bad in ["", "../../etc/x", "a/b", "a\\\\b", ".hidden", "tab\\there"] {
+        let e = error_of(&ONE.replace("\"one\"", &format!("\"{bad}\"")));
+        assert!(e.starts_with("s.toml:2: key `name`"), "{bad}: {e}");
+        assert!(e.contains("expected a plain file name"), "{bad}: {e}");
+    }
+    for good in ["one", "faigl2013 rerun", "x.y"] {
+        let text = ONE.replace("\"one\"", &format!("\"{good}\""));
+        let plan = Plan::resolve(&source(&text), Unbuilt::Error).unwrap();
+        assert_eq!(plan.name, good);
+    }
+}
+
+/// Regression: a sonar on 0.5 m cells passed `--dry-run`, then every trial failed when it
+/// ran (the sonar needs cells of at most 0.1 m). It is refused at plan time.
+#[test]
+fn regression_sonar_on_coarse_cells_is_refused_at_plan_time() {
+    let text = "strategies = [\"cf\"]\nsensors = [\"los:r=3c\", \"sonar\"]\n\n\
+                [[env]]\nkind = \"office\"\nresolution = 0.5\n";
+    let e = error_of(text);
+    assert!(e.starts_with("s.toml:2: key `sensors[1]`"), "{e}");
+    assert!(e.contains("office-s0-r0.5"), "{e}");
+    assert!(
+        e.contains("at most 0.1 m") && e.contains("found 0.5 m"),
+        "{e}"
+    );
+    assert!(e.contains("`resolution = 0.1`"), "{e}");
+    // On fine enough cells it plans.
+    let fine = text.replace(
+        "kind = \"office\"\nresolution = 0.5",
+        "kind = \"empty\"\nsize = [4, 4]\nresolution = 0.1",
+    );
+    Plan::resolve(&source(&fine), Unbuilt::Error).unwrap();
+}
+
+/// Regression: errors about keys that are absent printed line 0 ("s.toml:0: key
+/// `sensors`"); they now leave the line out.
+#[test]
+fn regression_absent_keys_print_no_line_zero() {
+    // The default sensor (los:r=5) is too long for 1 mm cells.
+    let e = error_of(&ONE.replace("sensors = [\"los:r=3c\"]\n", "").replace(
+        "size = [4, 4]\nresolution = 0.5",
+        "size = [3, 3]\nresolution = 0.001",
+    ));
+    assert!(e.starts_with("s.toml: key `sensors`: los:r=5 on"), "{e}");
+    let e = error_of(&ONE.replace("strategies = [\"cf\"]\n", ""));
+    assert!(e.starts_with("s.toml: key `strategies`"), "{e}");
+    let e = error_of("strategies = [\"cf\"]\n");
+    assert!(e.starts_with("s.toml: key `env`"), "{e}");
+    assert!(!e.contains(":0:"), "{e}");
 }

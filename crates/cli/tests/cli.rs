@@ -1364,6 +1364,29 @@ fn regression_bench_export_onto_its_own_database_is_refused() {
     assert_eq!(bench_rows(&db).len(), 2);
 }
 
+/// Regression: `bench /dev/zero --dry-run` read the "scenario" until memory ran out, and a
+/// sonar on 0.5 m cells passed `--dry-run` before every trial failed when run. Both are
+/// refused before anything runs, naming the file (and the line and key).
+#[test]
+fn regression_bench_dry_run_refuses_what_cannot_run() {
+    #[cfg(unix)]
+    {
+        let e = err(&["bench", "/dev/zero", "--dry-run"]);
+        assert!(e.contains("/dev/zero: expected a scenario file"), "{e}");
+    }
+    let dir = tempfile::tempdir().expect("temp dir");
+    let study = dir.path().join("sonar.toml");
+    std::fs::write(
+        &study,
+        "strategies = [\"cf\"]\nsensors = [\"sonar\"]\n\n[[env]]\nkind = \"office\"\n\
+         resolution = 0.5\n",
+    )
+    .expect("write the scenario");
+    let e = err(&["bench", study.to_str().expect("utf-8 path"), "--dry-run"]);
+    assert!(e.contains("sonar.toml:2: key `sensors[0]`"), "{e}");
+    assert!(e.contains("at most 0.1 m"), "{e}");
+}
+
 /// Regression: `--dungeon --map /dev/zero` read the device until the memory was gone.
 #[cfg(unix)]
 #[test]
