@@ -59,6 +59,11 @@ impl Shard {
     pub fn contains(&self, i: usize) -> bool {
         i % self.count == self.index - 1
     }
+
+    /// How many of a plan's `trials` (numbers `0..trials`) belong to this shard.
+    pub fn share(&self, trials: usize) -> usize {
+        (trials + self.count - self.index) / self.count
+    }
 }
 
 /// How to run a plan.

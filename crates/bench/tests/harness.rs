@@ -205,6 +205,24 @@ fn shard_syntax() {
     }
 }
 
+/// Regression: `--dry-run --shard 2/2` reported the whole plan's trial count. A shard's
+/// share is the number of trials the runner takes for it.
+#[test]
+fn regression_shard_share_is_the_trials_the_shard_runs() {
+    for trials in 0..20 {
+        for count in 1..6 {
+            let mut sum = 0;
+            for index in 1..=count {
+                let s = Shard { index, count };
+                let runs = (0..trials).filter(|&i| s.contains(i)).count();
+                assert_eq!(s.share(trials), runs, "{s} of {trials}");
+                sum += runs;
+            }
+            assert_eq!(sum, trials);
+        }
+    }
+}
+
 /// The error of resolving `text` with `line` replaced by `with`.
 fn error_of(edit: (&str, &str)) -> String {
     assert!(TINY.contains(edit.0), "{}", edit.0);

@@ -170,11 +170,17 @@ fn run_study(a: RunArgs) -> Result<()> {
     let db =
         a.db.clone()
             .unwrap_or_else(|| PathBuf::from(format!("{}.sqlite", plan.name)));
-    let shard_text = shard.map_or(String::new(), |s| format!(", shard {s}"));
+    // The trials this command runs: the shard's share of the plan, when it runs one.
+    let (trials, shard_text) = match shard {
+        Some(s) => (
+            s.share(plan.trials.len()),
+            format!(", shard {s} of {} trials", plan.trials.len()),
+        ),
+        None => (plan.trials.len(), String::new()),
+    };
     eprintln!(
-        "{}: {} trials ({} environments, {} variants{shard_text}) -> {}",
+        "{}: {trials} trials ({} environments, {} variants{shard_text}) -> {}",
         plan.name,
-        plan.trials.len(),
         plan.envs.len(),
         plan.variants.len(),
         db.display()

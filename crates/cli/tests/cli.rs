@@ -1387,6 +1387,42 @@ fn regression_bench_dry_run_refuses_what_cannot_run() {
     assert!(e.contains("at most 0.1 m"), "{e}");
 }
 
+/// Regression: `bench FILE --dry-run --shard 2/2` printed the whole study's trial count
+/// ("1 trials") while the shard runs none; it prints the count the shard runs.
+#[test]
+fn regression_bench_dry_run_counts_the_shards_trials() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let study = tiny_study(dir.path(), 1);
+    let s = study.to_str().expect("utf-8 path");
+    // 4 trials: cf and random, 2 each from random starts; shard 3/3 holds trial 2 only.
+    for (shard, line) in [
+        (
+            "3/3",
+            "tiny: 1 trials (1 environments, 2 variants, shard 3/3 of 4 trials)",
+        ),
+        (
+            "1/3",
+            "tiny: 2 trials (1 environments, 2 variants, shard 1/3 of 4 trials)",
+        ),
+        (
+            "5/5",
+            "tiny: 0 trials (1 environments, 2 variants, shard 5/5 of 4 trials)",
+        ),
+    ] {
+        let out = frontier(&["bench", s, "--dry-run", "--shard", shard]);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(out.status.success(), "{stderr}");
+        assert!(stderr.contains(line), "{stderr}");
+    }
+    let db = dir.path().join("s3.sqlite");
+    bench_shard(&study, &db, "3/3");
+    assert_eq!(
+        bench_rows(&db).len(),
+        1,
+        "the shard runs what the dry run counted"
+    );
+}
+
 /// Regression: `--dungeon --map /dev/zero` read the device until the memory was gone.
 #[cfg(unix)]
 #[test]
