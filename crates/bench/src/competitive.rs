@@ -245,7 +245,7 @@ pub fn ratio_table(
         ];
         match crate::stats::summarize(&ratios) {
             Ok(x) => row.extend([
-                format!("{} ± {}", f(x.mean), f(x.sd)),
+                crate::report::mean_sd(x.mean, x.sd, f),
                 f(x.median),
                 f(x.min),
                 f(x.max),

@@ -61,10 +61,11 @@ pub const STRATEGIES: [&str; 6] = ["random", "cf", "cf-rr", "cf-rr-seg", "dt", "
 fn mean_sd(v: &[f64]) -> (f64, f64) {
     let n = v.len() as f64;
     let m = v.iter().sum::<f64>() / n;
+    // One value has no sample standard deviation: NaN, and the table shows the mean alone.
     let var = if v.len() > 1 {
         v.iter().map(|x| (x - m) * (x - m)).sum::<f64>() / (n - 1.0)
     } else {
-        0.0
+        f64::NAN
     };
     (m, var.sqrt())
 }
@@ -108,9 +109,12 @@ pub fn comparison(rows: &[TrialRow]) -> Option<(Vec<String>, Vec<Vec<String>>)> 
     let mut header = vec!["strategy".to_string()];
     header.extend(ours.iter().map(|(e, _)| format!("{e} (ours)")));
     header.extend(TABLES.iter().map(|t| format!("{} (paper)", t.env)));
+    let f = |x: f64| format!("{x:.1}");
     let cell = |m: Option<(f64, f64)>, cf: Option<f64>| match (m, cf) {
-        (Some((m, sd)), Some(cf)) if cf > 0.0 => format!("{m:.1} ± {sd:.1} (×{:.2})", m / cf),
-        (Some((m, sd)), _) => format!("{m:.1} ± {sd:.1}"),
+        (Some((m, sd)), Some(cf)) if cf > 0.0 => {
+            format!("{} (×{:.2})", crate::report::mean_sd(m, sd, f), m / cf)
+        }
+        (Some((m, sd)), _) => crate::report::mean_sd(m, sd, f),
         (None, _) => "–".to_string(),
     };
     let body = STRATEGIES

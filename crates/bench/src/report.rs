@@ -140,6 +140,15 @@ fn slug(s: &str) -> String {
         .collect()
 }
 
+/// "mean ± sd" written with `f`, or the mean alone when the sd is undefined (one value).
+pub(crate) fn mean_sd(mean: f64, sd: f64, f: impl Fn(f64) -> String) -> String {
+    if sd.is_finite() {
+        format!("{} ± {}", f(mean), f(sd))
+    } else {
+        f(mean)
+    }
+}
+
 fn fmt(x: f64) -> String {
     if x.abs() >= 100.0 {
         format!("{x:.1}")
@@ -377,7 +386,7 @@ fn summary_table(by_strategy: &BTreeMap<String, Vec<&TrialRow>>) -> Block {
             ];
             match stats::summarize(&l) {
                 Ok(x) => row.extend([
-                    format!("{} ± {}", fmt(x.mean), fmt(x.sd)),
+                    mean_sd(x.mean, x.sd, fmt),
                     fmt(x.median),
                     fmt(x.iqr),
                     fmt(x.min),
@@ -392,10 +401,7 @@ fn summary_table(by_strategy: &BTreeMap<String, Vec<&TrialRow>>) -> Block {
                 ]),
             }
             row.push(stats::shapiro_wilk(&l).map_or("–".into(), |w| format!("{:.3}", w.p_value)));
-            row.push(
-                stats::summarize(&t)
-                    .map_or("–".into(), |x| format!("{} ± {}", fmt(x.mean), fmt(x.sd))),
-            );
+            row.push(stats::summarize(&t).map_or("–".into(), |x| mean_sd(x.mean, x.sd, fmt)));
             row
         })
         .collect();
@@ -419,7 +425,7 @@ fn milestones_table(by_strategy: &BTreeMap<String, Vec<&TrialRow>>, team: bool) 
             String::new()
         };
         match stats::summarize(&v) {
-            Ok(x) => format!("{} ± {}{reached}", fmt(x.mean), fmt(x.sd)),
+            Ok(x) => format!("{}{reached}", mean_sd(x.mean, x.sd, fmt)),
             Err(_) => format!("–{reached}"),
         }
     };

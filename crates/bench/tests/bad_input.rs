@@ -269,3 +269,35 @@ fn regression_absent_keys_print_no_line_zero() {
     assert!(e.starts_with("s.toml: key `env`"), "{e}");
     assert!(!e.contains(":0:"), "{e}");
 }
+
+/// Regression: `bench report` printed "222.5 ± NaN" for cells of one trial (the sample sd
+/// of one value is undefined), in report.md and report.html; Holz's table printed
+/// "± 0.0". They print the mean alone.
+#[test]
+fn regression_report_of_single_trials_prints_no_nan() {
+    let dir = tempfile::tempdir().unwrap();
+    let db = dir.path().join("h.sqlite");
+    let text = ONE
+        .replace("\"one\"", "\"holz2010-single\"")
+        .replace("[\"cf\"]", "[\"cf\", \"random\"]");
+    run(&text, &db);
+    let out = dir.path().join("report");
+    bench::report::write(&db, &out, &bench::report::ReportOptions::default()).unwrap();
+    let md = std::fs::read_to_string(out.join("report.md")).unwrap();
+    let html = std::fs::read_to_string(out.join("report.html")).unwrap();
+    for (name, text) in [("report.md", &md), ("report.html", &html)] {
+        assert!(!text.contains("NaN"), "{name}: {text}");
+    }
+    assert!(md.contains("Holz et al. 2010, Tables 1–3"), "{md}");
+    // Our cells (the first after the strategy) hold a mean alone; the paper's keep their sd.
+    let row = md
+        .lines()
+        .find(|l| l.starts_with("| cf | ") && l.contains("(×"))
+        .unwrap_or_else(|| panic!("no Holz row for cf: {md}"));
+    let ours = row.split(" | ").nth(1).unwrap();
+    assert!(!ours.contains('±'), "{row}");
+    assert!(
+        row.contains("±"),
+        "the paper's columns keep their sd: {row}"
+    );
+}
