@@ -307,7 +307,22 @@ fn resolve(src: &Source, f: ScenarioFile, unbuilt: Unbuilt) -> Result<Plan, Benc
 
     // Common settings.
     let speed = match &f.speed {
-        Some(v) => positive_f64(src, v, "speed")?,
+        Some(v) => {
+            let x = *v.get_ref();
+            if !sim::run::SPEED_RANGE.contains(&x) {
+                return Err(src.error(
+                    span_of(v),
+                    "speed",
+                    format!(
+                        "expected a positive number of metres per second, from {} to {}, \
+                         found {x}",
+                        sim::run::SPEED_RANGE.start(),
+                        sim::run::SPEED_RANGE.end()
+                    ),
+                ));
+            }
+            x
+        }
         None => 1.0,
     };
     let clearance_m = match &f.clearance {

@@ -301,3 +301,14 @@ fn regression_report_of_single_trials_prints_no_nan() {
         "the paper's columns keep their sd: {row}"
     );
 }
+
+/// Regression: a scenario's `speed = 1e-308` was accepted and every trial's time was
+/// infinite in the store and the CSV.
+#[test]
+fn regression_scenario_speed_near_zero_is_refused() {
+    let e = error_of(&format!("speed = 1e-308\n{ONE}"));
+    assert!(
+        e.starts_with("s.toml:1: key `speed`: expected a positive number of metres per second, from 0.001 to 1000"),
+        "{e}"
+    );
+}
