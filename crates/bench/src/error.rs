@@ -29,12 +29,13 @@ pub enum BenchError {
         message: String,
     },
     /// Reading or writing a file failed.
-    #[error("{path}: {source}")]
+    #[error("{path}: {cause}")]
     Io {
         /// The file.
         path: PathBuf,
-        /// The cause.
-        source: std::io::Error,
+        /// The cause, already in the message: not a `#[source]`, or reporters that print
+        /// the chain (`{:#}`) would repeat it.
+        cause: std::io::Error,
     },
     /// A file is not of the kind expected (a directory, a device, too large), found before
     /// it is read.
@@ -77,9 +78,9 @@ impl BenchError {
 
     /// An I/O error on `path`.
     pub fn io(path: &std::path::Path) -> impl FnOnce(std::io::Error) -> BenchError + '_ {
-        move |source| BenchError::Io {
+        move |cause| BenchError::Io {
             path: path.to_path_buf(),
-            source,
+            cause,
         }
     }
 }

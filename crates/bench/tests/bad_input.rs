@@ -312,3 +312,20 @@ fn regression_scenario_speed_near_zero_is_refused() {
         "{e}"
     );
 }
+
+/// Regression: a missing file's cause was printed twice by reporters that print the
+/// error's chain ("x.toml: No such file ... : No such file ...").
+#[test]
+fn regression_io_error_cause_is_printed_once() {
+    let dir = tempfile::tempdir().unwrap();
+    let missing = dir.path().join("x.toml");
+    let e = Source::read(&missing).expect_err("missing file");
+    // What `{:#}` of anyhow prints: the error, then each source after ": ".
+    let mut chain = e.to_string();
+    let mut source = std::error::Error::source(&e);
+    while let Some(s) = source {
+        chain += &format!(": {s}");
+        source = s.source();
+    }
+    assert_eq!(chain.matches("os error 2").count(), 1, "{chain}");
+}
