@@ -87,7 +87,8 @@ pub struct ScenarioFile {
     pub coverage_goal: Option<Spanned<f64>>,
     /// Stop after this many cell moves of the team.
     pub max_moves: Option<Spanned<i64>>,
-    /// Belief map: known, reflection, evidence.
+    /// Belief map of the range sensors' trials: known, reflection, evidence (a sonar's
+    /// trials always build the evidence grid, so one study can set lasers beside sonar).
     pub belief: Option<Spanned<String>>,
     /// Sensing mode: continuous, on-arrival or every-N (default: each strategy's).
     pub sensing: Option<Spanned<String>>,
