@@ -90,6 +90,24 @@ pub fn check_memory(cfg: &RunConfig, map: &GridMap, memory_mb: Option<u64>) -> R
     .map_err(|e| e.to_string())
 }
 
+/// Refuse to generate the environment `spec` when its generation would need more than
+/// `memory_mb` or the memory available now (the generators' peak, 24 bytes a cell). A spec
+/// that is wrong in itself passes: generating it gives its error.
+pub fn check_generate_memory(spec: &world::EnvSpec, memory_mb: Option<u64>) -> Result<(), String> {
+    let Ok(cells) = spec.cells() else {
+        return Ok(());
+    };
+    sim::memory::check(
+        &format!("generating this {} of {cells} cells", spec.kind),
+        sim::memory::BASE_BYTES
+            .saturating_add(cells.saturating_mul(world::GENERATE_BYTES_PER_CELL)),
+        memory_mb,
+        crate::machine::available_bytes(),
+        "choose a smaller size or a coarser resolution",
+    )
+    .map_err(|e| e.to_string())
+}
+
 /// Resolve `o` into a run configuration for `map` (with its off-plane `clutter`); the
 /// error names the flag, what was expected and what was found.
 pub fn config(

@@ -952,9 +952,8 @@ pub const MAX_PLAN_ENVS: u64 = 10_000;
 /// Bytes a planned environment holds per cell (its ground truth, one byte a cell).
 const ENV_HELD_BYTES_PER_CELL: u64 = 1;
 
-/// Peak bytes per cell while one environment is generated (measured: 8 for `empty`, 10
-/// for `office`, 18 for `cave`, on 25 M cells), rounded up.
-const ENV_GENERATE_BYTES_PER_CELL: u64 = 24;
+/// Peak bytes per cell while one environment is generated.
+const ENV_GENERATE_BYTES_PER_CELL: u64 = world::GENERATE_BYTES_PER_CELL;
 
 /// How many environments one `[[env]]` gives and how large they are, known before any is
 /// generated or loaded.

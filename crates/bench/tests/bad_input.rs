@@ -329,3 +329,19 @@ fn regression_io_error_cause_is_printed_once() {
     }
     assert_eq!(chain.matches("os error 2").count(), 1, "{chain}");
 }
+
+/// Regression: generating an environment was not estimated first: `frontier env cave
+/// --size 1000x1000` took 1.6 GB and minutes before anything was checked.
+#[test]
+fn regression_generation_memory_is_estimated_first() {
+    let cave = world::EnvSpec {
+        kind: world::EnvKind::Cave,
+        seed: 0,
+        size_m: Some((1000.0, 1000.0)),
+        resolution: Some(0.1),
+    };
+    let e = bench::explore::check_generate_memory(&cave, Some(100)).expect_err("over 100 MB");
+    assert!(e.contains("generating this cave of 100000000 cells"), "{e}");
+    let office = world::EnvSpec::new(world::EnvKind::Office, 0);
+    assert!(bench::explore::check_generate_memory(&office, Some(100)).is_ok());
+}

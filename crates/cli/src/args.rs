@@ -227,6 +227,7 @@ impl MapSource {
             size_m: self.size.as_deref().map(parse_size).transpose()?,
             resolution,
         };
+        bench::explore::check_generate_memory(&spec, None).map_err(anyhow::Error::msg)?;
         let env = world::generate(&spec).with_context(|| format!("generating {kind}"))?;
         let opts = grid::io::LoadOptions {
             resolution: Some((env.map.resolution, env.map.resolution)),

@@ -68,6 +68,7 @@ pub fn run(a: EnvArgs) -> Result<()> {
         size_m: a.size.as_deref().map(parse_size).transpose()?,
         resolution,
     };
+    bench::explore::check_generate_memory(&spec, None).map_err(anyhow::Error::msg)?;
     let env = world::generate(&spec)?;
     grid::io::save_map(&env.map, out).context("--out")?;
     let (free, occ, unk) = env.map.counts();

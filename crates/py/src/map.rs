@@ -216,6 +216,7 @@ impl Map {
             size_m: size_arg(size)?,
             resolution,
         };
+        bench::explore::check_generate_memory(&spec, None).map_err(value_error)?;
         let env = py
             .detach(|| world::generate(&spec))
             .map_err(|e| value_error(format!("generating {kind}: {e}")))?;
