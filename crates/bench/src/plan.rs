@@ -952,9 +952,6 @@ pub const MAX_PLAN_ENVS: u64 = 10_000;
 /// Bytes a planned environment holds per cell (its ground truth, one byte a cell).
 const ENV_HELD_BYTES_PER_CELL: u64 = 1;
 
-/// Peak bytes per cell while one environment is generated.
-const ENV_GENERATE_BYTES_PER_CELL: u64 = world::GENERATE_BYTES_PER_CELL;
-
 /// How many environments one `[[env]]` gives and how large they are, known before any is
 /// generated or loaded.
 #[derive(Clone, Debug)]
@@ -1083,7 +1080,7 @@ fn check_env_memory(
     let peak = extents.iter().map(|x| x.cells).max().unwrap_or(0);
     let needed = sim::memory::BASE_BYTES
         .saturating_add(held)
-        .saturating_add(peak.saturating_mul(ENV_GENERATE_BYTES_PER_CELL));
+        .saturating_add(peak.saturating_mul(world::GENERATE_BYTES_PER_CELL));
     let envs: u64 = extents.iter().map(|x| x.count).sum();
     sim::memory::check(
         &format!(

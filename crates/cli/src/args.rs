@@ -85,7 +85,7 @@ pub fn load_mcap_map(path: &std::path::Path, topic: Option<&str>) -> Result<Grid
 pub fn parse_resolution(s: &str) -> Result<(f64, f64)> {
     let parse = |p: &str| -> Result<f64> {
         let v: f64 = p.trim().parse().map_err(|_| anyhow::anyhow!("--resolution: expected a positive number of metres per cell (or RX,RY), found '{s}'"))?;
-        if !(v > 0.0 && v <= grid::io::MAX_RESOLUTION_M) {
+        if !grid::io::is_valid_resolution(v) {
             bail!(
                 "--resolution: expected a positive number of metres per cell, at most {}, \
                  found '{s}'",

@@ -50,7 +50,7 @@ fn resolution_arg(v: Option<&Bound<'_, PyAny>>) -> PyResult<Option<(f64, f64)>> 
 /// The CLI's `--resolution` rule and message: a positive number of metres per cell, at most
 /// [`grid::io::MAX_RESOLUTION_M`].
 fn check_resolution(r: f64) -> PyResult<()> {
-    if r > 0.0 && r <= grid::io::MAX_RESOLUTION_M {
+    if grid::io::is_valid_resolution(r) {
         Ok(())
     } else {
         Err(value_error(format!(

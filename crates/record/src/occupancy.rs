@@ -139,8 +139,7 @@ pub fn frame_of(msg: &OccupancyGrid) -> Result<MapFrame, MapMsgError> {
             found: msg.data.len(),
         });
     }
-    let r = f64::from(info.resolution);
-    if !(r > 0.0 && r <= grid::io::MAX_RESOLUTION_M) {
+    if !grid::io::is_valid_resolution(f64::from(info.resolution)) {
         return Err(MapMsgError::BadResolution(info.resolution));
     }
     let (p, q) = (info.origin.position, info.origin.orientation);

@@ -47,6 +47,13 @@ use crate::resample;
 /// resolution, so a resolution near the largest float made every path length infinite.
 pub const MAX_RESOLUTION_M: f64 = 1000.0;
 
+/// Whether `r` metres per cell is a resolution maps may have: positive and at most
+/// [`MAX_RESOLUTION_M`] (so not NaN). The one rule of map files, map messages, the CLI and
+/// Python.
+pub fn is_valid_resolution(r: f64) -> bool {
+    r > 0.0 && r <= MAX_RESOLUTION_M
+}
+
 /// The largest map accepted, in cells (2²⁸ ≈ 268 million); larger ones are refused before
 /// allocating.
 pub const MAX_CELLS: u64 = 1 << 28;
@@ -259,7 +266,7 @@ pub(crate) fn finish(
 
 /// Error unless `r` is a positive resolution of at most [`MAX_RESOLUTION_M`].
 pub(crate) fn check_resolution(r: f64, path: &Path) -> Result<(), MapError> {
-    if r > 0.0 && r <= MAX_RESOLUTION_M {
+    if is_valid_resolution(r) {
         Ok(())
     } else {
         Err(MapError::new(path, MapErrorKind::BadResolution(r)))
