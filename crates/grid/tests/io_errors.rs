@@ -1,44 +1,14 @@
 //! Every class of malformed map input gives an error naming the file and what is wrong.
 
-use std::path::{Path, PathBuf};
+mod common;
+
+use std::path::Path;
 
 use grid::io::{
     LoadOptions, MAX_CELLS, MapErrorKind, encode_png, load_map, parse_ascii, parse_movingai,
     parse_pgm, parse_png, parse_ros_yaml_meta,
 };
 use grid::{Grid, Occ};
-
-/// A fresh scratch folder for one test, removed when the test ends (also when it fails).
-fn scratch(test: &str) -> Scratch {
-    let dir =
-        std::env::temp_dir().join(format!("frontier-io-errors-{}-{test}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("create scratch folder");
-    Scratch(dir)
-}
-
-/// A scratch folder, removed on drop.
-struct Scratch(PathBuf);
-
-impl std::ops::Deref for Scratch {
-    type Target = Path;
-
-    fn deref(&self) -> &Path {
-        &self.0
-    }
-}
-
-impl AsRef<Path> for Scratch {
-    fn as_ref(&self) -> &Path {
-        &self.0
-    }
-}
-
-impl Drop for Scratch {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.0);
-    }
-}
 
 /// The message of an error result.
 fn msg<T>(r: Result<T, grid::io::MapError>) -> String {
@@ -800,4 +770,9 @@ fn pgm_at_the_cell_limit_with_a_border_is_refused_before_reading() {
         matches!(err.kind, MapErrorKind::TooLarge { width: 16_386, .. }),
         "{err}"
     );
+}
+
+/// A fresh scratch folder for one test, removed when the test ends.
+fn scratch(test: &str) -> common::Scratch {
+    common::scratch("io-errors", test)
 }

@@ -2,36 +2,12 @@
 //! a ROS YAML's image, are refused before a byte is read, with an error naming them.
 #![cfg(unix)]
 
+mod common;
+
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
 use grid::io::{LoadOptions, MapErrorKind, load_map, read_bytes, read_bytes_at_most};
-
-/// A fresh scratch folder for one test, removed when the test ends (also when it fails).
-fn scratch(test: &str) -> Scratch {
-    let dir =
-        std::env::temp_dir().join(format!("frontier-io-special-{}-{test}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("create scratch folder");
-    Scratch(dir)
-}
-
-/// A scratch folder, removed on drop.
-struct Scratch(PathBuf);
-
-impl std::ops::Deref for Scratch {
-    type Target = Path;
-
-    fn deref(&self) -> &Path {
-        &self.0
-    }
-}
-
-impl Drop for Scratch {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.0);
-    }
-}
 
 /// A ROS map YAML in `dir` whose image is `image`; returns the YAML's path.
 fn yaml_naming(dir: &Path, image: &str) -> PathBuf {
@@ -170,4 +146,9 @@ fn regression_read_bytes_is_public_and_bounded() {
             small.display()
         )
     );
+}
+
+/// A fresh scratch folder for one test, removed when the test ends.
+fn scratch(test: &str) -> common::Scratch {
+    common::scratch("io-special", test)
 }
