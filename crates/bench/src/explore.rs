@@ -79,13 +79,27 @@ pub fn check_memory(cfg: &RunConfig, map: &GridMap, memory_mb: Option<u64>) -> R
         if cfg.robots == 1 { "" } else { "s" },
         cfg.strategy.name
     );
+    let template = cfg.sensor.build_bytes(map.resolution);
+    let fix = format!(
+        "use a map with fewer, larger cells (scale the image down and raise its resolution), \
+         fewer robots, or another candidate generator{}",
+        if template > 0 {
+            format!(
+                "; the {} sensor's ray template alone needs about {} MiB (a shorter range \
+                 in cells needs less)",
+                cfg.sensor,
+                template.div_ceil(1 << 20)
+            )
+        } else {
+            String::new()
+        }
+    );
     sim::memory::check(
         &what,
-        sim::memory::run_bytes(w * h, cfg),
+        sim::memory::run_bytes(w * h, map.resolution, cfg),
         memory_mb,
         crate::machine::available_bytes(),
-        "use a map with fewer, larger cells (scale the image down and raise its resolution), \
-         fewer robots, or another candidate generator",
+        &fix,
     )
     .map_err(|e| e.to_string())
 }

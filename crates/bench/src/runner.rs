@@ -233,9 +233,9 @@ fn check_memory(
     let needs: Vec<(u64, String)> = pending
         .iter()
         .map(|t| {
-            let cells = plan.envs[t.env].map.cells.len();
+            let map = &plan.envs[t.env].map;
             (
-                sim::memory::run_bytes(cells, &plan.config(t)),
+                sim::memory::run_bytes(map.cells.len(), map.resolution, &plan.config(t)),
                 t.key.clone(),
             )
         })

@@ -720,6 +720,32 @@ fn huge_map_explore_is_refused_with_the_memory_it_needs() {
     assert!(e.contains("more than --memory-mb 100"), "{e}");
 }
 
+/// Regression: a 5 m line-of-sight sensor on 2 cm cells built a ray template of 1 GB at its
+/// peak on a small map, counted by no estimate; the run is refused under a budget below the
+/// template's bound, which the message names.
+#[test]
+fn fine_los_template_is_counted_in_the_memory_estimate() {
+    let e = err(&[
+        "explore",
+        "--env",
+        "cave",
+        "--size",
+        "4x4",
+        "--resolution",
+        "0.02",
+        "--sensor",
+        "los:r=5",
+        "--memory-mb",
+        "300",
+    ]);
+    assert!(e.contains("exploring this 200x200 map with 1 robot"), "{e}");
+    assert!(e.contains("more than --memory-mb 300"), "{e}");
+    assert!(
+        e.contains("the los:r=5 sensor's ray template alone needs about"),
+        "{e}"
+    );
+}
+
 /// `segment` estimates its memory before segmenting, like every command that takes a map.
 #[test]
 fn huge_map_segment_is_refused_with_the_memory_it_needs() {

@@ -1288,12 +1288,20 @@ pub const SETUP_BYTES_PER_CELL: u64 = 560;
 
 /// Estimated peak bytes of setting up the search on a map of `cells` cells sensed with
 /// `model`, before the first state is stored: counted against [`Config::max_bytes`] and
-/// checked before anything map-sized is allocated.
+/// checked before anything map-sized is allocated. The line-of-sight model adds its ray
+/// template, whose size depends on the range alone.
 pub fn setup_bytes(cells: usize, model: SensorModel) -> u64 {
     let views = cells
         .saturating_mul(model.disc_cells())
         .min(crate::heuristic::VIEW_ENTRIES);
-    SETUP_BYTES_PER_CELL.saturating_mul(cells as u64) + 4 * views as u64
+    let template = match model {
+        SensorModel::Los(r) => sense::ray_template::build_bytes(r),
+        SensorModel::Footprint(_) => 0,
+    };
+    SETUP_BYTES_PER_CELL
+        .saturating_mul(cells as u64)
+        .saturating_add(4 * views as u64)
+        .saturating_add(template)
 }
 
 /// [`solve`], showing `observe` the search's [`Progress`] at most once per `every` of wall

@@ -58,8 +58,8 @@ struct Spec {
     max_path_m: Option<f64>,
     max_steps: Option<u64>,
     gain: bool,
-    /// The largest map's width and height in cells, and the estimated peak bytes of one
-    /// run on it ([`sim::memory::run_bytes`]).
+    /// The largest map's width and height in cells, and the largest estimated peak bytes of
+    /// one run on any of the maps ([`sim::memory::run_bytes`]).
     largest: (usize, usize),
     run_bytes: u64,
 }
@@ -552,7 +552,17 @@ fn spec(
             .unwrap_or((first.width(), first.height())),
         Maps::Generated { .. } => (first.width(), first.height()),
     };
-    s.run_bytes = sim::memory::run_bytes(s.largest.0 * s.largest.1, &cfg);
+    // The largest estimate: the largest map's arrays, or the finest map's sensor template.
+    s.run_bytes = match &s.maps {
+        Maps::List(list) => list
+            .iter()
+            .map(|m| sim::memory::run_bytes(m.map.width() * m.map.height(), m.map.resolution, &cfg))
+            .max()
+            .unwrap_or(0),
+        Maps::Generated { .. } => {
+            sim::memory::run_bytes(first.width() * first.height(), first.resolution, &cfg)
+        }
+    };
     s.shape = match view {
         Some(v) => (v, v),
         None => {

@@ -178,7 +178,7 @@ fn check_memory(jobs: &[Job], threads: Option<usize>, memory_mb: Option<u64>) ->
         .iter()
         .enumerate()
         .map(|(i, j)| {
-            let bytes = sim::memory::run_bytes(j.map.map.cells.len(), &j.cfg);
+            let bytes = sim::memory::run_bytes(j.map.map.cells.len(), j.map.map.resolution, &j.cfg);
             (bytes, format!("run {i}"))
         })
         .collect();

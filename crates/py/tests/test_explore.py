@@ -195,9 +195,10 @@ def test_explore_many_checks_every_run_first(office):
 def test_explore_many_checks_memory_first(office):
     """Regression: the Python package estimated no run's memory, so a batch of large runs
     could be killed half-way for lack of memory; now it is refused before any starts."""
-    # each run (about 17 MiB) fits in 20 MiB, two at once do not
+    # each run (about 17 MiB: 16.2 of base and arrays, 0.4 of the los:r=5 sensor's ray
+    # template) fits in 20 MiB, two at once do not
     with pytest.raises(ValueError, match=r"running 4 runs on 2 threads \(the largest, run 0, "
-                       r"about 17 MiB\) needs about 33 MiB, more than --memory-mb 20; "
+                       r"about 17 MiB\) needs about 34 MiB, more than --memory-mb 20; "
                        r"use fewer threads"):
         frontier.explore_many([dict(map=office)] * 4, threads=2, memory_mb=20)
     with pytest.raises(ValueError, match=r"run 0: exploring this 60x48 map with 1 robot \(cf-rr\) "

@@ -78,11 +78,58 @@ enum Event {
     Vertex(i16, i16, i16, i16),
 }
 
-/// A trie node during construction: cell `(dx, dy)`, entered through a vertex or not.
+/// A trie node during construction: cell `(dx, dy)`, entered through a vertex or not, with
+/// its children as a linked list in insertion order (20 bytes a node and no allocation of
+/// its own, so that building the largest template peaks near [`build_bytes`]).
+#[derive(Clone, Copy)]
 struct TrieNode {
-    key: (i16, i16, bool),
+    dx: i16,
+    dy: i16,
+    squeeze: bool,
     target: bool,
-    children: Vec<u32>,
+    first_child: u32,
+    last_child: u32,
+    next_sibling: u32,
+}
+
+/// "No node" in a [`TrieNode`] link (the root is never anyone's child).
+const NONE: u32 = 0;
+
+impl TrieNode {
+    fn new(dx: i16, dy: i16, squeeze: bool) -> Self {
+        Self {
+            dx,
+            dy,
+            squeeze,
+            target: false,
+            first_child: NONE,
+            last_child: NONE,
+            next_sibling: NONE,
+        }
+    }
+}
+
+/// An upper bound of the nodes of the template of range `r` cells (about `0.92 r³`;
+/// checked against built templates by a test).
+pub fn node_bound(r: f64) -> usize {
+    if !(r.is_finite() && r >= 0.0) {
+        return 0;
+    }
+    (r * r * r + 16.0 * r * r + 64.0).ceil() as usize
+}
+
+/// An upper bound of the peak bytes of building the template of range `r` cells (the trie
+/// and the flattened tree, both held at once) and of keeping it, so that a run can be
+/// refused before it builds one it has no memory for (`r` = 256: about 560 MiB).
+pub fn build_bytes(r: f64) -> u64 {
+    if !(r.is_finite() && r >= 0.0) {
+        return 0;
+    }
+    let nodes = node_bound(r) as u64;
+    let side = 2 * r.floor() as u64 + 1;
+    let per_node = (std::mem::size_of::<TrieNode>() + std::mem::size_of::<LosNode>()) as u64;
+    // The rank table (4 bytes an offset) and the target list (8 bytes a target).
+    nodes * per_node + side * side * (4 + 8)
 }
 
 /// The crossing sequence from the origin's centre to the centre of `(dx, dy)`, written into
@@ -150,69 +197,76 @@ impl LosTemplate {
             .map(|&(dx, dy)| i64::from(dx * dx + dy * dy))
             .max();
 
-        let mut trie = vec![TrieNode {
-            key: (0, 0, false),
-            target: false,
-            children: vec![],
-        }];
+        let bound = node_bound(r);
+        if bound > MAX_NODES {
+            return Err(SenseError::BadRange {
+                max: MAX_TEMPLATE_RANGE_CELLS,
+                found: r,
+            });
+        }
+        let mut trie: Vec<TrieNode> = Vec::with_capacity(bound);
+        trie.push(TrieNode::new(0, 0, false));
         let mut seq = Vec::new();
         for &(dx, dy) in &targets {
             crossing_sequence(dx, dy, &mut seq);
             let mut at = 0usize;
             let mut through_vertex = false;
             for &ev in &seq[1..] {
-                let key = match ev {
+                let (x, y, squeeze) = match ev {
                     Event::Vertex(..) => {
                         through_vertex = true;
                         continue;
                     }
                     Event::Cell(x, y) => (x, y, std::mem::take(&mut through_vertex)),
                 };
-                let found = trie[at]
-                    .children
-                    .iter()
-                    .copied()
-                    .find(|&c| trie[c as usize].key == key);
-                at = match found {
-                    Some(c) => c as usize,
-                    None => {
-                        let id = trie.len();
-                        trie.push(TrieNode {
-                            key,
-                            target: false,
-                            children: vec![],
-                        });
-                        trie[at].children.push(id as u32);
-                        id
+                let mut child = trie[at].first_child;
+                while child != NONE {
+                    let c = &trie[child as usize];
+                    if (c.dx, c.dy, c.squeeze) == (x, y, squeeze) {
+                        break;
                     }
+                    child = c.next_sibling;
+                }
+                at = if child != NONE {
+                    child as usize
+                } else {
+                    let id = trie.len() as u32;
+                    trie.push(TrieNode::new(x, y, squeeze));
+                    match trie[at].last_child {
+                        NONE => trie[at].first_child = id,
+                        last => trie[last as usize].next_sibling = id,
+                    }
+                    trie[at].last_child = id;
+                    id as usize
                 };
             }
             trie[at].target = true;
         }
-        if trie.len() > MAX_NODES {
-            return Err(SenseError::BadRange {
-                max: MAX_TEMPLATE_RANGE_CELLS,
-                found: r,
-            });
-        }
+        debug_assert!(
+            trie.len() <= bound,
+            "node_bound({r}) = {bound} < {}",
+            trie.len()
+        );
 
-        // Flatten in pre-order with an explicit stack; `end` is patched on exit.
+        // Flatten in pre-order with an explicit stack of (next child to visit, flat id);
+        // `end` is patched on exit.
         let mut nodes = Vec::with_capacity(trie.len());
-        let mut stack: Vec<(usize, usize, usize)> = vec![(0, 0, 0)]; // (trie id, next child, flat id)
+        let mut stack: Vec<(u32, usize)> = vec![(trie[0].first_child, 0)];
         nodes.push(flat(&trie[0]));
         while let Some(top) = stack.last_mut() {
-            let (id, next, flat_id) = *top;
-            if next < trie[id].children.len() {
-                top.1 += 1;
-                let child = trie[id].children[next] as usize;
+            let (next, flat_id) = *top;
+            if next != NONE {
+                let child = &trie[next as usize];
+                top.0 = child.next_sibling;
                 let child_flat = nodes.len();
-                nodes.push(flat(&trie[child]));
-                stack.push((child, 0, child_flat));
+                nodes.push(flat(child));
+                stack.push((child.first_child, child_flat));
             } else {
                 nodes[flat_id].bits |= nodes.len() as u32;
                 stack.pop();
             }
         }
+        drop(trie);
         let side = (2 * reach + 1) as usize;
         let mut rank = vec![u32::MAX; side * side];
         for (t, n) in nodes.iter().filter(|n| n.is_target()).enumerate() {
@@ -298,12 +352,12 @@ impl LosTemplate {
 }
 
 fn flat(n: &TrieNode) -> LosNode {
-    let (dx, dy, squeeze) = n.key;
+    let (dx, dy) = (n.dx, n.dy);
     let mut bits = 0;
     if n.target {
         bits |= LosNode::TARGET;
     }
-    if squeeze {
+    if n.squeeze {
         bits |= LosNode::SQUEEZE;
     }
     LosNode { dx, dy, bits }
@@ -422,5 +476,105 @@ mod tests {
         assert!(LosTemplate::new(-1.0).is_err());
         assert!(LosTemplate::new(f64::NAN).is_err());
         assert!(LosTemplate::new(1e9).is_err());
+    }
+
+    /// The tree as first built, with a vector of children per node: the oracle of the
+    /// linked-list builder's pre-order.
+    fn nodes_with_child_vectors(r: f64) -> Vec<LosNode> {
+        struct Node {
+            key: (i16, i16, bool),
+            target: bool,
+            children: Vec<usize>,
+        }
+        let reach = r.floor() as i32;
+        let mut targets = Vec::new();
+        for dy in -reach..=reach {
+            for dx in -reach..=reach {
+                if within_range(i64::from(dx * dx + dy * dy), r) {
+                    targets.push((dx, dy));
+                }
+            }
+        }
+        targets.sort_by_key(|&(dx, dy)| (dx * dx + dy * dy, dy, dx));
+        let mut trie = vec![Node {
+            key: (0, 0, false),
+            target: false,
+            children: vec![],
+        }];
+        let mut seq = Vec::new();
+        for &(dx, dy) in &targets {
+            crossing_sequence(dx, dy, &mut seq);
+            let (mut at, mut vertex) = (0, false);
+            for &ev in &seq[1..] {
+                let key = match ev {
+                    Event::Vertex(..) => {
+                        vertex = true;
+                        continue;
+                    }
+                    Event::Cell(x, y) => (x, y, std::mem::take(&mut vertex)),
+                };
+                let found = trie[at]
+                    .children
+                    .iter()
+                    .copied()
+                    .find(|&c| trie[c].key == key);
+                at = found.unwrap_or_else(|| {
+                    trie.push(Node {
+                        key,
+                        target: false,
+                        children: vec![],
+                    });
+                    let id = trie.len() - 1;
+                    trie[at].children.push(id);
+                    id
+                });
+            }
+            trie[at].target = true;
+        }
+        fn walk(trie: &[Node], id: usize, out: &mut Vec<LosNode>) {
+            let (dx, dy, squeeze) = trie[id].key;
+            let bits = if trie[id].target { LosNode::TARGET } else { 0 }
+                | if squeeze { LosNode::SQUEEZE } else { 0 };
+            let me = out.len();
+            out.push(LosNode { dx, dy, bits });
+            for &c in &trie[id].children {
+                walk(trie, c, out);
+            }
+            out[me].bits |= out.len() as u32;
+        }
+        let mut out = Vec::new();
+        walk(&trie, 0, &mut out);
+        out
+    }
+
+    #[test]
+    fn linked_children_build_the_same_tree() {
+        for k in 0..=60 {
+            let r = f64::from(k) * 0.5;
+            let t = LosTemplate::new(r).expect("valid");
+            assert_eq!(t.nodes(), &nodes_with_child_vectors(r)[..], "r = {r}");
+        }
+        for r in [0.3, 1.42, 2.24, 7.07, 12.99] {
+            let t = LosTemplate::new(r).expect("valid");
+            assert_eq!(t.nodes(), &nodes_with_child_vectors(r)[..], "r = {r}");
+        }
+    }
+
+    #[test]
+    fn node_bound_holds() {
+        for r in [
+            0.0, 0.5, 1.0, 1.5, 2.0, 3.0, 5.0, 8.0, 13.0, 21.0, 34.0, 55.0, 89.0, 120.0,
+        ] {
+            let t = LosTemplate::new(r).expect("valid");
+            assert!(
+                t.len() <= node_bound(r),
+                "r = {r}: {} > {}",
+                t.len(),
+                node_bound(r)
+            );
+        }
+        // The largest template's build is bounded well under a GiB.
+        assert!(build_bytes(MAX_TEMPLATE_RANGE_CELLS) < 600 << 20);
+        assert_eq!(build_bytes(f64::NAN), 0);
     }
 }

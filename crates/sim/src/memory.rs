@@ -27,15 +27,19 @@ const PER_CELL_COVERAGE: u64 = 128;
 /// Per-cell bytes of the decision-theoretic samples' gain evaluation.
 const PER_CELL_DT: u64 = 32;
 
-/// Estimated peak bytes of running `cfg` on a map of `cells` cells.
-pub fn run_bytes(cells: usize, cfg: &RunConfig) -> u64 {
+/// Estimated peak bytes of running `cfg` on a map of `cells` cells of `resolution` metres:
+/// the per-cell arrays and what building the sensor takes (the `los` kind's ray template,
+/// up to about 500 MiB at 256 cells of range, whatever the map's size).
+pub fn run_bytes(cells: usize, resolution: f64, cfg: &RunConfig) -> u64 {
     let mut per_cell = PER_CELL + PER_CELL_PER_ROBOT * cfg.robots.max(1) as u64;
     per_cell += match cfg.strategy.candidates {
         CandidateKind::Coverage => PER_CELL_COVERAGE,
         CandidateKind::DtSamples { .. } => PER_CELL_DT,
         _ => 0,
     };
-    BASE_BYTES + per_cell.saturating_mul(cells as u64)
+    BASE_BYTES
+        .saturating_add(per_cell.saturating_mul(cells as u64))
+        .saturating_add(cfg.sensor.build_bytes(resolution))
 }
 
 /// Why a run would not fit in memory.
@@ -129,11 +133,25 @@ mod tests {
         let mut cc = RunConfig::new(Strategy::preset("ha-cc").unwrap());
         cc.robots = 5;
         let n = 1_000_000;
-        assert!(run_bytes(n, &cf) < run_bytes(n, &team));
-        assert!(run_bytes(n, &team) < run_bytes(n, &cc));
+        assert!(run_bytes(n, 0.05, &cf) < run_bytes(n, 0.05, &team));
+        assert!(run_bytes(n, 0.05, &team) < run_bytes(n, 0.05, &cc));
         // The measured peaks on willow-full (1.1 M cells) lie below the estimates.
-        assert!(run_bytes(1_100_000, &cf) > 50 << 20);
-        assert!(run_bytes(1_100_000, &cc) > 180 << 20);
+        assert!(run_bytes(1_100_000, 0.05, &cf) > 50 << 20);
+        assert!(run_bytes(1_100_000, 0.05, &cc) > 180 << 20);
+    }
+
+    /// A 5 m line-of-sight sensor on 2 cm cells builds a ray template of 250 cells' range
+    /// (about 480 MB at its peak, 1 GB before the template was built with linked children)
+    /// on however small a map: the estimate counts it.
+    #[test]
+    fn a_fine_los_template_is_counted_whatever_the_map() {
+        let mut cfg = RunConfig::new(Strategy::preset("cf").unwrap());
+        cfg.sensor = "los:r=5".parse().unwrap();
+        let small_map = 200 * 200;
+        assert!(run_bytes(small_map, 0.02, &cfg) > 400 << 20);
+        assert!(run_bytes(small_map, 0.1, &cfg) < 64 << 20);
+        cfg.sensor = "lidar:r=5,fov=360,res=1".parse().unwrap();
+        assert!(run_bytes(small_map, 0.02, &cfg) < 64 << 20);
     }
 
     #[test]
