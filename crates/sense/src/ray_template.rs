@@ -68,9 +68,6 @@ impl LosNode {
     }
 }
 
-/// The largest number of nodes a template may have (30 bits of subtree end).
-const MAX_NODES: usize = LosNode::END as usize;
-
 /// An event along a ray, before flattening.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Event {
@@ -120,9 +117,10 @@ pub fn node_bound(r: f64) -> usize {
 
 /// An upper bound of the peak bytes of building the template of range `r` cells (the trie
 /// and the flattened tree, both held at once) and of keeping it, so that a run can be
-/// refused before it builds one it has no memory for (`r` = 256: about 560 MiB).
+/// refused before it builds one it has no memory for (`r` = 256: about 480 MiB); 0 for a
+/// range no template is built for.
 pub fn build_bytes(r: f64) -> u64 {
-    if !(r.is_finite() && r >= 0.0) {
+    if check_range(r).is_err() {
         return 0;
     }
     let nodes = node_bound(r) as u64;
@@ -197,13 +195,9 @@ impl LosTemplate {
             .map(|&(dx, dy)| i64::from(dx * dx + dy * dy))
             .max();
 
+        // At most `LosNode::END` for every valid range (test `node_bound_holds`), so the
+        // flattened subtree ends fit their 30 bits.
         let bound = node_bound(r);
-        if bound > MAX_NODES {
-            return Err(SenseError::BadRange {
-                max: MAX_TEMPLATE_RANGE_CELLS,
-                found: r,
-            });
-        }
         let mut trie: Vec<TrieNode> = Vec::with_capacity(bound);
         trie.push(TrieNode::new(0, 0, false));
         let mut seq = Vec::new();
@@ -573,8 +567,11 @@ mod tests {
                 node_bound(r)
             );
         }
+        // Subtree ends have 30 bits.
+        assert!(node_bound(MAX_TEMPLATE_RANGE_CELLS) <= LosNode::END as usize);
         // The largest template's build is bounded well under a GiB.
         assert!(build_bytes(MAX_TEMPLATE_RANGE_CELLS) < 600 << 20);
         assert_eq!(build_bytes(f64::NAN), 0);
+        assert_eq!(build_bytes(MAX_TEMPLATE_RANGE_CELLS + 1.0), 0);
     }
 }

@@ -148,16 +148,11 @@ impl SensorSpec {
     /// An upper bound of the bytes building this sensor for `resolution` metres per cell
     /// takes beyond the map's own arrays: the `los` kind's ray template
     /// ([`ray_template::build_bytes`](crate::ray_template::build_bytes), up to about
-    /// 500 MiB); the other kinds keep a row or a beam list (0 here).
+    /// 480 MiB); the other kinds keep a row or a beam list (0 here).
     pub fn build_bytes(&self, resolution: f64) -> u64 {
         match self {
             SensorSpec::Los { .. } => {
-                let r = self.range_cells(resolution);
-                if r <= crate::ray_template::MAX_TEMPLATE_RANGE_CELLS {
-                    crate::ray_template::build_bytes(r)
-                } else {
-                    0
-                }
+                crate::ray_template::build_bytes(self.range_cells(resolution))
             }
             _ => 0,
         }

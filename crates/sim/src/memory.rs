@@ -29,7 +29,7 @@ const PER_CELL_DT: u64 = 32;
 
 /// Estimated peak bytes of running `cfg` on a map of `cells` cells of `resolution` metres:
 /// the per-cell arrays and what building the sensor takes (the `los` kind's ray template,
-/// up to about 500 MiB at 256 cells of range, whatever the map's size).
+/// up to about 480 MiB at 256 cells of range, whatever the map's size).
 pub fn run_bytes(cells: usize, resolution: f64, cfg: &RunConfig) -> u64 {
     let mut per_cell = PER_CELL + PER_CELL_PER_ROBOT * cfg.robots.max(1) as u64;
     per_cell += match cfg.strategy.candidates {
