@@ -36,6 +36,25 @@ pub fn encode<T: Serialize>(msg: &T) -> Vec<u8> {
 
 /// Deserialize a message from CDR bytes with their encapsulation header.
 pub fn decode<T: DeserializeOwned>(bytes: &[u8]) -> Result<T, CdrError> {
+    decode_prefix(bytes).map(|p| p.value)
+}
+
+/// The leading fields of a message, decoded as `T`, and where the rest of its body begins.
+pub struct Prefix<T> {
+    /// The fields decoded.
+    pub value: T,
+    /// The body (the bytes after the encapsulation header; alignment counts from its start).
+    pub body: std::ops::Range<usize>,
+    /// Bytes of the body `value` took.
+    pub consumed: usize,
+    /// Whether the body is big-endian.
+    pub big_endian: bool,
+}
+
+/// Deserialize the first fields of a message from CDR bytes with their encapsulation header
+/// as `T` (a struct of the message's leading fields), leaving the rest unread: how a large
+/// field is read in place rather than copied.
+pub fn decode_prefix<T: DeserializeOwned>(bytes: &[u8]) -> Result<Prefix<T>, CdrError> {
     if bytes.len() < 4 {
         return Err(CdrError::Short(bytes.len()));
     }
@@ -46,7 +65,13 @@ pub fn decode<T: DeserializeOwned>(bytes: &[u8]) -> Result<T, CdrError> {
         1 => cdr_encoding::from_bytes::<T, LittleEndian>(body),
         k => return Err(CdrError::Encapsulation(k)),
     };
-    r.map(|(m, _)| m).map_err(|e| CdrError::Body(e.to_string()))
+    let (value, consumed) = r.map_err(|e| CdrError::Body(e.to_string()))?;
+    Ok(Prefix {
+        value,
+        body: 4..bytes.len(),
+        consumed,
+        big_endian: kind == 0,
+    })
 }
 
 #[cfg(test)]

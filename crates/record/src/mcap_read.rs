@@ -4,11 +4,11 @@
 //! rosbag2's default storage since Iron), then `frontier explore --map recording.mcap`.
 //! The last map on the topic is the most complete one a SLAM node published.
 
-use grid::GridMap;
+use grid::{Grid, GridMap, Occ};
 
-use crate::cdr::decode;
-use crate::msgs::{Header, MapMetaData, OccupancyGrid};
-use crate::occupancy::{MapMsgError, cells_of, map_from_msg};
+use crate::cdr::{decode, decode_prefix};
+use crate::msgs::{Header, MapMetaData};
+use crate::occupancy::{MapMsgError, cells_of, classify_bytes_into, frame_of_parts};
 
 /// Bytes a map message record holds besides its cells: the record's own fields, the CDR
 /// header, the message's header and metadata (about 130 bytes) and its frame id. Kept
@@ -362,15 +362,133 @@ pub fn last_map(bytes: &[u8], topic: Option<&str>) -> Result<(GridMap, String), 
         log_time,
         source,
     })?;
-    let msg: OccupancyGrid = decode(&data).map_err(|e| RecordError::Decode {
-        topic: name.clone(),
-        log_time,
-        why: e.to_string(),
-    })?;
-    let map = map_from_msg(&msg).map_err(|source| RecordError::BadMap {
-        topic: name.clone(),
-        log_time,
-        source,
+    let map = map_from_cdr(&data).map_err(|e| match e {
+        CdrMapError::Decode(why) => RecordError::Decode {
+            topic: name.clone(),
+            log_time,
+            why,
+        },
+        CdrMapError::Map(source) => RecordError::BadMap {
+            topic: name.clone(),
+            log_time,
+            source,
+        },
     })?;
     Ok((map, name))
+}
+
+/// Why a CDR OccupancyGrid gave no map.
+#[derive(Debug, PartialEq)]
+enum CdrMapError {
+    /// The bytes do not decode as an OccupancyGrid.
+    Decode(String),
+    /// They decode, but not to a usable map.
+    Map(MapMsgError),
+}
+
+/// The map of a CDR-encoded OccupancyGrid (with its encapsulation header), classified from
+/// the message's bytes in place: the same map as decoding the message and
+/// [`map_from_msg`](crate::occupancy::map_from_msg), without a decoded copy of its cells (at the cell limit, 256 MiB
+/// fewer while loading).
+fn map_from_cdr(bytes: &[u8]) -> Result<GridMap, CdrMapError> {
+    let head = decode_prefix::<GridHead>(bytes).map_err(|e| CdrMapError::Decode(e.to_string()))?;
+    let body = &bytes[head.body.clone()];
+    // `data`: a sequence<int8>, its u32 length aligned to 4 from the body's start.
+    let at = head.consumed.next_multiple_of(4);
+    let short = || CdrMapError::Decode("the message ends inside its data".into());
+    let len: [u8; 4] = body
+        .get(at..at + 4)
+        .and_then(|b| b.try_into().ok())
+        .ok_or_else(short)?;
+    let len = if head.big_endian {
+        u32::from_be_bytes(len)
+    } else {
+        u32::from_le_bytes(len)
+    } as usize;
+    let data = body
+        .get(at + 4..)
+        .and_then(|d| d.get(..len))
+        .ok_or_else(short)?;
+    let frame = frame_of_parts(&head.value.info, len).map_err(CdrMapError::Map)?;
+    let mut cells = Grid::new(frame.width, frame.height, Occ::Unknown);
+    classify_bytes_into(data, &frame, cells.data_mut());
+    Ok(GridMap {
+        cells,
+        resolution: frame.resolution,
+        origin: frame.origin,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::msgs::OccupancyGrid;
+    use crate::occupancy::map_from_msg;
+    use proptest::prelude::*;
+
+    /// The slow, obvious way: decode the whole message, then build its map.
+    fn oracle(bytes: &[u8]) -> Result<GridMap, CdrMapError> {
+        let msg: OccupancyGrid = decode(bytes).map_err(|e| CdrMapError::Decode(e.to_string()))?;
+        map_from_msg(&msg).map_err(CdrMapError::Map)
+    }
+
+    /// `msg` as CDR in either byte order, with its encapsulation header.
+    fn encode_as(msg: &OccupancyGrid, big_endian: bool) -> Vec<u8> {
+        if !big_endian {
+            return crate::cdr::encode(msg);
+        }
+        let body = cdr_encoding::to_vec::<_, byteorder::BigEndian>(msg).unwrap();
+        [&[0u8, 0, 0, 0][..], &body].concat()
+    }
+
+    fn grid_msg(w: u32, h: u32, frame: &str, data: Vec<i8>) -> OccupancyGrid {
+        let mut m = OccupancyGrid::default();
+        m.header.frame_id = frame.into();
+        m.info.width = w;
+        m.info.height = h;
+        m.info.resolution = 0.05;
+        m.info.origin.orientation.w = 1.0;
+        m.data = data;
+        m
+    }
+
+    #[test]
+    fn an_empty_or_truncated_message_is_a_decode_error() {
+        let bytes = crate::cdr::encode(&grid_msg(3, 2, "map", vec![0, 100, -1, 0, 0, 0]));
+        assert!(map_from_cdr(&bytes).is_ok());
+        for cut in [0, 3, 10, bytes.len() - 7, bytes.len() - 1] {
+            assert!(
+                matches!(map_from_cdr(&bytes[..cut]), Err(CdrMapError::Decode(_))),
+                "cut at {cut}"
+            );
+        }
+    }
+
+    proptest! {
+        /// Read in place, a message gives the map its full decoding gives, or fails the
+        /// same way: for any size, frame id, byte order, cells (the data's length need not
+        /// match the size), trailing bytes and truncation.
+        #[test]
+        fn in_place_reading_equals_full_decoding(
+            w in 0u32..9, h in 0u32..9, frame in "[a-z_/]{0,9}",
+            extra in -2i32..3, big_endian: bool, trailing in 0usize..5, cut in 0usize..8,
+            seed: u64,
+        ) {
+            let n = ((w * h) as i32 + extra).max(0) as usize;
+            let data: Vec<i8> = (0..n).map(|k| seed.rotate_left(k as u32 % 64) as i8).collect();
+            let mut bytes = encode_as(&grid_msg(w, h, &frame, data), big_endian);
+            bytes.extend(std::iter::repeat_n(0u8, trailing));
+            let bytes = &bytes[..bytes.len().saturating_sub(cut)];
+            match (map_from_cdr(bytes), oracle(bytes)) {
+                (Ok(a), Ok(b)) => {
+                    prop_assert_eq!(a.cells, b.cells);
+                    prop_assert_eq!(a.resolution, b.resolution);
+                    prop_assert_eq!(a.origin, b.origin);
+                }
+                (Err(CdrMapError::Decode(_)), Err(CdrMapError::Decode(_))) => {}
+                (Err(CdrMapError::Map(a)), Err(CdrMapError::Map(b))) => prop_assert_eq!(a, b),
+                (a, b) => prop_assert!(false, "in place {:?}, decoded {:?}", a.err(), b.err()),
+            }
+        }
+    }
 }

@@ -122,7 +122,11 @@ pub(crate) fn cells_of(width: u32, height: u32) -> Result<usize, MapMsgError> {
 
 /// Check an OccupancyGrid's size, resolution and origin; returns its frame.
 pub fn frame_of(msg: &OccupancyGrid) -> Result<MapFrame, MapMsgError> {
-    let info = &msg.info;
+    frame_of_parts(&msg.info, msg.data.len())
+}
+
+/// [`frame_of`] for a message's metadata and the length of its `data`.
+pub(crate) fn frame_of_parts(info: &MapMetaData, data_len: usize) -> Result<MapFrame, MapMsgError> {
     let (w, h) = (info.width, info.height);
     if w == 0 || h == 0 {
         return Err(MapMsgError::Empty {
@@ -131,12 +135,12 @@ pub fn frame_of(msg: &OccupancyGrid) -> Result<MapFrame, MapMsgError> {
         });
     }
     let expected = cells_of(w, h)?;
-    if msg.data.len() != expected {
+    if data_len != expected {
         return Err(MapMsgError::WrongSize {
             width: w,
             height: h,
             expected,
-            found: msg.data.len(),
+            found: data_len,
         });
     }
     if !grid::io::is_valid_resolution(f64::from(info.resolution)) {
@@ -176,13 +180,31 @@ pub fn class_of(v: i8) -> Occ {
 /// Write the classes of `msg`'s cells into `out` (frontier's row order), which must have the
 /// frame's size; `msg` must have passed [`frame_of`].
 pub fn classify_into(msg: &OccupancyGrid, frame: &MapFrame, out: &mut [Occ]) {
+    classify_values_into(&msg.data, |v| v, frame, out);
+}
+
+/// [`classify_into`] for the cells of an OccupancyGrid as raw CDR bytes (`data`, in the
+/// message's row order: row 0 at the bottom), which must have the frame's size.
+pub(crate) fn classify_bytes_into(data: &[u8], frame: &MapFrame, out: &mut [Occ]) {
+    classify_values_into(data, |v| v as i8, frame, out);
+}
+
+/// Write the classes of `data` (occupancy values read by `value`, the message's row
+/// order) into `out` (frontier's row order).
+fn classify_values_into<T: Copy>(
+    data: &[T],
+    value: impl Fn(T) -> i8,
+    frame: &MapFrame,
+    out: &mut [Occ],
+) {
     let w = frame.width;
     debug_assert_eq!(out.len(), w * frame.height);
-    for (row_up, src) in msg.data.chunks_exact(w).enumerate() {
+    debug_assert_eq!(data.len(), w * frame.height);
+    for (row_up, src) in data.chunks_exact(w).enumerate() {
         let row = frame.height - 1 - row_up;
         let dst = &mut out[row * w..(row + 1) * w];
         for (d, &v) in dst.iter_mut().zip(src) {
-            *d = class_of(v);
+            *d = class_of(value(v));
         }
     }
 }
