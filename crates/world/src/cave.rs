@@ -193,23 +193,66 @@ pub fn cave(width_m: f64, height_m: f64, res: f64, rng: &mut Draws) -> Grid<Occ>
 
 /// Join every cave of at least [`MIN_CAVE_M2`] to the largest by tunnels through rock, never
 /// touching the `inner` outermost cells.
+///
+/// Each tunnel follows a breadth-first search from the main cave, its cells in row-major
+/// order, to the first cell of another cave big enough; the tunnel's cells and every cave
+/// it touches then belong to the main cave. The caves are labelled once and kept up to
+/// date as tunnels merge them (a cave's 4-connected component only grows by a tunnel),
+/// and a search starts from the main cave's cells that border something else only, in
+/// the same order: a cell inside the main cave finds nothing new, so the search visits
+/// the same cells in the same order as one from every main cell, at a cost that follows
+/// the tunnel's length rather than the map's size.
 fn tunnels(cells: &mut Grid<Occ>, res: f64, inner: usize) {
     let (w, h) = (cells.width(), cells.height());
     let min_cells = (MIN_CAVE_M2 / (res * res)).ceil() as usize;
     let r_cells = TUNNEL_R_M / res;
     let reach = r_cells.floor() as i64;
     const UNSEEN: u32 = u32::MAX;
+    let (mut labels, count) = label(w, h, |i| cells[i] == Occ::Free, Connectivity::Motion);
+    let sizes = component_sizes(&labels, count);
+    let Some(main) = largest(&sizes) else { return };
+    let in_wall = |x: i64, y: i64| {
+        x >= inner as i64
+            && x < w as i64 - inner as i64
+            && y >= inner as i64
+            && y < h as i64 - inner as i64
+    };
+    // One bit per cell: a main-cave cell with a 4-neighbour inside the wall that is not.
+    let mut border_bits = vec![0u64; (w * h).div_ceil(64)];
+    let borders = |labels: &Grid<u32>, i: usize| {
+        let (x, y) = ((i % w) as i64, (i / w) as i64);
+        labels[i] == main
+            && NEIGHBOURS4.iter().any(|&(dx, dy)| {
+                let (nx, ny) = (x + dx as i64, y + dy as i64);
+                in_wall(nx, ny) && labels[ny as usize * w + nx as usize] != main
+            })
+    };
+    let set_bit = |bits: &mut [u64], i: usize, on: bool| {
+        if on {
+            bits[i / 64] |= 1 << (i % 64);
+        } else {
+            bits[i / 64] &= !(1 << (i % 64));
+        }
+    };
+    for i in 0..w * h {
+        if borders(&labels, i) {
+            set_bit(&mut border_bits, i, true);
+        }
+    }
     let mut parent = vec![UNSEEN; w * h];
     let mut queue: Vec<usize> = Vec::new();
+    let mut changed: Vec<usize> = Vec::new();
+    let mut stack: Vec<usize> = Vec::new();
     for _ in 0..MAX_TUNNELS {
-        let (labels, count) = label(w, h, |i| cells[i] == Occ::Free, Connectivity::Motion);
-        let sizes = component_sizes(&labels, count);
-        let Some(main) = largest(&sizes) else { return };
-        // breadth-first search from the main cave through everything inside the wall
-        parent.fill(UNSEEN);
+        for &i in &queue {
+            parent[i] = UNSEEN;
+        }
         queue.clear();
-        for (i, &l) in labels.data().iter().enumerate() {
-            if l == main {
+        for (k, &word) in border_bits.iter().enumerate() {
+            let mut bits = word;
+            while bits != 0 {
+                let i = k * 64 + bits.trailing_zeros() as usize;
+                bits &= bits - 1;
                 parent[i] = i as u32;
                 queue.push(i);
             }
@@ -222,25 +265,32 @@ fn tunnels(cells: &mut Grid<Occ>, res: f64, inner: usize) {
             let (x, y) = (i % w, i / w);
             for &(dx, dy) in &NEIGHBOURS4 {
                 let (nx, ny) = (x as i64 + dx as i64, y as i64 + dy as i64);
-                let inside = |v: i64, n: usize| v >= inner as i64 && v < (n - inner) as i64;
-                if !inside(nx, w) || !inside(ny, h) {
+                if !in_wall(nx, ny) {
                     continue;
                 }
                 let j = ny as usize * w + nx as usize;
-                if parent[j] != UNSEEN {
+                let l = labels[j];
+                if parent[j] != UNSEEN || l == main {
                     continue;
                 }
                 parent[j] = i as u32;
-                let l = labels[j];
-                if l != 0 && l != main && sizes[l as usize] >= min_cells {
+                queue.push(j);
+                if l != 0 && sizes[l as usize] >= min_cells {
                     found = Some(j);
                     break 'search;
                 }
-                queue.push(j);
             }
         }
         let Some(end) = found else { return };
-        // carve discs along the path back to the main cave
+        // carve discs along the path back to the main cave; what they free joins it
+        changed.clear();
+        let mut free = |cells: &mut Grid<Occ>, labels: &mut Grid<u32>, i: usize| {
+            cells[i] = Occ::Free;
+            if labels[i] != main {
+                labels[i] = main;
+                changed.push(i);
+            }
+        };
         let mut i = end;
         loop {
             let (cx, cy) = ((i % w) as i64, (i / w) as i64);
@@ -248,16 +298,65 @@ fn tunnels(cells: &mut Grid<Occ>, res: f64, inner: usize) {
                 for x in (cx - reach).max(inner as i64)..=(cx + reach).min((w - inner) as i64 - 1) {
                     let d2 = ((x - cx) * (x - cx) + (y - cy) * (y - cy)) as f64;
                     if d2 <= r_cells * r_cells {
-                        cells[y as usize * w + x as usize] = Occ::Free;
+                        free(cells, &mut labels, y as usize * w + x as usize);
                     }
                 }
             }
-            cells[i] = Occ::Free;
+            free(cells, &mut labels, i);
             let p = parent[i] as usize;
             if p == i {
                 break;
             }
             i = p;
+        }
+        // caves the tunnel touches join the main one (motion components are 4-connected)
+        let mut k = 0;
+        while k < changed.len() {
+            let (x, y) = ((changed[k] % w) as i64, (changed[k] / w) as i64);
+            k += 1;
+            for &(dx, dy) in &NEIGHBOURS4 {
+                let (nx, ny) = (x + dx as i64, y + dy as i64);
+                if nx < 0 || ny < 0 || nx >= w as i64 || ny >= h as i64 {
+                    continue;
+                }
+                let j = ny as usize * w + nx as usize;
+                let l = labels[j];
+                if l == 0 || l == main {
+                    continue;
+                }
+                // flood the touched cave into the main one
+                labels[j] = main;
+                changed.push(j);
+                stack.clear();
+                stack.push(j);
+                while let Some(c) = stack.pop() {
+                    let (cx, cy) = ((c % w) as i64, (c / w) as i64);
+                    for &(ex, ey) in &NEIGHBOURS4 {
+                        let (mx, my) = (cx + ex as i64, cy + ey as i64);
+                        if mx < 0 || my < 0 || mx >= w as i64 || my >= h as i64 {
+                            continue;
+                        }
+                        let m = my as usize * w + mx as usize;
+                        if labels[m] == l {
+                            labels[m] = main;
+                            changed.push(m);
+                            stack.push(m);
+                        }
+                    }
+                }
+            }
+        }
+        // the main cave's border moved only at and beside the cells that joined it
+        for &c in &changed {
+            let (x, y) = ((c % w) as i64, (c / w) as i64);
+            set_bit(&mut border_bits, c, borders(&labels, c));
+            for &(dx, dy) in &NEIGHBOURS4 {
+                let (nx, ny) = (x + dx as i64, y + dy as i64);
+                if nx >= 0 && ny >= 0 && nx < w as i64 && ny < h as i64 {
+                    let n = ny as usize * w + nx as usize;
+                    set_bit(&mut border_bits, n, borders(&labels, n));
+                }
+            }
         }
     }
 }
@@ -286,3 +385,131 @@ const UNIT16: [(f64, f64); 16] = {
         (A, -B),
     ]
 };
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    /// The tunnels as first written: every cave labelled afresh and a search from every
+    /// main-cave cell for each tunnel (the oracle of [`tunnels`]).
+    fn tunnels_slow(cells: &mut Grid<Occ>, res: f64, inner: usize) {
+        let (w, h) = (cells.width(), cells.height());
+        let min_cells = (MIN_CAVE_M2 / (res * res)).ceil() as usize;
+        let r_cells = TUNNEL_R_M / res;
+        let reach = r_cells.floor() as i64;
+        const UNSEEN: u32 = u32::MAX;
+        let mut parent = vec![UNSEEN; w * h];
+        let mut queue: Vec<usize> = Vec::new();
+        for _ in 0..MAX_TUNNELS {
+            let (labels, count) = label(w, h, |i| cells[i] == Occ::Free, Connectivity::Motion);
+            let sizes = component_sizes(&labels, count);
+            let Some(main) = largest(&sizes) else { return };
+            // breadth-first search from the main cave through everything inside the wall
+            parent.fill(UNSEEN);
+            queue.clear();
+            for (i, &l) in labels.data().iter().enumerate() {
+                if l == main {
+                    parent[i] = i as u32;
+                    queue.push(i);
+                }
+            }
+            let mut head = 0;
+            let mut found = None;
+            'search: while head < queue.len() {
+                let i = queue[head];
+                head += 1;
+                let (x, y) = (i % w, i / w);
+                for &(dx, dy) in &NEIGHBOURS4 {
+                    let (nx, ny) = (x as i64 + dx as i64, y as i64 + dy as i64);
+                    let inside = |v: i64, n: usize| v >= inner as i64 && v < (n - inner) as i64;
+                    if !inside(nx, w) || !inside(ny, h) {
+                        continue;
+                    }
+                    let j = ny as usize * w + nx as usize;
+                    if parent[j] != UNSEEN {
+                        continue;
+                    }
+                    parent[j] = i as u32;
+                    let l = labels[j];
+                    if l != 0 && l != main && sizes[l as usize] >= min_cells {
+                        found = Some(j);
+                        break 'search;
+                    }
+                    queue.push(j);
+                }
+            }
+            let Some(end) = found else { return };
+            // carve discs along the path back to the main cave
+            let mut i = end;
+            loop {
+                let (cx, cy) = ((i % w) as i64, (i / w) as i64);
+                for y in (cy - reach).max(inner as i64)..=(cy + reach).min((h - inner) as i64 - 1) {
+                    for x in
+                        (cx - reach).max(inner as i64)..=(cx + reach).min((w - inner) as i64 - 1)
+                    {
+                        let d2 = ((x - cx) * (x - cx) + (y - cy) * (y - cy)) as f64;
+                        if d2 <= r_cells * r_cells {
+                            cells[y as usize * w + x as usize] = Occ::Free;
+                        }
+                    }
+                }
+                cells[i] = Occ::Free;
+                let p = parent[i] as usize;
+                if p == i {
+                    break;
+                }
+                i = p;
+            }
+        }
+    }
+
+    #[test]
+    fn three_caves_become_one() {
+        // 1 m cells: caves of 9, 4 and 1 cells, each at least the 1 m² a tunnel is dug for.
+        let rows = [
+            "############",
+            "#...##..####",
+            "#...##..##.#",
+            "#...########",
+            "############",
+        ];
+        let mut g = Grid::new(12, 5, Occ::Occupied);
+        for (y, r) in rows.iter().enumerate() {
+            for (x, ch) in r.bytes().enumerate() {
+                if ch == b'.' {
+                    g[y * 12 + x] = Occ::Free;
+                }
+            }
+        }
+        let mut slow = g.clone();
+        tunnels(&mut g, 1.0, 1);
+        tunnels_slow(&mut slow, 1.0, 1);
+        assert_eq!(g, slow);
+        let (_, count) = label(12, 5, |i| g[i] == Occ::Free, Connectivity::Motion);
+        assert_eq!(count, 1);
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(48))]
+        /// Kept labels and border-only searches dig the same tunnels as labelling afresh
+        /// and searching from every main-cave cell, on random rock of any density.
+        #[test]
+        fn tunnels_equal_the_search_from_every_cell(
+            w in 3usize..60, h in 3usize..60, density in 0.2f64..0.8, seed: u64,
+            res in prop::sample::select(vec![0.1, 0.3, 0.5, 1.0]), inner in 0usize..3,
+        ) {
+            let mut draws = crate::rng::Draws::new(seed);
+            let mut a = Grid::new(w, h, Occ::Occupied);
+            for c in a.data_mut() {
+                if draws.unit() < density {
+                    *c = Occ::Free;
+                }
+            }
+            let mut b = a.clone();
+            tunnels(&mut a, res, inner);
+            tunnels_slow(&mut b, res, inner);
+            prop_assert_eq!(a, b);
+        }
+    }
+}
