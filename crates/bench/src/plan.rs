@@ -44,8 +44,9 @@ use crate::scenario::{ScenarioFile, Source};
 /// next to it is seen; v5: CC covers maps finer than 0.1 m on 0.1 m blocks; v6:
 /// MA's routes are optimal up to 12 nodes and searched over neighbour lists beyond 24; v7:
 /// HA's searches grow by a quarter instead of doubling, which may break ties between
-/// assignments of equal total differently).
-pub const STRATEGY_REVISION: u32 = 7;
+/// assignments of equal total differently; v8: CC on blocks goes through a cell that sees
+/// the unknown, and covers cell by cell what no block covers).
+pub const STRATEGY_REVISION: u32 = 8;
 
 /// A resolved study: environments, variants, common settings and the flat trial list.
 #[derive(Clone, Debug)]

@@ -42,9 +42,17 @@ fn frontiers_and_eligible(fx: &Fixture, robot: u32) -> (Vec<u32>, Vec<u32>) {
 
 /// The slow Algorithm 1: every eligible cell against every frontier by `los_visible`.
 fn oracle(fx: &Fixture, robot: u32) -> Vec<(u32, Vec<u32>)> {
+    oracle_of(fx, robot, None)
+}
+
+/// [`oracle`] covering only the frontier cells in `only` (all if `None`).
+fn oracle_of(fx: &Fixture, robot: u32, only: Option<&[u32]>) -> Vec<(u32, Vec<u32>)> {
     let known = &fx.known;
     let (w, h) = (known.width(), known.height());
-    let (front, cells) = frontiers_and_eligible(fx, robot);
+    let (mut front, cells) = frontiers_and_eligible(fx, robot);
+    if let Some(only) = only {
+        front.retain(|f| only.contains(f));
+    }
     let r = 0.8 * fx.range;
     let sees: Vec<Vec<u32>> = cells
         .iter()
@@ -82,9 +90,13 @@ fn oracle(fx: &Fixture, robot: u32) -> Vec<(u32, Vec<u32>)> {
 
 /// The slow Algorithm 1 on blocks of `b × b` cells, as CC computes it on maps finer than
 /// 0.1 m: blocks occupied if any cell is, else unknown if any is, else free; the frontier
-/// cells grouped by block; a free block a candidate through its eligible cell nearest the
-/// block's centre; a group covered from a block that sees, within 0.8 ρ / b, a block holding
-/// an unknown 8-neighbour of one of its cells.
+/// cells grouped by block; a group covered from a free block that sees, within 0.8 ρ / b, a
+/// block holding an unknown 8-neighbour of one of its cells; the greedy order by the count
+/// of groups, ties to the block's eligible cell nearest its centre (then the lower index);
+/// a block chosen through its first eligible cell, in that order, that sees within 0.8 ρ
+/// (cell by cell) an unknown 8-neighbour of a frontier cell of the groups it newly covers,
+/// and dropped if none does; then the cell-by-cell [`oracle`] for the frontier cells of the
+/// groups left uncovered, its candidates appended unless already chosen.
 fn block_oracle(fx: &Fixture, robot: u32, b: usize) -> Vec<(u32, Vec<u32>)> {
     let known = &fx.known;
     let (w, h) = (known.width(), known.height());
@@ -118,25 +130,29 @@ fn block_oracle(fx: &Fixture, robot: u32, b: usize) -> Vec<(u32, Vec<u32>)> {
             t
         })
         .collect();
-    // Each free block's representative: its eligible cell nearest the centre.
+    // Each free block's eligible cells, nearest the centre first; the first is its
+    // representative.
     let mut reps: Vec<(u32, usize)> = Vec::new();
+    let mut order: std::collections::HashMap<usize, Vec<u32>> = Default::default();
     for c in 0..cw * ch {
         if coarse[c] != Occ::Free {
             continue;
         }
         let (bx, by) = ((c % cw) * b, (c / cw) * b);
         let centre = ((2 * bx + b - 1) as i64, (2 * by + b - 1) as i64);
-        let rep = cells
+        let mut mine: Vec<u32> = cells
             .iter()
             .copied()
             .filter(|&i| blk(i as usize) == c)
-            .min_by_key(|&i| {
-                let (x, y) = ((i as usize % w) as i64, (i as usize / w) as i64);
-                let (dx, dy) = (2 * x - centre.0, 2 * y - centre.1);
-                (dx * dx + dy * dy, i)
-            });
-        if let Some(rep) = rep {
+            .collect();
+        mine.sort_by_key(|&i| {
+            let (x, y) = ((i as usize % w) as i64, (i as usize / w) as i64);
+            let (dx, dy) = (2 * x - centre.0, 2 * y - centre.1);
+            (dx * dx + dy * dy, i)
+        });
+        if let Some(&rep) = mine.first() {
             reps.push((rep, c));
+            order.insert(c, mine);
         }
     }
     reps.sort_unstable();
@@ -154,24 +170,44 @@ fn block_oracle(fx: &Fixture, robot: u32, b: usize) -> Vec<(u32, Vec<u32>)> {
         })
         .collect();
     let mut covered = vec![false; groups.len()];
+    let mut dropped = vec![false; reps.len()];
     let mut out = Vec::new();
     loop {
         let mut best: Option<(usize, usize)> = None;
         for (k, s) in sees.iter().enumerate() {
             let cnt = s.iter().filter(|&&g| !covered[g]).count();
-            if cnt > 0 && best.is_none_or(|(bc, _)| cnt > bc) {
+            if !dropped[k] && cnt > 0 && best.is_none_or(|(bc, _)| cnt > bc) {
                 best = Some((cnt, k));
             }
         }
         let Some((_, k)) = best else { break };
+        let new: Vec<usize> = sees[k].iter().copied().filter(|&g| !covered[g]).collect();
+        let pick = order[&reps[k].1].iter().copied().find(|&c| {
+            new.iter()
+                .flat_map(|&g| groups[g].iter())
+                .any(|&f| covers(known, c, f, 0.8 * fx.range))
+        });
+        let Some(pick) = pick else {
+            dropped[k] = true;
+            continue;
+        };
         let mut credit = Vec::new();
-        for &g in &sees[k] {
-            if !covered[g] {
-                covered[g] = true;
-                credit.extend_from_slice(&groups[g]);
+        for g in new {
+            covered[g] = true;
+            credit.extend_from_slice(&groups[g]);
+        }
+        out.push((pick, credit));
+    }
+    let left: Vec<u32> = (0..groups.len())
+        .filter(|&g| !covered[g])
+        .flat_map(|g| groups[g].iter().copied())
+        .collect();
+    if !left.is_empty() {
+        for (c, credit) in oracle_of(fx, robot, Some(&left)) {
+            if !out.iter().any(|(o, _)| *o == c) {
+                out.push((c, credit));
             }
         }
-        out.push((reps[k].0, credit));
     }
     out
 }

@@ -54,9 +54,18 @@
 //! when any of its cells is, else unknown when any is, else free; the frontier cells to
 //! cover are grouped by block (a block is covered, and credited with its frontier cells,
 //! when an unknown block next to one of them is seen); the laser looks from block to
-//! block with range 0.8 ρ / b; and a free block is a candidate through its eligible cell
-//! nearest the block's centre (ties to the lower index). Maps at 0.1 m or coarser, the
-//! `faigl2013` suite's among them, are covered cell by cell as above.
+//! block with range 0.8 ρ / b; and the greedy cover takes the blocks in the order of their
+//! counts, ties to their eligible cell nearest the block's centre (then the lower index).
+//! What blocks see is not what a robot sees from a cell, so two checks keep the cover
+//! sound: a block taken goes through its first eligible cell, nearest the centre first,
+//! that sees (cell by cell, within 0.8 ρ) unknown next to a frontier cell it newly covers,
+//! and is dropped if no cell does; and the frontier cells that no block covers (beside a
+//! wall every block is occupied, so a strip one cell wide has no free block) are covered
+//! cell by cell as above, their candidates appended. Without the checks a block seeing an
+//! unknown block through a hole one cell wide sent robots to cells that see nothing, one
+//! cell of the block after another (each goes on the visited list when reached), and a
+//! team walked a room cell by cell. Maps at 0.1 m or coarser, the `faigl2013` suite's
+//! among them, are covered cell by cell as above.
 
 use sense::shadow::{self, ShadowScratch};
 use sense::{LosSensor, MAX_TEMPLATE_RANGE_CELLS};
@@ -107,6 +116,16 @@ pub struct State {
     epoch: u32,
     /// Candidate id → map cell (a block's representative cell on fine maps).
     cands: Vec<u32>,
+    /// Fine maps: candidate id → its block (index into the blocks' grid).
+    cand_block: Vec<u32>,
+    /// Fine maps: a block's eligible cells in the order they are tried, and the buffers
+    /// of the scans that check them.
+    tried: Vec<(i64, u32)>,
+    unknown: Vec<u32>,
+    /// Fine maps: the frontier cells no block covers, and the state of their cover cell by
+    /// cell.
+    left: Vec<u32>,
+    fine: Option<Box<State>>,
     /// Per row of the scanned grid, and one more: the keys in the rows above it.
     row_keys: Vec<u32>,
     /// Candidate id → where its set of the keys it covers lies in `bits`.
@@ -410,11 +429,50 @@ pub fn generate(ctx: &mut DecisionCtx<'_>, out: &mut CandidateSet) {
     ctx.memory.coverage = st;
 }
 
+/// The cover: on blocks for fine maps, then cell by cell for the frontier cells that no
+/// block covers (module documentation); cell by cell on the others.
 fn cover(ctx: &mut DecisionCtx<'_>, st: &mut State) {
+    let block = cover_block(ctx.resolution);
+    cover_on(ctx, st, block, None);
+    if block == 1 {
+        return;
+    }
+    st.left.clear();
+    for kk in 0..st.key_start.len().saturating_sub(1) {
+        if st
+            .covered
+            .get(kk / 64)
+            .is_none_or(|w| w >> (kk % 64) & 1 == 0)
+        {
+            let (f0, f1) = (st.key_start[kk] as usize, st.key_start[kk + 1] as usize);
+            st.left.extend_from_slice(&st.front[f0..f1]);
+        }
+    }
+    if st.left.is_empty() {
+        return;
+    }
+    let mut fine = st.fine.take().unwrap_or_default();
+    let left = std::mem::take(&mut st.left);
+    cover_on(ctx, &mut fine, 1, Some(&left));
+    st.left = left;
+    for (c, credited) in fine.credits() {
+        if !st.chosen.contains(&c) {
+            st.chosen.push(c);
+            st.credit.extend_from_slice(credited);
+            st.credit_start.push(st.credit.len() as u32);
+        }
+    }
+    st.fine = Some(fine);
+}
+
+/// The greedy cover on blocks of `block × block` cells of the frontier cells `only` (all
+/// reachable ones if `None`).
+fn cover_on(ctx: &mut DecisionCtx<'_>, st: &mut State, block: usize, only: Option<&[u32]>) {
     st.front.clear();
     st.key_start.clear();
     st.pairs.clear();
     st.cands.clear();
+    st.cand_block.clear();
     st.bits.clear();
     st.spans.clear();
     st.chosen.clear();
@@ -424,7 +482,6 @@ fn cover(ctx: &mut DecisionCtx<'_>, st: &mut State) {
     let Some(r) = ctx.deciding.iter().position(|&d| d) else {
         return;
     };
-    let block = cover_block(ctx.resolution);
     let range = (COVER_FRACTION * ctx.sensor_range_cells / block as f64)
         .clamp(0.0, MAX_TEMPLATE_RANGE_CELLS);
     let range = if range.is_finite() { range } else { 0.0 };
@@ -474,7 +531,7 @@ fn cover(ctx: &mut DecisionCtx<'_>, st: &mut State) {
     };
 
     // Lines 2–4: covering cells of every frontier cell (of every key).
-    for &f in upkeep.frontiers.cells() {
+    for &f in only.unwrap_or(upkeep.frontiers.cells()) {
         if lists.is_excluded(f) || !reach.contains(f as usize) {
             continue;
         }
@@ -526,14 +583,20 @@ fn cover(ctx: &mut DecisionCtx<'_>, st: &mut State) {
     let mut full = false;
     loop {
         st.cands.clear();
+        st.cand_block.clear();
         st.bits.clear();
         st.spans.clear();
         st.coverable.clear();
         st.coverable.resize(words, 0);
         let mut spilled = false;
         let (cid, stamp, epoch) = (&mut st.cid, &mut st.stamp, st.epoch);
-        let (cands, bits, spans, masks) =
-            (&mut st.cands, &mut st.bits, &mut st.spans, &mut st.masks);
+        let (cands, cand_block, bits, spans, masks) = (
+            &mut st.cands,
+            &mut st.cand_block,
+            &mut st.bits,
+            &mut st.spans,
+            &mut st.masks,
+        );
         let row_keys = &st.row_keys;
         for group in st.pairs.chunk_by(|a, b| a.0 == b.0) {
             // the target's keys as (word, bits), words ascending (keys are)
@@ -565,6 +628,7 @@ fn cover(ctx: &mut DecisionCtx<'_>, st: &mut State) {
                     let id = cands.len() as u32;
                     cid[iu] = id;
                     cands.push(cell);
+                    cand_block.push(i);
                     let (w0, w1) = if full {
                         (0, words)
                     } else {
@@ -651,7 +715,7 @@ fn cover(ctx: &mut DecisionCtx<'_>, st: &mut State) {
         let cnt = k as u32;
         let sp = st.spans[id as usize];
         let row = sp.of(&st.bits);
-        let covered = &mut st.covered[sp.word as usize..][..row.len()];
+        let covered = &st.covered[sp.word as usize..][..row.len()];
         let now: u32 = row
             .iter()
             .zip(covered.iter())
@@ -664,7 +728,47 @@ fn cover(ctx: &mut DecisionCtx<'_>, st: &mut State) {
             buckets[now as usize].push((cell, id));
             continue;
         }
+        // On blocks, the candidate goes through a cell of its block that sees, cell by
+        // cell, unknown space next to a frontier cell it is credited with; a block with no
+        // such cell is no candidate (module documentation).
+        let cell = if block > 1 {
+            // The unknown cells next to the frontier cells of the keys it would newly cover.
+            st.unknown.clear();
+            for (j, (&b, &c)) in row.iter().zip(covered.iter()).enumerate() {
+                let mut new = b & !c;
+                while new != 0 {
+                    let kk = (sp.word as usize + j) * 64 + new.trailing_zeros() as usize;
+                    new &= new - 1;
+                    let (f0, f1) = (st.key_start[kk] as usize, st.key_start[kk + 1] as usize);
+                    for &f in &st.front[f0..f1] {
+                        for u in known.neighbours8(f as usize) {
+                            if known[u] == Occ::Unknown {
+                                st.unknown.push(u as u32);
+                            }
+                        }
+                    }
+                }
+            }
+            st.unknown.sort_unstable();
+            st.unknown.dedup();
+            let Some(c) = seeing_cell(
+                known,
+                block,
+                st.coarse.grid.width(),
+                st.cand_block[id as usize] as usize,
+                &eligible,
+                COVER_FRACTION * ctx.sensor_range_cells,
+                &st.unknown,
+                &mut st.tried,
+            ) else {
+                continue;
+            };
+            c
+        } else {
+            cell
+        };
         st.chosen.push(cell);
+        let covered = &mut st.covered[sp.word as usize..][..row.len()];
         for (w, (&b, c)) in row.iter().zip(covered.iter_mut()).enumerate() {
             let mut new = b & !*c;
             *c |= new;
@@ -700,6 +804,50 @@ impl Span {
 /// The number of bits set in `words`.
 fn ones(words: &[u64]) -> u32 {
     words.iter().map(|w| w.count_ones()).sum()
+}
+
+/// The cell through which free block `b` (`cw` blocks a row) is a chosen candidate: its
+/// first eligible cell, nearest the block's centre first (ties to the lower index), that
+/// sees one of the cells `unknown` within `range` cells, cell by cell over the belief;
+/// `None` if no cell of the block sees one.
+///
+/// The cover on blocks looks from block to block, which is not what a robot's laser sees
+/// from a cell: a ray between two blocks may pass where every ray between their cells is
+/// blocked (through a doorway one cell wide, say), and the block's centre may see less than
+/// another of its cells. A candidate that sees nothing it is credited with would send a
+/// robot to learn nothing; its cell goes on the visited list, the next decision offers the
+/// next cell of the same block, and a team walks the free space cell by cell.
+#[allow(clippy::too_many_arguments)]
+fn seeing_cell(
+    known: &Grid<Occ>,
+    block: usize,
+    cw: usize,
+    b: usize,
+    eligible: &impl Fn(usize) -> bool,
+    range: f64,
+    unknown: &[u32],
+    tried: &mut Vec<(i64, u32)>,
+) -> Option<u32> {
+    let (w, h) = (known.width(), known.height());
+    let (x0, y0) = ((b % cw) * block, (b / cw) * block);
+    let (cx2, cy2) = ((2 * x0 + block - 1) as i64, (2 * y0 + block - 1) as i64);
+    tried.clear();
+    for y in y0..(y0 + block).min(h) {
+        for x in x0..(x0 + block).min(w) {
+            let i = y * w + x;
+            if eligible(i) {
+                let (dx, dy) = (2 * x as i64 - cx2, 2 * y as i64 - cy2);
+                tried.push((dx * dx + dy * dy, i as u32));
+            }
+        }
+    }
+    tried.sort_unstable();
+    tried.iter().map(|&(_, c)| c).find(|&c| {
+        let from = known.cell(c as usize);
+        unknown
+            .iter()
+            .any(|&u| sense::segment::seen_from(known, from, known.cell(u as usize), range))
+    })
 }
 
 /// The cell through which free block `b` (`cw` blocks a row) is a candidate: its eligible
