@@ -828,19 +828,8 @@ fn seeing_cell(
     unknown: &[u32],
     tried: &mut Vec<(i64, u32)>,
 ) -> Option<u32> {
-    let (w, h) = (known.width(), known.height());
-    let (x0, y0) = ((b % cw) * block, (b / cw) * block);
-    let (cx2, cy2) = ((2 * x0 + block - 1) as i64, (2 * y0 + block - 1) as i64);
     tried.clear();
-    for y in y0..(y0 + block).min(h) {
-        for x in x0..(x0 + block).min(w) {
-            let i = y * w + x;
-            if eligible(i) {
-                let (dx, dy) = (2 * x as i64 - cx2, 2 * y as i64 - cy2);
-                tried.push((dx * dx + dy * dy, i as u32));
-            }
-        }
-    }
+    tried.extend(eligible_by_centre(known, block, cw, b, eligible));
     tried.sort_unstable();
     tried.iter().map(|&(_, c)| c).find(|&c| {
         let from = known.cell(c as usize);
@@ -859,23 +848,28 @@ fn representative(
     b: usize,
     eligible: &impl Fn(usize) -> bool,
 ) -> Option<u32> {
+    eligible_by_centre(known, block, cw, b, eligible)
+        .min()
+        .map(|(_, i)| i)
+}
+
+/// The eligible cells of block `b` (`cw` blocks a row), each with its squared distance from
+/// the block's centre in doubled coordinates (so that even blocks have an integral centre).
+fn eligible_by_centre<'a>(
+    known: &Grid<Occ>,
+    block: usize,
+    cw: usize,
+    b: usize,
+    eligible: &'a impl Fn(usize) -> bool,
+) -> impl Iterator<Item = (i64, u32)> + 'a {
     let (w, h) = (known.width(), known.height());
     let (x0, y0) = ((b % cw) * block, (b / cw) * block);
-    // Twice the centre's coordinates, so that even blocks have an integral centre.
     let (cx2, cy2) = ((2 * x0 + block - 1) as i64, (2 * y0 + block - 1) as i64);
-    let mut best: Option<(i64, u32)> = None;
-    for y in y0..(y0 + block).min(h) {
-        for x in x0..(x0 + block).min(w) {
-            let i = y * w + x;
-            if !eligible(i) {
-                continue;
-            }
+    (y0..(y0 + block).min(h))
+        .flat_map(move |y| (x0..(x0 + block).min(w)).map(move |x| (x, y)))
+        .filter(move |&(x, y)| eligible(y * w + x))
+        .map(move |(x, y)| {
             let (dx, dy) = (2 * x as i64 - cx2, 2 * y as i64 - cy2);
-            let d = dx * dx + dy * dy;
-            if best.is_none_or(|(bd, _)| d < bd) {
-                best = Some((d, i as u32));
-            }
-        }
-    }
-    best.map(|(_, i)| i)
+            (dx * dx + dy * dy, (y * w + x) as u32)
+        })
 }
