@@ -43,12 +43,18 @@ pub fn decode<T: DeserializeOwned>(bytes: &[u8]) -> Result<T, CdrError> {
 pub struct Prefix<T> {
     /// The fields decoded.
     pub value: T,
-    /// The body (the bytes after the encapsulation header; alignment counts from its start).
-    pub body: std::ops::Range<usize>,
     /// Bytes of the body `value` took.
     pub consumed: usize,
     /// Whether the body is big-endian.
     pub big_endian: bool,
+}
+
+impl<T> Prefix<T> {
+    /// The body of the message `bytes` this prefix was decoded from: the bytes after the
+    /// encapsulation header, from whose start CDR's alignment counts.
+    pub fn body<'a>(&self, bytes: &'a [u8]) -> &'a [u8] {
+        &bytes[4..]
+    }
 }
 
 /// Deserialize the first fields of a message from CDR bytes with their encapsulation header
@@ -68,7 +74,6 @@ pub fn decode_prefix<T: DeserializeOwned>(bytes: &[u8]) -> Result<Prefix<T>, Cdr
     let (value, consumed) = r.map_err(|e| CdrError::Body(e.to_string()))?;
     Ok(Prefix {
         value,
-        body: 4..bytes.len(),
         consumed,
         big_endian: kind == 0,
     })

@@ -4,11 +4,11 @@
 //! rosbag2's default storage since Iron), then `frontier explore --map recording.mcap`.
 //! The last map on the topic is the most complete one a SLAM node published.
 
-use grid::{Grid, GridMap, Occ};
+use grid::GridMap;
 
 use crate::cdr::{decode, decode_prefix};
 use crate::msgs::{Header, MapMetaData};
-use crate::occupancy::{MapMsgError, cells_of, classify_bytes_into, frame_of_parts};
+use crate::occupancy::{MapMsgError, cells_of, map_from_bytes};
 
 /// Bytes a map message record holds besides its cells: the record's own fields, the CDR
 /// header, the message's header and metadata (about 130 bytes) and its frame id. Kept
@@ -392,11 +392,11 @@ enum CdrMapError {
 /// fewer while loading).
 fn map_from_cdr(bytes: &[u8]) -> Result<GridMap, CdrMapError> {
     let head = decode_prefix::<GridHead>(bytes).map_err(|e| CdrMapError::Decode(e.to_string()))?;
-    let body = &bytes[head.body.clone()];
     // `data`: a sequence<int8>, its u32 length aligned to 4 from the body's start.
     let at = head.consumed.next_multiple_of(4);
     let short = || CdrMapError::Decode("the message ends inside its data".into());
-    let len: [u8; 4] = body
+    let len: [u8; 4] = head
+        .body(bytes)
         .get(at..at + 4)
         .and_then(|b| b.try_into().ok())
         .ok_or_else(short)?;
@@ -405,18 +405,12 @@ fn map_from_cdr(bytes: &[u8]) -> Result<GridMap, CdrMapError> {
     } else {
         u32::from_le_bytes(len)
     } as usize;
-    let data = body
+    let data = head
+        .body(bytes)
         .get(at + 4..)
         .and_then(|d| d.get(..len))
         .ok_or_else(short)?;
-    let frame = frame_of_parts(&head.value.info, len).map_err(CdrMapError::Map)?;
-    let mut cells = Grid::new(frame.width, frame.height, Occ::Unknown);
-    classify_bytes_into(data, &frame, cells.data_mut());
-    Ok(GridMap {
-        cells,
-        resolution: frame.resolution,
-        origin: frame.origin,
-    })
+    map_from_bytes(&head.value.info, data).map_err(CdrMapError::Map)
 }
 
 #[cfg(test)]

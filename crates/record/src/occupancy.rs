@@ -126,7 +126,7 @@ pub fn frame_of(msg: &OccupancyGrid) -> Result<MapFrame, MapMsgError> {
 }
 
 /// [`frame_of`] for a message's metadata and the length of its `data`.
-pub(crate) fn frame_of_parts(info: &MapMetaData, data_len: usize) -> Result<MapFrame, MapMsgError> {
+fn frame_of_parts(info: &MapMetaData, data_len: usize) -> Result<MapFrame, MapMsgError> {
     let (w, h) = (info.width, info.height);
     if w == 0 || h == 0 {
         return Err(MapMsgError::Empty {
@@ -183,12 +183,6 @@ pub fn classify_into(msg: &OccupancyGrid, frame: &MapFrame, out: &mut [Occ]) {
     classify_values_into(&msg.data, |v| v, frame, out);
 }
 
-/// [`classify_into`] for the cells of an OccupancyGrid as raw CDR bytes (`data`, in the
-/// message's row order: row 0 at the bottom), which must have the frame's size.
-pub(crate) fn classify_bytes_into(data: &[u8], frame: &MapFrame, out: &mut [Occ]) {
-    classify_values_into(data, |v| v as i8, frame, out);
-}
-
 /// Write the classes of `data` (occupancy values read by `value`, the message's row
 /// order) into `out` (frontier's row order).
 fn classify_values_into<T: Copy>(
@@ -211,9 +205,24 @@ fn classify_values_into<T: Copy>(
 
 /// The map an OccupancyGrid message holds.
 pub fn map_from_msg(msg: &OccupancyGrid) -> Result<GridMap, MapMsgError> {
-    let frame = frame_of(msg)?;
+    map_from_values(&msg.info, &msg.data, |v| v)
+}
+
+/// [`map_from_msg`] for a message's metadata and its cells as raw CDR bytes (the values as
+/// two's-complement bytes, read in place).
+pub(crate) fn map_from_bytes(info: &MapMetaData, data: &[u8]) -> Result<GridMap, MapMsgError> {
+    map_from_values(info, data, |v| v as i8)
+}
+
+/// The map of `info` and `data` (occupancy values read by `value`).
+fn map_from_values<T: Copy>(
+    info: &MapMetaData,
+    data: &[T],
+    value: impl Fn(T) -> i8,
+) -> Result<GridMap, MapMsgError> {
+    let frame = frame_of_parts(info, data.len())?;
     let mut cells = Grid::new(frame.width, frame.height, Occ::Unknown);
-    classify_into(msg, &frame, cells.data_mut());
+    classify_values_into(data, value, &frame, cells.data_mut());
     Ok(GridMap {
         cells,
         resolution: frame.resolution,

@@ -243,6 +243,15 @@ fn tunnels(cells: &mut Grid<Occ>, res: f64, inner: usize) {
     let mut queue: Vec<usize> = Vec::new();
     let mut changed: Vec<usize> = Vec::new();
     let mut stack: Vec<usize> = Vec::new();
+    // The in-grid 4-neighbours of cell i.
+    let around = |i: usize| {
+        let (x, y) = ((i % w) as i64, (i / w) as i64);
+        NEIGHBOURS4.iter().filter_map(move |&(dx, dy)| {
+            let (nx, ny) = (x + dx as i64, y + dy as i64);
+            (nx >= 0 && ny >= 0 && nx < w as i64 && ny < h as i64)
+                .then(|| ny as usize * w + nx as usize)
+        })
+    };
     for _ in 0..MAX_TUNNELS {
         for &i in &queue {
             parent[i] = UNSEEN;
@@ -309,38 +318,25 @@ fn tunnels(cells: &mut Grid<Occ>, res: f64, inner: usize) {
             }
             i = p;
         }
-        // caves the tunnel touches join the main one (motion components are 4-connected)
-        let mut k = 0;
-        while k < changed.len() {
-            let (x, y) = ((changed[k] % w) as i64, (changed[k] / w) as i64);
-            k += 1;
-            for &(dx, dy) in &NEIGHBOURS4 {
-                let (nx, ny) = (x + dx as i64, y + dy as i64);
-                if nx < 0 || ny < 0 || nx >= w as i64 || ny >= h as i64 {
-                    continue;
-                }
-                let j = ny as usize * w + nx as usize;
+        // caves the tunnel touches join the main one (motion components are 4-connected,
+        // so only the carved cells can touch another cave)
+        for k in 0..changed.len() {
+            for j in around(changed[k]) {
                 let l = labels[j];
                 if l == 0 || l == main {
                     continue;
                 }
-                // flood the touched cave into the main one
+                // flood the touched cave into the main one (relabelling marks what it met)
                 labels[j] = main;
                 changed.push(j);
                 stack.clear();
                 stack.push(j);
-                while let Some(c) = stack.pop() {
-                    let (cx, cy) = ((c % w) as i64, (c / w) as i64);
-                    for &(ex, ey) in &NEIGHBOURS4 {
-                        let (mx, my) = (cx + ex as i64, cy + ey as i64);
-                        if mx < 0 || my < 0 || mx >= w as i64 || my >= h as i64 {
-                            continue;
-                        }
-                        let m = my as usize * w + mx as usize;
-                        if labels[m] == l {
-                            labels[m] = main;
-                            changed.push(m);
-                            stack.push(m);
+                while let Some(m) = stack.pop() {
+                    for n in around(m) {
+                        if labels[n] == l {
+                            labels[n] = main;
+                            changed.push(n);
+                            stack.push(n);
                         }
                     }
                 }
@@ -348,14 +344,8 @@ fn tunnels(cells: &mut Grid<Occ>, res: f64, inner: usize) {
         }
         // the main cave's border moved only at and beside the cells that joined it
         for &c in &changed {
-            let (x, y) = ((c % w) as i64, (c / w) as i64);
-            set_bit(&mut border_bits, c, borders(&labels, c));
-            for &(dx, dy) in &NEIGHBOURS4 {
-                let (nx, ny) = (x + dx as i64, y + dy as i64);
-                if nx >= 0 && ny >= 0 && nx < w as i64 && ny < h as i64 {
-                    let n = ny as usize * w + nx as usize;
-                    set_bit(&mut border_bits, n, borders(&labels, n));
-                }
+            for n in std::iter::once(c).chain(around(c)) {
+                set_bit(&mut border_bits, n, borders(&labels, n));
             }
         }
     }

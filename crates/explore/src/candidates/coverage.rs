@@ -751,16 +751,15 @@ fn cover_on(ctx: &mut DecisionCtx<'_>, st: &mut State, block: usize, only: Optio
             }
             st.unknown.sort_unstable();
             st.unknown.dedup();
-            let Some(c) = seeing_cell(
+            let cells = eligible_by_centre(
                 known,
                 block,
                 st.coarse.grid.width(),
                 st.cand_block[id as usize] as usize,
                 &eligible,
-                COVER_FRACTION * ctx.sensor_range_cells,
-                &st.unknown,
-                &mut st.tried,
-            ) else {
+            );
+            let range = COVER_FRACTION * ctx.sensor_range_cells;
+            let Some(c) = seeing_cell(known, cells, range, &st.unknown, &mut st.tried) else {
                 continue;
             };
             c
@@ -806,10 +805,10 @@ fn ones(words: &[u64]) -> u32 {
     words.iter().map(|w| w.count_ones()).sum()
 }
 
-/// The cell through which free block `b` (`cw` blocks a row) is a chosen candidate: its
-/// first eligible cell, nearest the block's centre first (ties to the lower index), that
-/// sees one of the cells `unknown` within `range` cells, cell by cell over the belief;
-/// `None` if no cell of the block sees one.
+/// The cell through which a free block is a chosen candidate: the first of its eligible
+/// `cells` ([`eligible_by_centre`]), nearest the block's centre first (ties to the lower
+/// index), that sees one of the cells `unknown` within `range` cells, cell by cell over the
+/// belief; `None` if none sees one.
 ///
 /// The cover on blocks looks from block to block, which is not what a robot's laser sees
 /// from a cell: a ray between two blocks may pass where every ray between their cells is
@@ -817,19 +816,15 @@ fn ones(words: &[u64]) -> u32 {
 /// another of its cells. A candidate that sees nothing it is credited with would send a
 /// robot to learn nothing; its cell goes on the visited list, the next decision offers the
 /// next cell of the same block, and a team walks the free space cell by cell.
-#[allow(clippy::too_many_arguments)]
 fn seeing_cell(
     known: &Grid<Occ>,
-    block: usize,
-    cw: usize,
-    b: usize,
-    eligible: &impl Fn(usize) -> bool,
+    cells: impl Iterator<Item = (i64, u32)>,
     range: f64,
     unknown: &[u32],
     tried: &mut Vec<(i64, u32)>,
 ) -> Option<u32> {
     tried.clear();
-    tried.extend(eligible_by_centre(known, block, cw, b, eligible));
+    tried.extend(cells);
     tried.sort_unstable();
     tried.iter().map(|&(_, c)| c).find(|&c| {
         let from = known.cell(c as usize);
