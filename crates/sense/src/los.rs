@@ -10,8 +10,8 @@
 //! in the walk's order through the template's ranks: the same list of cells either way.
 //! Its result equals [`los_visible`](crate::los_visible) for every cell (checked by
 //! property tests).
-//! A predicted scan ([`Sensor::predict`]) walks the same template on a belief with Unknown
-//! cells transparent.
+//! A predicted scan ([`Sensor::predict`]) sees the belief with Unknown cells transparent,
+//! by the same walk or, from the same range on, the same shadow casting.
 
 use std::sync::Arc;
 
@@ -166,8 +166,30 @@ impl LosSensor {
         keep: impl Fn(usize) -> bool,
         out: &mut Vec<(u32, Occ)>,
     ) {
+        self.for_each_by_shadows(
+            truth,
+            origin,
+            columns,
+            |s| s == Occ::Free,
+            |i, _| keep(i),
+            |i, s| out.push((i, observed(s))),
+        );
+    }
+
+    /// [`Self::for_each_through`] by shadow casting: `seen(flat index, state in grid)` for
+    /// the cells `keep` accepts, in the template walk's order (through the template's
+    /// ranks), stopping each octant after `columns[k]`.
+    fn for_each_by_shadows(
+        &self,
+        grid: &Grid<Occ>,
+        origin: Cell,
+        columns: &[i64; 8],
+        transparent: impl Fn(Occ) -> bool,
+        keep: impl Fn(usize, Occ) -> bool,
+        mut seen: impl FnMut(u32, Occ),
+    ) {
         let t = &self.template;
-        let w = truth.width() as i64;
+        let w = grid.width() as i64;
         let (ox, oy) = (i64::from(origin.x), i64::from(origin.y));
         SCAN.with(|scan| {
             let mut scan = scan.borrow_mut();
@@ -191,20 +213,20 @@ impl LosSensor {
             let mut last = 0usize;
             ranks.clear();
             shadow::visible_within(
-                truth,
+                grid,
                 origin,
                 t.range(),
                 columns,
-                |s| s == Occ::Free,
+                transparent,
                 shadows,
                 |i, s| {
-                    if !keep(i as usize) {
+                    if !keep(i as usize, s) {
                         return;
                     }
                     let (x, y) = (i64::from(i) % w, i64::from(i) / w);
                     if let Some(k) = t.rank((x - ox) as i32, (y - oy) as i32) {
                         let k = k as usize;
-                        slot[k] = (i, observed(s));
+                        slot[k] = (i, s);
                         stamp[k] = e;
                         last = last.max(k + 1);
                         ranks.push(k as u32);
@@ -215,15 +237,44 @@ impl LosSensor {
             // rank up to the last.
             if ranks.len() * 16 < last {
                 ranks.sort_unstable();
-                out.extend(ranks.iter().map(|&k| slot[k as usize]));
+                for &k in ranks.iter() {
+                    let (i, s) = slot[k as usize];
+                    seen(i, s);
+                }
             } else {
                 for k in 0..last {
                     if stamp[k] == e {
-                        out.push(slot[k]);
+                        let (i, s) = slot[k];
+                        seen(i, s);
                     }
                 }
             }
         });
+    }
+
+    /// The cells a predicted scan from `pose` sees whose state in `known` passes `keep`, in
+    /// the template walk's order: Unknown cells are transparent; from [`FASTER_FROM_RANGE`]
+    /// on by shadow casting, as [`Sensor::scan`] (the same list).
+    fn predict_where(
+        &self,
+        known: &Grid<Occ>,
+        pose: Pose,
+        keep: impl Fn(Occ) -> bool,
+        out: &mut Vec<u32>,
+    ) {
+        out.clear();
+        if self.template.range() >= FASTER_FROM_RANGE {
+            let all = [i64::MAX; 8];
+            let (cell, transparent) = (pose.cell, predicted_transparent);
+            let kept = |_, s| keep(s);
+            self.for_each_by_shadows(known, cell, &all, transparent, kept, |i, _| out.push(i));
+        } else {
+            self.for_each_through(known, pose.cell, predicted_transparent, |i, s| {
+                if keep(s) {
+                    out.push(i);
+                }
+            });
+        }
     }
 }
 
@@ -276,17 +327,11 @@ impl Sensor for LosSensor {
     }
 
     fn predict(&self, known: &Grid<Occ>, pose: Pose, out: &mut Vec<u32>) {
-        out.clear();
-        self.for_each_through(known, pose.cell, predicted_transparent, |i, _| out.push(i));
+        self.predict_where(known, pose, |_| true, out);
     }
 
     fn predict_unknown(&self, known: &Grid<Occ>, pose: Pose, out: &mut Vec<u32>) {
-        out.clear();
-        self.for_each_through(known, pose.cell, predicted_transparent, |i, s| {
-            if s == Occ::Unknown {
-                out.push(i);
-            }
-        });
+        self.predict_where(known, pose, |s| s == Occ::Unknown, out);
     }
 }
 

@@ -205,3 +205,42 @@ proptest! {
         prop_assert_eq!(sorted(&obs), want);
     }
 }
+
+/// `grid` with every Unknown cell made Free: a predicted scan treats Unknown as transparent.
+fn unknown_as_free(grid: &Grid<Occ>) -> Grid<Occ> {
+    let data = grid
+        .data()
+        .iter()
+        .map(|&s| if s == Occ::Unknown { Occ::Free } else { s })
+        .collect();
+    Grid::from_vec(grid.width(), grid.height(), data).expect("same size")
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(96))]
+
+    /// A predicted scan sees through Unknown cells: the cells, in the template walk's
+    /// order, that a scan of the map with Unknown made Free sees, and of them the Unknown
+    /// ones for `predict_unknown`, at short ranges (the walk) and long ones (shadow
+    /// casting).
+    #[test]
+    fn predicted_scan_equals_the_walk_with_unknown_transparent(
+        known in arb_large_map(),
+        r in prop_oneof![0.0f64..20.0, 20.0f64..48.0, (400u32..2304).prop_map(|k| f64::from(k).sqrt())],
+        sx in -1i32..65,
+        sy in -1i32..65,
+    ) {
+        let sensor = LosSensor::new(r).expect("valid range");
+        let o = Cell::new(sx, sy);
+        let clear = unknown_as_free(&known);
+        let mut walk = Vec::new();
+        sensor.for_each_seen(&clear, o, |i, _| walk.push(i));
+        let mut got = Vec::new();
+        sensor.predict(&known, Pose::new(o, 0.0), &mut got);
+        prop_assert_eq!(&got, &walk);
+        let unknown: Vec<u32> =
+            walk.into_iter().filter(|&i| known.data()[i as usize] == Occ::Unknown).collect();
+        sensor.predict_unknown(&known, Pose::new(o, 0.0), &mut got);
+        prop_assert_eq!(got, unknown);
+    }
+}
