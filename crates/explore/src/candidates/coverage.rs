@@ -444,8 +444,8 @@ fn cover(ctx: &mut DecisionCtx<'_>, st: &mut State) {
             .get(kk / 64)
             .is_none_or(|w| w >> (kk % 64) & 1 == 0)
         {
-            let (f0, f1) = (st.key_start[kk] as usize, st.key_start[kk + 1] as usize);
-            st.left.extend_from_slice(&st.front[f0..f1]);
+            st.left
+                .extend_from_slice(key_cells(&st.front, &st.key_start, kk));
         }
     }
     if st.left.is_empty() {
@@ -549,7 +549,7 @@ fn cover_on(ctx: &mut DecisionCtx<'_>, st: &mut State, block: usize, only: Optio
     // The (target, key) incidences: key k is covered from what sees one of its targets.
     for kk in 0..nk {
         st.targets.clear();
-        for &f in &st.front[st.key_start[kk] as usize..st.key_start[kk + 1] as usize] {
+        for &f in key_cells(&st.front, &st.key_start, kk) {
             for u in known.neighbours8(f as usize) {
                 let t = key(u as u32);
                 if known[u] == Occ::Unknown && !st.targets.contains(&t) {
@@ -734,17 +734,11 @@ fn cover_on(ctx: &mut DecisionCtx<'_>, st: &mut State, block: usize, only: Optio
         let cell = if block > 1 {
             // The unknown cells next to the frontier cells of the keys it would newly cover.
             st.unknown.clear();
-            for (j, (&b, &c)) in row.iter().zip(covered.iter()).enumerate() {
-                let mut new = b & !c;
-                while new != 0 {
-                    let kk = (sp.word as usize + j) * 64 + new.trailing_zeros() as usize;
-                    new &= new - 1;
-                    let (f0, f1) = (st.key_start[kk] as usize, st.key_start[kk + 1] as usize);
-                    for &f in &st.front[f0..f1] {
-                        for u in known.neighbours8(f as usize) {
-                            if known[u] == Occ::Unknown {
-                                st.unknown.push(u as u32);
-                            }
+            for kk in new_keys(row, covered, sp.word) {
+                for &f in key_cells(&st.front, &st.key_start, kk) {
+                    for u in known.neighbours8(f as usize) {
+                        if known[u] == Occ::Unknown {
+                            st.unknown.push(u as u32);
                         }
                     }
                 }
@@ -768,19 +762,40 @@ fn cover_on(ctx: &mut DecisionCtx<'_>, st: &mut State, block: usize, only: Optio
         };
         st.chosen.push(cell);
         let covered = &mut st.covered[sp.word as usize..][..row.len()];
-        for (w, (&b, c)) in row.iter().zip(covered.iter_mut()).enumerate() {
-            let mut new = b & !*c;
-            *c |= new;
-            while new != 0 {
-                let k = (sp.word as usize + w) * 64 + new.trailing_zeros() as usize;
-                new &= new - 1;
-                let (f0, f1) = (st.key_start[k] as usize, st.key_start[k + 1] as usize);
-                st.credit.extend_from_slice(&st.front[f0..f1]);
-            }
+        for k in new_keys(row, covered, sp.word) {
+            st.credit
+                .extend_from_slice(key_cells(&st.front, &st.key_start, k));
+        }
+        for (c, &b) in covered.iter_mut().zip(row) {
+            *c |= b;
         }
         left -= now;
         st.credit_start.push(st.credit.len() as u32);
     }
+}
+
+/// The keys set in `row` (a candidate's set, from key word `word` on) and not in `covered`
+/// (the same words of the covered keys): those the candidate would newly cover, ascending.
+fn new_keys<'a>(row: &'a [u64], covered: &'a [u64], word: u32) -> impl Iterator<Item = usize> + 'a {
+    row.iter()
+        .zip(covered)
+        .enumerate()
+        .flat_map(move |(j, (&b, &c))| {
+            let base = (word as usize + j) * 64;
+            let mut new = b & !c;
+            std::iter::from_fn(move || {
+                (new != 0).then(|| {
+                    let k = base + new.trailing_zeros() as usize;
+                    new &= new - 1;
+                    k
+                })
+            })
+        })
+}
+
+/// The frontier cells of key `k`: `front[key_start[k]..key_start[k + 1]]`.
+fn key_cells<'a>(front: &'a [u32], key_start: &[u32], k: usize) -> &'a [u32] {
+    &front[key_start[k] as usize..key_start[k + 1] as usize]
 }
 
 /// Where a candidate's key bit set lies: it holds the words `word..word + len` of a set
