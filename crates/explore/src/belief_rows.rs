@@ -84,7 +84,7 @@ impl RowLog {
     }
 
     /// Where the log is now.
-    fn now(&self) -> LogPos {
+    pub(crate) fn now(&self) -> LogPos {
         LogPos {
             lineage: self.lineage,
             updates: self.updates,

@@ -553,3 +553,92 @@ fn block_one_is_the_plain_update_and_partly_free_blocks_take_a_label() {
         }
     }
 }
+
+/// Rooms and corridors (`rects`, inclusive boxes clamped into the grid) carved free in a
+/// `w × h` grid of `outside` (walls or unknown space).
+fn rooms_in(w: usize, h: usize, outside: Occ, rects: &[(usize, usize, usize, usize)]) -> Grid<Occ> {
+    let mut g = Grid::new(w, h, outside);
+    for &(x, y, rw, rh) in rects {
+        let (x0, y0) = (x % w, y % h);
+        carve(&mut g, x0, y0, (x0 + rw).min(w - 1), (y0 + rh).min(h - 1));
+    }
+    g
+}
+
+/// The segmentation of the grid of `block × block` blocks of `g` (a block is free when all
+/// its cells are), computed on the whole grid of blocks.
+fn whole_block_segmentation(
+    g: &Grid<Occ>,
+    block: usize,
+) -> (Grid<Occ>, explore::segment::Segmentation) {
+    let (w, h) = (g.width(), g.height());
+    let (cw, ch) = (w.div_ceil(block), h.div_ceil(block));
+    let mut coarse = Grid::new(cw, ch, Occ::Free);
+    for y in 0..h {
+        for x in 0..w {
+            if !g.data()[y * w + x].is_free() {
+                coarse.data_mut()[(y / block) * cw + x / block] = Occ::Occupied;
+            }
+        }
+    }
+    let seg = segment(&coarse, Rule::Holz);
+    (coarse, seg)
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    /// The cache segments only the window of the free cells (module documentation of
+    /// `segment::cache`): its full runs equal the segmentation of the whole grid, cell by
+    /// cell, with free space anywhere in a large grid, against its edges or not, as the
+    /// free space grows and shrinks between runs.
+    #[test]
+    fn windowed_full_runs_equal_the_whole_grid_segmentation(
+        (w, h) in (8usize..90, 8usize..70),
+        unknown_outside in any::<bool>(),
+        steps in proptest::collection::vec(
+            proptest::collection::vec((0usize..90, 0usize..70, 0usize..30, 0usize..25), 1..5),
+            1..5,
+        ),
+        block in 1usize..4,
+    ) {
+        let outside = if unknown_outside { Occ::Unknown } else { Occ::Occupied };
+        let mut state = State::new();
+        let mut runs = 0;
+        let mut free_so_far: Vec<(usize, usize, usize, usize)> = Vec::new();
+        for (k, rects) in steps.iter().enumerate() {
+            // every other step shrinks the free space to the new rooms alone
+            if k % 2 == 1 {
+                free_so_far.clear();
+            }
+            free_so_far.extend(rects);
+            let g = rooms_in(w, h, outside, &free_so_far);
+            let got = state.update_blocks(&g, Rule::Holz, block).clone();
+            if state.full_runs() == runs {
+                continue; // patched: not a full run
+            }
+            runs = state.full_runs();
+            if block == 1 {
+                prop_assert_eq!(&got, &segment(&g, Rule::Holz));
+                continue;
+            }
+            let (coarse, want) = whole_block_segmentation(&g, block);
+            prop_assert_eq!(got.count, want.count);
+            prop_assert_eq!(got.critical.len(), want.critical.len());
+            let cw = coarse.width();
+            for (i, &l) in got.labels.iter().enumerate() {
+                let c = (i / w / block) * cw + (i % w) / block;
+                if coarse.data()[c].is_free() {
+                    prop_assert_eq!(l, want.labels[c], "cell {}", i);
+                } else if !g.data()[i].is_free() {
+                    prop_assert_eq!(l, NONE, "cell {}", i);
+                }
+            }
+            for (a, b) in got.critical.iter().zip(&want.critical) {
+                let (ax, ay) = (a.cell as usize % w, a.cell as usize / w);
+                prop_assert_eq!((ax / block, ay / block), (b.cell as usize % cw, b.cell as usize / cw));
+                prop_assert_eq!(a.clearance, b.clearance * block as f64);
+            }
+        }
+    }
+}

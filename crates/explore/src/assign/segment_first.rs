@@ -43,10 +43,11 @@ pub fn assign(
         return;
     }
     let mut state = std::mem::take(&mut ctx.memory.segments);
-    state.update_blocks(
+    state.update_logged(
         ctx.known,
         rule,
         crate::segment::cache::block_for(ctx.resolution),
+        ctx.upkeep.row_log(),
     );
     let seg = state.segmentation();
     for (r, slot) in out.iter_mut().enumerate().take(n) {

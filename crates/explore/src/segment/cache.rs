@@ -2,8 +2,9 @@
 //! far" at every decision; here it is recomputed only when the map changed enough).
 //!
 //! The refresh rule: the state remembers the known grid as of its last update. At each
-//! update the grid is compared with it cell by cell (a linear scan of bytes, far cheaper than
-//! a segmentation) and the changed cells are added to a drift count. The whole pipeline runs
+//! update the grid is compared with it (only the rows the belief's row log has changed since,
+//! when the caller keeps one, as the simulation's frontier upkeep does) and the changed cells
+//! are added to a drift count. The whole pipeline runs
 //! again when the rule, the grid size changed, or the drift since the last full run reaches
 //! [`REFRESH_FRACTION`] of the free cells of that run (at least one cell). Otherwise the old
 //! segmentation is kept and patched: cells that stopped being free lose their label, and
@@ -20,6 +21,15 @@
 //! cell then takes the label of its block, and free cells of partly free blocks take the
 //! label of the labelled free cell they connect to (the growth of the patches below).
 //!
+//! Window: a full run segments only a window of the grid that holds every free cell (the
+//! bounding box of the cells free at some update since the state began, grown from the
+//! changed cells), widened by one cell (block) on each side where the grid goes on. The pipeline treats
+//! everything that is not free as wall and the grid's outside as wall just beyond its edge;
+//! outside the window nothing is free, and the ring around it is wall, so every free cell's
+//! nearest wall, the skeleton, the seeds' distances and the order of cells (row-major order
+//! survives cropping) are those of the whole grid: the labels are the same, and a run early
+//! in an exploration costs what the known part of the map does, not the whole map.
+//!
 //! The state also keeps each segment's neighbouring segments ([`State::neighbours`]) for
 //! Seg's room preference: found by a scan with every full run, and extended by the pairs the
 //! patched cells create (work proportional to the change).
@@ -31,6 +41,7 @@ use grid::{Grid, Occ};
 use super::graph::NONE;
 use super::skeleton::RING;
 use super::{Rule, Segmentation, Segmenter};
+use crate::belief_rows::{LogPos, RowLog, sync_rows};
 
 /// Fraction of the free cells that must change before the segmentation is recomputed.
 pub const REFRESH_FRACTION: f64 = 0.02;
@@ -58,10 +69,16 @@ pub fn block_side(width_m: f64, resolution: f64) -> usize {
 pub struct State {
     segmenter: Segmenter,
     block: usize,
-    coarse: Option<Grid<Occ>>,
+    /// The window of the grid (or of its blocks) the last full run segmented.
+    crop: Grid<Occ>,
     fine: Segmentation,
     rule: Option<Rule>,
-    seen: Vec<Occ>,
+    /// The belief as of the last update, and how far it followed the belief's row log.
+    seen: Grid<Occ>,
+    pos: LogPos,
+    /// A window holding every cell that was free at some update since the last fresh
+    /// start: every free cell and every labelled cell lies in it.
+    free: Window,
     width: usize,
     free_at_full: usize,
     drift: usize,
@@ -88,34 +105,51 @@ impl State {
     /// [`update`](Self::update), running the pipeline on blocks of `block × block` cells
     /// (see the module documentation; `block_for` gives the block for a resolution).
     pub fn update_blocks(&mut self, known: &Grid<Occ>, rule: Rule, block: usize) -> &Segmentation {
+        self.update_logged(known, rule, block, &RowLog::default())
+    }
+
+    /// [`update_blocks`](Self::update_blocks) for a belief whose changed rows `log` records:
+    /// only the rows changed since the last update are compared.
+    pub(crate) fn update_logged(
+        &mut self,
+        known: &Grid<Occ>,
+        rule: Rule,
+        block: usize,
+        log: &RowLog,
+    ) -> &Segmentation {
         let block = block.max(1);
-        let cells = known.data();
         let fresh = self.rule != Some(rule)
             || self.block != block
             || self.width != known.width()
-            || self.seen.len() != cells.len();
+            || self.seen.len() != known.len();
         if !fresh {
             self.changed.clear();
-            // chunks compared branch-free first: most of a big map does not change
+            let changed = &mut self.changed;
+            let w = known.width();
+            // chunks of 64 cells, compared whole first: most of a changed row is not
             const CHUNK: usize = 64;
-            let chunks = self.seen.chunks_mut(CHUNK).zip(cells.chunks(CHUNK));
-            for (c, (seen, now)) in chunks.enumerate() {
-                let diff = seen
-                    .iter()
-                    .zip(now)
-                    .fold(0u8, |acc, (&a, &b)| acc | (a as u8 ^ b as u8));
-                if diff == 0 {
-                    continue;
-                }
-                for (k, (s, &v)) in seen.iter_mut().zip(now).enumerate() {
-                    if *s != v {
-                        *s = v;
-                        self.changed.push((c * CHUNK + k) as u32);
+            sync_rows(
+                known,
+                &mut self.seen,
+                CHUNK,
+                (log, &mut self.pos),
+                |y, k, now, before| {
+                    let at = y * w + k * CHUNK;
+                    for (j, (a, b)) in now.iter().zip(before).enumerate() {
+                        if a != b {
+                            changed.push((at + j) as u32);
+                        }
                     }
-                }
-            }
+                },
+            );
             if self.changed.is_empty() {
                 return &self.fine;
+            }
+            for &c in &self.changed {
+                let i = c as usize;
+                if known.data()[i].is_free() {
+                    self.free.add_run(i / w, i % w, i % w);
+                }
             }
             self.drift += self.changed.len();
             let limit = ((REFRESH_FRACTION * self.free_at_full as f64) as usize).max(1);
@@ -125,9 +159,15 @@ impl State {
                 self.patch_neighbours();
                 return &self.fine;
             }
+        } else {
+            self.seen.clone_from(known);
+            self.pos = log.now();
+            self.free = Window::of_free(known);
+            // labels of an earlier history may lie anywhere
+            self.fine.labels.clear();
         }
         self.full(known, rule, block);
-        self.fine.neighbour_pairs(&mut self.keys);
+        self.fine.neighbour_pairs_within(self.free, &mut self.keys);
         count_pairs(&self.keys, self.fine.count, &mut self.degrees);
         &self.fine
     }
@@ -185,68 +225,57 @@ impl State {
         self.patches
     }
 
+    /// Segment `known` afresh (`seen` holds it, `free` holds its free cells).
     fn full(&mut self, known: &Grid<Occ>, rule: Rule, block: usize) {
-        if block == 1 {
-            self.segmenter.run(known, rule);
-            self.fine.clone_from(self.segmenter.result());
-        } else {
-            self.full_blocks(known, rule, block);
-        }
-        self.rule = Some(rule);
-        self.block = block;
-        self.width = known.width();
-        self.seen.clear();
-        self.seen.extend_from_slice(known.data());
-        self.free_at_full = self.seen.iter().filter(|c| c.is_free()).count();
-        self.drift = 0;
-        self.full_runs += 1;
-    }
-
-    /// Segment `known` on blocks of `block × block` cells and carry the labels back.
-    fn full_blocks(&mut self, known: &Grid<Occ>, rule: Rule, block: usize) {
         let (w, h) = (known.width(), known.height());
+        // the window of blocks holding every free cell, widened: what the pipeline sees
         let (cw, ch) = (w.div_ceil(block), h.div_ceil(block));
-        let cells = known.data();
-        let grid = match self.coarse.take() {
-            Some(g) if g.width() == cw && g.height() == ch => g,
-            _ => Grid::new(cw, ch, Occ::Occupied),
-        };
-        let grid = self.coarse.insert(grid);
-        let coarse = grid.data_mut();
-        coarse.fill(Occ::Free);
-        for (y, row) in cells.chunks(w).enumerate() {
-            let base = (y / block) * cw;
-            for (cx, run) in row.chunks(block).enumerate() {
-                if !run.iter().all(|c| c.is_free()) {
-                    coarse[base + cx] = Occ::Occupied;
-                }
+        let f = self.free;
+        let win = if f.w == 0 || f.h == 0 {
+            f
+        } else {
+            let (x0, y0) = (f.x0 / block, f.y0 / block);
+            Window {
+                x0,
+                y0,
+                w: (f.x0 + f.w - 1) / block + 1 - x0,
+                h: (f.y0 + f.h - 1) / block + 1 - y0,
             }
         }
-        let seg = self.segmenter.run(grid, rule);
+        .widened(cw, ch);
+        crop_blocks(known, block, win, &mut self.crop);
+        let seg = self.segmenter.run(&self.crop, rule);
         let fine = &mut self.fine;
         fine.width = w;
         fine.height = h;
         fine.count = seg.count;
-        fine.labels.clear();
-        fine.labels.resize(w * h, NONE);
+        if fine.labels.len() != w * h {
+            fine.labels.clear();
+            fine.labels.resize(w * h, NONE);
+        }
         self.changed.clear();
-        for (y, row) in cells.chunks(w).enumerate() {
-            let base = (y / block) * cw;
-            for (cx, run) in row.chunks(block).enumerate() {
-                let l = seg.labels[base + cx];
-                for (k, c) in run.iter().enumerate() {
-                    if c.is_free() {
-                        let i = y * w + cx * block + k;
-                        fine.labels[i] = l;
-                        if l == NONE {
-                            self.changed.push(i as u32);
-                        }
-                    }
+        let cells = known.data();
+        let mut free_cells = 0;
+        // every free cell, and every cell labelled before, lies in `free`
+        for y in f.rows() {
+            let (row, labels) = (&cells[y * w..][..w], &mut fine.labels[y * w..][..w]);
+            let by = y / block - win.y0;
+            for x in f.columns() {
+                if !row[x].is_free() {
+                    labels[x] = NONE;
+                    continue;
+                }
+                free_cells += 1;
+                let l = seg.labels[by * win.w + x / block - win.x0];
+                labels[x] = l;
+                if l == NONE {
+                    self.changed.push((y * w + x) as u32);
                 }
             }
         }
         let to_fine = |c: u32| {
-            let (x, y) = (c as usize % cw, c as usize / cw);
+            let b = win.to_grid(c, cw);
+            let (x, y) = (b % cw, b / cw);
             let fx = (x * block + block / 2).min(w - 1);
             let fy = (y * block + block / 2).min(h - 1);
             (fy * w + fx) as u32
@@ -259,7 +288,16 @@ impl State {
                 side_a: to_fine(cp.side_a),
                 side_b: to_fine(cp.side_b),
             }));
-        self.grow(known);
+        if block > 1 {
+            // free cells of blocks that are not wholly free join the segment they touch
+            self.grow(known);
+        }
+        self.rule = Some(rule);
+        self.block = block;
+        self.width = w;
+        self.free_at_full = free_cells;
+        self.drift = 0;
+        self.full_runs += 1;
     }
 
     /// Clear the labels of changed cells that are no longer free and grow labels into the
@@ -325,6 +363,119 @@ impl State {
                     labels[j] = labels[i];
                     self.queue.push_back(j as u32);
                 }
+            }
+        }
+    }
+}
+
+/// A rectangle of a grid: columns `x0..x0 + w`, rows `y0..y0 + h` (empty when `w` or `h`
+/// is 0).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub(crate) struct Window {
+    pub(crate) x0: usize,
+    pub(crate) y0: usize,
+    pub(crate) w: usize,
+    pub(crate) h: usize,
+}
+
+impl Window {
+    /// No cell.
+    const EMPTY: Window = Window {
+        x0: 0,
+        y0: 0,
+        w: 0,
+        h: 0,
+    };
+
+    /// The smallest window holding every free cell of `grid`.
+    fn of_free(grid: &Grid<Occ>) -> Window {
+        let mut win = Window::EMPTY;
+        for (y, row) in grid.data().chunks(grid.width().max(1)).enumerate() {
+            if let Some(x0) = row.iter().position(|c| c.is_free()) {
+                let x1 = row.iter().rposition(|c| c.is_free()).unwrap_or(x0);
+                win.add_run(y, x0, x1);
+            }
+        }
+        win
+    }
+
+    /// Grow to hold cells `x0..=x1` of row `y`.
+    fn add_run(&mut self, y: usize, x0: usize, x1: usize) {
+        if self.w == 0 || self.h == 0 {
+            *self = Window {
+                x0,
+                y0: y,
+                w: x1 - x0 + 1,
+                h: 1,
+            };
+            return;
+        }
+        let (ax, ay) = (self.x0.min(x0), self.y0.min(y));
+        let bx = (self.x0 + self.w).max(x1 + 1);
+        let by = (self.y0 + self.h).max(y + 1);
+        *self = Window {
+            x0: ax,
+            y0: ay,
+            w: bx - ax,
+            h: by - ay,
+        };
+    }
+
+    /// Widened by one cell on each side, within a `gw × gh` grid (an empty window becomes
+    /// one cell, which segments like a grid without free cells).
+    fn widened(self, gw: usize, gh: usize) -> Window {
+        if self.w == 0 || self.h == 0 {
+            return Window {
+                x0: 0,
+                y0: 0,
+                w: gw.min(1),
+                h: gh.min(1),
+            };
+        }
+        let (x0, y0) = (self.x0.saturating_sub(1), self.y0.saturating_sub(1));
+        let x1 = (self.x0 + self.w + 1).min(gw);
+        let y1 = (self.y0 + self.h + 1).min(gh);
+        Window {
+            x0,
+            y0,
+            w: x1 - x0,
+            h: y1 - y0,
+        }
+    }
+
+    /// The flat index in a `gw`-wide grid of the window's cell of flat index `c`.
+    fn to_grid(self, c: u32, gw: usize) -> usize {
+        let c = c as usize;
+        (self.y0 + c / self.w) * gw + self.x0 + c % self.w
+    }
+
+    /// The window's rows.
+    pub(crate) fn rows(&self) -> std::ops::Range<usize> {
+        self.y0..self.y0 + self.h
+    }
+
+    /// The window's columns.
+    pub(crate) fn columns(&self) -> std::ops::Range<usize> {
+        self.x0..self.x0 + self.w
+    }
+}
+
+/// Window `win` of the grid of `block × block` blocks of `known` into `out`: a block is free
+/// when all its cells are.
+fn crop_blocks(known: &Grid<Occ>, block: usize, win: Window, out: &mut Grid<Occ>) {
+    if out.width() != win.w || out.height() != win.h {
+        *out = Grid::new(win.w, win.h, Occ::Free);
+    }
+    out.fill(Occ::Free);
+    let (w, h) = (known.width(), known.height());
+    let (x0, x1) = (win.x0 * block, ((win.x0 + win.w) * block).min(w));
+    let crop = out.data_mut();
+    for y in win.y0 * block..((win.y0 + win.h) * block).min(h) {
+        let row = &known.data()[y * w + x0..y * w + x1];
+        let at = (y / block - win.y0) * win.w;
+        for (k, run) in row.chunks(block).enumerate() {
+            if !run.iter().all(|c| c.is_free()) {
+                crop[at + k] = Occ::Occupied;
             }
         }
     }

@@ -117,19 +117,32 @@ impl Segmentation {
     /// The pairs of segments that touch (4-adjacent free cells), as sorted, deduplicated
     /// keys `min << 32 | max`, into `keys`.
     pub fn neighbour_pairs(&self, keys: &mut Vec<u64>) {
+        let all = cache::Window {
+            x0: 0,
+            y0: 0,
+            w: self.width,
+            h: self.labels.len() / self.width.max(1),
+        };
+        self.neighbour_pairs_within(all, keys);
+    }
+
+    /// [`neighbour_pairs`](Self::neighbour_pairs) when every labelled cell lies in `win`.
+    pub(crate) fn neighbour_pairs_within(&self, win: cache::Window, keys: &mut Vec<u64>) {
         keys.clear();
         let (w, n) = (self.width, self.labels.len());
-        for i in 0..n {
-            let a = self.labels[i];
-            if a == NONE {
-                continue;
-            }
-            let right = (i % w + 1 < w).then(|| i + 1);
-            let down = (i + w < n).then(|| i + w);
-            for j in [right, down].into_iter().flatten() {
-                let b = self.labels[j];
-                if b != NONE && b != a {
-                    keys.push(pair_key(a, b));
+        for y in win.rows() {
+            for i in win.columns().map(|x| y * w + x) {
+                let a = self.labels[i];
+                if a == NONE {
+                    continue;
+                }
+                let right = (i % w + 1 < w).then(|| i + 1);
+                let down = (i + w < n).then(|| i + w);
+                for j in [right, down].into_iter().flatten() {
+                    let b = self.labels[j];
+                    if b != NONE && b != a {
+                        keys.push(pair_key(a, b));
+                    }
                 }
             }
         }
