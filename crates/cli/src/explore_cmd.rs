@@ -1,9 +1,12 @@
 //! `frontier explore`: one run, a summary or JSON, pictures and a trace.
 
+use std::borrow::Cow;
 use std::path::PathBuf;
+use std::time::{Duration, Instant};
 
 use anyhow::{Context, Result};
 use clap::Args;
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use sim::RunConfig;
 
 use crate::args::{MapSource, Truth, parse_cell};
@@ -83,6 +86,9 @@ pub struct ExploreArgs {
     /// the machine has available is always checked).
     #[arg(long)]
     pub memory_mb: Option<u64>,
+    /// Never draw the progress bar (drawn on a terminal for runs longer than a second).
+    #[arg(long)]
+    pub no_progress: bool,
 }
 
 /// Resolve flags into a run configuration (everything but the map).
@@ -122,6 +128,57 @@ pub fn check_memory(cfg: &RunConfig, truth: &Truth, memory_mb: Option<u64>) -> R
     bench::explore::check_memory(cfg, &truth.map, memory_mb).map_err(anyhow::Error::msg)
 }
 
+/// Steps of the loop between two looks at the clock.
+const PROGRESS_STEPS: u64 = 256;
+/// A run shorter than this draws no bar.
+const PROGRESS_AFTER: Duration = Duration::from_secs(1);
+/// The bar is redrawn at most this often.
+const PROGRESS_EVERY: Duration = Duration::from_millis(100);
+
+/// Run the exploration; with `progress`, a run that lasts longer than [`PROGRESS_AFTER`]
+/// shows its coverage, moves and path on standard error until it ends (the run is the same
+/// either way: the loop only pauses between its steps).
+fn run_with_progress(truth: &Truth, cfg: &RunConfig, progress: bool) -> Result<sim::RunResult> {
+    let mut session = sim::Session::start(Cow::Borrowed(&truth.map), Cow::Borrowed(cfg), false)?;
+    let steps = if progress { PROGRESS_STEPS } else { u64::MAX };
+    let started = Instant::now();
+    let mut bar: Option<(ProgressBar, Instant)> = None;
+    while session.advance_for(steps).is_none() {
+        let now = Instant::now();
+        if now.duration_since(started) < PROGRESS_AFTER
+            || bar
+                .as_ref()
+                .is_some_and(|(_, at)| now.duration_since(*at) < PROGRESS_EVERY)
+        {
+            continue;
+        }
+        let (b, at) = bar.get_or_insert_with(|| (progress_bar(now - started), now));
+        *at = now;
+        let coverage = session.coverage();
+        b.set_position((coverage * 1000.0).round() as u64);
+        b.set_message(format!(
+            "{:.1} % covered · {} moves · {:.1} m",
+            100.0 * coverage,
+            session.moves(),
+            session.total_path_length_m()
+        ));
+    }
+    if let Some((b, _)) = bar {
+        b.finish_and_clear();
+    }
+    Ok(session.finish())
+}
+
+/// The bar of a run `elapsed` old: coverage in per mille.
+fn progress_bar(elapsed: Duration) -> ProgressBar {
+    let bar = ProgressBar::with_draw_target(Some(1000), ProgressDrawTarget::stderr())
+        .with_elapsed(elapsed);
+    if let Ok(style) = ProgressStyle::with_template("{elapsed_precise} [{bar:30}] {msg}") {
+        bar.set_style(style.progress_chars("=> "));
+    }
+    bar
+}
+
 /// Run `frontier explore`.
 pub fn run(a: ExploreArgs) -> Result<()> {
     for (flag, path) in [("--gif", &a.gif), ("--html", &a.html), ("--mcap", &a.mcap)] {
@@ -134,7 +191,11 @@ pub fn run(a: ExploreArgs) -> Result<()> {
     }
     let truth = a.source.resolve(a.seed)?;
     let cfg = config(&a, &truth)?;
-    let result = sim::run(&truth.map, &cfg)?;
+    let result = run_with_progress(
+        &truth,
+        &cfg,
+        !a.no_progress && bench::runner::progress_wanted(),
+    )?;
     if let Some(dir) = &a.out {
         let png = dir.join("final.png");
         viz::final_picture(&truth.map, &result)

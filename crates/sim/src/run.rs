@@ -390,14 +390,26 @@ impl<'a> Session<'a> {
 
     /// Run until an external decision is due or the run ends.
     pub fn advance(&mut self) -> Status {
+        loop {
+            if let Some(status) = self.advance_for(u64::MAX) {
+                return status;
+            }
+        }
+    }
+
+    /// [`advance`](Self::advance), but pause after `steps` steps of the loop (a step moves
+    /// one robot one cell, or makes it decide) and return `None`: a caller can show
+    /// progress between slices. Slices of any size run the same run as one `advance`.
+    pub fn advance_for(&mut self, steps: u64) -> Option<Status> {
         if let Some(reason) = self.reason {
-            return Status::Ended(reason);
+            return Some(Status::Ended(reason));
         }
         if self.team.pending {
-            return Status::Decide;
+            return Some(Status::Decide);
         }
         let (team, robots) = (&mut self.team, &mut self.robots);
         let m = robots.len();
+        let mut left = steps;
         let reason = loop {
             if let Some(g) = team.cfg.coverage_goal
                 && team.coverage() >= g
@@ -418,13 +430,17 @@ impl<'a> Session<'a> {
                     EndReason::NoReachableFrontier
                 };
             };
+            if left == 0 {
+                return None;
+            }
+            left -= 1;
             team.step(robots, r);
             if team.pending {
-                return Status::Decide;
+                return Some(Status::Decide);
             }
         };
         self.reason = Some(reason);
-        Status::Ended(reason)
+        Some(Status::Ended(reason))
     }
 
     /// Which robots the pending decision is for (all false when none is pending).

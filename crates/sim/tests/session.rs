@@ -185,3 +185,45 @@ fn nearest_proposal_from_grown_searches_equals_a_fresh_search() {
         }
     }
 }
+
+/// `advance_for` pauses the loop between its steps (for a progress display): slices of
+/// any size run the same run as one `advance`.
+#[test]
+fn advancing_in_slices_equals_one_advance() {
+    let map = office();
+    for (preset, robots) in [("cf-rr", 1), ("dt", 1), ("ha-cc", 3), ("minpos", 2)] {
+        let cfg = config(preset, robots, 1);
+        let want = sim::run(&map, &cfg).expect("run");
+        for slice in [1, 7, 256] {
+            let mut s =
+                Session::start(Cow::Borrowed(&map), Cow::Borrowed(&cfg), false).expect("start");
+            let mut pauses = 0;
+            let status = loop {
+                match s.advance_for(slice) {
+                    Some(status) => break status,
+                    None => pauses += 1,
+                }
+            };
+            assert!(matches!(status, Status::Ended(_)), "{preset}");
+            assert!(
+                pauses as u64 * slice >= want.moves / 2,
+                "{preset}: {pauses} pauses"
+            );
+            // once ended, it stays ended
+            assert_eq!(s.advance_for(slice), Some(status));
+            let got = s.finish();
+            assert_eq!(
+                got.path_length_m, want.path_length_m,
+                "{preset} slice {slice}"
+            );
+            assert_eq!(got.decisions, want.decisions, "{preset} slice {slice}");
+            assert_eq!(got.moves, want.moves, "{preset} slice {slice}");
+            assert_eq!(got.reason, want.reason, "{preset} slice {slice}");
+            assert_eq!(
+                got.coverage_curve, want.coverage_curve,
+                "{preset} slice {slice}"
+            );
+            assert_eq!(got.belief, want.belief, "{preset} slice {slice}");
+        }
+    }
+}
