@@ -8,7 +8,11 @@ use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use rayon::prelude::*;
-use sim::{RunConfig, RunResult};
+use sim::{RunConfig, RunResult, Session};
+use std::borrow::Cow;
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::{Condvar, Mutex};
+use std::time::Duration;
 
 use crate::map::Map;
 use crate::{guarded, internal, value_error};
@@ -193,9 +197,82 @@ fn check_memory(jobs: &[Job], threads: Option<usize>, memory_mb: Option<u64>) ->
     .map_err(|e| value_error(e.to_string()))
 }
 
-/// Run a job (panics caught).
-fn execute(j: &Job) -> Result<RunResult, String> {
-    guarded(|| sim::run(&j.map.map, &j.cfg))?.map_err(|e| e.to_string())
+/// Run a job (panics caught) until it ends, or until `stop` is raised (`None`).
+fn execute(j: &Job, stop: &AtomicBool) -> Result<Option<RunResult>, String> {
+    guarded(|| -> Result<Option<RunResult>, sim::SimError> {
+        let mut s = Session::start(Cow::Borrowed(&j.map.map), Cow::Borrowed(&j.cfg), false)?;
+        while s.advance_for(SLICE).is_none() {
+            if stop.load(Ordering::Relaxed) {
+                return Ok(None);
+            }
+        }
+        Ok(Some(s.finish()))
+    })?
+    .map_err(|e| e.to_string())
+}
+
+/// Steps of a run between two looks at the stop flag (a run stops within a few
+/// milliseconds of Ctrl-C; pausing the loop does not change the run).
+const SLICE: u64 = 64;
+
+/// How often the waiting Python thread wakes to handle signals and report progress.
+const TICK: Duration = Duration::from_millis(100);
+
+/// Held by a worker: dropped when it ends (also by a panic, as it unwinds), it raises the
+/// flag and wakes the thread waiting for it at once.
+struct Ended<'a>(&'a (Mutex<bool>, Condvar));
+
+impl Drop for Ended<'_> {
+    fn drop(&mut self) {
+        *self.0.0.lock().unwrap_or_else(|e| e.into_inner()) = true;
+        self.0.1.notify_all();
+    }
+}
+
+/// Run `work` on another thread with the GIL released, waking every [`TICK`] to let Python
+/// handle signals (Ctrl-C raises `KeyboardInterrupt`) and to call `tick`. An error from
+/// either raises `stop`, which `work` is to watch, and is returned once `work` has ended.
+fn with_checks<T: Send>(
+    py: Python<'_>,
+    stop: &AtomicBool,
+    work: impl FnOnce() -> T + Send,
+    mut tick: impl FnMut(Python<'_>) -> PyResult<()>,
+) -> PyResult<T> {
+    let ended = (Mutex::new(false), Condvar::new());
+    std::thread::scope(|scope| {
+        let signal = Ended(&ended);
+        let handle = scope.spawn(move || {
+            let _signal = signal;
+            work()
+        });
+        let mut failed = None;
+        loop {
+            let finished = py.detach(|| {
+                let (lock, cv) = &ended;
+                let done = lock.lock().unwrap_or_else(|e| e.into_inner());
+                let (done, _) = cv
+                    .wait_timeout_while(done, TICK, |d| !*d)
+                    .unwrap_or_else(|e| e.into_inner());
+                *done
+            });
+            if finished {
+                break;
+            }
+            if failed.is_none()
+                && let Err(e) = py.check_signals().and_then(|()| tick(py))
+            {
+                stop.store(true, Ordering::Relaxed);
+                failed = Some(e);
+            }
+        }
+        let out = handle
+            .join()
+            .map_err(|_| internal("internal error (please report): a worker panicked".into()))?;
+        match failed {
+            Some(e) => Err(e),
+            None => Ok(out),
+        }
+    })
 }
 
 /// The JSON summary text (`--json --no-timing` unless `timing`).
@@ -217,13 +294,16 @@ pub fn explore<'py>(
     memory_mb: Option<u64>,
 ) -> PyResult<(String, Bound<'py, PyAny>, Bound<'py, PyAny>)> {
     let j = job(map, kwargs, memory_mb)?;
-    let r = py.detach(|| execute(&j)).map_err(|e| {
-        if e.starts_with("internal error") {
-            internal(e)
-        } else {
-            value_error(e)
-        }
-    })?;
+    let stop = AtomicBool::new(false);
+    let r = with_checks(py, &stop, || execute(&j, &stop), |_| Ok(()))?
+        .map_err(|e| {
+            if e.starts_with("internal error") {
+                internal(e)
+            } else {
+                value_error(e)
+            }
+        })?
+        .ok_or_else(|| internal("internal error (please report): a run stopped unasked".into()))?;
     let text = summary(&j, &r, timing);
     let belief: Vec<u8> = r.belief.data().iter().map(|&o| o as u8).collect();
     let belief = PyArray1::from_vec(py, belief)
@@ -252,14 +332,17 @@ pub fn explore<'py>(
 /// (map, kwargs) pairs; returns one summary JSON text per run, in order. Every run is
 /// checked before any starts; an error names the run's index. The largest runs, one per
 /// thread, must fit in `memory_mb` MiB and in the memory the machine has available.
+/// `progress(done, total)` is called about ten times a second while runs finish and once at
+/// the end; an exception from it, or Ctrl-C, stops the batch and is raised.
 #[pyfunction]
-#[pyo3(signature = (runs, threads=None, timing=false, memory_mb=None))]
+#[pyo3(signature = (runs, threads=None, timing=false, memory_mb=None, progress=None))]
 pub fn explore_many(
     py: Python<'_>,
     runs: Vec<(PyRef<'_, Map>, Option<Bound<'_, PyDict>>)>,
     threads: Option<usize>,
     timing: bool,
     memory_mb: Option<u64>,
+    progress: Option<Py<PyAny>>,
 ) -> PyResult<Vec<String>> {
     let mut jobs = Vec::with_capacity(runs.len());
     for (i, (map, kw)) in runs.iter().enumerate() {
@@ -285,33 +368,65 @@ pub fn explore_many(
         return Err(value_error("threads: expected at least 1, found 0"));
     }
     check_memory(&jobs, threads, memory_mb)?;
-    let out: Result<Vec<String>, String> = py.detach(|| {
-        let work = || {
+    let pool = match threads {
+        Some(n) => Some(
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(n)
+                .build()
+                .map_err(|e| value_error(format!("threads: {e}")))?,
+        ),
+        None => None,
+    };
+    let (stop, done) = (AtomicBool::new(false), AtomicUsize::new(0));
+    let work = || {
+        let all = || -> Vec<Result<Option<String>, String>> {
             jobs.par_iter()
-                .enumerate()
-                .map(|(i, j)| {
-                    execute(j)
-                        .map(|r| summary(j, &r, timing))
-                        .map_err(|e| format!("run {i}: {e}"))
+                .map(|j| {
+                    if stop.load(Ordering::Relaxed) {
+                        return Ok(None);
+                    }
+                    let r = execute(j, &stop).map(|r| r.map(|r| summary(j, &r, timing)));
+                    done.fetch_add(1, Ordering::Relaxed);
+                    r
                 })
                 .collect()
         };
-        match threads {
-            Some(n) => rayon::ThreadPoolBuilder::new()
-                .num_threads(n)
-                .build()
-                .map_err(|e| e.to_string())?
-                .install(work),
-            None => work(),
+        match &pool {
+            Some(p) => p.install(all),
+            None => all(),
         }
-    });
-    out.map_err(|e| {
-        if e.contains("internal error") {
-            internal(e)
-        } else {
-            value_error(e)
+    };
+    let total = jobs.len();
+    let mut told = usize::MAX;
+    let mut report = |py: Python<'_>| -> PyResult<()> {
+        let now = done.load(Ordering::Relaxed);
+        if let Some(f) = &progress
+            && now != told
+        {
+            told = now;
+            f.call1(py, (now, total))?;
         }
-    })
+        Ok(())
+    };
+    let out = with_checks(py, &stop, work, &mut report)?;
+    let mut texts = Vec::with_capacity(out.len());
+    // the first failed run, in order
+    for (i, r) in out.into_iter().enumerate() {
+        match r {
+            Ok(Some(t)) => texts.push(t),
+            Ok(None) => {
+                return Err(internal(
+                    "internal error (please report): a run stopped unasked".into(),
+                ));
+            }
+            Err(e) if e.contains("internal error") => {
+                return Err(internal(format!("run {i}: {e}")));
+            }
+            Err(e) => return Err(value_error(format!("run {i}: {e}"))),
+        }
+    }
+    report(py)?;
+    Ok(texts)
 }
 
 /// The strategy presets: (name, description) pairs, as `frontier list` prints them.

@@ -1,7 +1,11 @@
 """frontier.explore and explore_many: the CLI's numbers, parallel batches, clear errors."""
 
 import json
+import os
+import signal
 import subprocess
+import threading
+import time
 
 import numpy as np
 import pytest
@@ -234,3 +238,55 @@ def test_explore_many_warns_of_a_misspelt_option(office):
 def test_strategies_lists_the_presets():
     names = [n for n, _ in frontier.strategies()]
     assert {"cf-rr", "yamauchi", "dt500", "random"} <= set(names)
+
+
+def test_explore_many_reports_progress_and_gives_the_same_rows(office):
+    runs = [dict(map=office, strategy=s, seed=k) for s in ("cf", "cf-rr") for k in range(4)]
+    calls = []
+    rows = frontier.explore_many(runs, threads=2, progress=lambda done, n: calls.append((done, n)))
+    assert rows == frontier.explore_many(runs, threads=2)
+    assert calls and calls[-1] == (len(runs), len(runs))
+    assert all(n == len(runs) for _, n in calls)
+    assert [d for d, _ in calls] == sorted(d for d, _ in calls)
+    # the bar (tqdm's, or a line on stderr without tqdm) changes nothing either
+    assert frontier.explore_many(runs, progress=True) == rows
+    with pytest.raises(TypeError, match="progress: expected True, False, None or a callable"):
+        frontier.explore_many(runs, progress="yes")
+
+
+def _slow_batch():
+    """Runs that take minutes each in any build (a 100 x 60 m hospital at 0.05 m, a team
+    deciding every 7 moves), so that a batch which does not stop shows."""
+    big = frontier.Map.generate("hospital", seed=1, size=(100, 60), resolution=0.05)
+    return [dict(map=big, strategy="ha-cc", robots=3, seed=k) for k in range(4)]
+
+
+def test_an_exception_from_progress_stops_the_batch():
+    runs = _slow_batch()
+
+    def stop(done, n):
+        raise RuntimeError("enough")
+
+    started = time.monotonic()
+    with pytest.raises(RuntimeError, match="enough"):
+        frontier.explore_many(runs, threads=2, progress=stop)
+    # the runs stopped at the first report (0.1 s), not after minutes
+    assert time.monotonic() - started < 60
+
+
+def test_ctrl_c_stops_explore_and_explore_many():
+    runs = _slow_batch()
+    for call in (
+        lambda: frontier.explore(runs[0]["map"], strategy="ha-cc", robots=3),
+        lambda: frontier.explore_many(runs, threads=2),
+    ):
+        timer = threading.Timer(0.3, lambda: os.kill(os.getpid(), signal.SIGINT))
+        started = time.monotonic()
+        timer.start()
+        try:
+            with pytest.raises(KeyboardInterrupt):
+                call()
+        finally:
+            timer.cancel()
+        # raised within a tick of the signal, not when the runs would have ended
+        assert time.monotonic() - started < 60

@@ -11,8 +11,9 @@ from __future__ import annotations
 
 import difflib
 import json
+import sys
 import warnings
-from typing import Any, Dict, Iterable, List, Mapping, Optional, Sequence, Tuple
+from typing import Any, Callable, Dict, Iterable, List, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -197,6 +198,7 @@ def explore_many(
     threads: Optional[int] = None,
     timing: bool = False,
     memory_mb: Optional[int] = None,
+    progress: Union[bool, Callable[[int, int], Any], None] = None,
 ) -> List[Dict[str, Any]]:
     """Run many explorations in parallel on Rust threads (the GIL released).
 
@@ -205,7 +207,13 @@ def explore_many(
     run's row. Returns one flat row per run, in order — ``pandas.DataFrame(rows)`` makes the
     table. All runs are checked before any starts, and the batch is refused when its largest
     runs, one per thread, would need more than ``memory_mb`` MiB or the memory the machine
-    has available."""
+    has available.
+
+    ``progress=True`` shows a bar (tqdm's when it is installed, else a line on standard
+    error); a callable is called as ``progress(done, total)`` about ten times a second and
+    at the end. Ctrl-C (``KeyboardInterrupt``), or an exception from the callable, stops the
+    batch within milliseconds and is raised; the results are the same with or without
+    progress."""
     keys = {
         "strategy", "sensor", "robots", "seed", "start", "belief", "sensing", "clearance",
         "speed", "s_max", "goal", "max_moves", "motion", "coverage", "clutter",
@@ -237,13 +245,46 @@ def explore_many(
         extras.append(extra)
     _check_memory_mb(memory_mb)
     _count("threads", threads, 1)
-    texts = _native.explore_many(native_runs, threads, timing, memory_mb)
+    report, close = _progress(progress, len(native_runs))
+    try:
+        texts = _native.explore_many(native_runs, threads, timing, memory_mb, report)
+    finally:
+        close()
     rows = []
     for text, extra in zip(texts, extras):
         row = dict(extra)
         row.update(_flatten(json.loads(text)))
         rows.append(row)
     return rows
+
+
+def _progress(
+    progress: Union[bool, Callable[[int, int], Any], None], total: int
+) -> Tuple[Optional[Callable[[int, int], Any]], Callable[[], None]]:
+    """The native progress callback for ``explore_many``'s ``progress`` and a function that
+    closes the display."""
+    if progress is None or progress is False:
+        return None, lambda: None
+    if callable(progress) and progress is not True:
+        return progress, lambda: None
+    if progress is not True:
+        raise TypeError(
+            f"progress: expected True, False, None or a callable, found {type(progress).__name__}"
+        )
+    try:
+        from tqdm.auto import tqdm
+    except ImportError:
+        def line(done: int, n: int) -> None:
+            sys.stderr.write(f"\rexplore_many: {done}/{n} runs")
+            sys.stderr.flush()
+
+        return line, lambda: sys.stderr.write("\n")
+    bar = tqdm(total=total, unit="run", desc="explore_many")
+
+    def update(done: int, n: int) -> None:
+        bar.update(done - bar.n)
+
+    return update, bar.close
 
 
 def strategies() -> List[Tuple[str, str]]:

@@ -1,7 +1,7 @@
 """Type stubs of the native module `frontier._native` (the Rust side of the package)."""
 
 from os import PathLike
-from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
+from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -78,8 +78,10 @@ def explore_many(
     threads: Optional[int] = None,
     timing: bool = False,
     memory_mb: Optional[int] = None,
+    progress: Optional[Callable[[int, int], Any]] = None,
 ) -> List[str]:
-    """Many runs in parallel; one summary JSON per run, in order."""
+    """Many runs in parallel; one summary JSON per run, in order; `progress(done, total)`
+    about ten times a second (an exception from it, or Ctrl-C, stops the batch)."""
 
 def strategies() -> List[Tuple[str, str]]:
     """The strategy presets: (name, description)."""
