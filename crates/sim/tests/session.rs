@@ -42,6 +42,17 @@ fn external(map: &GridMap, cfg: &RunConfig) -> RunResult {
     s.finish()
 }
 
+/// The same run: paths, decisions, moves, end, coverage curve, belief and starts.
+fn assert_same_run(got: &RunResult, want: &RunResult, what: &str) {
+    assert_eq!(got.path_length_m, want.path_length_m, "{what}");
+    assert_eq!(got.decisions, want.decisions, "{what}");
+    assert_eq!(got.moves, want.moves, "{what}");
+    assert_eq!(got.reason, want.reason, "{what}");
+    assert_eq!(got.coverage_curve, want.coverage_curve, "{what}");
+    assert_eq!(got.belief, want.belief, "{what}");
+    assert_eq!(got.starts, want.starts, "{what}");
+}
+
 #[test]
 fn external_session_driven_by_the_assigner_equals_run() {
     let map = office();
@@ -59,19 +70,7 @@ fn external_session_driven_by_the_assigner_equals_run() {
             let cfg = config(preset, robots, seed);
             let want = sim::run(&map, &cfg).expect("run");
             let got = external(&map, &cfg);
-            assert_eq!(
-                got.path_length_m, want.path_length_m,
-                "{preset} seed {seed}"
-            );
-            assert_eq!(got.decisions, want.decisions, "{preset} seed {seed}");
-            assert_eq!(got.moves, want.moves, "{preset} seed {seed}");
-            assert_eq!(got.reason, want.reason, "{preset} seed {seed}");
-            assert_eq!(
-                got.coverage_curve, want.coverage_curve,
-                "{preset} seed {seed}"
-            );
-            assert_eq!(got.belief, want.belief, "{preset} seed {seed}");
-            assert_eq!(got.starts, want.starts, "{preset} seed {seed}");
+            assert_same_run(&got, &want, &format!("{preset} seed {seed}"));
         }
     }
 }
@@ -211,19 +210,7 @@ fn advancing_in_slices_equals_one_advance() {
             );
             // once ended, it stays ended
             assert_eq!(s.advance_for(slice), Some(status));
-            let got = s.finish();
-            assert_eq!(
-                got.path_length_m, want.path_length_m,
-                "{preset} slice {slice}"
-            );
-            assert_eq!(got.decisions, want.decisions, "{preset} slice {slice}");
-            assert_eq!(got.moves, want.moves, "{preset} slice {slice}");
-            assert_eq!(got.reason, want.reason, "{preset} slice {slice}");
-            assert_eq!(
-                got.coverage_curve, want.coverage_curve,
-                "{preset} slice {slice}"
-            );
-            assert_eq!(got.belief, want.belief, "{preset} slice {slice}");
+            assert_same_run(&s.finish(), &want, &format!("{preset} slice {slice}"));
         }
     }
 }
