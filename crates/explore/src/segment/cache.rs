@@ -2,15 +2,15 @@
 //! far" at every decision; here it is recomputed only when the map changed enough).
 //!
 //! The refresh rule: the state remembers the known grid as of its last update. At each
-//! update the grid is compared with it (only the rows the belief's row log has changed since,
-//! when the caller keeps one, as the simulation's frontier upkeep does) and the changed cells
-//! are added to a drift count. The whole pipeline runs
-//! again when the rule, the grid size changed, or the drift since the last full run reaches
-//! [`REFRESH_FRACTION`] of the free cells of that run (at least one cell). Otherwise the old
-//! segmentation is kept and patched: cells that stopped being free lose their label, and
-//! newly free cells take the label of the labelled free cell they connect to (a breadth-first
-//! growth from the old labels, in index order), so that new frontier cells have a segment.
-//! Newly free cells that connect to no labelled cell stay unlabelled until the next full run.
+//! update the grid is compared with it (only the rows the belief's row log has changed
+//! since, when the caller keeps one, as the simulation's frontier upkeep does) and the
+//! changed cells are added to a drift count. The whole pipeline runs again when the rule,
+//! the grid size changed, or the drift since the last full run reaches [`REFRESH_FRACTION`]
+//! of the free cells of that run (at least one cell). Otherwise the old segmentation is
+//! kept and patched: cells that stopped being free lose their label, and newly free cells
+//! take the label of the labelled free cell they connect to (a breadth-first growth from
+//! the old labels, in index order), so that new frontier cells have a segment. Newly free
+//! cells that connect to no labelled cell stay unlabelled until the next full run.
 //!
 //! Blocks: on fine maps the pipeline runs on blocks of `block × block` cells
 //! ([`block_for`]: blocks at least [`SEGMENT_CELL_M`] wide), a block being free when all its
@@ -23,12 +23,13 @@
 //!
 //! Window: a full run segments only a window of the grid that holds every free cell (the
 //! bounding box of the cells free at some update since the state began, grown from the
-//! changed cells), widened by one cell (block) on each side where the grid goes on. The pipeline treats
-//! everything that is not free as wall and the grid's outside as wall just beyond its edge;
-//! outside the window nothing is free, and the ring around it is wall, so every free cell's
-//! nearest wall, the skeleton, the seeds' distances and the order of cells (row-major order
-//! survives cropping) are those of the whole grid: the labels are the same, and a run early
-//! in an exploration costs what the known part of the map does, not the whole map.
+//! changed cells), widened by one cell (block) on each side where the grid goes on. The
+//! pipeline treats everything that is not free as wall and the grid's outside as wall just
+//! beyond its edge; outside the window nothing is free, and the ring around it is wall, so
+//! every free cell's nearest wall, the skeleton, the seeds' distances and the order of
+//! cells (row-major order survives cropping) are those of the whole grid: the labels are
+//! the same, and a run early in an exploration costs what the known part of the map does,
+//! not the whole map.
 //!
 //! The state also keeps each segment's neighbouring segments ([`State::neighbours`]) for
 //! Seg's room preference: found by a scan with every full run, and extended by the pairs the
