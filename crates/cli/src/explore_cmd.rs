@@ -1,6 +1,5 @@
 //! `frontier explore`: one run, a summary or JSON, pictures and a trace.
 
-use std::borrow::Cow;
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
@@ -139,18 +138,17 @@ const PROGRESS_EVERY: Duration = Duration::from_millis(100);
 /// shows its coverage, moves and path on standard error until it ends (the run is the same
 /// either way: the loop only pauses between its steps).
 fn run_with_progress(truth: &Truth, cfg: &RunConfig, progress: bool) -> Result<sim::RunResult> {
-    let mut session = sim::Session::start(Cow::Borrowed(&truth.map), Cow::Borrowed(cfg), false)?;
     let steps = if progress { PROGRESS_STEPS } else { u64::MAX };
     let started = Instant::now();
     let mut bar: Option<(ProgressBar, Instant)> = None;
-    while session.advance_for(steps).is_none() {
+    let result = sim::run_pausing(&truth.map, cfg, steps, |session| {
         let now = Instant::now();
         if now.duration_since(started) < PROGRESS_AFTER
             || bar
                 .as_ref()
                 .is_some_and(|(_, at)| now.duration_since(*at) < PROGRESS_EVERY)
         {
-            continue;
+            return true;
         }
         let (b, at) = bar.get_or_insert_with(|| (progress_bar(now - started), now));
         *at = now;
@@ -162,11 +160,12 @@ fn run_with_progress(truth: &Truth, cfg: &RunConfig, progress: bool) -> Result<s
             session.moves(),
             session.total_path_length_m()
         ));
-    }
+        true
+    })?;
     if let Some((b, _)) = bar {
         b.finish_and_clear();
     }
-    Ok(session.finish())
+    result.context("internal error: the run stopped before its end")
 }
 
 /// The bar of a run `elapsed` old: coverage in per mille.

@@ -8,8 +8,7 @@ use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use rayon::prelude::*;
-use sim::{RunConfig, RunResult, Session};
-use std::borrow::Cow;
+use sim::{RunConfig, RunResult};
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::{Condvar, Mutex};
 use std::time::Duration;
@@ -199,16 +198,8 @@ fn check_memory(jobs: &[Job], threads: Option<usize>, memory_mb: Option<u64>) ->
 
 /// Run a job (panics caught) until it ends, or until `stop` is raised (`None`).
 fn execute(j: &Job, stop: &AtomicBool) -> Result<Option<RunResult>, String> {
-    guarded(|| -> Result<Option<RunResult>, sim::SimError> {
-        let mut s = Session::start(Cow::Borrowed(&j.map.map), Cow::Borrowed(&j.cfg), false)?;
-        while s.advance_for(SLICE).is_none() {
-            if stop.load(Ordering::Relaxed) {
-                return Ok(None);
-            }
-        }
-        Ok(Some(s.finish()))
-    })?
-    .map_err(|e| e.to_string())
+    guarded(|| sim::run_pausing(&j.map.map, &j.cfg, SLICE, |_| !stop.load(Ordering::Relaxed)))?
+        .map_err(|e| e.to_string())
 }
 
 /// Steps of a run between two looks at the stop flag (a run stops within a few

@@ -42,4 +42,4 @@ pub use metrics::{
     TraceEvent, TraceGoal,
 };
 pub use motion::Motion;
-pub use run::{Session, Status, run};
+pub use run::{Session, Status, run, run_pausing};

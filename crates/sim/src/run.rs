@@ -174,6 +174,24 @@ pub fn run(truth: &GridMap, cfg: &RunConfig) -> Result<RunResult, SimError> {
     Ok(session.finish())
 }
 
+/// [`run()`], pausing every `steps` steps of the loop to call `between` with the session
+/// (to show progress, or to look at a stop flag): the same run. `between` returning
+/// `false` stops it, without a result (`None`).
+pub fn run_pausing(
+    truth: &GridMap,
+    cfg: &RunConfig,
+    steps: u64,
+    mut between: impl FnMut(&Session<'_>) -> bool,
+) -> Result<Option<RunResult>, SimError> {
+    let mut session = Session::start(Cow::Borrowed(truth), Cow::Borrowed(cfg), false)?;
+    while session.advance_for(steps).is_none() {
+        if !between(&session) {
+            return Ok(None);
+        }
+    }
+    Ok(Some(session.finish()))
+}
+
 /// Where a [`Session`] stopped.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Status {
