@@ -45,8 +45,10 @@ use crate::scenario::{ScenarioFile, Source};
 /// MA's routes are optimal up to 12 nodes and searched over neighbour lists beyond 24; v7:
 /// HA's searches grow by a quarter instead of doubling, which may break ties between
 /// assignments of equal total differently; v8: CC on blocks goes through a cell that sees
-/// the unknown, and covers cell by cell what no block covers).
-pub const STRATEGY_REVISION: u32 = 8;
+/// the unknown, and covers cell by cell what no block covers; v9: path costs are exact
+/// sums (the diagonal step √2 to 32 binary places), so paths of equal length tie exactly
+/// and break the tie by index instead of by rounding).
+pub const STRATEGY_REVISION: u32 = 9;
 
 /// A resolved study: environments, variants, common settings and the flat trial list.
 #[derive(Clone, Debug)]

@@ -2,9 +2,17 @@
 //!
 //! A cell is `(x, y)` with `x` to the right and `y` downwards (image rows), so that a
 //! grid's row 0 is the top row of its image. Straight steps cost 1, diagonal steps √2.
+//!
+//! The diagonal step's cost is √2 rounded to a multiple of 2⁻³² ([`SQRT2`], 1.1 × 10⁻¹¹
+//! below √2), so that every sum of steps below 2²¹ cells is exact in `f64`: a path's cost
+//! is the same bits whatever order its steps are added in, and two searches that find
+//! different shortest paths to a cell, or reach it from different sides, agree on its
+//! cost to the last bit. With `f64::consts::SQRT_2` the sums rounded, and equal lengths
+//! differed by the order of their steps.
 
-/// √2, the cost of a diagonal step in cells.
-pub const SQRT2: f64 = std::f64::consts::SQRT_2;
+/// √2 to 32 binary places (6074001000 / 2³²), the cost of a diagonal step in cells (see the
+/// module docs for why it is rounded).
+pub const SQRT2: f64 = 6_074_001_000.0 / 4_294_967_296.0;
 
 /// A cell of a grid: column `x` (to the right) and row `y` (downwards).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Default)]
@@ -124,5 +132,44 @@ pub fn for_each_move(
     }
     if right && up && (pr || pu) && passable(i - width + 1) {
         f(i - width + 1, SQRT2);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    #[test]
+    fn the_diagonal_cost_is_root_two_to_32_binary_places() {
+        let err = SQRT2 - std::f64::consts::SQRT_2;
+        assert!(err.abs() < 2f64.powi(-33), "{err}");
+        assert_eq!((SQRT2 * 2f64.powi(32)).fract(), 0.0);
+    }
+
+    proptest! {
+        /// Any order of the same steps gives the same bits, which are s + d·SQRT2 exactly.
+        #[test]
+        fn sums_of_steps_do_not_depend_on_their_order(
+            steps in prop::collection::vec(any::<bool>(), 0..3000),
+            seed in any::<u64>(),
+            base in 0u32..2_000_000,
+        ) {
+            let cost = |diagonal: bool| if diagonal { SQRT2 } else { 1.0 };
+            let forward = steps.iter().fold(f64::from(base), |c, &d| c + cost(d));
+            let mut shuffled = steps.clone();
+            let mut s = seed | 1;
+            for i in (1..shuffled.len()).rev() {
+                s ^= s << 13;
+                s ^= s >> 7;
+                s ^= s << 17;
+                shuffled.swap(i, (s % (i as u64 + 1)) as usize);
+            }
+            let back = shuffled.iter().rev().fold(f64::from(base), |c, &d| c + cost(d));
+            let d = steps.iter().filter(|&&d| d).count() as f64;
+            let s = steps.len() as f64 - d;
+            prop_assert_eq!(forward.to_bits(), back.to_bits());
+            prop_assert_eq!(forward.to_bits(), (f64::from(base) + s + d * SQRT2).to_bits());
+        }
     }
 }

@@ -42,7 +42,7 @@ fn all_pairs(map: &Grid<Occ>, ok: &dyn Fn(Cell) -> bool) -> Vec<Vec<f64>> {
             let b = map.cell(j);
             if legal(map, ok, a, b) {
                 d[i][j] = if a.x != b.x && a.y != b.y {
-                    std::f64::consts::SQRT_2
+                    grid::SQRT2
                 } else {
                     1.0
                 };
@@ -326,7 +326,7 @@ fn check_solution(pl: &Plain, start: Cell, sol: &optimal::Solution, need: usize)
         let known_free = |c: Cell| map.checked_index(c).is_some_and(|i| pl.reach[i] && m[i]);
         assert!(legal(map, &known_free, a, b), "illegal step {a} -> {b}");
         len += if a.x != b.x && a.y != b.y {
-            std::f64::consts::SQRT_2
+            grid::SQRT2
         } else {
             1.0
         };

@@ -313,7 +313,7 @@ impl Skeleton {
 #[inline]
 pub(crate) fn step(width: usize, a: usize, b: usize) -> f64 {
     if a % width != b % width && a / width != b / width {
-        std::f64::consts::SQRT_2
+        grid::SQRT2
     } else {
         1.0
     }
