@@ -51,6 +51,12 @@ fn bench(c: &mut Criterion) {
     g.bench_function("compute_full_known", |b| {
         b.iter(|| r.compute(mid, truth_passable))
     });
+    // the same search as Dial's (the canonical order's worst case: single obstacles)
+    let mut dial = Reachability::new(n, n);
+    dial.set_canonical(false);
+    g.bench_function("dial_full_known", |b| {
+        b.iter(|| dial.compute(mid, truth_passable))
+    });
     // the resumable search a team decision grows: the whole map by buckets, and guided
     // toward a few frontier cells ~1000 cells away until they are settled
     g.bench_function("advance_full_known", |b| {

@@ -748,6 +748,8 @@ mod tests {
             let bits = crate::perceived_marks(&p, &seen, start);
             let mut ours = StepCosts::new(&p);
             let mut generic = Reachability::new(w, h);
+            // Dial's search settles a bucket in the order its cells were labelled, as ours
+            generic.set_canonical(false);
             // Every reachable cell as a source, so the searches also start next to walls.
             for s in (0..w * h).filter(|&i| p.reachable(i) && has(&bits, p.target_index(i))) {
                 ours.compute(s as u32, &bits);

@@ -20,8 +20,9 @@ pub const BASE_BYTES: u64 = 16 << 20;
 
 /// Per-cell bytes of a single-robot run (truth, belief, frontier, one field, candidates).
 const PER_CELL: u64 = 48;
-/// Per-cell bytes each robot adds (its search field and its cost rows).
-const PER_CELL_PER_ROBOT: u64 = 8;
+/// Per-cell bytes each robot adds (its search field: state, cost and the canonical walks'
+/// directions; its cost rows).
+const PER_CELL_PER_ROBOT: u64 = 10;
 /// Per-cell bytes of the coverage (CC) candidates' visibility cache.
 const PER_CELL_COVERAGE: u64 = 128;
 /// Per-cell bytes of the decision-theoretic samples' gain evaluation.

@@ -18,6 +18,14 @@
 //! and takes, at each cell, the neighbour a heap would have settled first among those that
 //! give the cell its cost (least (cost, index)), which is the heap's predecessor.
 //!
+//! The searches that are not guided (below) run in canonical order by default
+//! (`reachability/canonical.rs`): they queue only the cells where shortest paths turn beside obstacles
+//! and label the others by walking rows, columns and diagonals, then settle each bucket
+//! from the list of the cells labelled in it. The settled cells, costs (path costs are
+//! exact sums, see [`grid::SQRT2`]) and paths are those above; only the order within a
+//! bucket differs. [`Reachability::set_canonical`] turns it off (Dial's search, as the
+//! benches compare).
+//!
 //! Memory is what bounds the search, so the per-cell arrays are small and local: a state
 //! byte (met, settled, impassable) and a cost per cell, both stored in 16 × 16 tiles so that
 //! a wavefront going any way touches few cache lines and pages. `passable` is asked once per
@@ -47,8 +55,11 @@
 //! settled list keep their capacity: in steady state a search allocates nothing and touches
 //! only the tiles of the cells it meets.
 
+mod canonical;
+
 use super::guide::Guide;
 use crate::upkeep::next_gen;
+use canonical::{Queues, Walk};
 use grid::SQRT2;
 
 /// Buckets in use at once: a step costs at most √2 < 2, so Dijkstra's labels reach two
@@ -309,6 +320,14 @@ pub struct Reachability {
     /// its buckets are by cost plus `guide`'s bound.
     guided: bool,
     guide: Guide,
+    /// Whether the last search runs in canonical order ([`canonical`]), and whether
+    /// unguided searches do ([`set_canonical`](Reachability::set_canonical)).
+    canonical: bool,
+    use_canonical: bool,
+    /// Canonical search: per slot, the directions of the walks that labelled the cell and
+    /// of the walks from it; the buckets of labels and jump points.
+    dirs: Vec<u16>,
+    queues: Queues,
 }
 
 impl Reachability {
@@ -333,7 +352,17 @@ impl Reachability {
             resumable: false,
             guided: false,
             guide: Guide::default(),
+            canonical: false,
+            use_canonical: true,
+            dirs: vec![0; tiles * TILE_CELLS],
+            queues: Queues::default(),
         }
+    }
+
+    /// Run the unguided searches in canonical order (the default, see the module docs) or as
+    /// Dial's search; both give the same costs, settled cells and paths.
+    pub fn set_canonical(&mut self, on: bool) {
+        self.use_canonical = on;
     }
 
     /// Full Dijkstra from `start` over cells where `passable(i)` (the start itself is always
@@ -367,9 +396,13 @@ impl Reachability {
     /// settled until it is advanced. Costs, paths and the settled order are those of
     /// [`compute`](Self::compute) for every cell settled so far.
     pub fn begin(&mut self, start: usize, passable: impl Fn(usize) -> bool) {
-        self.init(&[start], &passable);
+        self.begin_with(start, &passable, self.use_canonical);
+    }
+
+    fn begin_with(&mut self, start: usize, passable: &impl Fn(usize) -> bool, canonical: bool) {
+        self.init(&[start], passable, canonical);
         self.resumable = true;
-        if self.buckets.iter().all(Vec::is_empty) {
+        if self.buckets.iter().all(Vec::is_empty) && self.queues.end == 0 {
             self.exhausted = true;
         }
     }
@@ -382,10 +415,11 @@ impl Reachability {
     /// [`MAX_GUIDE_BLOCKS`] blocks, it is `begin`'s search.
     pub fn begin_guided(&mut self, start: usize, passable: impl Fn(usize) -> bool, goals: &[u32]) {
         self.guide.set(self.width, self.height, goals);
-        self.begin(start, &passable);
         if self.guide.is_empty() || self.guide.len() > MAX_GUIDE_BLOCKS {
+            self.begin(start, &passable);
             return;
         }
+        self.begin_with(start, &passable, false);
         if self.exhausted {
             return;
         }
@@ -411,7 +445,13 @@ impl Reachability {
     pub fn advance(&mut self, through: usize, passable: impl Fn(usize) -> bool) -> bool {
         while self.resumable && !self.exhausted && self.next <= through {
             let k = self.next;
-            if self.buckets[k % BUCKETS].is_empty() {
+            if self.canonical {
+                if k >= self.queues.end {
+                    self.exhausted = true;
+                    break;
+                }
+                self.settle_canonical(k, &passable, None::<&fn(usize) -> bool>);
+            } else if self.buckets[k % BUCKETS].is_empty() {
                 if self.buckets.iter().all(Vec::is_empty) {
                     self.exhausted = true;
                     break;
@@ -451,9 +491,20 @@ impl Reachability {
         passable: &impl Fn(usize) -> bool,
         is_goal: Option<impl Fn(usize) -> bool>,
     ) -> Option<usize> {
-        self.init(starts, passable);
-        let w = self.width;
-        let tile_row = self.tiles_x * TILE_CELLS;
+        self.init(starts, passable, self.use_canonical);
+        if self.canonical {
+            let mut k = 0;
+            while k < self.queues.end {
+                if let Some(goal) = self.settle_canonical(k, passable, is_goal.as_ref()) {
+                    self.next = k;
+                    return Some(goal);
+                }
+                k += 1;
+            }
+            self.exhausted = true;
+            self.next = k;
+            return None;
+        }
         let mut k = 0usize;
         loop {
             let slot = k % BUCKETS;
@@ -469,37 +520,10 @@ impl Reachability {
             // Every cost in bucket k is final. A goal among them ends the search at the
             // first goal in (cost, index) order, settling what a heap settles before it.
             if let Some(is_goal) = &is_goal {
-                let (state, cost) = (&self.state, &self.cost);
-                // (cost bits, cell) orders as (cost, cell): costs are not negative
-                let live = |&(x, y): &Entry| {
-                    let (x, y) = (x as usize, y as usize);
-                    let q = slot_xy(tile_row, x, y);
-                    (state[q] & DONE == 0).then_some((cost[q].to_bits(), y * w + x))
-                };
-                let goal = self.buckets[slot]
-                    .iter()
-                    .filter_map(live)
-                    .filter(|&(_, i)| is_goal(i))
-                    .min()
-                    .map(|(_, i)| i);
+                let entries = std::mem::take(&mut self.buckets[slot]);
+                let goal = self.settle_to_goal(&entries, is_goal);
+                self.buckets[slot] = entries;
                 if let Some(goal) = goal {
-                    self.order.clear();
-                    self.order.extend(
-                        self.buckets[slot]
-                            .iter()
-                            .filter_map(live)
-                            .map(|(c, i)| (c, i as u32)),
-                    );
-                    self.order.sort_unstable();
-                    self.order.dedup();
-                    for &(_, i) in &self.order {
-                        let i = i as usize;
-                        self.state[slot_xy(tile_row, i % w, i / w)] |= DONE;
-                        self.settled.push(i as u32);
-                        if i == goal {
-                            break;
-                        }
-                    }
                     self.buckets[slot].clear();
                     // Not resumable: the goal's bucket is settled only in part.
                     self.next = k;
@@ -512,11 +536,13 @@ impl Reachability {
     }
 
     /// Start a new search from `starts` (those inside the grid) with nothing settled.
-    fn init(&mut self, starts: &[usize], passable: &impl Fn(usize) -> bool) {
+    fn init(&mut self, starts: &[usize], passable: &impl Fn(usize) -> bool, canonical: bool) {
         self.epoch = next_gen(self.epoch, &mut self.tile_epoch);
         for b in &mut self.buckets {
             b.clear();
         }
+        self.queues.clear();
+        self.canonical = canonical;
         self.guided = false;
         self.settled.clear();
         let (w, h) = (self.width, self.height);
@@ -524,6 +550,16 @@ impl Reachability {
             &[start] if start < w * h => Some(start),
             _ => None,
         };
+        self.next = 0;
+        self.exhausted = false;
+        self.resumable = false;
+        if canonical {
+            let mut walk = Walk::new(self, passable);
+            for &start in starts.iter().filter(|&&s| s < w * h) {
+                walk.start(start % w, start / w);
+            }
+            return;
+        }
         let tile_row = self.tiles_x * TILE_CELLS;
         let mut wave = Wave {
             epoch: self.epoch,
@@ -545,9 +581,77 @@ impl Reachability {
             wave.cost[s0] = 0.0;
             wave.queue[0].push((x0 as u32, y0 as u32));
         }
-        self.next = 0;
-        self.exhausted = false;
-        self.resumable = false;
+    }
+
+    /// Settle bucket `k` of a canonical search: every cell labelled in it is final; then
+    /// walk from its jump points. With `is_goal`, a goal among its cells ends the search
+    /// as in Dial's search (returned).
+    fn settle_canonical(
+        &mut self,
+        k: usize,
+        passable: &impl Fn(usize) -> bool,
+        is_goal: Option<&impl Fn(usize) -> bool>,
+    ) -> Option<usize> {
+        let (labels, jumps) = self.queues.take(k);
+        let (w, tile_row) = (self.width, self.tiles_x * TILE_CELLS);
+        if let Some(is_goal) = is_goal
+            && let Some(goal) = self.settle_to_goal(&labels, is_goal)
+        {
+            self.queues.put_back(labels, jumps);
+            return Some(goal);
+        }
+        for &(x, y) in &labels {
+            let q = slot_xy(tile_row, x as usize, y as usize);
+            if self.state[q] & DONE == 0 {
+                debug_assert_eq!(self.cost[q] as usize, k);
+                self.state[q] |= DONE;
+                self.settled.push(y * w as u32 + x);
+            }
+        }
+        let mut walk = Walk::new(self, passable).at_bucket(k);
+        for &j in &jumps {
+            walk.expand(j);
+        }
+        self.queues.put_back(labels, jumps);
+        None
+    }
+
+    /// If the live cells of a bucket's `entries` (every cost in the bucket final) hold a
+    /// goal, settle them in (cost, index) order up to the first goal, as a heap does, and
+    /// return it.
+    fn settle_to_goal(
+        &mut self,
+        entries: &[Entry],
+        is_goal: &impl Fn(usize) -> bool,
+    ) -> Option<usize> {
+        let (w, tile_row) = (self.width, self.tiles_x * TILE_CELLS);
+        let (state, cost) = (&self.state, &self.cost);
+        // (cost bits, cell) orders as (cost, cell): costs are not negative
+        let live = |&(x, y): &Entry| {
+            let (x, y) = (x as usize, y as usize);
+            let q = slot_xy(tile_row, x, y);
+            (state[q] & DONE == 0).then_some((cost[q].to_bits(), y * w + x))
+        };
+        let goal = entries
+            .iter()
+            .filter_map(live)
+            .filter(|&(_, i)| is_goal(i))
+            .min()
+            .map(|(_, i)| i)?;
+        self.order.clear();
+        self.order
+            .extend(entries.iter().filter_map(live).map(|(c, i)| (c, i as u32)));
+        self.order.sort_unstable();
+        self.order.dedup();
+        for &(_, i) in &self.order {
+            let i = i as usize;
+            self.state[slot_xy(tile_row, i % w, i / w)] |= DONE;
+            self.settled.push(i as u32);
+            if i == goal {
+                break;
+            }
+        }
+        Some(goal)
     }
 
     /// Settle bucket `k`: every cell labelled in it is final; label its neighbours.
@@ -682,6 +786,8 @@ impl Reachability {
         let (x, y) = ((j % self.width) as i64, (j / self.width) as i64);
         // A cell known passable in the last search: met and not found impassable (the
         // straight neighbours of a cell settled before the last bucket were all met).
+        // (In canonical order, too: a passable straight neighbour of a settled cell costs a
+        // step more at most, so it is settled before any cell a diagonal step from there.)
         let open = |i: usize| self.state_of(i) & (MET | BLOCKED) == MET;
         let cj = self.cost[self.slot(j)];
         let mut best: Option<(f64, usize)> = None;
