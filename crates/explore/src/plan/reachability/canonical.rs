@@ -35,6 +35,7 @@
 
 use super::{BLOCKED, DONE, Entry, MET, Reachability, TILE_CELLS, TILE_SHIFT, slot_xy};
 use grid::SQRT2;
+use std::mem::take;
 
 /// How many buckets beyond the one being settled a walk may label: a walk that would go
 /// further queues its last cell to go on from later. Walks that ran to the end labelled
@@ -120,16 +121,8 @@ impl Queues {
 
     /// Give bucket `k`'s buffers back to the pool.
     fn recycle(&mut self, k: usize) {
-        let mut l = std::mem::take(&mut self.labelled[k]);
-        if l.capacity() > 0 {
-            l.clear();
-            self.spare_labels.push(l);
-        }
-        let mut j = std::mem::take(&mut self.jumps[k]);
-        if j.capacity() > 0 {
-            j.clear();
-            self.spare_jumps.push(j);
-        }
+        let (l, j) = (take(&mut self.labelled[k]), take(&mut self.jumps[k]));
+        self.put_back(l, j);
     }
 
     /// Make bucket `k` exist.
@@ -145,21 +138,13 @@ impl Queues {
     #[inline(always)]
     fn label(&mut self, k: usize, xy: Entry) {
         self.reach(k);
-        let b = &mut self.labelled[k];
-        if b.capacity() == 0 {
-            *b = self.spare_labels.pop().unwrap_or_default();
-        }
-        b.push(xy);
+        push_pooled(&mut self.labelled[k], &mut self.spare_labels, xy);
     }
 
     #[inline(always)]
     fn jump(&mut self, k: usize, j: Jump) {
         self.reach(k);
-        let b = &mut self.jumps[k];
-        if b.capacity() == 0 {
-            *b = self.spare_jumps.pop().unwrap_or_default();
-        }
-        b.push(j);
+        push_pooled(&mut self.jumps[k], &mut self.spare_jumps, j);
     }
 
     /// Take bucket `k`'s labelled cells and jump points (empty if it does not exist).
@@ -167,22 +152,30 @@ impl Queues {
         if k >= self.labelled.len() {
             return (Vec::new(), Vec::new());
         }
-        (
-            std::mem::take(&mut self.labelled[k]),
-            std::mem::take(&mut self.jumps[k]),
-        )
+        (take(&mut self.labelled[k]), take(&mut self.jumps[k]))
     }
 
     /// Give back bucket `k`'s buffers taken by [`take`](Self::take), emptied.
-    pub(super) fn put_back(&mut self, mut labels: Vec<Entry>, mut jumps: Vec<Jump>) {
-        if labels.capacity() > 0 {
-            labels.clear();
-            self.spare_labels.push(labels);
-        }
-        if jumps.capacity() > 0 {
-            jumps.clear();
-            self.spare_jumps.push(jumps);
-        }
+    pub(super) fn put_back(&mut self, labels: Vec<Entry>, jumps: Vec<Jump>) {
+        give_back(labels, &mut self.spare_labels);
+        give_back(jumps, &mut self.spare_jumps);
+    }
+}
+
+/// Push `x` to bucket buffer `b`, which takes a buffer from `spare` if it has none.
+#[inline(always)]
+fn push_pooled<T>(b: &mut Vec<T>, spare: &mut Vec<Vec<T>>, x: T) {
+    if b.capacity() == 0 {
+        *b = spare.pop().unwrap_or_default();
+    }
+    b.push(x);
+}
+
+/// Empty buffer `v` into the pool `spare` (unless it never held anything).
+fn give_back<T>(mut v: Vec<T>, spare: &mut Vec<Vec<T>>) {
+    if v.capacity() > 0 {
+        v.clear();
+        spare.push(v);
     }
 }
 
