@@ -19,9 +19,9 @@
 //! give the cell its cost (least (cost, index)), which is the heap's predecessor.
 //!
 //! The searches that are not guided (below) run in canonical order by default
-//! (`reachability/canonical.rs`): they queue only the cells where shortest paths turn beside obstacles
-//! and label the others by walking rows, columns and diagonals, then settle each bucket
-//! from the list of the cells labelled in it. The settled cells, costs (path costs are
+//! (`reachability/canonical.rs`): they queue only the cells where shortest paths turn
+//! beside obstacles and label the others by walking rows, columns and diagonals, then
+//! settle each bucket from the list of the cells labelled in it. The settled cells, costs (path costs are
 //! exact sums, see [`grid::SQRT2`]) and paths are those above; only the order within a
 //! bucket differs. [`Reachability::set_canonical`] turns it off (Dial's search, as the
 //! benches compare).
@@ -320,7 +320,7 @@ pub struct Reachability {
     /// its buckets are by cost plus `guide`'s bound.
     guided: bool,
     guide: Guide,
-    /// Whether the last search runs in canonical order ([`canonical`]), and whether
+    /// Whether the last search runs in canonical order (module docs), and whether
     /// unguided searches do ([`set_canonical`](Reachability::set_canonical)).
     canonical: bool,
     use_canonical: bool,
