@@ -305,20 +305,25 @@ proptest! {
         goal in any::<prop::sample::Index>(),
     ) {
         let (start, goal) = (s.index(w * h), goal.index(w * h));
-        let mut r = Reachability::new(w, h);
-        // full map: every cost and predecessor is the heap's, bit for bit
-        r.compute(start, |i| pass[i]);
-        let (cost, pred, order) = heap_dijkstra(w, h, &pass, start, |_| false);
-        same_as_heap(&r, &cost, &pred, &order)?;
-        // nearest: the same goal, the same cells settled (the goal last), the same paths
-        let got = r.nearest(start, |i| pass[i], |i| i == goal || i % 7 == 3);
-        let (cost, pred, order) = heap_dijkstra(w, h, &pass, start, |i| i == goal || i % 7 == 3);
-        let found = order.last().copied().filter(|&i| i == goal || i % 7 == 3);
-        prop_assert_eq!(got, found);
-        if found.is_some() {
-            prop_assert_eq!(r.settled().last().map(|&c| c as usize), order.last().copied());
+        // in canonical order (the default) and as Dial's search
+        for canonical in [true, false] {
+            let mut r = Reachability::new(w, h);
+            r.set_canonical(canonical);
+            // full map: every cost and predecessor is the heap's, bit for bit
+            r.compute(start, |i| pass[i]);
+            let (cost, pred, order) = heap_dijkstra(w, h, &pass, start, |_| false);
+            same_as_heap(&r, &cost, &pred, &order)?;
+            // nearest: the same goal, the same cells settled (the goal last), the same paths
+            let is_goal = |i: usize| i == goal || i % 7 == 3;
+            let got = r.nearest(start, |i| pass[i], is_goal);
+            let (cost, pred, order) = heap_dijkstra(w, h, &pass, start, is_goal);
+            let found = order.last().copied().filter(|&i| is_goal(i));
+            prop_assert_eq!(got, found);
+            if found.is_some() {
+                prop_assert_eq!(r.settled().last().map(|&c| c as usize), order.last().copied());
+            }
+            same_as_heap(&r, &cost, &pred, &order)?;
         }
-        same_as_heap(&r, &cost, &pred, &order)?;
     }
 
     #[test]

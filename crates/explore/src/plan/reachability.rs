@@ -101,6 +101,17 @@ fn slot_xy(tile_row: usize, x: usize, y: usize) -> usize {
         + (x & TILE_MASK)
 }
 
+/// If slot `q`'s tile is met for the first time in search `epoch`, stamp it and return the
+/// range of its slots, whose per-cell states the caller then forgets.
+#[inline(always)]
+fn enter_tile(tile_epoch: &mut [u32], epoch: u32, q: usize) -> Option<std::ops::Range<usize>> {
+    let t = q >> (2 * TILE_SHIFT);
+    (tile_epoch[t] != epoch).then(|| {
+        tile_epoch[t] = epoch;
+        t * TILE_CELLS..(t + 1) * TILE_CELLS
+    })
+}
+
 /// Where a search puts the cells it labels.
 trait Queue {
     /// Whether a settled cell is final (never labelled again).
@@ -173,10 +184,8 @@ impl<Q: Queue> Wave<'_, Q> {
     /// meets one of its cells, forget the older states.
     #[inline(always)]
     fn enter_tile(&mut self, q: usize) {
-        let t = q >> (2 * TILE_SHIFT);
-        if self.tile_epoch[t] != self.epoch {
-            self.tile_epoch[t] = self.epoch;
-            self.state[t * TILE_CELLS..(t + 1) * TILE_CELLS].fill(0);
+        if let Some(t) = enter_tile(self.tile_epoch, self.epoch, q) {
+            self.state[t].fill(0);
         }
     }
 

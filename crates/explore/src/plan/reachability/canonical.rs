@@ -33,7 +33,7 @@
 //! Scattered single obstacles are the worst case, each making jump points of its
 //! neighbours: the plan bench's map (3 % of its cells) takes 1.7 times Dial's time.
 
-use super::{BLOCKED, DONE, Entry, MET, Reachability, TILE_CELLS, TILE_SHIFT, slot_xy};
+use super::{BLOCKED, DONE, Entry, MET, Reachability, TILE_CELLS, enter_tile, slot_xy};
 use grid::SQRT2;
 use std::mem::take;
 
@@ -43,6 +43,7 @@ use std::mem::take;
 /// labels over thousands of buckets, each write to another buffer's end; a few buckets
 /// ahead keep those buffers in the cache. At least 2, so that every walk takes a step.
 const HORIZON: usize = 8;
+const _: () = assert!(HORIZON >= 2);
 
 /// A queued jump point: column, row, the direction to walk (see [`code`]) and its cost
 /// when queued (stale once the cell's cost is lower).
@@ -208,11 +209,9 @@ impl<'a, P: Fn(usize) -> bool> Walk<'a, P> {
     #[inline(always)]
     fn slot(&mut self, x: usize, y: usize) -> usize {
         let q = slot_xy(self.tile_row, x, y);
-        let t = q >> (2 * TILE_SHIFT);
-        if self.tile_epoch[t] != self.epoch {
-            self.tile_epoch[t] = self.epoch;
-            self.state[t * TILE_CELLS..(t + 1) * TILE_CELLS].fill(0);
-            self.dirs[t * TILE_CELLS..(t + 1) * TILE_CELLS].fill(0);
+        if let Some(t) = enter_tile(self.tile_epoch, self.epoch, q) {
+            self.state[t.clone()].fill(0);
+            self.dirs[t].fill(0);
         }
         q
     }
@@ -221,7 +220,7 @@ impl<'a, P: Fn(usize) -> bool> Walk<'a, P> {
     /// cells beside a walk are asked by the walks of three rows): the planner's passability
     /// is a bit set, cheaper to read than a cached answer in the tiled states.
     #[inline(always)]
-    fn pass(&mut self, x: i64, y: i64) -> bool {
+    fn pass(&self, x: i64, y: i64) -> bool {
         x >= 0
             && y >= 0
             && x < self.width as i64
@@ -229,11 +228,11 @@ impl<'a, P: Fn(usize) -> bool> Walk<'a, P> {
             && (self.passable)(y as usize * self.width + x as usize)
     }
 
-    /// Label start `(x, y)` (in the grid) at cost 0 and queue it; false if listed already.
-    pub(super) fn start(&mut self, x: usize, y: usize) -> bool {
+    /// Label start `(x, y)` (in the grid) at cost 0 and queue it, unless listed already.
+    pub(super) fn start(&mut self, x: usize, y: usize) {
         let q = self.slot(x, y);
         if self.state[q] & MET != 0 {
-            return false; // listed twice (starts are labelled before any walk)
+            return; // listed twice (starts are labelled before any walk)
         }
         let open = (self.passable)(y * self.width + x);
         self.state[q] = if open { MET } else { MET | BLOCKED };
@@ -250,7 +249,6 @@ impl<'a, P: Fn(usize) -> bool> Walk<'a, P> {
                 cost: 0.0,
             },
         );
-        true
     }
 
     /// Label passable cell `(x, y)` with cost `c` by a walk in direction `d`; whether the
