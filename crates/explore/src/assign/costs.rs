@@ -140,7 +140,7 @@ impl LazyCosts {
         }
         self.scanned[r] = settled.len();
         let count_from = COUNT_FROM.min(ctx.known.len() / 8);
-        if !done && self.reachable[r].is_none() && settled.len() >= count_from {
+        if !done && self.reachable[r].is_none() && map.searched() >= count_from {
             let reach = ctx
                 .planner
                 .component(r, ctx.robots[r], ctx.known, ctx.upkeep);

@@ -51,6 +51,9 @@ pub struct Guide {
     tile_range: Vec<(u32, u32)>,
     lists: Vec<(f64, f64)>,
     epoch: u32,
+    /// The goal cells, and the same as one bit per cell of the grid.
+    goals: Vec<u32>,
+    goal_bits: Vec<u64>,
 }
 
 impl Guide {
@@ -66,6 +69,13 @@ impl Guide {
             self.tile_range = vec![(0, 0); tiles];
             self.epoch = 0;
         }
+        for &g in &self.goals {
+            if let Some(b) = self.goal_bits.get_mut(g as usize >> 6) {
+                *b = 0;
+            }
+        }
+        self.goal_bits.resize((width * height).div_ceil(64), 0);
+        self.goals.clear();
         self.width = width;
         self.tiles_x = tiles_x;
         self.epoch = crate::upkeep::next_gen(self.epoch, &mut self.block_mark);
@@ -80,6 +90,8 @@ impl Guide {
             if g >= width * height {
                 continue;
             }
+            self.goal_bits[g >> 6] |= 1 << (g & 63);
+            self.goals.push(g as u32);
             let (x, y) = (g % width / BLOCK, g / width / BLOCK);
             let b = y * bx + x;
             if self.block_mark[b] != self.epoch {
@@ -98,6 +110,12 @@ impl Guide {
     /// Whether there is no goal.
     pub fn is_empty(&self) -> bool {
         self.points.is_empty()
+    }
+
+    /// Whether cell `i` (of the grid last set) is one of the goals.
+    #[inline(always)]
+    pub fn is_goal(&self, i: usize) -> bool {
+        self.goal_bits[i >> 6] >> (i & 63) & 1 != 0
     }
 
     /// The lower bound at column `x`, row `y` (`INFINITY` without goals).

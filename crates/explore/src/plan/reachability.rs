@@ -18,13 +18,14 @@
 //! and takes, at each cell, the neighbour a heap would have settled first among those that
 //! give the cell its cost (least (cost, index)), which is the heap's predecessor.
 //!
-//! The searches that are not guided (below) run in canonical order by default
-//! (`reachability/canonical.rs`): they queue only the cells where shortest paths turn
-//! beside obstacles and label the others by walking rows, columns and diagonals, then
-//! settle each bucket from the list of the cells labelled in it. The settled cells, costs (path costs are
-//! exact sums, see [`grid::SQRT2`]) and paths are those above; only the order within a
-//! bucket differs. [`Reachability::set_canonical`] turns it off (Dial's search, as the
-//! benches compare).
+//! The searches run in canonical order by default (`reachability/canonical.rs`): they
+//! queue only the cells where shortest paths turn beside obstacles and label the others by
+//! walking rows, columns and diagonals, then settle each bucket from the list of the cells
+//! labelled in it. The settled cells, costs (path costs are exact sums, see
+//! [`grid::SQRT2`]) and paths are those above; only the order within a bucket differs. The
+//! guided search below does the same by cost plus bound, and settles only its goals (and
+//! the start) until it is complete. [`Reachability::set_canonical`] turns it off (Dial's
+//! searches, as the benches compare).
 //!
 //! Memory is what bounds the search, so the per-cell arrays are small and local: a state
 //! byte (met, settled, impassable) and a cost per cell, both stored in 16 × 16 tiles so that
@@ -48,7 +49,8 @@
 //! solution Dijkstra's search finds too. The guided search gives Dijkstra's costs bit for bit
 //! and the same predecessors (every neighbour that gives a cell its cost is no farther from
 //! the goals, so it is settled by then), and settles every goal below a bucket that
-//! Dijkstra's does; only the other cells it settles differ.
+//! Dijkstra's does; only the other cells it settles differ (in canonical order, none but
+//! the start until the search is complete).
 //!
 //! The states are generation-stamped per tile (a tile met first in a search has its states
 //! cleared then), so a new search does not clear O(map) memory, and the buckets and the
@@ -405,11 +407,17 @@ impl Reachability {
     /// settled until it is advanced. Costs, paths and the settled order are those of
     /// [`compute`](Self::compute) for every cell settled so far.
     pub fn begin(&mut self, start: usize, passable: impl Fn(usize) -> bool) {
-        self.begin_with(start, &passable, self.use_canonical);
+        self.begin_with(start, &passable, self.use_canonical, false);
     }
 
-    fn begin_with(&mut self, start: usize, passable: &impl Fn(usize) -> bool, canonical: bool) {
-        self.init(&[start], passable, canonical);
+    fn begin_with(
+        &mut self,
+        start: usize,
+        passable: &impl Fn(usize) -> bool,
+        canonical: bool,
+        guided: bool,
+    ) {
+        self.init(&[start], passable, canonical, guided);
         self.resumable = true;
         if self.buckets.iter().all(Vec::is_empty) && self.queues.end == 0 {
             self.exhausted = true;
@@ -420,15 +428,20 @@ impl Reachability {
     /// docs): [`advance`](Self::advance) then settles every *goal* of cost below
     /// `through + 1`, with [`begin`](Self::begin)'s costs and paths, and
     /// [`next_bucket`](Self::next_bucket) bounds the cost of every goal not settled; other
-    /// cells are settled only toward the goals. Without goals, or with goals in more than
-    /// [`MAX_GUIDE_BLOCKS`] blocks, it is `begin`'s search.
+    /// cells are settled only toward the goals (in canonical order, the default, none but
+    /// the start), and every reachable cell once the search is complete. Without goals, or
+    /// with goals in more than [`MAX_GUIDE_BLOCKS`] blocks, it is `begin`'s search.
     pub fn begin_guided(&mut self, start: usize, passable: impl Fn(usize) -> bool, goals: &[u32]) {
         self.guide.set(self.width, self.height, goals);
         if self.guide.is_empty() || self.guide.len() > MAX_GUIDE_BLOCKS {
             self.begin(start, &passable);
             return;
         }
-        self.begin_with(start, &passable, false);
+        if self.use_canonical {
+            self.begin_with(start, &passable, true, true);
+            return;
+        }
+        self.begin_with(start, &passable, false, false);
         if self.exhausted {
             return;
         }
@@ -457,9 +470,16 @@ impl Reachability {
             if self.canonical {
                 if k >= self.queues.end {
                     self.exhausted = true;
+                    if self.guided {
+                        self.settle_rest();
+                    }
                     break;
                 }
-                self.settle_canonical(k, &passable, None::<&fn(usize) -> bool>);
+                if self.guided {
+                    self.settle_guided(k, &passable);
+                } else {
+                    self.settle_canonical(k, &passable, None::<&fn(usize) -> bool>);
+                }
             } else if self.buckets[k % BUCKETS].is_empty() {
                 if self.buckets.iter().all(Vec::is_empty) {
                     self.exhausted = true;
@@ -500,7 +520,7 @@ impl Reachability {
         passable: &impl Fn(usize) -> bool,
         is_goal: Option<impl Fn(usize) -> bool>,
     ) -> Option<usize> {
-        self.init(starts, passable, self.use_canonical);
+        self.init(starts, passable, self.use_canonical, false);
         if self.canonical {
             let mut k = 0;
             while k < self.queues.end {
@@ -544,15 +564,23 @@ impl Reachability {
         }
     }
 
-    /// Start a new search from `starts` (those inside the grid) with nothing settled.
-    fn init(&mut self, starts: &[usize], passable: &impl Fn(usize) -> bool, canonical: bool) {
+    /// Start a new search from `starts` (those inside the grid) with nothing settled, in
+    /// canonical order or not, guided by the guide or not (canonical only: Dial's guided
+    /// search starts from an unguided one).
+    fn init(
+        &mut self,
+        starts: &[usize],
+        passable: &impl Fn(usize) -> bool,
+        canonical: bool,
+        guided: bool,
+    ) {
         self.epoch = next_gen(self.epoch, &mut self.tile_epoch);
         for b in &mut self.buckets {
             b.clear();
         }
         self.queues.clear();
         self.canonical = canonical;
-        self.guided = false;
+        self.guided = guided && canonical;
         self.settled.clear();
         let (w, h) = (self.width, self.height);
         self.start = match starts {
@@ -563,10 +591,12 @@ impl Reachability {
         self.exhausted = false;
         self.resumable = false;
         if canonical {
-            let mut walk = Walk::new(self, passable);
+            let mut walk = Walk::new(self, passable, self.guided.then_some(0));
+            let mut first = 0;
             for &start in starts.iter().filter(|&&s| s < w * h) {
-                walk.start(start % w, start / w);
+                first = walk.start(start % w, start / w);
             }
+            self.next = first; // a guided search's first bucket is its start's
             return;
         }
         let tile_row = self.tiles_x * TILE_CELLS;
@@ -617,12 +647,65 @@ impl Reachability {
                 self.settled.push(y * w as u32 + x);
             }
         }
-        let mut walk = Walk::new(self, passable).at_bucket(k);
+        let mut walk = Walk::new(self, passable, None);
         for &j in &jumps {
             walk.expand(j);
         }
         self.queues.put_back(labels, jumps);
         None
+    }
+
+    /// Settle bucket `k` of a guided canonical search (jump points of cost plus bound in
+    /// `[k, k + 1)`): walk from its jump points, and from those the walks add to it, until
+    /// none is left; then every cell of cost plus bound below `k + 1` has its final cost,
+    /// and the goals listed in the bucket are settled.
+    fn settle_guided(&mut self, k: usize, passable: &impl Fn(usize) -> bool) {
+        loop {
+            let jumps = self.queues.take_jumps(k);
+            if jumps.is_empty() {
+                break;
+            }
+            let mut walk = Walk::new(self, passable, Some(k));
+            for &j in &jumps {
+                walk.expand(j);
+            }
+            self.queues.put_back(Vec::new(), jumps);
+        }
+        let labels = self.queues.take_labels(k);
+        let (w, tile_row) = (self.width, self.tiles_x * TILE_CELLS);
+        for &(x, y) in &labels {
+            let q = slot_xy(tile_row, x as usize, y as usize);
+            if self.state[q] & DONE == 0 {
+                debug_assert!(self.cost[q] < (k + 1) as f64);
+                self.state[q] |= DONE;
+                self.settled.push(y * w as u32 + x);
+            }
+        }
+        self.queues.put_back(labels, Vec::new());
+    }
+
+    /// At the end of a guided canonical search every label is final: settle the cells not
+    /// settled yet (by tiles), so that a complete search has settled every reachable cell.
+    fn settle_rest(&mut self) {
+        let w = self.width;
+        for (t, _) in self
+            .tile_epoch
+            .iter()
+            .enumerate()
+            .filter(|&(_, &e)| e == self.epoch)
+        {
+            let (x0, y0) = ((t % self.tiles_x) * TILE, (t / self.tiles_x) * TILE);
+            for (o, s) in self.state[t * TILE_CELLS..(t + 1) * TILE_CELLS]
+                .iter_mut()
+                .enumerate()
+            {
+                if *s & (MET | BLOCKED | DONE) == MET {
+                    *s |= DONE;
+                    let (x, y) = (x0 + (o & TILE_MASK), y0 + (o >> TILE_SHIFT));
+                    self.settled.push((y * w + x) as u32);
+                }
+            }
+        }
     }
 
     /// If the live cells of a bucket's `entries` (every cost in the bucket final) hold a
@@ -770,7 +853,7 @@ impl Reachability {
         let mut c = goal;
         out.push(c as u32);
         while c != start {
-            match self.predecessor(c) {
+            match self.step_back(c) {
                 Some(p) => c = p,
                 None => {
                     // unreachable for a settled cell; never loop or return a broken path
@@ -791,6 +874,26 @@ impl Reachability {
         if !self.is_settled(j) || Some(j) == self.start {
             return None;
         }
+        self.step_back(j)
+    }
+
+    /// [`predecessor`](Self::predecessor) of a cell `j` other than the start whose cost is
+    /// final: settled, or on the path to a settled cell. Only neighbours whose cost is final
+    /// give `j` its cost: a label is never below its cell's cost, nor `j`'s cost below a
+    /// neighbour's plus the step. A guided canonical search settles only its goals, so
+    /// there the neighbours are those labelled; every one that gives `j` its cost is no
+    /// farther from the goals than `j` (its cost plus bound no higher), so it is labelled
+    /// when `j` is final, and so is a passable cell beside the step, see `canonical.rs`.
+    fn step_back(&self, j: usize) -> Option<usize> {
+        let guided = self.guided && self.canonical;
+        let given = |u: usize| {
+            if guided {
+                let s = self.state_of(u);
+                s & MET != 0 && (s & BLOCKED == 0 || Some(u) == self.start)
+            } else {
+                self.is_settled(u)
+            }
+        };
         let (w, h) = (self.width as i64, self.height as i64);
         let (x, y) = ((j % self.width) as i64, (j / self.width) as i64);
         // A cell known passable in the last search: met and not found impassable (the
@@ -807,7 +910,7 @@ impl Reachability {
                     continue;
                 }
                 let u = (uy * w + ux) as usize;
-                if !self.is_settled(u) {
+                if !given(u) {
                     continue;
                 }
                 let step = if dx != 0 && dy != 0 {
@@ -830,9 +933,20 @@ impl Reachability {
 
     /// Cells in the order the last search settled them: bucket by bucket (each cell after
     /// every cell at least one straight step cheaper); in the bucket where a nearest-goal
-    /// search ended, by (cost, index) up to the goal, which is last.
+    /// search ended, by (cost, index) up to the goal, which is last. A guided canonical
+    /// search lists its goals (and start) by bucket, then, once complete, the other cells.
     pub fn settled(&self) -> &[u32] {
         &self.settled
+    }
+
+    /// How many cells the last search has looked at: those it settled, or, guided in
+    /// canonical order (which settles only its goals until complete), those it labelled.
+    pub fn searched(&self) -> usize {
+        if self.guided && self.canonical {
+            self.queues.labelled_cells.max(self.settled.len())
+        } else {
+            self.settled.len()
+        }
     }
 
     /// The start of the last search, if it was inside the grid.

@@ -1,6 +1,6 @@
-//! The unguided searches in canonical order (Sturtevant & Rabin, "Canonical Orderings on
-//! Grids", IJCAI 2016): the same costs, settled cells and paths as Dial's search, with far
-//! fewer queue entries and neighbour tests.
+//! The searches in canonical order (Sturtevant & Rabin, "Canonical Orderings on Grids",
+//! IJCAI 2016): the same costs, settled cells and paths as Dial's search, with far fewer
+//! queue entries and neighbour tests; guided, the same as Dial's A* on its goals.
 //!
 //! Every shortest path on an 8-connected grid can be taken in a canonical order: diagonal
 //! steps first, then straight steps in one of the diagonal's two directions, turning only at
@@ -28,12 +28,32 @@
 //! thing as after Dial's search: a passable cell beside a settled one is settled before
 //! any cell a diagonal step from there reaches.
 //!
+//! Guided (A* toward a set of goals, the bound of [`Guide`]): jump points are queued by the
+//! bucket of their cost plus bound, and a walk goes [`HORIZON`] buckets past its jump
+//! point's cost, then queues where it stopped. The bound is consistent, so along a
+//! canonical shortest path cost plus bound never falls: the jump points before a cell are
+//! in its bucket or earlier. A bucket is settled by walking from its jump points, and from
+//! those its walks add to it, until none is left; then every cell of cost plus bound below
+//! k + 1 has its final cost. Only the goals (a bit per cell) and the start are listed by
+//! bucket, at their cost (their bound is 0), so the bound is asked once per jump point,
+//! not per cell; the other cells are settled when the search is complete. The path to a
+//! goal goes back over labelled cells: every neighbour that gives a final cell its cost is
+//! final and no farther from the goals. Beside a diagonal step u → j that gives j its cost,
+//! a passable cell is labelled by then: if u was labelled by a diagonal walk in the step's
+//! direction, its two straight walks label both sides; by a straight walk along one side,
+//! the walk labels that side, and the other side, if passable, is a shortest way to j (a
+//! diagonal step from the walk's previous cell); by a walk away from a side, its previous
+//! cell is that side; by a diagonal walk across the step, its straight walk labels one side
+//! and the other cannot be passable (j would be cheaper through it).
+//!
 //! Speed: on willow-full with 5 robots, MA's decisions take 13–31 % less than with Dial's
-//! search (docs/teams.md); a standalone full search on floor plans ran 2–4 times faster.
+//! search, RFE's about half (docs/teams.md); a standalone full search on floor plans ran
+//! 2–4 times faster.
 //! Scattered single obstacles are the worst case, each making jump points of its
 //! neighbours: the plan bench's map (3 % of its cells) takes 1.7 times Dial's time.
 
 use super::{BLOCKED, DONE, Entry, MET, Reachability, TILE_CELLS, enter_tile, slot_xy};
+use crate::plan::guide::Guide;
 use grid::SQRT2;
 use std::mem::take;
 
@@ -96,6 +116,10 @@ pub(super) struct Walk<'a, P> {
     passable: &'a P,
     /// Walks label no cost at or above this; they queue where they stopped instead.
     limit: f64,
+    /// A guided search's guide (jump points by the bucket of cost plus bound, only the
+    /// goals and the start listed as labels), and the bucket being settled.
+    guide: Option<&'a mut Guide>,
+    current: usize,
 }
 
 /// The canonical search's buckets, by whole cost: the cells labelled in each, and the jump
@@ -109,6 +133,8 @@ pub(super) struct Queues {
     spare_jumps: Vec<Vec<Jump>>,
     /// One past the highest bucket that holds an entry.
     pub(super) end: usize,
+    /// Cells a guided search has labelled (its work, as the settled cells are Dial's).
+    pub(super) labelled_cells: usize,
 }
 
 impl Queues {
@@ -118,6 +144,7 @@ impl Queues {
             self.recycle(k);
         }
         self.end = 0;
+        self.labelled_cells = 0;
     }
 
     /// Give bucket `k`'s buffers back to the pool.
@@ -150,10 +177,17 @@ impl Queues {
 
     /// Take bucket `k`'s labelled cells and jump points (empty if it does not exist).
     pub(super) fn take(&mut self, k: usize) -> (Vec<Entry>, Vec<Jump>) {
-        if k >= self.labelled.len() {
-            return (Vec::new(), Vec::new());
-        }
-        (take(&mut self.labelled[k]), take(&mut self.jumps[k]))
+        (self.take_labels(k), self.take_jumps(k))
+    }
+
+    /// Take bucket `k`'s labelled cells (empty if it does not exist).
+    pub(super) fn take_labels(&mut self, k: usize) -> Vec<Entry> {
+        self.labelled.get_mut(k).map(take).unwrap_or_default()
+    }
+
+    /// Take bucket `k`'s jump points (empty if it does not exist).
+    pub(super) fn take_jumps(&mut self, k: usize) -> Vec<Jump> {
+        self.jumps.get_mut(k).map(take).unwrap_or_default()
     }
 
     /// Give back bucket `k`'s buffers taken by [`take`](Self::take), emptied.
@@ -181,8 +215,9 @@ fn give_back<T>(mut v: Vec<T>, spare: &mut Vec<Vec<T>>) {
 }
 
 impl<'a, P: Fn(usize) -> bool> Walk<'a, P> {
-    /// The search over `r`'s fields with `passable`.
-    pub(super) fn new(r: &'a mut Reachability, passable: &'a P) -> Self {
+    /// The search over `r`'s fields with `passable`; guided by `r`'s guide if `guided`
+    /// names the bucket being settled.
+    pub(super) fn new(r: &'a mut Reachability, passable: &'a P, guided: Option<usize>) -> Self {
         Walk {
             width: r.width,
             height: r.height,
@@ -195,13 +230,19 @@ impl<'a, P: Fn(usize) -> bool> Walk<'a, P> {
             queues: &mut r.queues,
             passable,
             limit: f64::INFINITY,
+            guide: guided.is_some().then_some(&mut r.guide),
+            current: guided.unwrap_or(0),
         }
     }
 
-    /// Walk from the jump points of bucket `k` only as far as [`HORIZON`] buckets ahead.
-    pub(super) fn at_bucket(mut self, k: usize) -> Self {
-        self.limit = (k + 1 + HORIZON) as f64;
-        self
+    /// The bucket of a jump point at column `x`, row `y` of cost `c`: of its cost, or,
+    /// guided, of its cost plus bound (never one before the bucket being settled).
+    #[inline(always)]
+    fn bucket(&mut self, x: usize, y: usize, c: f64) -> usize {
+        match &mut self.guide {
+            None => c as usize,
+            Some(g) => ((c + g.bound(x, y)) as usize).max(self.current),
+        }
     }
 
     /// The slot of column `x`, row `y` (inside the grid), its tile's states made valid for
@@ -228,20 +269,22 @@ impl<'a, P: Fn(usize) -> bool> Walk<'a, P> {
             && (self.passable)(y as usize * self.width + x as usize)
     }
 
-    /// Label start `(x, y)` (in the grid) at cost 0 and queue it, unless listed already.
-    pub(super) fn start(&mut self, x: usize, y: usize) {
+    /// Label start `(x, y)` (in the grid) at cost 0 and queue it, unless listed already;
+    /// returns its bucket.
+    pub(super) fn start(&mut self, x: usize, y: usize) -> usize {
         let q = self.slot(x, y);
         if self.state[q] & MET != 0 {
-            return; // listed twice (starts are labelled before any walk)
+            return 0; // listed twice (starts are labelled before any walk)
         }
         let open = (self.passable)(y * self.width + x);
         self.state[q] = if open { MET } else { MET | BLOCKED };
         self.cost[q] = 0.0;
         self.dirs[q] = 0xff00; // nothing else walks into a start (cost 0) but as cheaply
         let xy = (x as u32, y as u32);
-        self.queues.label(0, xy);
+        let k = self.bucket(x, y, 0.0);
+        self.queues.label(k, xy);
         self.queues.jump(
-            0,
+            k,
             Jump {
                 x: xy.0,
                 y: xy.1,
@@ -249,6 +292,7 @@ impl<'a, P: Fn(usize) -> bool> Walk<'a, P> {
                 cost: 0.0,
             },
         );
+        k
     }
 
     /// Label passable cell `(x, y)` with cost `c` by a walk in direction `d`; whether the
@@ -263,7 +307,16 @@ impl<'a, P: Fn(usize) -> bool> Walk<'a, P> {
             self.state[q] = MET;
             self.cost[q] = c;
             self.dirs[q] = b;
-            self.queues.label(c as usize, (x as u32, y as u32));
+            match &self.guide {
+                None => self.queues.label(c as usize, (x as u32, y as u32)),
+                Some(g) => {
+                    self.queues.labelled_cells += usize::from(s & MET == 0);
+                    if g.is_goal(y * self.width + x) {
+                        let k = (c as usize).max(self.current);
+                        self.queues.label(k, (x as u32, y as u32));
+                    }
+                }
+            }
             true
         } else if c == self.cost[q] && self.dirs[q] & b == 0 {
             self.dirs[q] |= b;
@@ -273,13 +326,15 @@ impl<'a, P: Fn(usize) -> bool> Walk<'a, P> {
         }
     }
 
-    /// Walk from jump point `j` unless it is stale or walked already.
+    /// Walk from jump point `j` unless it is stale or walked already, as far as
+    /// [`HORIZON`] buckets past its own.
     pub(super) fn expand(&mut self, j: Jump) {
         let (x, y) = (j.x as usize, j.y as usize);
         let q = self.slot(x, y);
         if self.cost[q] != j.cost {
             return; // labelled more cheaply since
         }
+        self.limit = (j.cost as usize + 1 + HORIZON) as f64;
         let b = u16::from(bit(j.dir)) << 8;
         if j.dir != START {
             if self.dirs[q] & b == b {
@@ -313,7 +368,8 @@ impl<'a, P: Fn(usize) -> bool> Walk<'a, P> {
             dir: code(dx, dy),
             cost,
         };
-        self.queues.jump(cost as usize, j);
+        let k = self.bucket(x as usize, y as usize, cost);
+        self.queues.jump(k, j);
     }
 
     /// Walk straight from `(x, y)` (cost `c`) in direction `(dx, dy)`. Each cell's
