@@ -4,7 +4,7 @@
 //! and the same path; advanced to the end it is the full search.
 
 use explore::Reachability;
-use explore::plan::reachability::MAX_GUIDE_BLOCKS;
+use explore::plan::reachability::{MAX_DIAL_GUIDE_BLOCKS, MAX_GUIDE_BLOCKS};
 use proptest::prelude::*;
 
 const W: usize = 61;
@@ -91,11 +91,13 @@ fn a_guided_search_looks_toward_its_goals() {
 }
 
 fn looks_toward_its_goals(canonical: bool) {
-    let pass = vec![true; W * H];
-    let goal = (H / 2 * W + W - 2) as u32;
-    let mut guided = Reachability::new(W, H);
+    // large enough that the canonical walks' reach past the goal's way (16 cells) is small
+    let (w, h) = (241usize, 121usize);
+    let pass = vec![true; w * h];
+    let goal = (h / 2 * w + w - 2) as u32;
+    let mut guided = Reachability::new(w, h);
     guided.set_canonical(canonical);
-    guided.begin_guided(H / 2 * W + 1, |i| pass[i], &[goal]);
+    guided.begin_guided(h / 2 * w + 1, |i| pass[i], &[goal]);
     let cost = loop {
         let done = guided.advance(guided.next_bucket(), |i| pass[i]);
         if let Some(c) = guided.cost(goal as usize) {
@@ -103,9 +105,9 @@ fn looks_toward_its_goals(canonical: bool) {
         }
         assert!(!done);
     };
-    let mut full = Reachability::new(W, H);
-    full.compute(H / 2 * W + 1, |i| pass[i]);
-    let nearer = (0..W * H)
+    let mut full = Reachability::new(w, h);
+    full.compute(h / 2 * w + 1, |i| pass[i]);
+    let nearer = (0..w * h)
         .filter(|&i| full.cost(i).is_some_and(|c| c <= cost))
         .count();
     assert!(
@@ -115,10 +117,10 @@ fn looks_toward_its_goals(canonical: bool) {
         nearer
     );
 
-    let (w, h) = (128usize, 96usize);
+    let (w, h) = (288usize, 264usize);
     let open = |_: usize| true;
     let everywhere: Vec<u32> = (0..(w * h) as u32).step_by(5).collect();
-    assert!((w / 8) * (h / 8) > MAX_GUIDE_BLOCKS);
+    assert!((w / 8) * (h / 8) > MAX_GUIDE_BLOCKS.max(MAX_DIAL_GUIDE_BLOCKS));
     let mut wide = Reachability::new(w, h);
     wide.set_canonical(canonical);
     wide.begin_guided(0, open, &everywhere);
