@@ -28,6 +28,12 @@ const TILE_SHIFT: u32 = 4;
 const TILE: usize = 1 << TILE_SHIFT;
 /// The octile diameter of a tile, with a margin for rounding.
 const TILE_DIAMETER: f64 = (TILE as f64 - 1.0) * SQRT2 + 1e-6;
+/// Side of the squares the centres are filed by, as a shift (64 cells, 4 × 4 tiles).
+const AREA_SHIFT: u32 = 6;
+const AREA: usize = 1 << AREA_SHIFT;
+/// With more centres than this, a tile's list is made from the squares around it, nearest
+/// first, rather than from every centre.
+const FILED_FROM: usize = 64;
 
 /// Octile distance of a displacement `(dx, dy)` (both ≥ 0).
 #[inline(always)]
@@ -54,6 +60,12 @@ pub struct Guide {
     /// The goal cells, and the same as one bit per cell of the grid.
     goals: Vec<u32>,
     goal_bits: Vec<u64>,
+    /// The centres filed by squares of [`AREA`] cells, row-major with `areas_x` squares a
+    /// row: square `s` holds `by_area[area_start[s]..area_start[s + 1]]`.
+    areas_x: usize,
+    areas_y: usize,
+    area_start: Vec<u32>,
+    by_area: Vec<(f64, f64)>,
 }
 
 impl Guide {
@@ -100,6 +112,36 @@ impl Guide {
                     .push(((x * BLOCK) as f64 + half, (y * BLOCK) as f64 + half));
             }
         }
+        if self.points.len() > FILED_FROM {
+            self.file_by_area(width, height);
+        }
+    }
+
+    /// File the centres by squares of [`AREA`] cells (a counting sort).
+    fn file_by_area(&mut self, width: usize, height: usize) {
+        let (ax, ay) = (width.div_ceil(AREA), height.div_ceil(AREA));
+        (self.areas_x, self.areas_y) = (ax, ay);
+        let area =
+            |&(px, py): &(f64, f64)| (py as usize >> AREA_SHIFT) * ax + (px as usize >> AREA_SHIFT);
+        self.area_start.clear();
+        self.area_start.resize(ax * ay + 1, 0);
+        for p in &self.points {
+            self.area_start[area(p) + 1] += 1;
+        }
+        for s in 1..self.area_start.len() {
+            self.area_start[s] += self.area_start[s - 1];
+        }
+        self.by_area.clear();
+        self.by_area.resize(self.points.len(), (0.0, 0.0));
+        // filled from each square's end down, leaving `area_start` as it was
+        for p in self.points.iter().rev() {
+            let s = area(p);
+            self.area_start[s + 1] -= 1;
+            self.by_area[self.area_start[s + 1] as usize] = *p;
+        }
+        // each `area_start[s + 1]` now holds square s's start: shift them back
+        self.area_start.rotate_left(1);
+        self.area_start[ax * ay] = self.points.len() as u32;
     }
 
     /// Number of blocks holding a goal.
@@ -146,16 +188,59 @@ impl Guide {
             let dy = (y0 - py).max(py - y1).max(0.0);
             octile(dx, dy)
         };
-        let least = self
-            .points
-            .iter()
-            .map(from_tile)
-            .fold(f64::INFINITY, f64::min);
         let a = self.lists.len() as u32;
-        for p in &self.points {
-            if from_tile(p) <= least + TILE_DIAMETER {
-                self.lists.push(*p);
+        if self.points.len() <= FILED_FROM {
+            let least = self
+                .points
+                .iter()
+                .map(from_tile)
+                .fold(f64::INFINITY, f64::min);
+            for p in &self.points {
+                if from_tile(p) <= least + TILE_DIAMETER {
+                    self.lists.push(*p);
+                }
             }
+        } else {
+            // squares ring by ring around the tile's: one r rings out lies more than
+            // (r - 1) squares' sides away, so the rings end once that exceeds the least
+            // distance found plus a tile's diameter
+            let (sx, sy) = ((x0 as usize) >> AREA_SHIFT, (y0 as usize) >> AREA_SHIFT);
+            let (ax, ay) = (self.areas_x as i64, self.areas_y as i64);
+            let mut least = f64::INFINITY;
+            for r in 0..=ax.max(ay) {
+                if r > 0 && ((r - 1) * AREA as i64) as f64 > least + TILE_DIAMETER {
+                    break;
+                }
+                let (sx, sy) = (sx as i64, sy as i64);
+                for qy in (sy - r).max(0)..=(sy + r).min(ay - 1) {
+                    let edge = qy == sy - r || qy == sy + r;
+                    let step = if edge { 1 } else { (2 * r).max(1) as usize };
+                    for qx in (sx - r..=sx + r).step_by(step) {
+                        if qx < 0 || qx >= ax {
+                            continue;
+                        }
+                        let q = (qy * ax + qx) as usize;
+                        let range = self.area_start[q] as usize..self.area_start[q + 1] as usize;
+                        for p in &self.by_area[range] {
+                            let d = from_tile(p);
+                            if d <= least + TILE_DIAMETER {
+                                self.lists.push(*p);
+                            }
+                            least = least.min(d);
+                        }
+                    }
+                }
+            }
+            // keep those within a diameter of the least distance over all of them
+            let mut kept = a as usize;
+            for i in a as usize..self.lists.len() {
+                let p = self.lists[i];
+                if from_tile(&p) <= least + TILE_DIAMETER {
+                    self.lists[kept] = p;
+                    kept += 1;
+                }
+            }
+            self.lists.truncate(kept);
         }
         self.tile_mark[t] = self.epoch;
         self.tile_range[t] = (a, self.lists.len() as u32);
@@ -168,6 +253,44 @@ mod tests {
     use proptest::prelude::*;
 
     proptest! {
+        /// With goals in more blocks than [`FILED_FROM`] (each tile's list made from the
+        /// squares around it), in a corner or anywhere: the least over every block's
+        /// centre, bit for bit, near the goals and many squares away.
+        #[test]
+        fn filed_centres_give_the_nearest(
+            corner in prop::collection::vec((0u32..120, 0u32..70), 150..600),
+            anywhere in prop::collection::vec(0u32..(600 * 400), 0..300),
+            cells in prop::collection::vec(0usize..(600 * 400), 1..200),
+        ) {
+            let (w, h) = (600usize, 400usize);
+            let goals: Vec<u32> = corner
+                .iter()
+                .map(|&(x, y)| y * w as u32 + x)
+                .chain(anywhere)
+                .collect();
+            let mut guide = Guide::default();
+            guide.set(w, h, &goals);
+            let half = (BLOCK as f64 - 1.0) / 2.0;
+            let centres: Vec<(f64, f64)> = goals
+                .iter()
+                .map(|&g| {
+                    let (bx, by) = (g as usize % w / BLOCK, g as usize / w / BLOCK);
+                    ((bx * BLOCK) as f64 + half, (by * BLOCK) as f64 + half)
+                })
+                .collect();
+            for &i in &cells {
+                let (x, y) = ((i % w) as f64, (i / w) as f64);
+                let least = centres
+                    .iter()
+                    .map(|&(px, py)| octile((x - px).abs(), (y - py).abs()))
+                    .fold(f64::INFINITY, f64::min);
+                prop_assert_eq!(
+                    guide.bound(i % w, i / w).to_bits(),
+                    (least - SLACK).max(0.0).to_bits()
+                );
+            }
+        }
+
         /// Against the octile distance to every goal: never above it, 0 on a goal, and
         /// changing by at most the step's cost between neighbours.
         #[test]
