@@ -137,7 +137,8 @@ pub(super) struct Queues {
     spare_jumps: Vec<Vec<Jump>>,
     /// One past the highest bucket that holds an entry.
     pub(super) end: usize,
-    /// Cells a guided search has labelled (its work, as the settled cells are Dial's).
+    /// Cells a guided search has labelled: its work, as it settles only its goals until
+    /// it is complete.
     pub(super) labelled_cells: usize,
 }
 
