@@ -74,6 +74,8 @@ proptest! {
         }
         part.advance(usize::MAX, |i| pass[i]);
         prop_assert!(part.is_complete());
+        // complete, every cell it looked at is settled
+        prop_assert_eq!(part.searched(), part.settled().len());
         for i in 0..W * H {
             prop_assert_eq!(part.cost(i).map(f64::to_bits), full.cost(i).map(f64::to_bits));
         }

@@ -117,31 +117,23 @@ impl Guide {
         }
     }
 
-    /// File the centres by squares of [`AREA`] cells (a counting sort).
+    /// File the centres by squares of [`AREA`] cells.
     fn file_by_area(&mut self, width: usize, height: usize) {
         let (ax, ay) = (width.div_ceil(AREA), height.div_ceil(AREA));
         (self.areas_x, self.areas_y) = (ax, ay);
         let area =
             |&(px, py): &(f64, f64)| (py as usize >> AREA_SHIFT) * ax + (px as usize >> AREA_SHIFT);
+        self.by_area.clear();
+        self.by_area.extend_from_slice(&self.points);
+        self.by_area.sort_unstable_by_key(area);
         self.area_start.clear();
         self.area_start.resize(ax * ay + 1, 0);
-        for p in &self.points {
+        for p in &self.by_area {
             self.area_start[area(p) + 1] += 1;
         }
         for s in 1..self.area_start.len() {
             self.area_start[s] += self.area_start[s - 1];
         }
-        self.by_area.clear();
-        self.by_area.resize(self.points.len(), (0.0, 0.0));
-        // filled from each square's end down, leaving `area_start` as it was
-        for p in self.points.iter().rev() {
-            let s = area(p);
-            self.area_start[s + 1] -= 1;
-            self.by_area[self.area_start[s + 1] as usize] = *p;
-        }
-        // each `area_start[s + 1]` now holds square s's start: shift them back
-        self.area_start.rotate_left(1);
-        self.area_start[ax * ay] = self.points.len() as u32;
     }
 
     /// Number of blocks holding a goal.
@@ -188,60 +180,57 @@ impl Guide {
             let dy = (y0 - py).max(py - y1).max(0.0);
             octile(dx, dy)
         };
-        let a = self.lists.len() as u32;
-        if self.points.len() <= FILED_FROM {
-            let least = self
-                .points
-                .iter()
-                .map(from_tile)
-                .fold(f64::INFINITY, f64::min);
-            for p in &self.points {
-                if from_tile(p) <= least + TILE_DIAMETER {
-                    self.lists.push(*p);
+        let a = self.lists.len();
+        // gather the centres within a tile's diameter of the least distance so far (returned)
+        let mut least = f64::INFINITY;
+        let mut gather = |centres: &[(f64, f64)], lists: &mut Vec<(f64, f64)>| {
+            for p in centres {
+                let d = from_tile(p);
+                if d <= least + TILE_DIAMETER {
+                    lists.push(*p);
                 }
+                least = least.min(d);
             }
+            least
+        };
+        if self.points.len() <= FILED_FROM {
+            gather(&self.points, &mut self.lists);
         } else {
             // squares ring by ring around the tile's: one r rings out lies more than
             // (r - 1) squares' sides away, so the rings end once that exceeds the least
             // distance found plus a tile's diameter
-            let (sx, sy) = ((x0 as usize) >> AREA_SHIFT, (y0 as usize) >> AREA_SHIFT);
+            let (sx, sy) = ((x0 as i64) >> AREA_SHIFT, (y0 as i64) >> AREA_SHIFT);
             let (ax, ay) = (self.areas_x as i64, self.areas_y as i64);
-            let mut least = f64::INFINITY;
+            let mut found = f64::INFINITY;
             for r in 0..=ax.max(ay) {
-                if r > 0 && ((r - 1) * AREA as i64) as f64 > least + TILE_DIAMETER {
+                if r > 0 && ((r - 1) * AREA as i64) as f64 > found + TILE_DIAMETER {
                     break;
                 }
-                let (sx, sy) = (sx as i64, sy as i64);
                 for qy in (sy - r).max(0)..=(sy + r).min(ay - 1) {
                     let edge = qy == sy - r || qy == sy + r;
-                    let step = if edge { 1 } else { (2 * r).max(1) as usize };
+                    let step = if edge { 1 } else { (2 * r) as usize };
                     for qx in (sx - r..=sx + r).step_by(step) {
-                        if qx < 0 || qx >= ax {
-                            continue;
-                        }
-                        let q = (qy * ax + qx) as usize;
-                        let range = self.area_start[q] as usize..self.area_start[q + 1] as usize;
-                        for p in &self.by_area[range] {
-                            let d = from_tile(p);
-                            if d <= least + TILE_DIAMETER {
-                                self.lists.push(*p);
-                            }
-                            least = least.min(d);
+                        if (0..ax).contains(&qx) {
+                            let q = (qy * ax + qx) as usize;
+                            let square =
+                                self.area_start[q] as usize..self.area_start[q + 1] as usize;
+                            found = gather(&self.by_area[square], &mut self.lists);
                         }
                     }
                 }
             }
-            // keep those within a diameter of the least distance over all of them
-            let mut kept = a as usize;
-            for i in a as usize..self.lists.len() {
-                let p = self.lists[i];
-                if from_tile(&p) <= least + TILE_DIAMETER {
-                    self.lists[kept] = p;
-                    kept += 1;
-                }
-            }
-            self.lists.truncate(kept);
         }
+        // and keep those within a tile's diameter of the least over all of them
+        let mut kept = a;
+        for i in a..self.lists.len() {
+            let p = self.lists[i];
+            if from_tile(&p) <= least + TILE_DIAMETER {
+                self.lists[kept] = p;
+                kept += 1;
+            }
+        }
+        self.lists.truncate(kept);
+        let a = a as u32;
         self.tile_mark[t] = self.epoch;
         self.tile_range[t] = (a, self.lists.len() as u32);
     }

@@ -956,7 +956,7 @@ impl Reachability {
     /// canonical order (which settles only its goals until complete), those it labelled.
     pub fn searched(&self) -> usize {
         if self.guided && self.canonical {
-            self.queues.labelled_cells.max(self.settled.len())
+            self.queues.labelled_cells
         } else {
             self.settled.len()
         }

@@ -286,6 +286,7 @@ impl<'a, P: Fn(usize) -> bool> Walk<'a, P> {
         self.cost[q] = 0.0;
         self.dirs[q] = 0xff00; // nothing else walks into a start (cost 0) but as cheaply
         let xy = (x as u32, y as u32);
+        self.queues.labelled_cells += usize::from(self.guide.is_some());
         let k = self.bucket(x, y, 0.0);
         self.queues.label(k, xy);
         self.queues.jump(
