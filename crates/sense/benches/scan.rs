@@ -68,7 +68,7 @@ fn bench(c: &mut Criterion) {
     // Ray template against shadow casting, the same cells, by range.
     let mut scratch = sense::shadow::ShadowScratch::default();
     for (name, truth) in [("open", Grid::new(N, N, Occ::Free)), ("rooms", rooms())] {
-        for r in [12.0, 28.0, 64.0, 128.0] {
+        for r in [12.0, 15.0, 28.0, 64.0, 128.0] {
             let los = LosSensor::new(r).expect("valid range");
             let mut n = 0usize;
             c.bench_function(&format!("visible_template_r{r}_{name}"), |b| {

@@ -15,6 +15,10 @@
 //! - a target is seen iff its centre's slope lies in no blocked interval and on no blocked
 //!   vertex ray.
 //!
+//! A column's blocking cells are read as runs (a run blocks one interval), and its
+//! targets are read off the gaps between the blocked intervals as runs of rows, so a seen
+//! cell costs no slope comparison.
+//!
 //! Slopes are exact fractions of small integers (doubled coordinates), so the result is
 //! [`segment_clear`]'s bit for bit; a property test checks it against that oracle. Only
 //! cells whose closed cone of slopes meets an unblocked slope are read: a scan costs about
@@ -29,10 +33,10 @@ use crate::unseen::Unseen;
 
 /// The range (cells) from which shadow casting is faster than the ray template: per scan
 /// on a 400 × 400 map (`cargo bench -p sense --bench scan -- visible_`), open space /
-/// rooms, template against shadow casting: r = 12: 4.8 / 4.8 µs against 8.6 / 7.1 µs;
-/// r = 28: 90 / 40 µs against 42 / 30 µs; r = 64: 1.04 ms / 172 µs against 203 / 60 µs;
-/// r = 128: 6.1 ms / 630 µs against 664 / 146 µs.
-pub const FASTER_FROM_RANGE: f64 = 20.0;
+/// rooms, template against shadow casting: r = 12: 5.0 / 4.5 µs against 5.8 / 4.1 µs;
+/// r = 15: 10.9 / 7.6 µs against 8.0 / 4.5 µs; r = 28: 66 / 43 µs against 19 / 14 µs;
+/// r = 64: 840 / 181 µs against 68 / 31 µs; r = 128: 5.3 ms / 439 µs against 207 / 43 µs.
+pub const FASTER_FROM_RANGE: f64 = 14.0;
 
 /// A slope `num / den` (`den > 0`), compared exactly.
 #[derive(Clone, Copy, Debug)]
@@ -101,10 +105,16 @@ impl Shadows {
 #[derive(Default)]
 pub struct ShadowScratch {
     shadows: Shadows,
+    /// Unblocked closed intervals of slopes of the current column.
+    gaps: Vec<(Slope, Slope)>,
     /// Rows of the current column to look at, as inclusive ranges.
     rows: Vec<(i64, i64)>,
-    /// Blocking cells of the current column (row indices).
-    blocking: Vec<i64>,
+    /// Runs of blocking cells of the current column (first and last row).
+    blocking: Vec<(i64, i64)>,
+    /// Per column x of an octant, the last row within the blockers' reach and the last
+    /// within range (see [`top_row`]), for the squared range and reach `tops_for`.
+    tops: Vec<(i64, i64)>,
+    tops_for: (i64, i64),
 }
 
 /// The box of grid cells a scan read: columns `x0..=x1`, rows `y0..=y1`.
@@ -181,6 +191,13 @@ pub fn visible_within(
     // Blockers beyond the range cannot lie on a segment to a target within it; one cell
     // more is read as a margin (reading a cell is always safe).
     let blocker_reach2 = (reach + 1) * (reach + 1);
+    if scratch.tops_for != (r2, reach) {
+        scratch.tops_for = (r2, reach);
+        scratch.tops.clear();
+        scratch
+            .tops
+            .extend((0..=reach + 1).map(|x| (top_row(x, blocker_reach2), top_row(x, r2))));
+    }
     for octant in 0..8u8 {
         let swap = octant & 4 != 0;
         let sx = if octant & 1 == 0 { 1 } else { -1 };
@@ -209,20 +226,12 @@ pub fn visible_within(
         let sh = &mut scratch.shadows;
         sh.clear();
         for x in 1..=(reach + 1).min(columns[usize::from(octant)]) {
-            // Rows whose closed cone meets an unblocked slope of [0, 1].
+            // The last rows within the blockers' reach and within range.
+            let (blocker_top, target_top) = scratch.tops[x as usize];
+            // The unblocked closed intervals of slopes in [0, 1] (the ends of blocked open
+            // intervals are not blocked), and the rows whose closed cone meets one.
+            scratch.gaps.clear();
             scratch.rows.clear();
-            let push_gap = |g0: Slope, g1: Slope, rows: &mut Vec<(i64, i64)>| {
-                // (2y − 1)/(2x + 1) ≤ g1 and (2y + 1)/(2x − 1) ≥ g0.
-                let hi = (g1.num * (2 * x + 1) + g1.den).div_euclid(2 * g1.den);
-                let lo = -((-(g0.num * (2 * x - 1) - g0.den)).div_euclid(2 * g0.den));
-                let (lo, hi) = (lo.max(0), hi.min(x));
-                if lo <= hi {
-                    match rows.last_mut() {
-                        Some(last) if last.1 >= lo - 1 => last.1 = last.1.max(hi),
-                        _ => rows.push((lo, hi)),
-                    }
-                }
-            };
             let (zero, one) = (Slope::new(0, 1), Slope::new(1, 1));
             let mut from = zero;
             for &(l, hgh) in &sh.open {
@@ -232,34 +241,49 @@ pub fn visible_within(
                 if one.lt(l) {
                     break;
                 }
-                // The gap [from, l]: the ends of blocked open intervals are not blocked.
                 if from.le(l) {
-                    push_gap(from, l, &mut scratch.rows);
+                    scratch.gaps.push((from, l));
                 }
                 from = hgh;
             }
             if from.le(one) {
-                push_gap(from, one, &mut scratch.rows);
+                scratch.gaps.push((from, one));
+            }
+            for &(g0, g1) in &scratch.gaps {
+                // (2y − 1)/(2x + 1) ≤ g1 and (2y + 1)/(2x − 1) ≥ g0.
+                let hi = (g1.num * (2 * x + 1) + g1.den).div_euclid(2 * g1.den);
+                let lo = -((-(g0.num * (2 * x - 1) - g0.den)).div_euclid(2 * g0.den));
+                let (lo, hi) = (lo.max(0), hi.min(x));
+                if lo <= hi {
+                    match scratch.rows.last_mut() {
+                        Some(last) if last.1 >= lo - 1 => last.1 = last.1.max(hi),
+                        _ => scratch.rows.push((lo, hi)),
+                    }
+                }
             }
             if scratch.rows.is_empty() {
                 break;
             }
-            // Pass 1: the blocking cells of this column widen the shadows.
+            // The column lies in the grid up to row `yin` (not at all beyond column `xin`).
+            let col_top = if x <= xin { yin } else { -1 };
+            let base = o as i64 + x * dx;
+            // Pass 1: the blocking cells of this column, as runs of rows, widen the shadows
+            // (after pass 2). Only blockers within the range plus one can hide a target.
             scratch.blocking.clear();
             for &(lo, hi) in &scratch.rows {
                 // Read: columns up to x, rows lo..=hi + 1 (the cell up-left of a corner).
                 xmax = x;
                 ymin = ymin.min(lo);
                 ymax = ymax.max(hi + 1);
-                for y in lo..=hi {
-                    if x * x + y * y > blocker_reach2 {
-                        break;
-                    }
+                for y in lo..=hi.min(blocker_top) {
                     // (Its closed cone meets an unblocked slope, so it is not hidden.)
-                    if state(x, y).is_some_and(&transparent) {
+                    if y <= col_top && transparent(data[(base + y * dy) as usize]) {
                         continue;
                     }
-                    scratch.blocking.push(y);
+                    match scratch.blocking.last_mut() {
+                        Some(run) if run.1 == y - 1 => run.1 = y,
+                        _ => scratch.blocking.push((y, y)),
+                    }
                     // The vertex at its upper-left corner (local), between it and the
                     // cell diagonally up-left, when that ray is in this octant.
                     if y < x && !state(x - 1, y + 1).is_some_and(&transparent) {
@@ -267,39 +291,46 @@ pub fn visible_within(
                     }
                 }
             }
-            // Pass 2: the targets of this column, by increasing slope (so the blocked
-            // intervals and points are walked once).
-            let (mut k, mut kp) = (0, 0);
-            for &(lo, hi) in &scratch.rows {
-                for y in lo..=hi {
-                    if x * x + y * y > r2 {
-                        break;
-                    }
-                    if (y == 0 && skip_axis) || (y == x && swap) {
-                        continue;
-                    }
-                    let t = Slope::new(y, x);
-                    while k < sh.open.len() && sh.open[k].1.le(t) {
-                        k += 1;
-                    }
-                    while kp < sh.points.len() && sh.points[kp].lt(t) {
+            // Pass 2: the targets of this column, gap by gap: the rows whose centre's slope
+            // y/x lies in a gap and on no blocked vertex ray, within range and the grid.
+            let (first, last) = (
+                i64::from(skip_axis),
+                (if swap { x - 1 } else { x }).min(target_top).min(col_top),
+            );
+            let mut kp = 0;
+            for &(g0, g1) in &scratch.gaps {
+                let mut y = (-((-(g0.num * x)).div_euclid(g0.den))).max(first);
+                let top = (g1.num * x).div_euclid(g1.den).min(last);
+                while kp < sh.points.len() && sh.points[kp].lt(g0) {
+                    kp += 1;
+                }
+                while y <= top {
+                    // The next blocked vertex ray through a target of the gap, if any.
+                    let mut stop = top + 1;
+                    while kp < sh.points.len() && sh.points[kp].le(g1) {
+                        let p = sh.points[kp];
+                        let (q, rem) =
+                            ((p.num * x).div_euclid(p.den), (p.num * x).rem_euclid(p.den));
+                        if rem == 0 && q >= y {
+                            stop = q.min(top + 1);
+                            break;
+                        }
                         kp += 1;
                     }
-                    if (k < sh.open.len() && sh.open[k].0.lt(t))
-                        || (kp < sh.points.len() && sh.points[kp].eq(t))
-                    {
-                        continue;
+                    let mut i = base + y * dy;
+                    for _ in y..stop {
+                        let i_ = i as usize;
+                        seen(i_ as u32, data[i_]);
+                        i += dy;
                     }
-                    if let Some(s) = state(x, y) {
-                        seen(index(x, y) as u32, s);
-                    }
+                    y = stop + 1;
                 }
             }
             for k in 0..scratch.blocking.len() {
-                let y = scratch.blocking[k];
+                let (a, b) = scratch.blocking[k];
                 sh.add(
-                    Slope::new(2 * y - 1, 2 * x + 1),
-                    Slope::new(2 * y + 1, 2 * x - 1),
+                    Slope::new(2 * a - 1, 2 * x + 1),
+                    Slope::new(2 * b + 1, 2 * x - 1),
                 );
             }
         }
@@ -313,6 +344,22 @@ pub fn visible_within(
         }
     }
     Some(rb)
+}
+
+/// The last row `y ≥ 0` of column `x` with `x² + y² ≤ r2` (−1 if none).
+fn top_row(x: i64, r2: i64) -> i64 {
+    let rest = r2 - x * x;
+    if rest < 0 {
+        return -1;
+    }
+    let mut y = (rest as f64).sqrt() as i64;
+    while y * y > rest {
+        y -= 1;
+    }
+    while (y + 1) * (y + 1) <= rest {
+        y += 1;
+    }
+    y
 }
 
 /// Per octant of [`visible`] from `origin` (range `range` cells), the last column that
