@@ -284,9 +284,12 @@ class ExploreEnv(gymnasium.Env):
         """Send the robot to candidate ``action`` and run to the next decision."""
         a = _action(action)
         if self._wrap and self._obs is not None:
-            n = int(self._obs["action_mask"].sum())
-            if n > 0 and not 0 <= a < n:
-                a %= n
+            # The mask offers candidates 0..n-1, so a valid action needs no count.
+            mask = self._obs["action_mask"]
+            if not (0 <= a < len(mask) and mask[a]):
+                n = int(mask.sum())
+                if n > 0:
+                    a %= n
         obs, reward, terminated, truncated = self._core.step(a)
         self._obs = obs
         return obs, reward, terminated, truncated, self._info()
