@@ -105,9 +105,9 @@ impl Planner {
         &self.maps[r]
     }
 
-    /// Grow every robot's search (robot `r` from `froms[r]`, not guided) until it has
-    /// settled every cell of `goals` it can reach (a little beyond), or every cell it can
-    /// reach: the searches an assigner that needs each robot's cost to every goal (MA)
+    /// Grow every robot's search (robot `r` from `froms[r]`, not guided, listing only the
+    /// goals: [`Reachability::begin_goals`]) until it has settled every cell of `goals` it
+    /// can reach (a little beyond), or every cell it can reach: the searches an assigner that needs each robot's cost to every goal (MA)
     /// would grow one after the other, run side by side on rayon's threads. The maps are
     /// independent, so each is the one the sequential growth leaves, whatever the thread
     /// count. Called from a thread of a rayon pool (a bench's trials, a vector
@@ -142,11 +142,15 @@ impl Planner {
             want[*r] > 0 && **extent != Extent::Full
         };
         let grow = |(r, (map, extent)): (usize, (&mut Reachability, &mut Extent))| {
-            if matches!(*extent, Extent::Stale | Extent::Partial) {
-                map.begin(froms[r] as usize, pass);
+            let begun = matches!(*extent, Extent::Stale | Extent::Partial);
+            if begun {
+                map.begin_goals(froms[r] as usize, pass, goals);
             }
-            // The goals are counted each time the search has settled as many new cells
-            // as there are goals, so counting costs O(1) per settled cell.
+            // Listing only the goals (and the start), the search's settled list holds
+            // every goal it has settled; a search begun before lists every cell, and its
+            // goals are counted each time it has settled as many new cells as there are
+            // goals. Either way counting costs O(1) per settled cell.
+            let lists_goals = begun && map.lists_only_goals();
             let mut counted = 0;
             loop {
                 let done = map.advance(map.next_bucket(), pass);
@@ -156,7 +160,12 @@ impl Planner {
                 }
                 *extent = Extent::Growing;
                 let settled = map.settled().len();
-                if settled - counted >= goals.len() {
+                let due = if lists_goals {
+                    settled >= want[r] && settled > counted
+                } else {
+                    settled - counted >= goals.len()
+                };
+                if due {
                     counted = settled;
                     let found = goals.iter().filter(|&&g| map.is_settled(g as usize));
                     if found.count() >= want[r] {

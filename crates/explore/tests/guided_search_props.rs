@@ -1,7 +1,8 @@
-//! A search guided toward a set of goals (`Reachability::begin_guided`) against the full
-//! Dijkstra search on random maps: advanced bucket by bucket it settles every goal of cost
-//! below its next bucket, and every cell it settles has the full search's cost bit for bit
-//! and the same path; advanced to the end it is the full search.
+//! A search guided toward a set of goals (`Reachability::begin_guided`), or listing only
+//! its goals (`Reachability::begin_goals`), against the full Dijkstra search on random
+//! maps: advanced bucket by bucket it settles every goal of cost below its next bucket, and
+//! every cell it settles has the full search's cost bit for bit and the same path;
+//! advanced to the end it is the full search.
 
 use explore::Reachability;
 use explore::plan::reachability::{MAX_DIAL_GUIDE_BLOCKS, MAX_GUIDE_BLOCKS};
@@ -37,6 +38,7 @@ proptest! {
         goals in prop::collection::vec(0u32..(W * H) as u32, 1..30),
         steps in prop::collection::vec(0usize..12, 1..12),
         canonical: bool,
+        flat: bool,
     ) {
         let pass = passable(&rects, &scatter);
         let mut full = Reachability::new(W, H);
@@ -46,7 +48,11 @@ proptest! {
         // a search left in another state first: the buffers are reused
         part.begin_guided((start + 101) % (W * H), |i| pass[i], &goals[..1]);
         part.advance(5, |i| pass[i]);
-        part.begin_guided(start, |i| pass[i], &goals);
+        if flat {
+            part.begin_goals(start, |i| pass[i], &goals);
+        } else {
+            part.begin_guided(start, |i| pass[i], &goals);
+        }
         let (mut a, mut b) = (Vec::new(), Vec::new());
         let mut through = 0;
         for s in steps {

@@ -1,6 +1,6 @@
 //! `Planner::settle_goals`, the searches MA grows side by side: every goal a robot can
-//! reach is settled at its full-search cost, and the maps are the same grown side by side
-//! and one after the other.
+//! reach is settled at its full-search cost and with its path, and the maps are the same
+//! grown side by side and one after the other.
 
 use explore::Reachability;
 use explore::decision::Planner;
@@ -56,6 +56,10 @@ proptest! {
                 prop_assert_eq!(seq.cost(g as usize).is_some(), want.is_some());
                 if want.is_some() {
                     prop_assert_eq!(seq.cost(g as usize), want);
+                    let (mut a, mut b) = (Vec::new(), Vec::new());
+                    prop_assert!(seq.path_to(g as usize, &mut a));
+                    prop_assert!(full.path_to(g as usize, &mut b));
+                    prop_assert_eq!(a, b);
                 }
             }
         }

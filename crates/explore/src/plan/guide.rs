@@ -66,11 +66,14 @@ pub struct Guide {
     areas_y: usize,
     area_start: Vec<u32>,
     by_area: Vec<(f64, f64)>,
+    /// Set by [`set_flat`](Self::set_flat): the goals are only marked, the bound is 0.
+    flat: bool,
 }
 
 impl Guide {
     /// Toward the cells `goals` of a `width × height` grid (cells outside it are ignored).
     pub fn set(&mut self, width: usize, height: usize, goals: &[u32]) {
+        self.flat = false;
         let (bx, by) = (width.div_ceil(BLOCK), height.div_ceil(BLOCK));
         let tiles_x = width.div_ceil(TILE);
         let tiles = tiles_x * height.div_ceil(TILE);
@@ -117,6 +120,29 @@ impl Guide {
         }
     }
 
+    /// Mark the cells `goals` of a `width × height` grid as the goals, with a bound of 0
+    /// everywhere (no blocks): for a search that must settle every goal wherever it lies
+    /// and only wants the goals listed, not the way toward them.
+    pub fn set_flat(&mut self, width: usize, height: usize, goals: &[u32]) {
+        for &g in &self.goals {
+            if let Some(b) = self.goal_bits.get_mut(g as usize >> 6) {
+                *b = 0;
+            }
+        }
+        self.goal_bits.resize((width * height).div_ceil(64), 0);
+        self.goals.clear();
+        self.points.clear();
+        self.width = width;
+        self.flat = true;
+        for &g in goals {
+            let g = g as usize;
+            if g < width * height {
+                self.goal_bits[g >> 6] |= 1 << (g & 63);
+                self.goals.push(g as u32);
+            }
+        }
+    }
+
     /// File the centres by squares of [`AREA`] cells.
     fn file_by_area(&mut self, width: usize, height: usize) {
         let (ax, ay) = (width.div_ceil(AREA), height.div_ceil(AREA));
@@ -152,9 +178,12 @@ impl Guide {
         self.goal_bits[i >> 6] >> (i & 63) & 1 != 0
     }
 
-    /// The lower bound at column `x`, row `y` (`INFINITY` without goals).
+    /// The lower bound at column `x`, row `y` (`INFINITY` without goals; 0 if flat).
     #[inline]
     pub fn bound(&mut self, x: usize, y: usize) -> f64 {
+        if self.flat {
+            return 0.0;
+        }
         let t = (y >> TILE_SHIFT) * self.tiles_x + (x >> TILE_SHIFT);
         if self.tile_mark[t] != self.epoch {
             self.make_list(t, x >> TILE_SHIFT, y >> TILE_SHIFT);
