@@ -107,8 +107,9 @@ impl Planner {
 
     /// Grow every robot's search (robot `r` from `froms[r]`, not guided, listing only the
     /// goals: [`Reachability::begin_goals`]) until it has settled every cell of `goals` it
-    /// can reach (a little beyond), or every cell it can reach: the searches an assigner that needs each robot's cost to every goal (MA)
-    /// would grow one after the other, run side by side on rayon's threads. The maps are
+    /// can reach (a little beyond), or every cell it can reach: the searches an assigner
+    /// that needs each robot's cost to every goal (MA) would grow one after the other, run
+    /// side by side on rayon's threads. The maps are
     /// independent, so each is the one the sequential growth leaves, whatever the thread
     /// count. Called from a thread of a rayon pool (a bench's trials, a vector
     /// environment's steps), which keeps the cores busy already, they grow one after the

@@ -84,13 +84,7 @@ impl Guide {
             self.tile_range = vec![(0, 0); tiles];
             self.epoch = 0;
         }
-        for &g in &self.goals {
-            if let Some(b) = self.goal_bits.get_mut(g as usize >> 6) {
-                *b = 0;
-            }
-        }
-        self.goal_bits.resize((width * height).div_ceil(64), 0);
-        self.goals.clear();
+        self.mark_goals(width, height, goals);
         self.width = width;
         self.tiles_x = tiles_x;
         self.epoch = crate::upkeep::next_gen(self.epoch, &mut self.block_mark);
@@ -100,13 +94,8 @@ impl Guide {
         self.points.clear();
         self.lists.clear();
         let half = (BLOCK as f64 - 1.0) / 2.0;
-        for &g in goals {
-            let g = g as usize;
-            if g >= width * height {
-                continue;
-            }
-            self.goal_bits[g >> 6] |= 1 << (g & 63);
-            self.goals.push(g as u32);
+        for i in 0..self.goals.len() {
+            let g = self.goals[i] as usize;
             let (x, y) = (g % width / BLOCK, g / width / BLOCK);
             let b = y * bx + x;
             if self.block_mark[b] != self.epoch {
@@ -124,6 +113,15 @@ impl Guide {
     /// everywhere (no blocks): for a search that must settle every goal wherever it lies
     /// and only wants the goals listed, not the way toward them.
     pub fn set_flat(&mut self, width: usize, height: usize, goals: &[u32]) {
+        self.mark_goals(width, height, goals);
+        self.points.clear();
+        self.width = width;
+        self.flat = true;
+    }
+
+    /// Forget the last goals' bits and mark the cells `goals` inside a `width × height`
+    /// grid instead, keeping them in `self.goals`.
+    fn mark_goals(&mut self, width: usize, height: usize, goals: &[u32]) {
         for &g in &self.goals {
             if let Some(b) = self.goal_bits.get_mut(g as usize >> 6) {
                 *b = 0;
@@ -131,9 +129,6 @@ impl Guide {
         }
         self.goal_bits.resize((width * height).div_ceil(64), 0);
         self.goals.clear();
-        self.points.clear();
-        self.width = width;
-        self.flat = true;
         for &g in goals {
             let g = g as usize;
             if g < width * height {

@@ -923,7 +923,7 @@ impl Reachability {
     /// farther from the goals than `j` (its cost plus bound no higher), so it is labelled
     /// when `j` is final, and so is a passable cell beside the step, see `canonical.rs`.
     fn step_back(&self, j: usize) -> Option<usize> {
-        let guided = self.guided && self.canonical;
+        let guided = self.lists_only_goals();
         let given = |u: usize| {
             if guided {
                 let s = self.state_of(u);
@@ -980,7 +980,7 @@ impl Reachability {
     /// How many cells the last search has looked at: those it settled, or, guided in
     /// canonical order (which settles only its goals until complete), those it labelled.
     pub fn searched(&self) -> usize {
-        if self.guided && self.canonical {
+        if self.lists_only_goals() {
             self.queues.labelled_cells
         } else {
             self.settled.len()
