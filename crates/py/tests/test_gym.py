@@ -90,6 +90,23 @@ def test_invalid_actions(office):
         ExploreEnv([office, frontier.Map.generate("cave", size=(8, 8), resolution=0.25)])
 
 
+def test_wrapped_actions_take_the_candidate_modulo_the_offer(office):
+    """The default invalid_action="wrap": an index beyond the candidates offered (or
+    negative) is taken modulo their number, a valid one as it is."""
+    wrapping, plain = ExploreEnv(office, k=8), ExploreEnv(office, k=8)
+    obs, _ = wrapping.reset(seed=3)
+    plain.reset(seed=3)
+    for step in range(12):
+        n = int(obs["action_mask"].sum())
+        given = [n + 2, -1, 0, n - 1][step % 4]
+        obs, _, terminated, truncated, _ = wrapping.step(given)
+        want, _, _, _, _ = plain.step(given % n)
+        assert obs["belief"].tobytes() == want["belief"].tobytes()
+        assert obs["candidates"].tobytes() == want["candidates"].tobytes()
+        if terminated or truncated:
+            break
+
+
 @pytest.mark.skipif(not os.path.exists("/proc/meminfo"), reason="available memory unknown")
 def test_memory_is_estimated_before_it_is_spent():
     """Regression: ExploreEnv(k=10**9) was killed by the kernel for lack of memory (and a
