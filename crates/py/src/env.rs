@@ -4,9 +4,9 @@
 //! listed in the candidate generator's order), sends the robot there along its shortest
 //! path sensing as configured, and ends at the next decision — on arrival, or earlier when
 //! the strategy's re-plan policy calls one (e.g. `cf-rr`'s re-check when the goal stops
-//! being a frontier). The observation is written into flat buffers, so that a vector of
-//! environments steps on Rust threads with the GIL released and hands numpy one array per
-//! key.
+//! being a frontier). The observation is written into numpy arrays kept for reuse (one
+//! array per key, with a leading axis for a vector of environments), so that a vector of
+//! environments steps and writes on Rust threads with the GIL released.
 
 use std::borrow::Cow;
 use std::sync::{Arc, Mutex, MutexGuard};
@@ -16,7 +16,7 @@ use explore::candidates::CandidateKind;
 use explore::decision::Goal;
 use explore::strategy::Strategy;
 use grid::{GridMap, Occ};
-use numpy::{PyArray1, PyArrayMethods};
+use numpy::{Element, IxDyn, PyArray1, PyArrayDyn, PyArrayMethods, PyReadwriteArrayDyn};
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -285,6 +285,12 @@ impl State {
     fn write(&self, r: usize, o: ObsMut<'_>) {
         let spec = &self.spec;
         let Some(s) = self.session.as_ref() else {
+            // Before the first episode: zeros (the buffers may hold an earlier observation).
+            o.belief.fill(0);
+            o.frontier.fill(0);
+            o.pose.fill(0.0);
+            o.candidates.fill(0.0);
+            o.mask.fill(0);
             return;
         };
         let known = s.known();
@@ -371,68 +377,86 @@ struct ObsMut<'a> {
     mask: &'a mut [i8],
 }
 
-/// Observation buffers of `n` environments.
-struct Obs {
-    belief: Vec<u8>,
-    frontier: Vec<u8>,
-    pose: Vec<f32>,
-    candidates: Vec<f32>,
-    mask: Vec<i8>,
+/// The arrays of one observation dict (with a leading axis of `n` environments for a vector
+/// environment), kept by an [`ObsPool`].
+struct ObsArrays {
+    belief: Py<PyArrayDyn<u8>>,
+    frontier: Py<PyArrayDyn<u8>>,
+    pose: Py<PyArrayDyn<f32>>,
+    candidates: Py<PyArrayDyn<f32>>,
+    mask: Py<PyArrayDyn<i8>>,
 }
 
-impl Obs {
-    fn new(spec: &Spec, n: usize) -> Self {
+impl ObsArrays {
+    /// New arrays of zeros for `n` environments (`None`: one, no leading axis).
+    fn zeros(py: Python<'_>, spec: &Spec, n: Option<usize>) -> Self {
+        let (h, w) = spec.shape;
+        let dims = |rest: &[usize]| {
+            IxDyn(
+                &n.into_iter()
+                    .chain(rest.iter().copied())
+                    .collect::<Vec<_>>(),
+            )
+        };
         Self {
-            belief: vec![0; n * spec.cells()],
-            frontier: vec![0; n * spec.cells()],
-            pose: vec![0.0; n * 3],
-            candidates: vec![0.0; n * spec.k * FEATURES],
-            mask: vec![0; n * spec.k],
+            belief: PyArrayDyn::zeros(py, dims(&[h, w]), false).unbind(),
+            frontier: PyArrayDyn::zeros(py, dims(&[h, w]), false).unbind(),
+            pose: PyArrayDyn::zeros(py, dims(&[3]), false).unbind(),
+            candidates: PyArrayDyn::zeros(py, dims(&[spec.k, FEATURES]), false).unbind(),
+            mask: PyArrayDyn::zeros(py, dims(&[spec.k]), false).unbind(),
         }
     }
 
-    /// The buffers as a dict of numpy arrays; `n` = None for one environment (no leading axis).
-    fn into_dict<'py>(
-        self,
-        py: Python<'py>,
-        spec: &Spec,
-        n: Option<usize>,
-    ) -> PyResult<Bound<'py, PyDict>> {
-        let (h, w) = spec.shape;
-        let d = PyDict::new(py);
-        let lead: Vec<usize> = n.into_iter().collect();
-        let shape = |rest: &[usize]| -> Vec<usize> { lead.iter().chain(rest).copied().collect() };
-        d.set_item(
-            "belief",
-            PyArray1::from_vec(py, self.belief).reshape(shape(&[h, w]))?,
-        )?;
-        d.set_item(
-            "frontier",
-            PyArray1::from_vec(py, self.frontier).reshape(shape(&[h, w]))?,
-        )?;
-        d.set_item(
-            "pose",
-            PyArray1::from_vec(py, self.pose).reshape(shape(&[3]))?,
-        )?;
-        d.set_item(
-            "candidates",
-            PyArray1::from_vec(py, self.candidates).reshape(shape(&[spec.k, FEATURES]))?,
-        )?;
-        d.set_item(
-            "action_mask",
-            PyArray1::from_vec(py, self.mask).reshape(shape(&[spec.k]))?,
-        )?;
-        Ok(d)
+    fn clone_ref(&self, py: Python<'_>) -> Self {
+        Self {
+            belief: self.belief.clone_ref(py),
+            frontier: self.frontier.clone_ref(py),
+            pose: self.pose.clone_ref(py),
+            candidates: self.candidates.clone_ref(py),
+            mask: self.mask.clone_ref(py),
+        }
     }
 
-    fn split(&mut self, spec: &Spec) -> Vec<ObsMut<'_>> {
+    /// Whether only the pool holds the arrays: no dict, view or buffer of Python's (each
+    /// holds a reference to its array). Reference counts are exact here: the module is
+    /// built for the stable ABI, which only GIL builds of Python load, and the GIL is held.
+    #[allow(deprecated)]
+    fn unused(&self, py: Python<'_>) -> bool {
+        self.belief.get_refcnt(py) == 1
+            && self.frontier.get_refcnt(py) == 1
+            && self.pose.get_refcnt(py) == 1
+            && self.candidates.get_refcnt(py) == 1
+            && self.mask.get_refcnt(py) == 1
+    }
+
+    /// Lend the arrays to `f` as one part per environment, to be overwritten whole.
+    fn write<R>(
+        &self,
+        py: Python<'_>,
+        spec: &Spec,
+        f: impl FnOnce(Vec<ObsMut<'_>>) -> R,
+    ) -> PyResult<R> {
+        let (mut b, mut fr, mut p, mut c, mut m) = (
+            lend(self.belief.bind(py))?,
+            lend(self.frontier.bind(py))?,
+            lend(self.pose.bind(py))?,
+            lend(self.candidates.bind(py))?,
+            lend(self.mask.bind(py))?,
+        );
+        let (b, fr, p, c, m) = (
+            slice(&mut b)?,
+            slice(&mut fr)?,
+            slice(&mut p)?,
+            slice(&mut c)?,
+            slice(&mut m)?,
+        );
         let cells = spec.cells();
-        self.belief
+        let parts = b
             .chunks_mut(cells)
-            .zip(self.frontier.chunks_mut(cells))
-            .zip(self.pose.chunks_mut(3))
-            .zip(self.candidates.chunks_mut(spec.k * FEATURES))
-            .zip(self.mask.chunks_mut(spec.k))
+            .zip(fr.chunks_mut(cells))
+            .zip(p.chunks_mut(3))
+            .zip(c.chunks_mut(spec.k * FEATURES))
+            .zip(m.chunks_mut(spec.k))
             .map(|((((belief, frontier), pose), candidates), mask)| ObsMut {
                 belief,
                 frontier,
@@ -440,7 +464,67 @@ impl Obs {
                 candidates,
                 mask,
             })
-            .collect()
+            .collect();
+        Ok(f(parts))
+    }
+
+    /// The arrays as a dict of numpy arrays.
+    fn into_dict(self, py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
+        let d = PyDict::new(py);
+        d.set_item("belief", self.belief)?;
+        d.set_item("frontier", self.frontier)?;
+        d.set_item("pose", self.pose)?;
+        d.set_item("candidates", self.candidates)?;
+        d.set_item("action_mask", self.mask)?;
+        Ok(d)
+    }
+}
+
+/// Array `a` borrowed for writing (nothing else borrows a pooled array).
+fn lend<'py, T: Element>(a: &Bound<'py, PyArrayDyn<T>>) -> PyResult<PyReadwriteArrayDyn<'py, T>> {
+    a.try_readwrite()
+        .map_err(|e| internal(format!("observation arrays: {e}")))
+}
+
+/// The elements of a borrowed array (contiguous: made by `zeros`).
+fn slice<'a, T: Element>(a: &'a mut PyReadwriteArrayDyn<'_, T>) -> PyResult<&'a mut [T]> {
+    a.as_slice_mut()
+        .map_err(|e| internal(format!("observation arrays: {e}")))
+}
+
+/// Observation sets an environment keeps per robot: the one a caller holds, the one the
+/// wrapper keeps for the action mask, and two spare.
+const OBS_SETS: usize = 4;
+
+/// Observation arrays for reuse. Fresh arrays at every step cost a vector environment
+/// more than its step (megabytes allocated, zeroed and faulted in, then freed and
+/// returned to the system); a set is written again instead once Python holds none of its
+/// arrays, so an observation a caller keeps never changes.
+struct ObsPool {
+    sets: Vec<ObsArrays>,
+    /// The most sets kept.
+    cap: usize,
+}
+
+impl ObsPool {
+    fn new(cap: usize) -> Self {
+        Self {
+            sets: Vec::new(),
+            cap,
+        }
+    }
+
+    /// Arrays for `n` environments (`None`: one) that nobody else holds: a kept set, or
+    /// new ones (kept if there is room).
+    fn take(&mut self, py: Python<'_>, spec: &Spec, n: Option<usize>) -> ObsArrays {
+        if let Some(set) = self.sets.iter().find(|s| s.unused(py)) {
+            return set.clone_ref(py);
+        }
+        let set = ObsArrays::zeros(py, spec, n);
+        if self.sets.len() < self.cap {
+            self.sets.push(set.clone_ref(py));
+        }
+        set
     }
 }
 
@@ -587,9 +671,9 @@ fn spec(
     Ok(s)
 }
 
-/// Bytes of one agent's observation, counted four times: the buffers Rust fills (which
-/// become the numpy arrays), the arrays the caller may still hold from the last step, and
-/// the observation space's low and high bounds, which have the same shapes.
+/// Bytes of one agent's observation, counted [`OBS_SETS`] + 2 times: the arrays the
+/// environment keeps for reuse (the ones the caller holds among them), and the observation
+/// space's low and high bounds, which have the same shapes.
 fn observation_bytes(spec: &Spec) -> u64 {
     let cells = (spec.shape.0 as u64).saturating_mul(spec.shape.1 as u64);
     let layers = cells.saturating_mul(2); // belief and frontier, one byte a cell
@@ -597,7 +681,7 @@ fn observation_bytes(spec: &Spec) -> u64 {
     layers
         .saturating_add(candidates)
         .saturating_add(12)
-        .saturating_mul(4)
+        .saturating_mul(OBS_SETS as u64 + 2)
 }
 
 /// Refuse `envs` environments of `agents` observations each whose runs and observations
@@ -629,7 +713,7 @@ fn check_memory(spec: &Spec, envs: usize, agents: usize) -> PyResult<()> {
 }
 
 /// The state behind `m` (a panic inside never leaves it poisoned for good).
-fn lock(m: &Mutex<State>) -> MutexGuard<'_, State> {
+fn lock<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
     m.lock().unwrap_or_else(|p| p.into_inner())
 }
 
@@ -643,6 +727,8 @@ fn unlocked(m: &mut Mutex<State>) -> &mut State {
 pub struct EnvCore {
     /// Locked only to satisfy Python's sharing rules; never contended.
     state: Mutex<State>,
+    /// Observation arrays for reuse.
+    obs: Mutex<ObsPool>,
 }
 
 impl EnvCore {
@@ -677,6 +763,7 @@ impl EnvCore {
         check_memory(&s, 1, 1)?;
         Ok(Self {
             state: Mutex::new(State::new(Arc::new(s))),
+            obs: Mutex::new(ObsPool::new(OBS_SETS)),
         })
     }
 
@@ -728,11 +815,13 @@ impl EnvCore {
     /// The current observation.
     fn observation<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let st = self.st();
-        let mut obs = Obs::new(&st.spec, 1);
-        if let Some(o) = obs.split(&st.spec).pop() {
-            st.write(0, o);
-        }
-        obs.into_dict(py, &st.spec, None)
+        let set = lock(&self.obs).take(py, &st.spec, None);
+        set.write(py, &st.spec, |parts| {
+            if let Some(o) = parts.into_iter().next() {
+                st.write(0, o);
+            }
+        })?;
+        set.into_dict(py)
     }
 
     /// Coverage, path length, decisions, moves, steps, candidates offered and the map's name.
@@ -783,22 +872,26 @@ pub struct VecEnvCore {
     /// Locked only to satisfy Python's sharing rules; never contended.
     states: Vec<Mutex<State>>,
     pool: rayon::ThreadPool,
+    /// Observation arrays for reuse.
+    obs: Mutex<ObsPool>,
 }
 
 impl VecEnvCore {
     fn observations<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let spec = self.spec();
-        let mut obs = Obs::new(&spec, self.states.len());
-        let parts = obs.split(&spec);
-        py.detach(|| {
-            self.pool.install(|| {
-                self.states
-                    .par_iter()
-                    .zip(parts)
-                    .for_each(|(st, o)| lock(st).write(0, o))
+        let set = lock(&self.obs).take(py, &spec, Some(self.states.len()));
+        let (states, pool) = (&self.states, &self.pool);
+        set.write(py, &spec, |parts| {
+            py.detach(|| {
+                pool.install(|| {
+                    states
+                        .par_iter()
+                        .zip(parts)
+                        .for_each(|(st, o)| lock(st).write(0, o))
+                })
             })
-        });
-        obs.into_dict(py, &spec, Some(self.states.len()))
+        })?;
+        set.into_dict(py)
     }
 
     fn spec(&self) -> Arc<Spec> {
@@ -845,6 +938,7 @@ impl VecEnvCore {
         Ok(Self {
             states: (0..n).map(|_| Mutex::new(State::new(s.clone()))).collect(),
             pool,
+            obs: Mutex::new(ObsPool::new(OBS_SETS)),
         })
     }
 
@@ -906,32 +1000,33 @@ impl VecEnvCore {
             )));
         }
         let spec = self.spec();
-        let mut obs = Obs::new(&spec, self.states.len());
-        let parts = obs.split(&spec);
+        let set = lock(&self.obs).take(py, &spec, Some(self.states.len()));
         let (states, pool) = (&mut self.states, &self.pool);
         // One parallel pass per call: each environment steps, then writes its observation.
-        let outs = py
-            .detach(|| {
-                pool.install(|| {
-                    states
-                        .par_iter_mut()
-                        .zip(actions)
-                        .zip(parts)
-                        .enumerate()
-                        .map(|(i, ((st, a), o))| {
-                            let a = usize::try_from(a).unwrap_or(usize::MAX);
-                            let st = unlocked(st);
-                            let out = guarded(|| st.auto_step(a))
-                                .and_then(|r| r)
-                                .map_err(|e| format!("environment {i}: {e}"))?;
-                            st.write(0, o);
-                            Ok(out)
-                        })
-                        .collect::<Result<Vec<StepOut>, String>>()
+        let outs = set
+            .write(py, &spec, |parts| {
+                py.detach(|| {
+                    pool.install(|| {
+                        states
+                            .par_iter_mut()
+                            .zip(actions)
+                            .zip(parts)
+                            .enumerate()
+                            .map(|(i, ((st, a), o))| {
+                                let a = usize::try_from(a).unwrap_or(usize::MAX);
+                                let st = unlocked(st);
+                                let out = guarded(|| st.auto_step(a))
+                                    .and_then(|r| r)
+                                    .map_err(|e| format!("environment {i}: {e}"))?;
+                                st.write(0, o);
+                                Ok(out)
+                            })
+                            .collect::<Result<Vec<StepOut>, String>>()
+                    })
                 })
-            })
+            })?
             .map_err(py_error)?;
-        let obs = obs.into_dict(py, &spec, Some(self.states.len()))?;
+        let obs = set.into_dict(py)?;
         Ok((
             obs,
             outs.iter().map(|o| o.reward).collect(),
@@ -985,6 +1080,8 @@ impl VecEnvCore {
 pub struct TeamEnvCore {
     /// Locked only to satisfy Python's sharing rules; never contended.
     state: Mutex<State>,
+    /// Observation arrays for reuse.
+    obs: Mutex<ObsPool>,
 }
 
 impl TeamEnvCore {
@@ -1010,13 +1107,16 @@ impl TeamEnvCore {
         } else {
             team.resize(m * 3, 0.0);
         }
+        let mut sets = lock(&self.obs);
         (0..m)
             .map(|r| {
-                let mut obs = Obs::new(&st.spec, 1);
-                if let Some(o) = obs.split(&st.spec).pop() {
-                    st.write(r, o);
-                }
-                let d = obs.into_dict(py, &st.spec, None)?;
+                let set = sets.take(py, &st.spec, None);
+                set.write(py, &st.spec, |parts| {
+                    if let Some(o) = parts.into_iter().next() {
+                        st.write(r, o);
+                    }
+                })?;
+                let d = set.into_dict(py)?;
                 d.set_item(
                     "team",
                     PyArray1::from_vec(py, team.clone()).reshape([m, 3])?,
@@ -1051,8 +1151,10 @@ impl TeamEnvCore {
             true,
         )?;
         check_memory(&s, 1, s.options.robots)?;
+        let sets = OBS_SETS * s.options.robots;
         Ok(Self {
             state: Mutex::new(State::new(Arc::new(s))),
+            obs: Mutex::new(ObsPool::new(sets)),
         })
     }
 

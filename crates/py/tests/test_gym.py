@@ -205,6 +205,35 @@ def test_vector_env_matches_single_envs(office):
     assert venv.observation_space.contains(obs)
 
 
+def data_address(a):
+    """Where a numpy array's data starts."""
+    return a.__array_interface__["data"][0]
+
+
+@pytest.mark.parametrize("vector", [False, True])
+def test_kept_observations_never_change_and_dropped_ones_are_reused(office, vector):
+    # Observation arrays are written again only once Python holds none of them: a kept
+    # dict, a kept view, copies made by the caller all stay as they were.
+    env = ExploreVectorEnv(2, [office], k=8, threads=2) if vector else ExploreEnv([office], k=8)
+    act = (lambda: env.baseline_actions("cf-rr")) if vector else (lambda: Baseline("cf-rr")(env))
+    obs, _ = env.reset(seed=3)
+    kept = obs
+    frozen = {key: a.copy() for key, a in kept.items()}
+    view = obs["frontier"][..., 1:]
+    frozen_view = view.copy()
+    addresses = set()
+    for _ in range(12):
+        obs, *_ = env.step(act())
+        addresses.add(data_address(obs["belief"]))
+        del obs
+    for key, a in kept.items():
+        assert np.array_equal(a, frozen[key]), key
+    assert np.array_equal(view, frozen_view)
+    # Dropped observations' arrays are written again (the wrapper keeps the last one for
+    # the action mask, so two sets take turns), not allocated afresh at every step.
+    assert len(addresses) <= 3
+
+
 def test_vector_env_autoresets(office):
     venv = ExploreVectorEnv(2, [office], k=8, max_steps=2)
     venv.reset(seed=0)
