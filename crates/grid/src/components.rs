@@ -108,6 +108,10 @@ pub fn label_into(
     if labels.width() != width || labels.height() != height {
         *labels = Grid::new(width, height, 0);
     }
+    if conn != Connectivity::Eight {
+        // Motion components are the 4-connected ones (module docs).
+        return label_runs(width, inside, labels.data_mut(), stack);
+    }
     // mark the set once with UNSEEN so the search below never calls `inside` again
     const UNSEEN: u32 = u32::MAX;
     for (i, l) in labels.data_mut().iter_mut().enumerate() {
@@ -136,6 +140,76 @@ pub fn label_into(
                 }
             }
         }
+    }
+    count
+}
+
+/// [`label_into`] for 4-connected components, by runs: each row's runs of cells in the set
+/// get provisional ids, joined (union–find in `parent`) with the runs they touch in the row
+/// above; then every run takes its component's number, in row-major order of the
+/// components' first cells. `inside` is asked once per cell, in order, and no cell is
+/// pushed on a stack: several times faster than the search on floor plans.
+fn label_runs(
+    width: usize,
+    inside: impl Fn(usize) -> bool,
+    data: &mut [u32],
+    parent: &mut Vec<usize>,
+) -> u32 {
+    fn root(parent: &mut [usize], mut r: usize) -> usize {
+        while parent[r] != r {
+            parent[r] = parent[parent[r]];
+            r = parent[r];
+        }
+        r
+    }
+    parent.clear();
+    // Pass 1: provisional ids (run id + 1) and unions with the row above.
+    for (y, row) in (0..data.len()).step_by(width.max(1)).enumerate() {
+        let mut x = 0;
+        while x < width {
+            if !inside(row + x) {
+                data[row + x] = 0;
+                x += 1;
+                continue;
+            }
+            let id = parent.len();
+            parent.push(id);
+            let start = x;
+            while x < width && inside(row + x) {
+                data[row + x] = id as u32 + 1;
+                x += 1;
+            }
+            if y > 0 {
+                let above = &data[row - width..row];
+                for ax in start..x {
+                    let a = above[ax];
+                    // once per run above: at its first cell over this run
+                    if a != 0 && (ax == start || above[ax - 1] != a) {
+                        let (ra, rb) = (root(parent, a as usize - 1), root(parent, id));
+                        let (lo, hi) = (ra.min(rb), ra.max(rb));
+                        parent[hi] = lo;
+                    }
+                }
+            }
+        }
+    }
+    // Pass 2: component numbers by first appearance (a root is its component's first run).
+    let mut number = vec![0u32; parent.len()];
+    let mut count = 0u32;
+    let mut last = (0u32, 0u32); // (provisional id, number) of the run being read
+    for d in data.iter_mut() {
+        if *d == 0 {
+            continue;
+        }
+        if *d != last.0 {
+            let r = root(parent, *d as usize - 1);
+            if number[r] == 0 {
+                count += 1;
+                number[r] = count;
+            }
+            last = (*d, number[r]);
+        }
+        *d = last.1;
     }
     count
 }
@@ -195,7 +269,26 @@ impl FloodFill {
         conn: Connectivity,
         out: &mut Vec<usize>,
     ) {
+        self.run_first(width, height, start, inside, conn, usize::MAX, out);
+    }
+
+    /// The first `count` cells of [`run`](Self::run)'s order (all if fewer): the fill stops
+    /// there.
+    #[allow(clippy::too_many_arguments)]
+    pub fn run_first(
+        &mut self,
+        width: usize,
+        height: usize,
+        start: usize,
+        inside: impl Fn(usize) -> bool,
+        conn: Connectivity,
+        count: usize,
+        out: &mut Vec<usize>,
+    ) {
         out.clear();
+        if count == 0 {
+            return;
+        }
         let n = width.saturating_mul(height);
         if start >= n || !inside(start) {
             return;
@@ -212,6 +305,9 @@ impl FloodFill {
         let g = self.generation;
         self.stamp[start] = g;
         out.push(start);
+        if count == 1 {
+            return;
+        }
         let mut head = 0;
         while head < out.len() {
             let i = out[head];
@@ -223,6 +319,9 @@ impl FloodFill {
                 {
                     self.stamp[j] = g;
                     out.push(j);
+                    if out.len() == count {
+                        return;
+                    }
                 }
             }
         }
@@ -375,7 +474,12 @@ mod tests {
             }
             let mut out2 = Vec::new();
             flood(w, h, start, |i| set[i], conn, &mut out2);
-            prop_assert_eq!(out, out2);
+            prop_assert_eq!(&out, &out2);
+            // stopped early: the same order's first cells
+            for count in 0..=out.len() + 1 {
+                ff.run_first(w, h, start, |i| set[i], conn, count, &mut out2);
+                prop_assert_eq!(&out2[..], &out[..count.min(out.len())]);
+            }
         }
     }
 
