@@ -9,6 +9,7 @@
 //! environments steps and writes on Rust threads with the GIL released.
 
 use std::borrow::Cow;
+use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex, MutexGuard};
 
 use bench::explore::ExploreOptions;
@@ -20,7 +21,6 @@ use numpy::{Element, IxDyn, PyArray1, PyArrayDyn, PyArrayMethods, PyReadwriteArr
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use rayon::prelude::*;
 use sim::{Session, Status};
 use world::{EnvKind, EnvSpec};
 
@@ -712,14 +712,44 @@ fn check_memory(spec: &Spec, envs: usize, agents: usize) -> PyResult<()> {
     .map_err(|e| value_error(e.to_string()))
 }
 
+/// `f(i)` for every `i` in `0..n`, on the calling thread and `pool`'s other threads: each
+/// takes the next index as it finishes one, so the environments' uneven steps spread over
+/// the threads. The caller works too rather than handing everything to the pool and
+/// sleeping until it is done: on a virtual machine that hand-off (waking a worker, then
+/// being woken) cost about 0.2 ms a call, as much as three environment steps.
+fn each_index<R: Send>(
+    pool: &rayon::ThreadPool,
+    n: usize,
+    f: impl Fn(usize) -> R + Sync,
+) -> Vec<R> {
+    let next = AtomicUsize::new(0);
+    let out: Vec<Mutex<Option<R>>> = (0..n).map(|_| Mutex::new(None)).collect();
+    let work = || {
+        loop {
+            let i = next.fetch_add(1, Ordering::Relaxed);
+            if i >= n {
+                break;
+            }
+            let r = f(i);
+            *lock(&out[i]) = Some(r);
+        }
+    };
+    // Every index runs: the scope returns once the helpers are done.
+    let helpers = pool.current_num_threads().min(n).saturating_sub(1);
+    pool.in_place_scope(|s| {
+        for _ in 0..helpers {
+            s.spawn(|_| work());
+        }
+        work();
+    });
+    out.into_iter()
+        .filter_map(|m| m.into_inner().unwrap_or_else(|p| p.into_inner()))
+        .collect()
+}
+
 /// The state behind `m` (a panic inside never leaves it poisoned for good).
 fn lock<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
     m.lock().unwrap_or_else(|p| p.into_inner())
-}
-
-/// The state behind `m`, borrowed exclusively.
-fn unlocked(m: &mut Mutex<State>) -> &mut State {
-    m.get_mut().unwrap_or_else(|p| p.into_inner())
 }
 
 /// One exploration environment (the core of `frontier.gym.ExploreEnv`).
@@ -882,12 +912,12 @@ impl VecEnvCore {
         let set = lock(&self.obs).take(py, &spec, Some(self.states.len()));
         let (states, pool) = (&self.states, &self.pool);
         set.write(py, &spec, |parts| {
+            let parts: Vec<_> = parts.into_iter().map(|o| Mutex::new(Some(o))).collect();
             py.detach(|| {
-                pool.install(|| {
-                    states
-                        .par_iter()
-                        .zip(parts)
-                        .for_each(|(st, o)| lock(st).write(0, o))
+                each_index(pool, states.len(), |i| {
+                    if let Some(o) = lock(&parts[i]).take() {
+                        lock(&states[i]).write(0, o);
+                    }
                 })
             })
         })?;
@@ -963,15 +993,13 @@ impl VecEnvCore {
                 seeds.len()
             )));
         }
-        let (states, pool) = (&mut self.states, &self.pool);
+        let (states, pool) = (&self.states, &self.pool);
         py.detach(|| {
-            pool.install(|| {
-                states
-                    .par_iter_mut()
-                    .zip(seeds)
-                    .map(|(st, seed)| guarded(|| unlocked(st).reset(seed)).and_then(|r| r))
-                    .collect::<Result<Vec<()>, String>>()
+            each_index(pool, states.len(), |i| {
+                guarded(|| lock(&states[i]).reset(seeds[i])).and_then(|r| r)
             })
+            .into_iter()
+            .collect::<Result<Vec<()>, String>>()
         })
         .map_err(py_error)?;
         self.observations(py)
@@ -1001,28 +1029,25 @@ impl VecEnvCore {
         }
         let spec = self.spec();
         let set = lock(&self.obs).take(py, &spec, Some(self.states.len()));
-        let (states, pool) = (&mut self.states, &self.pool);
+        let (states, pool) = (&self.states, &self.pool);
         // One parallel pass per call: each environment steps, then writes its observation.
         let outs = set
             .write(py, &spec, |parts| {
+                let parts: Vec<_> = parts.into_iter().map(|o| Mutex::new(Some(o))).collect();
                 py.detach(|| {
-                    pool.install(|| {
-                        states
-                            .par_iter_mut()
-                            .zip(actions)
-                            .zip(parts)
-                            .enumerate()
-                            .map(|(i, ((st, a), o))| {
-                                let a = usize::try_from(a).unwrap_or(usize::MAX);
-                                let st = unlocked(st);
-                                let out = guarded(|| st.auto_step(a))
-                                    .and_then(|r| r)
-                                    .map_err(|e| format!("environment {i}: {e}"))?;
-                                st.write(0, o);
-                                Ok(out)
-                            })
-                            .collect::<Result<Vec<StepOut>, String>>()
+                    each_index(pool, states.len(), |i| {
+                        let a = usize::try_from(actions[i]).unwrap_or(usize::MAX);
+                        let mut st = lock(&states[i]);
+                        let out = guarded(|| st.auto_step(a))
+                            .and_then(|r| r)
+                            .map_err(|e| format!("environment {i}: {e}"))?;
+                        if let Some(o) = lock(&parts[i]).take() {
+                            st.write(0, o);
+                        }
+                        Ok(out)
                     })
+                    .into_iter()
+                    .collect::<Result<Vec<StepOut>, String>>()
                 })
             })?
             .map_err(py_error)?;
@@ -1045,29 +1070,27 @@ impl VecEnvCore {
     fn baseline_actions(&mut self, py: Python<'_>, preset: &str) -> PyResult<Vec<usize>> {
         let strategy =
             Strategy::preset(preset).map_err(|e| value_error(format!("--strategy: {e}")))?;
-        let (states, pool) = (&mut self.states, &self.pool);
+        let (states, pool) = (&self.states, &self.pool);
         py.detach(|| {
-            pool.install(|| {
-                states
-                    .par_iter_mut()
-                    .map(|st| {
-                        let st = unlocked(st);
-                        let cells: Vec<u32> = st.offered().iter().map(|g| g.cell).collect();
-                        let Some(s) = st.session.as_mut().filter(|_| !st.done) else {
-                            return Ok(0);
-                        };
-                        let chosen = guarded(|| {
-                            s.propose(strategy.assigner, &cells)
-                                .first()
-                                .copied()
-                                .flatten()
-                        })?;
-                        Ok(chosen
-                            .and_then(|g| cells.iter().position(|&c| c == g.cell))
-                            .unwrap_or(0))
-                    })
-                    .collect::<Result<Vec<usize>, String>>()
+            each_index(pool, states.len(), |i| {
+                let mut guard = lock(&states[i]);
+                let st = &mut *guard;
+                let cells: Vec<u32> = st.offered().iter().map(|g| g.cell).collect();
+                let Some(s) = st.session.as_mut().filter(|_| !st.done) else {
+                    return Ok(0);
+                };
+                let chosen = guarded(|| {
+                    s.propose(strategy.assigner, &cells)
+                        .first()
+                        .copied()
+                        .flatten()
+                })?;
+                Ok(chosen
+                    .and_then(|g| cells.iter().position(|&c| c == g.cell))
+                    .unwrap_or(0))
             })
+            .into_iter()
+            .collect::<Result<Vec<usize>, String>>()
         })
         .map_err(internal)
     }
