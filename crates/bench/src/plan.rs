@@ -1149,6 +1149,7 @@ fn start_variants(
         return Ok(vec![None]);
     }
     let trav = sim::truth::traversable(cells, clearance_m / env.map.resolution);
+    let components = sim::truth::components(cells, &trav);
     let base = match start {
         Some(c) => {
             sim::truth::check_start(cells, &trav, c).map_err(|e| e.to_string())?;
@@ -1156,7 +1157,7 @@ fn start_variants(
         }
         None => {
             let mut rng = sim::seed::rng(master_seed, &format!("{}|base", env.name));
-            sim::truth::random_start(cells, &trav, &mut rng, clearance_m)
+            sim::truth::random_start(&components, &mut rng, clearance_m)
                 .map_err(|e| e.to_string())?
         }
     };
@@ -1167,7 +1168,7 @@ fn start_variants(
         return Ok(vec![Some(team(base)?)]);
     }
     let r_cells = radius_m.unwrap_or(0.0) / env.map.resolution;
-    let reach = sim::truth::reachable_from(cells, &trav, cells.index(base));
+    let reach = sim::truth::reachable_from(&components.0, cells.index(base));
     let near: Vec<usize> = (0..cells.len())
         .filter(|&i| {
             let c = cells.cell(i);

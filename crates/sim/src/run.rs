@@ -244,10 +244,10 @@ impl<'a> Session<'a> {
         let clearance_cells = cfg.clearance_m / res;
         let cells_for_body = body.as_ref().unwrap_or(cells);
         let trav_truth = truth::traversable(cells_for_body, clearance_cells);
+        let components = truth::components(cells_for_body, &trav_truth);
         let starts: Vec<Cell> = if cfg.starts.is_empty() {
             let mut rng = seed::rng(cfg.seed, "start");
-            let first =
-                truth::random_start(cells_for_body, &trav_truth, &mut rng, cfg.clearance_m)?;
+            let first = truth::random_start(&components, &mut rng, cfg.clearance_m)?;
             truth::team_starts(cells_for_body, &trav_truth, first, cfg.robots)?
         } else {
             if cfg.starts.len() != cfg.robots {
@@ -262,13 +262,13 @@ impl<'a> Session<'a> {
             }
             cfg.starts.clone()
         };
-        let reachable = truth::reachable_from(cells_for_body, &trav_truth, cells.index(starts[0]));
+        let reachable = truth::reachable_from(&components.0, cells.index(starts[0]));
         let reachable_cells = reachable.iter().filter(|&&r| r).count();
         let knowable: Vec<bool> = match cfg.coverage {
             CoverageKind::ReachableFree => Vec::new(),
             CoverageKind::Known => cells.data().iter().map(|&s| s != Occ::Unknown).collect(),
         };
-        drop(trav_truth);
+        drop((trav_truth, components));
 
         let sensor = cfg.sensor.build(res)?;
         let sweep = cfg.sensor.sweep().build(res)?;

@@ -34,35 +34,35 @@ pub fn with_clutter(truth: &Grid<Occ>, clutter: &Grid<bool>) -> Grid<Occ> {
     out
 }
 
-/// The cells reachable from `start` over `trav` (8-connected, no corner squeezing): its
-/// component, labelled by runs (faster than a flood that visits eight neighbours a cell).
-pub fn reachable_from(truth: &Grid<Occ>, trav: &[bool], start: usize) -> Vec<bool> {
-    if !trav.get(start).is_some_and(|&t| t) {
-        return vec![false; truth.len()];
-    }
-    let (labels, _) = label(
+/// The components of the traversable cells `trav` (8-connected, no corner squeezing):
+/// labels `1..=count` and `count`, labelled once for [`random_start`] and
+/// [`reachable_from`].
+pub fn components(truth: &Grid<Occ>, trav: &[bool]) -> (Grid<u32>, u32) {
+    label(
         truth.width(),
         truth.height(),
         |i| trav[i],
         Connectivity::Motion,
-    );
-    let own = labels[start];
-    labels.data().iter().map(|&l| l == own).collect()
+    )
 }
 
-/// A start cell drawn uniformly (from `rng`) from the largest connected traversable region.
+/// The cells reachable from `start` (its component in `labels`, see [`components`]; none
+/// from a cell that is not traversable).
+pub fn reachable_from(labels: &Grid<u32>, start: usize) -> Vec<bool> {
+    match labels.data().get(start) {
+        Some(&own) if own != 0 => labels.data().iter().map(|&l| l == own).collect(),
+        _ => vec![false; labels.len()],
+    }
+}
+
+/// A start cell drawn uniformly (from `rng`) from the largest connected traversable region
+/// (`components`: [`components`]' labels and count).
 pub fn random_start(
-    truth: &Grid<Occ>,
-    trav: &[bool],
+    (labels, count): &(Grid<u32>, u32),
     rng: &mut impl rand::Rng,
     clearance_m: f64,
 ) -> Result<Cell, SimError> {
-    let (labels, count) = label(
-        truth.width(),
-        truth.height(),
-        |i| trav[i],
-        Connectivity::Motion,
-    );
+    let count = *count;
     if count == 0 {
         return Err(SimError::NoFreeSpace { clearance_m });
     }
@@ -87,7 +87,7 @@ pub fn random_start(
         .nth(k)
         .map(|(i, _)| i)
         .expect("k < n");
-    Ok(truth.cell(i))
+    Ok(labels.cell(i))
 }
 
 /// `m` distinct traversable start cells: `first`, then the nearest others in
@@ -183,7 +183,7 @@ mod tests {
             for c in cells {
                 want[c] = true;
             }
-            prop_assert_eq!(reachable_from(&truth, &trav, start), want);
+            prop_assert_eq!(reachable_from(&components(&truth, &trav).0, start), want);
         }
     }
 }
