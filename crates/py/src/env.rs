@@ -712,29 +712,34 @@ fn check_memory(spec: &Spec, envs: usize, agents: usize) -> PyResult<()> {
     .map_err(|e| value_error(e.to_string()))
 }
 
-/// `f(i)` for every `i` in `0..n`, on the calling thread and `pool`'s other threads: each
-/// takes the next index as it finishes one, so the environments' uneven steps spread over
-/// the threads. The caller works too rather than handing everything to the pool and
-/// sleeping until it is done: on a virtual machine that hand-off (waking a worker, then
-/// being woken) cost about 0.2 ms a call, as much as three environment steps.
-fn each_index<R: Send>(
+/// `f(i, items[i])` for every item, on the calling thread and `pool`'s other threads: each
+/// takes the next item as it finishes one, so the environments' uneven steps spread over
+/// the threads, and results come back in the items' order. The caller works too rather
+/// than handing everything to the pool and sleeping until it is done: on a virtual machine
+/// that hand-off (waking a worker, then being woken) cost about 0.2 ms a call, as much as
+/// three environment steps.
+fn each_item<T: Send, R: Send>(
     pool: &rayon::ThreadPool,
-    n: usize,
-    f: impl Fn(usize) -> R + Sync,
+    items: Vec<T>,
+    f: impl Fn(usize, T) -> R + Sync,
 ) -> Vec<R> {
-    let next = AtomicUsize::new(0);
+    let n = items.len();
+    let items: Vec<Mutex<Option<T>>> = items.into_iter().map(|t| Mutex::new(Some(t))).collect();
     let out: Vec<Mutex<Option<R>>> = (0..n).map(|_| Mutex::new(None)).collect();
+    let next = AtomicUsize::new(0);
     let work = || {
         loop {
             let i = next.fetch_add(1, Ordering::Relaxed);
             if i >= n {
                 break;
             }
-            let r = f(i);
-            *lock(&out[i]) = Some(r);
+            // Each index is taken once, so its item is there.
+            if let Some(t) = lock(&items[i]).take() {
+                *lock(&out[i]) = Some(f(i, t));
+            }
         }
     };
-    // Every index runs: the scope returns once the helpers are done.
+    // Every item runs: the scope returns once the helpers are done.
     let helpers = pool.current_num_threads().min(n).saturating_sub(1);
     pool.in_place_scope(|s| {
         for _ in 0..helpers {
@@ -912,14 +917,7 @@ impl VecEnvCore {
         let set = lock(&self.obs).take(py, &spec, Some(self.states.len()));
         let (states, pool) = (&self.states, &self.pool);
         set.write(py, &spec, |parts| {
-            let parts: Vec<_> = parts.into_iter().map(|o| Mutex::new(Some(o))).collect();
-            py.detach(|| {
-                each_index(pool, states.len(), |i| {
-                    if let Some(o) = lock(&parts[i]).take() {
-                        lock(&states[i]).write(0, o);
-                    }
-                })
-            })
+            py.detach(|| each_item(pool, parts, |i, o| lock(&states[i]).write(0, o)))
         })?;
         set.into_dict(py)
     }
@@ -995,8 +993,8 @@ impl VecEnvCore {
         }
         let (states, pool) = (&self.states, &self.pool);
         py.detach(|| {
-            each_index(pool, states.len(), |i| {
-                guarded(|| lock(&states[i]).reset(seeds[i])).and_then(|r| r)
+            each_item(pool, seeds, |i, seed| {
+                guarded(|| lock(&states[i]).reset(seed)).and_then(|r| r)
             })
             .into_iter()
             .collect::<Result<Vec<()>, String>>()
@@ -1033,17 +1031,15 @@ impl VecEnvCore {
         // One parallel pass per call: each environment steps, then writes its observation.
         let outs = set
             .write(py, &spec, |parts| {
-                let parts: Vec<_> = parts.into_iter().map(|o| Mutex::new(Some(o))).collect();
+                let items: Vec<_> = actions.into_iter().zip(parts).collect();
                 py.detach(|| {
-                    each_index(pool, states.len(), |i| {
-                        let a = usize::try_from(actions[i]).unwrap_or(usize::MAX);
+                    each_item(pool, items, |i, (a, o)| {
+                        let a = usize::try_from(a).unwrap_or(usize::MAX);
                         let mut st = lock(&states[i]);
                         let out = guarded(|| st.auto_step(a))
                             .and_then(|r| r)
                             .map_err(|e| format!("environment {i}: {e}"))?;
-                        if let Some(o) = lock(&parts[i]).take() {
-                            st.write(0, o);
-                        }
+                        st.write(0, o);
                         Ok(out)
                     })
                     .into_iter()
@@ -1072,8 +1068,8 @@ impl VecEnvCore {
             Strategy::preset(preset).map_err(|e| value_error(format!("--strategy: {e}")))?;
         let (states, pool) = (&self.states, &self.pool);
         py.detach(|| {
-            each_index(pool, states.len(), |i| {
-                let mut guard = lock(&states[i]);
+            each_item(pool, states.iter().collect(), |_, st| {
+                let mut guard = lock(st);
                 let st = &mut *guard;
                 let cells: Vec<u32> = st.offered().iter().map(|g| g.cell).collect();
                 let Some(s) = st.session.as_mut().filter(|_| !st.done) else {

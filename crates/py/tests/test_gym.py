@@ -229,9 +229,12 @@ def test_kept_observations_never_change_and_dropped_ones_are_reused(office, vect
     for key, a in kept.items():
         assert np.array_equal(a, frozen[key]), key
     assert np.array_equal(view, frozen_view)
-    # Dropped observations' arrays are written again (the wrapper keeps the last one for
-    # the action mask, so two sets take turns), not allocated afresh at every step.
-    assert len(addresses) <= 3
+    if vector:
+        # Dropped observations' arrays are written again (the wrapper keeps the last one for
+        # the action mask, so two sets take turns), not allocated afresh at every step. (One
+        # environment's arrays are small enough for the allocator to hand the same memory
+        # back anyway, so only the vector environment's show it.)
+        assert len(addresses) <= 3
 
 
 def test_vector_env_autoresets(office):
