@@ -9,7 +9,6 @@
 //! environments steps and writes on Rust threads with the GIL released.
 
 use std::borrow::Cow;
-use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex, MutexGuard};
 
 use bench::explore::ExploreOptions;
@@ -18,9 +17,10 @@ use explore::decision::Goal;
 use explore::strategy::Strategy;
 use grid::{GridMap, Occ};
 use numpy::{Element, IxDyn, PyArray1, PyArrayDyn, PyArrayMethods, PyReadwriteArrayDyn};
-use pyo3::exceptions::PyTypeError;
+use pyo3::exceptions::PyRuntimeError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
+use sim::spin_pool::SpinPool;
 use sim::{Session, Status};
 use world::{EnvKind, EnvSpec};
 
@@ -712,46 +712,6 @@ fn check_memory(spec: &Spec, envs: usize, agents: usize) -> PyResult<()> {
     .map_err(|e| value_error(e.to_string()))
 }
 
-/// `f(i, items[i])` for every item, on the calling thread and `pool`'s other threads: each
-/// takes the next item as it finishes one, so the environments' uneven steps spread over
-/// the threads, and results come back in the items' order. The caller works too rather
-/// than handing everything to the pool and sleeping until it is done: on a virtual machine
-/// that hand-off (waking a worker, then being woken) cost about 0.2 ms a call, as much as
-/// three environment steps.
-fn each_item<T: Send, R: Send>(
-    pool: &rayon::ThreadPool,
-    items: Vec<T>,
-    f: impl Fn(usize, T) -> R + Sync,
-) -> Vec<R> {
-    let n = items.len();
-    let items: Vec<Mutex<Option<T>>> = items.into_iter().map(|t| Mutex::new(Some(t))).collect();
-    let out: Vec<Mutex<Option<R>>> = (0..n).map(|_| Mutex::new(None)).collect();
-    let next = AtomicUsize::new(0);
-    let work = || {
-        loop {
-            let i = next.fetch_add(1, Ordering::Relaxed);
-            if i >= n {
-                break;
-            }
-            // Each index is taken once, so its item is there.
-            if let Some(t) = lock(&items[i]).take() {
-                *lock(&out[i]) = Some(f(i, t));
-            }
-        }
-    };
-    // Every item runs: the scope returns once the helpers are done.
-    let helpers = pool.current_num_threads().min(n).saturating_sub(1);
-    pool.in_place_scope(|s| {
-        for _ in 0..helpers {
-            s.spawn(|_| work());
-        }
-        work();
-    });
-    out.into_iter()
-        .filter_map(|m| m.into_inner().unwrap_or_else(|p| p.into_inner()))
-        .collect()
-}
-
 /// The state behind `m` (a panic inside never leaves it poisoned for good).
 fn lock<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
     m.lock().unwrap_or_else(|p| p.into_inner())
@@ -906,7 +866,8 @@ impl EnvCore {
 pub struct VecEnvCore {
     /// Locked only to satisfy Python's sharing rules; never contended.
     states: Vec<Mutex<State>>,
-    pool: rayon::ThreadPool,
+    /// The caller and its helper threads, which step the environments side by side.
+    pool: SpinPool,
     /// Observation arrays for reuse.
     obs: Mutex<ObsPool>,
 }
@@ -917,7 +878,7 @@ impl VecEnvCore {
         let set = lock(&self.obs).take(py, &spec, Some(self.states.len()));
         let (states, pool) = (&self.states, &self.pool);
         set.write(py, &spec, |parts| {
-            py.detach(|| each_item(pool, parts, |i, o| lock(&states[i]).write(0, o)))
+            py.detach(|| pool.each(parts, |i, o| lock(&states[i]).write(0, o)))
         })?;
         set.into_dict(py)
     }
@@ -959,10 +920,8 @@ impl VecEnvCore {
             false,
         )?);
         check_memory(&s, n, 1)?;
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads.unwrap_or(0))
-            .build()
-            .map_err(|e| PyTypeError::new_err(e.to_string()))?;
+        let pool = SpinPool::new(threads.unwrap_or_else(rayon::current_num_threads))
+            .map_err(|e| PyRuntimeError::new_err(format!("starting helper threads: {e}")))?;
         Ok(Self {
             states: (0..n).map(|_| Mutex::new(State::new(s.clone()))).collect(),
             pool,
@@ -993,7 +952,7 @@ impl VecEnvCore {
         }
         let (states, pool) = (&self.states, &self.pool);
         py.detach(|| {
-            each_item(pool, seeds, |i, seed| {
+            pool.each(seeds, |i, seed| {
                 guarded(|| lock(&states[i]).reset(seed)).and_then(|r| r)
             })
             .into_iter()
@@ -1028,12 +987,16 @@ impl VecEnvCore {
         let spec = self.spec();
         let set = lock(&self.obs).take(py, &spec, Some(self.states.len()));
         let (states, pool) = (&self.states, &self.pool);
+        // Resets first: a reset takes as long as tens of steps, and taken last it would
+        // leave the other threads idle. Each environment's step is the same in any order.
+        let mut order: Vec<usize> = (0..states.len()).collect();
+        order.sort_by_key(|&i| !lock(&states[i]).needs_reset);
         // One parallel pass per call: each environment steps, then writes its observation.
         let outs = set
             .write(py, &spec, |parts| {
                 let items: Vec<_> = actions.into_iter().zip(parts).collect();
                 py.detach(|| {
-                    each_item(pool, items, |i, (a, o)| {
+                    pool.each_in_order(items, &order, |i, (a, o)| {
                         let a = usize::try_from(a).unwrap_or(usize::MAX);
                         let mut st = lock(&states[i]);
                         let out = guarded(|| st.auto_step(a))
@@ -1068,7 +1031,7 @@ impl VecEnvCore {
             Strategy::preset(preset).map_err(|e| value_error(format!("--strategy: {e}")))?;
         let (states, pool) = (&self.states, &self.pool);
         py.detach(|| {
-            each_item(pool, states.iter().collect(), |_, st| {
+            pool.each(states.iter().collect(), |_, st| {
                 let mut guard = lock(st);
                 let st = &mut *guard;
                 let cells: Vec<u32> = st.offered().iter().map(|g| g.cell).collect();

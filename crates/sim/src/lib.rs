@@ -34,6 +34,7 @@ pub mod metrics;
 pub mod motion;
 pub mod run;
 pub mod seed;
+pub mod spin_pool;
 pub mod truth;
 
 pub use config::{CoverageKind, RunConfig, SimError};
