@@ -16,7 +16,9 @@ use explore::candidates::CandidateKind;
 use explore::decision::Goal;
 use explore::strategy::Strategy;
 use grid::{GridMap, Occ};
-use numpy::{Element, IxDyn, PyArray1, PyArrayDyn, PyArrayMethods, PyReadwriteArrayDyn};
+use numpy::{
+    Element, IxDyn, PyArray1, PyArrayDyn, PyArrayMethods, PyReadonlyArray1, PyReadwriteArrayDyn,
+};
 use pyo3::exceptions::PyRuntimeError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -962,21 +964,25 @@ impl VecEnvCore {
         self.observations(py)
     }
 
-    /// Step environment i with `actions[i]` (an ended episode resets instead); returns
-    /// (observations, rewards, terminated, truncated, coverage, path lengths).
+    /// Step environment i with `actions[i]` (an ended episode resets instead); with `wrap`,
+    /// an action outside the offered candidates 0..n−1 is taken modulo n. Returns
+    /// (observations, rewards, terminated, truncated, coverage, path lengths), the last five
+    /// as arrays.
     #[allow(clippy::type_complexity)]
     fn step<'py>(
         &mut self,
         py: Python<'py>,
-        actions: Vec<i64>,
+        actions: PyReadonlyArray1<'py, i64>,
+        wrap: bool,
     ) -> PyResult<(
         Bound<'py, PyDict>,
-        Vec<f64>,
-        Vec<bool>,
-        Vec<bool>,
-        Vec<f64>,
-        Vec<f64>,
+        Bound<'py, PyArray1<f64>>,
+        Bound<'py, PyArray1<bool>>,
+        Bound<'py, PyArray1<bool>>,
+        Bound<'py, PyArray1<f64>>,
+        Bound<'py, PyArray1<f64>>,
     )> {
+        let actions: Vec<i64> = actions.as_array().iter().copied().collect();
         if actions.len() != self.states.len() {
             return Err(value_error(format!(
                 "actions: expected {} actions, found {}",
@@ -997,8 +1003,10 @@ impl VecEnvCore {
                 let items: Vec<_> = actions.into_iter().zip(parts).collect();
                 py.detach(|| {
                     pool.each_in_order(items, &order, |i, (a, o)| {
-                        let a = usize::try_from(a).unwrap_or(usize::MAX);
                         let mut st = lock(&states[i]);
+                        let n = st.offered().len() as i64;
+                        let a = if wrap && n > 0 { a.rem_euclid(n) } else { a };
+                        let a = usize::try_from(a).unwrap_or(usize::MAX);
                         let out = guarded(|| st.auto_step(a))
                             .and_then(|r| r)
                             .map_err(|e| format!("environment {i}: {e}"))?;
@@ -1011,16 +1019,16 @@ impl VecEnvCore {
             })?
             .map_err(py_error)?;
         let obs = set.into_dict(py)?;
+        let each = |f: fn(&StepOut) -> f64| PyArray1::from_iter(py, outs.iter().map(f));
+        let flag = |f: fn(&StepOut) -> bool| PyArray1::from_iter(py, outs.iter().map(f));
+        let states = || self.states.iter().map(|s| lock(s));
         Ok((
             obs,
-            outs.iter().map(|o| o.reward).collect(),
-            outs.iter().map(|o| o.terminated).collect(),
-            outs.iter().map(|o| o.truncated).collect(),
-            self.states.iter().map(|s| lock(s).coverage()).collect(),
-            self.states
-                .iter()
-                .map(|s| lock(s).path_length_m())
-                .collect(),
+            each(|o| o.reward),
+            flag(|o| o.terminated),
+            flag(|o| o.truncated),
+            PyArray1::from_iter(py, states().map(|s| s.coverage())),
+            PyArray1::from_iter(py, states().map(|s| s.path_length_m())),
         ))
     }
 

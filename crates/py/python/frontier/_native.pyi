@@ -149,9 +149,10 @@ class VecEnvCore:
     def reset(self, seeds: List[int]) -> Dict[str, np.ndarray]:
         """Start every environment's episode."""
     def step(
-        self, actions: List[int]
-    ) -> Tuple[Dict[str, np.ndarray], List[float], List[bool], List[bool], List[float], List[float]]:
-        """(observations, rewards, terminated, truncated, coverage, path lengths)."""
+        self, actions: np.ndarray, wrap: bool
+    ) -> Tuple[Dict[str, np.ndarray], np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """(observations, rewards, terminated, truncated, coverage, path lengths); with `wrap`
+        an action outside the n offered candidates is taken modulo n."""
     def baseline_actions(self, preset: str) -> List[int]:
         """Each environment's action under `preset`."""
 

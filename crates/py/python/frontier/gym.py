@@ -353,7 +353,6 @@ class ExploreVectorEnv(VectorEnv):
         )
         self.observation_space = batch_space(self.single_observation_space, num_envs)
         self.action_space = batch_space(self.single_action_space, num_envs)
-        self._obs: Optional[Dict[str, np.ndarray]] = None
 
     def reset(
         self,
@@ -375,8 +374,7 @@ class ExploreVectorEnv(VectorEnv):
             _episode_seed(seeding.np_random(int(s))[0] if s is not None else self.np_random)
             for s in given
         ]
-        self._obs = self._core.reset(seeds)
-        return self._obs, {}
+        return self._core.reset(seeds), {}
 
     def step(
         self, actions: Any
@@ -390,24 +388,10 @@ class ExploreVectorEnv(VectorEnv):
             )
         if given.dtype.kind not in "iu":
             raise TypeError(f"actions: expected integers, found dtype {given.dtype}")
-        acts = given.astype(np.int64)
-        if self._wrap and self._obs is not None:
-            n = self._obs["action_mask"].sum(axis=1).astype(np.int64)
-            bad = (n > 0) & ((acts < 0) | (acts >= n))
-            acts = np.where(bad, np.mod(acts, np.maximum(n, 1)), acts)
-        obs, rewards, terminated, truncated, coverage, path = self._core.step(acts.tolist())
-        self._obs = obs
-        infos = {
-            "coverage": np.asarray(coverage),
-            "path_length_m": np.asarray(path),
-        }
-        return (
-            obs,
-            np.asarray(rewards, dtype=np.float64),
-            np.asarray(terminated, dtype=np.bool_),
-            np.asarray(truncated, dtype=np.bool_),
-            infos,
+        obs, rewards, terminated, truncated, coverage, path = self._core.step(
+            given.astype(np.int64, copy=False), self._wrap
         )
+        return obs, rewards, terminated, truncated, {"coverage": coverage, "path_length_m": path}
 
     def baseline_actions(self, preset: str) -> np.ndarray:
         """Each environment's action under ``preset``."""
