@@ -1,7 +1,7 @@
 """Roll out a random policy and the cf-rr baseline in one environment and in the vector
 environment (no training) and print environment steps per second.
 
-    python crates/py/examples/rollout.py [--envs 2,8] [--threads 2] [--steps 1000]
+    python crates/py/examples/rollout.py [--envs 8,16] [--threads 2] [--steps 1000]
 
 The default setting is Explore-Bench's grid simulator's: a 250 x 250 map at 0.1 m and a
 3.5 m sensing range (Explore-Bench reports about 5 steps/s there).
@@ -44,7 +44,7 @@ def vector_rate(venv, policy, steps):
 
 def main():
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    p.add_argument("--envs", default="2,8", help="environments in the vector env (list)")
+    p.add_argument("--envs", default="8,16", help="environments in the vector env (list)")
     p.add_argument("--threads", type=int, default=None, help="Rust threads (default: cores)")
     p.add_argument("--steps", type=int, default=1000, help="environment steps per measurement")
     p.add_argument("--size", type=float, default=25.0, help="map side in metres")
