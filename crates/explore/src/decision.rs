@@ -268,17 +268,19 @@ impl Planner {
     }
 
     /// The goal nearest to robot `r` (at `from`) by path, stopping the search as soon as one
-    /// is settled; `None` if no goal is reachable.
+    /// is settled; `None` if no goal is reachable. The goals are the cells with
+    /// `is_goal`, all of them among `cells`, toward which the search is guided.
     pub fn nearest(
         &mut self,
         r: usize,
         from: u32,
         known: &Grid<Occ>,
         upkeep: &FrontierUpkeep,
+        cells: &[u32],
         is_goal: impl Fn(usize) -> bool,
     ) -> Option<u32> {
         let pass = |i| upkeep.is_traversable(known, i);
-        let found = self.maps[r].nearest(from as usize, pass, is_goal);
+        let found = self.maps[r].nearest_guided(from as usize, pass, cells, is_goal);
         self.extent[r] = Extent::Partial;
         found.map(|g| g as u32)
     }

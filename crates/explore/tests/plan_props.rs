@@ -299,6 +299,37 @@ proptest! {
     }
 
     #[test]
+    fn nearest_guided_is_nearest_bit_for_bit(
+        (w, h, pass) in map(),
+        s in any::<prop::sample::Index>(),
+        goals in proptest::collection::vec(any::<prop::sample::Index>(), 0..12),
+        keep in 1u32..4,
+    ) {
+        let start = s.index(w * h);
+        // guided toward `goals`, a goal being only every `keep`-th of them (a superset
+        // guides, as candidates guide an assigner's search for its free goals)
+        let goals: Vec<u32> = goals.iter().map(|g| g.index(w * h) as u32).collect();
+        let is_goal = |i: usize| goals.iter().position(|&g| g as usize == i).is_some_and(|p| (p as u32).is_multiple_of(keep));
+        for canonical in [true, false] {
+            let mut plain = Reachability::new(w, h);
+            plain.set_canonical(canonical);
+            let want = plain.nearest(start, |i| pass[i], is_goal);
+            let mut guided = Reachability::new(w, h);
+            guided.set_canonical(canonical);
+            // a search first, so stale data from it must not leak
+            guided.compute((start + 1) % (w * h), |i| pass[i]);
+            let got = guided.nearest_guided(start, |i| pass[i], &goals, is_goal);
+            prop_assert_eq!(got, want);
+            if let Some(g) = want {
+                prop_assert_eq!(guided.cost(g).map(f64::to_bits), plain.cost(g).map(f64::to_bits));
+                let (mut a, mut b) = (Vec::new(), Vec::new());
+                prop_assert!(guided.path_to(g, &mut a) && plain.path_to(g, &mut b));
+                prop_assert_eq!(a, b);
+            }
+        }
+    }
+
+    #[test]
     fn bucket_queue_is_the_heap_bit_for_bit(
         (w, h, pass) in map(),
         s in any::<prop::sample::Index>(),

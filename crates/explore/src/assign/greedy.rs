@@ -229,9 +229,12 @@ pub fn assign_single(
     let kept =
         |i: usize| (0..m).any(|k| !decides[k] && goals.get(k).copied().flatten() == Some(i as u32));
     let from = ctx.robots[r];
-    let mut found = ctx.planner.nearest(r, from, ctx.known, ctx.upkeep, |i| {
-        candidates.contains(i) && !kept(i)
-    });
+    let cells = candidates.cells();
+    let mut found = ctx
+        .planner
+        .nearest(r, from, ctx.known, ctx.upkeep, cells, |i| {
+            candidates.contains(i) && !kept(i)
+        });
     let any_taken = (0..m).any(|k| {
         !decides[k]
             && goals
@@ -243,7 +246,9 @@ pub fn assign_single(
     if found.is_none() && any_taken {
         found = ctx
             .planner
-            .nearest(r, from, ctx.known, ctx.upkeep, |i| candidates.contains(i));
+            .nearest(r, from, ctx.known, ctx.upkeep, cells, |i| {
+                candidates.contains(i)
+            });
     }
     if let Some(slot) = out.get_mut(r) {
         *slot = found.and_then(|cell| {

@@ -59,23 +59,30 @@ pub fn assign(
         let own = seg
             .label(from as usize)
             .filter(|&s| max_neighbours.is_none_or(|m| state.neighbours(s) <= m));
-        // Without a candidate in the own segment that search would settle every cell the
-        // robot reaches and find nothing.
-        let own = own.filter(|&own| {
-            candidates
+        // The search is guided toward the own segment's candidates; without one it would
+        // settle every cell the robot reaches and find nothing.
+        if let Some(own) = own {
+            let mine: Vec<u32> = candidates
                 .cells()
                 .iter()
-                .any(|&c| seg.labels[c as usize] == own)
-        });
-        if let Some(own) = own {
-            found = ctx.planner.nearest(r, from, ctx.known, ctx.upkeep, |i| {
-                candidates.contains(i) && seg.labels[i] == own
-            });
+                .copied()
+                .filter(|&c| seg.labels[c as usize] == own)
+                .collect();
+            if !mine.is_empty() {
+                found = ctx
+                    .planner
+                    .nearest(r, from, ctx.known, ctx.upkeep, &mine, |i| {
+                        candidates.contains(i) && seg.labels[i] == own
+                    });
+            }
         }
         if found.is_none() {
+            let cells = candidates.cells();
             found = ctx
                 .planner
-                .nearest(r, from, ctx.known, ctx.upkeep, |i| candidates.contains(i));
+                .nearest(r, from, ctx.known, ctx.upkeep, cells, |i| {
+                    candidates.contains(i)
+                });
         }
         if let Some(cell) = found {
             let cost = ctx

@@ -414,6 +414,40 @@ impl Reachability {
         self.run(&[start], &passable, Some(is_goal))
     }
 
+    /// [`nearest`](Self::nearest) by a search guided toward `goals`, a superset of the cells
+    /// with `is_goal` ([`begin_guided`](Self::begin_guided)): the same goal, minimal by
+    /// (cost, index), and its cost and path, but when the goals are few and far the search
+    /// covers the way to the nearest rather than the disk around the start. Other cells are
+    /// not settled.
+    pub fn nearest_guided(
+        &mut self,
+        start: usize,
+        passable: impl Fn(usize) -> bool,
+        goals: &[u32],
+        is_goal: impl Fn(usize) -> bool,
+    ) -> Option<usize> {
+        self.begin_guided(start, &passable, goals);
+        let mut scanned = 0;
+        loop {
+            // Through bucket k every goal of cost below k + 1 is settled, and no goal was
+            // found below k: a goal settled now is final, and any other costs more.
+            let done = self.advance(self.next, &passable);
+            let found = self.settled[scanned..]
+                .iter()
+                .map(|&i| i as usize)
+                .filter(|&i| is_goal(i))
+                .map(|i| (self.cost[self.slot(i)].to_bits(), i))
+                .min();
+            if let Some((_, goal)) = found {
+                return Some(goal);
+            }
+            if done {
+                return None;
+            }
+            scanned = self.settled.len();
+        }
+    }
+
     /// Start a resumable search from `start` (see [`advance`](Self::advance)): nothing is
     /// settled until it is advanced. Costs, paths and the settled order are those of
     /// [`compute`](Self::compute) for every cell settled so far.
