@@ -151,7 +151,9 @@ fn best_lazy(
             let mut rank = 0;
             if threshold > 0.0 {
                 for k in 0..m {
-                    if k == r {
+                    // A robot no nearer than the threshold as the crow flies (the octile
+                    // distance bounds every path from below) is not strictly closer.
+                    if k == r || octile(ctx, k, cell) >= threshold {
                         continue;
                     }
                     // every goal closer to robot k than the threshold is then settled
@@ -187,6 +189,13 @@ fn best_lazy(
     }
 }
 
+/// Octile distance from robot `k` to cell `c`, a lower bound of its path cost.
+fn octile(ctx: &DecisionCtx<'_>, k: usize, c: usize) -> f64 {
+    let w = ctx.known.width();
+    let at = |i: usize| grid::Cell::new((i % w) as i32, (i / w) as i32);
+    at(ctx.robots[k] as usize).octile(at(c))
+}
+
 /// Whether every allowed goal robot `r` has not settled ranks at least `p` for it, when its
 /// search has settled every goal of cost below `bound`: such a goal costs robot `r` at
 /// least `bound`, so every other robot closer to it than `bound` − [`TIE_CELLS`] is strictly
@@ -202,10 +211,34 @@ fn ranks_at_least(
 ) -> bool {
     let m = ctx.robots.len();
     let threshold = bound as f64 - TIE_CELLS;
-    for k in 0..m {
-        if k != r {
-            lazy.grow(ctx, candidates, k, threshold as usize);
+    // Only robots nearer than the threshold as the crow flies to a goal in question can be
+    // strictly closer to it: if some goal has fewer than p of them, the answer is no, and
+    // the other robots' searches need not grow.
+    let unsettled = |j: usize| {
+        allowed(j)
+            && !ctx
+                .planner
+                .map(r)
+                .is_settled(candidates.cells()[j] as usize)
+    };
+    let mut near = vec![false; m];
+    for (j, &cell) in candidates.cells().iter().enumerate() {
+        if !unsettled(j) {
+            continue;
         }
+        let mut count = 0;
+        for (k, near_k) in near.iter_mut().enumerate() {
+            if k != r && octile(ctx, k, cell as usize) < threshold {
+                count += 1;
+                *near_k = true;
+            }
+        }
+        if count < p {
+            return false;
+        }
+    }
+    for k in (0..m).filter(|&k| near[k]) {
+        lazy.grow(ctx, candidates, k, threshold as usize);
     }
     let planner = &*ctx.planner;
     candidates.cells().iter().enumerate().all(|(j, &cell)| {
