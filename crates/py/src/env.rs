@@ -922,7 +922,8 @@ impl VecEnvCore {
             false,
         )?);
         check_memory(&s, n, 1)?;
-        let pool = SpinPool::new(threads.unwrap_or_else(rayon::current_num_threads))
+        // No more threads than environments: a helper with nothing to take would only spin.
+        let pool = SpinPool::new(threads.unwrap_or_else(rayon::current_num_threads).min(n))
             .map_err(|e| PyRuntimeError::new_err(format!("starting helper threads: {e}")))?;
         Ok(Self {
             states: (0..n).map(|_| Mutex::new(State::new(s.clone()))).collect(),

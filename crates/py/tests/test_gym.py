@@ -1,6 +1,8 @@
 """frontier.gym: Gymnasium's checker, determinism, baselines equal to explore, vector env."""
 
+import gc
 import os
+import time
 
 import gymnasium
 import numpy as np
@@ -259,6 +261,45 @@ def test_vector_env_wraps_actions_as_the_single_env_does(office):
     n = int(obs["action_mask"][1].sum())
     with pytest.raises(ValueError, match=f"environment 1: action 99: expected the index of one of the {n}"):
         strict.step(np.array([0, 99]))
+
+
+@pytest.mark.skipif(not os.path.isdir("/proc/self/task"), reason="no per-thread list")
+def test_vector_env_starts_no_more_helpers_than_environments(office):
+    """A helper thread with no environment to take would only spin between calls: two
+    environments get one helper whatever `threads` asks, and it ends with the env."""
+
+    def helpers():
+        # Environments of earlier tests caught in reference cycles end (with their
+        # helpers) when collected; a joined thread leaves the list a moment later.
+        gc.collect()
+        names = []
+        for tid in os.listdir("/proc/self/task"):
+            try:
+                with open(f"/proc/self/task/{tid}/comm") as f:
+                    names.append(f.read())
+            except OSError:
+                pass  # ended meanwhile
+        return sum(n.startswith("frontier-helpe") for n in names)
+
+    def settled(want=None):
+        # the count once it stops changing (or reaches `want`), within a second
+        n = helpers()
+        for _ in range(100):
+            if n == want:
+                break
+            time.sleep(0.01)
+            n, last = helpers(), n
+            if want is None and n == last:
+                break
+        return n
+
+    before = settled()
+    venv = ExploreVectorEnv(2, [office], k=8, threads=8)
+    venv.reset(seed=0)
+    venv.step(np.zeros(2, dtype=np.int64))
+    assert helpers() - before == 1
+    del venv
+    assert settled(before) == before
 
 
 def test_vector_env_autoresets(office):

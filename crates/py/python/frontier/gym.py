@@ -307,10 +307,11 @@ class ExploreEnv(gymnasium.Env):
 
 class ExploreVectorEnv(VectorEnv):
     """``num_envs`` :class:`ExploreEnv` stepped together on Rust threads in one call (the GIL
-    released). Takes ExploreEnv's arguments plus ``threads`` (default: one per core). An
-    ended episode resets at the next step (Gymnasium's next-step autoreset); environment i
-    of ``reset(seed=s)`` starts from seed ``s + i``. ``infos`` holds arrays ``coverage`` and
-    ``path_length_m``."""
+    released). Takes ExploreEnv's arguments plus ``threads`` (default: one per core, at most
+    ``num_envs``; the calling thread and ``threads - 1`` helpers, which keep looking for the
+    next call for 0.5 ms before they sleep). An ended episode resets at the next step
+    (Gymnasium's next-step autoreset); environment i of ``reset(seed=s)`` starts from seed
+    ``s + i``. ``infos`` holds arrays ``coverage`` and ``path_length_m``."""
 
     metadata = {"autoreset_mode": AutoresetMode.NEXT_STEP, "render_modes": []}
 
