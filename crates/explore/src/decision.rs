@@ -111,9 +111,11 @@ impl Planner {
     /// that needs each robot's cost to every goal (MA) would grow one after the other, run
     /// side by side on rayon's threads. The maps are
     /// independent, so each is the one the sequential growth leaves, whatever the thread
-    /// count. Called from a thread of a rayon pool (a bench's trials, a vector
-    /// environment's steps), which keeps the cores busy already, they grow one after the
-    /// other, so that no trial's wall time includes another's stolen work. A search already
+    /// count. Called from a thread of a rayon pool (a bench's trials) or inside
+    /// [`batched`] (a vector environment's steps), which keep the cores busy already, they
+    /// grow one after the other, so that no run's wall time includes another's stolen
+    /// work; so they do when rayon has one thread, which would only be woken and waited
+    /// for. A search already
     /// begun in this decision is grown on; robots that reach no goal are left as they are.
     pub fn settle_goals(
         &mut self,
@@ -176,7 +178,10 @@ impl Planner {
             }
         };
         let (maps, extents) = (&mut self.maps[..m], &mut self.extent[..m]);
-        if rayon::current_thread_index().is_some() {
+        if rayon::current_thread_index().is_some()
+            || rayon::current_num_threads() == 1
+            || BATCHED.get()
+        {
             let each = maps.iter_mut().zip(extents.iter_mut()).enumerate();
             each.filter(wanted).for_each(grow);
         } else {
@@ -301,6 +306,25 @@ impl Planner {
     pub fn path(&self, r: usize, goal: u32, out: &mut Vec<u32>) -> bool {
         self.extent[r] != Extent::Stale && self.maps[r].path_to(goal as usize, out)
     }
+}
+
+thread_local! {
+    /// Whether this thread runs one of several runs side by side ([`batched`]).
+    static BATCHED: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+}
+
+/// Run `f` as one of several runs going on side by side on the machine's threads (a
+/// vector environment's steps): its decisions then grow their searches one after the
+/// other instead of spreading them over rayon's threads, which the other runs keep busy.
+pub fn batched<R>(f: impl FnOnce() -> R) -> R {
+    struct Restore(bool);
+    impl Drop for Restore {
+        fn drop(&mut self) {
+            BATCHED.set(self.0);
+        }
+    }
+    let _restore = Restore(BATCHED.replace(true));
+    f()
 }
 
 /// Goals that must not be chosen again: Yamauchi's lists of visited and inaccessible
@@ -511,6 +535,21 @@ pub fn decide(
 mod tests {
     use super::*;
     use proptest::prelude::*;
+
+    #[test]
+    fn batched_marks_its_thread_until_it_returns_or_unwinds() {
+        assert!(!BATCHED.get());
+        assert!(batched(|| BATCHED.get() && batched(|| BATCHED.get())));
+        assert!(!BATCHED.get(), "nested calls restore the mark");
+        let r = std::panic::catch_unwind(|| batched(|| panic!("in a run")));
+        assert!(r.is_err());
+        assert!(!BATCHED.get(), "a panic restores the mark");
+        let other = std::thread::spawn(|| BATCHED.get());
+        assert!(
+            !batched(|| other.join().unwrap_or(true)),
+            "only this thread is marked"
+        );
+    }
 
     proptest! {
         /// Goals listed in any order: the lists hold each goal once, on the list it was first

@@ -13,7 +13,8 @@
 //!
 //! Items are taken in index order (or an order the caller gives), each exactly once, and
 //! each result goes to its item's index, so what a call returns does not depend on which
-//! thread ran what.
+//! thread ran what. Each item runs inside [`explore::decision::batched`]: the pool keeps
+//! the cores busy, so a run's own searches are not spread over rayon's threads too.
 
 use std::any::Any;
 use std::panic::{AssertUnwindSafe, catch_unwind, resume_unwind};
@@ -149,7 +150,8 @@ impl SpinPool {
                 let i = order[k];
                 // Each index is taken once, so its item is there.
                 if let Some(t) = lock(&items[i]).take() {
-                    let r = f(i, t);
+                    // the pool's threads are busy: a run's own searches stay on its thread
+                    let r = explore::decision::batched(|| f(i, t));
                     *lock(&out[i]) = Some(r);
                 }
             }
