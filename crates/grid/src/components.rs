@@ -163,33 +163,36 @@ fn label_runs(
         r
     }
     parent.clear();
-    // Pass 1: provisional ids (run id + 1) and unions with the row above.
+    // Pass 1: provisional ids (run id + 1), then unions of each run with those it touches
+    // in the row above.
     for (y, row) in (0..data.len()).step_by(width.max(1)).enumerate() {
-        let mut x = 0;
-        while x < width {
-            if !inside(row + x) {
-                data[row + x] = 0;
-                x += 1;
-                continue;
-            }
-            let id = parent.len();
-            parent.push(id);
-            let start = x;
-            while x < width && inside(row + x) {
-                data[row + x] = id as u32 + 1;
-                x += 1;
-            }
-            if y > 0 {
-                let above = &data[row - width..row];
-                for ax in start..x {
-                    let a = above[ax];
-                    // once per run above: at its first cell over this run
-                    if a != 0 && (ax == start || above[ax - 1] != a) {
-                        let (ra, rb) = (root(parent, a as usize - 1), root(parent, id));
-                        let (lo, hi) = (ra.min(rb), ra.max(rb));
-                        parent[hi] = lo;
+        let mut start = None;
+        for x in 0..=width {
+            let open = x < width && inside(row + x);
+            match (open, start) {
+                (true, None) => {
+                    parent.push(parent.len());
+                    start = Some(x);
+                }
+                (false, Some(s)) if y > 0 => {
+                    let id = parent.len() - 1;
+                    let above = &data[row - width..row];
+                    for ax in s..x {
+                        let a = above[ax];
+                        // once per run above: at its first cell over this run
+                        if a != 0 && (ax == s || above[ax - 1] != a) {
+                            let (ra, rb) = (root(parent, a as usize - 1), root(parent, id));
+                            parent[ra.max(rb)] = ra.min(rb);
+                        }
                     }
                 }
+                _ => {}
+            }
+            if !open {
+                start = None;
+            }
+            if x < width {
+                data[row + x] = if open { parent.len() as u32 } else { 0 };
             }
         }
     }
@@ -305,11 +308,8 @@ impl FloodFill {
         let g = self.generation;
         self.stamp[start] = g;
         out.push(start);
-        if count == 1 {
-            return;
-        }
         let mut head = 0;
-        while head < out.len() {
+        while head < out.len() && out.len() < count {
             let i = out[head];
             head += 1;
             let (x, y) = (i % width, i / width);
