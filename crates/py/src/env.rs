@@ -228,8 +228,9 @@ impl State {
         }
     }
 
-    /// One decision: robot r (if deciding) goes to its candidate `actions[r]`.
-    fn step(&mut self, actions: &[usize]) -> Result<StepOut, String> {
+    /// One decision: robot r (if deciding) goes to its candidate `actions[r]`; with `wrap`,
+    /// an action outside the n candidates offered is taken modulo n (any other is refused).
+    fn step(&mut self, actions: &[i64], wrap: bool) -> Result<StepOut, String> {
         if self.done || self.session.is_none() {
             return Err("step() after the episode ended: call reset() first".into());
         }
@@ -238,13 +239,15 @@ impl State {
             if shown.is_empty() {
                 continue;
             }
-            let a = actions.get(r).copied().unwrap_or(usize::MAX);
+            let a = actions.get(r).copied().unwrap_or(i64::MAX);
+            let n = shown.len() as i64;
+            let a = if wrap { a.rem_euclid(n) } else { a };
             let who = if self.shown.len() > 1 {
                 format!(" of robot {r}")
             } else {
                 String::new()
             };
-            let Some(g) = shown.get(a) else {
+            let Some(g) = usize::try_from(a).ok().and_then(|a| shown.get(a)) else {
                 return Err(format!(
                     "action{who} {a}: expected the index of one of the {} candidates offered \
                      (see the action_mask)",
@@ -273,12 +276,12 @@ impl State {
     }
 
     /// Reset if the last step ended the episode (vector environments), else step.
-    fn auto_step(&mut self, action: usize) -> Result<StepOut, String> {
+    fn auto_step(&mut self, action: i64, wrap: bool) -> Result<StepOut, String> {
         if self.needs_reset {
             self.reset(splitmix(self.seed))?;
             return Ok(StepOut::default());
         }
-        let out = self.step(&[action])?;
+        let out = self.step(&[action], wrap)?;
         self.needs_reset = self.done;
         Ok(out)
     }
@@ -784,22 +787,17 @@ impl EnvCore {
         self.observation(py)
     }
 
-    /// Go to candidate `action`; returns (observation, reward, terminated, truncated).
+    /// Go to candidate `action` (with `wrap`, modulo the candidates offered); returns
+    /// (observation, reward, terminated, truncated).
     fn step<'py>(
         &mut self,
         py: Python<'py>,
         action: i64,
+        wrap: bool,
     ) -> PyResult<(Bound<'py, PyDict>, f64, bool, bool)> {
-        let a = usize::try_from(action).map_err(|_| {
-            value_error(format!(
-                "action {action}: expected the index of one of the {} candidates offered \
-                 (see the action_mask)",
-                self.st().offered().len()
-            ))
-        })?;
         let state = self.state.get_mut().unwrap_or_else(|p| p.into_inner());
         let out = py
-            .detach(|| guarded(|| state.step(&[a])).and_then(|r| r))
+            .detach(|| guarded(|| state.step(&[action], wrap)).and_then(|r| r))
             .map_err(py_error)?;
         Ok((
             self.observation(py)?,
@@ -1005,10 +1003,7 @@ impl VecEnvCore {
                 py.detach(|| {
                     pool.each_in_order(items, &order, |i, (a, o)| {
                         let mut st = lock(&states[i]);
-                        let n = st.offered().len() as i64;
-                        let a = if wrap && n > 0 { a.rem_euclid(n) } else { a };
-                        let a = usize::try_from(a).unwrap_or(usize::MAX);
-                        let out = guarded(|| st.auto_step(a))
+                        let out = guarded(|| st.auto_step(a, wrap))
                             .and_then(|r| r)
                             .map_err(|e| format!("environment {i}: {e}"))?;
                         st.write(0, o);
@@ -1020,14 +1015,12 @@ impl VecEnvCore {
             })?
             .map_err(py_error)?;
         let obs = set.into_dict(py)?;
-        let each = |f: fn(&StepOut) -> f64| PyArray1::from_iter(py, outs.iter().map(f));
-        let flag = |f: fn(&StepOut) -> bool| PyArray1::from_iter(py, outs.iter().map(f));
         let states = || self.states.iter().map(|s| lock(s));
         Ok((
             obs,
-            each(|o| o.reward),
-            flag(|o| o.terminated),
-            flag(|o| o.truncated),
+            PyArray1::from_iter(py, outs.iter().map(|o| o.reward)),
+            PyArray1::from_iter(py, outs.iter().map(|o| o.terminated)),
+            PyArray1::from_iter(py, outs.iter().map(|o| o.truncated)),
             PyArray1::from_iter(py, states().map(|s| s.coverage())),
             PyArray1::from_iter(py, states().map(|s| s.path_length_m())),
         ))
@@ -1175,21 +1168,19 @@ impl TeamEnvCore {
         self.observations(py)
     }
 
-    /// Robot r goes to its candidate `actions[r]` if it is deciding; returns (observations,
-    /// team reward, terminated, truncated).
+    /// Robot r goes to its candidate `actions[r]` if it is deciding (with `wrap`, modulo
+    /// the candidates offered to it); returns (observations, team reward, terminated,
+    /// truncated).
     #[allow(clippy::type_complexity)]
     fn step<'py>(
         &mut self,
         py: Python<'py>,
         actions: Vec<i64>,
+        wrap: bool,
     ) -> PyResult<(Vec<Bound<'py, PyDict>>, f64, bool, bool)> {
-        let acts: Vec<usize> = actions
-            .iter()
-            .map(|&a| usize::try_from(a).unwrap_or(usize::MAX))
-            .collect();
         let state = self.state.get_mut().unwrap_or_else(|p| p.into_inner());
         let out = py
-            .detach(|| guarded(|| state.step(&acts)).and_then(|r| r))
+            .detach(|| guarded(|| state.step(&actions, wrap)).and_then(|r| r))
             .map_err(py_error)?;
         Ok((
             self.observations(py)?,

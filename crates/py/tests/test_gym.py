@@ -261,6 +261,9 @@ def test_vector_env_wraps_actions_as_the_single_env_does(office):
     n = int(obs["action_mask"][1].sum())
     with pytest.raises(ValueError, match=f"environment 1: action 99: expected the index of one of the {n}"):
         strict.step(np.array([0, 99]))
+    # Regression: a negative action was named as 18446744073709551615.
+    with pytest.raises(ValueError, match=f"environment 1: action -1: expected the index of one of the {n}"):
+        strict.step(np.array([0, -1]))
 
 
 @pytest.mark.skipif(not os.path.isdir("/proc/self/task"), reason="no per-thread list")

@@ -43,6 +43,26 @@ def test_team_baseline_equals_explore(office, preset):
     assert info["coverage"] == pytest.approx(ref.coverage, abs=1e-6)
 
 
+def test_actions_beyond_the_offer_wrap(office):
+    """An agent's index beyond (or below) its n offered candidates is taken modulo n."""
+    wrapping, plain = (ExploreParallelEnv(office, robots=2, k=8) for _ in range(2))
+    obs, _ = wrapping.reset(seed=5)
+    plain.reset(seed=5)
+    for step in range(12):
+        given, wanted = {}, {}
+        for agent in wrapping.agents:
+            n = int(obs[agent]["action_mask"].sum())
+            a = [n + 3, -1, 2 * n, 0][step % 4]
+            given[agent], wanted[agent] = a, (a % n if n else 0)
+        obs, rewards, terms, truncs, _ = wrapping.step(given)
+        want, want_rewards, *_ = plain.step(wanted)
+        for agent in obs:
+            assert obs[agent]["candidates"].tobytes() == want[agent]["candidates"].tobytes()
+        assert rewards == want_rewards
+        if not wrapping.agents:
+            break
+
+
 def test_only_deciding_agents_have_candidates(office):
     env = ExploreParallelEnv(office, robots=3, k=8, strategy="nearest")
     obs, _ = env.reset(seed=0)

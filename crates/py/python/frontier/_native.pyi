@@ -113,8 +113,9 @@ class EnvCore:
         """The most candidates offered."""
     def reset(self, seed: int) -> Dict[str, np.ndarray]:
         """Start an episode; returns the observation."""
-    def step(self, action: int) -> Tuple[Dict[str, np.ndarray], float, bool, bool]:
-        """(observation, reward, terminated, truncated)."""
+    def step(self, action: int, wrap: bool) -> Tuple[Dict[str, np.ndarray], float, bool, bool]:
+        """(observation, reward, terminated, truncated); with `wrap` an action outside the n
+        offered candidates is taken modulo n."""
     def observation(self) -> Dict[str, np.ndarray]:
         """The current observation."""
     def info(self) -> Dict[str, Any]:
@@ -184,8 +185,11 @@ class TeamEnvCore:
         """The most candidates offered to one robot."""
     def reset(self, seed: int) -> List[Dict[str, np.ndarray]]:
         """Start an episode; one observation per robot."""
-    def step(self, actions: List[int]) -> Tuple[List[Dict[str, np.ndarray]], float, bool, bool]:
-        """(observations, team reward, terminated, truncated)."""
+    def step(
+        self, actions: List[int], wrap: bool
+    ) -> Tuple[List[Dict[str, np.ndarray]], float, bool, bool]:
+        """(observations, team reward, terminated, truncated); with `wrap` an action outside
+        the n candidates offered to its robot is taken modulo n."""
     def deciding(self) -> List[bool]:
         """Which robots decide now."""
     def info(self) -> Dict[str, Any]:

@@ -282,15 +282,7 @@ class ExploreEnv(gymnasium.Env):
         self, action: Any
     ) -> Tuple[Dict[str, np.ndarray], float, bool, bool, Dict[str, Any]]:
         """Send the robot to candidate ``action`` and run to the next decision."""
-        a = _action(action)
-        if self._wrap and self._obs is not None:
-            # The mask offers candidates 0..n-1, so a valid action needs no count.
-            mask = self._obs["action_mask"]
-            if not (0 <= a < len(mask) and mask[a]):
-                n = int(mask.sum())
-                if n > 0:
-                    a %= n
-        obs, reward, terminated, truncated = self._core.step(a)
+        obs, reward, terminated, truncated = self._core.step(_action(action), self._wrap)
         self._obs = obs
         return obs, reward, terminated, truncated, self._info()
 

@@ -116,12 +116,8 @@ class ExploreParallelEnv(ParallelEnv):
             raise ValueError(
                 f"actions: unknown agent {unknown[0]!r} (agents: {', '.join(self.possible_agents)})"
             )
-        acts = []
-        for agent, obs in zip(self.possible_agents, self._obs):
-            a = _action(actions.get(agent, 0))
-            n = int(obs["action_mask"].sum())
-            acts.append(a % n if n > 0 and not 0 <= a < n else a)
-        self._obs, reward, terminated, truncated = self._core.step(acts)
+        acts = [_action(actions.get(agent, 0)) for agent in self.possible_agents]
+        self._obs, reward, terminated, truncated = self._core.step(acts, True)
         agents = self.possible_agents
         obs = dict(zip(agents, self._obs))
         infos = self._infos()
