@@ -18,10 +18,12 @@ use explore::strategy::Strategy;
 use grid::{GridMap, Occ};
 use numpy::{
     Element, IxDyn, PyArray1, PyArrayDyn, PyArrayMethods, PyReadonlyArray1, PyReadwriteArrayDyn,
+    PyUntypedArrayMethods, npyffi,
 };
 use pyo3::exceptions::PyRuntimeError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
+use sim::changes::CellBox;
 use sim::spin_pool::SpinPool;
 use sim::{Session, Status};
 use world::{EnvKind, EnvSpec};
@@ -127,6 +129,21 @@ struct State {
     seed: u64,
     /// Reset at the next step (vector environments reset automatically).
     needs_reset: bool,
+    /// What each kept observation set's part for this environment holds (by the set's
+    /// place in its [`ObsPool`]).
+    marks: Vec<Mark>,
+}
+
+/// What one kept observation set holds of an environment's belief and frontier layers
+/// (full view), so that writing it again copies only what changed since.
+#[derive(Default)]
+struct Mark {
+    /// The part holds this episode's layers as they were, but for the cells in `stale`.
+    valid: bool,
+    /// The belief's cells changed since the part was written.
+    stale: Option<CellBox>,
+    /// The frontier cells the part marks.
+    frontier: Vec<u32>,
 }
 
 impl State {
@@ -142,6 +159,7 @@ impl State {
             done: true,
             seed: 0,
             needs_reset: false,
+            marks: Vec::new(),
         }
     }
 
@@ -166,9 +184,13 @@ impl State {
         if let Some(c) = spec.candidates {
             cfg.strategy.candidates = c;
         }
-        let session = guarded(|| Session::start(Cow::Owned(map), Cow::Owned(cfg), true))?
+        let mut session = guarded(|| Session::start(Cow::Owned(map), Cow::Owned(cfg), true))?
             .map_err(|e| format!("map {name}: {e}"))?;
+        if spec.view.is_none() {
+            session.track_changes();
+        }
         self.session = Some(session);
+        self.marks.iter_mut().for_each(|m| m.valid = false);
         self.map_name = name;
         self.steps = 0;
         self.done = false;
@@ -286,34 +308,81 @@ impl State {
         Ok(out)
     }
 
-    /// Write robot `r`'s observation into one environment's slices of the buffers.
-    fn write(&self, r: usize, o: ObsMut<'_>) {
+    /// Write robot `r`'s observation into one environment's slices of the buffers, those of
+    /// the kept set at place `slot` in its pool (`None`: a set kept by no pool).
+    fn write(&mut self, r: usize, slot: Option<usize>, o: ObsMut<'_>) {
         let spec = &self.spec;
-        let Some(s) = self.session.as_ref() else {
+        if let Some(k) = slot
+            && self.marks.len() <= k
+        {
+            self.marks.resize_with(k + 1, Mark::default);
+        }
+        let Some(s) = self.session.as_mut() else {
             // Before the first episode: zeros (the buffers may hold an earlier observation).
             o.belief.fill(0);
             o.frontier.fill(0);
             o.pose.fill(0.0);
             o.candidates.fill(0.0);
             o.mask.fill(0);
+            if let Some(k) = slot {
+                self.marks[k].valid = false;
+            }
             return;
         };
+        let changed = s.take_changes();
+        for m in &mut self.marks {
+            m.stale = CellBox::join(m.stale, changed);
+        }
+        let s = &*s;
         let known = s.known();
         let (w, h) = (known.width(), known.height());
         let (me, heading) = s.pose(r);
         let (rx, ry) = ((me as usize % w) as i64, (me as usize / w) as i64);
         let (oh, ow) = spec.shape;
-        o.frontier.fill(0);
         match spec.view {
             None => {
-                for (b, &c) in o.belief.iter_mut().zip(known.data()) {
-                    *b = c as u8;
+                let mark = slot.map(|k| &mut self.marks[k]);
+                match mark {
+                    // Copy what changed since the set was written; unmark its frontier.
+                    Some(Mark {
+                        valid: true,
+                        stale,
+                        frontier,
+                    }) => {
+                        if let Some(b) = stale.take() {
+                            let (x0, x1) = (b.x0 as usize, b.x1 as usize + 1);
+                            for y in b.y0 as usize..=b.y1 as usize {
+                                let row = y * w;
+                                let from = &known.data()[row + x0..row + x1];
+                                for (b, &c) in o.belief[row + x0..row + x1].iter_mut().zip(from) {
+                                    *b = c as u8;
+                                }
+                            }
+                        }
+                        for &f in frontier.iter() {
+                            o.frontier[f as usize] = 0;
+                        }
+                    }
+                    _ => {
+                        for (b, &c) in o.belief.iter_mut().zip(known.data()) {
+                            *b = c as u8;
+                        }
+                        o.frontier.fill(0);
+                    }
                 }
                 for &f in s.frontiers() {
                     o.frontier[f as usize] = 1;
                 }
+                if let Some(k) = slot {
+                    let m = &mut self.marks[k];
+                    m.valid = true;
+                    m.stale = None;
+                    m.frontier.clear();
+                    m.frontier.extend_from_slice(s.frontiers());
+                }
             }
             Some(v) => {
+                o.frontier.fill(0);
                 let (x0, y0) = (rx - (v / 2) as i64, ry - (v / 2) as i64);
                 for dy in 0..oh {
                     let y = y0 + dy as i64;
@@ -434,13 +503,26 @@ impl ObsArrays {
             && self.mask.get_refcnt(py) == 1
     }
 
-    /// Lend the arrays to `f` as one part per environment, to be overwritten whole.
+    /// Lend the arrays to `f` as one part per environment, to be brought up to date. The
+    /// belief and frontier layers go back read-only: a write copies only what changed since
+    /// the set was last written, so an array changed in place would stay wrong.
     fn write<R>(
         &self,
         py: Python<'_>,
         spec: &Spec,
         f: impl FnOnce(Vec<ObsMut<'_>>) -> R,
     ) -> PyResult<R> {
+        for a in [&self.belief, &self.frontier] {
+            let a = a.bind(py);
+            // SAFETY: the array owns its data (made by `zeros`), the GIL is held, and only
+            // the pool references it (a kept set is lent only when no view, buffer or dict
+            // of Python's holds an array of it; a new set is not Python's yet), so making
+            // it writeable again lets no one else write.
+            unsafe {
+                (*npyffi::_PyArray_GET_ITEM_DATA(a.as_array_ptr())).flags |=
+                    npyffi::NPY_ARRAY_WRITEABLE;
+            }
+        }
         let (mut b, mut fr, mut p, mut c, mut m) = (
             lend(self.belief.bind(py))?,
             lend(self.frontier.bind(py))?,
@@ -448,7 +530,7 @@ impl ObsArrays {
             lend(self.candidates.bind(py))?,
             lend(self.mask.bind(py))?,
         );
-        let (b, fr, p, c, m) = (
+        let (bs, frs, p, c, m) = (
             slice(&mut b)?,
             slice(&mut fr)?,
             slice(&mut p)?,
@@ -456,9 +538,9 @@ impl ObsArrays {
             slice(&mut m)?,
         );
         let cells = spec.cells();
-        let parts = b
+        let parts = bs
             .chunks_mut(cells)
-            .zip(fr.chunks_mut(cells))
+            .zip(frs.chunks_mut(cells))
             .zip(p.chunks_mut(3))
             .zip(c.chunks_mut(spec.k * FEATURES))
             .zip(m.chunks_mut(spec.k))
@@ -470,7 +552,10 @@ impl ObsArrays {
                 mask,
             })
             .collect();
-        Ok(f(parts))
+        let out = f(parts);
+        b.make_nonwriteable();
+        fr.make_nonwriteable();
+        Ok(out)
     }
 
     /// The arrays as a dict of numpy arrays.
@@ -520,16 +605,22 @@ impl ObsPool {
     }
 
     /// Arrays for `n` environments (`None`: one) that nobody else holds: a kept set, or
-    /// new ones (kept if there is room).
-    fn take(&mut self, py: Python<'_>, spec: &Spec, n: Option<usize>) -> ObsArrays {
-        if let Some(set) = self.sets.iter().find(|s| s.unused(py)) {
-            return set.clone_ref(py);
+    /// new ones (kept if there is room), with their place among the kept sets.
+    fn take(
+        &mut self,
+        py: Python<'_>,
+        spec: &Spec,
+        n: Option<usize>,
+    ) -> (ObsArrays, Option<usize>) {
+        if let Some(k) = self.sets.iter().position(|s| s.unused(py)) {
+            return (self.sets[k].clone_ref(py), Some(k));
         }
         let set = ObsArrays::zeros(py, spec, n);
         if self.sets.len() < self.cap {
             self.sets.push(set.clone_ref(py));
+            return (set, Some(self.sets.len() - 1));
         }
-        set
+        (set, None)
     }
 }
 
@@ -809,11 +900,12 @@ impl EnvCore {
 
     /// The current observation.
     fn observation<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let st = self.st();
-        let set = lock(&self.obs).take(py, &st.spec, None);
-        set.write(py, &st.spec, |parts| {
+        let mut st = self.st();
+        let spec = st.spec.clone();
+        let (set, slot) = lock(&self.obs).take(py, &spec, None);
+        set.write(py, &spec, |parts| {
             if let Some(o) = parts.into_iter().next() {
-                st.write(0, o);
+                st.write(0, slot, o);
             }
         })?;
         set.into_dict(py)
@@ -875,10 +967,10 @@ pub struct VecEnvCore {
 impl VecEnvCore {
     fn observations<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let spec = self.spec();
-        let set = lock(&self.obs).take(py, &spec, Some(self.states.len()));
+        let (set, slot) = lock(&self.obs).take(py, &spec, Some(self.states.len()));
         let (states, pool) = (&self.states, &self.pool);
         set.write(py, &spec, |parts| {
-            py.detach(|| pool.each(parts, |i, o| lock(&states[i]).write(0, o)))
+            py.detach(|| pool.each(parts, |i, o| lock(&states[i]).write(0, slot, o)))
         })?;
         set.into_dict(py)
     }
@@ -990,7 +1082,7 @@ impl VecEnvCore {
             )));
         }
         let spec = self.spec();
-        let set = lock(&self.obs).take(py, &spec, Some(self.states.len()));
+        let (set, slot) = lock(&self.obs).take(py, &spec, Some(self.states.len()));
         let (states, pool) = (&self.states, &self.pool);
         // Resets first: a reset takes as long as tens of steps, and taken last it would
         // leave the other threads idle. Each environment's step is the same in any order.
@@ -1006,7 +1098,7 @@ impl VecEnvCore {
                         let out = guarded(|| st.auto_step(a, wrap))
                             .and_then(|r| r)
                             .map_err(|e| format!("environment {i}: {e}"))?;
-                        st.write(0, o);
+                        st.write(0, slot, o);
                         Ok(out)
                     })
                     .into_iter()
@@ -1075,8 +1167,9 @@ impl TeamEnvCore {
 
     /// One observation dict per robot (the shared layers are copied into each).
     fn observations<'py>(&self, py: Python<'py>) -> PyResult<Vec<Bound<'py, PyDict>>> {
-        let st = self.st();
-        let m = st.spec.options.robots;
+        let mut st = self.st();
+        let spec = st.spec.clone();
+        let m = spec.options.robots;
         let mut team = Vec::with_capacity(m * 3);
         if let Some(s) = &st.session {
             let w = s.known().width();
@@ -1094,10 +1187,10 @@ impl TeamEnvCore {
         let mut sets = lock(&self.obs);
         (0..m)
             .map(|r| {
-                let set = sets.take(py, &st.spec, None);
-                set.write(py, &st.spec, |parts| {
+                let (set, slot) = sets.take(py, &spec, None);
+                set.write(py, &spec, |parts| {
                     if let Some(o) = parts.into_iter().next() {
-                        st.write(r, o);
+                        st.write(r, slot, o);
                     }
                 })?;
                 let d = set.into_dict(py)?;

@@ -238,6 +238,62 @@ def test_kept_observations_never_change_and_dropped_ones_are_reused(office, vect
         assert len(addresses) <= 2
 
 
+@pytest.mark.parametrize("vector", [False, True])
+def test_observations_brought_up_to_date_equal_ones_written_whole(office, vector):
+    """A kept set of observation arrays is brought up to date with the cells changed since
+    it was last written. The same episodes with every observation held (so that each is a
+    new set, written whole) give the same layers at every step, whichever observations the
+    caller holds on to and for how long, across resets."""
+
+    def make():
+        if vector:
+            return ExploreVectorEnv(3, [office], k=8, threads=2, max_steps=30)
+        return ExploreEnv([office], k=8, max_steps=30)
+
+    part, whole = make(), make()
+    rng = np.random.default_rng(11)
+    seed = 3
+    got, _ = part.reset(seed=seed)
+    want, _ = whole.reset(seed=seed)
+    every = [want]
+    held = []
+    for _ in range(120):
+        for key in ("belief", "frontier"):
+            assert np.array_equal(got[key], want[key]), key
+        if vector:
+            act = whole.baseline_actions("cf-rr")
+        else:
+            act = Baseline("cf-rr")(whole)
+        got, _, term, trunc, _ = part.step(act)
+        want, _, term_w, trunc_w, _ = whole.step(act)
+        every.append(want)
+        if not vector and (term or trunc):
+            seed += 1
+            got, _ = part.reset(seed=seed)
+            want, _ = whole.reset(seed=seed)
+            every.append(want)
+        # hold some observations for a while, so that sets fall behind by different steps
+        if rng.random() < 0.4:
+            held.append(got)
+        if held and rng.random() < 0.4:
+            held.pop(int(rng.integers(len(held))))
+
+
+@pytest.mark.parametrize("vector", [False, True])
+def test_belief_and_frontier_layers_are_read_only(office, vector):
+    """They are brought up to date in place of being written whole, so a change made in
+    place would stay in them: numpy refuses it; a copy is the caller's to change."""
+    env = ExploreVectorEnv(2, [office], k=8) if vector else ExploreEnv([office], k=8)
+    obs, _ = env.reset(seed=0)
+    for key in ("belief", "frontier"):
+        assert not obs[key].flags.writeable
+        with pytest.raises(ValueError, match="read-only"):
+            obs[key][..., 0, 0] = 1
+        mine = obs[key].copy()
+        mine[..., 0, 0] = 1
+    obs["candidates"][..., 0, 0] = 1.0
+
+
 def test_vector_env_wraps_actions_as_the_single_env_does(office):
     """Each environment of the vector env takes an action outside its n offered candidates
     modulo n, as ExploreEnv does; with invalid_action="raise" it names the environment."""

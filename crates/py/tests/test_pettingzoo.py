@@ -95,3 +95,27 @@ def test_bad_actions_name_the_agent(office):
         env.step([0, 0])
     with pytest.raises(TypeError, match="action: expected an int, found str"):
         env.step({"robot_0": "left"})
+
+
+def test_team_observations_brought_up_to_date_equal_ones_written_whole(office):
+    """Each robot's kept arrays are brought up to date with what changed since they were
+    written (the layers are the team's); every observation held, each is written whole."""
+    part, whole = (ExploreParallelEnv(office, robots=3, k=8) for _ in range(2))
+    got, _ = part.reset(seed=6)
+    want, _ = whole.reset(seed=6)
+    every = [want]
+    rng = np.random.default_rng(2)
+    held = []
+    while whole.agents:
+        for agent in want:
+            for key in ("belief", "frontier"):
+                assert np.array_equal(got[agent][key], want[agent][key]), (agent, key)
+        actions = Baseline("greedy")(whole)
+        got, *_ = part.step(actions)
+        want, *_ = whole.step(actions)
+        every.append(want)
+        if rng.random() < 0.4:
+            held.append(got[rng.choice(list(got))])
+        if held and rng.random() < 0.4:
+            held.pop(int(rng.integers(len(held))))
+    assert len(every) > 20

@@ -28,6 +28,7 @@
 //! ```
 #![warn(missing_docs)]
 
+pub mod changes;
 pub mod config;
 pub mod memory;
 pub mod metrics;

@@ -35,6 +35,7 @@ pub const BUMP_S: f64 = 1.0;
 /// the map can be wrong about where the robot can go (sonar, off-plane clutter): without
 /// it, a goal behind an obstacle the map does not show would be chased forever.
 pub const IMPERFECT_NO_PROGRESS_S: f64 = 30.0;
+use crate::changes::{CellBox, ChangeTracker};
 use crate::motion::{Motion, any_angle_length};
 use explore::upkeep::FrontierUpkeep;
 use grid::{Cell, Grid, GridMap, Occ, step_cost};
@@ -113,6 +114,8 @@ struct Team<'a> {
     rng: Pcg64Mcg,
     obs: Observation,
     changed: Vec<u32>,
+    /// Where the belief changed since a consumer last asked (when one asked to track).
+    tracker: Option<ChangeTracker>,
     /// Imperfect sensing (sonar, off-plane clutter): the map can be wrong about where the
     /// robot can go. Then the cells it stands on are pinned free, phantom frontier regions
     /// are counted at every decision (ideal sensors never show a non-free cell free, so
@@ -332,6 +335,7 @@ impl<'a> Session<'a> {
             rng: seed::rng(cfg.seed, "strategy"),
             obs: Observation::new(),
             changed: Vec::new(),
+            tracker: None,
             imperfect,
             no_progress_s: cfg
                 .strategy
@@ -623,6 +627,20 @@ impl<'a> Session<'a> {
     /// The belief's known grid.
     pub fn known(&self) -> &Grid<Occ> {
         self.team.belief.known()
+    }
+
+    /// Track where the belief changes from now on ([`Session::take_changes`]).
+    pub fn track_changes(&mut self) {
+        let w = self.team.truth.cells.width();
+        self.team
+            .tracker
+            .get_or_insert_with(|| ChangeTracker::new(w));
+    }
+
+    /// The box of the belief's cells changed since the last call (or since tracking began);
+    /// `None` when none changed or nothing is tracked.
+    pub fn take_changes(&mut self) -> Option<CellBox> {
+        self.team.tracker.as_mut().and_then(ChangeTracker::take)
     }
 
     /// The current frontier cells (unordered).
@@ -937,6 +955,9 @@ impl Team<'_> {
         let known = self.belief.known();
         self.upkeep.update(known, &self.changed);
         let t2 = Instant::now();
+        if let Some(t) = self.tracker.as_mut() {
+            t.record(&self.changed);
+        }
         if let Some(t) = self.trace.as_mut() {
             t.changes
                 .extend(self.changed.iter().map(|&c| (c, known[c as usize])));

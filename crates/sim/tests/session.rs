@@ -225,3 +225,59 @@ fn advancing_in_slices_equals_one_advance() {
         }
     }
 }
+
+/// Every cell whose belief changed between two decisions lies in the box `take_changes`
+/// reports for them, for one robot and a team, with the laser and with sonar; and tracking
+/// changes nothing in the run.
+#[test]
+fn tracked_changes_hold_every_changed_cell() {
+    let office = office();
+    let fine = world::generate(
+        &EnvSpec::new(EnvKind::Office, 2)
+            .with_size(12.0, 10.0)
+            .with_resolution(0.1),
+    )
+    .expect("office")
+    .map;
+    let mut sonar = config("yamauchi", 1, 1);
+    sonar.sensor = "sonar".parse().expect("sonar spec");
+    sonar.belief = sense::BeliefKind::Evidence;
+    for (name, map, cfg) in [
+        ("cf-rr", &office, config("cf-rr", 1, 0)),
+        ("greedy, 3 robots", &office, config("greedy", 3, 2)),
+        ("sonar", &fine, sonar),
+    ] {
+        let w = map.width() as u32;
+        let mut s = Session::start(Cow::Borrowed(map), Cow::Borrowed(&cfg), true).expect("start");
+        s.track_changes();
+        let mut before = s.known().data().to_vec();
+        let mut boxes = 0;
+        while s.advance() == Status::Decide {
+            let now = s.known().data().to_vec();
+            let b = s.take_changes();
+            for (i, (a, z)) in before.iter().zip(&now).enumerate() {
+                if a == z {
+                    continue;
+                }
+                let (x, y) = (i as u32 % w, i as u32 / w);
+                let b = b.unwrap_or_else(|| panic!("{name}: cell ({x}, {y}) changed, no box"));
+                assert!(
+                    (b.x0..=b.x1).contains(&x) && (b.y0..=b.y1).contains(&y),
+                    "{name}: cell ({x}, {y}) outside {b:?}"
+                );
+            }
+            boxes += usize::from(b.is_some());
+            assert_eq!(s.take_changes(), None, "{name}: taking forgets");
+            before = now;
+            let cells = s.candidates().to_vec();
+            let goals: Vec<Option<u32>> = s
+                .propose(cfg.strategy.assigner, &cells)
+                .iter()
+                .map(|g| g.map(|g| g.cell))
+                .collect();
+            s.choose(&goals).expect("a proposed goal is reachable");
+        }
+        assert!(boxes > 5, "{name}: {boxes} boxes");
+        assert_same_run(&s.finish(), &sim::run(map, &cfg).expect("run"), name);
+    }
+}

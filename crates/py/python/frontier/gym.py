@@ -221,7 +221,9 @@ class ExploreEnv(gymnasium.Env):
     Observation (Dict): ``belief`` (H, W) uint8 (0 unknown, 1 free, 2 occupied),
     ``frontier`` (H, W) uint8 mask, ``pose`` (x, y, heading) float32 in cells and radians,
     ``candidates`` (K, 4) float32 rows of (x, y, path cost in m, predicted gain in m²)
-    padded with zeros, ``action_mask`` (K,) int8. Reward: newly known reachable free area
+    padded with zeros, ``action_mask`` (K,) int8. ``belief`` and ``frontier`` are
+    read-only (kept arrays are brought up to date with what changed, so a change made in
+    place would stay; ``.copy()`` them to change them). Reward: newly known reachable free area
     in m² minus λ × metres travelled. ``terminated`` when nothing reachable is left;
     ``truncated`` at the path or step budget. ``info``: coverage, path_length_m, decisions,
     moves, steps, candidates, map, seed.
