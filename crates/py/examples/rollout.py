@@ -13,33 +13,48 @@ import time
 from frontier.gym import Baseline, ExploreEnv, ExploreVectorEnv, RandomPolicy
 
 
-def single_rate(env, policy, episodes, steps):
-    """Steps per second of one ExploreEnv: `steps` steps of episodes 0..episodes-1 (seed i),
-    the resets timed too (as the vector environment's automatic resets are)."""
-    spent = 0.0
-    done = 0
+def single_steps(env, policy, episodes, steps):
+    """One ExploreEnv: `steps` steps of episodes 0..episodes-1 (seed i), the resets
+    included (as the vector environment's automatic resets are); yields 1 per step."""
     for i in range(episodes):
-        t0 = time.perf_counter()
         obs, _ = env.reset(seed=i)
         for _ in range(steps):
             a = policy(env) if isinstance(policy, Baseline) else policy(obs)
             obs, _, term, trunc, _ = env.step(a)
-            done += 1
+            yield 1
             if term or trunc:
                 break
-        spent += time.perf_counter() - t0
-    return done / spent
 
 
-def vector_rate(venv, policy, steps):
-    """Steps per second of a vector env doing the same work: environment i runs episode i
-    (ExploreEnv's seed i) for `steps` steps, all in one call per step, the resets timed."""
-    t0 = time.perf_counter()
+def vector_steps(venv, policy, steps):
+    """A vector env doing the same work: environment i runs episode i (ExploreEnv's seed
+    i) for `steps` steps, all in one call per step; yields the steps of each call."""
     obs, _ = venv.reset(seed=0)
     for _ in range(steps):
         a = policy(venv) if isinstance(policy, Baseline) else policy(obs)
         obs, _, _, _, _ = venv.step(a)
-    return venv.num_envs * steps / (time.perf_counter() - t0)
+        yield venv.num_envs
+
+
+def rates(contenders, slice_steps=400):
+    """Steps per second of each generator, run by turns about `slice_steps` steps at a time
+    so that the machine's changing speed slows them alike."""
+    spent = [0.0] * len(contenders)
+    done = [0] * len(contenders)
+    live = set(range(len(contenders)))
+    while live:
+        for k in sorted(live):
+            t0 = time.perf_counter()
+            n = 0
+            for d in contenders[k]:
+                n += d
+                if n >= slice_steps:
+                    break
+            else:
+                live.discard(k)
+            spent[k] += time.perf_counter() - t0
+            done[k] += n
+    return [d / t for d, t in zip(done, spent)]
 
 
 def main():
@@ -65,9 +80,11 @@ def main():
     for name, make in [("random", lambda: RandomPolicy(0)), ("cf-rr", lambda: Baseline("cf-rr"))]:
         for n in envs:
             per_env = max(a.steps // n, 1)
-            single = single_rate(ExploreEnv(**common), make(), n, per_env)
             venv = ExploreVectorEnv(n, threads=a.threads, **common)
-            vector = vector_rate(venv, make(), per_env)
+            single, vector = rates([
+                single_steps(ExploreEnv(**common), make(), n, per_env),
+                vector_steps(venv, make(), per_env),
+            ])
             print(
                 f"{name:>7}: ExploreEnv {single:7.0f} steps/s | ExploreVectorEnv {n} envs "
                 f"{vector:7.0f} steps/s ({vector / single:.2f}x) | Explore-Bench ~5 steps/s"
