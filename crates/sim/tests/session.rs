@@ -31,15 +31,20 @@ fn config(preset: &str, robots: usize, seed: u64) -> RunConfig {
 fn external(map: &GridMap, cfg: &RunConfig) -> RunResult {
     let mut s = Session::start(Cow::Borrowed(map), Cow::Borrowed(cfg), true).expect("start");
     while s.advance() == Status::Decide {
-        let cells = s.candidates().to_vec();
-        let goals: Vec<Option<u32>> = s
-            .propose(cfg.strategy.assigner, &cells)
-            .iter()
-            .map(|g| g.map(|g| g.cell))
-            .collect();
-        s.choose(&goals).expect("a proposed goal is reachable");
+        choose_as_the_assigner(&mut s, cfg);
     }
     s.finish()
+}
+
+/// Give the pending decision the goals the strategy's assigner proposes.
+fn choose_as_the_assigner(s: &mut Session<'_>, cfg: &RunConfig) {
+    let cells = s.candidates().to_vec();
+    let goals: Vec<Option<u32>> = s
+        .propose(cfg.strategy.assigner, &cells)
+        .iter()
+        .map(|g| g.map(|g| g.cell))
+        .collect();
+    s.choose(&goals).expect("a proposed goal is reachable");
 }
 
 /// The same run: paths, decisions, moves, end, coverage curve, belief and starts.
@@ -269,13 +274,7 @@ fn tracked_changes_hold_every_changed_cell() {
             boxes += usize::from(b.is_some());
             assert_eq!(s.take_changes(), None, "{name}: taking forgets");
             before = now;
-            let cells = s.candidates().to_vec();
-            let goals: Vec<Option<u32>> = s
-                .propose(cfg.strategy.assigner, &cells)
-                .iter()
-                .map(|g| g.map(|g| g.cell))
-                .collect();
-            s.choose(&goals).expect("a proposed goal is reachable");
+            choose_as_the_assigner(&mut s, &cfg);
         }
         assert!(boxes > 5, "{name}: {boxes} boxes");
         assert_same_run(&s.finish(), &sim::run(map, &cfg).expect("run"), name);
