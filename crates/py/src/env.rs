@@ -341,34 +341,28 @@ impl State {
         let (oh, ow) = spec.shape;
         match spec.view {
             None => {
-                let mark = slot.map(|k| &mut self.marks[k]);
-                match mark {
-                    // Copy what changed since the set was written; unmark its frontier.
-                    Some(Mark {
-                        valid: true,
-                        stale,
-                        frontier,
-                    }) => {
-                        if let Some(b) = stale.take() {
-                            let (x0, x1) = (b.x0 as usize, b.x1 as usize + 1);
-                            for y in b.y0 as usize..=b.y1 as usize {
-                                let row = y * w;
-                                let from = &known.data()[row + x0..row + x1];
-                                for (b, &c) in o.belief[row + x0..row + x1].iter_mut().zip(from) {
-                                    *b = c as u8;
-                                }
-                            }
-                        }
-                        for &f in frontier.iter() {
-                            o.frontier[f as usize] = 0;
-                        }
-                    }
-                    _ => {
-                        for (b, &c) in o.belief.iter_mut().zip(known.data()) {
+                // What the part holds that is not the belief now: the box changed since the
+                // set was written, or, for a set not written in this episode, everything.
+                let kept = slot.map(|k| &self.marks[k]).filter(|m| m.valid);
+                let whole = (w > 0 && h > 0).then(|| CellBox {
+                    x0: 0,
+                    y0: 0,
+                    x1: w as u32 - 1,
+                    y1: h as u32 - 1,
+                });
+                if let Some(b) = kept.map_or(whole, |m| m.stale) {
+                    let (x0, x1) = (b.x0 as usize, b.x1 as usize + 1);
+                    for y in b.y0 as usize..=b.y1 as usize {
+                        let row = y * w;
+                        let from = &known.data()[row + x0..row + x1];
+                        for (b, &c) in o.belief[row + x0..row + x1].iter_mut().zip(from) {
                             *b = c as u8;
                         }
-                        o.frontier.fill(0);
                     }
+                }
+                match kept {
+                    Some(m) => m.frontier.iter().for_each(|&f| o.frontier[f as usize] = 0),
+                    None => o.frontier.fill(0),
                 }
                 for &f in s.frontiers() {
                     o.frontier[f as usize] = 1;
