@@ -1,11 +1,12 @@
-//! One `los` scan + `KnownGrid` integration at r = 100 cells, the template build, and the
-//! ray template against shadow casting ([`sense::shadow`]) at several ranges.
+//! One `los` scan + `KnownGrid` integration at r = 100 cells, the template build, the
+//! ray template against shadow casting ([`sense::shadow`]) at several ranges, and Holz et
+//! al.'s laser at 0.05 m facing a move heading (replayed steps) and another (walked).
 
 use std::hint::black_box;
 
 use criterion::{BatchSize, Criterion, criterion_group, criterion_main};
 use grid::{Cell, Grid, Occ};
-use sense::{Belief, KnownGrid, LosSensor, LosTemplate, Observation, Pose, Sensor};
+use sense::{Belief, KnownGrid, LidarSensor, LosSensor, LosTemplate, Observation, Pose, Sensor};
 
 const N: usize = 400;
 const R: f64 = 100.0;
@@ -89,6 +90,19 @@ fn bench(c: &mut Criterion) {
                 })
             });
             black_box(n);
+        }
+    }
+    // Holz et al.'s laser (8 m, 180° at 1°) at 0.05 m: 160 cells.
+    let lidar = LidarSensor::new(160.0, 180.0, 1.0).expect("valid lidar");
+    for (name, truth) in [("open", Grid::new(N, N, Occ::Free)), ("rooms", rooms())] {
+        for (heading_name, heading) in [("move_heading", 0.0), ("other_heading", 0.3)] {
+            let mut obs = Observation::new();
+            c.bench_function(&format!("lidar_scan_r160_{name}_{heading_name}"), |b| {
+                b.iter(|| {
+                    lidar.scan(black_box(&truth), Pose::new(pose.cell, heading), &mut obs);
+                    black_box(obs.len())
+                })
+            });
         }
     }
     let mut g = c.benchmark_group("template");

@@ -49,6 +49,7 @@
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
+pub(crate) mod beam;
 pub mod belief;
 pub mod error;
 pub mod footprint;

@@ -1,6 +1,7 @@
 //! A planar laser scanner with a field of view (Holz et al.: 180°, 1° resolution): each
 //! beam is traced from the sensor cell's centre with the exact grid traversal of
-//! Amanatides & Woo (1987).
+//! Amanatides & Woo (1987). Facing one of the eight headings of a grid move, the scan
+//! walks the beams' cells from a prefix tree made once (`beam.rs`), the same cells.
 //!
 //! # Semantics
 //!
@@ -18,8 +19,11 @@
 //! - A predicted scan ([`Sensor::predict`]) traces the same beams on a belief, passing
 //!   through Unknown cells too; it reports cells unsorted and with repeats.
 
+use std::sync::Arc;
+
 use grid::{Grid, Occ};
 
+use crate::beam::{BeamWalk, CompassTrees, rotate};
 use crate::error::SenseError;
 use crate::footprint::check_plain_range;
 use crate::sensor::{Observation, Pose, Sensor, observed};
@@ -36,6 +40,9 @@ pub struct LidarSensor {
     res_deg: f64,
     /// Unit directions `(cos, sin)` of the beams relative to the heading.
     beams: Vec<(f64, f64)>,
+    /// The beam trees for the eight headings of a grid move, shared by every scanner of
+    /// the same range and beams (`None` past the trees' reach).
+    compass: Option<Arc<CompassTrees>>,
 }
 
 impl LidarSensor {
@@ -75,6 +82,7 @@ impl LidarSensor {
             range: r,
             fov_deg,
             res_deg,
+            compass: CompassTrees::shared(&beams, r, (fov_deg, res_deg)),
             beams,
         })
     }
@@ -124,27 +132,16 @@ impl LidarSensor {
         }
         let (w, h) = (grid.width() as i64, grid.height() as i64);
         let (ch, sh) = (pose.heading.cos(), pose.heading.sin());
-        for &(c, s) in &self.beams {
-            // Rotate the relative direction by the heading.
-            let dx = c * ch - s * sh;
-            let dy = s * ch + c * sh;
+        for &beam in &self.beams {
+            let (dx, dy) = rotate(beam, ch, sh);
             let (step_x, step_y) = (if dx < 0.0 { -1 } else { 1 }, if dy < 0.0 { -1 } else { 1 });
-            let (delta_x, delta_y) = (1.0 / dx.abs(), 1.0 / dy.abs()); // ∞ along an axis
-            let (mut t_x, mut t_y) = (0.5 * delta_x, 0.5 * delta_y);
+            let mut walk = BeamWalk::new(dx, dy, self.range);
             let (mut x, mut y) = (i64::from(pose.cell.x), i64::from(pose.cell.y));
-            loop {
-                if t_x < t_y {
-                    if t_x >= self.range {
-                        break;
-                    }
+            while let Some(column) = walk.next_step() {
+                if column {
                     x += step_x;
-                    t_x += delta_x;
                 } else {
-                    if t_y >= self.range {
-                        break;
-                    }
                     y += step_y;
-                    t_y += delta_y;
                 }
                 if x < 0 || y < 0 || x >= w || y >= h {
                     break;
@@ -254,17 +251,66 @@ impl LidarSensor {
         SEEN.with(|bits| {
             let mut bits = bits.borrow_mut();
             window.reset(&mut bits);
-            self.trace(
-                truth,
-                pose,
-                |_, s| s == Occ::Free,
-                |_, x, y, _| window.mark(&mut bits, x, y),
-            );
+            if !self.trace_compass(truth, pose, &window, &mut bits) {
+                self.trace(
+                    truth,
+                    pose,
+                    |_, s| s == Occ::Free,
+                    |_, x, y, _| window.mark(&mut bits, x, y),
+                );
+            }
             let data = truth.data();
             window.drain(&bits, unseen, |i| {
                 out.cells.push((i as u32, observed(data[i])))
             });
         });
+    }
+}
+
+impl LidarSensor {
+    /// The walk of [`trace`](Self::trace) through free cells of `truth`, marking `window`'s
+    /// `bits`, taken down the beam tree of the pose's heading when it faces one of the
+    /// eight move headings exactly: each cell the beams share is visited once, and a cell
+    /// that stops them (or lies outside the grid: a beam moves one way along each axis, so
+    /// it never comes back) skips the rest of its subtree. Returns whether it did the walk.
+    fn trace_compass(
+        &self,
+        truth: &Grid<Occ>,
+        pose: Pose,
+        window: &Window,
+        bits: &mut [u64],
+    ) -> bool {
+        let Some(tree) = self.compass.as_ref().and_then(|c| c.tree(pose.heading)) else {
+            return false;
+        };
+        let data = truth.data();
+        let origin = truth.index(pose.cell);
+        let row_bits = window.words * 64;
+        let (cx, cy) = (i64::from(pose.cell.x), i64::from(pose.cell.y));
+        let origin_bit = (cy - window.y0) as usize * row_bits + (cx - window.x0) as usize;
+        bits[origin_bit / 64] |= 1 << (origin_bit % 64);
+        if data[origin] != Occ::Free {
+            return true;
+        }
+        let (w, h) = (truth.width() as i64, truth.height() as i64);
+        let nodes = &tree.nodes;
+        let mut n = 0;
+        while let Some(node) = nodes.get(n) {
+            let (dx, dy) = (i64::from(node.dx), i64::from(node.dy));
+            let (x, y) = (cx + dx, cy + dy);
+            if x < 0 || y < 0 || x >= w || y >= h {
+                n = node.skip as usize;
+                continue;
+            }
+            let b = (origin_bit as i64 + dy * row_bits as i64 + dx) as usize;
+            bits[b / 64] |= 1 << (b % 64);
+            n = if data[(y * w + x) as usize] == Occ::Free {
+                n + 1
+            } else {
+                node.skip as usize
+            };
+        }
+        true
     }
 }
 
@@ -343,7 +389,113 @@ impl LidarSensor {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::beam::compass_headings;
     use grid::Cell;
+    use proptest::prelude::*;
+
+    /// The scan as the beams walk it afresh: every cell [`LidarSensor::trace`] enters
+    /// through free cells, once, by index.
+    fn walked_scan(s: &LidarSensor, g: &Grid<Occ>, pose: Pose) -> Vec<(u32, Occ)> {
+        let mut cells = Vec::new();
+        s.trace(
+            g,
+            pose,
+            |_, o| o == Occ::Free,
+            |i, _, _, o| cells.push((i as u32, observed(o))),
+        );
+        cells.sort_unstable();
+        cells.dedup();
+        cells
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(400))]
+
+        /// Facing a move heading, the scan down the beam tree sees exactly the cells the
+        /// beams' own walk sees, near the grid's edges too.
+        #[test]
+        fn the_beam_tree_sees_what_walked_beams_see(
+            bits in proptest::collection::vec(any::<u8>(), 16..400),
+            density in 0u8..40,
+            w in 1usize..70,
+            h in 1usize..70,
+            ox in 0i32..70,
+            oy in 0i32..70,
+            range in 0.0f64..40.0,
+            fov in prop::sample::select(vec![1.0, 90.0, 180.0, 270.0, 360.0]),
+            res in prop::sample::select(vec![0.5, 1.0, 3.0, 10.0]),
+            heading in 0usize..8,
+        ) {
+            let mut g = Grid::new(w, h, Occ::Free);
+            for (i, &b) in bits.iter().cycle().take(w * h).enumerate() {
+                let v = b % 100;
+                if v < density {
+                    g.data_mut()[i] = if v % 3 == 0 { Occ::Unknown } else { Occ::Occupied };
+                }
+            }
+            let s = LidarSensor::new(range, fov, res).expect("valid");
+            let heading = compass_headings()[heading];
+            let pose = Pose::new(Cell::new(ox % w as i32, oy % h as i32), heading);
+            let mut obs = Observation::new();
+            s.scan(&g, pose, &mut obs);
+            prop_assert!(s.compass.as_ref().and_then(|c| c.tree(heading)).is_some());
+            prop_assert_eq!(obs.cells, walked_scan(&s, &g, pose));
+        }
+    }
+
+    /// The beam tree is taken for exactly the eight headings a grid move gives (the
+    /// simulation's `atan2(dy, dx)`), and only for them.
+    #[test]
+    fn move_headings_take_the_beam_tree() {
+        let mut g = Grid::new(400, 400, Occ::Free);
+        for y in 0..400 {
+            g.set(Cell::new(250, y), Occ::Occupied);
+        }
+        let s = LidarSensor::new(160.0, 180.0, 1.0).expect("valid");
+        let headings = compass_headings();
+        for (dx, dy) in [
+            (1, 0),
+            (1, 1),
+            (0, 1),
+            (-1, 1),
+            (-1, 0),
+            (-1, -1),
+            (0, -1),
+            (1, -1),
+        ] {
+            let h = f64::from(dy).atan2(f64::from(dx));
+            assert!(headings.contains(&h), "{dx}, {dy}");
+        }
+        let window = Window::around(&g, Cell::new(200, 200), 160.0).expect("inside");
+        let mut bits = Vec::new();
+        for h in [0.3, -2.0, 1e-9] {
+            window.reset(&mut bits);
+            let pose = Pose::new(Cell::new(200, 200), h);
+            assert!(!s.trace_compass(&g, pose, &window, &mut bits));
+        }
+        for h in headings {
+            window.reset(&mut bits);
+            let pose = Pose::new(Cell::new(200, 200), h);
+            assert!(s.trace_compass(&g, pose, &window, &mut bits));
+            let mut obs = Observation::new();
+            s.scan(&g, pose, &mut obs);
+            assert_eq!(obs.cells, walked_scan(&s, &g, pose));
+        }
+    }
+
+    /// A scanner whose tables would be too large walks its beams instead.
+    #[test]
+    fn huge_tables_are_not_built() {
+        let s = LidarSensor::new(100_000.0, 360.0, 0.01).expect("valid");
+        assert!(s.compass.is_none());
+        let s = LidarSensor::new(3_000.0, 360.0, 0.1).expect("valid");
+        assert!(s.compass.as_ref().is_some_and(|c| c.tree(0.0).is_none()));
+        let g = Grid::new(30, 20, Occ::Free);
+        let mut obs = Observation::new();
+        let pose = Pose::new(Cell::new(3, 4), 0.0);
+        s.scan(&g, pose, &mut obs);
+        assert_eq!(obs.cells, walked_scan(&s, &g, pose));
+    }
 
     #[test]
     fn beam_counts() {
