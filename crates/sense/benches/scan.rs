@@ -1,6 +1,7 @@
 //! One `los` scan + `KnownGrid` integration at r = 100 cells, the template build, the
 //! ray template against shadow casting ([`sense::shadow`]) at several ranges, and Holz et
-//! al.'s laser at 0.05 m facing a move heading (replayed steps) and another (walked).
+//! al.'s laser at 0.05 m facing a move heading (beam tree) and another (beams walked), and
+//! Explore-Bench's square window at 0.1 m.
 
 use std::hint::black_box;
 
@@ -104,6 +105,17 @@ fn bench(c: &mut Criterion) {
                 })
             });
         }
+    }
+    // Explore-Bench's window (3.5 m at 0.1 m: half-side 35 cells).
+    let square = sense::SquareSensor::new(35.0).expect("valid window");
+    for (name, truth) in [("open", Grid::new(N, N, Occ::Free)), ("rooms", rooms())] {
+        let mut obs = Observation::new();
+        c.bench_function(&format!("square_scan_r35_{name}"), |b| {
+            b.iter(|| {
+                square.scan(black_box(&truth), pose, &mut obs);
+                black_box(obs.len())
+            })
+        });
     }
     let mut g = c.benchmark_group("template");
     g.sample_size(10);

@@ -13,6 +13,10 @@
 
 use std::sync::{Arc, Mutex, OnceLock};
 
+use grid::{Cell, Grid, Occ};
+
+use crate::window::Window;
+
 /// The most memory one heading's tree may take, counted as if no beam shared a cell (an
 /// upper bound: at 160 cells' range, 181 beams take 466 KiB so counted, 280 KiB built); a
 /// scanner whose trees would take more walks every beam afresh.
@@ -135,10 +139,45 @@ impl BeamTree {
                 path
             })
             .collect();
+        Self::from_paths(&paths)
+    }
+
+    /// The tree of rays that enter the cells of `paths` (offsets from the sensor cell, in
+    /// order; each ray moves one way along each axis).
+    pub(crate) fn from_paths(paths: &[Vec<(i16, i16)>]) -> Self {
         let mut nodes = Vec::new();
         let mut members: Vec<usize> = (0..paths.len()).filter(|&b| !paths[b].is_empty()).collect();
-        Self::grow(&paths, &mut members, 0, &mut nodes, &mut Vec::new());
+        Self::grow(paths, &mut members, 0, &mut nodes, &mut Vec::new());
         Self { nodes }
+    }
+
+    /// Mark in `window`'s `bits` every cell of the tree seen from `cell` (inside the grid) in
+    /// `truth`: a cell is seen when every cell before it on one of its rays is free. A cell
+    /// that is not free, or lies outside the grid (a ray moves one way along each axis, so
+    /// it never comes back), skips the rest of its subtree.
+    pub(crate) fn walk(&self, truth: &Grid<Occ>, cell: Cell, window: &Window, bits: &mut [u64]) {
+        let data = truth.data();
+        let (w, h) = (truth.width() as i64, truth.height() as i64);
+        let (cx, cy) = (i64::from(cell.x), i64::from(cell.y));
+        let row_bits = (window.words * 64) as i64;
+        let origin_bit = (cy - window.y0) * row_bits + (cx - window.x0);
+        let nodes = &self.nodes;
+        let mut n = 0;
+        while let Some(node) = nodes.get(n) {
+            let (dx, dy) = (i64::from(node.dx), i64::from(node.dy));
+            let (x, y) = (cx + dx, cy + dy);
+            if x < 0 || y < 0 || x >= w || y >= h {
+                n = node.skip as usize;
+                continue;
+            }
+            let b = (origin_bit + dy * row_bits + dx) as usize;
+            bits[b / 64] |= 1 << (b % 64);
+            n = if data[(y * w + x) as usize] == Occ::Free {
+                n + 1
+            } else {
+                node.skip as usize
+            };
+        }
     }
 
     /// Append, in pre-order, the subtrees of the cells at `depth` of the beams `members`

@@ -64,6 +64,7 @@ pub mod sonar;
 pub mod spec;
 pub mod square;
 pub mod unseen;
+pub(crate) mod window;
 
 pub use belief::{Belief, BeliefKind, EvidenceGrid, KnownGrid, ReflectionMap};
 pub use error::SenseError;

@@ -28,6 +28,7 @@ use crate::error::SenseError;
 use crate::footprint::check_plain_range;
 use crate::sensor::{Observation, Pose, Sensor, observed};
 use crate::unseen::Unseen;
+use crate::window::{Window, with_seen};
 
 /// The smallest angular resolution accepted, in degrees (at most 36,000 beams).
 pub const MIN_LIDAR_RES_DEG: f64 = 0.01;
@@ -156,81 +157,6 @@ impl LidarSensor {
     }
 }
 
-thread_local! {
-    /// The cells a scan has seen, one bit per cell of its [`Window`] (kept per thread so that
-    /// a scan allocates nothing once it has run).
-    static SEEN: std::cell::RefCell<Vec<u64>> = const { std::cell::RefCell::new(Vec::new()) };
-}
-
-/// The box of cells a scan can reach, as a bitmap of whole 64-bit words per row: marking a
-/// cell is a bit set, and reading the rows in order lists the seen cells by flat index,
-/// each once, with no sort.
-struct Window {
-    /// Columns and rows of the box in the grid, inclusive lower and exclusive upper bounds.
-    x0: i64,
-    y0: i64,
-    y1: i64,
-    /// Words per row of the bitmap.
-    words: usize,
-    /// Grid width.
-    width: usize,
-}
-
-impl Window {
-    /// The box of cells within `range` cells (plus one for rounding) of `cell`, clipped to
-    /// the grid; `None` if `cell` is outside it.
-    fn around(grid: &Grid<Occ>, cell: grid::Cell, range: f64) -> Option<Self> {
-        grid.checked_index(cell)?;
-        let (w, h) = (grid.width() as i64, grid.height() as i64);
-        // A beam enters cells at a distance < range, so their columns and rows are within
-        // range + ½ of the origin's.
-        let reach = (range.ceil() + 1.0).min((w + h) as f64) as i64;
-        let (cx, cy) = (i64::from(cell.x), i64::from(cell.y));
-        let (x0, x1) = ((cx - reach).max(0), (cx + reach + 1).min(w));
-        let (y0, y1) = ((cy - reach).max(0), (cy + reach + 1).min(h));
-        Some(Self {
-            x0,
-            y0,
-            y1,
-            words: ((x1 - x0) as usize).div_ceil(64),
-            width: grid.width(),
-        })
-    }
-
-    /// Size `bits` for this box, all clear.
-    fn reset(&self, bits: &mut Vec<u64>) {
-        bits.clear();
-        bits.resize(self.words * (self.y1 - self.y0) as usize, 0);
-    }
-
-    /// Mark cell `(x, y)` of the grid, which lies in the box.
-    #[inline]
-    fn mark(&self, bits: &mut [u64], x: i64, y: i64) {
-        let (lx, ly) = ((x - self.x0) as usize, (y - self.y0) as usize);
-        bits[ly * self.words + lx / 64] |= 1 << (lx % 64);
-    }
-
-    /// Every marked cell's flat index that `unseen` (if any) says tells the robot
-    /// scanning something, in increasing order.
-    fn drain(&self, bits: &[u64], unseen: Option<&Unseen>, mut f: impl FnMut(usize)) {
-        for (ly, row) in bits.chunks_exact(self.words).enumerate() {
-            let base = (self.y0 as usize + ly) * self.width + self.x0 as usize;
-            for (k, &word) in row.iter().enumerate() {
-                let mut word = word;
-                if word != 0
-                    && let Some(u) = unseen
-                {
-                    word &= u.telling_bits(base + k * 64);
-                }
-                while word != 0 {
-                    f(base + k * 64 + word.trailing_zeros() as usize);
-                    word &= word - 1;
-                }
-            }
-        }
-    }
-}
-
 impl LidarSensor {
     /// The scan, reporting only the cells that tell the robot scanning something if
     /// `unseen` is given, each once, by increasing index. The beams mark every cell they
@@ -248,19 +174,18 @@ impl LidarSensor {
         let Some(window) = Window::around(truth, pose.cell, self.range) else {
             return;
         };
-        SEEN.with(|bits| {
-            let mut bits = bits.borrow_mut();
-            window.reset(&mut bits);
-            if !self.trace_compass(truth, pose, &window, &mut bits) {
+        with_seen(|bits| {
+            window.reset(bits);
+            if !self.trace_compass(truth, pose, &window, bits) {
                 self.trace(
                     truth,
                     pose,
                     |_, s| s == Occ::Free,
-                    |_, x, y, _| window.mark(&mut bits, x, y),
+                    |_, x, y, _| window.mark(bits, x, y),
                 );
             }
             let data = truth.data();
-            window.drain(&bits, unseen, |i| {
+            window.drain(bits, unseen, |i| {
                 out.cells.push((i as u32, observed(data[i])))
             });
         });
@@ -283,32 +208,10 @@ impl LidarSensor {
         let Some(tree) = self.compass.as_ref().and_then(|c| c.tree(pose.heading)) else {
             return false;
         };
-        let data = truth.data();
-        let origin = truth.index(pose.cell);
-        let row_bits = window.words * 64;
-        let (cx, cy) = (i64::from(pose.cell.x), i64::from(pose.cell.y));
-        let origin_bit = (cy - window.y0) as usize * row_bits + (cx - window.x0) as usize;
-        bits[origin_bit / 64] |= 1 << (origin_bit % 64);
-        if data[origin] != Occ::Free {
-            return true;
-        }
-        let (w, h) = (truth.width() as i64, truth.height() as i64);
-        let nodes = &tree.nodes;
-        let mut n = 0;
-        while let Some(node) = nodes.get(n) {
-            let (dx, dy) = (i64::from(node.dx), i64::from(node.dy));
-            let (x, y) = (cx + dx, cy + dy);
-            if x < 0 || y < 0 || x >= w || y >= h {
-                n = node.skip as usize;
-                continue;
-            }
-            let b = (origin_bit as i64 + dy * row_bits as i64 + dx) as usize;
-            bits[b / 64] |= 1 << (b % 64);
-            n = if data[(y * w + x) as usize] == Occ::Free {
-                n + 1
-            } else {
-                node.skip as usize
-            };
+        let cell = pose.cell;
+        window.mark(bits, i64::from(cell.x), i64::from(cell.y));
+        if *truth.get(cell) == Occ::Free {
+            tree.walk(truth, cell, window, bits);
         }
         true
     }

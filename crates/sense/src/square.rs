@@ -11,18 +11,40 @@
 //!
 //! `R` is `⌊r⌋` for a range of `r` cells (`square:r=3.5` at 0.05 m: 70 cells).
 
+use std::sync::{Arc, Mutex, OnceLock};
+
 use grid::{Grid, Occ};
 
+use crate::beam::BeamTree;
 use crate::error::SenseError;
 use crate::footprint::check_plain_range;
 use crate::sensor::{Observation, Pose, Sensor, observed, predicted_transparent};
 use crate::unseen::Unseen;
+use crate::window::{Window, with_seen};
+
+/// The largest half-side whose rays are walked from a tree: the tree holds fewer nodes than
+/// the rays' `8 R × 2 R` cells (at most 2 MiB at 180 cells: `square:r=9` at 0.05 m).
+const MAX_TREE_HALF: i64 = 180;
+
+/// How many windows' trees the process keeps.
+const KEPT_TREES: usize = 8;
 
 /// The square-window sensor of Explore-Bench (module doc).
-#[derive(Clone, Debug)]
+#[derive(Clone)]
 pub struct SquareSensor {
     /// Half-side of the window in cells.
     half: i64,
+    /// The rays' prefix tree (`None` past [`MAX_TREE_HALF`]), shared by every sensor of
+    /// the same half-side.
+    tree: Option<Arc<BeamTree>>,
+}
+
+impl std::fmt::Debug for SquareSensor {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("SquareSensor")
+            .field("half", &self.half)
+            .finish()
+    }
 }
 
 impl SquareSensor {
@@ -30,8 +52,10 @@ impl SquareSensor {
     /// [`MAX_RANGE_CELLS`](crate::footprint::MAX_RANGE_CELLS)).
     pub fn new(r: f64) -> Result<Self, SenseError> {
         check_plain_range(r)?;
+        let half = r.floor() as i64;
         Ok(Self {
-            half: r.floor() as i64,
+            half,
+            tree: tree_for(half),
         })
     }
 
@@ -67,87 +91,159 @@ impl SquareSensor {
         if !transparent(origin, data[origin]) || self.half == 0 {
             return;
         }
-        let r = self.half;
-        // Every border cell of the window, each once.
-        let border = (-r..=r)
-            .flat_map(|t| [(t, -r), (t, r)])
-            .chain((-r + 1..r).flat_map(|t| [(-r, t), (r, t)]));
-        for (tx, ty) in border {
-            let (step_x, step_y) = (tx.signum(), ty.signum());
-            // Parameter t runs from 0 (origin's centre) to 1 (target's centre).
-            let (delta_x, delta_y) = (
-                if tx == 0 {
-                    f64::INFINITY
-                } else {
-                    1.0 / tx.abs() as f64
-                },
-                if ty == 0 {
-                    f64::INFINITY
-                } else {
-                    1.0 / ty.abs() as f64
-                },
-            );
-            let (mut t_x, mut t_y) = (0.5 * delta_x, 0.5 * delta_y);
-            let (mut x, mut y) = (0i64, 0i64);
-            while (x, y) != (tx, ty) {
-                if t_x < t_y {
-                    x += step_x;
-                    t_x += delta_x;
-                } else {
-                    y += step_y;
-                    t_y += delta_y;
-                }
+        for (tx, ty) in border(self.half) {
+            for_each_on_ray(tx, ty, |x, y| {
                 let (gx, gy) = (ox + x, oy + y);
                 if gx < 0 || gy < 0 || gx >= w || gy >= h {
-                    break;
+                    return false;
                 }
                 let i = (gy * w + gx) as usize;
                 seen(i, data[i]);
-                if !transparent(i, data[i]) {
-                    break;
-                }
-            }
+                transparent(i, data[i])
+            });
+        }
+    }
+}
+
+/// The rays' tree for a window of half-side `half` (`None` past [`MAX_TREE_HALF`]), shared
+/// by every sensor of that half-side.
+fn tree_for(half: i64) -> Option<Arc<BeamTree>> {
+    {
+        if half > MAX_TREE_HALF {
+            return None;
+        }
+        type Cache = Mutex<Vec<(i64, Arc<BeamTree>)>>;
+        static CACHE: OnceLock<Cache> = OnceLock::new();
+        let mut cache = CACHE
+            .get_or_init(|| Mutex::new(Vec::new()))
+            .lock()
+            .unwrap_or_else(|poisoned| poisoned.into_inner());
+        if let Some((_, t)) = cache.iter().find(|(h, _)| *h == half) {
+            return Some(Arc::clone(t));
+        }
+        let paths: Vec<Vec<(i16, i16)>> = border(half)
+            .map(|(tx, ty)| {
+                let mut path = Vec::new();
+                for_each_on_ray(tx, ty, |x, y| {
+                    path.push((x as i16, y as i16));
+                    true
+                });
+                path
+            })
+            .collect();
+        let tree = Arc::new(BeamTree::from_paths(&paths));
+        if cache.len() == KEPT_TREES {
+            cache.remove(0);
+        }
+        cache.push((half, Arc::clone(&tree)));
+        Some(tree)
+    }
+}
+
+/// Every border cell of the window of half-side `r` (≥ 1), each once.
+fn border(r: i64) -> impl Iterator<Item = (i64, i64)> {
+    (-r..=r)
+        .flat_map(move |t| [(t, -r), (t, r)])
+        .chain((-r + 1..r).flat_map(move |t| [(-r, t), (r, t)]))
+}
+
+/// Call `enter(x, y)` for every cell the ray from the origin cell's centre to border cell
+/// `(tx, ty)`'s centre enters, in order (offsets from the origin), until `enter` says stop
+/// or the ray has entered its target.
+#[inline]
+fn for_each_on_ray(tx: i64, ty: i64, mut enter: impl FnMut(i64, i64) -> bool) {
+    let (step_x, step_y) = (tx.signum(), ty.signum());
+    // Parameter t runs from 0 (origin's centre) to 1 (target's centre).
+    let (delta_x, delta_y) = (
+        if tx == 0 {
+            f64::INFINITY
+        } else {
+            1.0 / tx.abs() as f64
+        },
+        if ty == 0 {
+            f64::INFINITY
+        } else {
+            1.0 / ty.abs() as f64
+        },
+    );
+    let (mut t_x, mut t_y) = (0.5 * delta_x, 0.5 * delta_y);
+    let (mut x, mut y) = (0i64, 0i64);
+    while (x, y) != (tx, ty) {
+        if t_x < t_y {
+            x += step_x;
+            t_x += delta_x;
+        } else {
+            y += step_y;
+            t_y += delta_y;
+        }
+        if !enter(x, y) {
+            return;
         }
     }
 }
 
 impl SquareSensor {
-    /// The scan, reporting only the cells `keep` accepts (by flat index), each once, by
-    /// increasing index.
+    /// The scan, reporting only the cells that tell the robot scanning something if
+    /// `unseen` is given, each once, by increasing index: the rays' tree is walked, marking
+    /// a bitmap of the window (a cell many rays cross is marked many times, reported once);
+    /// a window too large for a tree walks every ray and sorts.
     fn scan_keeping(
         &self,
         truth: &Grid<Occ>,
         pose: Pose,
-        keep: impl Fn(usize) -> bool,
+        unseen: Option<&Unseen>,
         out: &mut Observation,
     ) {
         out.clear();
         out.origin = pose.cell;
-        let cells = &mut out.cells;
-        self.trace(
-            truth,
-            pose,
-            |_, s| s == Occ::Free,
-            |i, s| {
-                if keep(i) {
-                    cells.push((i as u32, observed(s)))
+        let Some(tree) = &self.tree else {
+            let cells = &mut out.cells;
+            self.trace(
+                truth,
+                pose,
+                |_, s| s == Occ::Free,
+                |i, s| {
+                    if unseen.is_none_or(|u| u.tells(i)) {
+                        cells.push((i as u32, observed(s)))
+                    }
+                },
+            );
+            cells.sort_unstable_by_key(|&(i, _)| i);
+            cells.dedup_by_key(|&mut (i, _)| i);
+            return;
+        };
+        let Some(window) = Window::around(truth, pose.cell, self.half as f64) else {
+            return;
+        };
+        with_seen(|bits| {
+            window.reset(bits);
+            let (ox, oy) = (i64::from(pose.cell.x), i64::from(pose.cell.y));
+            let (w, h) = (truth.width() as i64, truth.height() as i64);
+            for y in (oy - 1).max(0)..=(oy + 1).min(h - 1) {
+                for x in (ox - 1).max(0)..=(ox + 1).min(w - 1) {
+                    window.mark(bits, x, y);
                 }
-            },
-        );
-        cells.sort_unstable_by_key(|&(i, _)| i);
-        cells.dedup_by_key(|&mut (i, _)| i);
+            }
+            if self.half > 0 && *truth.get(pose.cell) == Occ::Free {
+                tree.walk(truth, pose.cell, &window, bits);
+            }
+            let data = truth.data();
+            window.drain(bits, unseen, |i| {
+                out.cells.push((i as u32, observed(data[i])))
+            });
+        });
     }
 }
 
 impl Sensor for SquareSensor {
     fn scan(&self, truth: &Grid<Occ>, pose: Pose, out: &mut Observation) {
-        self.scan_keeping(truth, pose, |_| true, out);
+        self.scan_keeping(truth, pose, None, out);
     }
 
     /// Every ray is walked, but only the cells that tell the robot scanning something are
-    /// reported (and sorted).
+    /// reported.
     fn scan_unseen(&self, truth: &Grid<Occ>, pose: Pose, unseen: &Unseen, out: &mut Observation) {
-        self.scan_keeping(truth, pose, |i| unseen.tells(i), out);
+        self.scan_keeping(truth, pose, Some(unseen), out);
     }
 
     fn skips_known(&self) -> bool {
@@ -188,6 +284,65 @@ impl Sensor for SquareSensor {
 mod tests {
     use super::*;
     use grid::Cell;
+    use proptest::prelude::*;
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(300))]
+
+        /// The scan down the rays' tree sees exactly the cells the rays' own walk sees,
+        /// each once and by index, near the grid's edges too.
+        #[test]
+        fn the_ray_tree_sees_what_walked_rays_see(
+            bits in proptest::collection::vec(any::<u8>(), 16..400),
+            density in 0u8..50,
+            w in 1usize..60,
+            h in 1usize..60,
+            ox in 0i32..60,
+            oy in 0i32..60,
+            r in 0.0f64..25.0,
+        ) {
+            let mut g = Grid::new(w, h, Occ::Free);
+            for (i, &b) in bits.iter().cycle().take(w * h).enumerate() {
+                let v = b % 100;
+                if v < density {
+                    g.data_mut()[i] = if v % 3 == 0 { Occ::Unknown } else { Occ::Occupied };
+                }
+            }
+            let s = SquareSensor::new(r).expect("valid");
+            prop_assert!(s.tree.is_some());
+            let pose = Pose::new(Cell::new(ox % w as i32, oy % h as i32), 0.0);
+            let mut want = Vec::new();
+            s.trace(&g, pose, |_, o| o == Occ::Free, |i, o| want.push((i as u32, observed(o))));
+            want.sort_unstable();
+            want.dedup();
+            let mut obs = Observation::new();
+            s.scan(&g, pose, &mut obs);
+            prop_assert_eq!(obs.cells, want);
+        }
+    }
+
+    /// A window too large for a tree walks its rays: the same cells, each once, by index.
+    #[test]
+    fn a_huge_window_walks_its_rays() {
+        let s = SquareSensor::new(500.0).expect("valid");
+        assert!(s.tree.is_none());
+        let mut g = Grid::new(40, 30, Occ::Free);
+        g.set(Cell::new(20, 12), Occ::Occupied);
+        let pose = Pose::new(Cell::new(18, 10), 0.0);
+        let mut want = Vec::new();
+        s.trace(
+            &g,
+            pose,
+            |_, o| o == Occ::Free,
+            |i, o| want.push((i as u32, observed(o))),
+        );
+        want.sort_unstable();
+        want.dedup();
+        let mut obs = Observation::new();
+        s.scan(&g, pose, &mut obs);
+        assert!(want.len() > 100);
+        assert_eq!(obs.cells, want);
+    }
 
     #[test]
     fn open_space_shows_the_whole_window() {
