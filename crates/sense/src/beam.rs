@@ -22,8 +22,33 @@ use crate::window::Window;
 /// scanner whose trees would take more walks every beam afresh.
 const MAX_TREE_BYTES: usize = 1 << 20;
 
-/// How many scanners' trees the process keeps (scanners of one run or study share one).
-const KEPT_SCANNERS: usize = 16;
+/// How many values a [`KeptCache`] keeps (the scanners of one run or study share one).
+const KEPT: usize = 16;
+
+/// A process-wide cache of values by key, the last [`KEPT`] made.
+pub(crate) type KeptCache<K, V> = OnceLock<Mutex<Vec<(K, Arc<V>)>>>;
+
+/// The value of `cache` for `key`, made by `make` if the cache holds none (dropping the
+/// oldest beyond [`KEPT`]).
+pub(crate) fn kept<K: PartialEq, V>(
+    cache: &KeptCache<K, V>,
+    key: K,
+    make: impl FnOnce() -> V,
+) -> Arc<V> {
+    let mut cache = cache
+        .get_or_init(|| Mutex::new(Vec::new()))
+        .lock()
+        .unwrap_or_else(|poisoned| poisoned.into_inner());
+    if let Some((_, v)) = cache.iter().find(|(k, _)| *k == key) {
+        return Arc::clone(v);
+    }
+    let v = Arc::new(make());
+    if cache.len() == KEPT {
+        cache.remove(0);
+    }
+    cache.push((key, Arc::clone(&v)));
+    v
+}
 
 /// The exact traversal of one beam from a cell's centre: which boundary it crosses next
 /// until the next cell would be entered at `range` cells or beyond.
@@ -261,26 +286,13 @@ impl CompassTrees {
         if range >= f64::from(i16::MAX) {
             return None;
         }
-        type Cache = Mutex<Vec<([u64; 3], Arc<CompassTrees>)>>;
-        static CACHE: OnceLock<Cache> = OnceLock::new();
+        static CACHE: KeptCache<[u64; 3], CompassTrees> = OnceLock::new();
         let key = [range.to_bits(), key.0.to_bits(), key.1.to_bits()];
-        let mut cache = CACHE
-            .get_or_init(|| Mutex::new(Vec::new()))
-            .lock()
-            .unwrap_or_else(|poisoned| poisoned.into_inner());
-        if let Some((_, trees)) = cache.iter().find(|(k, _)| *k == key) {
-            return Some(Arc::clone(trees));
-        }
-        let trees = Arc::new(Self {
+        Some(kept(&CACHE, key, || Self {
             beams: beams.to_vec(),
             range,
             trees: Default::default(),
-        });
-        if cache.len() == KEPT_SCANNERS {
-            cache.remove(0);
-        }
-        cache.push((key, Arc::clone(&trees)));
-        Some(trees)
+        }))
     }
 
     /// The tree for `heading` if it is exactly one of [`compass_headings`] and its tree is

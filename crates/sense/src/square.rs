@@ -11,11 +11,11 @@
 //!
 //! `R` is `⌊r⌋` for a range of `r` cells (`square:r=3.5` at 0.05 m: 70 cells).
 
-use std::sync::{Arc, Mutex, OnceLock};
+use std::sync::{Arc, OnceLock};
 
 use grid::{Grid, Occ};
 
-use crate::beam::BeamTree;
+use crate::beam::{BeamTree, KeptCache, kept};
 use crate::error::SenseError;
 use crate::footprint::check_plain_range;
 use crate::sensor::{Observation, Pose, Sensor, observed, predicted_transparent};
@@ -25,9 +25,6 @@ use crate::window::{Window, with_seen};
 /// The largest half-side whose rays are walked from a tree: the tree holds fewer nodes than
 /// the rays' `8 R × 2 R` cells (at most 2 MiB at 180 cells: `square:r=9` at 0.05 m).
 const MAX_TREE_HALF: i64 = 180;
-
-/// How many windows' trees the process keeps.
-const KEPT_TREES: usize = 8;
 
 /// The square-window sensor of Explore-Bench (module doc).
 #[derive(Clone)]
@@ -108,19 +105,11 @@ impl SquareSensor {
 /// The rays' tree for a window of half-side `half` (`None` past [`MAX_TREE_HALF`]), shared
 /// by every sensor of that half-side.
 fn tree_for(half: i64) -> Option<Arc<BeamTree>> {
-    {
-        if half > MAX_TREE_HALF {
-            return None;
-        }
-        type Cache = Mutex<Vec<(i64, Arc<BeamTree>)>>;
-        static CACHE: OnceLock<Cache> = OnceLock::new();
-        let mut cache = CACHE
-            .get_or_init(|| Mutex::new(Vec::new()))
-            .lock()
-            .unwrap_or_else(|poisoned| poisoned.into_inner());
-        if let Some((_, t)) = cache.iter().find(|(h, _)| *h == half) {
-            return Some(Arc::clone(t));
-        }
+    if half > MAX_TREE_HALF {
+        return None;
+    }
+    static CACHE: KeptCache<i64, BeamTree> = OnceLock::new();
+    Some(kept(&CACHE, half, || {
         let paths: Vec<Vec<(i16, i16)>> = border(half)
             .map(|(tx, ty)| {
                 let mut path = Vec::new();
@@ -131,13 +120,8 @@ fn tree_for(half: i64) -> Option<Arc<BeamTree>> {
                 path
             })
             .collect();
-        let tree = Arc::new(BeamTree::from_paths(&paths));
-        if cache.len() == KEPT_TREES {
-            cache.remove(0);
-        }
-        cache.push((half, Arc::clone(&tree)));
-        Some(tree)
-    }
+        BeamTree::from_paths(&paths)
+    }))
 }
 
 /// Every border cell of the window of half-side `r` (≥ 1), each once.
