@@ -4,12 +4,12 @@
 //! A beam leaving a cell's centre crosses column and row boundaries in an order that
 //! depends only on its direction and range, not on the cell it leaves from. A robot that
 //! moves cell by cell faces one of eight headings (the directions of its last move), so the
-//! cells of each beam for those headings are found once, by the same walk, and merged into
-//! a prefix tree ([`BeamTree`]): beams 1° apart share their first tens of cells, so the tree
-//! holds about half the cells of the beams at 160 cells' range (13,600 of 29,000 for 181
-//! beams) and far fewer of those a wall stops early, and walking it needs no floating
-//! point and no choice of the next boundary. The tree holds the walk's own cells, so a scan
-//! sees the same cells, bit for bit.
+//! cells of each beam for those headings are found once, by the same walk, and stored as a
+//! prefix tree ([`BeamTree`]): a scan replays them with no floating point and no choice of
+//! the next boundary, and skips the rest of a beam (the subtree) at a cell that stops it.
+//! The sharing itself is small: beams 1° apart part within a few cells, so at 160 cells'
+//! range the tree holds 34,900 cells for the beams' 36,800; the replay is what saves time.
+//! The tree holds the walk's own cells, so a scan sees the same cells, bit for bit.
 
 use std::sync::{Arc, Mutex, OnceLock};
 
@@ -23,7 +23,7 @@ use crate::window::Window;
 const MAX_TREE_BYTES: usize = 1 << 20;
 
 /// How many values a [`KeptCache`] keeps (the scanners of one run or study share one).
-const KEPT: usize = 16;
+const KEPT: usize = 8;
 
 /// A process-wide cache of values by key, the last [`KEPT`] made.
 pub(crate) type KeptCache<K, V> = OnceLock<Mutex<Vec<(K, Arc<V>)>>>;
@@ -129,10 +129,10 @@ pub(crate) struct BeamNode {
     pub skip: u32,
 }
 
-/// Every beam's cells for one heading, merged into one prefix tree stored in pre-order:
-/// beams leave the sensor cell together and part over tens of cells, so a shared first
-/// part is stored and walked once. A walk visits a node when every cell before it on its
-/// beams lets beams through, and jumps past the subtree of a cell that stops them.
+/// Every beam's cells for one heading, merged into one prefix tree stored in pre-order (a
+/// first part that beams share is stored and walked once). A walk visits a node when every
+/// cell before it on its beams lets beams through, and jumps past the subtree of a cell
+/// that stops them.
 #[derive(Clone, Debug)]
 pub(crate) struct BeamTree {
     /// The cells in pre-order.
@@ -168,11 +168,74 @@ impl BeamTree {
     }
 
     /// The tree of rays that enter the cells of `paths` (offsets from the sensor cell, in
-    /// order; each ray moves one way along each axis).
+    /// order; each ray moves one way along each axis). Built with a stack of its own, not
+    /// by recursion: a ray may be tens of thousands of cells long.
     pub(crate) fn from_paths(paths: &[Vec<(i16, i16)>]) -> Self {
-        let mut nodes = Vec::new();
+        /// What is left to do, innermost last.
+        enum Task {
+            /// Split `members[lo..hi]`, rays sharing their first `depth` cells and going on
+            /// past them, by their next cell, one subtree per cell in ray order.
+            Split { lo: usize, hi: usize, depth: usize },
+            /// Add the node of `members[lo..hi]`'s common cell at `depth`, then its subtree.
+            Node { lo: usize, hi: usize, depth: usize },
+            /// Node `at`'s subtree is complete: it ends here.
+            Close { at: usize },
+        }
         let mut members: Vec<usize> = (0..paths.len()).filter(|&b| !paths[b].is_empty()).collect();
-        Self::grow(paths, &mut members, 0, &mut nodes, &mut Vec::new());
+        let mut nodes = Vec::new();
+        let mut cells: Vec<(i16, i16)> = Vec::new();
+        let mut tasks = vec![Task::Split {
+            lo: 0,
+            hi: members.len(),
+            depth: 0,
+        }];
+        while let Some(task) = tasks.pop() {
+            match task {
+                Task::Split { lo, hi, depth } => {
+                    // Group by cell in order of first appearance (a stable sort keeps the
+                    // rays' order within a group); push the groups last first.
+                    cells.clear();
+                    for &m in &members[lo..hi] {
+                        if !cells.contains(&paths[m][depth]) {
+                            cells.push(paths[m][depth]);
+                        }
+                    }
+                    let group = |m: &usize| cells.iter().position(|&c| c == paths[*m][depth]);
+                    members[lo..hi].sort_by_key(group);
+                    let mut end = hi;
+                    for k in (0..cells.len()).rev() {
+                        let start = lo + members[lo..end].partition_point(|m| group(m) < Some(k));
+                        tasks.push(Task::Node {
+                            lo: start,
+                            hi: end,
+                            depth,
+                        });
+                        end = start;
+                    }
+                }
+                Task::Node { lo, hi, depth } => {
+                    let (dx, dy) = paths[members[lo]][depth];
+                    tasks.push(Task::Close { at: nodes.len() });
+                    nodes.push(BeamNode { dx, dy, skip: 0 });
+                    // Only the rays that go on past this cell have a subtree.
+                    let mut going_on = lo;
+                    for i in lo..hi {
+                        if paths[members[i]].len() > depth + 1 {
+                            members[going_on] = members[i];
+                            going_on += 1;
+                        }
+                    }
+                    if going_on > lo {
+                        tasks.push(Task::Split {
+                            lo,
+                            hi: going_on,
+                            depth: depth + 1,
+                        });
+                    }
+                }
+                Task::Close { at } => nodes[at].skip = nodes.len() as u32,
+            }
+        }
         Self { nodes }
     }
 
@@ -202,56 +265,6 @@ impl BeamTree {
             } else {
                 node.skip as usize
             };
-        }
-    }
-
-    /// Append, in pre-order, the subtrees of the cells at `depth` of the beams `members`
-    /// (which share their first `depth` cells and go on past them), one per distinct cell
-    /// in beam order; `members` is reordered on the way.
-    fn grow(
-        paths: &[Vec<(i16, i16)>],
-        members: &mut [usize],
-        depth: usize,
-        nodes: &mut Vec<BeamNode>,
-        others: &mut Vec<usize>,
-    ) {
-        let mut rest = members;
-        loop {
-            // Those on the first member's cell first, in their order; the others after.
-            let Some(&first) = rest.first() else {
-                return;
-            };
-            let cell = paths[first][depth];
-            others.clear();
-            let mut kept = 0;
-            for i in 0..rest.len() {
-                let b = rest[i];
-                if paths[b].get(depth) == Some(&cell) {
-                    rest[kept] = b;
-                    kept += 1;
-                } else {
-                    others.push(b);
-                }
-            }
-            rest[kept..].copy_from_slice(others);
-            let at = nodes.len();
-            nodes.push(BeamNode {
-                dx: cell.0,
-                dy: cell.1,
-                skip: 0,
-            });
-            let (same, after) = rest.split_at_mut(kept);
-            // Only the beams that go on past this cell have a subtree.
-            let mut going_on = 0;
-            for i in 0..same.len() {
-                if paths[same[i]].len() > depth + 1 {
-                    same[going_on] = same[i];
-                    going_on += 1;
-                }
-            }
-            Self::grow(paths, &mut same[..going_on], depth + 1, nodes, others);
-            nodes[at].skip = nodes.len() as u32;
-            rest = after;
         }
     }
 }
@@ -308,5 +321,61 @@ impl CompassTrees {
                     .then(|| BeamTree::new(&self.beams, heading, self.range))
             })
             .as_ref()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Regression (stack overflow): a tree was grown by recursion, one call a cell, so a
+    /// beam of tens of thousands of cells overflowed a thread's stack.
+    #[test]
+    fn a_long_beam_builds_on_a_small_stack() {
+        let nodes = std::thread::Builder::new()
+            .stack_size(256 * 1024)
+            .spawn(|| BeamTree::new(&[(1.0, 0.0)], 0.3, 30_000.0).nodes.len())
+            .expect("spawned")
+            .join()
+            .expect("no overflow");
+        // One beam: a path, each cell the only child of the one before.
+        assert!(nodes > 30_000);
+    }
+
+    /// The tree holds each beam's cells in order: following first children from the root
+    /// and skips between siblings lists every beam's path.
+    #[test]
+    fn every_beam_is_a_path_down_the_tree() {
+        let beams: Vec<(f64, f64)> = (0..=36)
+            .map(|k| {
+                let a = (f64::from(k) * 5.0 - 90.0).to_radians();
+                (a.cos(), a.sin())
+            })
+            .collect();
+        for heading in compass_headings() {
+            let tree = BeamTree::new(&beams, heading, 40.0);
+            let (ch, sh) = (heading.cos(), heading.sin());
+            for &beam in &beams {
+                let (dx, dy) = rotate(beam, ch, sh);
+                let (sx, sy) = (if dx < 0.0 { -1 } else { 1 }, if dy < 0.0 { -1 } else { 1 });
+                let mut walk = BeamWalk::new(dx, dy, 40.0);
+                let (mut x, mut y) = (0i16, 0i16);
+                // Search each next cell among the children of the current node.
+                let (mut lo, mut hi) = (0usize, tree.nodes.len());
+                while let Some(column) = walk.next_step() {
+                    if column {
+                        x += sx;
+                    } else {
+                        y += sy;
+                    }
+                    let mut n = lo;
+                    while n < hi && (tree.nodes[n].dx, tree.nodes[n].dy) != (x, y) {
+                        n = tree.nodes[n].skip as usize;
+                    }
+                    assert!(n < hi, "cell ({x}, {y}) of a beam is not in the tree");
+                    (lo, hi) = (n + 1, tree.nodes[n].skip as usize);
+                }
+            }
+        }
     }
 }
