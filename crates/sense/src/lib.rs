@@ -13,16 +13,19 @@
 //! - [`FootprintSensor`] (`footprint:r=3`): every cell within `r`, Quattrini Li et al.'s
 //!   speed-up.
 //! - [`LidarSensor`] (`lidar:r=8,fov=180,res=1`): Holz et al.'s planar scanner, beams
-//!   traced with Amanatides & Woo's grid traversal.
+//!   traced with Amanatides & Woo's grid traversal; facing one of the eight headings of a
+//!   grid move, their cells are replayed from a prefix tree made once and shared.
+//! - [`SquareSensor`] (`square:r=3.5`): Explore-Bench's square window, rays from the
+//!   robot's cell to every cell of the window's border, replayed from one shared tree.
 //! - [`SonarSensor`]: Yamauchi's ring of 16 sonar transducers with specular reflections,
 //!   off-plane obstacles, a cone-shaped inverse model for the [`EvidenceGrid`] and
 //!   laser-limited sonar ([`sonar`]). It fires with a caller's RNG (range noise) and
 //!   integrates graded evidence, so it is driven directly rather than through [`Sensor`].
 //!
 //! [`Unseen`] keeps which robot of a team sensed which cell, and so what a scan could still
-//! tell; [`Sensor::scan_unseen`] reports only such cells (the lidar and the line-of-sight
-//! sensor; the latter also stops each octant's shadow casting after the last block holding
-//! one), so that a robot crossing explored space pays little for it.
+//! tell; [`Sensor::scan_unseen`] reports only such cells (the lidar, the square window and
+//! the line-of-sight sensor; the latter also stops each octant's shadow casting after the
+//! last block holding one), so that a robot crossing explored space pays little for it.
 //!
 //! Information gain ([`gain`]): the expected entropy drop of a predicted scan on a belief
 //! ([`Sensor::predict`]), for decision-theoretic exploration.
