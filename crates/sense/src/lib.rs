@@ -66,6 +66,8 @@ pub mod shadow;
 pub mod sonar;
 pub mod spec;
 pub mod square;
+#[cfg(test)]
+mod test_grids;
 pub mod unseen;
 pub(crate) mod window;
 

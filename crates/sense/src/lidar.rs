@@ -293,6 +293,7 @@ impl LidarSensor {
 mod tests {
     use super::*;
     use crate::beam::compass_headings;
+    use crate::test_grids::grid_from;
     use grid::Cell;
     use proptest::prelude::*;
 
@@ -329,13 +330,7 @@ mod tests {
             res in prop::sample::select(vec![0.5, 1.0, 3.0, 10.0]),
             heading in 0usize..8,
         ) {
-            let mut g = Grid::new(w, h, Occ::Free);
-            for (i, &b) in bits.iter().cycle().take(w * h).enumerate() {
-                let v = b % 100;
-                if v < density {
-                    g.data_mut()[i] = if v % 3 == 0 { Occ::Unknown } else { Occ::Occupied };
-                }
-            }
+            let g = grid_from(w, h, &bits, density);
             let s = LidarSensor::new(range, fov, res).expect("valid");
             let heading = compass_headings()[heading];
             let pose = Pose::new(Cell::new(ox % w as i32, oy % h as i32), heading);

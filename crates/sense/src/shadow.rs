@@ -412,24 +412,10 @@ pub fn octant_columns(origin: grid::Cell, range: f64, unseen: &Unseen) -> [i64; 
 mod tests {
     use super::*;
     use crate::segment::los_visible;
+    use crate::test_grids::grid_from;
     use crate::{LosSensor, sensor::observed};
     use grid::Cell;
     use proptest::prelude::*;
-
-    fn grid_from(w: usize, h: usize, bits: &[u8], density: u8) -> Grid<Occ> {
-        let mut g = Grid::new(w, h, Occ::Free);
-        for (i, &b) in bits.iter().cycle().take(w * h).enumerate() {
-            let v = b % 100;
-            if v < density {
-                g.data_mut()[i] = if v % 3 == 0 {
-                    Occ::Unknown
-                } else {
-                    Occ::Occupied
-                };
-            }
-        }
-        g
-    }
 
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(300))]

@@ -267,6 +267,7 @@ impl Sensor for SquareSensor {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::test_grids::grid_from;
     use grid::Cell;
     use proptest::prelude::*;
 
@@ -285,13 +286,7 @@ mod tests {
             oy in 0i32..60,
             r in 0.0f64..25.0,
         ) {
-            let mut g = Grid::new(w, h, Occ::Free);
-            for (i, &b) in bits.iter().cycle().take(w * h).enumerate() {
-                let v = b % 100;
-                if v < density {
-                    g.data_mut()[i] = if v % 3 == 0 { Occ::Unknown } else { Occ::Occupied };
-                }
-            }
+            let g = grid_from(w, h, &bits, density);
             let s = SquareSensor::new(r).expect("valid");
             prop_assert!(s.tree.is_some());
             let pose = Pose::new(Cell::new(ox % w as i32, oy % h as i32), 0.0);
