@@ -50,8 +50,8 @@ pub(crate) fn kept<K: PartialEq, V>(
     v
 }
 
-/// The exact traversal of one beam from a cell's centre: which boundary it crosses next
-/// until the next cell would be entered at `range` cells or beyond.
+/// The exact traversal of one beam from a cell's centre: the cells it enters, as offsets
+/// from that cell, until the next one would be entered at `range` cells or beyond.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct BeamWalk {
     delta_x: f64,
@@ -59,6 +59,10 @@ pub(crate) struct BeamWalk {
     t_x: f64,
     t_y: f64,
     range: f64,
+    step_x: i64,
+    step_y: i64,
+    x: i64,
+    y: i64,
 }
 
 impl BeamWalk {
@@ -72,26 +76,35 @@ impl BeamWalk {
             t_x: 0.5 * delta_x,
             t_y: 0.5 * delta_y,
             range,
+            step_x: if dx < 0.0 { -1 } else { 1 },
+            step_y: if dy < 0.0 { -1 } else { 1 },
+            x: 0,
+            y: 0,
         }
     }
+}
 
-    /// The next step: `Some(true)` into the next column, `Some(false)` into the next row,
-    /// `None` once the next cell lies at or beyond the range.
+impl Iterator for BeamWalk {
+    type Item = (i64, i64);
+
+    /// The offset of the next cell the beam enters, `None` once it lies at or beyond the
+    /// range.
     #[inline]
-    pub(crate) fn next_step(&mut self) -> Option<bool> {
+    fn next(&mut self) -> Option<(i64, i64)> {
         if self.t_x < self.t_y {
             if self.t_x >= self.range {
                 return None;
             }
             self.t_x += self.delta_x;
-            Some(true)
+            self.x += self.step_x;
         } else {
             if self.t_y >= self.range {
                 return None;
             }
             self.t_y += self.delta_y;
-            Some(false)
+            self.y += self.step_y;
         }
+        Some((self.x, self.y))
     }
 }
 
@@ -104,7 +117,7 @@ pub(crate) fn rotate((c, s): (f64, f64), ch: f64, sh: f64) -> (f64, f64) {
 
 /// The headings a robot faces after a grid move, `atan2(dy, dx)` of the eight moves, as the
 /// simulation computes them.
-pub(crate) fn compass_headings() -> [f64; 8] {
+pub(crate) fn compass_headings() -> &'static [f64; 8] {
     const MOVES: [(i32, i32); 8] = [
         (1, 0),
         (1, 1),
@@ -115,7 +128,8 @@ pub(crate) fn compass_headings() -> [f64; 8] {
         (0, -1),
         (1, -1),
     ];
-    MOVES.map(|(dx, dy)| f64::from(dy).atan2(f64::from(dx)))
+    static HEADINGS: OnceLock<[f64; 8]> = OnceLock::new();
+    HEADINGS.get_or_init(|| MOVES.map(|(dx, dy)| f64::from(dy).atan2(f64::from(dx))))
 }
 
 /// One cell of a [`BeamTree`]: its offset from the sensor cell and where its subtree ends.
@@ -148,20 +162,9 @@ impl BeamTree {
             .iter()
             .map(|&beam| {
                 let (dx, dy) = rotate(beam, ch, sh);
-                let (step_x, step_y) =
-                    (if dx < 0.0 { -1 } else { 1 }, if dy < 0.0 { -1 } else { 1 });
-                let mut walk = BeamWalk::new(dx, dy, range);
-                let (mut x, mut y) = (0i16, 0i16);
-                let mut path = Vec::new();
-                while let Some(column) = walk.next_step() {
-                    if column {
-                        x += step_x;
-                    } else {
-                        y += step_y;
-                    }
-                    path.push((x, y));
-                }
-                path
+                BeamWalk::new(dx, dy, range)
+                    .map(|(x, y)| (x as i16, y as i16))
+                    .collect()
             })
             .collect();
         Self::from_paths(&paths)
@@ -247,19 +250,15 @@ impl BeamTree {
         let data = truth.data();
         let (w, h) = (truth.width() as i64, truth.height() as i64);
         let (cx, cy) = (i64::from(cell.x), i64::from(cell.y));
-        let row_bits = (window.words * 64) as i64;
-        let origin_bit = (cy - window.y0) * row_bits + (cx - window.x0);
         let nodes = &self.nodes;
         let mut n = 0;
         while let Some(node) = nodes.get(n) {
-            let (dx, dy) = (i64::from(node.dx), i64::from(node.dy));
-            let (x, y) = (cx + dx, cy + dy);
+            let (x, y) = (cx + i64::from(node.dx), cy + i64::from(node.dy));
             if x < 0 || y < 0 || x >= w || y >= h {
                 n = node.skip as usize;
                 continue;
             }
-            let b = (origin_bit + dy * row_bits + dx) as usize;
-            bits[b / 64] |= 1 << (b % 64);
+            window.mark(bits, x, y);
             n = if data[(y * w + x) as usize] == Occ::Free {
                 n + 1
             } else {
@@ -352,22 +351,15 @@ mod tests {
                 (a.cos(), a.sin())
             })
             .collect();
-        for heading in compass_headings() {
+        for &heading in compass_headings() {
             let tree = BeamTree::new(&beams, heading, 40.0);
             let (ch, sh) = (heading.cos(), heading.sin());
             for &beam in &beams {
                 let (dx, dy) = rotate(beam, ch, sh);
-                let (sx, sy) = (if dx < 0.0 { -1 } else { 1 }, if dy < 0.0 { -1 } else { 1 });
-                let mut walk = BeamWalk::new(dx, dy, 40.0);
-                let (mut x, mut y) = (0i16, 0i16);
                 // Search each next cell among the children of the current node.
                 let (mut lo, mut hi) = (0usize, tree.nodes.len());
-                while let Some(column) = walk.next_step() {
-                    if column {
-                        x += sx;
-                    } else {
-                        y += sy;
-                    }
+                for (x, y) in BeamWalk::new(dx, dy, 40.0) {
+                    let (x, y) = (x as i16, y as i16);
                     let mut n = lo;
                     while n < hi && (tree.nodes[n].dx, tree.nodes[n].dy) != (x, y) {
                         n = tree.nodes[n].skip as usize;

@@ -135,15 +135,9 @@ impl LidarSensor {
         let (ch, sh) = (pose.heading.cos(), pose.heading.sin());
         for &beam in &self.beams {
             let (dx, dy) = rotate(beam, ch, sh);
-            let (step_x, step_y) = (if dx < 0.0 { -1 } else { 1 }, if dy < 0.0 { -1 } else { 1 });
-            let mut walk = BeamWalk::new(dx, dy, self.range);
-            let (mut x, mut y) = (i64::from(pose.cell.x), i64::from(pose.cell.y));
-            while let Some(column) = walk.next_step() {
-                if column {
-                    x += step_x;
-                } else {
-                    y += step_y;
-                }
+            let (ox, oy) = (i64::from(pose.cell.x), i64::from(pose.cell.y));
+            for (x, y) in BeamWalk::new(dx, dy, self.range) {
+                let (x, y) = (ox + x, oy + y);
                 if x < 0 || y < 0 || x >= w || y >= h {
                     break;
                 }
@@ -351,18 +345,12 @@ mod tests {
         }
         let s = LidarSensor::new(160.0, 180.0, 1.0).expect("valid");
         let headings = compass_headings();
-        for (dx, dy) in [
-            (1, 0),
-            (1, 1),
-            (0, 1),
-            (-1, 1),
-            (-1, 0),
-            (-1, -1),
-            (0, -1),
-            (1, -1),
-        ] {
-            let h = f64::from(dy).atan2(f64::from(dx));
-            assert!(headings.contains(&h), "{dx}, {dy}");
+        // Every move the simulation makes, as it computes the heading after it.
+        for (dx, dy) in (-1..=1).flat_map(|dx| (-1..=1).map(move |dy| (dx, dy))) {
+            if (dx, dy) != (0, 0) {
+                let h = f64::from(dy).atan2(f64::from(dx));
+                assert!(headings.contains(&h), "{dx}, {dy}");
+            }
         }
         let window = Window::around(&g, Cell::new(200, 200), 160.0).expect("inside");
         let mut bits = Vec::new();
@@ -371,7 +359,7 @@ mod tests {
             let pose = Pose::new(Cell::new(200, 200), h);
             assert!(!s.trace_compass(&g, pose, &window, &mut bits));
         }
-        for h in headings {
+        for &h in headings {
             window.reset(&mut bits);
             let pose = Pose::new(Cell::new(200, 200), h);
             assert!(s.trace_compass(&g, pose, &window, &mut bits));

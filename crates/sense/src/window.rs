@@ -23,11 +23,11 @@ pub(crate) fn with_seen<R>(f: impl FnOnce(&mut Vec<u64>) -> R) -> R {
 /// each once, with no sort.
 pub(crate) struct Window {
     /// Columns and rows of the box in the grid, inclusive lower and exclusive upper bounds.
-    pub x0: i64,
-    pub y0: i64,
+    x0: i64,
+    y0: i64,
     y1: i64,
     /// Words per row of the bitmap.
-    pub words: usize,
+    words: usize,
     /// Grid width.
     width: usize,
 }
