@@ -2,6 +2,8 @@
 //! robot scans at every n-th cell it enters, at its goal and wherever it decides; runs
 //! complete, `every-1` is continuous sensing, and the scans are as few as that rule says.
 
+mod common;
+
 use explore::strategy::{SensingMode, Strategy};
 use grid::GridMap;
 use sense::{Range, SensorSpec};
@@ -110,12 +112,7 @@ fn a_robot_sensing_every_third_cell_has_looked_where_it_decides() {
         let mut obs = Observation::new();
         let (mut decisions, mut mid_path) = (0, 0);
         while s.advance() == Status::Decide {
-            let cells = s.candidates().to_vec();
-            let goals: Vec<Option<u32>> = s
-                .propose(cfg.strategy.assigner, &cells)
-                .iter()
-                .map(|g| g.map(|g| g.cell))
-                .collect();
+            let goals = common::proposed_goals(&mut s, &cfg);
             for (r, g) in goals.iter().enumerate() {
                 if g.is_none() || *g == s.goal(r) {
                     continue; // finds none, or keeps its goal (not deciding)

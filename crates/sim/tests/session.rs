@@ -2,6 +2,8 @@
 //! assigner through `propose`, it reproduces the run exactly, for one robot and for teams;
 //! and a caller's goals are checked.
 
+mod common;
+
 use std::borrow::Cow;
 
 use explore::strategy::Strategy;
@@ -38,12 +40,7 @@ fn external(map: &GridMap, cfg: &RunConfig) -> RunResult {
 
 /// Give the pending decision the goals the strategy's assigner proposes.
 fn choose_as_the_assigner(s: &mut Session<'_>, cfg: &RunConfig) {
-    let cells = s.candidates().to_vec();
-    let goals: Vec<Option<u32>> = s
-        .propose(cfg.strategy.assigner, &cells)
-        .iter()
-        .map(|g| g.map(|g| g.cell))
-        .collect();
+    let goals = common::proposed_goals(s, cfg);
     s.choose(&goals).expect("a proposed goal is reachable");
 }
 
