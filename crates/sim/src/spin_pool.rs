@@ -13,7 +13,13 @@
 //!
 //! Items are taken in index order (or an order the caller gives), each exactly once, and
 //! each result goes to its item's index, so what a call returns does not depend on which
-//! thread ran what. Each item runs inside [`explore::decision::batched`]: the pool keeps
+//! thread ran what. Each thread has a home share of the items, the same at every call (the
+//! caller the first `n / threads`, the first helper the next, …), and takes another
+//! share's items only once its own are taken: an environment keeps stepping on the same
+//! core, whose caches still hold what its last step touched. On the 2-core development
+//! machine that made `ExploreVectorEnv` (`cf-rr`, 4–32 environments, calls alternated in
+//! one process) step 2–11 % faster than taking the next free item, in one run of ten
+//! 1 % slower. Each item runs inside [`explore::decision::batched`]: the pool keeps
 //! the cores busy, so a run's own searches are not spread over rayon's threads too.
 
 use std::any::Any;
@@ -88,7 +94,7 @@ impl SpinPool {
             let sh = Arc::clone(&shared);
             let handle = std::thread::Builder::new()
                 .name(format!("frontier-helper-{i}"))
-                .spawn(move || helper(&sh));
+                .spawn(move || helper(&sh, i));
             match handle {
                 Ok(h) => helpers.push(h),
                 Err(e) => {
@@ -118,7 +124,8 @@ impl SpinPool {
     }
 
     /// [`each`](Self::each), the items taken in `order` (a permutation of their indices):
-    /// the longest first, a call's threads finish closer together. The results are in the
+    /// the longest first, a call's threads finish closer together (each thread takes its own
+    /// share's items in that order, then the others'). The results are in the
     /// items' order whatever `order` is.
     ///
     /// # Panics
@@ -140,14 +147,10 @@ impl SpinPool {
         );
         let items: Vec<Mutex<Option<T>>> = items.into_iter().map(|t| Mutex::new(Some(t))).collect();
         let out: Vec<Mutex<Option<R>>> = (0..n).map(|_| Mutex::new(None)).collect();
-        let next = AtomicUsize::new(0);
+        let shares = Shares::new(order, self.threads().min(n).max(1));
         let work = || {
-            loop {
-                let k = next.fetch_add(1, Ordering::Relaxed);
-                if k >= n {
-                    break;
-                }
-                let i = order[k];
+            let start = HOME.with(std::cell::Cell::get);
+            for i in shares.from(start) {
                 // Each index is taken once, so its item is there.
                 if let Some(t) = lock(&items[i]).take() {
                     // the pool's threads are busy: a run's own searches stay on its thread
@@ -228,9 +231,66 @@ impl Drop for SpinPool {
     }
 }
 
+thread_local! {
+    /// The share of a call's items this thread takes first: 0 for a caller, i for helper i.
+    static HOME: std::cell::Cell<usize> = const { std::cell::Cell::new(0) };
+}
+
+/// A call's items in `threads` shares of consecutive indices (item i in share
+/// `i · threads / n`), each share in the call's order, with a cursor per share.
+struct Shares {
+    /// The items share by share; share s is `items[bounds[s]..bounds[s + 1]]`.
+    items: Vec<usize>,
+    bounds: Vec<usize>,
+    /// Per share: how many of its items have been taken.
+    taken: Vec<AtomicUsize>,
+}
+
+impl Shares {
+    fn new(order: &[usize], threads: usize) -> Self {
+        let n = order.len();
+        let share = |i: usize| i * threads / n.max(1);
+        let mut bounds = vec![0; threads + 1];
+        for &i in order {
+            bounds[share(i) + 1] += 1;
+        }
+        for s in 0..threads {
+            bounds[s + 1] += bounds[s];
+        }
+        let mut fill = bounds.clone();
+        let mut items = vec![0; n];
+        for &i in order {
+            let s = share(i);
+            items[fill[s]] = i;
+            fill[s] += 1;
+        }
+        let taken = (0..threads).map(|_| AtomicUsize::new(0)).collect();
+        Self {
+            items,
+            bounds,
+            taken,
+        }
+    }
+
+    /// The items a thread whose home is share `home` takes: its own share's first, then
+    /// the other shares' in turn, each item handed to exactly one taker.
+    fn from(&self, home: usize) -> impl Iterator<Item = usize> + '_ {
+        let t = self.taken.len();
+        (0..t).flat_map(move |k| {
+            let s = (home + k) % t;
+            let (lo, hi) = (self.bounds[s], self.bounds[s + 1]);
+            std::iter::from_fn(move || {
+                let k = lo + self.taken[s].fetch_add(1, Ordering::Relaxed);
+                (k < hi).then(|| self.items[k])
+            })
+        })
+    }
+}
+
 /// A helper's life: wait for a call (spinning for [`SPIN`], then parked), register while
 /// it is open, run its work, leave.
-fn helper(sh: &Shared) {
+fn helper(sh: &Shared, home: usize) {
+    HOME.with(|h| h.set(home));
     let mut seen = 0u64;
     loop {
         let started = Instant::now();
@@ -313,6 +373,33 @@ mod tests {
             [2, 0, 1],
             "one thread takes the items in order"
         );
+    }
+
+    #[test]
+    fn each_thread_takes_its_own_share_first_then_the_others() {
+        // Items 0, 1 are share 0 (the caller's), 2, 3 share 1, each in the call's order.
+        let shares = Shares::new(&[3, 1, 0, 2], 2);
+        assert_eq!(shares.from(1).collect::<Vec<_>>(), [3, 2, 1, 0]);
+        let shares = Shares::new(&[3, 1, 0, 2], 2);
+        assert_eq!(shares.from(0).collect::<Vec<_>>(), [1, 0, 3, 2]);
+        // Two takers at once: every item goes to exactly one.
+        let shares = Shares::new(&(0..7).rev().collect::<Vec<_>>(), 3);
+        let (mut a, mut b) = (shares.from(0), shares.from(2));
+        let mut got = Vec::new();
+        loop {
+            let (x, y) = (a.next(), b.next());
+            got.extend(x.into_iter().chain(y));
+            if x.is_none() && y.is_none() {
+                break;
+            }
+        }
+        assert_eq!(
+            got[..2],
+            [2, 6],
+            "each starts with its own share's first item"
+        );
+        got.sort_unstable();
+        assert_eq!(got, (0..7).collect::<Vec<_>>());
     }
 
     #[test]
