@@ -101,6 +101,11 @@ pub struct State {
     front: Vec<u32>,
     /// Key k holds the frontier cells `front[key_start[k]..key_start[k + 1]]`.
     key_start: Vec<u32>,
+    /// Each frontier cell's key with the cell, `key << 32 | cell`, sorted to group
+    /// `front` by key (the keys computed once, not at each comparison of the sort).
+    keyed: Vec<u64>,
+    /// Key k's key (its block, or its frontier cell on maps covered cell by cell).
+    key_of: Vec<u32>,
     /// The cells of the scanned grid whose scans cover the key at hand.
     targets: Vec<u32>,
     /// (target, key) incidences: key k is covered from any cell that sees its target (a
@@ -135,8 +140,8 @@ pub struct State {
     /// The keys some candidate covers, and those covered by the candidates chosen so far.
     coverable: Vec<u64>,
     covered: Vec<u64>,
-    /// The greedy cover's candidates by count: bucket n holds `(cell, candidate id)`.
-    buckets: Vec<Vec<(u32, u32)>>,
+    /// The greedy cover's candidates by count: bucket n holds [`cell_id`]s.
+    buckets: Vec<Vec<u64>>,
     /// The chosen candidates in order, and the frontier cells credited to each.
     chosen: Vec<u32>,
     credit_start: Vec<u32>,
@@ -531,18 +536,23 @@ fn cover_on(ctx: &mut DecisionCtx<'_>, st: &mut State, block: usize, only: Optio
     };
 
     // Lines 2–4: covering cells of every frontier cell (of every key).
+    st.keyed.clear();
+    st.key_of.clear();
     for &f in only.unwrap_or(upkeep.frontiers.cells()) {
         if lists.is_excluded(f) || !reach.contains(f as usize) {
             continue;
         }
-        st.front.push(f);
+        st.keyed.push(u64::from(key(f)) << 32 | u64::from(f));
     }
     // Frontier order is the upkeep's (history dependent); sort for determinism by index.
-    st.front.sort_unstable_by_key(|&f| (key(f), f));
-    for (k, &f) in st.front.iter().enumerate() {
-        if k == 0 || key(f) != key(st.front[k - 1]) {
+    st.keyed.sort_unstable();
+    for (k, &kf) in st.keyed.iter().enumerate() {
+        let kk = (kf >> 32) as u32;
+        if st.key_of.last() != Some(&kk) {
             st.key_start.push(k as u32);
+            st.key_of.push(kk);
         }
+        st.front.push(kf as u32);
     }
     st.key_start.push(st.front.len() as u32);
     let nk = st.key_start.len() - 1;
@@ -569,7 +579,7 @@ fn cover_on(ctx: &mut DecisionCtx<'_>, st: &mut State, block: usize, only: Optio
     st.row_keys.clear();
     st.row_keys.resize(sh + 1, 0);
     for kk in 0..nk {
-        let kc = key(st.front[st.key_start[kk] as usize]) as usize;
+        let kc = st.key_of[kk] as usize;
         st.row_keys[kc / sw + 1] += 1;
     }
     for y in 0..sh {
@@ -691,7 +701,7 @@ fn cover_on(ctx: &mut DecisionCtx<'_>, st: &mut State, block: usize, only: Optio
             if buckets.len() <= n {
                 buckets.resize_with(n + 1, Vec::new);
             }
-            buckets[n].push((c, id as u32));
+            buckets[n].push(cell_id(c, id as u32));
         }
     }
     let mut k = buckets.len().saturating_sub(1);
@@ -705,13 +715,15 @@ fn cover_on(ctx: &mut DecisionCtx<'_>, st: &mut State, block: usize, only: Optio
             break;
         }
         if sorted != k {
-            // descending by cell: the lowest is taken first, from the end
-            buckets[k].sort_unstable_by_key(|&(c, _)| std::cmp::Reverse(c));
+            // descending by cell: the lowest is taken first, from the end (a candidate's
+            // cell is its own, so the id never decides)
+            buckets[k].sort_unstable_by(|a, b| b.cmp(a));
             sorted = k;
         }
-        let Some((cell, id)) = buckets[k].pop() else {
+        let Some(entry) = buckets[k].pop() else {
             break;
         };
+        let (cell, id) = ((entry >> 32) as u32, entry as u32);
         let cnt = k as u32;
         let sp = st.spans[id as usize];
         let row = sp.of(&st.bits);
@@ -725,7 +737,7 @@ fn cover_on(ctx: &mut DecisionCtx<'_>, st: &mut State, block: usize, only: Optio
             continue;
         }
         if now != cnt {
-            buckets[now as usize].push((cell, id));
+            buckets[now as usize].push(entry);
             continue;
         }
         // On blocks, the candidate goes through a cell of its block that sees, cell by
@@ -813,6 +825,11 @@ impl Span {
     fn of(self, bits: &[u64]) -> &[u64] {
         &bits[self.at as usize..(self.at + self.len) as usize]
     }
+}
+
+/// A bucket entry: candidate `id` whose cell is `cell`, ordered by cell as one integer.
+fn cell_id(cell: u32, id: u32) -> u64 {
+    u64::from(cell) << 32 | u64::from(id)
 }
 
 /// The number of bits set in `words`.
