@@ -51,7 +51,8 @@ pub(crate) fn kept<K: PartialEq, V>(
 }
 
 /// The exact traversal of one beam from a cell's centre: the cells it enters, as offsets
-/// from that cell, until the next one would be entered at `range` cells or beyond.
+/// from that cell, until the next one would be entered at `range` times the direction's
+/// length or beyond (`range` cells for a unit direction).
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct BeamWalk {
     delta_x: f64,
@@ -66,7 +67,7 @@ pub(crate) struct BeamWalk {
 }
 
 impl BeamWalk {
-    /// The walk along direction `(dx, dy)` (a unit vector) up to `range` cells.
+    /// The walk along direction `(dx, dy)` up to `range` times its length.
     #[inline]
     pub(crate) fn new(dx: f64, dy: f64, range: f64) -> Self {
         let (delta_x, delta_y) = (1.0 / dx.abs(), 1.0 / dy.abs()); // ∞ along an axis

@@ -15,7 +15,7 @@ use std::sync::{Arc, OnceLock};
 
 use grid::{Grid, Occ};
 
-use crate::beam::{BeamTree, KeptCache, kept};
+use crate::beam::{BeamTree, BeamWalk, KeptCache, kept};
 use crate::error::SenseError;
 use crate::footprint::check_plain_range;
 use crate::sensor::{Observation, Pose, Sensor, observed, predicted_transparent};
@@ -89,15 +89,17 @@ impl SquareSensor {
             return;
         }
         for (tx, ty) in border(self.half) {
-            for_each_on_ray(tx, ty, |x, y| {
+            for (x, y) in ray(tx, ty) {
                 let (gx, gy) = (ox + x, oy + y);
                 if gx < 0 || gy < 0 || gx >= w || gy >= h {
-                    return false;
+                    break;
                 }
                 let i = (gy * w + gx) as usize;
                 seen(i, data[i]);
-                transparent(i, data[i])
-            });
+                if !transparent(i, data[i]) {
+                    break;
+                }
+            }
         }
     }
 }
@@ -111,14 +113,7 @@ fn tree_for(half: i64) -> Option<Arc<BeamTree>> {
     static CACHE: KeptCache<i64, BeamTree> = OnceLock::new();
     Some(kept(&CACHE, half, || {
         let paths: Vec<Vec<(i16, i16)>> = border(half)
-            .map(|(tx, ty)| {
-                let mut path = Vec::new();
-                for_each_on_ray(tx, ty, |x, y| {
-                    path.push((x as i16, y as i16));
-                    true
-                });
-                path
-            })
+            .map(|(tx, ty)| ray(tx, ty).map(|(x, y)| (x as i16, y as i16)).collect())
             .collect();
         BeamTree::from_paths(&paths)
     }))
@@ -131,39 +126,12 @@ fn border(r: i64) -> impl Iterator<Item = (i64, i64)> {
         .chain((-r + 1..r).flat_map(move |t| [(-r, t), (r, t)]))
 }
 
-/// Call `enter(x, y)` for every cell the ray from the origin cell's centre to border cell
-/// `(tx, ty)`'s centre enters, in order (offsets from the origin), until `enter` says stop
-/// or the ray has entered its target.
-#[inline]
-fn for_each_on_ray(tx: i64, ty: i64, mut enter: impl FnMut(i64, i64) -> bool) {
-    let (step_x, step_y) = (tx.signum(), ty.signum());
-    // Parameter t runs from 0 (origin's centre) to 1 (target's centre).
-    let (delta_x, delta_y) = (
-        if tx == 0 {
-            f64::INFINITY
-        } else {
-            1.0 / tx.abs() as f64
-        },
-        if ty == 0 {
-            f64::INFINITY
-        } else {
-            1.0 / ty.abs() as f64
-        },
-    );
-    let (mut t_x, mut t_y) = (0.5 * delta_x, 0.5 * delta_y);
-    let (mut x, mut y) = (0i64, 0i64);
-    while (x, y) != (tx, ty) {
-        if t_x < t_y {
-            x += step_x;
-            t_x += delta_x;
-        } else {
-            y += step_y;
-            t_y += delta_y;
-        }
-        if !enter(x, y) {
-            return;
-        }
-    }
+/// The cells the ray from the origin cell's centre to border cell `(tx, ty)`'s centre
+/// enters, in order (offsets from the origin), its target last: the beams' traversal with
+/// the ray's parameter running to 1 at the target's centre (no boundary lies exactly there,
+/// so the walk ends on the target).
+fn ray(tx: i64, ty: i64) -> BeamWalk {
+    BeamWalk::new(tx as f64, ty as f64, 1.0)
 }
 
 impl SquareSensor {
