@@ -2,12 +2,24 @@
 environment (no training) and print environment steps per second.
 
     python crates/py/examples/rollout.py [--envs 8,16] [--threads 2] [--steps 1000]
+                                         [--rounds 3] [--sensing every-3]
 
 The default setting is Explore-Bench's grid simulator's: a 250 x 250 map at 0.1 m and a
 3.5 m sensing range (Explore-Bench reports about 5 steps/s there).
+
+Each measurement runs in a process of its own (this script again, with --worker), as a
+training script runs one kind of environment: stepping the other kind in the same process
+between the vector environment's calls evicts the caches its threads step from, and made it
+5-20 % slower. One ExploreEnv and the vector environment are measured by turns, --rounds
+times (the first of the two alternating), so that the machine's changing speed slows both
+alike; each round's ratio is printed, then the medians.
 """
 
 import argparse
+import json
+import statistics
+import subprocess
+import sys
 import time
 
 from frontier.gym import Baseline, ExploreEnv, ExploreVectorEnv, RandomPolicy
@@ -36,25 +48,30 @@ def vector_steps(venv, policy, steps):
         yield venv.num_envs
 
 
-def rates(contenders, slice_steps=400):
-    """Steps per second of each generator, run by turns about `slice_steps` steps at a time
-    so that the machine's changing speed slows them alike."""
-    spent = [0.0] * len(contenders)
-    done = [0] * len(contenders)
-    live = set(range(len(contenders)))
-    while live:
-        for k in sorted(live):
-            t0 = time.perf_counter()
-            n = 0
-            for d in contenders[k]:
-                n += d
-                if n >= slice_steps:
-                    break
-            else:
-                live.discard(k)
-            spent[k] += time.perf_counter() - t0
-            done[k] += n
-    return [d / t for d, t in zip(done, spent)]
+def rate(steps):
+    """Steps per second of a generator of step counts, run to its end."""
+    t0 = time.perf_counter()
+    done = sum(steps)
+    return done / (time.perf_counter() - t0)
+
+
+def worker(a, common):
+    """One measurement (`--worker single|vector`): print its steps per second."""
+    policy = RandomPolicy(0) if a.policy == "random" else Baseline("cf-rr")
+    n = a.n
+    per_env = max(a.steps // n, 1)
+    if a.worker == "single":
+        steps = single_steps(ExploreEnv(**common), policy, n, per_env)
+    else:
+        steps = vector_steps(ExploreVectorEnv(n, threads=a.threads, **common), policy, per_env)
+    print(json.dumps(rate(steps)))
+
+
+def measure(kind, policy, n, argv):
+    """Run one worker process and return its steps per second."""
+    cmd = [sys.executable, __file__, *argv, "--worker", kind, "--policy", policy, "--n", str(n)]
+    out = subprocess.run(cmd, check=True, capture_output=True, text=True).stdout
+    return float(out.strip().splitlines()[-1])
 
 
 def main():
@@ -62,32 +79,47 @@ def main():
     p.add_argument("--envs", default="8,16", help="environments in the vector env (list)")
     p.add_argument("--threads", type=int, default=None, help="Rust threads (default: cores)")
     p.add_argument("--steps", type=int, default=1000, help="environment steps per measurement")
+    p.add_argument("--rounds", type=int, default=3, help="measurements of each, by turns")
     p.add_argument("--size", type=float, default=25.0, help="map side in metres")
     p.add_argument("--resolution", type=float, default=0.1, help="metres per cell")
     p.add_argument("--sensor", default="los:r=3.5", help="sensor spec")
     p.add_argument("--kind", default="office", help="generated environment kind")
     p.add_argument("--sensing", default=None,
                    help="sensing mode, e.g. every-3 (Explore-Bench's every third cell)")
+    p.add_argument("--worker", choices=["single", "vector"], help=argparse.SUPPRESS)
+    p.add_argument("--policy", choices=["random", "cf-rr"], help=argparse.SUPPRESS)
+    p.add_argument("--n", type=int, help=argparse.SUPPRESS)
     a = p.parse_args()
     common = dict(
         maps=a.kind, size=(a.size, a.size), resolution=a.resolution, sensor=a.sensor, k=16,
     )
     if a.sensing:
         common["sensing"] = a.sensing
+    if a.worker:
+        worker(a, common)
+        return
+    argv = ["--steps", str(a.steps), "--size", str(a.size), "--resolution", str(a.resolution),
+            "--sensor", a.sensor, "--kind", a.kind]
+    if a.threads is not None:
+        argv += ["--threads", str(a.threads)]
+    if a.sensing:
+        argv += ["--sensing", a.sensing]
     print(f"{a.kind} {a.size:g} x {a.size:g} m at {a.resolution} m, sensor {a.sensor}, "
-          f"sensing {a.sensing or 'continuous'}, K = 16")
-    envs = [int(n) for n in a.envs.split(",")]
-    for name, make in [("random", lambda: RandomPolicy(0)), ("cf-rr", lambda: Baseline("cf-rr"))]:
-        for n in envs:
-            per_env = max(a.steps // n, 1)
-            venv = ExploreVectorEnv(n, threads=a.threads, **common)
-            single, vector = rates([
-                single_steps(ExploreEnv(**common), make(), n, per_env),
-                vector_steps(venv, make(), per_env),
-            ])
+          f"sensing {a.sensing or 'continuous'}, K = 16, {a.rounds} rounds")
+    for policy in ["random", "cf-rr"]:
+        for n in [int(k) for k in a.envs.split(",")]:
+            singles, vectors = [], []
+            for r in range(a.rounds):
+                kinds = ["single", "vector"] if r % 2 == 0 else ["vector", "single"]
+                got = {k: measure(k, policy, n, argv) for k in kinds}
+                singles.append(got["single"])
+                vectors.append(got["vector"])
+            ratios = " ".join(f"{v / s:.2f}" for s, v in zip(singles, vectors))
+            single, vector = statistics.median(singles), statistics.median(vectors)
             print(
-                f"{name:>7}: ExploreEnv {single:7.0f} steps/s | ExploreVectorEnv {n} envs "
-                f"{vector:7.0f} steps/s ({vector / single:.2f}x) | Explore-Bench ~5 steps/s"
+                f"{policy:>7}: ExploreEnv {single:7.0f} steps/s | ExploreVectorEnv {n} envs "
+                f"{vector:7.0f} steps/s ({vector / single:.2f}x; by round {ratios}) "
+                f"| Explore-Bench ~5 steps/s"
             )
 
 
