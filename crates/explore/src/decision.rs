@@ -105,17 +105,16 @@ impl Planner {
         &self.maps[r]
     }
 
-    /// Grow every robot's search (robot `r` from `froms[r]`, not guided, listing only the
-    /// goals: [`Reachability::begin_goals`]) until it has settled every cell of `goals` it
-    /// can reach (a little beyond), or every cell it can reach: the searches an assigner
-    /// that needs each robot's cost to every goal (MA) would grow one after the other, run
-    /// side by side on rayon's threads. The maps are
-    /// independent, so each is the one the sequential growth leaves, whatever the thread
-    /// count. Called from a thread of a rayon pool (a bench's trials) or inside
-    /// [`batched`] (a vector environment's steps), which keep the cores busy already, they
-    /// grow one after the other, so that no run's wall time includes another's stolen
-    /// work; so they do when rayon has one thread, which would only be woken and waited
-    /// for. A search already
+    /// Grow every robot's search (robot `r` from `froms[r]`, guided toward the goals and
+    /// listing only them: [`Reachability::begin_goals`]) until it has settled every cell
+    /// of `goals` it can reach (a little beyond), or every cell it can reach: the searches
+    /// an assigner that needs each robot's cost to every goal (MA) would grow one after
+    /// the other, run side by side on rayon's threads. The maps are independent, so each
+    /// is the one the sequential growth leaves, whatever the thread count. Called from a
+    /// thread of a rayon pool (a bench's trials) or inside [`batched`] (a vector
+    /// environment's steps), which keep the cores busy already, they grow one after the
+    /// other, so that no run's wall time includes another's stolen work; so they do when
+    /// rayon has one thread, which would only be woken and waited for. A search already
     /// begun in this decision is grown on; robots that reach no goal are left as they are.
     pub fn settle_goals(
         &mut self,
