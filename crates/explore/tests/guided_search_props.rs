@@ -141,3 +141,69 @@ fn looks_toward_its_goals(canonical: bool) {
         assert_eq!(wide.settled(), plain.settled());
     }
 }
+
+/// With goals in more than [`MAX_GUIDE_BLOCKS`] blocks the bound would be weak, so
+/// `begin_goals` drops it (a bound of 0) and still lists only its goals while it grows:
+/// advanced bucket by bucket it settles each goal at the full search's cost, bit for bit,
+/// with its path, and complete it is the full search.
+#[test]
+fn goals_in_many_blocks_are_settled_with_the_full_search_costs() {
+    const W: usize = 400;
+    const H: usize = 300;
+    // walls with doors every 60 cells, both ways
+    let pass: Vec<bool> = (0..W * H)
+        .map(|i| {
+            let (x, y) = (i % W, i / W);
+            !((x % 60 == 30 && y % 60 != 45) || (y % 60 == 30 && x % 60 != 15))
+        })
+        .collect();
+    let goals: Vec<u32> = (0..(W * H) as u32)
+        .filter(|&i| (i as usize % W) % 7 == 3 && (i as usize / W) % 7 == 5)
+        .filter(|&i| pass[i as usize])
+        .collect();
+    let blocks: std::collections::HashSet<(usize, usize)> = goals
+        .iter()
+        .map(|&g| (g as usize % W / 8, g as usize / W / 8))
+        .collect();
+    assert!(blocks.len() > MAX_GUIDE_BLOCKS, "{} blocks", blocks.len());
+    let start = 10 * W + 10;
+    let mut full = Reachability::new(W, H);
+    full.compute(start, |i| pass[i]);
+    let mut part = Reachability::new(W, H);
+    part.begin_goals(start, |i| pass[i], &goals);
+    assert!(part.lists_only_goals());
+    let (mut a, mut b) = (Vec::new(), Vec::new());
+    let mut through = 0;
+    loop {
+        let done = part.advance(through, |i| pass[i]);
+        for &g in &goals {
+            let g = g as usize;
+            if full
+                .cost(g)
+                .is_some_and(|c| (c as usize) < part.next_bucket())
+                || done
+            {
+                assert_eq!(
+                    part.cost(g).map(f64::to_bits),
+                    full.cost(g).map(f64::to_bits)
+                );
+                if part.cost(g).is_some() {
+                    assert!(part.path_to(g, &mut a) && full.path_to(g, &mut b));
+                    assert_eq!(a, b, "path to {g}");
+                }
+            }
+        }
+        if done {
+            // complete: every reachable cell is settled, and listed
+            assert_eq!(part.settled().len(), full.settled().len());
+            break;
+        }
+        // growing: only the goals (and the start) are listed
+        assert!(
+            part.settled()
+                .iter()
+                .all(|&c| c as usize == start || goals.contains(&c))
+        );
+        through += 97;
+    }
+}

@@ -9,8 +9,8 @@ The default setting is Explore-Bench's grid simulator's: a 250 x 250 map at 0.1 
 
 Each measurement runs in a process of its own (this script again, with --worker), as a
 training script runs one kind of environment: stepping the other kind in the same process
-between the vector environment's calls evicts the caches its threads step from, and made it
-5-20 % slower. One ExploreEnv and the vector environment are measured by turns, --rounds
+between the vector environment's calls evicts the caches its threads step from, and made its
+steps 4-21 % slower. One ExploreEnv and the vector environment are measured by turns, --rounds
 times (the first of the two alternating), so that the machine's changing speed slows both
 alike; each round's ratio is printed, then the medians.
 """
@@ -98,12 +98,8 @@ def main():
     if a.worker:
         worker(a, common)
         return
-    argv = ["--steps", str(a.steps), "--size", str(a.size), "--resolution", str(a.resolution),
-            "--sensor", a.sensor, "--kind", a.kind]
-    if a.threads is not None:
-        argv += ["--threads", str(a.threads)]
-    if a.sensing:
-        argv += ["--sensing", a.sensing]
+    # the workers get this run's own options (they ignore --envs and --rounds)
+    argv = sys.argv[1:]
     print(f"{a.kind} {a.size:g} x {a.size:g} m at {a.resolution} m, sensor {a.sensor}, "
           f"sensing {a.sensing or 'continuous'}, K = 16, {a.rounds} rounds")
     for policy in ["random", "cf-rr"]:

@@ -66,7 +66,7 @@ pub struct Guide {
     areas_y: usize,
     area_start: Vec<u32>,
     by_area: Vec<(f64, f64)>,
-    /// Set by [`set_flat`](Self::set_flat): the goals are only marked, the bound is 0.
+    /// Set by [`flatten`](Self::flatten): the goals are only marked, the bound is 0.
     flat: bool,
 }
 
@@ -109,13 +109,11 @@ impl Guide {
         }
     }
 
-    /// Mark the cells `goals` of a `width × height` grid as the goals, with a bound of 0
-    /// everywhere (no blocks): for a search that must settle every goal wherever it lies
-    /// and only wants the goals listed, not the way toward them.
-    pub fn set_flat(&mut self, width: usize, height: usize, goals: &[u32]) {
-        self.mark_goals(width, height, goals);
+    /// Keep the goals last [`set`](Self::set) but drop their blocks: the bound is 0
+    /// everywhere, for a search that must settle every goal wherever it lies and only wants
+    /// the goals listed, not the way toward them.
+    pub fn flatten(&mut self) {
         self.points.clear();
-        self.width = width;
         self.flat = true;
     }
 

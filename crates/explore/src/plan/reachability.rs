@@ -479,13 +479,7 @@ impl Reachability {
     /// the start), and every reachable cell once the search is complete. Without goals, or
     /// with goals in more than [`MAX_GUIDE_BLOCKS`] blocks, it is `begin`'s search.
     pub fn begin_guided(&mut self, start: usize, passable: impl Fn(usize) -> bool, goals: &[u32]) {
-        self.guide.set(self.width, self.height, goals);
-        let most = if self.use_canonical {
-            MAX_GUIDE_BLOCKS
-        } else {
-            MAX_DIAL_GUIDE_BLOCKS
-        };
-        if self.guide.is_empty() || self.guide.len() > most {
+        if !self.set_guide(goals) {
             self.begin(start, &passable);
             return;
         }
@@ -525,11 +519,22 @@ impl Reachability {
             self.begin(start, &passable);
             return;
         }
-        self.guide.set(self.width, self.height, goals);
-        if self.guide.is_empty() || self.guide.len() > MAX_GUIDE_BLOCKS {
-            self.guide.set_flat(self.width, self.height, goals);
+        if !self.set_guide(goals) {
+            self.guide.flatten();
         }
         self.begin_with(start, &passable, true, true);
+    }
+
+    /// Set the guide toward `goals`; whether its bound is worth asking: some goal, in at
+    /// most [`MAX_GUIDE_BLOCKS`] blocks ([`MAX_DIAL_GUIDE_BLOCKS`] for Dial's search).
+    fn set_guide(&mut self, goals: &[u32]) -> bool {
+        self.guide.set(self.width, self.height, goals);
+        let most = if self.use_canonical {
+            MAX_GUIDE_BLOCKS
+        } else {
+            MAX_DIAL_GUIDE_BLOCKS
+        };
+        !self.guide.is_empty() && self.guide.len() <= most
     }
 
     /// Settle every bucket up to and including bucket `through` of the search started by
