@@ -383,9 +383,22 @@ impl<'a, P: Fn(usize) -> bool> Walk<'a, P> {
         self.queues.jump(k, j);
     }
 
-    /// Walk straight from `(x, y)` (cost `c`) in direction `(dx, dy)`. Each cell's
-    /// passability and its two sides' are asked once, when the walk looks a cell ahead.
+    /// Walk straight from `(x, y)` (cost `c`) in direction `(dx, dy)`: one copy of the walk
+    /// per direction, whose steps and sides are then constants.
+    #[inline(always)]
     fn straight(&mut self, x: i64, y: i64, c: f64, dx: i64, dy: i64) {
+        match (dx, dy) {
+            (1, 0) => self.straight_in::<1, 0>(x, y, c),
+            (-1, 0) => self.straight_in::<-1, 0>(x, y, c),
+            (0, 1) => self.straight_in::<0, 1>(x, y, c),
+            _ => self.straight_in::<0, -1>(x, y, c),
+        }
+    }
+
+    /// Walk straight from `(x, y)` (cost `c`) in direction `(DX, DY)`. Each cell's
+    /// passability and its two sides' are asked once, when the walk looks a cell ahead.
+    fn straight_in<const DX: i64, const DY: i64>(&mut self, x: i64, y: i64, c: f64) {
+        let (dx, dy) = (DX, DY);
         let d = code(dx, dy);
         // across the walk
         let (sx, sy) = (dy.abs(), dx.abs());
