@@ -2,7 +2,7 @@
 environment (no training) and print environment steps per second.
 
     python crates/py/examples/rollout.py [--envs 8,16] [--threads 2] [--steps 1000]
-                                         [--rounds 3] [--sensing every-3]
+                                         [--rounds 5] [--sensing every-3]
 
 The default setting is Explore-Bench's grid simulator's: a 250 x 250 map at 0.1 m and a
 3.5 m sensing range (Explore-Bench reports about 5 steps/s there).
@@ -12,7 +12,9 @@ training script runs one kind of environment: stepping the other kind in the sam
 between the vector environment's calls evicts the caches its threads step from, and made its
 steps 4-21 % slower. One ExploreEnv and the vector environment are measured by turns, --rounds
 times (the first of the two alternating), so that the machine's changing speed slows both
-alike; each round's ratio is printed, then the medians.
+alike. It prints the median steps/s of each, the median of the rounds' ratios (each round's
+two measurements run back to back, so its ratio is the least touched by the drift) and
+each round's ratio.
 """
 
 import argparse
@@ -79,7 +81,7 @@ def main():
     p.add_argument("--envs", default="8,16", help="environments in the vector env (list)")
     p.add_argument("--threads", type=int, default=None, help="Rust threads (default: cores)")
     p.add_argument("--steps", type=int, default=1000, help="environment steps per measurement")
-    p.add_argument("--rounds", type=int, default=3, help="measurements of each, by turns")
+    p.add_argument("--rounds", type=int, default=5, help="measurements of each, by turns")
     p.add_argument("--size", type=float, default=25.0, help="map side in metres")
     p.add_argument("--resolution", type=float, default=0.1, help="metres per cell")
     p.add_argument("--sensor", default="los:r=3.5", help="sensor spec")
@@ -110,12 +112,12 @@ def main():
                 got = {k: measure(k, policy, n, argv) for k in kinds}
                 singles.append(got["single"])
                 vectors.append(got["vector"])
-            ratios = " ".join(f"{v / s:.2f}" for s, v in zip(singles, vectors))
+            ratios = [v / s for s, v in zip(singles, vectors)]
             single, vector = statistics.median(singles), statistics.median(vectors)
             print(
                 f"{policy:>7}: ExploreEnv {single:7.0f} steps/s | ExploreVectorEnv {n} envs "
-                f"{vector:7.0f} steps/s ({vector / single:.2f}x; by round {ratios}) "
-                f"| Explore-Bench ~5 steps/s"
+                f"{vector:7.0f} steps/s ({statistics.median(ratios):.2f}x; by round "
+                f"{' '.join(f'{r:.2f}' for r in ratios)}) | Explore-Bench ~5 steps/s"
             )
 
 
