@@ -30,7 +30,7 @@
 //!
 //! Guided (A* toward a set of goals, the bound of [`Guide`]): jump points are queued by the
 //! bucket of their cost plus bound, and a walk goes [`GUIDED_HORIZON`] buckets past its
-//! jump point's cost, then queues where it stopped. The bound is consistent, so along a
+//! jump point's cost (more from farther jump points), then queues where it stopped. The bound is consistent, so along a
 //! canonical shortest path cost plus bound never falls: the jump points before a cell are
 //! in its bucket or earlier. A bucket is settled by walking from its jump points, and from
 //! those its walks add to it, until none is left; then every cell of cost plus bound below
@@ -63,11 +63,22 @@ use std::mem::take;
 /// labels over thousands of buckets, each write to another buffer's end; a few buckets
 /// ahead keep those buffers in the cache. At least 2, so that every walk takes a step.
 const HORIZON: usize = 8;
-/// [`HORIZON`] of a guided search, whose walks toward the goals would otherwise stop
-/// every few cells to queue a jump point and ask its bound: 16 took RFE's and AF's team
-/// decisions on willow 10–15 % less time than 8 (4: 20–40 % more); 32 was as 16.
+/// The least [`HORIZON`] of a guided search, whose walks toward the goals would otherwise
+/// stop every few cells to queue a jump point and ask its bound: 16 took RFE's and AF's
+/// team decisions on willow 10–15 % less time than 8 (4: 20–40 % more).
 const GUIDED_HORIZON: usize = 16;
-const _: () = assert!(HORIZON >= 2 && GUIDED_HORIZON >= 2);
+/// A guided search's horizon grows with its jump point's cost, one bucket for every
+/// [`HORIZON_DIV`], up to this. The cells a walk labels beyond where the search stops are
+/// a ring as wide as the horizon around what it settled, so in a search that goes far the
+/// same share of waste allows a wider ring, and fewer jump points queued: on willow's
+/// 5-robot runs the searches of `ma-cc`, `ma-rfe` and `minpos-af` took 15–20 % less time
+/// (perf's shares) with 64 buckets than with 16, and the K-nearest searches of the Python
+/// environment (a few metres) 10–30 % more, so one width does not suit both; 128 and 512
+/// were as 64.
+const GUIDED_HORIZON_MAX: usize = 64;
+/// See [`GUIDED_HORIZON_MAX`].
+const HORIZON_DIV: usize = 8;
+const _: () = assert!(HORIZON >= 2 && GUIDED_HORIZON >= 2 && GUIDED_HORIZON_MAX >= GUIDED_HORIZON);
 
 /// A queued jump point: column, row, the direction to walk (see [`code`]) and its cost
 /// when queued (stale once the cell's cost is lower).
@@ -333,7 +344,8 @@ impl<'a, P: Fn(usize) -> bool> Walk<'a, P> {
     }
 
     /// Walk from jump point `j` unless it is stale or walked already, as far as
-    /// [`HORIZON`] (guided: [`GUIDED_HORIZON`]) buckets past its own.
+    /// [`HORIZON`] buckets past its own (guided: its cost over [`HORIZON_DIV`], within
+    /// [`GUIDED_HORIZON`]..=[`GUIDED_HORIZON_MAX`]).
     pub(super) fn expand(&mut self, j: Jump) {
         let (x, y) = (j.x as usize, j.y as usize);
         let q = self.slot(x, y);
@@ -341,7 +353,7 @@ impl<'a, P: Fn(usize) -> bool> Walk<'a, P> {
             return; // labelled more cheaply since
         }
         let horizon = if self.guide.is_some() {
-            GUIDED_HORIZON
+            (j.cost as usize / HORIZON_DIV).clamp(GUIDED_HORIZON, GUIDED_HORIZON_MAX)
         } else {
             HORIZON
         };
