@@ -30,21 +30,22 @@
 //!
 //! Guided (A* toward a set of goals, the bound of [`Guide`]): jump points are queued by the
 //! bucket of their cost plus bound, and a walk goes [`GUIDED_HORIZON`] buckets past its
-//! jump point's cost (more from farther jump points), then queues where it stopped. The bound is consistent, so along a
-//! canonical shortest path cost plus bound never falls: the jump points before a cell are
-//! in its bucket or earlier. A bucket is settled by walking from its jump points, and from
-//! those its walks add to it, until none is left; then every cell of cost plus bound below
-//! k + 1 has its final cost. Only the goals (a bit per cell) and the start are listed by
-//! bucket, at their cost (their bound is 0), so the bound is asked once per jump point,
-//! not per cell; the other cells are settled when the search is complete. The path to a
-//! goal goes back over labelled cells: every neighbour that gives a final cell its cost is
-//! final and no farther from the goals. Beside a diagonal step u → j that gives j its cost,
-//! a passable cell is labelled by then: if u was labelled by a diagonal walk in the step's
-//! direction, its two straight walks label both sides; by a straight walk along one side,
-//! the walk labels that side, and the other side, if passable, is a shortest way to j (a
-//! diagonal step from the walk's previous cell); by a walk away from a side, its previous
-//! cell is that side; by a diagonal walk across the step, its straight walk labels one side
-//! and the other cannot be passable (j would be cheaper through it).
+//! jump point's cost (more from farther jump points), then queues where it stopped. The
+//! bound is consistent, so along a canonical shortest path cost plus bound never falls: the
+//! jump points before a cell are in its bucket or earlier. A bucket is settled by walking
+//! from its jump points, and from those its walks add to it, until none is left; then every
+//! cell of cost plus bound below k + 1 has its final cost. Only the goals (a bit per cell)
+//! and the start are listed by bucket, at their cost (their bound is 0), so the bound is
+//! asked once per jump point, not per cell; the other cells are settled when the search is
+//! complete. The path to a goal goes back over labelled cells: every neighbour that gives a
+//! final cell its cost is final and no farther from the goals. Beside a diagonal step u → j
+//! that gives j its cost, a passable cell is labelled by then: if u was labelled by a
+//! diagonal walk in the step's direction, its two straight walks label both sides; by a
+//! straight walk along one side, the walk labels that side, and the other side, if
+//! passable, is a shortest way to j (a diagonal step from the walk's previous cell); by a
+//! walk away from a side, its previous cell is that side; by a diagonal walk across the
+//! step, its straight walk labels one side and the other cannot be passable (j would be
+//! cheaper through it).
 //!
 //! Speed: on willow-full with 5 robots, MA's decisions take 13–31 % less than with Dial's
 //! search, RFE's about half (docs/teams.md); a standalone full search on floor plans ran
