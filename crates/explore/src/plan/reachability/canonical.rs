@@ -77,7 +77,8 @@ const GUIDED_HORIZON: usize = 16;
 /// environment (a few metres) 10–30 % more, so one width does not suit both; 128 and 512
 /// were as 64.
 const GUIDED_HORIZON_MAX: usize = 64;
-/// See [`GUIDED_HORIZON_MAX`].
+/// Cost (in buckets) of a jump point per bucket of its guided horizon (see
+/// [`GUIDED_HORIZON_MAX`]).
 const HORIZON_DIV: usize = 8;
 const _: () = assert!(HORIZON >= 2 && GUIDED_HORIZON >= 2 && GUIDED_HORIZON_MAX >= GUIDED_HORIZON);
 
@@ -404,7 +405,10 @@ impl<'a, P: Fn(usize) -> bool> Walk<'a, P> {
             (1, 0) => self.straight_in::<1, 0>(x, y, c),
             (-1, 0) => self.straight_in::<-1, 0>(x, y, c),
             (0, 1) => self.straight_in::<0, 1>(x, y, c),
-            _ => self.straight_in::<0, -1>(x, y, c),
+            _ => {
+                debug_assert_eq!((dx, dy), (0, -1), "a straight walk's direction");
+                self.straight_in::<0, -1>(x, y, c)
+            }
         }
     }
 
