@@ -219,10 +219,8 @@ impl LosSensor {
                 columns,
                 transparent,
                 shadows,
+                |i, s| keep(i as usize, s),
                 |i, s| {
-                    if !keep(i as usize, s) {
-                        return;
-                    }
                     let (x, y) = (i64::from(i) % w, i64::from(i) / w);
                     if let Some(k) = t.rank((x - ox) as i32, (y - oy) as i32) {
                         let k = k as usize;

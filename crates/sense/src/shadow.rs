@@ -151,14 +151,18 @@ pub fn visible(
         &[i64::MAX; 8],
         transparent,
         scratch,
+        |_, _| true,
         seen,
     )
 }
 
 /// [`visible`], leaving out the cells beyond column `columns[k]` of octant `k` (columns
-/// counted from the origin along the octant's main axis; see [`octant_columns`]). A column
-/// depends only on the columns before it, so the cells reported are exactly `visible`'s
-/// up to those columns.
+/// counted from the origin along the octant's main axis; see [`octant_columns`]) and the
+/// cells `keep(flat index, state)` rejects. A column depends only on the columns before
+/// it, so the cells reported are exactly `visible`'s up to those columns. `keep` is asked
+/// of every cell seen and should be cheap (it is inlined; a scan that reports few of the
+/// cells it sees then costs no call per cell left out).
+#[allow(clippy::too_many_arguments)]
 pub fn visible_within(
     grid: &Grid<Occ>,
     origin: grid::Cell,
@@ -166,6 +170,7 @@ pub fn visible_within(
     columns: &[i64; 8],
     transparent: impl Fn(Occ) -> bool,
     scratch: &mut ShadowScratch,
+    keep: impl Fn(u32, Occ) -> bool,
     mut seen: impl FnMut(u32, Occ),
 ) -> Option<ReadBox> {
     let (w, h) = (grid.width() as i64, grid.height() as i64);
@@ -181,7 +186,9 @@ pub fn visible_within(
         x1: ox as usize,
         y1: oy as usize,
     };
-    seen(o as u32, data[o]);
+    if keep(o as u32, data[o]) {
+        seen(o as u32, data[o]);
+    }
     if !transparent(data[o]) || range.is_nan() || range < 1.0 {
         return Some(rb);
     }
@@ -320,7 +327,9 @@ pub fn visible_within(
                     let mut i = base + y * dy;
                     for _ in y..stop {
                         let i_ = i as usize;
-                        seen(i_ as u32, data[i_]);
+                        if keep(i_ as u32, data[i_]) {
+                            seen(i_ as u32, data[i_]);
+                        }
                         i += dy;
                     }
                     y = stop + 1;
