@@ -95,10 +95,11 @@ fn best_goal(
 /// ranked by growing the other robots' searches just past c − [`TIE_CELLS`] (a robot
 /// closer than that has then settled the goal). Once a goal of rank 0 is found, the
 /// bucket of its cost is finished and the search stops: every goal not settled costs
-/// more. Without one, the search stops once every goal it has not settled (costing at
-/// least the next bucket B) has, by the other searches grown to B, at least as many
-/// robots strictly closer as the best rank so far (tried as B doubles). The result is that
-/// of [`solve`] on the full matrix.
+/// more. Without one, the search stops once every goal it can reach and has not settled
+/// (costing at least the next bucket B) has, by the other searches grown to B, at least as
+/// many robots strictly closer as the best rank so far (tried as B doubles); a goal's rank
+/// is counted only as far as it can still beat the best. The result is that of [`solve`]
+/// on the full matrix.
 pub fn assign(ctx: &mut DecisionCtx<'_>, candidates: &CandidateSet, out: &mut [Option<Goal>]) {
     let mut s = std::mem::take(&mut ctx.memory.greedy_utility.scratch);
     s.start(ctx, candidates, true);
@@ -145,9 +146,17 @@ fn best_lazy(
             if !allowed(p.col) {
                 continue;
             }
-            let limit = best.map_or(usize::MAX, |(q, _, _)| q);
             let threshold = p.cost - TIE_CELLS;
             let cell = candidates.cells()[p.col] as usize;
+            // Ranks are counted only as far as they can matter: a goal after the best by
+            // (cost, column) beats it only with a smaller rank (none, if the best has rank
+            // 0), one before it with a rank no larger.
+            let limit = match best {
+                None => usize::MAX,
+                Some((q, c, j)) if (p.cost, p.col) < (c, j) => q,
+                Some((0, ..)) => continue,
+                Some((q, ..)) => q - 1,
+            };
             let mut rank = 0;
             if threshold > 0.0 {
                 for k in 0..m {
@@ -189,6 +198,28 @@ fn best_lazy(
     }
 }
 
+/// The allowed goals robot `r` reaches (its component of passable cells) and its search has
+/// not settled: those a bound on the goals not settled must speak for (a goal it cannot
+/// reach is never its goal, whatever its rank; frontier cells beside walls within the
+/// clearance, which no robot reaches, would otherwise hold the answer at no until robot
+/// `r`'s search is complete).
+fn open_goals(
+    ctx: &mut DecisionCtx<'_>,
+    candidates: &CandidateSet,
+    r: usize,
+    allowed: &impl Fn(usize) -> bool,
+) -> Vec<usize> {
+    let goals = candidates.cells();
+    let mut open: Vec<usize> = (0..goals.len())
+        .filter(|&j| allowed(j) && !ctx.planner.map(r).is_settled(goals[j] as usize))
+        .collect();
+    let reach = ctx
+        .planner
+        .component(r, ctx.robots[r], ctx.known, ctx.upkeep);
+    open.retain(|&j| reach.contains(goals[j] as usize));
+    open
+}
+
 /// Octile distance from robot `k` to cell `c`, a lower bound of its path cost.
 fn octile(ctx: &DecisionCtx<'_>, k: usize, c: usize) -> f64 {
     let w = ctx.known.width();
@@ -196,10 +227,11 @@ fn octile(ctx: &DecisionCtx<'_>, k: usize, c: usize) -> f64 {
     at(ctx.robots[k] as usize).octile(at(c))
 }
 
-/// Whether every allowed goal robot `r` has not settled ranks at least `p` for it, when its
-/// search has settled every goal of cost below `bound`: such a goal costs robot `r` at
-/// least `bound`, so every other robot closer to it than `bound` − [`TIE_CELLS`] is strictly
-/// closer than robot `r` (the other searches grow that far to tell).
+/// Whether every allowed goal robot `r` reaches and has not settled ranks at least `p` for
+/// it ([`open_goals`]), when its search has settled every goal of cost below `bound`: such
+/// a goal costs robot `r` at least `bound`, so every other robot closer to it than
+/// `bound` − [`TIE_CELLS`] is strictly closer than robot `r` (the other searches grow that
+/// far to tell).
 fn ranks_at_least(
     ctx: &mut DecisionCtx<'_>,
     candidates: &CandidateSet,
@@ -211,21 +243,13 @@ fn ranks_at_least(
 ) -> bool {
     let m = ctx.robots.len();
     let threshold = bound as f64 - TIE_CELLS;
+    let open = open_goals(ctx, candidates, r, allowed);
     // Only robots nearer than the threshold as the crow flies to a goal in question can be
     // strictly closer to it: if some goal has fewer than p of them, the answer is no, and
     // the other robots' searches need not grow.
-    let unsettled = |j: usize| {
-        allowed(j)
-            && !ctx
-                .planner
-                .map(r)
-                .is_settled(candidates.cells()[j] as usize)
-    };
     let mut near = vec![false; m];
-    for (j, &cell) in candidates.cells().iter().enumerate() {
-        if !unsettled(j) {
-            continue;
-        }
+    for &j in &open {
+        let cell = candidates.cells()[j];
         let mut count = 0;
         for (k, near_k) in near.iter_mut().enumerate() {
             if k != r && octile(ctx, k, cell as usize) < threshold {
@@ -241,11 +265,8 @@ fn ranks_at_least(
         lazy.grow(ctx, candidates, k, threshold as usize);
     }
     let planner = &*ctx.planner;
-    candidates.cells().iter().enumerate().all(|(j, &cell)| {
-        let cell = cell as usize;
-        if !allowed(j) || planner.map(r).is_settled(cell) {
-            return true;
-        }
+    open.iter().all(|&j| {
+        let cell = candidates.cells()[j] as usize;
         let closer = (0..m)
             .filter(|&k| k != r && planner.map(k).cost(cell).is_some_and(|d| d < threshold))
             .take(p)
