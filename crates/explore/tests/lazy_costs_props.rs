@@ -460,7 +460,9 @@ proptest! {
 
     /// Regression: HA kept the reduced columns of the previous decision (an index past the
     /// candidates of a later decision with fewer); SGA read the previous decision's search
-    /// of a robot whose cluster held no goal. A second decision must equal a first one.
+    /// of a robot whose cluster held no goal; MinPos' proof that no goal left can beat the
+    /// best counted robots it had not grown in this decision, reading their searches of the
+    /// previous one. A second decision must equal a first one.
     #[test]
     fn a_second_decision_reuses_no_stale_state(
         (cells, cut, picks, bits, goal_picks, seed) in inputs(),

@@ -264,11 +264,13 @@ fn ranks_at_least(
     for k in (0..m).filter(|&k| near[k]) {
         lazy.grow(ctx, candidates, k, threshold as usize);
     }
+    // Only the robots grown above count: another's map may still hold the search of an
+    // earlier decision (and it cannot be strictly closer, by the octile bound).
     let planner = &*ctx.planner;
     open.iter().all(|&j| {
         let cell = candidates.cells()[j] as usize;
         let closer = (0..m)
-            .filter(|&k| k != r && planner.map(k).cost(cell).is_some_and(|d| d < threshold))
+            .filter(|&k| near[k] && planner.map(k).cost(cell).is_some_and(|d| d < threshold))
             .take(p)
             .count();
         closer >= p
