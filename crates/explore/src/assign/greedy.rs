@@ -120,7 +120,7 @@ pub struct Scratch {
     pub free: Vec<bool>,
     /// The column chosen for each row.
     pub assigned: Vec<Option<usize>>,
-    /// Per-assigner extra buffer (robot order, utilities, sub-matrix columns).
+    /// Per-assigner extra buffer (robot order, sub-matrix columns, MinPos' goals left).
     pub order: Vec<usize>,
     /// Per-assigner extra buffer of reals (utilities, sub-matrix costs).
     pub values: Vec<f64>,

@@ -109,9 +109,10 @@ pub fn assign(ctx: &mut DecisionCtx<'_>, candidates: &CandidateSet, out: &mut [O
             continue;
         }
         let taken = std::mem::take(&mut s.matrix.taken);
-        let mut best = best_lazy(ctx, candidates, &mut s.lazy, r, |j| !taken[j]);
+        let (lazy, open) = (&mut s.lazy, &mut s.order);
+        let mut best = best_lazy(ctx, candidates, (lazy, open), r, |j| !taken[j]);
         if best.is_none() {
-            best = best_lazy(ctx, candidates, &mut s.lazy, r, |_| true);
+            best = best_lazy(ctx, candidates, (lazy, open), r, |_| true);
         }
         s.matrix.taken = taken;
         if let Some(slot) = out.get_mut(r) {
@@ -125,11 +126,11 @@ pub fn assign(ctx: &mut DecisionCtx<'_>, candidates: &CandidateSet, out: &mut [O
 }
 
 /// Robot `r`'s goal of minimal (rank, cost, column) among columns with `allowed(j)`,
-/// growing the searches only as far as needed.
+/// growing the searches only as far as needed (`open`: a buffer for [`open_goals`]).
 fn best_lazy(
     ctx: &mut DecisionCtx<'_>,
     candidates: &CandidateSet,
-    lazy: &mut LazyCosts,
+    (lazy, open): (&mut LazyCosts, &mut Vec<usize>),
     r: usize,
     allowed: impl Fn(usize) -> bool,
 ) -> Option<(usize, f64, usize)> {
@@ -188,7 +189,7 @@ fn best_lazy(
         match best {
             Some((0, c, _)) if bound as f64 > c => return best,
             Some((p, c, _)) if bound as f64 > c && bound >= check => {
-                if ranks_at_least(ctx, candidates, lazy, r, bound, p, &allowed) {
+                if ranks_at_least(ctx, candidates, (lazy, open), r, bound, p, &allowed) {
                     return best;
                 }
                 check = 2 * bound;
@@ -198,26 +199,28 @@ fn best_lazy(
     }
 }
 
-/// The allowed goals robot `r` reaches (its component of passable cells) and its search has
-/// not settled: those a bound on the goals not settled must speak for (a goal it cannot
-/// reach is never its goal, whatever its rank; frontier cells beside walls within the
-/// clearance, which no robot reaches, would otherwise hold the answer at no until robot
-/// `r`'s search is complete).
+/// Write to `open` the allowed goals robot `r` reaches (its component of passable cells)
+/// and its search has not settled: those a bound on the goals not settled must speak for
+/// (a goal it cannot reach is never its goal, whatever its rank; frontier cells beside
+/// walls within the clearance, which no robot reaches, would otherwise hold the answer at
+/// no until robot `r`'s search is complete).
 fn open_goals(
     ctx: &mut DecisionCtx<'_>,
     candidates: &CandidateSet,
     r: usize,
     allowed: &impl Fn(usize) -> bool,
-) -> Vec<usize> {
+    open: &mut Vec<usize>,
+) {
     let goals = candidates.cells();
-    let mut open: Vec<usize> = (0..goals.len())
-        .filter(|&j| allowed(j) && !ctx.planner.map(r).is_settled(goals[j] as usize))
-        .collect();
+    open.clear();
+    open.extend(
+        (0..goals.len())
+            .filter(|&j| allowed(j) && !ctx.planner.map(r).is_settled(goals[j] as usize)),
+    );
     let reach = ctx
         .planner
         .component(r, ctx.robots[r], ctx.known, ctx.upkeep);
     open.retain(|&j| reach.contains(goals[j] as usize));
-    open
 }
 
 /// Octile distance from robot `k` to cell `c`, a lower bound of its path cost.
@@ -235,7 +238,7 @@ fn octile(ctx: &DecisionCtx<'_>, k: usize, c: usize) -> f64 {
 fn ranks_at_least(
     ctx: &mut DecisionCtx<'_>,
     candidates: &CandidateSet,
-    lazy: &mut LazyCosts,
+    (lazy, open): (&mut LazyCosts, &mut Vec<usize>),
     r: usize,
     bound: usize,
     p: usize,
@@ -243,12 +246,12 @@ fn ranks_at_least(
 ) -> bool {
     let m = ctx.robots.len();
     let threshold = bound as f64 - TIE_CELLS;
-    let open = open_goals(ctx, candidates, r, allowed);
+    open_goals(ctx, candidates, r, allowed, open);
     // Only robots nearer than the threshold as the crow flies to a goal in question can be
     // strictly closer to it: if some goal has fewer than p of them, the answer is no, and
     // the other robots' searches need not grow.
     let mut near = vec![false; m];
-    for &j in &open {
+    for &j in open.iter() {
         let cell = candidates.cells()[j];
         let mut count = 0;
         for (k, near_k) in near.iter_mut().enumerate() {
