@@ -32,8 +32,8 @@ proptest! {
     fn square_reports_the_truth_inside_its_window(
         truth in arb_map(), r in 0.0f64..10.0, sx in 0i32..24, sy in 0i32..24, pick in 0usize..1000,
     ) {
-        let o = Cell::new(sx, sy);
-        prop_assume!(truth.contains(o));
+        // Origins beyond the map fold into it (a map's own origins are kept as drawn).
+        let o = Cell::new(sx % truth.width() as i32, sy % truth.height() as i32);
         let s = SquareSensor::new(r).expect("valid");
         let half = s.half_side() as i32;
         let mut obs = Observation::new();
