@@ -75,7 +75,8 @@ pub fn plan_with_maps(name: &str, maps: Option<&Path>) -> Result<Plan, BenchErro
     match (wants, maps) {
         (true, None) => {
             return Err(BenchError::Other(format!(
-                "--suite {name}: expected --maps DIR, a folder of ROS map_server .yaml maps"
+                "--suite {name}: expected --maps DIR, a folder of ROS map_server .yaml maps \
+                 (the repository's maps/ holds three real floor plans)"
             )));
         }
         (false, Some(_)) => {

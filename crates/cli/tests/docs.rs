@@ -1,7 +1,7 @@
 //! The guide is checked: every command block marked `sh runnable` in README.md,
-//! CONTRIBUTING.md, CHANGELOG.md and docs/*.md runs (line by line, `frontier` being this
-//! build's binary, in a fresh directory per block) and succeeds, and every relative link
-//! of those pages points at a file of the repository.
+//! CONTRIBUTING.md, CHANGELOG.md, maps/README.md and docs/*.md runs (line by line,
+//! `frontier` being this build's binary, in a fresh directory per block) and succeeds, and
+//! every relative link of those pages points at a file of the repository.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -17,10 +17,15 @@ fn root() -> PathBuf {
 /// The guide's pages.
 fn pages() -> Vec<PathBuf> {
     let root = root();
-    let mut pages: Vec<PathBuf> = ["README.md", "CONTRIBUTING.md", "CHANGELOG.md"]
-        .iter()
-        .map(|p| root.join(p))
-        .collect();
+    let mut pages: Vec<PathBuf> = [
+        "README.md",
+        "CONTRIBUTING.md",
+        "CHANGELOG.md",
+        "maps/README.md",
+    ]
+    .iter()
+    .map(|p| root.join(p))
+    .collect();
     let mut docs: Vec<PathBuf> = std::fs::read_dir(root.join("docs"))
         .expect("docs/")
         .map(|e| e.expect("entry").path())
