@@ -78,8 +78,13 @@ impl Planner {
         (self.width, self.height)
     }
 
-    /// Forget all maps: the belief or the robots moved since they were computed.
+    /// Forget all maps: the belief or the robots moved since they were computed. A map not
+    /// searched again in this decision then settles nothing ([`Reachability::forget`]),
+    /// so a rule reading every robot's map never reads an earlier decision's costs.
     pub fn invalidate(&mut self) {
+        for map in &mut self.maps {
+            map.forget();
+        }
         self.extent.fill(Extent::Stale);
         self.guided_toward.fill(None);
         self.component_of = None;

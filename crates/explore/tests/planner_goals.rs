@@ -74,3 +74,44 @@ proptest! {
         }
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(32))]
+
+    /// Regression (MinPos' proof read a robot's map that the decision had not searched,
+    /// holding the previous decision's search from where that robot stood): after
+    /// `invalidate`, a map not searched again settles nothing, and a new search from
+    /// another cell gives its full-search costs.
+    #[test]
+    fn a_map_not_searched_since_invalidate_settles_nothing(
+        bits in prop::collection::vec(0u8..100, 41),
+        cut in 6usize..30,
+    ) {
+        let (w, h) = (48, 36);
+        let (known, up) = random_upkept(w, h, &bits, cut);
+        let Some(start) = largest_component_cell(&known, &up) else {
+            return Ok(());
+        };
+        let pass = |i| up.is_traversable(&known, i);
+        let mut planner = Planner::new(w, h, 1);
+        planner.invalidate();
+        planner.full(0, start as u32, &known, &up);
+        prop_assert!(planner.map(0).cost(start).is_some());
+        planner.invalidate();
+        for i in 0..w * h {
+            prop_assert!(!planner.map(0).is_settled(i), "cell {} still settled", i);
+            prop_assert_eq!(planner.map(0).cost(i), None);
+        }
+        prop_assert!(planner.map(0).settled().is_empty());
+        // searched again from another cell of the component: the full search's costs
+        let Some(other) = (0..w * h).rev().find(|&i| i != start && pass(i)) else {
+            return Ok(());
+        };
+        let map = planner.full(0, other as u32, &known, &up);
+        let mut fresh = Reachability::new(w, h);
+        fresh.compute(other, pass);
+        for i in 0..w * h {
+            prop_assert_eq!(map.cost(i), fresh.cost(i), "cell {}", i);
+        }
+    }
+}

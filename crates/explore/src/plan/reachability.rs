@@ -648,6 +648,23 @@ impl Reachability {
         }
     }
 
+    /// Forget the last search: until the next one begins, no cell is settled (a map kept
+    /// from an earlier decision answers nothing, rather than costs from where its robot
+    /// stood then). O(1): the cells' states are dropped with the search's epoch.
+    pub fn forget(&mut self) {
+        self.epoch = next_gen(self.epoch, &mut self.tile_epoch);
+        for b in &mut self.buckets {
+            b.clear();
+        }
+        self.queues.clear();
+        self.settled.clear();
+        self.start = None;
+        self.next = 0;
+        self.exhausted = false;
+        self.resumable = false;
+        self.guided = false;
+    }
+
     /// Start a new search from `starts` (those inside the grid) with nothing settled, in
     /// canonical order or not, guided by the guide or not (canonical only: Dial's guided
     /// search starts from an unguided one).
