@@ -16,7 +16,7 @@
 //! - robots decide independently, so two deciding robots may pick the same goal, as in the
 //!   paper.
 
-use crate::assign::costs::LazyCosts;
+use crate::assign::greedy::Scratch;
 use crate::candidates::CandidateSet;
 use crate::decision::{DecisionCtx, Goal};
 
@@ -109,10 +109,9 @@ pub fn assign(ctx: &mut DecisionCtx<'_>, candidates: &CandidateSet, out: &mut [O
             continue;
         }
         let taken = std::mem::take(&mut s.matrix.taken);
-        let (lazy, open) = (&mut s.lazy, &mut s.order);
-        let mut best = best_lazy(ctx, candidates, (lazy, open), r, |j| !taken[j]);
+        let mut best = best_lazy(ctx, candidates, &mut s, r, |j| !taken[j]);
         if best.is_none() {
-            best = best_lazy(ctx, candidates, (lazy, open), r, |_| true);
+            best = best_lazy(ctx, candidates, &mut s, r, |_| true);
         }
         s.matrix.taken = taken;
         if let Some(slot) = out.get_mut(r) {
@@ -126,11 +125,12 @@ pub fn assign(ctx: &mut DecisionCtx<'_>, candidates: &CandidateSet, out: &mut [O
 }
 
 /// Robot `r`'s goal of minimal (rank, cost, column) among columns with `allowed(j)`,
-/// growing the searches only as far as needed (`open`: a buffer for [`open_goals`]).
+/// growing the searches only as far as needed (`s`: the searches and the proof's buffers,
+/// its matrix's taken goals lent to `allowed`).
 fn best_lazy(
     ctx: &mut DecisionCtx<'_>,
     candidates: &CandidateSet,
-    (lazy, open): (&mut LazyCosts, &mut Vec<usize>),
+    s: &mut Scratch,
     r: usize,
     allowed: impl Fn(usize) -> bool,
 ) -> Option<(usize, f64, usize)> {
@@ -140,6 +140,7 @@ fn best_lazy(
     // The next bound at which to try the rank bound of the goals not settled yet.
     let mut check = 1;
     loop {
+        let lazy = &mut s.lazy;
         let done = lazy.step(ctx, candidates, r, false);
         let upto = lazy.found(r).len();
         for n in seen..upto {
@@ -189,7 +190,7 @@ fn best_lazy(
         match best {
             Some((0, c, _)) if bound as f64 > c => return best,
             Some((p, c, _)) if bound as f64 > c && bound >= check => {
-                if ranks_at_least(ctx, candidates, (lazy, open), r, bound, p, &allowed) {
+                if ranks_at_least(ctx, candidates, s, r, bound, p, &allowed) {
                     return best;
                 }
                 check = 2 * bound;
@@ -238,7 +239,7 @@ fn octile(ctx: &DecisionCtx<'_>, k: usize, c: usize) -> f64 {
 fn ranks_at_least(
     ctx: &mut DecisionCtx<'_>,
     candidates: &CandidateSet,
-    (lazy, open): (&mut LazyCosts, &mut Vec<usize>),
+    s: &mut Scratch,
     r: usize,
     bound: usize,
     p: usize,
@@ -246,11 +247,13 @@ fn ranks_at_least(
 ) -> bool {
     let m = ctx.robots.len();
     let threshold = bound as f64 - TIE_CELLS;
+    let (lazy, open, near) = (&mut s.lazy, &mut s.order, &mut s.flags);
     open_goals(ctx, candidates, r, allowed, open);
     // Only robots nearer than the threshold as the crow flies to a goal in question can be
     // strictly closer to it: if some goal has fewer than p of them, the answer is no, and
     // the other robots' searches need not grow.
-    let mut near = vec![false; m];
+    near.clear();
+    near.resize(m, false);
     for &j in open.iter() {
         let cell = candidates.cells()[j];
         let mut count = 0;
@@ -267,8 +270,8 @@ fn ranks_at_least(
     for k in (0..m).filter(|&k| near[k]) {
         lazy.grow(ctx, candidates, k, threshold as usize);
     }
-    // Only the robots grown above count: another's map may still hold the search of an
-    // earlier decision (and it cannot be strictly closer, by the octile bound).
+    // Only the robots grown above can be strictly closer (the octile bound); the others'
+    // maps need not be read.
     let planner = &*ctx.planner;
     open.iter().all(|&j| {
         let cell = candidates.cells()[j] as usize;
