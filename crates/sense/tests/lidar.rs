@@ -1,6 +1,9 @@
 //! Lidar properties on random small maps: what it reports is true, unique, in range and
 //! in its field of view.
 
+mod common;
+
+use common::origin_in;
 use grid::{Cell, Grid, Occ};
 use proptest::prelude::*;
 use sense::{LidarSensor, Observation, Pose, Sensor};
@@ -34,8 +37,7 @@ proptest! {
         sx in 0i32..24,
         sy in 0i32..24,
     ) {
-        // Origins beyond the map fold into it (a map's own origins are kept as drawn).
-        let o = Cell::new(sx % truth.width() as i32, sy % truth.height() as i32);
+        let o = origin_in(&truth, sx, sy);
         let sensor = LidarSensor::new(r, fov, res).expect("valid");
         let mut obs = Observation::new();
         sensor.scan(&truth, Pose::new(o, heading), &mut obs);
@@ -153,8 +155,7 @@ proptest! {
         salt in any::<u64>(),
         unknown_only in any::<bool>(),
     ) {
-        // Origins beyond the map fold into it (a map's own origins are kept as drawn).
-        let o = Cell::new(sx % known.width() as i32, sy % known.height() as i32);
+        let o = origin_in(&known, sx, sy);
         let sensor = LidarSensor::new(r, fov, res).expect("valid");
         let pose = Pose::new(o, heading);
         let passable = |i: usize| (i as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15) ^ salt >= u64::MAX / 3;

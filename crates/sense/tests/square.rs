@@ -3,6 +3,9 @@
 //! end at obstacles); in open space it sees the whole window; a prediction on the truth
 //! itself sees what a scan sees.
 
+mod common;
+
+use common::origin_in;
 use grid::{Cell, Grid, Occ};
 use proptest::prelude::*;
 use sense::{Observation, Pose, Sensor, SquareSensor};
@@ -32,8 +35,7 @@ proptest! {
     fn square_reports_the_truth_inside_its_window(
         truth in arb_map(), r in 0.0f64..10.0, sx in 0i32..24, sy in 0i32..24, pick in 0usize..1000,
     ) {
-        // Origins beyond the map fold into it (a map's own origins are kept as drawn).
-        let o = Cell::new(sx % truth.width() as i32, sy % truth.height() as i32);
+        let o = origin_in(&truth, sx, sy);
         let s = SquareSensor::new(r).expect("valid");
         let half = s.half_side() as i32;
         let mut obs = Observation::new();

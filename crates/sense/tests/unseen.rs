@@ -2,7 +2,10 @@
 //! scans on random maps and records of who sensed what: it reports a subset of the full
 //! scan's cells, and every cell of it that would tell the robot scanning something.
 
-use grid::{Cell, Grid, Occ};
+mod common;
+
+use common::origin_in;
+use grid::{Grid, Occ};
 use proptest::prelude::*;
 use sense::{LidarSensor, LosSensor, Observation, Pose, Sensor, SquareSensor, Unseen};
 
@@ -134,8 +137,7 @@ proptest! {
         shift in 0u32..=4,
         (sx, sy) in (0i32..40, 0i32..40),
     ) {
-        // Origins beyond the map fold into it (a map's own origins are kept as drawn).
-        let o = Cell::new(sx % truth.width() as i32, sy % truth.height() as i32);
+        let o = origin_in(&truth, sx, sy);
         let sensor = LidarSensor::new(r, fov, res).expect("valid");
         check(&sensor, &truth, robots, &sensed, shift, Pose::new(o, heading), true)?;
     }
@@ -148,8 +150,7 @@ proptest! {
         shift in 0u32..=4,
         (sx, sy) in (0i32..40, 0i32..40),
     ) {
-        // Origins beyond the map fold into it (a map's own origins are kept as drawn).
-        let o = Cell::new(sx % truth.width() as i32, sy % truth.height() as i32);
+        let o = origin_in(&truth, sx, sy);
         let sensor = LosSensor::new(r).expect("valid");
         check(&sensor, &truth, robots, &sensed, shift, Pose::new(o, 0.0), false)?;
     }
@@ -161,8 +162,7 @@ proptest! {
         shift in 0u32..=4,
         (sx, sy) in (0i32..40, 0i32..40),
     ) {
-        // Origins beyond the map fold into it (a map's own origins are kept as drawn).
-        let o = Cell::new(sx % truth.width() as i32, sy % truth.height() as i32);
+        let o = origin_in(&truth, sx, sy);
         let sensor = SquareSensor::new(r).expect("valid");
         check(&sensor, &truth, robots, &sensed, shift, Pose::new(o, 0.0), false)?;
     }
