@@ -1249,16 +1249,29 @@ resolution = 0.5
 #[cfg(unix)]
 #[test]
 fn regression_closed_stdout_pipe_ends_quietly() {
+    use std::os::fd::FromRawFd;
     use std::os::unix::process::ExitStatusExt;
     use std::process::Stdio;
-    let mut child = Command::new(env!("CARGO_BIN_EXE_frontier"))
+    // A pipe whose read end is closed before the run starts: its first write to stdout
+    // meets no reader. (Closing the read end after spawning raced the run: a short
+    // output fits in the pipe's buffer, and a run that printed it first ended well.)
+    let mut ends = [0; 2];
+    // SAFETY: `pipe` writes two new descriptors into `ends`.
+    assert_eq!(unsafe { libc::pipe(ends.as_mut_ptr()) }, 0, "pipe");
+    // SAFETY: both descriptors are ours and each is owned once.
+    let (read_end, write_end) = unsafe {
+        (
+            std::fs::File::from_raw_fd(ends[0]),
+            std::fs::File::from_raw_fd(ends[1]),
+        )
+    };
+    drop(read_end);
+    let child = Command::new(env!("CARGO_BIN_EXE_frontier"))
         .args(["explore", "--env", "office", "--seed", "1", "--json"])
-        .stdout(Stdio::piped())
+        .stdout(Stdio::from(write_end))
         .stderr(Stdio::piped())
         .spawn()
         .expect("run frontier");
-    // Close the only read end before the run has printed anything.
-    drop(child.stdout.take());
     let out = child.wait_with_output().expect("wait for frontier");
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(!stderr.contains("panicked"), "{stderr}");
