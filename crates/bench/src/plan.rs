@@ -20,7 +20,9 @@
 //!
 //! **Trials per variant.** `trials` runs per start variant for stochastic strategies (and
 //! for random starts); a deterministic strategy at a fixed start would repeat the same run,
-//! so it runs once unless `repeat_deterministic = true`.
+//! so it runs once unless `repeat_deterministic = true`. `trials_for` narrows the repeated
+//! strategies to those it names, as a paper's protocol may (Faigl & Kulich repeat only the
+//! stochastic assignment methods, GA and MA, though RFE's k-means and SGA draw too).
 
 use std::collections::BTreeSet;
 
@@ -104,8 +106,11 @@ pub struct Variant {
     pub sensor: SensorSpec,
     /// Number of robots.
     pub robots: usize,
-    /// Whether the strategy draws random numbers (then it runs `trials` times per start).
+    /// Whether the strategy draws random numbers.
     pub stochastic: bool,
+    /// Whether it runs `trials` times per fixed start: stochastic, and named by the
+    /// scenario's `trials_for` if it has one.
+    pub repeated: bool,
 }
 
 /// Settings shared by every trial.
@@ -159,6 +164,35 @@ pub fn is_stochastic(s: &Strategy) -> bool {
         s.candidates,
         CandidateKind::Rfe { .. } | CandidateKind::DtSamples { .. }
     )
+}
+
+/// The labels `trials_for` names (each must be one of the study's strategies), or `None`
+/// without it (every stochastic strategy is repeated).
+fn trials_for(
+    src: &Source,
+    f: &ScenarioFile,
+    strategies: &[(String, Strategy)],
+) -> Result<Option<Vec<String>>, BenchError> {
+    let Some(list) = &f.trials_for else {
+        return Ok(None);
+    };
+    let mut named = Vec::new();
+    for (i, s) in list.get_ref().iter().enumerate() {
+        let label = s.get_ref();
+        if !strategies.iter().any(|(l, _)| l == label) {
+            let known: Vec<&str> = strategies.iter().map(|(l, _)| l.as_str()).collect();
+            return Err(src.error(
+                span_of(s),
+                format!("trials_for[{i}]"),
+                format!(
+                    "expected one of the study's strategies ({}), found '{label}'",
+                    known.join(", ")
+                ),
+            ));
+        }
+        named.push(label.clone());
+    }
+    Ok(Some(named))
 }
 
 /// What to do with a strategy that is not built yet.
@@ -594,6 +628,8 @@ fn resolve(src: &Source, f: ScenarioFile, unbuilt: Unbuilt) -> Result<Plan, Benc
             ),
         ));
     }
+    let named = trials_for(src, &f, &strategies)?;
+    let repeated = |label: &str| named.as_ref().is_none_or(|n| n.iter().any(|l| l == label));
     let mut variants = Vec::new();
     for (label, strategy) in &strategies {
         for sensor in &sensors {
@@ -601,6 +637,7 @@ fn resolve(src: &Source, f: ScenarioFile, unbuilt: Unbuilt) -> Result<Plan, Benc
                 variants.push(Variant {
                     label: label.clone(),
                     stochastic: is_stochastic(strategy),
+                    repeated: is_stochastic(strategy) && repeated(label),
                     strategy: strategy.clone(),
                     sensor: *sensor,
                     robots: m,
@@ -635,7 +672,7 @@ fn resolve(src: &Source, f: ScenarioFile, unbuilt: Unbuilt) -> Result<Plan, Benc
         let fixed = entry.get_ref().start.is_some() || perturbations > 0;
         let starts = u64::from(perturbations.max(1));
         let per_env = variants.iter().fold(0u64, |sum, v| {
-            let n = if !fixed || v.stochastic || common.repeat_deterministic {
+            let n = if !fixed || v.repeated || common.repeat_deterministic {
                 common.trials
             } else {
                 1
@@ -714,7 +751,7 @@ fn resolve(src: &Source, f: ScenarioFile, unbuilt: Unbuilt) -> Result<Plan, Benc
     for (e, env) in envs.iter().enumerate() {
         for (vi, v) in variants.iter().enumerate() {
             for (sv, start) in env.starts.iter().enumerate() {
-                let n = if start.is_none() || v.stochastic || common.repeat_deterministic {
+                let n = if start.is_none() || v.repeated || common.repeat_deterministic {
                     common.trials
                 } else {
                     1

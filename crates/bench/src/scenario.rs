@@ -13,6 +13,7 @@
 //! sensors = ["los:r=4c"]
 //! strategies = ["cf", "random"]
 //! trials = 3                    # per start variant (deterministic strategies with a fixed start: 1)
+//! trials_for = ["random"]       # optional: only these repeat (default: every stochastic one)
 //!
 //! [[strategy]]                  # a preset with parameters
 //! preset = "ha-cc"
@@ -75,6 +76,10 @@ pub struct ScenarioFile {
     pub trials: Option<Spanned<i64>>,
     /// Also repeat deterministic strategies `trials` times at a fixed start.
     pub repeat_deterministic: Option<bool>,
+    /// The strategies (labels as listed) that run `trials` times per start variant when
+    /// they draw random numbers; the others run once per variant (default: every
+    /// strategy that draws random numbers).
+    pub trials_for: Option<Spanned<Vec<Spanned<String>>>>,
     /// Number of start perturbations around each environment's base start (default 0).
     pub perturbations: Option<Spanned<i64>>,
     /// Radius of the perturbations in metres.

@@ -84,6 +84,47 @@ fn plan_lists_trials_with_stable_keys_and_seeds() {
     assert!(same.len() == 4 && same.iter().all(|&s| s == same[0]));
 }
 
+/// `trials_for` repeats only the strategies it names: the others run once per fixed
+/// start, with the seeds and keys they have in the plan without it.
+#[test]
+fn trials_for_repeats_only_the_strategies_it_names() {
+    let text = TINY.replace("trials = 2\n", "trials = 2\ntrials_for = [\"cf\"]\n");
+    let narrow = Plan::resolve(&source(&text), Unbuilt::Error).expect("resolves");
+    // maze: random starts repeat every strategy (2 trials); office: fixed start, so `cf`
+    // (deterministic) and `random` (not named) run once; times 2 robot counts.
+    assert_eq!(narrow.trials.len(), 2 * 2 * 2 + (1 + 1) * 2);
+    let all = plan();
+    for t in &narrow.trials {
+        assert!(all.trials.contains(t), "{} not in the full plan", t.key);
+    }
+    let random_office = |p: &Plan| {
+        p.trials
+            .iter()
+            .filter(|t| t.env == 1 && t.key.contains("|random|"))
+            .count()
+    };
+    assert_eq!((random_office(&narrow), random_office(&all)), (2, 4));
+    let e = error_of(("trials = 2", "trials = 2\ntrials_for = [\"cf\", \"nope\"]"));
+    assert!(e.starts_with("tiny.toml:8: key `trials_for[1]`"), "{e}");
+    assert!(
+        e.contains("expected one of the study's strategies (cf, random), found 'nope'"),
+        "{e}"
+    );
+}
+
+/// Faigl & Kulich's protocol: 20 start perturbations of each problem, and 20 trials of
+/// each only for the stochastic assignment methods GA and MA (§V): 5 such presets × 36
+/// problems × 400 runs, and 7 others × 36 × 20, 77,040 trials.
+#[test]
+fn faigl2013_repeats_only_the_stochastic_assignment_methods() {
+    let p = bench::suites::plan("faigl2013").expect("the suite resolves");
+    assert_eq!(p.trials.len(), 5 * 36 * 400 + 7 * 36 * 20);
+    for v in &p.variants {
+        let repeated = v.label.starts_with("ga-") || v.label.starts_with("ma-");
+        assert_eq!(v.repeated, repeated, "{}", v.label);
+    }
+}
+
 #[test]
 fn one_and_two_threads_give_identical_databases() {
     let dir = tempfile::tempdir().unwrap();
@@ -335,7 +376,7 @@ fn report_is_written_and_self_contained() {
 fn suites_resolve() {
     for (name, _, _) in bench::suites::SUITES {
         if *name == "faigl2013" {
-            continue; // big environments; resolving it is checked by the CLI's dry run
+            continue; // resolved by `faigl2013_repeats_only_the_stochastic_assignment_methods`
         }
         if bench::suites::MAP_FOLDER_SUITES.contains(name) {
             let e = bench::suites::plan(name).unwrap_err().to_string();

@@ -202,7 +202,11 @@ fn run_study(a: RunArgs) -> Result<()> {
                 v.label,
                 v.sensor.to_string(),
                 v.robots,
-                if v.stochastic { " stochastic" } else { "" }
+                match (v.stochastic, v.repeated) {
+                    (true, true) => " stochastic",
+                    (true, false) => " stochastic, once per start",
+                    _ => "",
+                }
             );
         }
         return Ok(());
