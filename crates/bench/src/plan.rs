@@ -981,7 +981,7 @@ fn load_env(
     }
 }
 
-/// Most trials one scenario may plan (the `faigl2013` suite has 118,080); each is held in
+/// Most trials one scenario may plan (the `faigl2013` suite has 77,040); each is held in
 /// memory with its key.
 pub const MAX_PLAN_TRIALS: u64 = 2_000_000;
 
