@@ -675,22 +675,14 @@ impl Reachability {
         canonical: bool,
         guided: bool,
     ) {
-        self.epoch = next_gen(self.epoch, &mut self.tile_epoch);
-        for b in &mut self.buckets {
-            b.clear();
-        }
-        self.queues.clear();
+        self.forget();
         self.canonical = canonical;
         self.guided = guided && canonical;
-        self.settled.clear();
         let (w, h) = (self.width, self.height);
         self.start = match starts {
             &[start] if start < w * h => Some(start),
             _ => None,
         };
-        self.next = 0;
-        self.exhausted = false;
-        self.resumable = false;
         if canonical {
             let mut walk = Walk::new(self, passable, self.guided.then_some(0));
             let mut first = 0;
