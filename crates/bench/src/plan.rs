@@ -634,10 +634,11 @@ fn resolve(src: &Source, f: ScenarioFile, unbuilt: Unbuilt) -> Result<Plan, Benc
     for (label, strategy) in &strategies {
         for sensor in &sensors {
             for &m in &robots {
+                let stochastic = is_stochastic(strategy);
                 variants.push(Variant {
                     label: label.clone(),
-                    stochastic: is_stochastic(strategy),
-                    repeated: is_stochastic(strategy) && repeated(label),
+                    stochastic,
+                    repeated: stochastic && repeated(label),
                     strategy: strategy.clone(),
                     sensor: *sensor,
                     robots: m,
