@@ -6,26 +6,24 @@
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use explore::tsp::OpenTsp;
+use grid::Cell;
 use std::hint::black_box;
 
-/// The octile-distance matrix of `n` points drawn by a fixed linear congruential generator.
+/// The octile-distance matrix ([`Cell::octile`]) of `n` cells drawn by a fixed linear
+/// congruential generator.
 fn instance(n: usize, seed: u64) -> Vec<f64> {
     let mut s = seed;
     let mut draw = || {
         s = s
             .wrapping_mul(6_364_136_223_846_793_005)
             .wrapping_add(1_442_695_040_888_963_407);
-        ((s >> 33) % 200) as f64
+        ((s >> 33) % 200) as i32
     };
-    let pts: Vec<(f64, f64)> = (0..n).map(|_| (draw(), draw())).collect();
-    let mut d = vec![0.0; n * n];
-    for (a, &(ax, ay)) in pts.iter().enumerate() {
-        for (b, &(bx, by)) in pts.iter().enumerate() {
-            let (dx, dy) = ((ax - bx).abs(), (ay - by).abs());
-            d[a * n + b] = dx.max(dy) + (std::f64::consts::SQRT_2 - 1.0) * dx.min(dy);
-        }
-    }
-    d
+    let cells: Vec<Cell> = (0..n).map(|_| Cell::new(draw(), draw())).collect();
+    cells
+        .iter()
+        .flat_map(|&a| cells.iter().map(move |&b| a.octile(b)))
+        .collect()
 }
 
 fn bench(c: &mut Criterion) {
