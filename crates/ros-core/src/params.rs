@@ -52,6 +52,8 @@ pub struct Params {
     pub pose_type: PoseType,
     /// Nav2's NavigateToPose action.
     pub navigate_action: String,
+    /// How the action's services map onto DDS, which depends on Nav2's RMW.
+    pub service_mapping: ServiceMapping,
     /// Where goals are published (always, and only there in publish-only mode).
     pub goal_topic: String,
     /// Where markers go.
@@ -67,6 +69,31 @@ pub enum PoseType {
     WithCovariance,
     /// `geometry_msgs/msg/PoseStamped`.
     Stamped,
+}
+
+/// How ROS 2 services (the action's goal, result and cancel calls) are carried over DDS:
+/// the RMWs do it differently and do not understand one another's way.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ServiceMapping {
+    /// From `RMW_IMPLEMENTATION` as ROS 2 reads it: `rmw_cyclonedds_cpp` → `Cyclone`, any
+    /// other or none (Fast DDS, the default RMW) → `Enhanced`.
+    Auto,
+    /// The request id in the RTPS message (OMG RPC over DDS, "enhanced"): rmw_fastrtps.
+    Enhanced,
+    /// The request id at the head of the payload: rmw_cyclonedds_cpp.
+    Cyclone,
+}
+
+impl ServiceMapping {
+    /// `Auto` decided by the value of `RMW_IMPLEMENTATION` (`None`: unset); others as they
+    /// are.
+    pub fn resolve(self, rmw_implementation: Option<&str>) -> ServiceMapping {
+        match (self, rmw_implementation.map(str::trim)) {
+            (ServiceMapping::Auto, Some("rmw_cyclonedds_cpp")) => ServiceMapping::Cyclone,
+            (ServiceMapping::Auto, _) => ServiceMapping::Enhanced,
+            (m, _) => m,
+        }
+    }
 }
 
 impl Default for Params {
@@ -87,6 +114,7 @@ impl Default for Params {
             pose_topic: "/pose".into(),
             pose_type: PoseType::WithCovariance,
             navigate_action: "/navigate_to_pose".into(),
+            service_mapping: ServiceMapping::Auto,
             goal_topic: "/explore/goal".into(),
             markers_topic: "/explore/frontiers".into(),
             seed: 0,
@@ -226,6 +254,18 @@ impl Params {
                     }
                 }
             }
+            "service_mapping" => {
+                self.service_mapping = match value {
+                    "auto" => ServiceMapping::Auto,
+                    "enhanced" => ServiceMapping::Enhanced,
+                    "cyclone" => ServiceMapping::Cyclone,
+                    _ => {
+                        return Err(format!(
+                            "service_mapping: expected auto, enhanced or cyclone, found '{value}'"
+                        ));
+                    }
+                }
+            }
             "seed" => {
                 self.seed = value.parse().map_err(|_| {
                     format!("seed: expected a non-negative integer, found '{value}'")
@@ -236,7 +276,7 @@ impl Params {
                     "unknown parameter '{name}': expected one of strategy, sensor, clearance, \
                      planner_frequency, progress_timeout, min_frontier_size, goal_tolerance, \
                      return_to_init, visualize, publish_only, autostart, map_topic, pose_topic, \
-                     pose_type, navigate_action, goal_topic, markers_topic, seed"
+                     pose_type, navigate_action, service_mapping, goal_topic, markers_topic, seed"
                 ));
             }
         }
@@ -344,5 +384,30 @@ mod tests {
         assert!(p.set("sensor", "radar:r=5").is_err());
         assert!(p.set("planner_frequency", "0").is_err());
         assert!(p.apply_yaml(": : :", "n", "p.yaml").is_err());
+        let e = p.set("service_mapping", "fastdds").unwrap_err();
+        assert_eq!(
+            e,
+            "service_mapping: expected auto, enhanced or cyclone, found 'fastdds'"
+        );
+    }
+
+    #[test]
+    fn the_service_mapping_follows_the_rmw_unless_named() {
+        use ServiceMapping::*;
+        assert_eq!(Auto.resolve(None), Enhanced);
+        assert_eq!(Auto.resolve(Some("rmw_fastrtps_cpp")), Enhanced);
+        assert_eq!(Auto.resolve(Some("rmw_fastrtps_dynamic_cpp")), Enhanced);
+        assert_eq!(Auto.resolve(Some("rmw_cyclonedds_cpp")), Cyclone);
+        assert_eq!(Cyclone.resolve(Some("rmw_fastrtps_cpp")), Cyclone);
+        assert_eq!(Enhanced.resolve(Some("rmw_cyclonedds_cpp")), Enhanced);
+        let mut p = Params::default();
+        assert_eq!(p.service_mapping, Auto);
+        p.apply_yaml(
+            "n:\n  ros__parameters:\n    service_mapping: cyclone\n",
+            "n",
+            "p.yaml",
+        )
+        .unwrap();
+        assert_eq!(p.service_mapping, Cyclone);
     }
 }

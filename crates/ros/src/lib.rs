@@ -16,5 +16,5 @@ pub use frontier_ros_core::{explorer, map_belief, params};
 #[cfg(feature = "node")]
 pub mod node;
 
-pub use frontier_ros_core::{Check, Decision, Explorer, ExplorerConfig, GoalPose, StopReason};
 pub use frontier_ros_core::Params;
+pub use frontier_ros_core::{Check, Decision, Explorer, ExplorerConfig, GoalPose, StopReason};

@@ -224,9 +224,22 @@ pub fn run(
     let status_pub = node
         .create_publisher::<Text>(&status_t, Some(latched))
         .map_err(err)?;
+    let rmw = std::env::var("RMW_IMPLEMENTATION").ok();
+    let mapping = match params.service_mapping.resolve(rmw.as_deref()) {
+        crate::params::ServiceMapping::Cyclone => ServiceMapping::Cyclone,
+        _ => ServiceMapping::Enhanced,
+    };
+    if !params.publish_only {
+        log::info!(
+            "NavigateToPose over the {mapping:?} service mapping (service_mapping: {:?}, \
+             RMW_IMPLEMENTATION: {})",
+            params.service_mapping,
+            rmw.as_deref().unwrap_or("unset")
+        );
+    }
     let nav: Rc<NavClient> = Rc::new(
         node.create_action_client(
-            ServiceMapping::Enhanced,
+            mapping,
             &topic_name(&params.navigate_action)?,
             &ActionTypeName::new("nav2_msgs", "NavigateToPose"),
             action_qos(),
@@ -363,6 +376,7 @@ pub fn run(
         markers_pub,
         status_pub,
         nav,
+        mapping,
         tx: tx.clone(),
         t0,
         buf_a: Vec::new(),
@@ -401,6 +415,8 @@ struct State {
     markers_pub: ros2_client::Publisher<Ros<record::msgs::MarkerArray>>,
     status_pub: ros2_client::Publisher<Text>,
     nav: Rc<NavClient>,
+    /// How the action's services are carried (for the message when Nav2 does not answer).
+    mapping: ServiceMapping,
     tx: async_channel::Sender<Event>,
     t0: Instant,
     buf_a: Vec<(f64, f64)>,
@@ -635,6 +651,7 @@ impl State {
         let seq = self.seq;
         let nav = self.nav.clone();
         let tx = self.tx.clone();
+        let mapping = self.mapping;
         ex.spawn(async move {
             let goal = Ros(NavigateToPoseGoal {
                 pose,
@@ -645,7 +662,12 @@ impl State {
                 _ = FutureExt::fuse(smol::Timer::after(Duration::from_secs(10))) => None,
             };
             let Some((id, response)) = sent else {
-                log::warn!("no answer from the NavigateToPose server");
+                log::warn!(
+                    "no answer from the NavigateToPose server in 10 s, over the {mapping:?} \
+                     service mapping: is Nav2 running on this ROS_DOMAIN_ID, and on \
+                     rmw_cyclonedds_cpp (service_mapping: cyclone) or another RMW \
+                     (service_mapping: enhanced)?"
+                );
                 let _ = tx.send(Event::Ended(seq, Outcome::Failed)).await;
                 return;
             };

@@ -63,6 +63,8 @@ fn params(publish_only: bool) -> Params {
         ("planner_frequency", "5"),
         ("pose_type", "PoseStamped"),
         ("goal_tolerance", "0.3"),
+        // The mock serves the action as rmw_fastrtps does, whatever RMW_IMPLEMENTATION says.
+        ("service_mapping", "enhanced"),
     ] {
         p.set(k, v).unwrap();
     }
