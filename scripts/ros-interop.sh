@@ -1,23 +1,39 @@
 #!/usr/bin/env bash
-# frontier-ros against another vendor's DDS: Eclipse Cyclone DDS (rmw_cyclonedds_cpp's),
-# through its Python binding from PyPI (the wheel carries the C library; no ROS needed).
+# frontier-ros against the two DDS vendors ROS 2 ships RMWs for: Eclipse Cyclone DDS
+# (rmw_cyclonedds_cpp; its Python binding from PyPI, the C library in the wheel) and
+# eProsima Fast DDS (rmw_fastrtps_cpp, the default RMW; Debian's libfastrtps and fastddsgen).
+# No ROS installation is needed. See crates/ros/interop/interop.py.
 #
-#   scripts/ros-interop.sh          # builds crates/ros in release, runs scripts/ros-interop.py
-#                                   # twice: Nav2's action (Cyclone's service mapping), publish-only
+#   scripts/ros-interop.sh          # each DDS, Nav2's action and publish-only: 4 runs, ~40 s
 #
-# The binding goes into target/ros-interop-venv (FRONTIER_INTEROP_VENV=... for another place).
-# The DDS domain is 150–199 (one per process), away from the default 0.
+# Installs what is missing: Debian's Fast DDS packages (apt-get, as root or through sudo),
+# the Cyclone binding into target/ros-interop/venv; builds the node (release) and the Fast
+# DDS peer into target/ros-interop. Each run uses a DDS domain of 150–199.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-venv=${FRONTIER_INTEROP_VENV:-target/ros-interop-venv}
-python=${PYTHON:-python3}
-if [ ! -x "$venv/bin/python" ]; then
-    "$python" -m venv "$venv"
+out=target/ros-interop
+mkdir -p "$out"
+if ! command -v fastddsgen > /dev/null || [ ! -d /usr/include/fastdds ]; then
+    sudo=""
+    [ "$(id -u)" -eq 0 ] || sudo=sudo
+    $sudo apt-get install -y --no-install-recommends libfastrtps-dev libfastcdr-dev fastddsgen g++
 fi
+venv=$out/venv
+[ -x "$venv/bin/python" ] || "${PYTHON:-python3}" -m venv "$venv"
 "$venv/bin/python" -m pip install --quiet --disable-pip-version-check "cyclonedds==11.0.1"
 cargo build --release --quiet --manifest-path crates/ros/Cargo.toml
-for mode in action publish-only; do
-    echo "== --mode $mode"
-    "$venv/bin/python" scripts/ros-interop.py --node crates/ros/target/release/frontier-ros \
-        --mode "$mode" "$@"
+# The Fast DDS peer: ROS 2's types from ros2.idl through fastddsgen, then one g++ call.
+if [ ! -x "$out/fastdds_peer" ] || [ crates/ros/interop/fastdds_peer.cpp -nt "$out/fastdds_peer" ] \
+    || [ crates/ros/interop/ros2.idl -nt "$out/fastdds_peer" ]; then
+    mkdir -p "$out/gen"
+    fastddsgen -replace -d "$out/gen" crates/ros/interop/ros2.idl > /dev/null
+    g++ -std=c++17 -O1 -I"$out/gen" crates/ros/interop/fastdds_peer.cpp "$out/gen/ros2.cxx" \
+        "$out/gen/ros2PubSubTypes.cxx" -lfastrtps -lfastcdr -o "$out/fastdds_peer"
+fi
+for dds in cyclone fastdds; do
+    for mode in action publish-only; do
+        echo "== $dds, --mode $mode"
+        "$venv/bin/python" crates/ros/interop/interop.py --dds "$dds" --mode "$mode" \
+            --node crates/ros/target/release/frontier-ros --fastdds-peer "$out/fastdds_peer" "$@"
+    done
 done

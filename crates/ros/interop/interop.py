@@ -1,0 +1,514 @@
+"""frontier-ros against other vendors' DDS: a mock robot and Nav2 in Eclipse Cyclone DDS
+(rmw_cyclonedds_cpp's DDS, through its Python binding) or in eProsima Fast DDS
+(rmw_fastrtps's, the default RMW, through `fastdds_peer`), speaking to the node as ROS 2
+nodes on that RMW do.
+
+The node is built on RustDDS, and its own tests talk to it from RustDDS. Here the other
+side is another vendor's DDS, with ROS 2's conventions written out by hand: topic names
+`rt/...`, type names `pkg::msg::dds_::Type_`, plain CDR (XCDR1, what every ROS 2 RMW sends;
+Cyclone would default to XCDR2 for these types), the map reliable and transient local. The
+mock publishes a map and a pose, moves the robot to each goal and reveals the true map
+there, pauses and resumes the node through `/explore/command`, and checks that the node
+ends with `done: explored` and every free cell known.
+
+`--mode action`: the mock is also Nav2's `NavigateToPose` action server (services
+`rq/navigate_to_pose/_action/send_goalRequest` and `rr/.../send_goalReply`, get_result,
+cancel_goal), carried as that vendor's RMW carries services: Cyclone's with the client's
+16-byte request id at the head of each request, repeated in the reply; Fast DDS's in the
+samples' identities. It aborts the first goal, which must never come again. The node runs
+with `RMW_IMPLEMENTATION` set as beside such a Nav2 and its default `service_mapping:
+auto`. `--mode publish-only`: the node only publishes goals and the mock follows them;
+Nav2 must get nothing.
+
+Run by `scripts/ros-interop.sh`, which installs what it needs.
+"""
+
+import argparse
+import math
+import os
+import subprocess
+import sys
+import time
+from dataclasses import dataclass
+
+from cyclonedds.core import Policy, Qos
+from cyclonedds.domain import DomainParticipant
+from cyclonedds.idl import IdlStruct
+from cyclonedds.idl.types import array, float32, float64, int8, int32, sequence, uint8, uint16, uint32
+from cyclonedds.pub import DataWriter
+from cyclonedds.sub import DataReader
+from cyclonedds.topic import Topic
+from cyclonedds.util import duration
+
+
+# Cyclone DDS: the ROS 2 (Jazzy) messages as the binding's IDL types (Fast DDS: ros2.idl).
+@dataclass
+class Time(IdlStruct, typename="builtin_interfaces::msg::dds_::Time_"):
+    sec: int32
+    nanosec: uint32
+
+
+@dataclass
+class Header(IdlStruct, typename="std_msgs::msg::dds_::Header_"):
+    stamp: Time
+    frame_id: str
+
+
+@dataclass
+class Point(IdlStruct, typename="geometry_msgs::msg::dds_::Point_"):
+    x: float64
+    y: float64
+    z: float64
+
+
+@dataclass
+class Quaternion(IdlStruct, typename="geometry_msgs::msg::dds_::Quaternion_"):
+    x: float64
+    y: float64
+    z: float64
+    w: float64
+
+
+@dataclass
+class Pose(IdlStruct, typename="geometry_msgs::msg::dds_::Pose_"):
+    position: Point
+    orientation: Quaternion
+
+
+@dataclass
+class PoseStamped(IdlStruct, typename="geometry_msgs::msg::dds_::PoseStamped_"):
+    header: Header
+    pose: Pose
+
+
+@dataclass
+class MapMetaData(IdlStruct, typename="nav_msgs::msg::dds_::MapMetaData_"):
+    map_load_time: Time
+    resolution: float32
+    width: uint32
+    height: uint32
+    origin: Pose
+
+
+@dataclass
+class OccupancyGrid(IdlStruct, typename="nav_msgs::msg::dds_::OccupancyGrid_"):
+    header: Header
+    info: MapMetaData
+    data: sequence[int8]
+
+
+@dataclass
+class String(IdlStruct, typename="std_msgs::msg::dds_::String_"):
+    data: str
+
+
+@dataclass
+class UUID(IdlStruct, typename="unique_identifier_msgs::msg::dds_::UUID_"):
+    uuid: array[uint8, 16]
+
+
+@dataclass
+class NavGoal(IdlStruct, typename="nav2_msgs::action::dds_::NavigateToPose_Goal_"):
+    pose: PoseStamped
+    behavior_tree: str
+
+
+@dataclass
+class NavResult(IdlStruct, typename="nav2_msgs::action::dds_::NavigateToPose_Result_"):
+    error_code: uint16
+    error_msg: str
+
+
+# rmw_cyclonedds_cpp's services: the request id (the client's id and a sequence number,
+# 16 bytes) heads each request, and the reply repeats it.
+@dataclass
+class SendGoalRequest(IdlStruct, typename="nav2_msgs::action::dds_::NavigateToPose_SendGoal_Request_"):
+    request_id: array[uint8, 16]
+    goal_id: UUID
+    goal: NavGoal
+
+
+@dataclass
+class SendGoalReply(IdlStruct, typename="nav2_msgs::action::dds_::NavigateToPose_SendGoal_Response_"):
+    request_id: array[uint8, 16]
+    accepted: bool
+    stamp: Time
+
+
+@dataclass
+class GetResultRequest(IdlStruct, typename="nav2_msgs::action::dds_::NavigateToPose_GetResult_Request_"):
+    request_id: array[uint8, 16]
+    goal_id: UUID
+
+
+@dataclass
+class GetResultReply(IdlStruct, typename="nav2_msgs::action::dds_::NavigateToPose_GetResult_Response_"):
+    request_id: array[uint8, 16]
+    status: int8
+    result: NavResult
+
+
+@dataclass
+class GoalInfo(IdlStruct, typename="action_msgs::msg::dds_::GoalInfo_"):
+    goal_id: UUID
+    stamp: Time
+
+
+@dataclass
+class CancelRequest(IdlStruct, typename="action_msgs::srv::dds_::CancelGoal_Request_"):
+    request_id: array[uint8, 16]
+    goal_info: GoalInfo
+
+
+@dataclass
+class CancelReply(IdlStruct, typename="action_msgs::srv::dds_::CancelGoal_Response_"):
+    request_id: array[uint8, 16]
+    return_code: int8
+    goals_canceling: sequence[GoalInfo]
+
+
+# action_msgs/GoalStatus
+SUCCEEDED, ABORTED = 4, 6
+
+
+# Two floors of rooms joined by doors, 0.5 m cells (the node's loopback test's map).
+ROOMS = """\
+################
+#......#.......#
+#......#.......#
+#..............#
+#......#.......#
+####.#######.###
+#..............#
+#..............#
+################
+"""
+RES = 0.5
+RANGE_M = 3.0
+START = (2, 2)
+
+
+class World:
+    """The true map, what the robot has seen of it, and a line-of-sight sensor."""
+
+    def __init__(self):
+        lines = ROOMS.splitlines()
+        self.h, self.w = len(lines), len(lines[0])
+        # Row y of the grid is line h − 1 − y of the drawing (the map's origin is its
+        # lower-left corner).
+        self.free = [[lines[self.h - 1 - y][x] == "." for x in range(self.w)] for y in range(self.h)]
+        self.known = [[False] * self.w for _ in range(self.h)]
+
+    def sense(self, cx, cy):
+        r = RANGE_M / RES
+        for y in range(self.h):
+            for x in range(self.w):
+                if (x - cx) ** 2 + (y - cy) ** 2 <= r * r and self.visible(cx, cy, x, y):
+                    self.known[y][x] = True
+
+    def visible(self, x0, y0, x1, y1):
+        # Every cell the segment between the centres passes, but the target, is free.
+        n = max(abs(x1 - x0), abs(y1 - y0)) * 8
+        for i in range(1, n):
+            t = i / n
+            x, y = math.floor(x0 + 0.5 + t * (x1 - x0)), math.floor(y0 + 0.5 + t * (y1 - y0))
+            if (x, y) != (x1, y1) and not self.free[y][x]:
+                return False
+        return True
+
+    def grid(self):
+        data = []
+        for y in range(self.h):
+            for x in range(self.w):
+                data.append(-1 if not self.known[y][x] else (0 if self.free[y][x] else 100))
+        return data
+
+    def unknown_free(self):
+        return sum(
+            1 for y in range(self.h) for x in range(self.w) if self.free[y][x] and not self.known[y][x]
+        )
+
+
+def stamp():
+    t = time.time()
+    return Time(sec=int(t), nanosec=int((t % 1) * 1e9))
+
+
+class CyclonePeer:
+    """The mock's DDS side in Cyclone DDS, as rmw_cyclonedds_cpp would carry it."""
+
+    rmw = "rmw_cyclonedds_cpp"
+
+    def __init__(self, domain):
+        dp = DomainParticipant(domain)
+        xcdr1 = Policy.DataRepresentation(use_cdrv0_representation=True)
+        reliable = Qos(Policy.Reliability.Reliable(duration(seconds=1)), Policy.History.KeepLast(10), xcdr1)
+        latched = Qos(
+            Policy.Reliability.Reliable(duration(seconds=1)),
+            Policy.Durability.TransientLocal,
+            Policy.History.KeepLast(1),
+            xcdr1,
+        )
+        self.map_w = DataWriter(dp, Topic(dp, "rt/map", OccupancyGrid), qos=latched)
+        self.pose_w = DataWriter(dp, Topic(dp, "rt/pose", PoseStamped), qos=reliable)
+        self.cmd_w = DataWriter(dp, Topic(dp, "rt/explore/command", String), qos=reliable)
+        self.goal_r = DataReader(dp, Topic(dp, "rt/explore/goal", PoseStamped), qos=reliable)
+        self.status_r = DataReader(dp, Topic(dp, "rt/explore/status", String), qos=latched)
+        base = "navigate_to_pose/_action/"
+
+        def service(name, req, rep):
+            return (
+                DataReader(dp, Topic(dp, f"rq/{base}{name}Request", req), qos=reliable),
+                DataWriter(dp, Topic(dp, f"rr/{base}{name}Reply", rep), qos=reliable),
+            )
+
+        self.send_goal = service("send_goal", SendGoalRequest, SendGoalReply)
+        self.get_result = service("get_result", GetResultRequest, GetResultReply)
+        self.cancel = service("cancel_goal", CancelRequest, CancelReply)
+        self.pending = {}  # token → the request id to repeat
+        self.token = 0
+
+    def map(self, w, h, res, data):
+        identity = Quaternion(0.0, 0.0, 0.0, 1.0)
+        info = MapMetaData(stamp(), res, w, h, Pose(Point(0.0, 0.0, 0.0), identity))
+        self.map_w.write(OccupancyGrid(Header(stamp(), "map"), info, data))
+
+    def pose(self, x, y):
+        identity = Quaternion(0.0, 0.0, 0.0, 1.0)
+        self.pose_w.write(PoseStamped(Header(stamp(), "map"), Pose(Point(x, y, 0.0), identity)))
+
+    def command(self, text):
+        self.cmd_w.write(String(text))
+
+    def _keep(self, request_id):
+        self.token += 1
+        self.pending[self.token] = request_id
+        return self.token
+
+    def events(self):
+        out = []
+        for g in self.goal_r.take(N=16):
+            if isinstance(g, PoseStamped):
+                out.append(("goal", g.pose.position.x, g.pose.position.y, g.header.frame_id))
+        for s in self.status_r.take(N=16):
+            if isinstance(s, String):
+                out.append(("status", s.data))
+        for r in self.send_goal[0].take(N=16):
+            if isinstance(r, SendGoalRequest):
+                p = r.goal.pose.pose.position
+                out.append(("send_goal", self._keep(r.request_id), bytes(r.goal_id.uuid).hex(), p.x, p.y))
+        for r in self.get_result[0].take(N=16):
+            if isinstance(r, GetResultRequest):
+                out.append(("get_result", self._keep(r.request_id), bytes(r.goal_id.uuid).hex()))
+        for r in self.cancel[0].take(N=16):
+            if isinstance(r, CancelRequest):
+                out.append(("cancel", self._keep(r.request_id)))
+        return out
+
+    def goal_reply(self, token, accepted):
+        self.send_goal[1].write(SendGoalReply(self.pending.pop(token), accepted, stamp()))
+
+    def result_reply(self, token, status):
+        self.get_result[1].write(GetResultReply(self.pending.pop(token), status, NavResult(0, "")))
+
+    def cancel_reply(self, token):
+        self.cancel[1].write(CancelReply(self.pending.pop(token), 0, []))
+
+    def close(self):
+        pass
+
+
+class FastDdsPeer:
+    """The mock's DDS side in Fast DDS: `fastdds_peer`, driven line by line."""
+
+    rmw = "rmw_fastrtps_cpp"
+
+    def __init__(self, domain, binary):
+        self.proc = subprocess.Popen(
+            [binary, str(domain)], stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True
+        )
+        os.set_blocking(self.proc.stdout.fileno(), False)
+        self.buf = ""
+
+    def _send(self, line):
+        self.proc.stdin.write(line + "\n")
+        self.proc.stdin.flush()
+
+    def map(self, w, h, res, data):
+        self._send(f"map {w} {h} {res} " + " ".join(map(str, data)))
+
+    def pose(self, x, y):
+        self._send(f"pose {x} {y}")
+
+    def command(self, text):
+        self._send(f"command {text}")
+
+    def events(self):
+        try:
+            self.buf += os.read(self.proc.stdout.fileno(), 1 << 20).decode()
+        except BlockingIOError:
+            pass
+        *lines, self.buf = self.buf.split("\n")
+        out = []
+        for line in lines:
+            kind, _, rest = line.partition(" ")
+            f = rest.split(" ")
+            if kind == "goal":
+                out.append(("goal", float(f[0]), float(f[1]), f[2] if len(f) > 2 else ""))
+            elif kind == "status":
+                out.append(("status", rest))
+            elif kind == "send_goal":
+                out.append(("send_goal", int(f[0]), f[1], float(f[2]), float(f[3])))
+            elif kind == "get_result":
+                out.append(("get_result", int(f[0]), f[1]))
+            elif kind == "cancel":
+                out.append(("cancel", int(f[0])))
+        return out
+
+    def goal_reply(self, token, accepted):
+        self._send(f"goal_reply {token} {int(accepted)}")
+
+    def result_reply(self, token, status):
+        self._send(f"result_reply {token} {status}")
+
+    def cancel_reply(self, token):
+        self._send(f"cancel_reply {token}")
+
+    def close(self):
+        self.proc.stdin.close()
+        try:
+            self.proc.wait(timeout=10)
+        except subprocess.TimeoutExpired:
+            self.proc.kill()
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--node", required=True, help="the frontier-ros binary")
+    ap.add_argument("--dds", choices=["cyclone", "fastdds"], default="cyclone")
+    ap.add_argument("--fastdds-peer", help="the fastdds_peer binary (with --dds fastdds)")
+    ap.add_argument("--mode", choices=["action", "publish-only"], default="action")
+    ap.add_argument("--domain", type=int, default=150 + os.getpid() % 50)
+    ap.add_argument("--limit", type=float, default=90.0, help="seconds before giving up")
+    ap.add_argument("-p", dest="extra", action="append", default=[], metavar="NAME:=VALUE",
+                    help="one more parameter for the node")
+    args = ap.parse_args()
+    if args.dds == "fastdds" and not args.fastdds_peer:
+        ap.error("--dds fastdds needs --fastdds-peer")
+    params = [
+        ("strategy", "cf-rr"),
+        ("sensor", "los:r=3"),
+        ("clearance", "0"),
+        ("min_frontier_size", "0"),
+        ("planner_frequency", "5"),
+        ("pose_type", "PoseStamped"),
+        ("goal_tolerance", "0.3"),
+        ("publish_only", "true" if args.mode == "publish-only" else "false"),
+    ]
+    cmd = [args.node, "--domain", str(args.domain)]
+    for k, v in params:
+        cmd += ["-p", f"{k}:={v}"]
+    for p in args.extra:
+        cmd += ["-p", p]
+    peer = CyclonePeer(args.domain) if args.dds == "cyclone" else FastDdsPeer(args.domain, args.fastdds_peer)
+    node = subprocess.Popen(cmd, env=dict(os.environ, RMW_IMPLEMENTATION=peer.rmw))
+    try:
+        ok = run(args, peer)
+    finally:
+        node.terminate()
+        try:
+            node.wait(timeout=10)
+        except subprocess.TimeoutExpired:
+            node.kill()
+        peer.close()
+    sys.exit(0 if ok else 1)
+
+
+def run(args, peer):
+    action = args.mode == "action"
+    world = World()
+    robot = START
+
+    def publish():
+        world.sense(*robot)
+        peer.map(world.w, world.h, RES, world.grid())
+        peer.pose((robot[0] + 0.5) * RES, (robot[1] + 0.5) * RES)
+
+    status, goals, nav_goals = [], [], []
+    ends = {}  # goal id → the status its result reports
+    paused_at, paused_goals, resumed = None, None, False
+    deadline = time.time() + args.limit
+    last = 0.0
+    while time.time() < deadline:
+        if time.time() - last > 0.5:
+            publish()
+            last = time.time()
+        for e in peer.events():
+            if e[0] == "status":
+                status.append(e[1])
+                print("status:", e[1], flush=True)
+                if e[1] == "paused":
+                    paused_at = time.time()
+            elif e[0] == "goal":
+                _, x, y, frame = e
+                goals.append((x, y))
+                print(f"goal {len(goals)}: ({x:.2f}, {y:.2f}) in frame {frame!r}", flush=True)
+                if not action:
+                    # Drive there: the cell that holds the goal.
+                    robot = (int(x // RES), int(y // RES))
+                    publish()
+                    last = time.time()
+                if len(goals) == 2:
+                    peer.command("stop")
+            elif e[0] == "send_goal":
+                _, token, uuid, x, y = e
+                nav_goals.append((x, y))
+                print(f"nav2: goal {len(nav_goals)} ({x:.2f}, {y:.2f})", flush=True)
+                peer.goal_reply(token, True)
+                if len(nav_goals) == 1:
+                    ends[uuid] = ABORTED
+                else:
+                    ends[uuid] = SUCCEEDED
+                    robot = (int(x // RES), int(y // RES))
+                    publish()
+                    last = time.time()
+            elif e[0] == "get_result":
+                _, token, uuid = e
+                peer.result_reply(token, ends.get(uuid, ABORTED))
+            elif e[0] == "cancel":
+                peer.cancel_reply(e[1])
+        if status and status[-1].startswith("done"):
+            break
+        # A goal sent before the node paused may still come (the two topics are not
+        # ordered with each other); from half a second after, none may.
+        if paused_at is not None and paused_goals is None and time.time() - paused_at > 0.5:
+            paused_goals = len(goals)
+        if paused_goals is not None and not resumed and time.time() - paused_at > 2.5:
+            if len(goals) != paused_goals:
+                print("FAIL: a goal while paused", flush=True)
+                return False
+            peer.command("resume")
+            resumed = True
+        time.sleep(0.02)
+
+    checks = [
+        ("the node saw the map and the pose and sent goals", len(goals) > 1),
+        ("it paused on 'stop' and went on after 'resume'", "paused" in status and resumed
+         and "exploring" in status[status.index("paused") + 1:]),
+        ("it ended with 'done: explored'", bool(status) and status[-1].startswith("done: explored")),
+        ("every free cell is known", world.unknown_free() == 0),
+    ]
+    if action:
+        checks += [
+            ("Nav2 received the goals", len(nav_goals) > 1),
+            ("the aborted goal never came again", bool(nav_goals) and nav_goals[0] not in nav_goals[1:]),
+        ]
+    else:
+        checks.append(("Nav2 received nothing", not nav_goals))
+    for what, ok in checks:
+        print(("ok    " if ok else "FAIL  ") + what, flush=True)
+    return all(ok for _, ok in checks)
+
+
+if __name__ == "__main__":
+    main()
