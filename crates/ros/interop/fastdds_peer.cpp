@@ -3,7 +3,9 @@
 // stdout, one line each.
 //
 // in:  map W H RES V...           the map (V: -1, 0 or 100 per cell, row-major from the origin)
-//      pose X Y                   the robot's pose (PoseStamped, frame map)
+//      pose X Y                   the robot's pose (frame map; PoseWithCovarianceStamped, as
+//                                 slam_toolbox and AMCL send it, or PoseStamped with
+//                                 `fastdds_peer DOMAIN stamped`)
 //      command TEXT               on /explore/command
 //      goal_reply TOKEN 0|1       answer send_goal request TOKEN (accepted or not)
 //      result_reply TOKEN STATUS  answer get_result request TOKEN with a GoalStatus
@@ -122,10 +124,11 @@ static SampleIdentity request_id(const SampleInfo& info) {
 }
 
 int main(int argc, char** argv) {
-    if (argc != 2) {
-        std::cerr << "usage: fastdds_peer DOMAIN\n";
+    if (argc < 2 || argc > 3 || (argc == 3 && std::string(argv[2]) != "stamped")) {
+        std::cerr << "usage: fastdds_peer DOMAIN [stamped]\n";
         return 2;
     }
+    const bool stamped = argc == 3;
     Peer p;
     p.dp = DomainParticipantFactory::get_instance()->create_participant(
         std::stoi(argv[1]), PARTICIPANT_QOS_DEFAULT);
@@ -138,7 +141,8 @@ int main(int argc, char** argv) {
     using namespace nav_msgs::msg::dds_;
     using namespace std_msgs::msg::dds_;
     DataWriter* map_w = p.writer<OccupancyGrid_PubSubType>("rt/map", true);
-    DataWriter* pose_w = p.writer<geo::PoseStamped_PubSubType>("rt/pose");
+    DataWriter* pose_w = stamped ? p.writer<geo::PoseStamped_PubSubType>("rt/pose")
+                                 : p.writer<geo::PoseWithCovarianceStamped_PubSubType>("rt/pose");
     DataWriter* cmd_w = p.writer<String_PubSubType>("rt/explore/command");
     DataReader* goal_r = p.reader<geo::PoseStamped_PubSubType>("rt/explore/goal");
     DataReader* status_r = p.reader<String_PubSubType>("rt/explore/status", true);
@@ -209,11 +213,22 @@ int main(int argc, char** argv) {
             } else if (what == "pose") {
                 double x, y;
                 in >> x >> y;
-                geo::PoseStamped_ ps;
-                ps.header().stamp(now());
-                ps.header().frame_id("map");
-                ps.pose(pose_at(x, y));
-                pose_w->write(&ps);
+                std_msgs::msg::dds_::Header_ header;
+                header.stamp(now());
+                header.frame_id("map");
+                if (stamped) {
+                    geo::PoseStamped_ ps;
+                    ps.header(header);
+                    ps.pose(pose_at(x, y));
+                    pose_w->write(&ps);
+                } else {
+                    geo::PoseWithCovarianceStamped_ ps;
+                    ps.header(header);
+                    ps.pose().pose(pose_at(x, y));
+                    ps.pose().covariance()[0] = ps.pose().covariance()[7] = 0.01;
+                    ps.pose().covariance()[35] = 0.005;
+                    pose_w->write(&ps);
+                }
             } else if (what == "command") {
                 String_ s;
                 std::string text;

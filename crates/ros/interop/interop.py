@@ -7,9 +7,10 @@ The node is built on RustDDS, and its own tests talk to it from RustDDS. Here th
 side is another vendor's DDS, with ROS 2's conventions written out by hand: topic names
 `rt/...`, type names `pkg::msg::dds_::Type_`, plain CDR (XCDR1, what every ROS 2 RMW sends;
 Cyclone would default to XCDR2 for these types), the map reliable and transient local. The
-mock publishes a map and a pose, moves the robot to each goal and reveals the true map
-there, pauses and resumes the node through `/explore/command`, and checks that the node
-ends with `done: explored` and every free cell known.
+mock publishes a map and a pose (PoseWithCovarianceStamped with Nav2, PoseStamped in
+publish-only mode), moves the robot to each goal and reveals the true map there, pauses
+and resumes the node through `/explore/command`, and checks that the node ends with
+`done: explored` and every free cell known.
 
 `--mode action`: the mock is also Nav2's `NavigateToPose` action server (services
 `rq/navigate_to_pose/_action/send_goalRequest` and `rr/.../send_goalReply`, get_result,
@@ -79,6 +80,18 @@ class Pose(IdlStruct, typename="geometry_msgs::msg::dds_::Pose_"):
 class PoseStamped(IdlStruct, typename="geometry_msgs::msg::dds_::PoseStamped_"):
     header: Header
     pose: Pose
+
+
+@dataclass
+class PoseWithCovariance(IdlStruct, typename="geometry_msgs::msg::dds_::PoseWithCovariance_"):
+    pose: Pose
+    covariance: array[float64, 36]
+
+
+@dataclass
+class PoseWithCovarianceStamped(IdlStruct, typename="geometry_msgs::msg::dds_::PoseWithCovarianceStamped_"):
+    header: Header
+    pose: PoseWithCovariance
 
 
 @dataclass
@@ -239,8 +252,9 @@ class CyclonePeer:
 
     rmw = "rmw_cyclonedds_cpp"
 
-    def __init__(self, domain):
+    def __init__(self, domain, stamped):
         dp = DomainParticipant(domain)
+        self.stamped = stamped
         xcdr1 = Policy.DataRepresentation(use_cdrv0_representation=True)
         reliable = Qos(Policy.Reliability.Reliable(duration(seconds=1)), Policy.History.KeepLast(10), xcdr1)
         latched = Qos(
@@ -250,7 +264,8 @@ class CyclonePeer:
             xcdr1,
         )
         self.map_w = DataWriter(dp, Topic(dp, "rt/map", OccupancyGrid), qos=latched)
-        self.pose_w = DataWriter(dp, Topic(dp, "rt/pose", PoseStamped), qos=reliable)
+        pose_type = PoseStamped if stamped else PoseWithCovarianceStamped
+        self.pose_w = DataWriter(dp, Topic(dp, "rt/pose", pose_type), qos=reliable)
         self.cmd_w = DataWriter(dp, Topic(dp, "rt/explore/command", String), qos=reliable)
         self.goal_r = DataReader(dp, Topic(dp, "rt/explore/goal", PoseStamped), qos=reliable)
         self.status_r = DataReader(dp, Topic(dp, "rt/explore/status", String), qos=latched)
@@ -274,8 +289,14 @@ class CyclonePeer:
         self.map_w.write(OccupancyGrid(Header(stamp(), "map"), info, data))
 
     def pose(self, x, y):
-        identity = Quaternion(0.0, 0.0, 0.0, 1.0)
-        self.pose_w.write(PoseStamped(Header(stamp(), "map"), Pose(Point(x, y, 0.0), identity)))
+        pose = Pose(Point(x, y, 0.0), Quaternion(0.0, 0.0, 0.0, 1.0))
+        if self.stamped:
+            self.pose_w.write(PoseStamped(Header(stamp(), "map"), pose))
+        else:
+            covariance = [0.0] * 36
+            covariance[0] = covariance[7] = 0.01
+            covariance[35] = 0.005
+            self.pose_w.write(PoseWithCovarianceStamped(Header(stamp(), "map"), PoseWithCovariance(pose, covariance)))
 
     def command(self, text):
         self.cmd_w.write(String(text))
@@ -323,9 +344,12 @@ class FastDdsPeer:
 
     rmw = "rmw_fastrtps_cpp"
 
-    def __init__(self, domain, binary):
+    def __init__(self, domain, stamped, binary):
         self.proc = subprocess.Popen(
-            [binary, str(domain)], stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True
+            [binary, str(domain)] + (["stamped"] if stamped else []),
+            stdin=subprocess.PIPE,
+            stdout=subprocess.PIPE,
+            text=True,
         )
         os.set_blocking(self.proc.stdout.fileno(), False)
         self.buf = ""
@@ -395,13 +419,16 @@ def main():
     args = ap.parse_args()
     if args.dds == "fastdds" and not args.fastdds_peer:
         ap.error("--dds fastdds needs --fastdds-peer")
+    stamped = args.mode == "publish-only"
     params = [
         ("strategy", "cf-rr"),
         ("sensor", "los:r=3"),
         ("clearance", "0"),
         ("min_frontier_size", "0"),
         ("planner_frequency", "5"),
-        ("pose_type", "PoseStamped"),
+        # The default PoseWithCovarianceStamped (slam_toolbox's, AMCL's) with Nav2, the
+        # other type in publish-only mode.
+        ("pose_type", "PoseStamped" if stamped else "PoseWithCovarianceStamped"),
         ("goal_tolerance", "0.3"),
         ("publish_only", "true" if args.mode == "publish-only" else "false"),
     ]
@@ -410,7 +437,10 @@ def main():
         cmd += ["-p", f"{k}:={v}"]
     for p in args.extra:
         cmd += ["-p", p]
-    peer = CyclonePeer(args.domain) if args.dds == "cyclone" else FastDdsPeer(args.domain, args.fastdds_peer)
+    if args.dds == "cyclone":
+        peer = CyclonePeer(args.domain, stamped)
+    else:
+        peer = FastDdsPeer(args.domain, stamped, args.fastdds_peer)
     node = subprocess.Popen(cmd, env=dict(os.environ, RMW_IMPLEMENTATION=peer.rmw))
     try:
         ok = run(args, peer)
