@@ -4,7 +4,8 @@
 # eProsima Fast DDS (rmw_fastrtps_cpp, the default RMW; Debian's libfastrtps and fastddsgen).
 # No ROS installation is needed. See crates/ros/interop/interop.py.
 #
-#   scripts/ros-interop.sh          # each DDS, Nav2's action and publish-only: 4 runs, ~40 s
+#   scripts/ros-interop.sh          # each DDS, Nav2's action and publish-only, and a Humble
+#                                   # Nav2 on Cyclone: 5 runs, ~40 s
 #
 # Installs what is missing: Debian's Fast DDS packages (apt-get, as root or through sudo),
 # the Cyclone binding into target/ros-interop/venv; builds the node (release) and the Fast
@@ -37,3 +38,6 @@ for dds in cyclone fastdds; do
             --node crates/ros/target/release/frontier-ros --fastdds-peer "$out/fastdds_peer" "$@"
     done
 done
+echo "== cyclone, --mode action --nav2 humble"
+"$venv/bin/python" crates/ros/interop/interop.py --dds cyclone --mode action --nav2 humble \
+    --node crates/ros/target/release/frontier-ros "$@"

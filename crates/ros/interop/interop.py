@@ -16,7 +16,8 @@ and resumes the node through `/explore/command`, and checks that the node ends w
 `rq/navigate_to_pose/_action/send_goalRequest` and `rr/.../send_goalReply`, get_result,
 cancel_goal), carried as that vendor's RMW carries services: Cyclone's with the client's
 16-byte request id at the head of each request, repeated in the reply; Fast DDS's in the
-samples' identities. It aborts the first goal, which must never come again. The node runs
+samples' identities. It aborts the first goal, which must never come again. `--nav2
+humble` serves Humble's empty result instead of Jazzy's error code and message. The node runs
 with `RMW_IMPLEMENTATION` set as beside such a Nav2 and its default `service_mapping:
 auto`. `--mode publish-only`: the node only publishes goals and the mock follows them;
 Nav2 must get nothing.
@@ -162,6 +163,19 @@ class GetResultReply(IdlStruct, typename="nav2_msgs::action::dds_::NavigateToPos
 
 
 @dataclass
+class HumbleResult(IdlStruct, typename="nav2_msgs::action::dds_::NavigateToPose_Result_"):
+    # Humble's result is std_msgs/Empty; an empty DDS struct holds this one byte.
+    structure_needs_at_least_one_member: uint8
+
+
+@dataclass
+class HumbleGetResultReply(IdlStruct, typename="nav2_msgs::action::dds_::NavigateToPose_GetResult_Response_"):
+    request_id: array[uint8, 16]
+    status: int8
+    result: HumbleResult
+
+
+@dataclass
 class GoalInfo(IdlStruct, typename="action_msgs::msg::dds_::GoalInfo_"):
     goal_id: UUID
     stamp: Time
@@ -252,9 +266,10 @@ class CyclonePeer:
 
     rmw = "rmw_cyclonedds_cpp"
 
-    def __init__(self, domain, stamped):
+    def __init__(self, domain, stamped, humble):
         dp = DomainParticipant(domain)
         self.stamped = stamped
+        self.humble = humble
         xcdr1 = Policy.DataRepresentation(use_cdrv0_representation=True)
         reliable = Qos(Policy.Reliability.Reliable(duration(seconds=1)), Policy.History.KeepLast(10), xcdr1)
         latched = Qos(
@@ -278,7 +293,9 @@ class CyclonePeer:
             )
 
         self.send_goal = service("send_goal", SendGoalRequest, SendGoalReply)
-        self.get_result = service("get_result", GetResultRequest, GetResultReply)
+        self.get_result = service(
+            "get_result", GetResultRequest, HumbleGetResultReply if humble else GetResultReply
+        )
         self.cancel = service("cancel_goal", CancelRequest, CancelReply)
         self.pending = {}  # token → the request id to repeat
         self.token = 0
@@ -330,7 +347,11 @@ class CyclonePeer:
         self.send_goal[1].write(SendGoalReply(self.pending.pop(token), accepted, stamp()))
 
     def result_reply(self, token, status):
-        self.get_result[1].write(GetResultReply(self.pending.pop(token), status, NavResult(0, "")))
+        if self.humble:
+            reply = HumbleGetResultReply(self.pending.pop(token), status, HumbleResult(0))
+        else:
+            reply = GetResultReply(self.pending.pop(token), status, NavResult(0, ""))
+        self.get_result[1].write(reply)
 
     def cancel_reply(self, token):
         self.cancel[1].write(CancelReply(self.pending.pop(token), 0, []))
@@ -412,6 +433,8 @@ def main():
     ap.add_argument("--dds", choices=["cyclone", "fastdds"], default="cyclone")
     ap.add_argument("--fastdds-peer", help="the fastdds_peer binary (with --dds fastdds)")
     ap.add_argument("--mode", choices=["action", "publish-only"], default="action")
+    ap.add_argument("--nav2", choices=["jazzy", "humble"], default="jazzy",
+                    help="the NavigateToPose result's layout (humble: empty; --dds cyclone)")
     ap.add_argument("--domain", type=int, default=150 + os.getpid() % 50)
     ap.add_argument("--limit", type=float, default=90.0, help="seconds before giving up")
     ap.add_argument("-p", dest="extra", action="append", default=[], metavar="NAME:=VALUE",
@@ -419,6 +442,8 @@ def main():
     args = ap.parse_args()
     if args.dds == "fastdds" and not args.fastdds_peer:
         ap.error("--dds fastdds needs --fastdds-peer")
+    if args.dds == "fastdds" and args.nav2 == "humble":
+        ap.error("--nav2 humble is served by --dds cyclone only")
     stamped = args.mode == "publish-only"
     params = [
         ("strategy", "cf-rr"),
@@ -438,7 +463,7 @@ def main():
     for p in args.extra:
         cmd += ["-p", p]
     if args.dds == "cyclone":
-        peer = CyclonePeer(args.domain, stamped)
+        peer = CyclonePeer(args.domain, stamped, args.nav2 == "humble")
     else:
         peer = FastDdsPeer(args.domain, stamped, args.fastdds_peer)
     node = subprocess.Popen(cmd, env=dict(os.environ, RMW_IMPLEMENTATION=peer.rmw))
