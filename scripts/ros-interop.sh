@@ -4,8 +4,8 @@
 # eProsima Fast DDS (rmw_fastrtps_cpp, the default RMW; Debian's libfastrtps and fastddsgen).
 # No ROS installation is needed. See crates/ros/interop/interop.py.
 #
-#   scripts/ros-interop.sh          # each DDS, Nav2's action and publish-only, and a Humble
-#                                   # Nav2 on Cyclone: 5 runs, ~40 s
+#   scripts/ros-interop.sh          # each DDS: Nav2's action, publish-only, the pose from TF;
+#                                   # and a Humble Nav2 on Cyclone: 7 runs, ~60 s
 #
 # Installs what is missing: Debian's Fast DDS packages (apt-get, as root or through sudo),
 # the Cyclone binding into target/ros-interop/venv; builds the node (release) and the Fast
@@ -32,9 +32,10 @@ if [ ! -x "$out/fastdds_peer" ] || [ crates/ros/interop/fastdds_peer.cpp -nt "$o
         "$out/gen/ros2PubSubTypes.cxx" -lfastrtps -lfastcdr -o "$out/fastdds_peer"
 fi
 for dds in cyclone fastdds; do
-    for mode in action publish-only; do
-        echo "== $dds, --mode $mode"
-        "$venv/bin/python" crates/ros/interop/interop.py --dds "$dds" --mode "$mode" \
+    for run in "--mode action" "--mode publish-only" "--mode action --pose tf"; do
+        echo "== $dds, $run"
+        # shellcheck disable=SC2086 # $run is two or four words
+        "$venv/bin/python" crates/ros/interop/interop.py --dds "$dds" $run \
             --node crates/ros/target/release/frontier-ros --fastdds-peer "$out/fastdds_peer" "$@"
     done
 done

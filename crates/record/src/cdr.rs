@@ -113,6 +113,49 @@ mod tests {
         assert_eq!(decode::<PoseStamped>(&bytes).unwrap(), p);
     }
 
+    /// `tf2_msgs/TFMessage` as a ROS 2 node sends it, written out byte by byte.
+    #[test]
+    fn tf_message_has_the_ros_layout() {
+        use crate::msgs::{TfMessage, Transform, TransformStamped, Vector3};
+        let mut body = Vec::new();
+        body.extend(1u32.to_le_bytes()); // one transform
+        body.extend(7i32.to_le_bytes()); // stamp
+        body.extend(9u32.to_le_bytes());
+        body.extend(4u32.to_le_bytes()); // parent frame
+        body.extend(b"map\0");
+        body.extend(5u32.to_le_bytes()); // child frame
+        body.extend(b"odom\0");
+        body.extend([0u8; 3]); // to the f64s' alignment, 8, at 32
+        for v in [1.0f64, -2.0, 0.5, 0.0, 0.0, 0.6, 0.8] {
+            body.extend(v.to_le_bytes());
+        }
+        let mut bytes = CDR_LE.to_vec();
+        bytes.extend(&body);
+        let mut t = TransformStamped::default();
+        t.header.stamp.sec = 7;
+        t.header.stamp.nanosec = 9;
+        t.header.frame_id = "map".into();
+        t.child_frame_id = "odom".into();
+        t.transform = Transform {
+            translation: Vector3 {
+                x: 1.0,
+                y: -2.0,
+                z: 0.5,
+            },
+            rotation: Quaternion {
+                x: 0.0,
+                y: 0.0,
+                z: 0.6,
+                w: 0.8,
+            },
+        };
+        let m = TfMessage {
+            transforms: vec![t],
+        };
+        assert_eq!(decode::<TfMessage>(&bytes).unwrap(), m);
+        assert_eq!(encode(&m), bytes);
+    }
+
     #[test]
     fn short_or_foreign_bytes_are_errors() {
         assert!(matches!(

@@ -259,6 +259,33 @@ pub struct Vector3 {
     pub z: f64,
 }
 
+/// `geometry_msgs/Transform`: where a child frame is in its parent frame.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct Transform {
+    /// The child frame's origin in the parent frame (m).
+    pub translation: Vector3,
+    /// The child frame's orientation in the parent frame.
+    pub rotation: Quaternion,
+}
+
+/// `geometry_msgs/TransformStamped`: one edge of the TF tree.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct TransformStamped {
+    /// Stamp and the parent frame.
+    pub header: Header,
+    /// The child frame.
+    pub child_frame_id: String,
+    /// The child frame in the parent frame.
+    pub transform: Transform,
+}
+
+/// `tf2_msgs/TFMessage` (the `/tf` and `/tf_static` topics).
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct TfMessage {
+    /// The transforms.
+    pub transforms: Vec<TransformStamped>,
+}
+
 /// `std_msgs/ColorRGBA`.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct ColorRgba {

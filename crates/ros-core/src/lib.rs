@@ -7,7 +7,8 @@
 //! - [`explorer`]: the decisions (map message → belief → goal), with the strategy's
 //!   re-plan policy and Yamauchi's visited and inaccessible lists;
 //! - [`map_belief`]: the received map as the belief;
-//! - [`params`]: the node's parameters from a ROS 2 parameters file.
+//! - [`params`]: the node's parameters from a ROS 2 parameters file;
+//! - [`tf`]: the robot's pose from the TF tree, for robots that publish no pose topic.
 //!
 //! The messages and their CDR form live in the `record` crate, shared with the MCAP reader
 //! and writer of `frontier explore`.
@@ -17,6 +18,7 @@
 pub mod explorer;
 pub mod map_belief;
 pub mod params;
+pub mod tf;
 
 pub use explorer::{Check, Decision, Explorer, ExplorerConfig, GoalPose, StopReason};
 pub use params::Params;

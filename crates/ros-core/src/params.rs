@@ -48,8 +48,11 @@ pub struct Params {
     pub map_topic: String,
     /// The robot pose topic.
     pub pose_topic: String,
-    /// Its type: `PoseWithCovarianceStamped` (AMCL, slam_toolbox) or `PoseStamped`.
+    /// Its type: `PoseWithCovarianceStamped` (AMCL, slam_toolbox) or `PoseStamped`; or
+    /// `tf`: no pose topic, the pose of `robot_base_frame` in the map frame from `/tf`.
     pub pose_type: PoseType,
+    /// The robot's frame in TF, with `pose_type: tf` (explore_lite's name).
+    pub robot_base_frame: String,
     /// Nav2's NavigateToPose action.
     pub navigate_action: String,
     /// How the action's services map onto DDS, which depends on Nav2's RMW.
@@ -69,6 +72,8 @@ pub enum PoseType {
     WithCovariance,
     /// `geometry_msgs/msg/PoseStamped`.
     Stamped,
+    /// No pose topic: `tf2_msgs/msg/TFMessage` on `/tf` and `/tf_static`.
+    Tf,
 }
 
 /// How ROS 2 services (the action's goal, result and cancel calls) are carried over DDS:
@@ -113,6 +118,7 @@ impl Default for Params {
             map_topic: "/map".into(),
             pose_topic: "/pose".into(),
             pose_type: PoseType::WithCovariance,
+            robot_base_frame: "base_link".into(),
             navigate_action: "/navigate_to_pose".into(),
             service_mapping: ServiceMapping::Auto,
             goal_topic: "/explore/goal".into(),
@@ -247,12 +253,22 @@ impl Params {
                 self.pose_type = match value {
                     "PoseWithCovarianceStamped" => PoseType::WithCovariance,
                     "PoseStamped" => PoseType::Stamped,
+                    "tf" => PoseType::Tf,
                     _ => {
                         return Err(format!(
-                            "pose_type: expected PoseWithCovarianceStamped or PoseStamped, found '{value}'"
+                            "pose_type: expected PoseWithCovarianceStamped, PoseStamped or tf, found '{value}'"
                         ));
                     }
                 }
+            }
+            "robot_base_frame" => {
+                let frame = value.trim_start_matches('/');
+                if frame.is_empty() || frame.contains(char::is_whitespace) {
+                    return Err(format!(
+                        "robot_base_frame: expected a frame name, found '{value}'"
+                    ));
+                }
+                self.robot_base_frame = frame.into();
             }
             "service_mapping" => {
                 self.service_mapping = match value {
@@ -276,7 +292,8 @@ impl Params {
                     "unknown parameter '{name}': expected one of strategy, sensor, clearance, \
                      planner_frequency, progress_timeout, min_frontier_size, goal_tolerance, \
                      return_to_init, visualize, publish_only, autostart, map_topic, pose_topic, \
-                     pose_type, navigate_action, service_mapping, goal_topic, markers_topic, seed"
+                     pose_type, robot_base_frame, navigate_action, service_mapping, goal_topic, \
+                     markers_topic, seed"
                 ));
             }
         }
@@ -409,5 +426,26 @@ mod tests {
         )
         .unwrap();
         assert_eq!(p.service_mapping, Cyclone);
+    }
+
+    #[test]
+    fn the_pose_from_tf_names_the_robot_frame() {
+        let mut p = Params::default();
+        assert_eq!(p.robot_base_frame, "base_link");
+        p.apply_yaml(
+            "n:\n  ros__parameters:\n    pose_type: tf\n    robot_base_frame: /base_footprint\n",
+            "n",
+            "p.yaml",
+        )
+        .unwrap();
+        assert_eq!(
+            (p.pose_type, p.robot_base_frame.as_str()),
+            (PoseType::Tf, "base_footprint")
+        );
+        assert_eq!(
+            p.set("pose_type", "Odometry").unwrap_err(),
+            "pose_type: expected PoseWithCovarianceStamped, PoseStamped or tf, found 'Odometry'"
+        );
+        assert!(p.set("robot_base_frame", "").is_err());
     }
 }

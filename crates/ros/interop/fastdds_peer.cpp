@@ -3,9 +3,11 @@
 // stdout, one line each.
 //
 // in:  map W H RES V...           the map (V: -1, 0 or 100 per cell, row-major from the origin)
-//      pose X Y                   the robot's pose (frame map; PoseWithCovarianceStamped, as
-//                                 slam_toolbox and AMCL send it, or PoseStamped with
-//                                 `fastdds_peer DOMAIN stamped`)
+//      pose X Y                   the robot's pose in the map frame, as `fastdds_peer DOMAIN
+//                                 POSE` says: covariance (PoseWithCovarianceStamped, as
+//                                 slam_toolbox and AMCL send it), stamped (PoseStamped) or tf
+//                                 (map → odom → base_footprint on /tf, base_footprint →
+//                                 base_link on /tf_static, as interop.py's Cyclone peer)
 //      command TEXT               on /explore/command
 //      goal_reply TOKEN 0|1       answer send_goal request TOKEN (accepted or not)
 //      result_reply TOKEN STATUS  answer get_result request TOKEN with a GoalStatus
@@ -25,6 +27,7 @@
 #include <sys/select.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <map>
@@ -114,6 +117,23 @@ static geo::Pose_ pose_at(double x, double y) {
     return p;
 }
 
+static geo::TransformStamped_ edge(const std::string& parent, const std::string& child, double x,
+                                   double y, double yaw, double z) {
+    geo::TransformStamped_ t;
+    t.header().stamp(now());
+    t.header().frame_id(parent);
+    t.child_frame_id(child);
+    t.transform().translation().x(x);
+    t.transform().translation().y(y);
+    t.transform().translation().z(z);
+    t.transform().rotation().z(std::sin(yaw / 2));
+    t.transform().rotation().w(std::cos(yaw / 2));
+    return t;
+}
+
+// interop.py's MAP_TO_ODOM and BASE_LINK_Z.
+static const double ODOM_X = 1.0, ODOM_Y = 0.5, ODOM_YAW = 0.3, BASE_LINK_Z = 0.1;
+
 // The id a reply must carry, as rmw_fastrtps takes it from a request.
 static SampleIdentity request_id(const SampleInfo& info) {
     SampleIdentity id = info.sample_identity;
@@ -124,11 +144,11 @@ static SampleIdentity request_id(const SampleInfo& info) {
 }
 
 int main(int argc, char** argv) {
-    if (argc < 2 || argc > 3 || (argc == 3 && std::string(argv[2]) != "stamped")) {
-        std::cerr << "usage: fastdds_peer DOMAIN [stamped]\n";
+    const std::string pose = argc == 3 ? argv[2] : "";
+    if (argc != 3 || (pose != "covariance" && pose != "stamped" && pose != "tf")) {
+        std::cerr << "usage: fastdds_peer DOMAIN covariance|stamped|tf\n";
         return 2;
     }
-    const bool stamped = argc == 3;
     Peer p;
     p.dp = DomainParticipantFactory::get_instance()->create_participant(
         std::stoi(argv[1]), PARTICIPANT_QOS_DEFAULT);
@@ -141,8 +161,20 @@ int main(int argc, char** argv) {
     using namespace nav_msgs::msg::dds_;
     using namespace std_msgs::msg::dds_;
     DataWriter* map_w = p.writer<OccupancyGrid_PubSubType>("rt/map", true);
-    DataWriter* pose_w = stamped ? p.writer<geo::PoseStamped_PubSubType>("rt/pose")
-                                 : p.writer<geo::PoseWithCovarianceStamped_PubSubType>("rt/pose");
+    using tf2_msgs::msg::dds_::TFMessage_;
+    using tf2_msgs::msg::dds_::TFMessage_PubSubType;
+    DataWriter* pose_w = pose == "stamped"      ? p.writer<geo::PoseStamped_PubSubType>("rt/pose")
+                         : pose == "covariance" ? p.writer<geo::PoseWithCovarianceStamped_PubSubType>("rt/pose")
+                                                : p.writer<TFMessage_PubSubType>("rt/tf");
+    if (pose == "tf") {
+        DataWriter* static_w = p.writer<TFMessage_PubSubType>("rt/tf_static", true);
+        TFMessage_ m;
+        m.transforms().push_back(edge("base_footprint", "base_link", 0.0, 0.0, 0.0, BASE_LINK_Z));
+        if (!static_w || !static_w->write(&m)) {
+            std::cerr << "fastdds_peer: cannot write /tf_static\n";
+            return 1;
+        }
+    }
     DataWriter* cmd_w = p.writer<String_PubSubType>("rt/explore/command");
     DataReader* goal_r = p.reader<geo::PoseStamped_PubSubType>("rt/explore/goal");
     DataReader* status_r = p.reader<String_PubSubType>("rt/explore/status", true);
@@ -216,7 +248,16 @@ int main(int argc, char** argv) {
                 std_msgs::msg::dds_::Header_ header;
                 header.stamp(now());
                 header.frame_id("map");
-                if (stamped) {
+                if (pose == "tf") {
+                    // The footprint at (x, y, 0) in the odometry frame: odom⁻¹ ∘ pose.
+                    const double dx = x - ODOM_X, dy = y - ODOM_Y;
+                    const double c = std::cos(ODOM_YAW), s = std::sin(ODOM_YAW);
+                    TFMessage_ m;
+                    m.transforms().push_back(edge("map", "odom", ODOM_X, ODOM_Y, ODOM_YAW, 0.0));
+                    m.transforms().push_back(edge("odom", "base_footprint", c * dx + s * dy,
+                                                  -s * dx + c * dy, -ODOM_YAW, 0.0));
+                    pose_w->write(&m);
+                } else if (pose == "stamped") {
                     geo::PoseStamped_ ps;
                     ps.header(header);
                     ps.pose(pose_at(x, y));

@@ -8,7 +8,8 @@ side is another vendor's DDS, with ROS 2's conventions written out by hand: topi
 `rt/...`, type names `pkg::msg::dds_::Type_`, plain CDR (XCDR1, what every ROS 2 RMW sends;
 Cyclone would default to XCDR2 for these types), the map reliable and transient local. The
 mock publishes a map and a pose (PoseWithCovarianceStamped with Nav2, PoseStamped in
-publish-only mode), moves the robot to each goal and reveals the true map there, pauses
+publish-only mode, or with `--pose tf` as TF: map → odom → base_footprint on `/tf`,
+base_footprint → base_link on `/tf_static`), moves the robot to each goal and reveals the true map there, pauses
 and resumes the node through `/explore/command`, and checks that the node ends with
 `done: explored` and every free cell known.
 
@@ -93,6 +94,31 @@ class PoseWithCovariance(IdlStruct, typename="geometry_msgs::msg::dds_::PoseWith
 class PoseWithCovarianceStamped(IdlStruct, typename="geometry_msgs::msg::dds_::PoseWithCovarianceStamped_"):
     header: Header
     pose: PoseWithCovariance
+
+
+@dataclass
+class Vector3(IdlStruct, typename="geometry_msgs::msg::dds_::Vector3_"):
+    x: float64
+    y: float64
+    z: float64
+
+
+@dataclass
+class Transform(IdlStruct, typename="geometry_msgs::msg::dds_::Transform_"):
+    translation: Vector3
+    rotation: Quaternion
+
+
+@dataclass
+class TransformStamped(IdlStruct, typename="geometry_msgs::msg::dds_::TransformStamped_"):
+    header: Header
+    child_frame_id: str
+    transform: Transform
+
+
+@dataclass
+class TFMessage(IdlStruct, typename="tf2_msgs::msg::dds_::TFMessage_"):
+    transforms: sequence[TransformStamped]
 
 
 @dataclass
@@ -261,14 +287,32 @@ def stamp():
     return Time(sec=int(t), nanosec=int((t % 1) * 1e9))
 
 
+# With `--pose tf`: the odometry frame's fixed place on the map (x, y, yaw), and the base
+# link above the footprint (/tf_static); odom → base_footprint follows the robot.
+MAP_TO_ODOM = (1.0, 0.5, 0.3)
+BASE_LINK_Z = 0.1
+
+
+def odom_to_base(x, y):
+    """The robot's footprint at map pose (x, y, 0) in the odometry frame: odom⁻¹ ∘ pose."""
+    tx, ty, th = MAP_TO_ODOM
+    dx, dy = x - tx, y - ty
+    return (math.cos(th) * dx + math.sin(th) * dy, -math.sin(th) * dx + math.cos(th) * dy, -th)
+
+
+def transform(parent, child, x, y, yaw, z=0.0):
+    q = Quaternion(0.0, 0.0, math.sin(yaw / 2), math.cos(yaw / 2))
+    return TransformStamped(Header(stamp(), parent), child, Transform(Vector3(x, y, z), q))
+
+
 class CyclonePeer:
     """The mock's DDS side in Cyclone DDS, as rmw_cyclonedds_cpp would carry it."""
 
     rmw = "rmw_cyclonedds_cpp"
 
-    def __init__(self, domain, stamped, humble):
+    def __init__(self, domain, pose, humble):
         dp = DomainParticipant(domain)
-        self.stamped = stamped
+        self.pose_kind = pose
         self.humble = humble
         xcdr1 = Policy.DataRepresentation(use_cdrv0_representation=True)
         reliable = Qos(Policy.Reliability.Reliable(duration(seconds=1)), Policy.History.KeepLast(10), xcdr1)
@@ -279,8 +323,14 @@ class CyclonePeer:
             xcdr1,
         )
         self.map_w = DataWriter(dp, Topic(dp, "rt/map", OccupancyGrid), qos=latched)
-        pose_type = PoseStamped if stamped else PoseWithCovarianceStamped
-        self.pose_w = DataWriter(dp, Topic(dp, "rt/pose", pose_type), qos=reliable)
+        if pose == "tf":
+            self.tf_w = DataWriter(dp, Topic(dp, "rt/tf", TFMessage), qos=reliable)
+            # Kept: a writer that goes takes its latched sample with it.
+            self.static_w = DataWriter(dp, Topic(dp, "rt/tf_static", TFMessage), qos=latched)
+            self.static_w.write(TFMessage([transform("base_footprint", "base_link", 0.0, 0.0, 0.0, BASE_LINK_Z)]))
+        else:
+            pose_type = PoseStamped if pose == "stamped" else PoseWithCovarianceStamped
+            self.pose_w = DataWriter(dp, Topic(dp, "rt/pose", pose_type), qos=reliable)
         self.cmd_w = DataWriter(dp, Topic(dp, "rt/explore/command", String), qos=reliable)
         self.goal_r = DataReader(dp, Topic(dp, "rt/explore/goal", PoseStamped), qos=reliable)
         self.status_r = DataReader(dp, Topic(dp, "rt/explore/status", String), qos=latched)
@@ -307,7 +357,16 @@ class CyclonePeer:
 
     def pose(self, x, y):
         pose = Pose(Point(x, y, 0.0), Quaternion(0.0, 0.0, 0.0, 1.0))
-        if self.stamped:
+        if self.pose_kind == "tf":
+            self.tf_w.write(
+                TFMessage(
+                    [
+                        transform("map", "odom", *MAP_TO_ODOM),
+                        transform("odom", "base_footprint", *odom_to_base(x, y)),
+                    ]
+                )
+            )
+        elif self.pose_kind == "stamped":
             self.pose_w.write(PoseStamped(Header(stamp(), "map"), pose))
         else:
             covariance = [0.0] * 36
@@ -365,9 +424,9 @@ class FastDdsPeer:
 
     rmw = "rmw_fastrtps_cpp"
 
-    def __init__(self, domain, stamped, binary):
+    def __init__(self, domain, pose, binary):
         self.proc = subprocess.Popen(
-            [binary, str(domain)] + (["stamped"] if stamped else []),
+            [binary, str(domain), pose],
             stdin=subprocess.PIPE,
             stdout=subprocess.PIPE,
             text=True,
@@ -433,6 +492,9 @@ def main():
     ap.add_argument("--dds", choices=["cyclone", "fastdds"], default="cyclone")
     ap.add_argument("--fastdds-peer", help="the fastdds_peer binary (with --dds fastdds)")
     ap.add_argument("--mode", choices=["action", "publish-only"], default="action")
+    ap.add_argument("--pose", choices=["covariance", "stamped", "tf"],
+                    help="how the robot's pose goes to the node: PoseWithCovarianceStamped (the "
+                         "default with --mode action), PoseStamped (with publish-only) or TF")
     ap.add_argument("--nav2", choices=["jazzy", "humble"], default="jazzy",
                     help="the NavigateToPose result's layout (humble: empty; --dds cyclone)")
     ap.add_argument("--domain", type=int, default=150 + os.getpid() % 50)
@@ -444,7 +506,7 @@ def main():
         ap.error("--dds fastdds needs --fastdds-peer")
     if args.dds == "fastdds" and args.nav2 == "humble":
         ap.error("--nav2 humble is served by --dds cyclone only")
-    stamped = args.mode == "publish-only"
+    pose = args.pose or ("stamped" if args.mode == "publish-only" else "covariance")
     params = [
         ("strategy", "cf-rr"),
         ("sensor", "los:r=3"),
@@ -452,8 +514,8 @@ def main():
         ("min_frontier_size", "0"),
         ("planner_frequency", "5"),
         # The default PoseWithCovarianceStamped (slam_toolbox's, AMCL's) with Nav2, the
-        # other type in publish-only mode.
-        ("pose_type", "PoseStamped" if stamped else "PoseWithCovarianceStamped"),
+        # other type in publish-only mode, unless --pose says.
+        ("pose_type", {"covariance": "PoseWithCovarianceStamped", "stamped": "PoseStamped", "tf": "tf"}[pose]),
         ("goal_tolerance", "0.3"),
         ("publish_only", "true" if args.mode == "publish-only" else "false"),
     ]
@@ -463,9 +525,9 @@ def main():
     for p in args.extra:
         cmd += ["-p", p]
     if args.dds == "cyclone":
-        peer = CyclonePeer(args.domain, stamped, args.nav2 == "humble")
+        peer = CyclonePeer(args.domain, pose, args.nav2 == "humble")
     else:
-        peer = FastDdsPeer(args.domain, stamped, args.fastdds_peer)
+        peer = FastDdsPeer(args.domain, pose, args.fastdds_peer)
     node = subprocess.Popen(cmd, env=dict(os.environ, RMW_IMPLEMENTATION=peer.rmw))
     try:
         ok = run(args, peer)

@@ -12,7 +12,7 @@
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
-pub use frontier_ros_core::{explorer, map_belief, params};
+pub use frontier_ros_core::{explorer, map_belief, params, tf};
 #[cfg(feature = "node")]
 pub mod node;
 

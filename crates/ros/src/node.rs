@@ -34,11 +34,13 @@ use serde::{Deserialize, Serialize, de::DeserializeOwned};
 
 use record::mcap_write::markers;
 use record::msgs::{
-    Header, NavigateToPoseGoal, OccupancyGrid, Pose, PoseStamped, PoseWithCovarianceStamped, Time,
+    Header, NavigateToPoseGoal, OccupancyGrid, Pose, PoseStamped, PoseWithCovarianceStamped,
+    TfMessage, Time,
 };
 
 use crate::explorer::{Check, Decision, Explorer, StopReason};
 use crate::params::{Params, PoseType};
+use crate::tf::TfTree;
 
 /// A message of the `record` crate as ros2-client sends it (CDR of the struct itself).
 #[derive(Clone, Debug, Serialize, Deserialize)]
@@ -188,11 +190,22 @@ pub fn run(
     let map_sub = node
         .create_subscription::<Ros<OccupancyGrid>>(&map_t, Some(map_qos()))
         .map_err(|e| anyhow::anyhow!("{e:?}"))?;
-    let pose_ty = match params.pose_type {
-        PoseType::WithCovariance => "PoseWithCovarianceStamped",
-        PoseType::Stamped => "PoseStamped",
+    // The pose topic's type, or the TF topics.
+    let pose_t = match params.pose_type {
+        PoseType::WithCovariance => Some(topic(
+            &node,
+            &params.pose_topic,
+            "geometry_msgs",
+            "PoseWithCovarianceStamped",
+        )?),
+        PoseType::Stamped => Some(topic(
+            &node,
+            &params.pose_topic,
+            "geometry_msgs",
+            "PoseStamped",
+        )?),
+        PoseType::Tf => None,
     };
-    let pose_t = topic(&node, &params.pose_topic, "geometry_msgs", pose_ty)?;
     let resume_t = topic(&node, "/explore/resume", "std_msgs", "Bool")?;
     let command_t = topic(&node, "/explore/command", "std_msgs", "String")?;
     let goal_t = topic(&node, &params.goal_topic, "geometry_msgs", "PoseStamped")?;
@@ -265,52 +278,106 @@ pub fn run(
         })
         .detach();
     }
-    {
-        let tx = tx.clone();
-        let pose_type = params.pose_type;
-        let pose_sub = node
-            .create_subscription::<Ros<PoseWithCovarianceStamped>>(&pose_t, Some(reliable.clone()));
-        let stamped_sub =
-            node.create_subscription::<Ros<PoseStamped>>(&pose_t, Some(reliable.clone()));
-        ex.spawn(async move {
-            let send = |p: Pose| {
-                let (x, y, yaw) = (p.position.x, p.position.y, p.orientation.yaw());
-                (x.is_finite() && y.is_finite()).then_some(Event::Pose(x, y, yaw))
-            };
-            match pose_type {
-                PoseType::WithCovariance => {
-                    let Ok(sub) = pose_sub else { return };
-                    let mut s = std::pin::pin!(sub.async_stream());
-                    while let Some(m) = s.next().await {
-                        match m {
-                            Ok((Ros(p), _)) => match send(p.pose.pose) {
-                                Some(e) => {
-                                    let _ = tx.send(e).await;
-                                }
-                                None => log::warn!("pose with a non-finite position skipped"),
-                            },
-                            Err(e) => log::warn!("pose message skipped: {e:?}"),
-                        }
+    let send = |p: Pose| {
+        let (x, y, yaw) = (p.position.x, p.position.y, p.orientation.yaw());
+        (x.is_finite() && y.is_finite()).then_some(Event::Pose(x, y, yaw))
+    };
+    match (params.pose_type, &pose_t) {
+        (PoseType::WithCovariance, Some(t)) => {
+            let sub = node
+                .create_subscription::<Ros<PoseWithCovarianceStamped>>(t, Some(reliable.clone()))
+                .map_err(err)?;
+            let tx = tx.clone();
+            ex.spawn(async move {
+                let mut s = std::pin::pin!(sub.async_stream());
+                while let Some(m) = s.next().await {
+                    match m {
+                        Ok((Ros(p), _)) => match send(p.pose.pose) {
+                            Some(e) => {
+                                let _ = tx.send(e).await;
+                            }
+                            None => log::warn!("pose with a non-finite position skipped"),
+                        },
+                        Err(e) => log::warn!("pose message skipped: {e:?}"),
                     }
                 }
-                PoseType::Stamped => {
-                    let Ok(sub) = stamped_sub else { return };
-                    let mut s = std::pin::pin!(sub.async_stream());
-                    while let Some(m) = s.next().await {
-                        match m {
-                            Ok((Ros(p), _)) => match send(p.pose) {
-                                Some(e) => {
-                                    let _ = tx.send(e).await;
-                                }
-                                None => log::warn!("pose with a non-finite position skipped"),
-                            },
-                            Err(e) => log::warn!("pose message skipped: {e:?}"),
-                        }
+            })
+            .detach();
+        }
+        (PoseType::Stamped, Some(t)) => {
+            let sub = node
+                .create_subscription::<Ros<PoseStamped>>(t, Some(reliable.clone()))
+                .map_err(err)?;
+            let tx = tx.clone();
+            ex.spawn(async move {
+                let mut s = std::pin::pin!(sub.async_stream());
+                while let Some(m) = s.next().await {
+                    match m {
+                        Ok((Ros(p), _)) => match send(p.pose) {
+                            Some(e) => {
+                                let _ = tx.send(e).await;
+                            }
+                            None => log::warn!("pose with a non-finite position skipped"),
+                        },
+                        Err(e) => log::warn!("pose message skipped: {e:?}"),
                     }
                 }
-            }
-        })
-        .detach();
+            })
+            .detach();
+        }
+        _ => {
+            // TF: /tf (odometry, SLAM) and /tf_static (the robot's description, latched),
+            // chained from the robot's base frame to the map frame at every message.
+            let dynamic = topic(&node, "/tf", "tf2_msgs", "TFMessage")?;
+            let fixed = topic(&node, "/tf_static", "tf2_msgs", "TFMessage")?;
+            let tf_qos = QosProfile::publisher_default().history(History::KeepLast { depth: 100 });
+            let tf_sub = node
+                .create_subscription::<Ros<TfMessage>>(&dynamic, Some(tf_qos.clone()))
+                .map_err(err)?;
+            let static_sub = node
+                .create_subscription::<Ros<TfMessage>>(
+                    &fixed,
+                    Some(tf_qos.durability(Durability::TransientLocal)),
+                )
+                .map_err(err)?;
+            let tx = tx.clone();
+            let base = params.robot_base_frame.clone();
+            ex.spawn(async move {
+                let mut tree = TfTree::new();
+                let mut said = String::new();
+                let dynamic = std::pin::pin!(tf_sub.async_stream());
+                let fixed = std::pin::pin!(static_sub.async_stream());
+                let mut both = futures::stream::select(dynamic, fixed);
+                while let Some(m) = both.next().await {
+                    let msg = match m {
+                        Ok((Ros(msg), _)) => msg,
+                        Err(e) => {
+                            log::warn!("TF message skipped: {e:?}");
+                            continue;
+                        }
+                    };
+                    for t in &msg.transforms {
+                        if let Err(e) = tree.set(t)
+                            && e != said
+                        {
+                            log::warn!("TF: {e}; skipped");
+                            said = e;
+                        }
+                    }
+                    match tree.lookup("map", &base) {
+                        Ok((x, y, yaw)) => {
+                            let _ = tx.send(Event::Pose(x, y, yaw)).await;
+                        }
+                        Err(e) if e != said => {
+                            log::info!("TF: {e}");
+                            said = e;
+                        }
+                        Err(_) => {}
+                    }
+                }
+            })
+            .detach();
+        }
     }
     {
         let tx = tx.clone();
