@@ -63,6 +63,72 @@ pub struct Text {
     pub data: String,
 }
 
+/// Send the poses of a pose topic (`pose` picks a message's pose) to the event loop.
+async fn forward_poses<M: Serialize + DeserializeOwned + 'static>(
+    sub: ros2_client::Subscription<Ros<M>>,
+    tx: async_channel::Sender<Event>,
+    pose: fn(M) -> Pose,
+) {
+    let mut s = std::pin::pin!(sub.async_stream());
+    while let Some(m) = s.next().await {
+        match m {
+            Ok((Ros(msg), _)) => {
+                let p = pose(msg);
+                let (x, y, yaw) = (p.position.x, p.position.y, p.orientation.yaw());
+                if x.is_finite() && y.is_finite() {
+                    let _ = tx.send(Event::Pose(x, y, yaw)).await;
+                } else {
+                    log::warn!("pose with a non-finite position skipped");
+                }
+            }
+            Err(e) => log::warn!("pose message skipped: {e:?}"),
+        }
+    }
+}
+
+/// Send the pose of frame `base` on the map, from the latest transforms of `/tf` and
+/// `/tf_static`, to the event loop at every TF message that completes the chain.
+async fn forward_tf(
+    tf_sub: ros2_client::Subscription<Ros<TfMessage>>,
+    static_sub: ros2_client::Subscription<Ros<TfMessage>>,
+    tx: async_channel::Sender<Event>,
+    base: String,
+) {
+    let mut tree = TfTree::new();
+    // The last problem logged, so that a TF stream at 50 Hz repeats none.
+    let mut said = String::new();
+    let dynamic = std::pin::pin!(tf_sub.async_stream());
+    let fixed = std::pin::pin!(static_sub.async_stream());
+    let mut both = futures::stream::select(dynamic, fixed);
+    while let Some(m) = both.next().await {
+        let msg = match m {
+            Ok((Ros(msg), _)) => msg,
+            Err(e) => {
+                log::warn!("TF message skipped: {e:?}");
+                continue;
+            }
+        };
+        for t in &msg.transforms {
+            if let Err(e) = tree.set(t)
+                && e != said
+            {
+                log::warn!("TF: {e}; skipped");
+                said = e;
+            }
+        }
+        match tree.lookup("map", &base) {
+            Ok((x, y, yaw)) => {
+                let _ = tx.send(Event::Pose(x, y, yaw)).await;
+            }
+            Err(e) if e != said => {
+                log::info!("TF: {e}");
+                said = e;
+            }
+            Err(_) => {}
+        }
+    }
+}
+
 /// The navigation action client of the node. Only the goal's end status is read, so its
 /// result and feedback are read as `()` (nothing): Humble's empty result, Jazzy's error code
 /// and later additions all decode.
@@ -190,22 +256,6 @@ pub fn run(
     let map_sub = node
         .create_subscription::<Ros<OccupancyGrid>>(&map_t, Some(map_qos()))
         .map_err(|e| anyhow::anyhow!("{e:?}"))?;
-    // The pose topic's type, or the TF topics.
-    let pose_t = match params.pose_type {
-        PoseType::WithCovariance => Some(topic(
-            &node,
-            &params.pose_topic,
-            "geometry_msgs",
-            "PoseWithCovarianceStamped",
-        )?),
-        PoseType::Stamped => Some(topic(
-            &node,
-            &params.pose_topic,
-            "geometry_msgs",
-            "PoseStamped",
-        )?),
-        PoseType::Tf => None,
-    };
     let resume_t = topic(&node, "/explore/resume", "std_msgs", "Bool")?;
     let command_t = topic(&node, "/explore/command", "std_msgs", "String")?;
     let goal_t = topic(&node, &params.goal_topic, "geometry_msgs", "PoseStamped")?;
@@ -278,54 +328,29 @@ pub fn run(
         })
         .detach();
     }
-    let send = |p: Pose| {
-        let (x, y, yaw) = (p.position.x, p.position.y, p.orientation.yaw());
-        (x.is_finite() && y.is_finite()).then_some(Event::Pose(x, y, yaw))
-    };
-    match (params.pose_type, &pose_t) {
-        (PoseType::WithCovariance, Some(t)) => {
+    match params.pose_type {
+        PoseType::WithCovariance => {
+            let t = topic(
+                &node,
+                &params.pose_topic,
+                "geometry_msgs",
+                "PoseWithCovarianceStamped",
+            )?;
             let sub = node
-                .create_subscription::<Ros<PoseWithCovarianceStamped>>(t, Some(reliable.clone()))
+                .create_subscription::<Ros<PoseWithCovarianceStamped>>(&t, Some(reliable.clone()))
                 .map_err(err)?;
-            let tx = tx.clone();
-            ex.spawn(async move {
-                let mut s = std::pin::pin!(sub.async_stream());
-                while let Some(m) = s.next().await {
-                    match m {
-                        Ok((Ros(p), _)) => match send(p.pose.pose) {
-                            Some(e) => {
-                                let _ = tx.send(e).await;
-                            }
-                            None => log::warn!("pose with a non-finite position skipped"),
-                        },
-                        Err(e) => log::warn!("pose message skipped: {e:?}"),
-                    }
-                }
-            })
-            .detach();
+            ex.spawn(forward_poses(sub, tx.clone(), |m| m.pose.pose))
+                .detach();
         }
-        (PoseType::Stamped, Some(t)) => {
+        PoseType::Stamped => {
+            let t = topic(&node, &params.pose_topic, "geometry_msgs", "PoseStamped")?;
             let sub = node
-                .create_subscription::<Ros<PoseStamped>>(t, Some(reliable.clone()))
+                .create_subscription::<Ros<PoseStamped>>(&t, Some(reliable.clone()))
                 .map_err(err)?;
-            let tx = tx.clone();
-            ex.spawn(async move {
-                let mut s = std::pin::pin!(sub.async_stream());
-                while let Some(m) = s.next().await {
-                    match m {
-                        Ok((Ros(p), _)) => match send(p.pose) {
-                            Some(e) => {
-                                let _ = tx.send(e).await;
-                            }
-                            None => log::warn!("pose with a non-finite position skipped"),
-                        },
-                        Err(e) => log::warn!("pose message skipped: {e:?}"),
-                    }
-                }
-            })
-            .detach();
+            ex.spawn(forward_poses(sub, tx.clone(), |m| m.pose))
+                .detach();
         }
-        _ => {
+        PoseType::Tf => {
             // TF: /tf (odometry, SLAM) and /tf_static (the robot's description, latched),
             // chained from the robot's base frame to the map frame at every message.
             let dynamic = topic(&node, "/tf", "tf2_msgs", "TFMessage")?;
@@ -340,43 +365,9 @@ pub fn run(
                     Some(tf_qos.durability(Durability::TransientLocal)),
                 )
                 .map_err(err)?;
-            let tx = tx.clone();
             let base = params.robot_base_frame.clone();
-            ex.spawn(async move {
-                let mut tree = TfTree::new();
-                let mut said = String::new();
-                let dynamic = std::pin::pin!(tf_sub.async_stream());
-                let fixed = std::pin::pin!(static_sub.async_stream());
-                let mut both = futures::stream::select(dynamic, fixed);
-                while let Some(m) = both.next().await {
-                    let msg = match m {
-                        Ok((Ros(msg), _)) => msg,
-                        Err(e) => {
-                            log::warn!("TF message skipped: {e:?}");
-                            continue;
-                        }
-                    };
-                    for t in &msg.transforms {
-                        if let Err(e) = tree.set(t)
-                            && e != said
-                        {
-                            log::warn!("TF: {e}; skipped");
-                            said = e;
-                        }
-                    }
-                    match tree.lookup("map", &base) {
-                        Ok((x, y, yaw)) => {
-                            let _ = tx.send(Event::Pose(x, y, yaw)).await;
-                        }
-                        Err(e) if e != said => {
-                            log::info!("TF: {e}");
-                            said = e;
-                        }
-                        Err(_) => {}
-                    }
-                }
-            })
-            .detach();
+            ex.spawn(forward_tf(tf_sub, static_sub, tx.clone(), base))
+                .detach();
         }
     }
     {
