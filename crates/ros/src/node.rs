@@ -67,16 +67,16 @@ pub struct Text {
 async fn forward_poses<M: Serialize + DeserializeOwned + 'static>(
     sub: ros2_client::Subscription<Ros<M>>,
     tx: async_channel::Sender<Event>,
-    pose: fn(M) -> Pose,
+    pose: fn(M) -> (String, Pose),
 ) {
     let mut s = std::pin::pin!(sub.async_stream());
     while let Some(m) = s.next().await {
         match m {
             Ok((Ros(msg), _)) => {
-                let p = pose(msg);
+                let (frame, p) = pose(msg);
                 let (x, y, yaw) = (p.position.x, p.position.y, p.orientation.yaw());
                 if x.is_finite() && y.is_finite() {
-                    let _ = tx.send(Event::Pose(x, y, yaw)).await;
+                    let _ = tx.send(Event::Pose(x, y, yaw, frame)).await;
                 } else {
                     log::warn!("pose with a non-finite position skipped");
                 }
@@ -86,13 +86,15 @@ async fn forward_poses<M: Serialize + DeserializeOwned + 'static>(
     }
 }
 
-/// Send the pose of frame `base` on the map, from the latest transforms of `/tf` and
-/// `/tf_static`, to the event loop at every TF message that completes the chain.
+/// Send the pose of frame `base` in the map's frame (`map_frame`, the latest map
+/// message's), from the latest transforms of `/tf` and `/tf_static`, to the event loop at
+/// every TF message that completes the chain.
 async fn forward_tf(
     tf_sub: ros2_client::Subscription<Ros<TfMessage>>,
     static_sub: ros2_client::Subscription<Ros<TfMessage>>,
     tx: async_channel::Sender<Event>,
     base: String,
+    map_frame: Rc<RefCell<String>>,
 ) {
     let mut tree = TfTree::new();
     // The last problem logged, so that a TF stream at 50 Hz repeats none.
@@ -116,9 +118,10 @@ async fn forward_tf(
                 said = e;
             }
         }
-        match tree.lookup("map", &base) {
+        let target = map_frame.borrow().clone();
+        match tree.lookup(&target, &base) {
             Ok((x, y, yaw)) => {
-                let _ = tx.send(Event::Pose(x, y, yaw)).await;
+                let _ = tx.send(Event::Pose(x, y, yaw, target)).await;
             }
             Err(e) if e != said => {
                 log::info!("TF: {e}");
@@ -164,7 +167,8 @@ impl Mode {
 /// Everything the event loop reacts to.
 enum Event {
     Map(OccupancyGrid),
-    Pose(f64, f64, f64),
+    /// x, y, yaw and the frame the pose is given in ("": not said).
+    Pose(f64, f64, f64, String),
     Command(String),
     Tick,
     /// Nav2 accepted goal `seq` as `id`.
@@ -328,6 +332,9 @@ pub fn run(
         })
         .detach();
     }
+    // The map's frame, from its messages ("map" until the first): goals, markers and the
+    // TF lookup are in it, and poses must be.
+    let map_frame = Rc::new(RefCell::new("map".to_string()));
     match params.pose_type {
         PoseType::WithCovariance => {
             let t = topic(
@@ -339,16 +346,20 @@ pub fn run(
             let sub = node
                 .create_subscription::<Ros<PoseWithCovarianceStamped>>(&t, Some(reliable.clone()))
                 .map_err(err)?;
-            ex.spawn(forward_poses(sub, tx.clone(), |m| m.pose.pose))
-                .detach();
+            ex.spawn(forward_poses(sub, tx.clone(), |m| {
+                (m.header.frame_id, m.pose.pose)
+            }))
+            .detach();
         }
         PoseType::Stamped => {
             let t = topic(&node, &params.pose_topic, "geometry_msgs", "PoseStamped")?;
             let sub = node
                 .create_subscription::<Ros<PoseStamped>>(&t, Some(reliable.clone()))
                 .map_err(err)?;
-            ex.spawn(forward_poses(sub, tx.clone(), |m| m.pose))
-                .detach();
+            ex.spawn(forward_poses(sub, tx.clone(), |m| {
+                (m.header.frame_id, m.pose)
+            }))
+            .detach();
         }
         PoseType::Tf => {
             // TF: /tf (odometry, SLAM) and /tf_static (the robot's description, latched),
@@ -366,8 +377,14 @@ pub fn run(
                 )
                 .map_err(err)?;
             let base = params.robot_base_frame.clone();
-            ex.spawn(forward_tf(tf_sub, static_sub, tx.clone(), base))
-                .detach();
+            ex.spawn(forward_tf(
+                tf_sub,
+                static_sub,
+                tx.clone(),
+                base,
+                map_frame.clone(),
+            ))
+            .detach();
         }
     }
     {
@@ -435,6 +452,8 @@ pub fn run(
         status_pub,
         nav,
         mapping,
+        map_frame,
+        wrong_frame: String::new(),
         tx: tx.clone(),
         t0,
         buf_a: Vec::new(),
@@ -475,6 +494,10 @@ struct State {
     nav: Rc<NavClient>,
     /// How the action's services are carried (for the message when Nav2 does not answer).
     mapping: ServiceMapping,
+    /// The map's frame (see `run`).
+    map_frame: Rc<RefCell<String>>,
+    /// The last pose frame warned about, so that a pose stream repeats no warning.
+    wrong_frame: String,
     tx: async_channel::Sender<Event>,
     t0: Instant,
     buf_a: Vec<(f64, f64)>,
@@ -518,6 +541,11 @@ impl State {
             Event::Shutdown => return false,
             Event::Map(msg) => match self.explorer.update_map(&msg) {
                 Ok(u) => {
+                    let frame = msg.header.frame_id.trim_start_matches('/');
+                    if !frame.is_empty() && *self.map_frame.borrow() != frame {
+                        log::info!("map frame: {frame}");
+                        *self.map_frame.borrow_mut() = frame.to_string();
+                    }
                     log::debug!(
                         "map: {} cells changed{}",
                         u.changed,
@@ -527,7 +555,19 @@ impl State {
                 }
                 Err(e) => log::warn!("map message skipped: {e}"),
             },
-            Event::Pose(x, y, yaw) => {
+            Event::Pose(x, y, yaw, frame) => {
+                let frame = frame.trim_start_matches('/');
+                if !frame.is_empty() && frame != *self.map_frame.borrow() {
+                    if frame != self.wrong_frame {
+                        log::warn!(
+                            "pose in frame '{frame}', expected the map's frame '{}': skipped \
+                             (a localisation pose, such as AMCL's or slam_toolbox's, is in it)",
+                            self.map_frame.borrow()
+                        );
+                        self.wrong_frame = frame.to_string();
+                    }
+                    return true;
+                }
                 self.pose = Some((x, y, yaw));
                 if self.start.is_none() {
                     self.start = Some((x, y, yaw));
@@ -674,7 +714,7 @@ impl State {
         self.explorer.candidate_points(&mut self.buf_b);
         let header = Header {
             stamp: stamp(Instant::now(), self.t0),
-            frame_id: "map".into(),
+            frame_id: self.map_frame.borrow().clone(),
         };
         let m = markers(&header, &self.buf_a, &self.buf_b, res);
         let _ = self.markers_pub.publish(Ros(m));
@@ -695,7 +735,7 @@ impl State {
     fn send(&mut self, x: f64, y: f64, yaw: f64, ex: &smol::LocalExecutor<'_>) {
         let header = Header {
             stamp: stamp(Instant::now(), self.t0),
-            frame_id: "map".into(),
+            frame_id: self.map_frame.borrow().clone(),
         };
         let pose = PoseStamped {
             header,
