@@ -462,7 +462,10 @@ pub fn run(
         waiting: None,
         reason: String::new(),
     };
-    state.publish_status();
+    // The first status goes out with the first event (a map, a pose, or the first tick
+    // after one period), not now: a sample written before discovery has matched anyone
+    // reached a Fast DDS 2.9 reader in only about 3 runs of 4, and then nothing after it
+    // did either (scripts/ros-interop.sh; ros.md).
     let main = async {
         while let Ok(ev) = rx.recv().await {
             if !state.handle(ev, &ex) {
