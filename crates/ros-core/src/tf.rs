@@ -18,6 +18,10 @@ use record::msgs::{Quaternion, TransformStamped, Vector3};
 /// Longest chain of frames followed (a longer one is taken for a loop).
 const MAX_DEPTH: usize = 64;
 
+/// Most frames kept: a robot's tree has tens; a stream naming ever new frames is refused
+/// past this rather than growing without bound.
+pub const MAX_FRAMES: usize = 4096;
+
 /// A rigid transform: rotate by `q` (unit quaternion x, y, z, w), then translate by `t`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct Rigid {
@@ -83,8 +87,8 @@ impl TfTree {
 
     /// Record `t` (the child frame in its parent), replacing the child's previous one.
     /// A transform with a non-finite number, a rotation of zero length, an empty frame
-    /// name, or a frame as its own parent is refused, with what is wrong; the tree is then
-    /// unchanged.
+    /// name, a frame as its own parent, or a new frame beyond [`MAX_FRAMES`] is refused,
+    /// with what is wrong; the tree is then unchanged.
     pub fn set(&mut self, t: &TransformStamped) -> Result<(), String> {
         let (parent, child) = (
             t.header.frame_id.trim_start_matches('/'),
@@ -113,6 +117,11 @@ impl TfTree {
                 "transform '{parent}' → '{child}': expected finite numbers and a rotation of \
                  non-zero length, found translation ({x}, {y}, {z}), rotation ({qx}, {qy}, \
                  {qz}, {qw})"
+            ));
+        }
+        if self.parent.len() >= MAX_FRAMES && !self.parent.contains_key(child) {
+            return Err(format!(
+                "transform '{parent}' → '{child}': already {MAX_FRAMES} frames, expected no more"
             ));
         }
         let rigid = Rigid {
@@ -321,5 +330,21 @@ mod tests {
         assert!(tf.set(&bad).unwrap_err().contains("non-zero length"));
         assert!(tf.set(&edge("map", "map", 0.0, 0.0, 0.0, 0.0)).is_err());
         assert!(tf.set(&edge("", "odom", 0.0, 0.0, 0.0, 0.0)).is_err());
+    }
+
+    #[test]
+    fn a_stream_of_new_frames_stops_at_the_bound() {
+        let mut tf = TfTree::new();
+        for k in 0..MAX_FRAMES {
+            tf.set(&edge("map", &format!("f{k}"), 0.0, 0.0, 0.0, 0.0))
+                .unwrap();
+        }
+        let e = tf
+            .set(&edge("map", "one_more", 0.0, 0.0, 0.0, 0.0))
+            .unwrap_err();
+        assert!(e.contains("already 4096 frames"), "{e}");
+        // A frame already kept is still updated.
+        tf.set(&edge("map", "f7", 1.0, 2.0, 0.0, 0.0)).unwrap();
+        assert!(close(tf.lookup("map", "f7").unwrap(), (1.0, 2.0, 0.0)));
     }
 }
