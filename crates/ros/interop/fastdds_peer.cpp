@@ -64,16 +64,10 @@ struct Peer {
         Topic* found = dynamic_cast<Topic*>(dp->lookup_topicdescription(name));
         return found ? found : dp->create_topic(name, t.get_type_name(), TOPIC_QOS_DEFAULT);
     }
-    static DataWriterQos wqos(bool latched) {
-        DataWriterQos q = DATAWRITER_QOS_DEFAULT;
-        q.reliability().kind = RELIABLE_RELIABILITY_QOS;
-        q.durability().kind = latched ? TRANSIENT_LOCAL_DURABILITY_QOS : VOLATILE_DURABILITY_QOS;
-        q.history().kind = KEEP_LAST_HISTORY_QOS;
-        q.history().depth = latched ? 1 : 10;
-        return q;
-    }
-    static DataReaderQos rqos(bool latched) {
-        DataReaderQos q = DATAREADER_QOS_DEFAULT;
+    // Reliable, keep last 10; latched: transient local, keep last 1 (ROS 2's QoS of /map,
+    // /tf_static and the node's status).
+    template <class Qos>
+    static Qos ros(Qos q, bool latched) {
         q.reliability().kind = RELIABLE_RELIABILITY_QOS;
         q.durability().kind = latched ? TRANSIENT_LOCAL_DURABILITY_QOS : VOLATILE_DURABILITY_QOS;
         q.history().kind = KEEP_LAST_HISTORY_QOS;
@@ -82,11 +76,11 @@ struct Peer {
     }
     template <class PubSub>
     DataWriter* writer(const std::string& name, bool latched = false) {
-        return pub->create_datawriter(topic<PubSub>(name), wqos(latched));
+        return pub->create_datawriter(topic<PubSub>(name), ros(DATAWRITER_QOS_DEFAULT, latched));
     }
     template <class PubSub>
     DataReader* reader(const std::string& name, bool latched = false) {
-        return sub->create_datareader(topic<PubSub>(name), rqos(latched));
+        return sub->create_datareader(topic<PubSub>(name), ros(DATAREADER_QOS_DEFAULT, latched));
     }
 };
 
