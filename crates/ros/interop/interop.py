@@ -17,7 +17,8 @@ and resumes the node through `/explore/command`, and checks that the node ends w
 `rq/navigate_to_pose/_action/send_goalRequest` and `rr/.../send_goalReply`, get_result,
 cancel_goal), carried as that vendor's RMW carries services: Cyclone's with the client's
 16-byte request id at the head of each request, repeated in the reply; Fast DDS's in the
-samples' identities. It aborts the first goal, which must never come again. `--nav2
+samples' identities. It aborts the first goal, which must never come again; the node,
+with `return_to_init`, ends by driving back to the start. `--nav2
 humble` serves Humble's empty result instead of Jazzy's error code and message. The node runs
 with `RMW_IMPLEMENTATION` set as beside such a Nav2 and its default `service_mapping:
 auto`. `--mode publish-only`: the node only publishes goals and the mock follows them;
@@ -518,6 +519,8 @@ def main():
         ("pose_type", {"covariance": "PoseWithCovarianceStamped", "stamped": "PoseStamped", "tf": "tf"}[pose]),
         ("goal_tolerance", "0.3"),
         ("publish_only", "true" if args.mode == "publish-only" else "false"),
+        # With Nav2, back to the start when done.
+        ("return_to_init", "true" if args.mode == "action" else "false"),
     ]
     cmd = [args.node, "--domain", str(args.domain)]
     for k, v in params:
@@ -616,8 +619,11 @@ def run(args, peer):
         ("every free cell is known", world.unknown_free() == 0),
     ]
     if action:
+        start = ((START[0] + 0.5) * RES, (START[1] + 0.5) * RES)
         checks += [
             ("Nav2 received the goals", len(nav_goals) > 1),
+            ("it drove back to the start and said so", bool(nav_goals) and nav_goals[-1] == start
+             and bool(status) and status[-1].endswith("; returned to the start pose")),
             ("the aborted goal never came again", bool(nav_goals) and nav_goals[0] not in nav_goals[1:]),
         ]
     else:

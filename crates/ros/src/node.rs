@@ -447,6 +447,8 @@ pub fn run(
         start: None,
         seq: 0,
         in_flight: Rc::new(RefCell::new(None)),
+        goal_task: None,
+        cancel_task: None,
         goal_pub,
         markers_pub,
         status_pub,
@@ -489,6 +491,11 @@ struct State {
     start: Option<(f64, f64, f64)>,
     /// Number of the latest goal sent; events of older goals are ignored.
     seq: u64,
+    /// The task sending the goal in flight and waiting for its result; dropped (so
+    /// cancelled) when another goal replaces it.
+    goal_task: Option<smol::Task<()>>,
+    /// The task asking Nav2 to cancel the last goal replaced.
+    cancel_task: Option<smol::Task<()>>,
     /// The Nav2 id of the goal in flight.
     in_flight: Rc<RefCell<Option<(u64, UUID)>>>,
     goal_pub: ros2_client::Publisher<Ros<PoseStamped>>,
@@ -725,12 +732,20 @@ impl State {
 
     fn cancel_in_flight(&mut self, ex: &smol::LocalExecutor<'_>) {
         self.seq += 1; // whatever comes back about older goals is ignored
+        // Stop waiting for the old goal's answers: a service client of ros2-client takes
+        // one call at a time (a call waiting on it drops every other call's reply), so the
+        // old goal's result request would eat the next goal's.
+        self.goal_task = None;
         if let Some((_, id)) = self.in_flight.borrow_mut().take() {
             let nav = self.nav.clone();
-            ex.spawn(async move {
-                let _ = nav.async_cancel_goal(id, RosTime::ZERO).await;
-            })
-            .detach();
+            let cancel = ex.spawn(async move {
+                let _ = futures::select! {
+                    r = nav.async_cancel_goal(id, RosTime::ZERO).fuse() => r.ok(),
+                    _ = FutureExt::fuse(smol::Timer::after(Duration::from_secs(5))) => None,
+                };
+            });
+            // One cancel request at a time, for the same reason; a newer one replaces it.
+            self.cancel_task = Some(cancel);
         }
     }
 
@@ -753,7 +768,7 @@ impl State {
         let nav = self.nav.clone();
         let tx = self.tx.clone();
         let mapping = self.mapping;
-        ex.spawn(async move {
+        self.goal_task = Some(ex.spawn(async move {
             let goal = Ros(NavigateToPoseGoal {
                 pose,
                 behavior_tree: String::new(),
@@ -783,7 +798,6 @@ impl State {
                 Ok(_) | Err(_) => Outcome::Failed,
             };
             let _ = tx.send(Event::Ended(seq, outcome)).await;
-        })
-        .detach();
+        }));
     }
 }
