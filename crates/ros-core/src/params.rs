@@ -12,8 +12,9 @@
 //!
 //! Names shared with explore_lite mean the same: `planner_frequency` (Hz; decisions
 //! happen on map updates and goal ends too, this is the fastest periodic re-check),
-//! `progress_timeout` (s), `min_frontier_size` (m), `return_to_init`, `visualize`. Any
-//! other name is an error, so a misspelt parameter never silently keeps its default.
+//! `progress_timeout` (s), `min_frontier_size` (m), `return_to_init`, `visualize`,
+//! `robot_base_frame` (with `pose_type: tf`). Any other name is an error, so a misspelt
+//! parameter never silently keeps its default.
 
 use std::path::Path;
 
