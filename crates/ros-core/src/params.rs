@@ -263,7 +263,7 @@ impl Params {
                 }
             }
             "robot_base_frame" => {
-                let frame = value.trim_start_matches('/');
+                let frame = crate::tf::frame_name(value);
                 if frame.is_empty() || frame.contains(char::is_whitespace) {
                     return Err(format!(
                         "robot_base_frame: expected a frame name, found '{value}'"

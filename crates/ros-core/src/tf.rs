@@ -22,6 +22,12 @@ const MAX_DEPTH: usize = 64;
 /// past this rather than growing without bound.
 pub const MAX_FRAMES: usize = 4096;
 
+/// A frame's name as the tree keys it: without the leading `/` of ROS 1 style names
+/// (`/map` and `map` are one frame, as tf2 has them).
+pub fn frame_name(frame: &str) -> &str {
+    frame.trim_start_matches('/')
+}
+
 /// A rigid transform: rotate by `q` (unit quaternion x, y, z, w), then translate by `t`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct Rigid {
@@ -91,8 +97,8 @@ impl TfTree {
     /// with what is wrong; the tree is then unchanged.
     pub fn set(&mut self, t: &TransformStamped) -> Result<(), String> {
         let (parent, child) = (
-            t.header.frame_id.trim_start_matches('/'),
-            t.child_frame_id.trim_start_matches('/'),
+            frame_name(&t.header.frame_id),
+            frame_name(&t.child_frame_id),
         );
         if parent.is_empty() || child.is_empty() {
             return Err(format!(
@@ -155,10 +161,7 @@ impl TfTree {
     /// Where frame `source` is in frame `target`: x, y and the yaw of its heading (the
     /// pose of a robot whose base frame is `source` on a map in `target`).
     pub fn lookup(&self, target: &str, source: &str) -> Result<(f64, f64, f64), String> {
-        let (target, source) = (
-            target.trim_start_matches('/'),
-            source.trim_start_matches('/'),
-        );
+        let (target, source) = (frame_name(target), frame_name(source));
         let up = self.chain(source)?;
         let down = self.chain(target)?;
         // The lowest frame of the source's chain that the target's chain also holds.

@@ -40,7 +40,7 @@ use record::msgs::{
 
 use crate::explorer::{Check, Decision, Explorer, StopReason};
 use crate::params::{Params, PoseType};
-use crate::tf::TfTree;
+use crate::tf::{TfTree, frame_name};
 
 /// A message of the `record` crate as ros2-client sends it (CDR of the struct itself).
 #[derive(Clone, Debug, Serialize, Deserialize)]
@@ -551,7 +551,7 @@ impl State {
             Event::Shutdown => return false,
             Event::Map(msg) => match self.explorer.update_map(&msg) {
                 Ok(u) => {
-                    let frame = msg.header.frame_id.trim_start_matches('/');
+                    let frame = frame_name(&msg.header.frame_id);
                     if !frame.is_empty() && *self.map_frame.borrow() != frame {
                         log::info!("map frame: {frame}");
                         *self.map_frame.borrow_mut() = frame.to_string();
@@ -566,7 +566,7 @@ impl State {
                 Err(e) => log::warn!("map message skipped: {e}"),
             },
             Event::Pose(x, y, yaw, frame) => {
-                let frame = frame.trim_start_matches('/');
+                let frame = frame_name(&frame);
                 if !frame.is_empty() && frame != *self.map_frame.borrow() {
                     if frame != self.wrong_frame {
                         log::warn!(
