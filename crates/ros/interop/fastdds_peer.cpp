@@ -5,9 +5,9 @@
 // in:  map W H RES V...           the map (V: -1, 0 or 100 per cell, row-major from the origin)
 //      pose X Y                   the robot's pose in the map frame, as `fastdds_peer DOMAIN
 //                                 POSE` says: covariance (PoseWithCovarianceStamped, as
-//                                 slam_toolbox and AMCL send it), stamped (PoseStamped) or tf
-//                                 (map → odom → base_footprint on /tf, base_footprint →
-//                                 base_link on /tf_static, as interop.py's Cyclone peer)
+//                                 slam_toolbox and AMCL send it) or stamped (PoseStamped)
+//      tf|tf_static EDGE...       with POSE tf: one TFMessage on /tf or (latched)
+//                                 /tf_static, each EDGE `PARENT CHILD X Y YAW Z`
 //      command TEXT               on /explore/command
 //      goal_reply TOKEN 0|1       answer send_goal request TOKEN (accepted or not)
 //      result_reply TOKEN STATUS  answer get_result request TOKEN with a GoalStatus
@@ -125,9 +125,6 @@ static geo::TransformStamped_ edge(const std::string& parent, const std::string&
     return t;
 }
 
-// interop.py's MAP_TO_ODOM and BASE_LINK_Z.
-static const double ODOM_X = 1.0, ODOM_Y = 0.5, ODOM_YAW = 0.3, BASE_LINK_Z = 0.1;
-
 // The id a reply must carry, as rmw_fastrtps takes it from a request.
 static SampleIdentity request_id(const SampleInfo& info) {
     SampleIdentity id = info.sample_identity;
@@ -157,17 +154,15 @@ int main(int argc, char** argv) {
     DataWriter* map_w = p.writer<OccupancyGrid_PubSubType>("rt/map", true);
     using tf2_msgs::msg::dds_::TFMessage_;
     using tf2_msgs::msg::dds_::TFMessage_PubSubType;
+    const bool tf = pose == "tf";
     DataWriter* pose_w = pose == "stamped"      ? p.writer<geo::PoseStamped_PubSubType>("rt/pose")
                          : pose == "covariance" ? p.writer<geo::PoseWithCovarianceStamped_PubSubType>("rt/pose")
-                                                : p.writer<TFMessage_PubSubType>("rt/tf");
-    if (pose == "tf") {
-        DataWriter* static_w = p.writer<TFMessage_PubSubType>("rt/tf_static", true);
-        TFMessage_ m;
-        m.transforms().push_back(edge("base_footprint", "base_link", 0.0, 0.0, 0.0, BASE_LINK_Z));
-        if (!static_w || !static_w->write(&m)) {
-            std::cerr << "fastdds_peer: cannot write /tf_static\n";
-            return 1;
-        }
+                                                : nullptr;
+    DataWriter* tf_w = tf ? p.writer<TFMessage_PubSubType>("rt/tf") : nullptr;
+    DataWriter* static_w = tf ? p.writer<TFMessage_PubSubType>("rt/tf_static", true) : nullptr;
+    if (tf ? !tf_w || !static_w : !pose_w) {
+        std::cerr << "fastdds_peer: cannot create the pose writers\n";
+        return 1;
     }
     DataWriter* cmd_w = p.writer<String_PubSubType>("rt/explore/command");
     DataReader* goal_r = p.reader<geo::PoseStamped_PubSubType>("rt/explore/goal");
@@ -185,7 +180,7 @@ int main(int argc, char** argv) {
         "rq/" + base + "cancel_goalRequest");
     DataWriter* cancel_w = p.writer<action_msgs::srv::dds_::CancelGoal_Response_PubSubType>(
         "rr/" + base + "cancel_goalReply");
-    if (!map_w || !pose_w || !cmd_w || !goal_r || !status_r || !send_goal_r || !send_goal_w ||
+    if (!map_w || !cmd_w || !goal_r || !status_r || !send_goal_r || !send_goal_w ||
         !result_r || !result_w || !cancel_r || !cancel_w) {
         std::cerr << "fastdds_peer: cannot create the readers and writers\n";
         return 1;
@@ -242,16 +237,7 @@ int main(int argc, char** argv) {
                 std_msgs::msg::dds_::Header_ header;
                 header.stamp(now());
                 header.frame_id("map");
-                if (pose == "tf") {
-                    // The footprint at (x, y, 0) in the odometry frame: odom⁻¹ ∘ pose.
-                    const double dx = x - ODOM_X, dy = y - ODOM_Y;
-                    const double c = std::cos(ODOM_YAW), s = std::sin(ODOM_YAW);
-                    TFMessage_ m;
-                    m.transforms().push_back(edge("map", "odom", ODOM_X, ODOM_Y, ODOM_YAW, 0.0));
-                    m.transforms().push_back(edge("odom", "base_footprint", c * dx + s * dy,
-                                                  -s * dx + c * dy, -ODOM_YAW, 0.0));
-                    pose_w->write(&m);
-                } else if (pose == "stamped") {
+                if (pose == "stamped") {
                     geo::PoseStamped_ ps;
                     ps.header(header);
                     ps.pose(pose_at(x, y));
@@ -264,6 +250,14 @@ int main(int argc, char** argv) {
                     ps.pose().covariance()[35] = 0.005;
                     pose_w->write(&ps);
                 }
+            } else if ((what == "tf" || what == "tf_static") && tf) {
+                TFMessage_ m;
+                std::string parent, child;
+                double x, y, yaw, z;
+                while (in >> parent >> child >> x >> y >> yaw >> z) {
+                    m.transforms().push_back(edge(parent, child, x, y, yaw, z));
+                }
+                (what == "tf" ? tf_w : static_w)->write(&m);
             } else if (what == "command") {
                 String_ s;
                 std::string text;

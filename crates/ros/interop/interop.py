@@ -288,17 +288,20 @@ def stamp():
     return Time(sec=int(t), nanosec=int((t % 1) * 1e9))
 
 
-# With `--pose tf`: the odometry frame's fixed place on the map (x, y, yaw), and the base
-# link above the footprint (/tf_static); odom → base_footprint follows the robot.
+# With `--pose tf`, the transforms as (parent, child, x, y, yaw, z), for either peer: the
+# base link above the footprint (/tf_static), and (/tf) the odometry frame's fixed place
+# on the map with the footprint in it, following the robot.
 MAP_TO_ODOM = (1.0, 0.5, 0.3)
-BASE_LINK_Z = 0.1
+STATIC_EDGES = [("base_footprint", "base_link", 0.0, 0.0, 0.0, 0.1)]
 
 
-def odom_to_base(x, y):
-    """The robot's footprint at map pose (x, y, 0) in the odometry frame: odom⁻¹ ∘ pose."""
+def tf_edges(x, y):
+    """/tf for the robot at map pose (x, y, 0): map → odom, and the footprint in the
+    odometry frame, odom⁻¹ ∘ pose."""
     tx, ty, th = MAP_TO_ODOM
     dx, dy = x - tx, y - ty
-    return (math.cos(th) * dx + math.sin(th) * dy, -math.sin(th) * dx + math.cos(th) * dy, -th)
+    base = (math.cos(th) * dx + math.sin(th) * dy, -math.sin(th) * dx + math.cos(th) * dy, -th)
+    return [("map", "odom", tx, ty, th, 0.0), ("odom", "base_footprint", *base, 0.0)]
 
 
 def transform(parent, child, x, y, yaw, z=0.0):
@@ -328,7 +331,7 @@ class CyclonePeer:
             self.tf_w = DataWriter(dp, Topic(dp, "rt/tf", TFMessage), qos=reliable)
             # Kept: a writer that goes takes its latched sample with it.
             self.static_w = DataWriter(dp, Topic(dp, "rt/tf_static", TFMessage), qos=latched)
-            self.static_w.write(TFMessage([transform("base_footprint", "base_link", 0.0, 0.0, 0.0, BASE_LINK_Z)]))
+            self.static_w.write(TFMessage([transform(*e) for e in STATIC_EDGES]))
         else:
             pose_type = PoseStamped if pose == "stamped" else PoseWithCovarianceStamped
             self.pose_w = DataWriter(dp, Topic(dp, "rt/pose", pose_type), qos=reliable)
@@ -359,14 +362,7 @@ class CyclonePeer:
     def pose(self, x, y):
         pose = Pose(Point(x, y, 0.0), Quaternion(0.0, 0.0, 0.0, 1.0))
         if self.pose_kind == "tf":
-            self.tf_w.write(
-                TFMessage(
-                    [
-                        transform("map", "odom", *MAP_TO_ODOM),
-                        transform("odom", "base_footprint", *odom_to_base(x, y)),
-                    ]
-                )
-            )
+            self.tf_w.write(TFMessage([transform(*e) for e in tf_edges(x, y)]))
         elif self.pose_kind == "stamped":
             self.pose_w.write(PoseStamped(Header(stamp(), "map"), pose))
         else:
@@ -434,16 +430,23 @@ class FastDdsPeer:
         )
         os.set_blocking(self.proc.stdout.fileno(), False)
         self.buf = ""
+        self.tf = pose == "tf"
+        if self.tf:
+            self._send(self._edges("tf_static", STATIC_EDGES))
 
     def _send(self, line):
         self.proc.stdin.write(line + "\n")
         self.proc.stdin.flush()
 
+    @staticmethod
+    def _edges(topic, edges):
+        return topic + "".join(" " + " ".join(map(str, e)) for e in edges)
+
     def map(self, w, h, res, data):
         self._send(f"map {w} {h} {res} " + " ".join(map(str, data)))
 
     def pose(self, x, y):
-        self._send(f"pose {x} {y}")
+        self._send(self._edges("tf", tf_edges(x, y)) if self.tf else f"pose {x} {y}")
 
     def command(self, text):
         self._send(f"command {text}")
