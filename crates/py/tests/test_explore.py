@@ -4,6 +4,7 @@ import json
 import os
 import signal
 import subprocess
+import sys
 import threading
 import time
 
@@ -297,3 +298,22 @@ def test_ctrl_c_stops_explore_and_explore_many():
             assert time.monotonic() - started < 60
     finally:
         signal.signal(signal.SIGINT, previous)
+
+
+def test_submodules_after_a_bare_import():
+    """`frontier.bench.load(db)` as pandas users write it, without `import frontier.bench`:
+    the submodules load on first use (a fresh interpreter, as no other test imported them)."""
+    code = (
+        "import sys, frontier\n"
+        "assert 'frontier.bench' not in sys.modules and 'frontier.gym' not in sys.modules\n"
+        "assert callable(frontier.bench.load)\n"
+        "assert frontier.gym.ExploreEnv and frontier.pettingzoo.ExploreParallelEnv\n"
+        "assert {'bench', 'gym', 'pettingzoo'} <= set(dir(frontier))\n"
+        "try:\n"
+        "    frontier.nope\n"
+        "except AttributeError as e:\n"
+        "    assert \"'nope'\" in str(e)\n"
+        "else:\n"
+        "    raise SystemExit('no AttributeError')\n"
+    )
+    subprocess.run([sys.executable, "-c", code], check=True)

@@ -287,6 +287,24 @@ def _progress(
     return update, bar.close
 
 
+_SUBMODULES = ("bench", "gym", "pettingzoo")
+
+
+def __getattr__(name: str) -> Any:
+    """``frontier.bench``, ``frontier.gym`` and ``frontier.pettingzoo`` work after a bare
+    ``import frontier``: each is imported on first use, so that ``import frontier`` needs
+    neither pandas nor Gymnasium nor PettingZoo."""
+    if name in _SUBMODULES:
+        import importlib
+
+        return importlib.import_module(f"{__name__}.{name}")
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def __dir__() -> List[str]:
+    return sorted(set(globals()) | set(_SUBMODULES))
+
+
 def strategies() -> List[Tuple[str, str]]:
     """The strategy presets as (name, description) pairs, as ``frontier list`` prints them."""
     return list(_native.strategies())
