@@ -150,6 +150,7 @@ impl Map {
         let (h, w);
         if let Ok(a) = array.extract::<PyReadonlyArray2<'_, bool>>() {
             (h, w) = (a.shape()[0], a.shape()[1]);
+            check_cells(w, h)?;
             cells = a
                 .as_array()
                 .iter()
@@ -157,6 +158,7 @@ impl Map {
                 .collect();
         } else if let Ok(a) = array.extract::<PyReadonlyArray2<'_, u8>>() {
             (h, w) = (a.shape()[0], a.shape()[1]);
+            check_cells(w, h)?;
             let mut out = Vec::with_capacity(h * w);
             for (k, &v) in a.as_array().iter().enumerate() {
                 out.push(match v {
@@ -295,4 +297,17 @@ impl Map {
             self.map.resolution
         )
     }
+}
+
+/// Refuse an array of more cells than any map file may hold ([`grid::io::MAX_CELLS`]),
+/// before it is copied: cells are numbered in 32 bits.
+fn check_cells(w: usize, h: usize) -> PyResult<()> {
+    let cells = (w as u64).saturating_mul(h as u64);
+    if cells > grid::io::MAX_CELLS {
+        return Err(value_error(format!(
+            "array: map too large: {w}x{h} cells is more than the limit of {} cells",
+            grid::io::MAX_CELLS
+        )));
+    }
+    Ok(())
 }

@@ -117,3 +117,15 @@ def test_load_reads_what_the_cli_reads(cli, office, tmp_path):
     assert frontier.explore(d).summary == json.loads(out.stdout)
     with pytest.raises(ValueError, match="dungeon: expected one resolution"):
         frontier.Map.load(png, dungeon=True)
+
+
+def test_from_numpy_refuses_more_cells_than_a_map_file_may_hold():
+    # Regression: from_numpy copied any array, 2^31 cells and more, where every map file
+    # is refused above 2^28 cells (cells are numbered in 32 bits). Broadcast views: no
+    # memory behind them.
+    for dtype in (np.uint8, np.bool_):
+        big = np.broadcast_to(np.zeros(1, dtype=dtype), (2, 2**27 + 1))
+        with pytest.raises(ValueError, match=r"map too large: 134217729x2 cells is more than the limit of 268435456 cells"):
+            frontier.Map.from_numpy(big, 0.1)
+    ok = np.broadcast_to(np.ones(1, dtype=np.uint8), (2, 2**27))
+    assert frontier.Map.from_numpy(ok, 0.1).shape == (2, 2**27)
