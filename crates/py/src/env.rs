@@ -9,6 +9,7 @@
 //! environments steps and writes on Rust threads with the GIL released.
 
 use std::borrow::Cow;
+use std::path::PathBuf;
 use std::sync::{Arc, Mutex, MutexGuard};
 
 use bench::explore::ExploreOptions;
@@ -34,6 +35,10 @@ use crate::{guarded, internal, value_error};
 /// A generator spec from Python: (kind, size in metres, resolution).
 pub type Generator = (String, Option<(f64, f64)>, Option<f64>);
 
+/// Map files from Python: their paths and the resolution to read bitmaps and HouseExpo
+/// plans at.
+pub type Files = (Vec<PathBuf>, Option<f64>);
+
 /// Features per candidate: x, y (cells), path cost (m), predicted gain (m²).
 pub const FEATURES: usize = 4;
 
@@ -45,6 +50,12 @@ enum Maps {
     Generated {
         kind: EnvKind,
         size: Option<(f64, f64)>,
+        resolution: Option<f64>,
+    },
+    /// Map files (a folder's); each episode reads the one its seed picks, so that a dataset
+    /// of thousands of plans (HouseExpo's 35,000) is never all in memory at once.
+    Files {
+        paths: Vec<PathBuf>,
         resolution: Option<f64>,
     },
 }
@@ -97,6 +108,12 @@ impl Spec {
                 };
                 let env = world::generate(&spec).map_err(|e| format!("generating {kind}: {e}"))?;
                 Ok((env.map, env.name, None))
+            }
+            Maps::Files { paths, resolution } => {
+                let path = &paths[(splitmix(seed) % paths.len() as u64) as usize];
+                let m = Map::read(path, resolution.map(|r| (r, r)), false, None, false)?;
+                let map = Arc::try_unwrap(m.map).unwrap_or_else(|shared| (*shared).clone());
+                Ok((map, m.name, m.start))
             }
         }
     }
@@ -183,6 +200,22 @@ impl State {
         let mut cfg = bench::explore::config(&o, &map, None)?;
         if let Some(c) = spec.candidates {
             cfg.strategy.candidates = c;
+        }
+        // A map read now may be larger than the one the environment was sized on.
+        let bytes = sim::memory::run_bytes(map.width() * map.height(), map.resolution, &cfg);
+        if bytes > spec.run_bytes {
+            sim::memory::check(
+                &format!(
+                    "an episode on map {name} ({}x{} cells)",
+                    map.width(),
+                    map.height()
+                ),
+                bytes,
+                None,
+                bench::machine::available_bytes(),
+                "leave the largest maps out of the folder, or use fewer environments",
+            )
+            .map_err(|e| e.to_string())?;
         }
         let mut session = guarded(|| Session::start(Cow::Owned(map), Cow::Owned(cfg), true))?
             .map_err(|e| format!("map {name}: {e}"))?;
@@ -633,6 +666,7 @@ fn spec(
     py: Python<'_>,
     maps: Option<Vec<PyRef<'_, Map>>>,
     generator: Option<Generator>,
+    files: Option<Files>,
     kwargs: Option<&Bound<'_, PyDict>>,
     candidates: Option<String>,
     k: usize,
@@ -684,11 +718,17 @@ fn spec(
                 })
         })
         .transpose()?;
-    let maps = match (maps, generator) {
-        (Some(list), None) if !list.is_empty() => {
+    let maps = match (maps, generator, files) {
+        (Some(list), None, None) if !list.is_empty() => {
             Maps::List(list.iter().map(|m| (**m).clone()).collect())
         }
-        (None, Some((kind, size, resolution))) => Maps::Generated {
+        (None, None, Some((paths, resolution))) if !paths.is_empty() => {
+            if let Some(r) = resolution {
+                crate::map::check_resolution(r)?;
+            }
+            Maps::Files { paths, resolution }
+        }
+        (None, Some((kind, size, resolution)), None) => Maps::Generated {
             kind: kind
                 .parse()
                 .map_err(|e| value_error(format!("--env: {e}")))?,
@@ -697,7 +737,7 @@ fn spec(
         },
         _ => {
             return Err(value_error(
-                "maps: give a non-empty list of maps or a generator kind",
+                "maps: give a non-empty list of maps, map files or a generator kind",
             ));
         }
     };
@@ -724,7 +764,7 @@ fn spec(
             .map(|m| (m.map.width(), m.map.height()))
             .max_by_key(|&(w, h)| w * h)
             .unwrap_or((first.width(), first.height())),
-        Maps::Generated { .. } => (first.width(), first.height()),
+        Maps::Generated { .. } | Maps::Files { .. } => (first.width(), first.height()),
     };
     // The largest estimate: the largest map's arrays, or the finest map's sensor template.
     s.run_bytes = match &s.maps {
@@ -733,7 +773,7 @@ fn spec(
             .map(|m| sim::memory::run_bytes(m.map.width() * m.map.height(), m.map.resolution, &cfg))
             .max()
             .unwrap_or(0),
-        Maps::Generated { .. } => {
+        Maps::Generated { .. } | Maps::Files { .. } => {
             sim::memory::run_bytes(first.width() * first.height(), first.resolution, &cfg)
         }
     };
@@ -826,12 +866,13 @@ impl EnvCore {
 impl EnvCore {
     /// A new environment; see `frontier.gym.ExploreEnv` for the arguments.
     #[new]
-    #[pyo3(signature = (maps=None, generator=None, kwargs=None, candidates=None, k=16, view=None, lam=0.0, max_path_m=None, max_steps=None, gain=false))]
+    #[pyo3(signature = (maps=None, generator=None, files=None, kwargs=None, candidates=None, k=16, view=None, lam=0.0, max_path_m=None, max_steps=None, gain=false))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         py: Python<'_>,
         maps: Option<Vec<PyRef<'_, Map>>>,
         generator: Option<Generator>,
+        files: Option<Files>,
         kwargs: Option<&Bound<'_, PyDict>>,
         candidates: Option<String>,
         k: usize,
@@ -842,8 +883,8 @@ impl EnvCore {
         gain: bool,
     ) -> PyResult<Self> {
         let s = spec(
-            py, maps, generator, kwargs, candidates, k, view, lam, max_path_m, max_steps, gain,
-            false,
+            py, maps, generator, files, kwargs, candidates, k, view, lam, max_path_m, max_steps,
+            gain, false,
         )?;
         check_memory(&s, 1, 1)?;
         Ok(Self {
@@ -978,13 +1019,14 @@ impl VecEnvCore {
 impl VecEnvCore {
     /// `n` environments like `EnvCore(...)` on `threads` threads (default: one per core).
     #[new]
-    #[pyo3(signature = (n, maps=None, generator=None, kwargs=None, candidates=None, k=16, view=None, lam=0.0, max_path_m=None, max_steps=None, gain=false, threads=None))]
+    #[pyo3(signature = (n, maps=None, generator=None, files=None, kwargs=None, candidates=None, k=16, view=None, lam=0.0, max_path_m=None, max_steps=None, gain=false, threads=None))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         py: Python<'_>,
         n: usize,
         maps: Option<Vec<PyRef<'_, Map>>>,
         generator: Option<Generator>,
+        files: Option<Files>,
         kwargs: Option<&Bound<'_, PyDict>>,
         candidates: Option<String>,
         k: usize,
@@ -1002,8 +1044,8 @@ impl VecEnvCore {
             return Err(value_error("threads: expected at least 1, found 0"));
         }
         let s = Arc::new(spec(
-            py, maps, generator, kwargs, candidates, k, view, lam, max_path_m, max_steps, gain,
-            false,
+            py, maps, generator, files, kwargs, candidates, k, view, lam, max_path_m, max_steps,
+            gain, false,
         )?);
         check_memory(&s, n, 1)?;
         // No more threads than environments: a helper with nothing to take would only spin.
@@ -1202,12 +1244,13 @@ impl TeamEnvCore {
 impl TeamEnvCore {
     /// A new team environment; `kwargs["robots"]` is the team's size.
     #[new]
-    #[pyo3(signature = (maps=None, generator=None, kwargs=None, candidates=None, k=16, view=None, lam=0.0, max_path_m=None, max_steps=None, gain=false))]
+    #[pyo3(signature = (maps=None, generator=None, files=None, kwargs=None, candidates=None, k=16, view=None, lam=0.0, max_path_m=None, max_steps=None, gain=false))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         py: Python<'_>,
         maps: Option<Vec<PyRef<'_, Map>>>,
         generator: Option<Generator>,
+        files: Option<Files>,
         kwargs: Option<&Bound<'_, PyDict>>,
         candidates: Option<String>,
         k: usize,
@@ -1218,8 +1261,8 @@ impl TeamEnvCore {
         gain: bool,
     ) -> PyResult<Self> {
         let s = spec(
-            py, maps, generator, kwargs, candidates, k, view, lam, max_path_m, max_steps, gain,
-            true,
+            py, maps, generator, files, kwargs, candidates, k, view, lam, max_path_m, max_steps,
+            gain, true,
         )?;
         check_memory(&s, 1, s.options.robots)?;
         let sets = OBS_SETS * s.options.robots;

@@ -1,7 +1,7 @@
 //! `frontier.Map`: a ground-truth map loaded from a file, generated, or made from a numpy
 //! array.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use grid::{Grid, GridMap, Occ};
@@ -49,7 +49,7 @@ fn resolution_arg(v: Option<&Bound<'_, PyAny>>) -> PyResult<Option<(f64, f64)>> 
 
 /// The CLI's `--resolution` rule and message: a positive number of metres per cell, at most
 /// [`grid::io::MAX_RESOLUTION_M`].
-fn check_resolution(r: f64) -> PyResult<()> {
+pub(crate) fn check_resolution(r: f64) -> PyResult<()> {
     if grid::io::is_valid_resolution(r) {
         Ok(())
     } else {
@@ -81,6 +81,54 @@ impl Map {
             start: None,
         }
     }
+
+    /// Read a map file as [`Map.load`](Map::load) does (`resolution` already checked);
+    /// errors name the file.
+    pub fn read(
+        path: &Path,
+        resolution: Option<(f64, f64)>,
+        border: bool,
+        topic: Option<&str>,
+        dungeon: bool,
+    ) -> Result<Self, String> {
+        let is_mcap = path
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("mcap"));
+        if topic.is_some() && !is_mcap {
+            return Err(format!(
+                "topic: chooses the map topic of an MCAP recording (a .mcap file), found {}",
+                path.display()
+            ));
+        }
+        let name = path
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_else(|| "map".into());
+        if is_mcap {
+            if resolution.is_some() || border || dungeon {
+                return Err(
+                    "resolution / border / dungeon: an MCAP recording's map carries \
+                            its own resolution"
+                        .into(),
+                );
+            }
+            let map = record::mcap_read::load_map(path, topic)?;
+            return Ok(Self::new(map, name));
+        }
+        if dungeon {
+            let Some((r, _)) = resolution.filter(|(x, y)| x == y) else {
+                return Err("dungeon: expected one resolution (square cells) for the PNG".into());
+            };
+            let bytes = grid::io::read_bytes(path).map_err(|e| e.to_string())?;
+            let d = grid::io::parse_dungeon(&bytes, path, r).map_err(|e| e.to_string())?;
+            let mut m = Self::new(d.map, name);
+            m.start = Some(d.start);
+            return Ok(m);
+        }
+        let opts = grid::io::LoadOptions { resolution, border };
+        let map = grid::io::load_map(path, &opts).map_err(|e| e.to_string())?;
+        Ok(Self::new(map, name))
+    }
 }
 
 #[pymethods]
@@ -100,44 +148,7 @@ impl Map {
         dungeon: bool,
     ) -> PyResult<Self> {
         let resolution = resolution_arg(resolution)?;
-        let is_mcap = path
-            .extension()
-            .is_some_and(|e| e.eq_ignore_ascii_case("mcap"));
-        if topic.is_some() && !is_mcap {
-            return Err(value_error(format!(
-                "topic: chooses the map topic of an MCAP recording (a .mcap file), found {}",
-                path.display()
-            )));
-        }
-        let name = path
-            .file_stem()
-            .map(|s| s.to_string_lossy().into_owned())
-            .unwrap_or_else(|| "map".into());
-        if is_mcap {
-            if resolution.is_some() || border || dungeon {
-                return Err(value_error(
-                    "resolution / border / dungeon: an MCAP recording's map carries its own \
-                     resolution",
-                ));
-            }
-            let map = record::mcap_read::load_map(&path, topic.as_deref()).map_err(value_error)?;
-            return Ok(Self::new(map, name));
-        }
-        if dungeon {
-            let Some((r, _)) = resolution.filter(|(x, y)| x == y) else {
-                return Err(value_error(
-                    "dungeon: expected one resolution (square cells) for the PNG",
-                ));
-            };
-            let bytes = grid::io::read_bytes(&path).map_err(value_error)?;
-            let d = grid::io::parse_dungeon(&bytes, &path, r).map_err(value_error)?;
-            let mut m = Self::new(d.map, name);
-            m.start = Some(d.start);
-            return Ok(m);
-        }
-        let opts = grid::io::LoadOptions { resolution, border };
-        let map = grid::io::load_map(&path, &opts).map_err(value_error)?;
-        Ok(Self::new(map, name))
+        Self::read(&path, resolution, border, topic.as_deref(), dungeon).map_err(value_error)
     }
 
     /// A map from a 2-D numpy array: bool (True = occupied) or uint8 (0 unknown, 1 free,

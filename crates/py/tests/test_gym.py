@@ -382,3 +382,51 @@ def test_maps_from_a_folder(office, tmp_path):
     empty.mkdir()
     with pytest.raises(ValueError, match="no map files"):
         ExploreEnv(str(empty))
+
+
+def _house(path, w, h):
+    """A HouseExpo plan: an L of two rooms in a w x h metre box."""
+    path.write_text(
+        '{"id": "%s", "verts": [[0,0],[%g,0],[%g,%g],[%g,%g],[%g,%g],[0,%g]], '
+        '"room_category": {"a": [[0,0,%g,%g]], "b": [[0,%g,%g,%g]]}}'
+        % (path.stem, w, w, h / 2, w / 2, h / 2, w / 2, h, h, w, h / 2, h / 2, w / 2, h)
+    )
+
+
+def test_a_folder_of_houseexpo_plans_is_read_episode_by_episode(tmp_path):
+    # HouseExpo's folder holds 35,000 plans: the environment lists the files and reads the
+    # one an episode picks when it starts, never all of them.
+    _house(tmp_path / "a.json", 6, 6)
+    _house(tmp_path / "b.json", 8, 5)
+    kw = dict(resolution=0.1, view=32, k=4, sensor="los:r=2")
+    env = ExploreEnv(str(tmp_path), **kw)
+    names = {}
+    for s in range(12):
+        obs, info = env.reset(seed=s)
+        names[info["map"]] = s
+    assert set(names) == {"a", "b"}
+    # The same episodes as with the plans loaded first (same order, same pick by seed).
+    eager = ExploreEnv(frontier.gym.load_folder(tmp_path, resolution=0.1), **kw)
+    for s in range(4):
+        assert episode(env, Baseline("cf-rr"), s) == episode(eager, Baseline("cf-rr"), s)
+    # Read at reset, not at construction: a plan removed since is named when picked.
+    (tmp_path / "b.json").unlink()
+    with pytest.raises(ValueError, match=r"b\.json"):
+        env.reset(seed=names["b"])
+    assert env.reset(seed=names["a"])[1]["map"] == "a"
+
+
+def test_a_folder_of_maps_of_different_sizes_needs_a_view(tmp_path):
+    _house(tmp_path / "a.json", 6, 6)
+    _house(tmp_path / "b.json", 8, 5)
+    env = ExploreEnv(str(tmp_path), resolution=0.1, k=4)
+    seen = set()
+    for s in range(12):
+        try:
+            seen.add(env.reset(seed=s)[1]["map"])
+        except ValueError as e:
+            assert "maps of different sizes need a robot-centred view" in str(e)
+            seen.add("refused")
+    assert "refused" in seen and len(seen) == 2
+    with pytest.raises(ValueError, match=r"[ab]\.json: --resolution is required for a HouseExpo"):
+        ExploreEnv(str(tmp_path))

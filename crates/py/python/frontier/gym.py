@@ -34,7 +34,19 @@ __all__ = ["ExploreEnv", "ExploreVectorEnv", "Baseline", "RandomPolicy", "load_f
 
 MapsArg = Union[None, str, "os.PathLike[str]", Map, Sequence[Map]]
 
-_MAP_EXTENSIONS = (".yaml", ".yml", ".png", ".pgm", ".map", ".txt")
+_MAP_EXTENSIONS = (".yaml", ".yml", ".png", ".pgm", ".map", ".json", ".txt")
+
+
+def _folder_files(folder: Union[str, "os.PathLike[str]"]) -> List[str]:
+    """The map files of ``folder``, sorted by name: ROS YAML files if there are any (their
+    images are read through them), else every bitmap, MovingAI ``.map``, HouseExpo
+    ``.json`` and ``.txt``."""
+    names = sorted(os.listdir(folder))
+    yaml = [n for n in names if n.endswith((".yaml", ".yml"))]
+    chosen = yaml or [n for n in names if n.endswith(_MAP_EXTENSIONS)]
+    if not chosen:
+        raise ValueError(f"{os.fspath(folder)}: no map files ({', '.join(_MAP_EXTENSIONS)})")
+    return [os.path.join(os.fspath(folder), n) for n in chosen]
 
 
 def load_folder(
@@ -42,33 +54,40 @@ def load_folder(
     resolution: Optional[float] = None,
     border: bool = False,
 ) -> List[Map]:
-    """Every map file of ``folder`` (sorted by name): ROS YAML files if there are any (their
-    images are loaded through them), else every bitmap, MovingAI ``.map`` and ``.txt``."""
-    names = sorted(os.listdir(folder))
-    yaml = [n for n in names if n.endswith((".yaml", ".yml"))]
-    chosen = yaml or [n for n in names if n.endswith(_MAP_EXTENSIONS)]
-    if not chosen:
-        raise ValueError(f"{os.fspath(folder)}: no map files ({', '.join(_MAP_EXTENSIONS)})")
-    return [Map.load(os.path.join(folder, n), resolution=resolution, border=border) for n in chosen]
+    """Every map file of ``folder`` (sorted by name), loaded now: ROS YAML files if there are
+    any (their images are loaded through them), else every bitmap, MovingAI ``.map``,
+    HouseExpo ``.json`` (needs ``resolution``) and ``.txt``. (An environment given the
+    folder itself reads each episode's map when the episode starts instead.)"""
+    return [Map.load(p, resolution=resolution, border=border) for p in _folder_files(folder)]
+
+
+_Source = Tuple[
+    Optional[List[Map]],
+    Optional[Tuple[str, Any, Any]],
+    Optional[Tuple[List[str], Optional[float]]],
+]
 
 
 def _source(
     maps: MapsArg, size: Optional[Tuple[float, float]], resolution: Optional[float]
-) -> Tuple[Optional[List[Map]], Optional[Tuple[str, Any, Any]]]:
-    """(list of maps, None) or (None, generator spec)."""
+) -> _Source:
+    """(list of maps, None, None), (None, generator spec, None) or (None, None, (map files,
+    resolution)): a folder's files are read when an episode picks one, so that a dataset of
+    thousands of plans is never all in memory (the first is read now, to check the options
+    and size the observation)."""
     if maps is None:
-        return None, ("office", size, resolution)
+        return None, ("office", size, resolution), None
     if isinstance(maps, Map):
-        return [maps], None
+        return [maps], None, None
     if isinstance(maps, (str, os.PathLike)):
         path = os.fspath(maps)
         if os.path.isdir(path):
-            return load_folder(path, resolution=resolution), None
+            return None, None, (_folder_files(path), resolution)
         if os.path.isfile(path):
-            return [Map.load(path, resolution=resolution)], None
+            return [Map.load(path, resolution=resolution)], None, None
         if isinstance(maps, os.PathLike) or os.sep in path or path.endswith(_MAP_EXTENSIONS):
             raise ValueError(f"maps: {path}: no such folder or map file")
-        return None, (path, size, resolution)
+        return None, (path, size, resolution), None
     if not isinstance(maps, Sequence):
         raise TypeError(
             "maps: expected a frontier.Map, a list of maps, a generator kind, a map file or "
@@ -78,7 +97,7 @@ def _source(
     for i, m in enumerate(maps):
         if not isinstance(m, Map):
             raise TypeError(f"maps[{i}]: expected a frontier.Map, found {type(m).__name__}")
-    return maps, None
+    return maps, None, None
 
 
 def _action(action: Any) -> int:
@@ -137,12 +156,13 @@ def _core_args(
     _count("k", k, 1, " candidate")
     _count("view", view, 1, " cell")
     _count("max_steps", max_steps, 1, " decision")
-    listed, generator = _source(maps, size, resolution)
+    listed, generator, files = _source(maps, size, resolution)
     kwargs = dict(run)
     kwargs.update(strategy=strategy, sensor=sensor)
     return dict(
         maps=listed,
         generator=generator,
+        files=files,
         kwargs=kwargs,
         candidates=candidates,
         k=k,
@@ -193,10 +213,12 @@ class ExploreEnv(gymnasium.Env):
         maps: a :class:`~frontier.Map`, a list of maps (each episode picks one by its seed),
             a generator kind (``"office"``, ``"hospital"``, ``"cave"``, ``"maze"``,
             ``"potholes"``, ``"empty"``; each episode generates one from its seed), a map file
-            or a folder of map files. Default: generated offices.
+            or a folder of map files (each episode reads the one its seed picks, so a
+            dataset such as HouseExpo's 35,000 plans is never all in memory; maps of
+            different sizes need a ``view``). Default: generated offices.
         size: (width, height) in metres of generated maps (default: the kind's).
-        resolution: metres per cell of generated maps, or of a bare bitmap (a file or in a
-            folder).
+        resolution: metres per cell of generated maps, or of a bare bitmap or a HouseExpo
+            plan (a file or in a folder).
         strategy: the preset whose candidate generator, re-plan policy and sensing the
             environment uses (the agent replaces its assigner).
         sensor: sensor spec as the CLI takes it, e.g. ``"lidar:r=3.5,fov=360,res=1"``.
