@@ -35,9 +35,9 @@ use crate::{guarded, internal, value_error};
 /// A generator spec from Python: (kind, size in metres, resolution).
 pub type Generator = (String, Option<(f64, f64)>, Option<f64>);
 
-/// Map files from Python: their paths and the resolution to read bitmaps and HouseExpo
-/// plans at.
-pub type Files = (Vec<PathBuf>, Option<f64>);
+/// Map files from Python: their paths, the resolution to read bitmaps and HouseExpo plans
+/// at, and whether the PNGs are dungeon maps (their marked starts kept).
+pub type Files = (Vec<PathBuf>, Option<f64>, bool);
 
 /// Features per candidate: x, y (cells), path cost (m), predicted gain (m²).
 pub const FEATURES: usize = 4;
@@ -57,6 +57,7 @@ enum Maps {
     Files {
         paths: Vec<PathBuf>,
         resolution: Option<f64>,
+        dungeon: bool,
     },
 }
 
@@ -109,9 +110,13 @@ impl Spec {
                 let env = world::generate(&spec).map_err(|e| format!("generating {kind}: {e}"))?;
                 Ok((env.map, env.name, None))
             }
-            Maps::Files { paths, resolution } => {
+            Maps::Files {
+                paths,
+                resolution,
+                dungeon,
+            } => {
                 let path = &paths[(splitmix(seed) % paths.len() as u64) as usize];
-                let m = Map::read(path, resolution.map(|r| (r, r)), false, None, false)?;
+                let m = Map::read(path, resolution.map(|r| (r, r)), false, None, *dungeon)?;
                 let map = Arc::try_unwrap(m.map).unwrap_or_else(|shared| (*shared).clone());
                 Ok((map, m.name, m.start))
             }
@@ -722,11 +727,15 @@ fn spec(
         (Some(list), None, None) if !list.is_empty() => {
             Maps::List(list.iter().map(|m| (**m).clone()).collect())
         }
-        (None, None, Some((paths, resolution))) if !paths.is_empty() => {
+        (None, None, Some((paths, resolution, dungeon))) if !paths.is_empty() => {
             if let Some(r) = resolution {
                 crate::map::check_resolution(r)?;
             }
-            Maps::Files { paths, resolution }
+            Maps::Files {
+                paths,
+                resolution,
+                dungeon,
+            }
         }
         (None, Some((kind, size, resolution)), None) => Maps::Generated {
             kind: kind

@@ -2,6 +2,8 @@
 
 import os
 import pathlib
+import struct
+import zlib
 
 import pytest
 
@@ -28,3 +30,22 @@ def cli():
     if not found:
         pytest.fail("no frontier binary: build it (cargo build -p frontier) or set FRONTIER_BIN")
     return max(found, key=os.path.getmtime)
+
+
+@pytest.fixture(scope="session")
+def write_png():
+    """A function writing the (h, w) uint8 array ``pixels`` as a greyscale 8-bit PNG."""
+
+    def write(path, pixels):
+        h, w = pixels.shape
+        raw = b"".join(b"\x00" + pixels[y].tobytes() for y in range(h))
+
+        def chunk(kind, data):
+            crc = struct.pack(">I", zlib.crc32(kind + data))
+            return struct.pack(">I", len(data)) + kind + data + crc
+
+        header = struct.pack(">IIBBBBB", w, h, 8, 0, 0, 0, 0)
+        path.write_bytes(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", header)
+                         + chunk(b"IDAT", zlib.compress(raw)) + chunk(b"IEND", b""))
+
+    return write

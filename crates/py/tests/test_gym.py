@@ -430,3 +430,32 @@ def test_a_folder_of_maps_of_different_sizes_needs_a_view(tmp_path):
     assert "refused" in seen and len(seen) == 2
     with pytest.raises(ValueError, match=r"[ab]\.json: --resolution is required for a HouseExpo"):
         ExploreEnv(str(tmp_path))
+
+
+def test_a_folder_of_dungeon_maps_starts_where_each_marks(tmp_path, write_png):
+    # Dungeon maps of learned-exploration work mark their start with pixels of value 208.
+    starts = {"d0": (4, 3), "d1": (9, 5)}
+    for name, (x, y) in starts.items():
+        pixels = np.full((8, 12), 255, np.uint8)
+        pixels[[0, -1], :] = 0
+        pixels[:, [0, -1]] = 0
+        pixels[y, x] = 208
+        write_png(tmp_path / f"{name}.png", pixels)
+    (tmp_path / "notes.txt").write_text("not a map")
+    env = ExploreEnv(str(tmp_path), resolution=0.1, dungeon=True, k=4, sensor="los:r=0.3")
+    seen = set()
+    for s in range(10):
+        obs, info = env.reset(seed=s)
+        assert tuple(obs["pose"][:2].astype(int)) == starts[info["map"]]
+        seen.add(info["map"])
+    assert seen == set(starts)
+    eager = ExploreEnv(frontier.gym.load_folder(tmp_path, 0.1, dungeon=True), k=4,
+                       sensor="los:r=0.3")
+    for s in range(3):
+        assert episode(env, Baseline("cf-rr"), s) == episode(eager, Baseline("cf-rr"), s)
+    with pytest.raises(ValueError, match="dungeon: expected one resolution"):
+        ExploreEnv(str(tmp_path), dungeon=True)
+    with pytest.raises(ValueError, match="dungeon: reads PNG files"):
+        ExploreEnv("office", dungeon=True)
+    with pytest.raises(TypeError, match="dungeon: expected a bool"):
+        ExploreEnv(str(tmp_path), resolution=0.1, dungeon="yes")

@@ -68,23 +68,7 @@ def test_bad_values_raise_value_error(tmp_path):
         frontier.Map.load(tmp_path / "missing.yaml")
 
 
-def _png(path, pixels):
-    """Write a greyscale 8-bit PNG of the (h, w) uint8 array ``pixels``."""
-    import struct
-    import zlib
-
-    h, w = pixels.shape
-    raw = b"".join(b"\x00" + pixels[y].tobytes() for y in range(h))
-
-    def chunk(kind, data):
-        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
-
-    header = struct.pack(">IIBBBBB", w, h, 8, 0, 0, 0, 0)
-    path.write_bytes(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", header) + chunk(b"IDAT", zlib.compress(raw))
-                     + chunk(b"IEND", b""))
-
-
-def test_load_reads_what_the_cli_reads(cli, office, tmp_path):
+def test_load_reads_what_the_cli_reads(cli, office, tmp_path, write_png):
     """Regression: Map.load read neither MCAP recordings nor dungeon PNGs, which the CLI
     reads (`--map run.mcap`, `--dungeon`)."""
     import json
@@ -109,7 +93,7 @@ def test_load_reads_what_the_cli_reads(cli, office, tmp_path):
     pixels[:, [0, -1]] = 0
     pixels[3, 4] = 208
     png = tmp_path / "dungeon.png"
-    _png(png, pixels)
+    write_png(png, pixels)
     d = frontier.Map.load(png, resolution=0.1, dungeon=True)
     assert d.start == (4, 3) and d.shape == (8, 12)
     out = subprocess.run([cli, "explore", "--map", str(png), "--resolution", "0.1", "--dungeon",

@@ -53,28 +53,42 @@ def load_folder(
     folder: Union[str, "os.PathLike[str]"],
     resolution: Optional[float] = None,
     border: bool = False,
+    *,
+    dungeon: bool = False,
 ) -> List[Map]:
     """Every map file of ``folder`` (sorted by name), loaded now: ROS YAML files if there are
     any (their images are loaded through them), else every bitmap, MovingAI ``.map``,
-    HouseExpo ``.json`` (needs ``resolution``) and ``.txt``. (An environment given the
-    folder itself reads each episode's map when the episode starts instead.)"""
+    HouseExpo ``.json`` (needs ``resolution``) and ``.txt``; with ``dungeon=True`` its PNGs
+    as dungeon maps (:meth:`Map.load`). (An environment given the folder itself reads each
+    episode's map when the episode starts instead.)"""
+    if dungeon:
+        files = [p for p in _folder_files(folder) if p.endswith(".png")]
+        return [Map.load(p, resolution=resolution, dungeon=True) for p in files]
     return [Map.load(p, resolution=resolution, border=border) for p in _folder_files(folder)]
 
 
 _Source = Tuple[
     Optional[List[Map]],
     Optional[Tuple[str, Any, Any]],
-    Optional[Tuple[List[str], Optional[float]]],
+    Optional[Tuple[List[str], Optional[float], bool]],
 ]
 
 
 def _source(
-    maps: MapsArg, size: Optional[Tuple[float, float]], resolution: Optional[float]
+    maps: MapsArg,
+    size: Optional[Tuple[float, float]],
+    resolution: Optional[float],
+    dungeon: bool = False,
 ) -> _Source:
     """(list of maps, None, None), (None, generator spec, None) or (None, None, (map files,
     resolution)): a folder's files are read when an episode picks one, so that a dataset of
     thousands of plans is never all in memory (the first is read now, to check the options
     and size the observation)."""
+    if dungeon and not isinstance(maps, (str, os.PathLike)):
+        raise ValueError(
+            "dungeon: reads PNG files as dungeon maps: give a folder or a file as maps "
+            "(or Map.load(path, dungeon=True) maps)"
+        )
     if maps is None:
         return None, ("office", size, resolution), None
     if isinstance(maps, Map):
@@ -82,11 +96,18 @@ def _source(
     if isinstance(maps, (str, os.PathLike)):
         path = os.fspath(maps)
         if os.path.isdir(path):
-            return None, None, (_folder_files(path), resolution)
+            files = _folder_files(path)
+            if dungeon:
+                files = [f for f in files if f.endswith(".png")]
+                if not files:
+                    raise ValueError(f"{path}: no .png files (dungeon=True)")
+            return None, None, (files, resolution, dungeon)
         if os.path.isfile(path):
-            return [Map.load(path, resolution=resolution)], None, None
+            return [Map.load(path, resolution=resolution, dungeon=dungeon)], None, None
         if isinstance(maps, os.PathLike) or os.sep in path or path.endswith(_MAP_EXTENSIONS):
             raise ValueError(f"maps: {path}: no such folder or map file")
+        if dungeon:
+            raise ValueError(f"dungeon: reads PNG files, but maps is the generator kind {path!r}")
         return None, (path, size, resolution), None
     if not isinstance(maps, Sequence):
         raise TypeError(
@@ -152,11 +173,14 @@ def _core_args(
     max_steps: Optional[int],
     gain: bool,
     run: Dict[str, Any],
+    dungeon: bool = False,
 ) -> Dict[str, Any]:
     _count("k", k, 1, " candidate")
     _count("view", view, 1, " cell")
     _count("max_steps", max_steps, 1, " decision")
-    listed, generator, files = _source(maps, size, resolution)
+    if not isinstance(dungeon, bool):
+        raise TypeError(f"dungeon: expected a bool, found {type(dungeon).__name__}")
+    listed, generator, files = _source(maps, size, resolution, dungeon)
     kwargs = dict(run)
     kwargs.update(strategy=strategy, sensor=sensor)
     return dict(
@@ -219,6 +243,9 @@ class ExploreEnv(gymnasium.Env):
         size: (width, height) in metres of generated maps (default: the kind's).
         resolution: metres per cell of generated maps, or of a bare bitmap or a HouseExpo
             plan (a file or in a folder).
+        dungeon: read the PNGs of ``maps`` (a file or a folder) as dungeon maps of
+            learned-exploration work (:meth:`~frontier.Map.load`): episodes start at the
+            start each marks. Needs ``resolution``.
         strategy: the preset whose candidate generator, re-plan policy and sensing the
             environment uses (the agent replaces its assigner).
         sensor: sensor spec as the CLI takes it, e.g. ``"lidar:r=3.5,fov=360,res=1"``.
@@ -259,6 +286,7 @@ class ExploreEnv(gymnasium.Env):
         *,
         size: Optional[Tuple[float, float]] = None,
         resolution: Optional[float] = None,
+        dungeon: bool = False,
         strategy: str = "cf-rr",
         sensor: str = "los:r=5",
         candidates: Optional[str] = None,
@@ -279,7 +307,7 @@ class ExploreEnv(gymnasium.Env):
         self._core = _native.EnvCore(
             **_core_args(
                 maps, size, resolution, strategy, sensor, candidates, k, view, lam,
-                max_path_m, max_steps, gain, run,
+                max_path_m, max_steps, gain, run, dungeon=dungeon,
             )
         )
         self._wrap = invalid_action == "wrap"
@@ -338,6 +366,7 @@ class ExploreVectorEnv(VectorEnv):
         *,
         size: Optional[Tuple[float, float]] = None,
         resolution: Optional[float] = None,
+        dungeon: bool = False,
         strategy: str = "cf-rr",
         sensor: str = "los:r=5",
         candidates: Optional[str] = None,
@@ -360,7 +389,7 @@ class ExploreVectorEnv(VectorEnv):
             threads=threads,
             **_core_args(
                 maps, size, resolution, strategy, sensor, candidates, k, view, lam,
-                max_path_m, max_steps, gain, run,
+                max_path_m, max_steps, gain, run, dungeon=dungeon,
             ),
         )
         self._wrap = invalid_action == "wrap"

@@ -41,6 +41,7 @@ class ExploreParallelEnv(ParallelEnv):
         robots: int = 2,
         size: Optional[Tuple[float, float]] = None,
         resolution: Optional[float] = None,
+        dungeon: bool = False,
         strategy: str = "nearest",
         sensor: str = "los:r=5",
         candidates: Optional[str] = None,
@@ -57,7 +58,7 @@ class ExploreParallelEnv(ParallelEnv):
         self._core = _native.TeamEnvCore(
             **_core_args(
                 maps, size, resolution, strategy, sensor, candidates, k, view, lam,
-                max_path_m, max_steps, gain, run,
+                max_path_m, max_steps, gain, run, dungeon=dungeon,
             )
         )
         m = self._core.robots
