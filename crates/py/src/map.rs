@@ -82,7 +82,7 @@ impl Map {
         }
     }
 
-    /// Read a map file as [`Map.load`](Map::load) does (`resolution` already checked);
+    /// Read a map file as `frontier.Map.load` does (`resolution` already checked);
     /// errors name the file.
     pub fn read(
         path: &Path,
