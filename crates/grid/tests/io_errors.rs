@@ -516,6 +516,15 @@ fn missing_map_file_and_unknown_extension() {
         ),
         "{e}"
     );
+    // Regression: a folder given as a map was "unknown map format \"\"".
+    let e = msg(load_map(&dir, &LoadOptions::default()));
+    assert_eq!(
+        e,
+        format!(
+            "{}: is a folder, expected one map file (.yaml, .yml, .pgm, .png, .map, .json or .txt)",
+            dir.display()
+        )
+    );
     // Regression: writing a HouseExpo .json was refused with a list that offered .json.
     let e = msg(grid::io::save_map(
         &grid::GridMap::new(Grid::new(2, 2, Occ::Free), 0.1),

@@ -51,6 +51,9 @@ pub enum MapErrorKind {
         "unknown map format {0:?}: expected .yaml, .yml, .pgm, .png, .map, .json (HouseExpo) or .txt"
     )]
     UnknownFormat(String),
+    /// The path is a folder, where one map file was expected.
+    #[error("is a folder, expected one map file (.yaml, .yml, .pgm, .png, .map, .json or .txt)")]
+    Folder,
     /// The extension names no format maps are written in (HouseExpo is read only).
     #[error("cannot write map format {0:?}: expected .yaml, .yml, .pgm, .png, .map or .txt")]
     UnwritableFormat(String),

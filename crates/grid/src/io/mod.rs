@@ -140,6 +140,7 @@ pub fn load_map(path: &Path, opts: &LoadOptions) -> Result<GridMap, MapError> {
                 opts.border,
             )?
         }
+        _ if path.is_dir() => return Err(MapError::new(path, MapErrorKind::Folder)),
         _ => return Err(MapError::new(path, MapErrorKind::UnknownFormat(ext))),
     };
     Ok(map)
