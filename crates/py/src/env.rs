@@ -89,13 +89,29 @@ fn splitmix(x: u64) -> u64 {
 }
 
 impl Spec {
-    /// The ground truth of the episode with `seed`, its name and the start its file marks.
-    fn map(&self, seed: u64) -> Result<(GridMap, String, Option<grid::Cell>), String> {
+    /// The ground truth of the episode with `seed`, its name and the start its file marks:
+    /// map `index` of the list or folder if given, else the one the seed picks.
+    fn map(
+        &self,
+        seed: u64,
+        index: Option<usize>,
+    ) -> Result<(GridMap, String, Option<grid::Cell>), String> {
+        let pick = |n: usize| match index {
+            None => Ok((splitmix(seed) % n as u64) as usize),
+            Some(i) if i < n => Ok(i),
+            Some(i) => Err(format!(
+                "options['map']: expected the index of one of the {n} maps (0..{n}), found {i}"
+            )),
+        };
         match &self.maps {
             Maps::List(maps) => {
-                let m = &maps[(splitmix(seed) % maps.len() as u64) as usize];
+                let m = &maps[pick(maps.len())?];
                 Ok(((*m.map).clone(), m.name.clone(), m.start))
             }
+            Maps::Generated { kind, .. } if index.is_some() => Err(format!(
+                "options['map']: the maps are generated ({kind}), each from its episode's seed; \
+                 there is no list to pick from"
+            )),
             Maps::Generated {
                 kind,
                 size,
@@ -115,7 +131,7 @@ impl Spec {
                 resolution,
                 dungeon,
             } => {
-                let path = &paths[(splitmix(seed) % paths.len() as u64) as usize];
+                let path = &paths[pick(paths.len())?];
                 let m = Map::read(path, resolution.map(|r| (r, r)), false, None, *dungeon)?;
                 let map = Arc::try_unwrap(m.map).unwrap_or_else(|shared| (*shared).clone());
                 Ok((map, m.name, m.start))
@@ -125,6 +141,24 @@ impl Spec {
 
     fn cells(&self) -> usize {
         self.shape.0 * self.shape.1
+    }
+
+    /// The names of the maps an episode may pick, in index order (None for generated maps).
+    fn map_names(&self) -> Option<Vec<String>> {
+        match &self.maps {
+            Maps::List(maps) => Some(maps.iter().map(|m| m.name.clone()).collect()),
+            Maps::Files { paths, .. } => Some(
+                paths
+                    .iter()
+                    .map(|p| {
+                        p.file_stem()
+                            .map(|s| s.to_string_lossy().into_owned())
+                            .unwrap_or_else(|| "map".into())
+                    })
+                    .collect(),
+            ),
+            Maps::Generated { .. } => None,
+        }
     }
 }
 
@@ -186,8 +220,14 @@ impl State {
     }
 
     fn reset(&mut self, seed: u64) -> Result<(), String> {
+        self.reset_on(seed, None)
+    }
+
+    /// Start the episode of `seed` on map `index` of the list or folder (None: the map the
+    /// seed picks).
+    fn reset_on(&mut self, seed: u64, index: Option<usize>) -> Result<(), String> {
         let spec = self.spec.clone();
-        let (map, name, marked) = spec.map(seed)?;
+        let (map, name, marked) = spec.map(seed, index)?;
         if spec.view.is_none() && (map.height(), map.width()) != spec.shape {
             return Err(format!(
                 "map {name}: {}x{} cells, but the observation is {}x{}; maps of different \
@@ -765,7 +805,7 @@ fn spec(
         run_bytes: 0,
     };
     // Check the options on the first map, and learn the observation's size.
-    let (first, name, _) = py.detach(|| s.map(0)).map_err(value_error)?;
+    let (first, name, _) = py.detach(|| s.map(0, None)).map_err(value_error)?;
     let cfg = bench::explore::config(&s.options, &first, None).map_err(value_error)?;
     s.largest = match &s.maps {
         Maps::List(list) => list
@@ -914,12 +954,25 @@ impl EnvCore {
         self.st().spec.k
     }
 
-    /// Start an episode from `seed`; returns the observation.
-    fn reset<'py>(&mut self, py: Python<'py>, seed: u64) -> PyResult<Bound<'py, PyDict>> {
+    /// Start an episode from `seed` (on map `map` of the list or folder if given); returns
+    /// the observation.
+    #[pyo3(signature = (seed, map=None))]
+    fn reset<'py>(
+        &mut self,
+        py: Python<'py>,
+        seed: u64,
+        map: Option<usize>,
+    ) -> PyResult<Bound<'py, PyDict>> {
         let state = self.state.get_mut().unwrap_or_else(|p| p.into_inner());
-        py.detach(|| guarded(|| state.reset(seed)).and_then(|r| r))
+        py.detach(|| guarded(|| state.reset_on(seed, map)).and_then(|r| r))
             .map_err(py_error)?;
         self.observation(py)
+    }
+
+    /// The names of the maps an episode may pick, by index (None for generated maps).
+    #[getter]
+    fn map_names(&self) -> Option<Vec<String>> {
+        self.st().spec.map_names()
     }
 
     /// Go to candidate `action` (with `wrap`, modulo the candidates offered); returns
@@ -1073,25 +1126,47 @@ impl VecEnvCore {
         self.spec().shape
     }
 
+    /// The names of the maps an episode may pick, by index (None for generated maps).
+    #[getter]
+    fn map_names(&self) -> Option<Vec<String>> {
+        self.spec().map_names()
+    }
+
     /// K: the most candidates offered.
     #[getter]
     fn k(&self) -> usize {
         self.spec().k
     }
 
-    /// Start every environment's episode, environment i from `seeds[i]`.
-    fn reset<'py>(&mut self, py: Python<'py>, seeds: Vec<u64>) -> PyResult<Bound<'py, PyDict>> {
-        if seeds.len() != self.states.len() {
+    /// Start every environment's episode, environment i from `seeds[i]` (on map `maps[i]`
+    /// of the list or folder where given).
+    #[pyo3(signature = (seeds, maps=None))]
+    fn reset<'py>(
+        &mut self,
+        py: Python<'py>,
+        seeds: Vec<u64>,
+        maps: Option<Vec<Option<usize>>>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let n = self.states.len();
+        if seeds.len() != n {
             return Err(value_error(format!(
-                "seeds: expected {} seeds, found {}",
-                self.states.len(),
+                "seeds: expected {n} seeds, found {}",
                 seeds.len()
             )));
         }
+        let maps = maps.unwrap_or_else(|| vec![None; n]);
+        if maps.len() != n {
+            return Err(value_error(format!(
+                "options['map']: expected one map index (or None) per environment, {n}, \
+                 found {}",
+                maps.len()
+            )));
+        }
         let (states, pool) = (&self.states, &self.pool);
+        let items: Vec<(u64, Option<usize>)> = seeds.into_iter().zip(maps).collect();
         py.detach(|| {
-            pool.each(seeds, |i, seed| {
-                guarded(|| lock(&states[i]).reset(seed)).and_then(|r| r)
+            pool.each(items, |i, (seed, map)| {
+                guarded(|| lock(&states[i]).reset_on(seed, map)).and_then(|r| r)
             })
             .into_iter()
             .collect::<Result<Vec<()>, String>>()
@@ -1299,12 +1374,25 @@ impl TeamEnvCore {
         self.st().spec.k
     }
 
-    /// Start an episode from `seed`; returns one observation per robot.
-    fn reset<'py>(&mut self, py: Python<'py>, seed: u64) -> PyResult<Vec<Bound<'py, PyDict>>> {
+    /// Start an episode from `seed` (on map `map` of the list or folder if given); returns
+    /// one observation per robot.
+    #[pyo3(signature = (seed, map=None))]
+    fn reset<'py>(
+        &mut self,
+        py: Python<'py>,
+        seed: u64,
+        map: Option<usize>,
+    ) -> PyResult<Vec<Bound<'py, PyDict>>> {
         let state = self.state.get_mut().unwrap_or_else(|p| p.into_inner());
-        py.detach(|| guarded(|| state.reset(seed)).and_then(|r| r))
+        py.detach(|| guarded(|| state.reset_on(seed, map)).and_then(|r| r))
             .map_err(py_error)?;
         self.observations(py)
+    }
+
+    /// The names of the maps an episode may pick, by index (None for generated maps).
+    #[getter]
+    fn map_names(&self) -> Option<Vec<String>> {
+        self.st().spec.map_names()
     }
 
     /// Robot r goes to its candidate `actions[r]` if it is deciding (with `wrap`, modulo

@@ -459,3 +459,68 @@ def test_a_folder_of_dungeon_maps_starts_where_each_marks(tmp_path, write_png):
         ExploreEnv("office", dungeon=True)
     with pytest.raises(TypeError, match="dungeon: expected a bool"):
         ExploreEnv(str(tmp_path), resolution=0.1, dungeon="yes")
+
+
+def test_reset_options_choose_the_map(tmp_path):
+    # Evaluating on every test map once: reset(options={"map": i}) instead of the seed's
+    # pick, on a list, a folder, the vector and the team environment.
+    for w, h, name in [(6, 6, "a"), (12, 4, "b"), (5, 10, "c")]:
+        _house(tmp_path / f"{name}.json", w, h)
+    # A view and range that see each plan's walls, so that first observations tell them apart.
+    kw = dict(resolution=0.1, view=64, k=4, sensor="los:r=5")
+    env = ExploreEnv(str(tmp_path), **kw)
+    assert env.map_names == ["a", "b", "c"]
+    for i, name in enumerate(env.map_names):
+        for s in range(3):
+            assert env.reset(seed=s, options={"map": i})[1]["map"] == name
+    listed = ExploreEnv(frontier.gym.load_folder(tmp_path, resolution=0.1), **kw)
+    assert listed.map_names == ["a", "b", "c"]
+    pick = lambda e, s: episode_on(e, s, 2)
+    assert pick(env, 5) == pick(listed, 5) == pick(env, 5)
+    with pytest.raises(ValueError, match=r"expected the index of one of the 3 maps \(0\.\.3\), found 3"):
+        env.reset(seed=0, options={"map": 3})
+    with pytest.raises(ValueError, match=r"0 or more\), found -1"):
+        env.reset(seed=0, options={"map": -1})
+    with pytest.raises(TypeError, match=r"options\['map'\]: expected the index of a map \(an int\), found bool"):
+        env.reset(seed=0, options={"map": True})
+    with pytest.warns(UserWarning, match="unknown key 'mapp' ignored"):
+        env.reset(seed=0, options={"mapp": 1})
+    generated = ExploreEnv("office", k=4)
+    assert generated.map_names is None
+    with pytest.raises(ValueError, match="the maps are generated .* no list to pick from"):
+        generated.reset(seed=0, options={"map": 0})
+
+    venv = ExploreVectorEnv(3, str(tmp_path), **kw)
+    assert venv.map_names == ["a", "b", "c"]
+    obs, _ = venv.reset(seed=0, options={"map": [2, None, 0]})
+    # Environment i of reset(seed=0) starts the episode ExploreEnv.reset(seed=i) starts.
+    for i, index in enumerate([2, None, 0]):
+        one, _ = env.reset(seed=i, options={"map": index} if index is not None else None)
+        assert (obs["belief"][i] == one["belief"]).all()
+        assert (obs["candidates"][i] == one["candidates"]).all()
+        if index is not None:
+            other, _ = env.reset(seed=i, options={"map": (index + 1) % 3})
+            assert (obs["belief"][i] != other["belief"]).any()
+    obs, _ = venv.reset(seed=4, options={"map": 1})
+    one, _ = env.reset(seed=6, options={"map": 1})
+    assert (obs["belief"][2] == one["belief"]).all()
+    with pytest.raises(ValueError, match="one map index \\(or None\\) per environment, 3, found 2"):
+        venv.reset(seed=0, options={"map": [0, 1]})
+
+    from frontier.pettingzoo import ExploreParallelEnv
+
+    team = ExploreParallelEnv(str(tmp_path), robots=2, **kw)
+    assert team.map_names == ["a", "b", "c"]
+    _, infos = team.reset(seed=1, options={"map": 1})
+    assert infos["robot_0"]["map"] == "b"
+
+
+def episode_on(env, seed, index):
+    """One cf-rr episode on map `index` (observation digests, rewards)."""
+    obs, info = env.reset(seed=seed, options={"map": index})
+    trace = [(obs["belief"].tobytes(), info["map"])]
+    while True:
+        obs, reward, terminated, truncated, info = env.step(Baseline("cf-rr")(env))
+        trace.append((obs["belief"].tobytes(), reward))
+        if terminated or truncated:
+            return trace

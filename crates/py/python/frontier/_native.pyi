@@ -112,8 +112,12 @@ class EnvCore:
     @property
     def k(self) -> int:
         """The most candidates offered."""
-    def reset(self, seed: int) -> Dict[str, np.ndarray]:
-        """Start an episode; returns the observation."""
+    @property
+    def map_names(self) -> Optional[List[str]]:
+        """The names of the maps an episode may pick, by index (None for generated maps)."""
+    def reset(self, seed: int, map: Optional[int] = None) -> Dict[str, np.ndarray]:
+        """Start an episode (on map `map` of the list or folder if given); returns the
+        observation."""
     def step(self, action: int, wrap: bool) -> Tuple[Dict[str, np.ndarray], float, bool, bool]:
         """(observation, reward, terminated, truncated); with `wrap` an action outside the n
         offered candidates is taken modulo n."""
@@ -149,8 +153,13 @@ class VecEnvCore:
     @property
     def k(self) -> int:
         """The most candidates offered."""
-    def reset(self, seeds: List[int]) -> Dict[str, np.ndarray]:
-        """Start every environment's episode."""
+    @property
+    def map_names(self) -> Optional[List[str]]:
+        """The names of the maps an episode may pick, by index (None for generated maps)."""
+    def reset(
+        self, seeds: List[int], maps: Optional[List[Optional[int]]] = None
+    ) -> Dict[str, np.ndarray]:
+        """Start every environment's episode (environment i on map `maps[i]` where given)."""
     def step(
         self, actions: np.ndarray, wrap: bool
     ) -> Tuple[Dict[str, np.ndarray], np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
@@ -186,8 +195,12 @@ class TeamEnvCore:
     @property
     def k(self) -> int:
         """The most candidates offered to one robot."""
-    def reset(self, seed: int) -> List[Dict[str, np.ndarray]]:
-        """Start an episode; one observation per robot."""
+    @property
+    def map_names(self) -> Optional[List[str]]:
+        """The names of the maps an episode may pick, by index (None for generated maps)."""
+    def reset(self, seed: int, map: Optional[int] = None) -> List[Dict[str, np.ndarray]]:
+        """Start an episode (on map `map` of the list or folder if given); one observation
+        per robot."""
     def step(
         self, actions: List[int], wrap: bool
     ) -> Tuple[List[Dict[str, np.ndarray]], float, bool, bool]:

@@ -18,7 +18,8 @@ from __future__ import annotations
 
 import difflib
 import os
-from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
+import warnings
+from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 import gymnasium
 import numpy as np
@@ -119,6 +120,36 @@ def _source(
         if not isinstance(m, Map):
             raise TypeError(f"maps[{i}]: expected a frontier.Map, found {type(m).__name__}")
     return maps, None, None
+
+
+def _map_index(value: Any) -> Optional[int]:
+    """A map index of reset's ``options["map"]``: None, or a non-negative int."""
+    if value is None:
+        return None
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
+        raise TypeError(
+            f"options['map']: expected the index of a map (an int), found {type(value).__name__}"
+        )
+    if value < 0:
+        raise ValueError(f"options['map']: expected the index of a map (0 or more), found {value}")
+    return int(value)
+
+
+def _map_option(options: Optional[Mapping[str, Any]]) -> Any:
+    """What reset's ``options`` ask for: ``options["map"]`` (None when not given)."""
+    if options is None:
+        return None
+    if not isinstance(options, Mapping):
+        raise TypeError(f"options: expected a dict, found {type(options).__name__}")
+    for key in options:
+        if key != "map":
+            # Warned, not refused: API checkers (PettingZoo's) pass options of their own.
+            warnings.warn(
+                f"options: unknown key {key!r} ignored; reset takes 'map', the index of a map "
+                "of the environment's list or folder (see map_names)",
+                stacklevel=3,
+            )
+    return options.get("map")
 
 
 def _action(action: Any) -> int:
@@ -321,13 +352,21 @@ class ExploreEnv(gymnasium.Env):
         info["seed"] = self._seed
         return info
 
+    @property
+    def map_names(self) -> Optional[List[str]]:
+        """The names of the maps of a list or folder, by index (None for generated maps)."""
+        return self._core.map_names
+
     def reset(
         self, *, seed: Optional[int] = None, options: Optional[Dict[str, Any]] = None
     ) -> Tuple[Dict[str, np.ndarray], Dict[str, Any]]:
-        """Start an episode; the same ``seed`` gives the same map, start and episode."""
+        """Start an episode; the same ``seed`` gives the same map, start and episode.
+        ``options={"map": i}`` runs it on map ``i`` of the list or folder (:attr:`map_names`)
+        instead of the one the seed picks, e.g. to evaluate on every test map once."""
+        index = _map_index(_map_option(options))
         super().reset(seed=seed)
         self._seed = _episode_seed(self.np_random)
-        self._obs = self._core.reset(self._seed)
+        self._obs = self._core.reset(self._seed, map=index)
         return self._obs, self._info()
 
     def step(
@@ -400,13 +439,30 @@ class ExploreVectorEnv(VectorEnv):
         self.observation_space = batch_space(self.single_observation_space, num_envs)
         self.action_space = batch_space(self.single_action_space, num_envs)
 
+    @property
+    def map_names(self) -> Optional[List[str]]:
+        """The names of the maps of a list or folder, by index (None for generated maps)."""
+        return self._core.map_names
+
     def reset(
         self,
         *,
         seed: Union[None, int, Sequence[Optional[int]]] = None,
         options: Optional[Dict[str, Any]] = None,
     ) -> Tuple[Dict[str, np.ndarray], Dict[str, Any]]:
-        """Start every environment's episode."""
+        """Start every environment's episode. ``options={"map": m}`` runs them on maps of the
+        list or folder (:attr:`map_names`): ``m`` an index for all, or one index (or None:
+        the seed's pick) per environment. Episodes after an automatic reset pick by seed."""
+        wanted = _map_option(options)
+        if wanted is None or isinstance(wanted, (int, np.integer)):
+            maps = [_map_index(wanted)] * self.num_envs
+        elif isinstance(wanted, Sequence) and not isinstance(wanted, (str, bytes)):
+            maps = [_map_index(m) for m in wanted]
+        else:
+            raise TypeError(
+                "options['map']: expected a map index or one per environment, found "
+                f"{type(wanted).__name__}"
+            )
         if isinstance(seed, (int, np.integer)):
             super().reset(seed=int(seed))
             given: List[Optional[int]] = [int(seed) + i for i in range(self.num_envs)]
@@ -420,7 +476,7 @@ class ExploreVectorEnv(VectorEnv):
             _episode_seed(seeding.np_random(int(s))[0] if s is not None else self.np_random)
             for s in given
         ]
-        return self._core.reset(seeds), {}
+        return self._core.reset(seeds, maps), {}
 
     def step(
         self, actions: Any

@@ -21,7 +21,16 @@ from gymnasium.utils import seeding
 from pettingzoo import ParallelEnv
 
 from . import _native
-from .gym import MapsArg, _action, _check_run, _core_args, _episode_seed, _spaces
+from .gym import (
+    MapsArg,
+    _action,
+    _check_run,
+    _core_args,
+    _episode_seed,
+    _map_index,
+    _map_option,
+    _spaces,
+)
 
 __all__ = ["ExploreParallelEnv"]
 
@@ -89,13 +98,20 @@ class ExploreParallelEnv(ParallelEnv):
     def reset(
         self, seed: Optional[int] = None, options: Optional[Dict[str, Any]] = None
     ) -> Tuple[Dict[str, Dict[str, np.ndarray]], Dict[str, Dict[str, Any]]]:
-        """Start an episode; the same ``seed`` gives the same map, starts and episode."""
+        """Start an episode; the same ``seed`` gives the same map, starts and episode.
+        ``options={"map": i}`` runs it on map ``i`` of the list or folder (:attr:`map_names`)."""
+        index = _map_index(_map_option(options))
         if seed is not None or self._rng is None:
             self._rng = seeding.np_random(seed)[0]
         self._seed = _episode_seed(self._rng)
-        self._obs = self._core.reset(self._seed)
+        self._obs = self._core.reset(self._seed, map=index)
         self.agents = list(self.possible_agents)
         return dict(zip(self.possible_agents, self._obs)), self._infos()
+
+    @property
+    def map_names(self) -> Optional[List[str]]:
+        """The names of the maps of a list or folder, by index (None for generated maps)."""
+        return self._core.map_names
 
     def deciding(self) -> List[str]:
         """The agents whose actions count at this step."""
