@@ -524,3 +524,21 @@ def episode_on(env, seed, index):
         trace.append((obs["belief"].tobytes(), reward))
         if terminated or truncated:
             return trace
+
+
+def test_a_list_of_map_files_is_read_episode_by_episode(tmp_path):
+    # A dataset's train or test split as a list of paths: read as a folder's files are.
+    for w, h, name in [(6, 6, "a"), (12, 4, "b"), (5, 10, "c")]:
+        _house(tmp_path / f"{name}.json", w, h)
+    kw = dict(resolution=0.1, view=64, k=4, sensor="los:r=5")
+    split = [tmp_path / "c.json", str(tmp_path / "a.json")]
+    env = ExploreEnv(split, **kw)
+    assert env.map_names == ["c", "a"]
+    assert {env.reset(seed=s)[1]["map"] for s in range(10)} == {"a", "c"}
+    loaded = ExploreEnv([frontier.Map.load(p, resolution=0.1) for p in split], **kw)
+    for s in range(3):
+        assert episode(env, Baseline("cf-rr"), s) == episode(loaded, Baseline("cf-rr"), s)
+    with pytest.raises(ValueError, match=r"maps\[1\]: .*nope\.json: no such map file"):
+        ExploreEnv([split[0], tmp_path / "nope.json"], **kw)
+    with pytest.raises(TypeError, match=r"maps\[1\]: expected a frontier.Map or a map file's path"):
+        ExploreEnv([frontier.Map.load(split[0], resolution=0.1), split[1]], **kw)

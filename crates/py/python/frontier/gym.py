@@ -33,7 +33,9 @@ from ._native import Map
 
 __all__ = ["ExploreEnv", "ExploreVectorEnv", "Baseline", "RandomPolicy", "load_folder"]
 
-MapsArg = Union[None, str, "os.PathLike[str]", Map, Sequence[Map]]
+MapsArg = Union[
+    None, str, "os.PathLike[str]", Map, Sequence[Map], Sequence[Union[str, "os.PathLike[str]"]]
+]
 
 _MAP_EXTENSIONS = (".yaml", ".yml", ".png", ".pgm", ".map", ".json", ".txt")
 
@@ -85,10 +87,10 @@ def _source(
     resolution)): a folder's files are read when an episode picks one, so that a dataset of
     thousands of plans is never all in memory (the first is read now, to check the options
     and size the observation)."""
-    if dungeon and not isinstance(maps, (str, os.PathLike)):
+    if dungeon and (maps is None or isinstance(maps, Map)):
         raise ValueError(
-            "dungeon: reads PNG files as dungeon maps: give a folder or a file as maps "
-            "(or Map.load(path, dungeon=True) maps)"
+            "dungeon: reads PNG files as dungeon maps: give a folder, a file or a list of "
+            "files as maps (or Map.load(path, dungeon=True) maps)"
         )
     if maps is None:
         return None, ("office", size, resolution), None
@@ -116,9 +118,24 @@ def _source(
             f"a folder, found {type(maps).__name__}"
         )
     maps = list(maps)
+    if maps and all(isinstance(m, (str, os.PathLike)) for m in maps):
+        # Map files (a dataset's train or test split): read episode by episode, as a folder's.
+        files = [os.fspath(m) for m in maps]
+        for i, f in enumerate(files):
+            if not os.path.isfile(f):
+                raise ValueError(f"maps[{i}]: {f}: no such map file")
+        return None, None, (files, resolution, dungeon)
+    if dungeon:
+        raise ValueError(
+            "dungeon: reads PNG files as dungeon maps: give a folder, a file or a list of "
+            "files as maps (or Map.load(path, dungeon=True) maps)"
+        )
     for i, m in enumerate(maps):
         if not isinstance(m, Map):
-            raise TypeError(f"maps[{i}]: expected a frontier.Map, found {type(m).__name__}")
+            raise TypeError(
+                f"maps[{i}]: expected a frontier.Map or a map file's path (all of one kind), "
+                f"found {type(m).__name__}"
+            )
     return maps, None, None
 
 
@@ -268,9 +285,10 @@ class ExploreEnv(gymnasium.Env):
         maps: a :class:`~frontier.Map`, a list of maps (each episode picks one by its seed),
             a generator kind (``"office"``, ``"hospital"``, ``"cave"``, ``"maze"``,
             ``"potholes"``, ``"empty"``; each episode generates one from its seed), a map file
-            or a folder of map files (each episode reads the one its seed picks, so a
-            dataset such as HouseExpo's 35,000 plans is never all in memory; maps of
-            different sizes need a ``view``). Default: generated offices.
+            or a folder of map files, or a list of map files' paths (a dataset's split): each
+            episode reads the one its seed picks, so a dataset such as HouseExpo's 35,000
+            plans is never all in memory (maps of different sizes need a ``view``). Default:
+            generated offices.
         size: (width, height) in metres of generated maps (default: the kind's).
         resolution: metres per cell of generated maps, or of a bare bitmap or a HouseExpo
             plan (a file or in a folder).
