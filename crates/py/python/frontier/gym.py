@@ -84,9 +84,9 @@ def _source(
     dungeon: bool = False,
 ) -> _Source:
     """(list of maps, None, None), (None, generator spec, None) or (None, None, (map files,
-    resolution)): a folder's files are read when an episode picks one, so that a dataset of
-    thousands of plans is never all in memory (the first is read now, to check the options
-    and size the observation)."""
+    resolution, dungeon)): map files (a folder's, or a list of paths) are read when an
+    episode picks one, so that a dataset of thousands of plans is never all in memory (the
+    first is read at construction, to check the options and size the observation)."""
     if dungeon and (maps is None or isinstance(maps, Map)):
         raise ValueError(
             "dungeon: reads PNG files as dungeon maps: give a folder, a file or a list of "
