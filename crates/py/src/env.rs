@@ -1166,7 +1166,9 @@ impl VecEnvCore {
         let items: Vec<(u64, Option<usize>)> = seeds.into_iter().zip(maps).collect();
         py.detach(|| {
             pool.each(items, |i, (seed, map)| {
-                guarded(|| lock(&states[i]).reset_on(seed, map)).and_then(|r| r)
+                guarded(|| lock(&states[i]).reset_on(seed, map))
+                    .and_then(|r| r)
+                    .map_err(|e| format!("environment {i}: {e}"))
             })
             .into_iter()
             .collect::<Result<Vec<()>, String>>()

@@ -506,6 +506,8 @@ def test_reset_options_choose_the_map(tmp_path):
     assert (obs["belief"][2] == one["belief"]).all()
     with pytest.raises(ValueError, match="one map index \\(or None\\) per environment, 3, found 2"):
         venv.reset(seed=0, options={"map": [0, 1]})
+    with pytest.raises(ValueError, match=r"environment 2: options\['map'\]: expected the index of one of the 3 maps"):
+        venv.reset(seed=0, options={"map": [0, 1, 3]})
 
     from frontier.pettingzoo import ExploreParallelEnv
 
