@@ -29,7 +29,7 @@ use sim::spin_pool::SpinPool;
 use sim::{Session, Status};
 use world::{EnvKind, EnvSpec};
 
-use crate::map::Map;
+use crate::map::{Map, read_file, stem};
 use crate::{guarded, internal, value_error};
 
 /// A generator spec from Python: (kind, size in metres, resolution).
@@ -132,9 +132,7 @@ impl Spec {
                 dungeon,
             } => {
                 let path = &paths[pick(paths.len())?];
-                let m = Map::read(path, resolution.map(|r| (r, r)), false, None, *dungeon)?;
-                let map = Arc::try_unwrap(m.map).unwrap_or_else(|shared| (*shared).clone());
-                Ok((map, m.name, m.start))
+                read_file(path, resolution.map(|r| (r, r)), false, None, *dungeon)
             }
         }
     }
@@ -147,16 +145,7 @@ impl Spec {
     fn map_names(&self) -> Option<Vec<String>> {
         match &self.maps {
             Maps::List(maps) => Some(maps.iter().map(|m| m.name.clone()).collect()),
-            Maps::Files { paths, .. } => Some(
-                paths
-                    .iter()
-                    .map(|p| {
-                        p.file_stem()
-                            .map(|s| s.to_string_lossy().into_owned())
-                            .unwrap_or_else(|| "map".into())
-                    })
-                    .collect(),
-            ),
+            Maps::Files { paths, .. } => Some(paths.iter().map(|p| stem(p)).collect()),
             Maps::Generated { .. } => None,
         }
     }
@@ -219,13 +208,9 @@ impl State {
         }
     }
 
-    fn reset(&mut self, seed: u64) -> Result<(), String> {
-        self.reset_on(seed, None)
-    }
-
     /// Start the episode of `seed` on map `index` of the list or folder (None: the map the
     /// seed picks).
-    fn reset_on(&mut self, seed: u64, index: Option<usize>) -> Result<(), String> {
+    fn reset(&mut self, seed: u64, index: Option<usize>) -> Result<(), String> {
         let spec = self.spec.clone();
         let (map, name, marked) = spec.map(seed, index)?;
         if spec.view.is_none() && (map.height(), map.width()) != spec.shape {
@@ -378,7 +363,7 @@ impl State {
     /// Reset if the last step ended the episode (vector environments), else step.
     fn auto_step(&mut self, action: i64, wrap: bool) -> Result<StepOut, String> {
         if self.needs_reset {
-            self.reset(splitmix(self.seed))?;
+            self.reset(splitmix(self.seed), None)?;
             return Ok(StepOut::default());
         }
         let out = self.step(&[action], wrap)?;
@@ -891,6 +876,19 @@ fn check_memory(spec: &Spec, envs: usize, agents: usize) -> PyResult<()> {
     .map_err(|e| value_error(e.to_string()))
 }
 
+/// Start the episode of `seed` (on map `map` if given) of a single or team environment's
+/// state, with the GIL released.
+fn reset_one(
+    py: Python<'_>,
+    state: &mut Mutex<State>,
+    seed: u64,
+    map: Option<usize>,
+) -> PyResult<()> {
+    let state = state.get_mut().unwrap_or_else(|p| p.into_inner());
+    py.detach(|| guarded(|| state.reset(seed, map)).and_then(|r| r))
+        .map_err(py_error)
+}
+
 /// The state behind `m` (a panic inside never leaves it poisoned for good).
 fn lock<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
     m.lock().unwrap_or_else(|p| p.into_inner())
@@ -963,9 +961,7 @@ impl EnvCore {
         seed: u64,
         map: Option<usize>,
     ) -> PyResult<Bound<'py, PyDict>> {
-        let state = self.state.get_mut().unwrap_or_else(|p| p.into_inner());
-        py.detach(|| guarded(|| state.reset_on(seed, map)).and_then(|r| r))
-            .map_err(py_error)?;
+        reset_one(py, &mut self.state, seed, map)?;
         self.observation(py)
     }
 
@@ -1166,7 +1162,7 @@ impl VecEnvCore {
         let items: Vec<(u64, Option<usize>)> = seeds.into_iter().zip(maps).collect();
         py.detach(|| {
             pool.each(items, |i, (seed, map)| {
-                guarded(|| lock(&states[i]).reset_on(seed, map))
+                guarded(|| lock(&states[i]).reset(seed, map))
                     .and_then(|r| r)
                     .map_err(|e| format!("environment {i}: {e}"))
             })
@@ -1385,9 +1381,7 @@ impl TeamEnvCore {
         seed: u64,
         map: Option<usize>,
     ) -> PyResult<Vec<Bound<'py, PyDict>>> {
-        let state = self.state.get_mut().unwrap_or_else(|p| p.into_inner());
-        py.detach(|| guarded(|| state.reset_on(seed, map)).and_then(|r| r))
-            .map_err(py_error)?;
+        reset_one(py, &mut self.state, seed, map)?;
         self.observations(py)
     }
 

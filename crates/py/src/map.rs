@@ -81,54 +81,55 @@ impl Map {
             start: None,
         }
     }
+}
 
-    /// Read a map file as `frontier.Map.load` does (`resolution` already checked);
-    /// errors name the file.
-    pub fn read(
-        path: &Path,
-        resolution: Option<(f64, f64)>,
-        border: bool,
-        topic: Option<&str>,
-        dungeon: bool,
-    ) -> Result<Self, String> {
-        let is_mcap = path
-            .extension()
-            .is_some_and(|e| e.eq_ignore_ascii_case("mcap"));
-        if topic.is_some() && !is_mcap {
-            return Err(format!(
-                "topic: chooses the map topic of an MCAP recording (a .mcap file), found {}",
-                path.display()
-            ));
-        }
-        let name = path
-            .file_stem()
-            .map(|s| s.to_string_lossy().into_owned())
-            .unwrap_or_else(|| "map".into());
-        if is_mcap {
-            if resolution.is_some() || border || dungeon {
-                return Err(
-                    "resolution / border / dungeon: an MCAP recording's map carries \
-                            its own resolution"
-                        .into(),
-                );
-            }
-            let map = record::mcap_read::load_map(path, topic)?;
-            return Ok(Self::new(map, name));
-        }
-        if dungeon {
-            let Some((r, _)) = resolution.filter(|(x, y)| x == y) else {
-                return Err("dungeon: expected one resolution (square cells) for the PNG".into());
-            };
-            let bytes = grid::io::read_bytes(path).map_err(|e| e.to_string())?;
-            let d = grid::io::parse_dungeon(&bytes, path, r).map_err(|e| e.to_string())?;
-            let mut m = Self::new(d.map, name);
-            m.start = Some(d.start);
-            return Ok(m);
-        }
-        let opts = grid::io::LoadOptions { resolution, border };
-        let map = grid::io::load_map(path, &opts).map_err(|e| e.to_string())?;
-        Ok(Self::new(map, name))
+/// The name runs report for a map file: its stem (`plans/h12.json` is `h12`).
+pub fn stem(path: &Path) -> String {
+    path.file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "map".into())
+}
+
+/// Read a map file as `frontier.Map.load` does (`resolution` already checked): the map, its
+/// [`stem`] and the start it marks (a dungeon PNG's). Errors name the file.
+pub fn read_file(
+    path: &Path,
+    resolution: Option<(f64, f64)>,
+    border: bool,
+    topic: Option<&str>,
+    dungeon: bool,
+) -> Result<(GridMap, String, Option<grid::Cell>), String> {
+    let is_mcap = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("mcap"));
+    if topic.is_some() && !is_mcap {
+        return Err(format!(
+            "topic: chooses the map topic of an MCAP recording (a .mcap file), found {}",
+            path.display()
+        ));
     }
+    let name = stem(path);
+    if is_mcap {
+        if resolution.is_some() || border || dungeon {
+            return Err(
+                "resolution / border / dungeon: an MCAP recording's map carries its own \
+                 resolution"
+                    .into(),
+            );
+        }
+        return Ok((record::mcap_read::load_map(path, topic)?, name, None));
+    }
+    if dungeon {
+        let Some((r, _)) = resolution.filter(|(x, y)| x == y) else {
+            return Err("dungeon: expected one resolution (square cells) for the PNG".into());
+        };
+        let bytes = grid::io::read_bytes(path).map_err(|e| e.to_string())?;
+        let d = grid::io::parse_dungeon(&bytes, path, r).map_err(|e| e.to_string())?;
+        return Ok((d.map, name, Some(d.start)));
+    }
+    let opts = grid::io::LoadOptions { resolution, border };
+    let map = grid::io::load_map(path, &opts).map_err(|e| e.to_string())?;
+    Ok((map, name, None))
 }
 
 #[pymethods]
@@ -148,7 +149,11 @@ impl Map {
         dungeon: bool,
     ) -> PyResult<Self> {
         let resolution = resolution_arg(resolution)?;
-        Self::read(&path, resolution, border, topic.as_deref(), dungeon).map_err(value_error)
+        let (map, name, start) =
+            read_file(&path, resolution, border, topic.as_deref(), dungeon).map_err(value_error)?;
+        let mut m = Self::new(map, name);
+        m.start = start;
+        Ok(m)
     }
 
     /// A map from a 2-D numpy array: bool (True = occupied) or uint8 (0 unknown, 1 free,

@@ -455,6 +455,13 @@ def test_a_folder_of_dungeon_maps_starts_where_each_marks(tmp_path, write_png):
         assert episode(env, Baseline("cf-rr"), s) == episode(eager, Baseline("cf-rr"), s)
     with pytest.raises(ValueError, match="dungeon: expected one resolution"):
         ExploreEnv(str(tmp_path), dungeon=True)
+    # Regression: load_folder(dungeon=True) on a folder without PNGs returned no maps.
+    (tmp_path / "none").mkdir()
+    (tmp_path / "none" / "a.txt").write_text("#")
+    with pytest.raises(ValueError, match=r"none: no \.png files \(dungeon=True\)"):
+        frontier.gym.load_folder(tmp_path / "none", 0.1, dungeon=True)
+    with pytest.raises(ValueError, match=r"none: no \.png files \(dungeon=True\)"):
+        ExploreEnv(str(tmp_path / "none"), resolution=0.1, dungeon=True)
     with pytest.raises(ValueError, match="dungeon: reads PNG files"):
         ExploreEnv("office", dungeon=True)
     with pytest.raises(TypeError, match="dungeon: expected a bool"):

@@ -40,15 +40,20 @@ MapsArg = Union[
 _MAP_EXTENSIONS = (".yaml", ".yml", ".png", ".pgm", ".map", ".json", ".txt")
 
 
-def _folder_files(folder: Union[str, "os.PathLike[str]"]) -> List[str]:
+def _folder_files(folder: Union[str, "os.PathLike[str]"], dungeon: bool = False) -> List[str]:
     """The map files of ``folder``, sorted by name: ROS YAML files if there are any (their
     images are read through them), else every bitmap, MovingAI ``.map``, HouseExpo
-    ``.json`` and ``.txt``."""
+    ``.json`` and ``.txt``; with ``dungeon`` its PNGs. ValueError when there are none."""
     names = sorted(os.listdir(folder))
-    yaml = [n for n in names if n.endswith((".yaml", ".yml"))]
-    chosen = yaml or [n for n in names if n.endswith(_MAP_EXTENSIONS)]
-    if not chosen:
-        raise ValueError(f"{os.fspath(folder)}: no map files ({', '.join(_MAP_EXTENSIONS)})")
+    if dungeon:
+        chosen = [n for n in names if n.endswith(".png")]
+        if not chosen:
+            raise ValueError(f"{os.fspath(folder)}: no .png files (dungeon=True)")
+    else:
+        yaml = [n for n in names if n.endswith((".yaml", ".yml"))]
+        chosen = yaml or [n for n in names if n.endswith(_MAP_EXTENSIONS)]
+        if not chosen:
+            raise ValueError(f"{os.fspath(folder)}: no map files ({', '.join(_MAP_EXTENSIONS)})")
     return [os.path.join(os.fspath(folder), n) for n in chosen]
 
 
@@ -64,11 +69,16 @@ def load_folder(
     HouseExpo ``.json`` (needs ``resolution``) and ``.txt``; with ``dungeon=True`` its PNGs
     as dungeon maps (:meth:`Map.load`). (An environment given the folder itself reads each
     episode's map when the episode starts instead.)"""
+    files = _folder_files(folder, dungeon)
     if dungeon:
-        files = [p for p in _folder_files(folder) if p.endswith(".png")]
         return [Map.load(p, resolution=resolution, dungeon=True) for p in files]
-    return [Map.load(p, resolution=resolution, border=border) for p in _folder_files(folder)]
+    return [Map.load(p, resolution=resolution, border=border) for p in files]
 
+
+_DUNGEON_NEEDS_FILES = (
+    "dungeon: reads PNG files as dungeon maps: give a folder, a file or a list of files as "
+    "maps (or Map.load(path, dungeon=True) maps)"
+)
 
 _Source = Tuple[
     Optional[List[Map]],
@@ -88,10 +98,7 @@ def _source(
     episode picks one, so that a dataset of thousands of plans is never all in memory (the
     first is read at construction, to check the options and size the observation)."""
     if dungeon and (maps is None or isinstance(maps, Map)):
-        raise ValueError(
-            "dungeon: reads PNG files as dungeon maps: give a folder, a file or a list of "
-            "files as maps (or Map.load(path, dungeon=True) maps)"
-        )
+        raise ValueError(_DUNGEON_NEEDS_FILES)
     if maps is None:
         return None, ("office", size, resolution), None
     if isinstance(maps, Map):
@@ -99,12 +106,7 @@ def _source(
     if isinstance(maps, (str, os.PathLike)):
         path = os.fspath(maps)
         if os.path.isdir(path):
-            files = _folder_files(path)
-            if dungeon:
-                files = [f for f in files if f.endswith(".png")]
-                if not files:
-                    raise ValueError(f"{path}: no .png files (dungeon=True)")
-            return None, None, (files, resolution, dungeon)
+            return None, None, (_folder_files(path, dungeon), resolution, dungeon)
         if os.path.isfile(path):
             return [Map.load(path, resolution=resolution, dungeon=dungeon)], None, None
         if isinstance(maps, os.PathLike) or os.sep in path or path.endswith(_MAP_EXTENSIONS):
@@ -126,10 +128,7 @@ def _source(
                 raise ValueError(f"maps[{i}]: {f}: no such map file")
         return None, None, (files, resolution, dungeon)
     if dungeon:
-        raise ValueError(
-            "dungeon: reads PNG files as dungeon maps: give a folder, a file or a list of "
-            "files as maps (or Map.load(path, dungeon=True) maps)"
-        )
+        raise ValueError(_DUNGEON_NEEDS_FILES)
     for i, m in enumerate(maps):
         if not isinstance(m, Map):
             raise TypeError(
