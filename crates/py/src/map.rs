@@ -159,8 +159,8 @@ impl Map {
     /// A map from a 2-D numpy array: bool (True = occupied) or uint8 (0 unknown, 1 free,
     /// 2 occupied); row 0 is the top row.
     #[staticmethod]
-    #[pyo3(signature = (array, resolution, name="array".to_string()))]
-    fn from_numpy(array: &Bound<'_, PyAny>, resolution: f64, name: String) -> PyResult<Self> {
+    #[pyo3(signature = (array, resolution, name="array"))]
+    fn from_numpy(array: &Bound<'_, PyAny>, resolution: f64, name: &str) -> PyResult<Self> {
         check_resolution(resolution)?;
         let cells: Vec<Occ>;
         let (h, w);
@@ -208,7 +208,7 @@ impl Map {
             )));
         }
         let grid = Grid::from_vec(w, h, cells).ok_or_else(|| value_error("array: bad shape"))?;
-        Ok(Self::new(GridMap::new(grid, resolution), name))
+        Ok(Self::new(GridMap::new(grid, resolution), name.to_string()))
     }
 
     /// Generate a built-in environment (office, hospital, cave, maze, potholes, empty) from

@@ -260,7 +260,7 @@ def explore_many(
 
 def _progress(
     progress: Union[bool, Callable[[int, int], Any], None], total: int
-) -> Tuple[Optional[Callable[[int, int], Any]], Callable[[], None]]:
+) -> Tuple[Optional[Callable[[int, int], Any]], Callable[[], Any]]:
     """The native progress callback for ``explore_many``'s ``progress`` and a function that
     closes the display."""
     if progress is None or progress is False:

@@ -1,12 +1,25 @@
 """Type stubs of the native module `frontier._native` (the Rust side of the package)."""
 
 from os import PathLike
-from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
+from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union, final
 
 import numpy as np
 
+__all__ = [
+    "Map",
+    "EnvCore",
+    "VecEnvCore",
+    "TeamEnvCore",
+    "explore",
+    "explore_many",
+    "strategies",
+    "load_rows",
+    "__version__",
+]
+
 __version__: str
 
+@final
 class Map:
     """A ground-truth occupancy map: cells (0 unknown, 1 free, 2 occupied), resolution in
     metres per cell, and the name runs report."""
@@ -89,11 +102,12 @@ def strategies() -> List[Tuple[str, str]]:
 def load_rows(path: Union[str, PathLike[str]]) -> str:
     """Every trial of a study store as a JSON array of rows."""
 
+@final
 class EnvCore:
     """One exploration environment (the core of `frontier.gym.ExploreEnv`)."""
 
-    def __init__(
-        self,
+    def __new__(
+        cls,
         maps: Optional[List[Map]] = None,
         generator: Optional[Tuple[str, Optional[Tuple[float, float]], Optional[float]]] = None,
         files: Optional[Tuple[List[str], Optional[float], bool]] = None,
@@ -105,7 +119,7 @@ class EnvCore:
         max_path_m: Optional[float] = None,
         max_steps: Optional[int] = None,
         gain: bool = False,
-    ) -> None: ...
+    ) -> EnvCore: ...
     @property
     def shape(self) -> Tuple[int, int]:
         """Observation (height, width)."""
@@ -128,11 +142,12 @@ class EnvCore:
     def baseline_action(self, preset: str) -> int:
         """The action `preset` would take now."""
 
+@final
 class VecEnvCore:
     """N exploration environments stepped together on Rust threads."""
 
-    def __init__(
-        self,
+    def __new__(
+        cls,
         n: int,
         maps: Optional[List[Map]] = None,
         generator: Optional[Tuple[str, Optional[Tuple[float, float]], Optional[float]]] = None,
@@ -146,7 +161,7 @@ class VecEnvCore:
         max_steps: Optional[int] = None,
         gain: bool = False,
         threads: Optional[int] = None,
-    ) -> None: ...
+    ) -> VecEnvCore: ...
     @property
     def shape(self) -> Tuple[int, int]:
         """Observation (height, width)."""
@@ -168,12 +183,13 @@ class VecEnvCore:
     def baseline_actions(self, preset: str) -> List[int]:
         """Each environment's action under `preset`."""
 
+@final
 class TeamEnvCore:
     """A team exploring together, one agent per robot (the core of
     `frontier.pettingzoo.ExploreParallelEnv`)."""
 
-    def __init__(
-        self,
+    def __new__(
+        cls,
         maps: Optional[List[Map]] = None,
         generator: Optional[Tuple[str, Optional[Tuple[float, float]], Optional[float]]] = None,
         files: Optional[Tuple[List[str], Optional[float], bool]] = None,
@@ -185,7 +201,7 @@ class TeamEnvCore:
         max_path_m: Optional[float] = None,
         max_steps: Optional[int] = None,
         gain: bool = False,
-    ) -> None: ...
+    ) -> TeamEnvCore: ...
     @property
     def robots(self) -> int:
         """Number of robots (agents)."""

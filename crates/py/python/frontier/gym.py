@@ -119,23 +119,25 @@ def _source(
             "maps: expected a frontier.Map, a list of maps, a generator kind, a map file or "
             f"a folder, found {type(maps).__name__}"
         )
-    maps = list(maps)
-    if maps and all(isinstance(m, (str, os.PathLike)) for m in maps):
+    items = list(maps)
+    paths = [m for m in items if isinstance(m, (str, os.PathLike))]
+    if items and len(paths) == len(items):
         # Map files (a dataset's train or test split): read episode by episode, as a folder's.
-        files = [os.fspath(m) for m in maps]
+        files = [os.fspath(m) for m in paths]
         for i, f in enumerate(files):
             if not os.path.isfile(f):
                 raise ValueError(f"maps[{i}]: {f}: no such map file")
         return None, None, (files, resolution, dungeon)
     if dungeon:
         raise ValueError(_DUNGEON_NEEDS_FILES)
-    for i, m in enumerate(maps):
-        if not isinstance(m, Map):
-            raise TypeError(
-                f"maps[{i}]: expected a frontier.Map or a map file's path (all of one kind), "
-                f"found {type(m).__name__}"
-            )
-    return maps, None, None
+    loaded = [m for m in items if isinstance(m, Map)]
+    if len(loaded) < len(items):
+        i, m = next((i, m) for i, m in enumerate(items) if not isinstance(m, Map))
+        raise TypeError(
+            f"maps[{i}]: expected a frontier.Map or a map file's path (all of one kind), "
+            f"found {type(m).__name__}"
+        )
+    return loaded, None, None
 
 
 def _map_index(value: Any) -> Optional[int]:
