@@ -92,6 +92,23 @@ def test_invalid_actions(office):
         ExploreEnv([office, frontier.Map.generate("cave", size=(8, 8), resolution=0.25)])
 
 
+def test_action_masks_follow_the_observation(office):
+    """action_masks() (sb3-contrib's MaskablePPO asks for it) is the observation's mask as
+    bools, step after step, and needs a reset first."""
+    env = ExploreEnv(office, k=8)
+    with pytest.raises(gymnasium.error.ResetNeeded, match="call reset"):
+        env.action_masks()
+    obs, _ = env.reset(seed=1)
+    for _ in range(6):
+        mask = env.action_masks()
+        assert mask.dtype == bool and mask.shape == (8,)
+        assert mask.tolist() == [bool(v) for v in obs["action_mask"]]
+        assert mask.any()
+        obs, _, terminated, truncated, _ = env.step(int(np.flatnonzero(mask)[-1]))
+        if terminated or truncated:
+            break
+
+
 def test_wrapped_actions_take_the_candidate_modulo_the_offer(office):
     """The default invalid_action="wrap": an index beyond the candidates offered (or
     negative) is taken modulo their number, a valid one as it is."""

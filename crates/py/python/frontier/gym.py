@@ -400,6 +400,13 @@ class ExploreEnv(gymnasium.Env):
         """The action ``preset`` (a paper's strategy, e.g. ``"cf-rr"``) would take now."""
         return self._core.baseline_action(preset)
 
+    def action_masks(self) -> np.ndarray:
+        """The current observation's ``action_mask`` as a (K,) bool array: the method
+        sb3-contrib's ``MaskablePPO`` asks an environment for."""
+        if self._obs is None:
+            raise gymnasium.error.ResetNeeded("action_masks: call reset() before asking for masks")
+        return self._obs["action_mask"].astype(bool)
+
     def render(self) -> Optional[np.ndarray]:
         """An RGB array of the current belief (``render_mode="rgb_array"``)."""
         if self.render_mode != "rgb_array" or self._obs is None:
