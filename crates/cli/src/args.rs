@@ -22,8 +22,9 @@ pub struct MapSource {
     /// The OccupancyGrid topic of an MCAP --map (default: its only one, or /map).
     #[arg(long)]
     pub topic: Option<String>,
-    /// Metres per cell for bitmaps and .map files; "RX,RY" for non-square pixels; for --env,
-    /// the resolution to generate at.
+    /// Metres per cell: needed for bare bitmaps, .json and --dungeon maps, 1 if not given for
+    /// .map and .txt, and overriding a ROS YAML's own; "RX,RY" for non-square pixels; for
+    /// --env, the resolution to generate at.
     #[arg(long)]
     pub resolution: Option<String>,
     /// Add a wall around a bare bitmap (Stage floor plans often have none).

@@ -188,3 +188,33 @@ fn thresholds_are_strict() {
         }
     }
 }
+
+/// A resolution given with a ROS YAML overrides the YAML's own (the CLI's `--resolution`
+/// with `--map X.yaml`), origin kept; non-square pixels are resampled as for bitmaps.
+#[test]
+fn resolution_given_overrides_a_yamls() {
+    let dir = scratch("yaml-override");
+    let cells = Grid::from_vec(3, 2, vec![Occ::Free; 6]).expect("size");
+    let m = GridMap {
+        cells,
+        resolution: 0.05,
+        origin: [1.0, 2.0, 0.0],
+    };
+    let path = file(&dir, "yaml");
+    save_map(&m, &path).expect("save");
+    let own = load_map(&path, &LoadOptions::default()).expect("load");
+    assert_eq!((own.resolution, own.width(), own.height()), (0.05, 3, 2));
+    let given = load_map(&path, &LoadOptions::with_resolution(0.1)).expect("load");
+    assert_eq!(
+        (given.resolution, given.width(), given.height()),
+        (0.1, 3, 2)
+    );
+    assert_eq!(given.origin, m.origin);
+    let opts = LoadOptions {
+        resolution: Some((0.1, 0.2)),
+        border: false,
+    };
+    let tall = load_map(&path, &opts).expect("load");
+    assert_eq!((tall.resolution, tall.width(), tall.height()), (0.1, 3, 4));
+    let _ = std::fs::remove_dir_all(&dir);
+}

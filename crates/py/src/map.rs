@@ -138,7 +138,8 @@ impl Map {
     /// (needs `resolution`), MovingAI `.map`, HouseExpo `.json` (needs `resolution`), ASCII
     /// `.txt`, or an MCAP recording (`.mcap`: its last OccupancyGrid, on `topic` if it has
     /// several). `dungeon=True` reads a PNG as a dungeon map of learned-exploration work
-    /// (free above 150, the start marked by pixels of value 208, kept as `start`).
+    /// (free above 150, the start marked by pixels of value 208, kept as `start`). A
+    /// `resolution` given with a ROS YAML overrides the YAML's.
     #[staticmethod]
     #[pyo3(signature = (path, resolution=None, border=false, *, topic=None, dungeon=false))]
     fn load(

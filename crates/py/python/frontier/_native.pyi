@@ -36,7 +36,7 @@ class Map:
         """Load a map file the CLI reads (ROS YAML + PGM/PNG, bare PGM/PNG with
         `resolution`, MovingAI `.map`, HouseExpo `.json`, ASCII `.txt`, the last
         OccupancyGrid of an MCAP recording on `topic`; `dungeon=True`: a dungeon PNG and its
-        marked start)."""
+        marked start). A `resolution` given with a ROS YAML overrides the YAML's."""
     @staticmethod
     def from_numpy(array: np.ndarray, resolution: float, name: str = "array") -> Map:
         """A map from a 2-D bool (True = occupied) or uint8 (0 unknown, 1 free, 2 occupied)
