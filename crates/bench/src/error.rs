@@ -47,12 +47,13 @@ pub enum BenchError {
         message: String,
     },
     /// The results database failed.
-    #[error("{path}: {source}")]
+    #[error("{path}: {cause}")]
     Sql {
         /// The database file.
         path: PathBuf,
-        /// The cause.
-        source: rusqlite::Error,
+        /// The cause, already in the message: not a `#[source]`, or reporters that print
+        /// the chain (`{:#}`) would repeat it and SQLite's own wording of it.
+        cause: rusqlite::Error,
     },
     /// A database does not hold what is expected (another scenario, a foreign schema).
     #[error("{path}: {message}")]
@@ -70,9 +71,9 @@ pub enum BenchError {
 impl BenchError {
     /// An SQLite error on `path`.
     pub fn sql(path: &std::path::Path) -> impl FnOnce(rusqlite::Error) -> BenchError + '_ {
-        move |source| BenchError::Sql {
+        move |cause| BenchError::Sql {
             path: path.to_path_buf(),
-            source,
+            cause,
         }
     }
 

@@ -369,6 +369,23 @@ impl Store {
     /// SQLite's `quick_check` (a damaged file would otherwise resume as "all done" from an
     /// intact key index over lost rows) and be a results store, not some other database.
     pub fn open_raw(path: &Path) -> Result<Store, BenchError> {
+        if path.is_dir() {
+            return Err(BenchError::Store {
+                path: path.to_path_buf(),
+                message: "is a folder; expected a results database file (e.g. study.sqlite)".into(),
+            });
+        }
+        if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty())
+            && !dir.is_dir()
+        {
+            return Err(BenchError::Store {
+                path: path.to_path_buf(),
+                message: format!(
+                    "the folder {} does not exist; create it first",
+                    dir.display()
+                ),
+            });
+        }
         let existing = std::fs::metadata(path).is_ok_and(|m| m.len() > 0);
         let sql = BenchError::sql(path);
         let conn = Connection::open(path).map_err(sql)?;

@@ -320,14 +320,40 @@ fn regression_io_error_cause_is_printed_once() {
     let dir = tempfile::tempdir().unwrap();
     let missing = dir.path().join("x.toml");
     let e = Source::read(&missing).expect_err("missing file");
-    // What `{:#}` of anyhow prints: the error, then each source after ": ".
+    let chain = chain(&e);
+    assert_eq!(chain.matches("os error 2").count(), 1, "{chain}");
+}
+
+/// What `{:#}` of anyhow prints of `e`: the error, then each source after ": ".
+fn chain(e: &dyn std::error::Error) -> String {
     let mut chain = e.to_string();
-    let mut source = std::error::Error::source(&e);
+    let mut source = e.source();
     while let Some(s) = source {
         chain += &format!(": {s}");
         source = s.source();
     }
-    assert_eq!(chain.matches("os error 2").count(), 1, "{chain}");
+    chain
+}
+
+/// Regression: a study store in a folder that does not exist, or a folder given as the
+/// store, printed SQLite's "unable to open database file" three times ("x.sqlite: unable
+/// to open database file: x.sqlite: unable to open database file: x.sqlite: Error code
+/// 14: ...") and not why.
+#[test]
+fn regression_store_path_errors_say_why_once() {
+    let dir = tempfile::tempdir().unwrap();
+    let missing = dir.path().join("no-such-folder").join("s.sqlite");
+    let e = Store::open_raw(&missing).err().expect("no folder");
+    let text = chain(&e);
+    assert!(text.contains("no-such-folder does not exist"), "{text}");
+    assert!(!text.contains("unable to open"), "{text}");
+    let e = Store::open_raw(dir.path()).err().expect("a folder");
+    let text = chain(&e);
+    assert!(text.contains("is a folder"), "{text}");
+    assert!(!text.contains("unable to open"), "{text}");
+    // In a folder that exists, the store is made.
+    let db = dir.path().join("s.sqlite");
+    Store::open_raw(&db).expect("a new store");
 }
 
 /// Regression: generating an environment was not estimated first: `frontier env cave
