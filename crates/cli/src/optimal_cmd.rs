@@ -392,6 +392,27 @@ fn positions(out: &Outcome) -> Vec<Cell> {
         .unwrap_or_default()
 }
 
+/// The summary's line on the path's length in metres (`res` metres per solve cell).
+fn length_line(out: &Outcome, res: f64) -> String {
+    if out.upper_bound.is_finite() {
+        format!(
+            "length {:.2} m ({:.3} cells), optimal: {}, bounds [{:.2}, {:.2}] m",
+            out.upper_bound * res,
+            out.upper_bound,
+            out.status == optimal::Status::Optimal,
+            out.lower_bound * res,
+            out.upper_bound * res
+        )
+    } else if out.status == optimal::Status::NoSolution {
+        "no solution".into()
+    } else {
+        format!(
+            "no path found before the search stopped; optimal length ≥ {:.2} m",
+            out.lower_bound * res
+        )
+    }
+}
+
 fn print_summary(
     fine: (usize, usize),
     name: &str,
@@ -429,21 +450,7 @@ fn print_summary(
         );
     }
     println!("{}", out.message);
-    if out.upper_bound.is_finite() {
-        println!(
-            "length {:.2} m ({:.3} cells), optimal: {}, bounds [{:.2}, {:.2}] m",
-            out.upper_bound * res,
-            out.upper_bound,
-            out.status == optimal::Status::Optimal,
-            out.lower_bound * res,
-            out.upper_bound * res
-        );
-    } else {
-        println!(
-            "no solution; optimal length ≥ {:.2} m",
-            out.lower_bound * res
-        );
-    }
+    println!("{}", length_line(out, res));
     println!(
         "nodes expanded {}, generated {}, stored {}, {:.1} MiB, {:.3} s",
         out.stats.expanded,
@@ -566,4 +573,49 @@ fn picture(co: &optimal::Coarsened, out: &Outcome) -> Picture {
     Picture::from_fn(w as u32 * scale, h as u32 * scale, |x, y| {
         colour[(y / scale) as usize * w + (x / scale) as usize]
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// An outcome of `status` with bounds `lower` and `upper` (cells).
+    fn outcome(status: optimal::Status, lower: f64, upper: f64) -> Outcome {
+        Outcome {
+            status,
+            stop: None,
+            solution: None,
+            lower_bound: lower,
+            upper_bound: upper,
+            targets: 0,
+            needed: 0,
+            stats: Default::default(),
+            message: String::new(),
+        }
+    }
+
+    /// Regression: a search stopped by a limit before it found a path (willow-full with
+    /// `--time-limit 10` spends the limit setting up) printed "no solution", as if none
+    /// existed.
+    #[test]
+    fn regression_stopped_search_without_path_is_not_no_solution() {
+        let stopped = length_line(
+            &outcome(optimal::Status::Stopped, 7358.8, f64::INFINITY),
+            0.05,
+        );
+        assert_eq!(
+            stopped,
+            "no path found before the search stopped; optimal length ≥ 367.94 m"
+        );
+        let none = length_line(
+            &outcome(optimal::Status::NoSolution, 0.0, f64::INFINITY),
+            0.05,
+        );
+        assert_eq!(none, "no solution");
+        let found = length_line(&outcome(optimal::Status::Optimal, 20.0, 20.0), 0.5);
+        assert_eq!(
+            found,
+            "length 10.00 m (20.000 cells), optimal: true, bounds [10.00, 10.00] m"
+        );
+    }
 }

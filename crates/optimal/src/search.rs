@@ -1183,7 +1183,7 @@ impl<'p> Engine<'p> {
                 self.cfg.heuristic.name()
             ),
             Status::Stopped => format!(
-                "stopped by the {} after {} expansions: optimal length in [{lb:.3}, {}]",
+                "stopped by the {} after {} expansions: optimal length in [{lb:.3}, {}] cells",
                 stop.map_or("limit", StopReason::as_str),
                 self.stats.expanded,
                 if ub.is_finite() {
