@@ -66,6 +66,12 @@ pub fn write(
     let fingerprint = store.meta("fingerprint")?.unwrap_or_default();
     drop(store);
     let mut blocks = build(&scenario, &fingerprint, &rows, &envs, opts)?;
+    if out.exists() && !out.is_dir() {
+        return Err(BenchError::File {
+            path: out.to_path_buf(),
+            message: "is a file; expected the folder to write the report into".into(),
+        });
+    }
     std::fs::create_dir_all(out.join("plots")).map_err(BenchError::io(out))?;
     std::fs::create_dir_all(out.join("envs")).map_err(BenchError::io(out))?;
     // Every file the report writes, checked against the database it reads before any is

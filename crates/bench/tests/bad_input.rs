@@ -120,6 +120,21 @@ fn regression_report_onto_its_own_database_is_refused() {
     }
 }
 
+/// Regression: a file given as the report's folder (`bench report s.sqlite --out
+/// s.sqlite`) was "s.sqlite: Not a directory (os error 20)".
+#[test]
+fn regression_report_into_a_file_says_a_folder_is_expected() {
+    let dir = tempfile::tempdir().unwrap();
+    let db = dir.path().join("s.sqlite");
+    run(ONE, &db);
+    let before = std::fs::read(&db).unwrap();
+    let e = bench::report::write(&db, &db, &bench::report::ReportOptions::default())
+        .expect_err("a file is no folder")
+        .to_string();
+    assert!(e.contains("is a file; expected the folder"), "{e}");
+    assert_eq!(std::fs::read(&db).unwrap(), before);
+}
+
 /// Merging into one of the inputs destroys nothing: inputs are read only, the output keeps
 /// its trials and gains the others'.
 #[test]
