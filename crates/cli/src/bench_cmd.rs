@@ -113,6 +113,7 @@ pub fn run(a: BenchArgs) -> Result<()> {
             Ok(())
         }
         Some(BenchCommand::Export { db, csv }) => {
+            crate::args::check_output_file("--csv", &csv)?;
             let n = bench::Store::open_read_only(&db)?.export_csv(&csv)?;
             println!("wrote {n} trial(s) to {}", csv.display());
             Ok(())

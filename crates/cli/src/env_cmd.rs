@@ -58,6 +58,7 @@ pub fn run(a: EnvArgs) -> Result<()> {
     let Some(out) = &a.out else {
         bail!("--out FILE is required (.png, .yaml, .pgm, .map or .txt)")
     };
+    crate::args::check_output_file("--out", out)?;
     let resolution = match a.resolution.as_deref().map(parse_resolution).transpose()? {
         Some((x, y)) if x != y => bail!("--resolution: give one number (cells are square)"),
         r => r.map(|r| r.0),

@@ -68,6 +68,9 @@ pub fn run(a: SegmentArgs) -> Result<()> {
     if a.truth.is_some() && a.source.map.is_none() {
         bail!("--truth goes with --map; a generated office or hospital has its own rooms");
     }
+    if let Some(out) = &a.out {
+        crate::args::check_output_file("--out", out)?;
+    }
     let truth = a.source.resolve(a.seed)?.plane_only("segment")?;
     let (w, h) = (truth.map.width(), truth.map.height());
     sim::memory::check(

@@ -1356,6 +1356,22 @@ fn regression_output_paths_are_checked_before_the_run() {
     let d = dir.path().to_str().expect("utf-8 path");
     let e = err(&["explore", "--env", "office", "--html", d]);
     assert!(e.contains("expected a file name, found a folder"), "{e}");
+    // `segment --out` and `bench export --csv` ended in "Is a directory (os error 21)".
+    let e = err(&["segment", "--env", "office", "--out", d]);
+    assert!(
+        e.contains("--out") && e.contains("expected a file name, found a folder"),
+        "{e}"
+    );
+    let e = err(&["env", "office", "--out", d]);
+    assert!(
+        e.contains("--out") && e.contains("expected a file name, found a folder"),
+        "{e}"
+    );
+    let e = err(&["bench", "export", "--csv", d, "any.sqlite"]);
+    assert!(
+        e.contains("--csv") && e.contains("expected a file name, found a folder"),
+        "{e}"
+    );
 }
 
 /// Regression: `bench export --csv ok.sqlite ok.sqlite` overwrote the results database with
