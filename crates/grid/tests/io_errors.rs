@@ -534,6 +534,27 @@ fn missing_map_file_and_unknown_extension() {
         e,
         "o.json: cannot write map format \"json\": expected .yaml, .yml, .pgm, .png, .map or .txt"
     );
+    // Regression: a folder given to write a map into was an unknown map format "", and a
+    // YAML in a missing folder named the PGM beside it, "No such file or directory".
+    let m = grid::GridMap::new(Grid::new(2, 2, Occ::Free), 0.1);
+    let e = msg(grid::io::save_map(&m, &dir));
+    assert_eq!(
+        e,
+        format!(
+            "{}: is a folder, expected the name of a map file to write (.yaml, .yml, .pgm, .png, .map or .txt)",
+            dir.display()
+        )
+    );
+    let missing = dir.join("no-such-folder");
+    let e = msg(grid::io::save_map(&m, &missing.join("m.yaml")));
+    assert_eq!(
+        e,
+        format!(
+            "{}: cannot write: the folder {} does not exist",
+            missing.join("m.yaml").display(),
+            missing.display()
+        )
+    );
     let _ = std::fs::remove_dir_all(dir);
 }
 

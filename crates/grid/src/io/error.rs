@@ -54,6 +54,14 @@ pub enum MapErrorKind {
     /// The path is a folder, where one map file was expected.
     #[error("is a folder, expected one map file (.yaml, .yml, .pgm, .png, .map, .json or .txt)")]
     Folder,
+    /// A folder was given where a map file is to be written.
+    #[error(
+        "is a folder, expected the name of a map file to write (.yaml, .yml, .pgm, .png, .map or .txt)"
+    )]
+    WriteFolder,
+    /// The folder a map file is to be written into does not exist.
+    #[error("cannot write: the folder {0} does not exist")]
+    NoFolder(std::path::PathBuf),
     /// The extension names no format maps are written in (HouseExpo is read only).
     #[error("cannot write map format {0:?}: expected .yaml, .yml, .pgm, .png, .map or .txt")]
     UnwritableFormat(String),

@@ -153,6 +153,17 @@ pub fn load_map(path: &Path, opts: &LoadOptions) -> Result<GridMap, MapError> {
 /// same stem; `.map`: MovingAI (Unknown is written as `@`, out of bounds, and so reads
 /// back as Occupied); `.txt`: ASCII art. Only the YAML keeps the resolution and origin.
 pub fn save_map(map: &GridMap, path: &Path) -> Result<(), MapError> {
+    if path.is_dir() {
+        return Err(MapError::new(path, MapErrorKind::WriteFolder));
+    }
+    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty())
+        && !dir.is_dir()
+    {
+        return Err(MapError::new(
+            path,
+            MapErrorKind::NoFolder(dir.to_path_buf()),
+        ));
+    }
     let ext = extension(path);
     match ext.as_str() {
         "png" => write(path, &encode_png(&map.cells, path)?),
