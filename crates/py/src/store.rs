@@ -11,6 +11,12 @@ use crate::value_error;
 /// key); a file that is not a store of this version is refused with the CLI's message.
 #[pyfunction]
 pub fn load_rows(py: Python<'_>, path: PathBuf) -> PyResult<String> {
+    if path.is_dir() {
+        return Err(value_error(format!(
+            "{}: is a folder; expected a study store (a file written by `frontier bench`)",
+            path.display()
+        )));
+    }
     if !path.is_file() {
         return Err(value_error(format!(
             "{}: no such study store (a file written by `frontier bench`)",
@@ -18,7 +24,9 @@ pub fn load_rows(py: Python<'_>, path: PathBuf) -> PyResult<String> {
         )));
     }
     py.detach(|| {
-        let store = bench::Store::open_raw(&path)?;
+        // Read only, as `bench export` reads: a store on a read-only file system, or one
+        // being written by a running study, is read without being touched.
+        let store = bench::Store::open_read_only(&path)?;
         let rows = store.rows()?;
         serde_json::to_string(&rows).map_err(|e| bench::BenchError::Other(e.to_string()))
     })

@@ -1,5 +1,7 @@
 """frontier.bench.load: a study store written by `frontier bench` read into a data frame."""
 
+import os
+import shutil
 import subprocess
 
 import pytest
@@ -78,9 +80,43 @@ def test_rows_equal_explore(store):
     assert got.total_path_length_m == pytest.approx(row["total_path"], abs=1e-4)
 
 
+def _make_read_only(paths):
+    """Make files and folders read-only, also to root (the immutable attribute); returns
+    how to undo it. Skips the test where neither way is open."""
+    if os.geteuid() != 0:
+        modes = [(p, p.stat().st_mode) for p in paths]
+        for p in paths:
+            p.chmod(0o555 if p.is_dir() else 0o444)
+        return lambda: [p.chmod(m) for p, m in modes]
+    if shutil.which("chattr") is None:
+        pytest.skip("root without chattr: no way to make a read-only folder")
+    done = subprocess.run(["chattr", "+i", *map(str, paths)], capture_output=True)
+    if done.returncode != 0:
+        pytest.skip(f"chattr +i refused: {done.stderr.decode().strip()}")
+    return lambda: subprocess.run(["chattr", "-i", *map(str, paths)], check=True)
+
+
+def test_load_reads_a_read_only_store(store, tmp_path):
+    """Regression: ``load`` opened the store for writing, so a store on a read-only file
+    system (a cluster's results mounted read-only) was "attempt to write a readonly
+    database", where ``frontier bench export`` reads it."""
+    d = tmp_path / "ro"
+    d.mkdir()
+    shutil.copy(store / "tiny.sqlite", d / "tiny.sqlite")
+    undo = _make_read_only([d / "tiny.sqlite", d])
+    try:
+        df = frontier.bench.load(d / "tiny.sqlite")
+    finally:
+        undo()
+    assert list(df["key"]) == list(frontier.bench.load(store / "tiny.sqlite")["key"])
+    assert sorted(p.name for p in d.iterdir()) == ["tiny.sqlite"]
+
+
 def test_not_a_store(tmp_path):
     with pytest.raises(ValueError, match="no such study store"):
         frontier.bench.load(tmp_path / "missing.sqlite")
+    with pytest.raises(ValueError, match="is a folder; expected a study store"):
+        frontier.bench.load(tmp_path)
     bad = tmp_path / "bad.sqlite"
     bad.write_text("not a database at all, just text" * 100)
     with pytest.raises(ValueError):
