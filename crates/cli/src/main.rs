@@ -96,8 +96,16 @@ fn die_quietly_on_closed_pipe() {}
 
 fn list() {
     println!("strategies (--strategy):");
+    // names aligned to the longest single name (the family line of Faigl & Kulich's
+    // presets is longer and runs over)
+    let width = explore::strategy::PRESETS
+        .iter()
+        .map(|(name, _)| name.len())
+        .filter(|&n| n <= 16)
+        .max()
+        .unwrap_or(10);
     for (name, what) in explore::strategy::PRESETS {
-        println!("  {name:<10} {what}");
+        println!("  {name:<width$} {what}");
     }
     println!("\nenvironments (--env):");
     env_cmd::print_kinds();
@@ -109,6 +117,9 @@ fn list() {
     println!("  laser-limited-sonar       the sonar ring, each reading capped by the planar laser");
     println!(
         "  laser                     planar laser, 360° at 1°, 10 ft (= lidar:r=3.048,fov=360)"
+    );
+    println!(
+        "  square:r=3.5              Explore-Bench's grid simulator: the square window of side 2r"
     );
     println!("  (sonar needs --belief evidence, the default with it; --clutter adds furniture");
     println!("   off the laser plane to generated offices and hospitals)");

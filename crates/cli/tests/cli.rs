@@ -1495,3 +1495,24 @@ fn regression_dungeon_map_from_a_device_is_refused() {
         "{e}"
     );
 }
+
+/// Regression: `frontier list` left out the `square` sensor (Explore-Bench's window). It
+/// lists every sensor kind the `--sensor` parser names when it refuses an unknown one.
+#[test]
+fn regression_list_names_every_sensor_kind() {
+    let listed = ok(&["list"]);
+    let refused = err(&["explore", "--sensor", "nosuchkind"]);
+    let kinds = refused
+        .split("expected one of ")
+        .nth(1)
+        .expect("the parser lists the kinds");
+    for kind in kinds.trim().split(", ") {
+        assert!(
+            listed
+                .lines()
+                .any(|l| l.trim_start().starts_with(&format!("{kind} "))
+                    || l.trim_start().starts_with(&format!("{kind}:"))),
+            "{kind} is not in `frontier list`:\n{listed}"
+        );
+    }
+}
