@@ -365,6 +365,22 @@ mod tests {
         p.explorer_config().unwrap();
     }
 
+    /// The example file is where docs/ros.md sends a user for the parameters: it sets every
+    /// one the node takes (those its refusal of an unknown one lists).
+    #[test]
+    fn the_example_params_file_names_every_parameter() {
+        let text = include_str!("../../ros/params/explore.yaml");
+        let e = Params::default().set("zzz_unknown", "1").unwrap_err();
+        let list = e.split("expected one of ").nth(1).expect("a list of names");
+        for name in list.split(", ") {
+            assert!(
+                text.lines()
+                    .any(|l| l.trim_start().starts_with(&format!("{name}:"))),
+                "explore.yaml does not set `{name}`"
+            );
+        }
+    }
+
     #[test]
     fn wildcard_sections_apply_to_any_node() {
         let mut p = Params::default();
