@@ -76,6 +76,36 @@ def test_reward_and_budget(office):
         env.step(0)
 
 
+def test_step_before_reset_is_reset_needed(office):
+    """Regression: stepping (or asking a baseline) before the first reset raised ValueError
+    "after the episode ended"; Gymnasium's own wrapper (``gym.make``) raises ResetNeeded,
+    and so do the environments now, each of the three."""
+    from frontier.pettingzoo import ExploreParallelEnv
+
+    env = ExploreEnv(office)
+    with pytest.raises(gymnasium.error.ResetNeeded, match="call reset"):
+        env.step(0)
+    with pytest.raises(gymnasium.error.ResetNeeded, match="call reset"):
+        Baseline("cf-rr")(env)
+    venv = ExploreVectorEnv(2, office)
+    with pytest.raises(gymnasium.error.ResetNeeded, match="call reset"):
+        venv.step(np.zeros(2, dtype=np.int64))
+    with pytest.raises(gymnasium.error.ResetNeeded, match="call reset"):
+        Baseline("cf-rr")(venv)
+    team = ExploreParallelEnv(office, robots=2)
+    with pytest.raises(gymnasium.error.ResetNeeded, match="call reset"):
+        team.step({"robot_0": 0})
+    with pytest.raises(gymnasium.error.ResetNeeded, match="call reset"):
+        team.baseline_actions("cf-rr")
+    # after a reset they step
+    env.reset(seed=0)
+    env.step(Baseline("cf-rr")(env))
+    venv.reset(seed=0)
+    venv.step(Baseline("cf-rr")(venv))
+    team.reset(seed=0)
+    team.step(team.baseline_actions("cf-rr"))
+
+
 def test_invalid_actions(office):
     env = ExploreEnv(office, k=8, invalid_action="raise")
     obs, _ = env.reset(seed=0)

@@ -392,12 +392,16 @@ class ExploreEnv(gymnasium.Env):
         self, action: Any
     ) -> Tuple[Dict[str, np.ndarray], float, bool, bool, Dict[str, Any]]:
         """Send the robot to candidate ``action`` and run to the next decision."""
+        if self._obs is None:
+            raise gymnasium.error.ResetNeeded("step: call reset() before step()")
         obs, reward, terminated, truncated = self._core.step(_action(action), self._wrap)
         self._obs = obs
         return obs, reward, terminated, truncated, self._info()
 
     def baseline_action(self, preset: str) -> int:
         """The action ``preset`` (a paper's strategy, e.g. ``"cf-rr"``) would take now."""
+        if self._obs is None:
+            raise gymnasium.error.ResetNeeded("baseline_action: call reset() before asking")
         return self._core.baseline_action(preset)
 
     def action_masks(self) -> np.ndarray:
@@ -458,6 +462,7 @@ class ExploreVectorEnv(VectorEnv):
             ),
         )
         self._wrap = invalid_action == "wrap"
+        self._started = False
         self.num_envs = num_envs
         self.single_observation_space, self.single_action_space = _spaces(
             self._core.shape, self._core.k
@@ -502,12 +507,16 @@ class ExploreVectorEnv(VectorEnv):
             _episode_seed(seeding.np_random(int(s))[0] if s is not None else self.np_random)
             for s in given
         ]
-        return self._core.reset(seeds, maps), {}
+        obs = self._core.reset(seeds, maps)
+        self._started = True
+        return obs, {}
 
     def step(
         self, actions: Any
     ) -> Tuple[Dict[str, np.ndarray], np.ndarray, np.ndarray, np.ndarray, Dict[str, Any]]:
         """Step every environment (an ended one resets instead)."""
+        if not self._started:
+            raise gymnasium.error.ResetNeeded("step: call reset() before step()")
         given = np.asarray(actions)
         if given.shape != (self.num_envs,):
             raise ValueError(
@@ -523,6 +532,8 @@ class ExploreVectorEnv(VectorEnv):
 
     def baseline_actions(self, preset: str) -> np.ndarray:
         """Each environment's action under ``preset``."""
+        if not self._started:
+            raise gymnasium.error.ResetNeeded("baseline_actions: call reset() before asking")
         return np.asarray(self._core.baseline_actions(preset), dtype=np.int64)
 
 

@@ -15,6 +15,7 @@ from __future__ import annotations
 
 from typing import Any, Dict, List, Mapping, Optional, Tuple
 
+import gymnasium
 import numpy as np
 from gymnasium import spaces
 from gymnasium.utils import seeding
@@ -133,6 +134,8 @@ class ExploreParallelEnv(ParallelEnv):
             raise ValueError(
                 f"actions: unknown agent {unknown[0]!r} (agents: {', '.join(self.possible_agents)})"
             )
+        if not self._obs:
+            raise gymnasium.error.ResetNeeded("step: call reset() before step()")
         acts = [_action(actions.get(agent, 0)) for agent in self.possible_agents]
         self._obs, reward, terminated, truncated = self._core.step(acts, True)
         agents = self.possible_agents
@@ -149,4 +152,6 @@ class ExploreParallelEnv(ParallelEnv):
 
     def baseline_actions(self, preset: str) -> Dict[str, int]:
         """Every agent's action under ``preset`` (the deciding ones chosen together)."""
+        if not self._obs:
+            raise gymnasium.error.ResetNeeded("baseline_actions: call reset() before asking")
         return dict(zip(self.possible_agents, self._core.baseline_actions(preset)))
