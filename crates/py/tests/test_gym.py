@@ -106,6 +106,19 @@ def test_step_before_reset_is_reset_needed(office):
     team.step(team.baseline_actions("cf-rr"))
 
 
+def test_random_policy_seed_is_checked():
+    """Regression: ``RandomPolicy(-1)`` raised numpy's "expected non-negative integer",
+    naming no argument."""
+    with pytest.raises(ValueError, match="seed: expected a non-negative int, found -1"):
+        RandomPolicy(-1)
+    with pytest.raises(TypeError, match="seed: expected an int or None, found str"):
+        RandomPolicy("x")
+    with pytest.raises(TypeError, match="found bool"):
+        RandomPolicy(True)
+    RandomPolicy(np.int64(3))
+    RandomPolicy(None)
+
+
 def test_invalid_actions(office):
     env = ExploreEnv(office, k=8, invalid_action="raise")
     obs, _ = env.reset(seed=0)

@@ -565,6 +565,12 @@ class RandomPolicy:
     """Uniformly one of the offered candidates (by the observation's ``action_mask``)."""
 
     def __init__(self, seed: Optional[int] = None) -> None:
+        if isinstance(seed, bool) or (
+            seed is not None and not isinstance(seed, (int, np.integer))
+        ):
+            raise TypeError(f"seed: expected an int or None, found {type(seed).__name__}")
+        if seed is not None and seed < 0:
+            raise ValueError(f"seed: expected a non-negative int, found {seed}")
         self._rng = np.random.default_rng(seed)
 
     def __call__(self, obs: Dict[str, np.ndarray]) -> Any:
