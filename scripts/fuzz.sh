@@ -13,8 +13,14 @@
 # input is a bug).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-# Targets that read files get them written per input: in memory, where there is room.
-if [[ -z "${TMPDIR:-}" && -d /dev/shm && -w /dev/shm ]]; then export TMPDIR=/dev/shm; fi
+# Targets that read files get them written per input: in memory, where there is room, in a
+# folder of this run's that is removed at the end (a fuzzer stopped by its time limit
+# leaves its own folder behind).
+base=${TMPDIR:-}
+if [[ -z "$base" && -d /dev/shm && -w /dev/shm ]]; then base=/dev/shm; fi
+TMPDIR=$(mktemp -d "${base:-/tmp}/frontier-fuzz-run.XXXXXX")
+export TMPDIR
+trap 'rm -rf "$TMPDIR"' EXIT
 SECONDS_EACH=${1:-60}
 shift || true
 if (($# > 0)); then TARGETS=("$@"); else mapfile -t TARGETS < <(cargo +nightly fuzz list --fuzz-dir fuzz); fi
