@@ -375,9 +375,7 @@ impl Store {
                 message: "is a folder; expected a results database file (e.g. study.sqlite)".into(),
             });
         }
-        if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty())
-            && !dir.is_dir()
-        {
+        if let Some(dir) = grid::io::missing_folder(path) {
             return Err(BenchError::Store {
                 path: path.to_path_buf(),
                 message: format!(

@@ -291,11 +291,7 @@ pub fn check_output_file(flag: &str, path: &Path) -> Result<()> {
             path.display()
         );
     }
-    let folder = match path.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p,
-        _ => Path::new("."),
-    };
-    if !folder.is_dir() {
+    if let Some(folder) = grid::io::missing_folder(path) {
         bail!(
             "{flag} {}: expected a file in an existing folder, found no folder {}",
             path.display(),

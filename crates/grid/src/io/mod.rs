@@ -47,6 +47,14 @@ use crate::resample;
 /// resolution, so a resolution near the largest float made every path length infinite.
 pub const MAX_RESOLUTION_M: f64 = 1000.0;
 
+/// The folder a file at `path` would be written into, if it does not exist (a bare file
+/// name goes into the working folder, which does). The one check of every writer of files
+/// (maps, study stores, the CLI's outputs), made before any work.
+pub fn missing_folder(path: &Path) -> Option<&Path> {
+    path.parent()
+        .filter(|d| !d.as_os_str().is_empty() && !d.is_dir())
+}
+
 /// Whether `r` metres per cell is a resolution maps may have: positive and at most
 /// [`MAX_RESOLUTION_M`] (so not NaN). The one rule of map files, map messages, the CLI and
 /// Python.
@@ -156,9 +164,7 @@ pub fn save_map(map: &GridMap, path: &Path) -> Result<(), MapError> {
     if path.is_dir() {
         return Err(MapError::new(path, MapErrorKind::WriteFolder));
     }
-    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty())
-        && !dir.is_dir()
-    {
+    if let Some(dir) = missing_folder(path) {
         return Err(MapError::new(
             path,
             MapErrorKind::NoFolder(dir.to_path_buf()),
