@@ -10,9 +10,10 @@
 //! sensor or robot count: every strategy meets the same random starts and the same random
 //! streams (common random numbers), so paired comparisons by (start variant, trial) are fair.
 //!
-//! **Starts.** With `perturbations = k > 0`, an environment has k start variants, each a
-//! cell drawn uniformly from the traversable cells within `radius` metres (Euclidean, in
-//! cells) of its base start and connected to it (Faigl & Kulich's start perturbations); the
+//! **Starts.** With `perturbations = k > 0`, an environment has k start variants, k
+//! distinct cells drawn uniformly without replacement from the traversable cells within
+//! `radius` metres (Euclidean, in cells) of its base start and connected to it (Faigl &
+//! Kulich's start perturbations: 20 variants of each problem, so no two alike); the
 //! base start is the `[[env]]`'s `start`, or drawn by seed. With no perturbations, a given
 //! `start` is the only variant; otherwise every trial draws its own start from its seed
 //! (the multi-robot study's random starts). Teams stand at the nearest distinct
@@ -49,8 +50,9 @@ use crate::scenario::{ScenarioFile, Source};
 /// assignments of equal total differently; v8: CC on blocks goes through a cell that sees
 /// the unknown, and covers cell by cell what no block covers; v9: path costs are exact
 /// sums (the diagonal step √2 to 32 binary places), so paths of equal length tie exactly
-/// and break the tie by index instead of by rounding).
-pub const STRATEGY_REVISION: u32 = 9;
+/// and break the tie by index instead of by rounding; v10: a study's start perturbations
+/// are distinct cells, drawn without replacement).
+pub const STRATEGY_REVISION: u32 = 10;
 
 /// A resolved study: environments, variants, common settings and the flat trial list.
 #[derive(Clone, Debug)]
@@ -1222,11 +1224,15 @@ fn start_variants(
             near.len()
         ));
     }
-    (0..perturbations)
+    // A partial Fisher–Yates shuffle: the first k cells of it are k distinct draws, and
+    // the first j of them do not depend on k.
+    let mut near = near;
+    let mut rng = sim::seed::rng(master_seed, &format!("{}|starts", env.name));
+    (0..perturbations as usize)
         .map(|j| {
-            let mut rng = sim::seed::rng(master_seed, &format!("{}|start={j}", env.name));
-            let c = cells.cell(near[rng.random_range(0..near.len())]);
-            team(c).map(Some)
+            let pick = rng.random_range(j..near.len());
+            near.swap(j, pick);
+            team(cells.cell(near[j])).map(Some)
         })
         .collect()
 }

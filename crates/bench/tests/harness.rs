@@ -467,6 +467,46 @@ fn more_perturbations_than_cells_is_refused() {
     assert!(e.contains("reachable cells lie there"), "{e}");
 }
 
+/// Regression: start perturbations were drawn with replacement, so the `faigl2013` suite's
+/// "20 variants of each problem" were 15–18 distinct cells, and a deterministic strategy
+/// repeated its run on the copies (paired tests over them overstate the sample). As many
+/// perturbations as cells within the radius now take every cell once.
+#[test]
+fn regression_start_perturbations_are_distinct() {
+    // The distinct first-robot cells of an environment's start variants.
+    let distinct = |env: &bench::plan::EnvInstance| {
+        env.starts
+            .iter()
+            .map(|s| s.as_ref().expect("a fixed start")[0])
+            .collect::<std::collections::BTreeSet<_>>()
+            .len()
+    };
+    let p = bench::suites::plan("faigl2013").expect("the suite resolves");
+    for env in &p.envs {
+        assert_eq!(distinct(env), 20, "{}", env.name);
+    }
+    let e = error_of((
+        "trials = 2",
+        "trials = 2\nperturbations = 500\nradius = 0.5",
+    ));
+    let n: u32 = e
+        .split("only ")
+        .nth(1)
+        .and_then(|t| t.split(' ').next())
+        .and_then(|t| t.parse().ok())
+        .unwrap_or_else(|| panic!("no cell count in: {e}"));
+    assert!(n >= 3, "{e}");
+    let text = TINY.replacen(
+        "trials = 2",
+        &format!("trials = 2\nperturbations = {n}\nradius = 0.5"),
+        1,
+    );
+    let p = Plan::resolve(&source(&text), Unbuilt::Error).expect("every cell once fits");
+    for env in &p.envs {
+        assert_eq!(distinct(env), env.starts.len(), "{}", env.name);
+    }
+}
+
 /// Regression: a database with a zeroed page in the middle resumed as "all trials done"
 /// (the key index was intact, the rows behind it were gone) and only `export` failed on it.
 /// Opening an existing database now runs SQLite's quick_check and refuses a damaged one,
