@@ -12,12 +12,13 @@
 //! room unfinished and has to come back (their §1, problem 2, and Figure 2). Read literally,
 //! the rule also applies in a corridor, which is a segment too: a robot in a corridor then
 //! follows the corridor to its end before it looks into any room it passed, and comes back
-//! for each. On the generated hospitals and offices that made paths 25–70 % longer than
-//! `cf-rr` with a 180° lidar. So the preference holds only in a segment that is room-like:
-//! one that touches at most `max_neighbours` other segments (a room has one or two doors, a
-//! corridor or hall many). With a 180° lidar of 4 m this shortens hospital runs by about a
-//! quarter against `cf-rr`, as Holz et al. found in their hospital, and leaves caves as they
-//! were (their Table 1). `max_neighbours = None` is the literal rule (`cf-rr-seg-any`).
+//! for each. With a 180° lidar of 4 m that gains nothing over `cf-rr` on the generated
+//! hospitals and makes paths 10–22 % longer in offices and caves. So the preference holds
+//! only in a segment that is room-like: one that touches at most `max_neighbours` other
+//! segments (a room has one or two doors, a corridor or hall many). With the same lidar
+//! this shortens hospital runs by 22 % against `cf-rr` (Holz et al. found 12.5 % in their
+//! hospital, Table 3), and leaves caves as they were (their Table 1). `max_neighbours =
+//! None` is the literal rule (`cf-rr-seg-any`); docs/reference.md has the numbers.
 
 use crate::candidates::CandidateSet;
 use crate::decision::{DecisionCtx, Goal};
