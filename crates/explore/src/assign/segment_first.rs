@@ -4,8 +4,8 @@
 //! candidate nearest to it by path among those in its own segment (the segment of the cell
 //! it stands on), and only when there is none the nearest candidate overall — exactly the
 //! closest-frontier rule otherwise. The segmentation is kept in `ctx.memory.segments` and
-//! recomputed only when the map changed enough, on blocks about 0.1 m wide on finer maps
-//! ([`crate::segment::cache`]).
+//! recomputed only when the map changed enough, on blocks about 0.1 m wide on maps of 5 cm
+//! or finer ([`crate::segment::cache`]).
 //!
 //! Deviation (rooms, not corridors): Holz et al. introduce Seg against one failure — the
 //! closest frontier lies outside "the room that is currently explored", so the robot leaves a

@@ -44,8 +44,9 @@
 //! - the ray casting is the ideal laser of `sense` (`los`) whatever the robots' sensor is,
 //!   as the paper's omnidirectional scanner; ρ is the run's sensor range in cells.
 //!
-//! Deviation on fine maps: on maps finer than [`COVER_CELL_M`] the cover is computed on
-//! blocks of `b × b` cells at least that wide ([`cover_block`]; b = 2 at 0.05 m), as the
+//! Deviation on fine maps: on maps of half [`COVER_CELL_M`] or finer the cover is computed
+//! on blocks of `b × b` cells, b the most whole cells that fit in that width ([`cover_block`];
+//! b = 2 at 0.05 m, 3 at 0.03 m; coarser maps have b = 1, cell by cell), as the
 //! segmenting presets segment them. Faigl & Kulich's grids have cells of "units (or tens)
 //! of centimetres"; at 0.05 m with an 8 m laser a frontier cell's unknown neighbours are
 //! each seen from up to 51,000 cells, and the (frontier, covering cell) pairs — ∝
@@ -64,7 +65,7 @@
 //! cell by cell as above, their candidates appended. Without the checks a block seeing an
 //! unknown block through a hole one cell wide sent robots to cells that see nothing, one
 //! cell of the block after another (each goes on the visited list when reached), and a
-//! team walked a room cell by cell. Maps at 0.1 m or coarser, the `faigl2013` suite's
+//! team walked a room cell by cell. Maps coarser than 5 cm, the `faigl2013` suite's
 //! among them, are covered cell by cell as above.
 
 use sense::shadow::{self, ShadowScratch};
@@ -79,8 +80,8 @@ use crate::decision::DecisionCtx;
 /// Fraction of the sensor range used for covering (Faigl & Kulich: 0.8 ρ).
 pub const COVER_FRACTION: f64 = 0.8;
 
-/// The cover is computed on blocks at least this many metres wide (see the module
-/// documentation).
+/// The cover is computed on blocks of as many whole cells as fit in this many metres (see
+/// the module documentation).
 pub const COVER_CELL_M: f64 = 0.1;
 
 /// The block side, in cells, of the cover on a map of `resolution` metres per cell.

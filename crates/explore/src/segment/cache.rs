@@ -13,8 +13,9 @@
 //! cells that connect to no labelled cell stay unlabelled until the next full run.
 //!
 //! Blocks: on fine maps the pipeline runs on blocks of `block × block` cells
-//! ([`block_for`]: blocks at least [`SEGMENT_CELL_M`] wide), a block being free when all its
-//! cells are free. Holz et al. do not give the resolution they segment at; a doorway is
+//! ([`block_for`]: the most whole cells that fit in [`SEGMENT_CELL_M`], so two at 0.05 m and
+//! three at 0.03 m, and one, cell by cell, on maps coarser than 0.05 m), a block being free
+//! when all its cells are free. Holz et al. do not give the resolution they segment at; a doorway is
 //! 0.7 m or more, still seven cells or more at 0.1 m, while a 5 cm map of a building has four
 //! times as many cells to thin, and its ragged edges (a 1° laser leaves fingers of free
 //! cells between unseen wall cells) grow spurs and slivers that are not rooms. Every free
@@ -47,7 +48,8 @@ use crate::belief_rows::{LogPos, RowLog, sync_rows};
 /// Fraction of the free cells that must change before the segmentation is recomputed.
 pub const REFRESH_FRACTION: f64 = 0.02;
 
-/// Segmentation blocks are at least this many metres wide (see the module documentation).
+/// Segmentation blocks are as many whole cells as fit in this many metres (see the module
+/// documentation).
 pub const SEGMENT_CELL_M: f64 = 0.1;
 
 /// The block side, in cells, for a map of `resolution` metres per cell: the most cells that
