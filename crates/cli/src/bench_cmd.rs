@@ -29,7 +29,7 @@ pub struct BenchArgs {
 /// Flags of running a study.
 #[derive(Args, Debug)]
 pub struct RunArgs {
-    /// Scenario file (TOML; see `crates/bench/src/scenario.rs` for the keys).
+    /// Scenario file (TOML; its keys are listed in docs/usage.md, "Your own study").
     #[arg(conflicts_with = "suite", required_unless_present = "suite")]
     pub scenario: Option<PathBuf>,
     /// Built-in suite: quick, holz2010, holz2010-real (with --maps), multirobot, faigl2013,
