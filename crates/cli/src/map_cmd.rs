@@ -2,7 +2,7 @@
 
 use std::path::PathBuf;
 
-use anyhow::Result;
+use anyhow::{Result, bail};
 use clap::Subcommand;
 use grid::Occ;
 use grid::components::{Connectivity, label};
@@ -15,14 +15,23 @@ use crate::args::parse_resolution;
 pub enum MapCommand {
     /// Size, resolution, cell counts and free connected components of a map file.
     Info {
-        /// The map file (.yaml, .pgm, .png, .map, .txt, or .mcap: its last OccupancyGrid).
+        /// The map file (.yaml, .pgm, .png, .map, .txt, HouseExpo .json, or .mcap: its last
+        /// OccupancyGrid).
         file: PathBuf,
-        /// Metres per cell ("R" or "RX,RY") for bitmaps and .map files.
+        /// Metres per cell ("R" or "RX,RY"): needed for bare bitmaps, .json and --dungeon
+        /// maps, 1 if not given for .map and .txt, and overriding a ROS YAML's own.
         #[arg(long)]
         resolution: Option<String>,
         /// Add a wall around a bare bitmap.
         #[arg(long)]
         border: bool,
+        /// The OccupancyGrid topic of an MCAP file (default: its only one, or /map).
+        #[arg(long)]
+        topic: Option<String>,
+        /// Read the file as a dungeon PNG (pixels of value 208 mark the start, which is
+        /// printed too); needs --resolution.
+        #[arg(long)]
+        dungeon: bool,
         /// Print JSON.
         #[arg(long)]
         json: bool,
@@ -35,14 +44,34 @@ pub fn run(cmd: MapCommand) -> Result<()> {
         file,
         resolution,
         border,
+        topic,
+        dungeon,
         json,
     } = cmd;
     let resolution = resolution.as_deref().map(parse_resolution).transpose()?;
     let is_mcap = file
         .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("mcap"));
+    if topic.is_some() && !is_mcap {
+        bail!("--topic chooses the map topic of an MCAP recording (FILE.mcap)");
+    }
+    let mut start = None;
     let map = if is_mcap {
-        crate::args::load_mcap_map(&file, None)?
+        if resolution.is_some() || border || dungeon {
+            bail!(
+                "--resolution / --border / --dungeon: an MCAP recording's map carries its own \
+                 resolution"
+            );
+        }
+        crate::args::load_mcap_map(&file, topic.as_deref())?
+    } else if dungeon {
+        let Some((rx, _)) = resolution.filter(|(x, y)| x == y) else {
+            bail!("--dungeon: expected one --resolution (square cells) for the PNG");
+        };
+        let bytes = grid::io::read_bytes(&file)?;
+        let d = grid::io::parse_dungeon(&bytes, &file, rx)?;
+        start = Some(d.start);
+        d.map
     } else {
         grid::io::load_map(&file, &grid::io::LoadOptions { resolution, border })?
     };
@@ -64,6 +93,7 @@ pub fn run(cmd: MapCommand) -> Result<()> {
             "origin": map.origin,
             "free": free, "occupied": occupied, "unknown": unknown,
             "free_components": components,
+            "start": start.map(|c| [c.x, c.y]),
         });
         println!("{}", serde_json::to_string_pretty(&v)?);
     } else {
@@ -81,6 +111,9 @@ pub fn run(cmd: MapCommand) -> Result<()> {
         println!(
             "  free space  {components} connected component(s) (8-connected, no corner squeezing)"
         );
+        if let Some(c) = start {
+            println!("  start       {},{} (the file's mark)", c.x, c.y);
+        }
     }
     Ok(())
 }

@@ -1084,8 +1084,13 @@ fn a_run_recorded_as_mcap_is_a_map_again() {
     ] {
         assert_eq!(a[k], b[k], "{k}");
     }
-    // The last belief is a map too.
+    // The last belief is a map too, and `map info` reads either topic.
     ok(&["explore", "--map", rec_s, "--topic", "/frontier/belief"]);
+    let info = |topic: &str| -> serde_json::Value {
+        serde_json::from_str(&ok(&["map", "info", rec_s, "--topic", topic, "--json"])).unwrap()
+    };
+    assert_eq!(info("/map")["width"], a["width"]);
+    assert_eq!(info("/frontier/belief")["height"], a["height"]);
     let e = err(&[
         "explore",
         "--map",
@@ -1138,6 +1143,19 @@ fn a_dungeon_png_gives_its_marked_start() {
         "the middle of the blob"
     );
     assert_eq!(v["coverage"], 1.0);
+    // `map info` reads it too and shows the mark.
+    let info: serde_json::Value = serde_json::from_str(&ok(&[
+        "map",
+        "info",
+        p,
+        "--dungeon",
+        "--resolution",
+        "0.1",
+        "--json",
+    ]))
+    .unwrap();
+    assert_eq!(info["start"], serde_json::json!([5, 3]));
+    assert_eq!(info["free"], 60);
     // Without a marker: an error naming the file.
     pixels[(3 * w + 4) as usize] = 255;
     pixels[(3 * w + 5) as usize] = 255;
