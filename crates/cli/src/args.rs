@@ -31,8 +31,8 @@ pub struct MapSource {
     #[arg(long)]
     pub border: bool,
     /// Read --map as a dungeon PNG of learned-exploration work (Chen et al. 2019): pixels
-    /// brighter than 150 are free, and pixels of value 208 mark the start (used unless
-    /// --start is given). Needs --resolution.
+    /// brighter than 150 are free, and pixels of value 208 mark the start (required;
+    /// --start overrides it). Needs --resolution.
     #[arg(long)]
     pub dungeon: bool,
     /// Size of a generated environment in metres, "WxH".
