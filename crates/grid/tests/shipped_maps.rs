@@ -33,7 +33,7 @@ fn shipped_floor_plans_load_as_documented() {
             "depot.yaml",
             (604, 307),
             0.05,
-            [0.0, 0.0, 0.0],
+            [-7.14, -7.83, 0.0],
             (179_481, 5_947, 0),
         ),
         (
