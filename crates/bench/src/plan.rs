@@ -51,8 +51,9 @@ use crate::scenario::{ScenarioFile, Source};
 /// the unknown, and covers cell by cell what no block covers; v9: path costs are exact
 /// sums (the diagonal step √2 to 32 binary places), so paths of equal length tie exactly
 /// and break the tie by index instead of by rounding; v10: a study's start perturbations
-/// are distinct cells, drawn without replacement).
-pub const STRATEGY_REVISION: u32 = 10;
+/// are distinct cells, drawn without replacement; v11: a robot sensing on arrival sweeps
+/// where it gives up a goal, as Yamauchi's does).
+pub const STRATEGY_REVISION: u32 = 11;
 
 /// A resolved study: environments, variants, common settings and the flat trial list.
 #[derive(Clone, Debug)]

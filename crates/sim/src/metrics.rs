@@ -264,6 +264,9 @@ pub struct RunResult {
     pub moves: u64,
     /// Scans taken by the team (start and arrival sweeps included).
     pub scans: u64,
+    /// Goals the team gave up under Yamauchi's no-progress rule (put on the inaccessible
+    /// list because they came no closer for the limit).
+    pub gave_up: u64,
     /// The robot's clearance in cells (traversability of the belief used clearance this big).
     pub clearance_cells: f64,
     /// Start cell of each robot.

@@ -167,6 +167,8 @@ struct Team<'a> {
     overlap_cells: usize,
     /// Scans taken.
     scans: u64,
+    /// Goals given up by the no-progress rule.
+    gave_up: u64,
     trace: Option<Trace>,
 }
 
@@ -374,6 +376,7 @@ impl<'a> Session<'a> {
             sensed_cells: 0,
             overlap_cells: 0,
             scans: 0,
+            gave_up: 0,
             trace,
             external,
             pending: false,
@@ -771,6 +774,7 @@ impl<'a> Session<'a> {
             decisions: team.decisions,
             moves: team.moves,
             scans: team.scans,
+            gave_up: team.gave_up,
             clearance_cells: team.cfg.clearance_m / res,
             starts,
             ends,
@@ -1092,8 +1096,10 @@ impl Team<'_> {
     }
 
     /// Yamauchi's no-progress rule: if robot `r`'s goal has not come closer for the limit,
-    /// put it on the inaccessible list and drop it (the caller decides again). Returns
-    /// whether it did.
+    /// put it on the inaccessible list and drop it (the caller decides again). A robot that
+    /// senses on arrival then sweeps where it stands (§2.3: it "will then conduct a sensor
+    /// sweep, update the evidence grid, and attempt to navigate to the closest remaining
+    /// accessible, unvisited frontier"). Returns whether it gave up.
     fn give_up_if_stuck(&mut self, robots: &mut [Robot], r: usize) -> bool {
         let (Some(goal), Some(limit)) = (robots[r].goal, self.no_progress_s) else {
             return false;
@@ -1103,6 +1109,12 @@ impl Team<'_> {
         }
         self.lists.mark_inaccessible(goal);
         robots[r].goal = None;
+        self.gave_up += 1;
+        if self.cfg.sensing_mode() == SensingMode::OnArrival {
+            let cell = self.truth.cells.cell(robots[r].cell as usize);
+            self.look(robots, r, cell, true);
+            self.record(robots, r);
+        }
         true
     }
 

@@ -237,3 +237,41 @@ fn the_body_cannot_squeeze_through_a_corner_the_map_shows_open() {
         assert_ne!(r.reason, EndReason::StepLimit);
     }
 }
+
+/// Regression: a Yamauchi robot that gave up a goal (no progress for the limit) chose its
+/// next goal from the map as it was, without the sensor sweep Yamauchi's §2.3 makes there
+/// ("The robot will then conduct a sensor sweep, update the evidence grid, and attempt to
+/// navigate to the closest remaining accessible, unvisited frontier"). Sensing on arrival,
+/// every decision now follows a scan: the start's, an arrival's, a bump's or a give-up's.
+#[test]
+fn regression_yamauchi_sweeps_where_it_gives_up() {
+    let mut gave_up = 0;
+    for seed in 0..2u64 {
+        let env = world::generate(
+            &EnvSpec::new(EnvKind::Office, seed)
+                .with_size(12.0, 10.0)
+                .with_resolution(0.1),
+        )
+        .expect("office");
+        let clutter = furnish(&env, 2, &ClutterParams::default());
+        let mut cfg = RunConfig::new(Strategy::preset("yamauchi").expect("preset"));
+        cfg.belief = BeliefKind::Evidence;
+        cfg.sensor = SensorSpec::Sonar {
+            r: sense::YAMAUCHI_RANGE,
+            laser_limited: false,
+        };
+        cfg.clutter = Some(clutter);
+        cfg.seed = 4;
+        cfg.max_moves = 200_000;
+        let r = sim::run(&env.map, &cfg).expect("run");
+        assert!(
+            r.scans >= r.decisions,
+            "seed {seed}: {} scans for {} decisions ({} goals given up)",
+            r.scans,
+            r.decisions,
+            r.gave_up
+        );
+        gave_up += r.gave_up;
+    }
+    assert!(gave_up > 0, "no goal was given up: the test lost its case");
+}
