@@ -20,6 +20,9 @@
 //! into plain greedy.
 //!
 //! Precisions and deviations:
+//! - the study lowers the utility of the goals "in the visibility of the robot sensors";
+//!   as Burgard et al., visibility is taken by distance alone (P above, within ρ), with no
+//!   line-of-sight test, so a goal behind a wall within ρ is lowered too;
 //! - goals of robots that keep their goal this time count as taken, and lower the utilities
 //!   around them as if they had just been assigned (Burgard's reduction for targets of other
 //!   robots), even when such a goal is not among the candidates;

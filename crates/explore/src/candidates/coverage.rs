@@ -14,8 +14,9 @@
 //! corner) is seen from most of a room, but its unknown neighbour only from a few cells. A
 //! robot sent to a cell that sees the frontier cell but not the unknown learns nothing;
 //! the cell goes on the visited list, and the next decision sends it to the next such
-//! cell, so that a team sweeps the room row by row (on the 21 × 24 m open space with ρ = 7
-//! m, 3 robots, HA–CC's longest path was 78 m against HA–RFE's 31 m).
+//! cell, so that a team sweeps the room row by row (on the `faigl2013` suite's 21 × 24 m
+//! open space with ρ = 7 m and 3 robots, HA–CC's mean longest path was then more than twice
+//! HA–RFE's; docs/reproduce.md has the numbers).
 //!
 //! How it is computed: visibility under the exact segment rule of `sense::segment` is
 //! symmetric between two cells when the far end is exempt from the "crossed cells are free"
