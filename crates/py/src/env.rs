@@ -171,6 +171,9 @@ struct State {
     buf: Vec<Goal>,
     steps: u64,
     done: bool,
+    /// The episode ended at its reset (the first scan saw everything reachable) and no step
+    /// has reported it yet: the next step returns it as terminated.
+    ended_unreported: bool,
     seed: u64,
     /// Reset at the next step (vector environments reset automatically).
     needs_reset: bool,
@@ -202,6 +205,7 @@ impl State {
             buf: Vec::new(),
             steps: 0,
             done: true,
+            ended_unreported: false,
             seed: 0,
             needs_reset: false,
             marks: Vec::new(),
@@ -261,6 +265,7 @@ impl State {
         self.needs_reset = false;
         let ended = self.next_decision()?;
         self.done = ended;
+        self.ended_unreported = ended;
         Ok(())
     }
 
@@ -315,7 +320,16 @@ impl State {
 
     /// One decision: robot r (if deciding) goes to its candidate `actions[r]`; with `wrap`,
     /// an action outside the n candidates offered is taken modulo n (any other is refused).
+    /// An episode that ended at its reset ends at its first step: terminated, reward 0.
     fn step(&mut self, actions: &[i64], wrap: bool) -> Result<StepOut, String> {
+        if self.ended_unreported && self.session.is_some() {
+            self.ended_unreported = false;
+            self.steps += 1;
+            return Ok(StepOut {
+                terminated: true,
+                ..StepOut::default()
+            });
+        }
         if self.done || self.session.is_none() {
             return Err("step() after the episode ended: call reset() first".into());
         }
@@ -1026,6 +1040,10 @@ impl EnvCore {
         let strategy =
             Strategy::preset(preset).map_err(|e| value_error(format!("--strategy: {e}")))?;
         let st = self.state.get_mut().unwrap_or_else(|p| p.into_inner());
+        if st.ended_unreported {
+            // Ended at its reset: nothing is offered, and the next step ends the episode.
+            return Ok(0);
+        }
         let cells: Vec<u32> = st.offered().iter().map(|g| g.cell).collect();
         let Some(s) = st.session.as_mut().filter(|_| !st.done) else {
             return Err(value_error(
@@ -1441,6 +1459,10 @@ impl TeamEnvCore {
         let strategy =
             Strategy::preset(preset).map_err(|e| value_error(format!("--strategy: {e}")))?;
         let st = self.state.get_mut().unwrap_or_else(|p| p.into_inner());
+        if st.ended_unreported {
+            // Ended at its reset: nothing is offered, and the next step ends the episode.
+            return Ok(vec![0; st.spec.options.robots]);
+        }
         let Some(s) = st.session.as_mut().filter(|_| !st.done) else {
             return Err(value_error(
                 "baseline_actions() after the episode ended: call reset() first",

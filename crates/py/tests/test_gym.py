@@ -611,3 +611,36 @@ def test_a_list_of_map_files_is_read_episode_by_episode(tmp_path):
         ExploreEnv([split[0], tmp_path / "nope.json"], **kw)
     with pytest.raises(TypeError, match=r"maps\[1\]: expected a frontier.Map or a map file's path"):
         ExploreEnv([frontier.Map.load(split[0], resolution=0.1), split[1]], **kw)
+
+
+def _room():
+    """A 3 x 3 room the first scan sees whole: its episodes end at reset."""
+    a = np.ones((12, 12), bool)
+    a[4:7, 4:7] = False
+    return frontier.Map.from_numpy(a, 0.1)
+
+
+def test_regression_episode_ended_at_reset_terminates_at_first_step():
+    env = ExploreEnv(_room())
+    obs, info = env.reset(seed=1)
+    assert not obs["action_mask"].any() and info["coverage"] == 1.0
+    assert env.baseline_action("cf-rr") == 0
+    obs, reward, terminated, truncated, info = env.step(0)
+    assert (reward, terminated, truncated) == (0.0, True, False)
+    assert info["coverage"] == 1.0
+    with pytest.raises(ValueError, match="after the episode ended"):
+        env.step(0)
+    env.reset(seed=2)
+    assert env.step(0)[2]
+
+
+def test_regression_vector_env_autoresets_an_episode_ended_at_reset():
+    venv = ExploreVectorEnv(2, _room())
+    venv.reset(seed=0)
+    for i in range(6):
+        # Next-step autoreset: the step that ends it, then the step that resets it.
+        _, rewards, terminated, truncated, infos = venv.step(np.zeros(2, int))
+        assert list(terminated) == [i % 2 == 0] * 2 and not truncated.any()
+        assert list(rewards) == [0.0, 0.0]
+        assert list(infos["coverage"]) == [1.0, 1.0]
+    assert list(Baseline("cf-rr")(venv)) == [0, 0]

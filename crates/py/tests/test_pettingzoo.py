@@ -119,3 +119,14 @@ def test_team_observations_brought_up_to_date_equal_ones_written_whole(office):
         if held and rng.random() < 0.4:
             held.pop(int(rng.integers(len(held))))
     assert len(every) > 20
+
+
+def test_regression_team_episode_ended_at_reset_terminates_at_first_step():
+    a = np.ones((12, 12), bool)
+    a[4:7, 4:7] = False
+    env = ExploreParallelEnv(frontier.Map.from_numpy(a, 0.1), robots=2)
+    env.reset(seed=1)
+    assert env.deciding() == [] and Baseline("nearest")(env) == {"robot_0": 0, "robot_1": 0}
+    _, rewards, terms, truncs, _ = env.step({"robot_0": 0, "robot_1": 0})
+    assert rewards == {"robot_0": 0.0, "robot_1": 0.0}
+    assert all(terms.values()) and not any(truncs.values()) and env.agents == []

@@ -323,7 +323,8 @@ class ExploreEnv(gymnasium.Env):
     padded with zeros, ``action_mask`` (K,) int8. ``belief`` and ``frontier`` are
     read-only (kept arrays are brought up to date with what changed, so a change made in
     place would stay; ``.copy()`` them to change them). Reward: newly known reachable free area
-    in m² minus λ × metres travelled. ``terminated`` when nothing reachable is left;
+    in m² minus λ × metres travelled. ``terminated`` when nothing reachable is left (an
+    episode whose first scan sees everything reachable ends at its first step, reward 0);
     ``truncated`` at the path or step budget. ``info``: coverage, path_length_m, decisions,
     moves, steps, candidates, map, seed.
     """
