@@ -16,6 +16,10 @@ use std::time::Duration;
 use crate::map::Map;
 use crate::{guarded, internal, value_error};
 
+/// The most threads `explore_many` takes: far more than any machine's cores, so only a
+/// mistake (`threads=10**6`) is refused.
+pub const MAX_THREADS: usize = 4096;
+
 /// The keyword arguments `explore` takes besides the map.
 const KEYS: &[&str] = &[
     "strategy",
@@ -321,8 +325,9 @@ pub fn explore<'py>(
 
 /// Many runs in parallel on Rust threads with the GIL released: `runs` is a list of
 /// (map, kwargs) pairs; returns one summary JSON text per run, in order. Every run is
-/// checked before any starts; an error names the run's index. The largest runs, one per
-/// thread, must fit in `memory_mb` MiB and in the memory the machine has available.
+/// checked before any starts; an error names the run's index. `threads` (at most
+/// [`MAX_THREADS`]) is capped at the number of runs. The largest runs, one per thread, must
+/// fit in `memory_mb` MiB and in the memory the machine has available.
 /// `progress(done, total)` is called about ten times a second while runs finish and once at
 /// the end; an exception from it, or Ctrl-C, stops the batch and is raised.
 #[pyfunction]
@@ -355,14 +360,21 @@ pub fn explore_many(
         j.cfg.record_trace = false;
         jobs.push(j);
     }
-    if threads == Some(0) {
-        return Err(value_error("threads: expected at least 1, found 0"));
+    match threads {
+        Some(0) => return Err(value_error("threads: expected at least 1, found 0")),
+        Some(n) if n > MAX_THREADS => {
+            return Err(value_error(format!(
+                "threads: expected at most {MAX_THREADS}, found {n}"
+            )));
+        }
+        _ => {}
     }
     check_memory(&jobs, threads, memory_mb)?;
     let pool = match threads {
+        // No more threads than runs: a thread with no run to take would only be started.
         Some(n) => Some(
             rayon::ThreadPoolBuilder::new()
-                .num_threads(n)
+                .num_threads(n.min(jobs.len()).max(1))
                 .build()
                 .map_err(|e| value_error(format!("threads: {e}")))?,
         ),

@@ -317,3 +317,18 @@ def test_submodules_after_a_bare_import():
         "    raise SystemExit('no AttributeError')\n"
     )
     subprocess.run([sys.executable, "-c", code], check=True)
+
+
+def test_regression_explore_many_starts_no_more_threads_than_runs():
+    a = np.zeros((8, 8), bool)
+    m = frontier.Map.from_numpy(a, 0.1)
+    one = frontier.explore_many([dict(map=m)])
+    t0 = time.perf_counter()
+    assert frontier.explore_many([dict(map=m)], threads=4096) == one
+    # A pool of 4,096 OS threads took seconds; one thread per run takes milliseconds.
+    assert time.perf_counter() - t0 < 1.0
+    assert frontier.explore_many([], threads=8) == []
+    with pytest.raises(ValueError, match="threads: expected at most 4096, found 1000000"):
+        frontier.explore_many([dict(map=m)], threads=10**6)
+    with pytest.raises(ValueError, match="threads: expected at most 4096, found 4097"):
+        frontier._native.explore_many([(m, None)], threads=4097)

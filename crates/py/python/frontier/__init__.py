@@ -193,6 +193,10 @@ def explore(
     return ExploreResult(json.loads(text), belief_arr, trails)
 
 
+#: The most threads :func:`explore_many` takes (far more than any machine's cores).
+_MAX_THREADS = 4096
+
+
 def explore_many(
     runs: Sequence[Mapping[str, Any]],
     threads: Optional[int] = None,
@@ -202,6 +206,7 @@ def explore_many(
 ) -> List[Dict[str, Any]]:
     """Run many explorations in parallel on Rust threads (the GIL released).
 
+    ``threads`` (default: one per core, at most 4096) is capped at the number of runs.
     Each run is a mapping with a ``map`` (a :class:`Map`) and any keyword arguments of
     :func:`explore` but ``trajectories``; other keys (e.g. ``tag``) are copied into the
     run's row. Returns one flat row per run, in order — ``pandas.DataFrame(rows)`` makes the
@@ -245,6 +250,8 @@ def explore_many(
         extras.append(extra)
     _check_memory_mb(memory_mb)
     _count("threads", threads, 1)
+    if threads is not None and threads > _MAX_THREADS:
+        raise ValueError(f"threads: expected at most {_MAX_THREADS}, found {threads}")
     report, close = _progress(progress, len(native_runs))
     try:
         texts = _native.explore_many(native_runs, threads, timing, memory_mb, report)
