@@ -319,6 +319,25 @@ def test_submodules_after_a_bare_import():
     subprocess.run([sys.executable, "-c", code], check=True)
 
 
+def test_regression_explore_result_copies_and_pickles(office):
+    import copy
+    import pickle
+
+    r = frontier.explore(office, seed=2)
+    for other in (copy.copy(r), copy.deepcopy(r), pickle.loads(pickle.dumps(r))):
+        assert other.summary == r.summary and other.coverage == r.coverage
+        assert np.array_equal(other.belief, r.belief)
+        assert all(np.array_equal(a, b) for a, b in zip(other.trajectories, r.trajectories))
+    assert copy.deepcopy(r).summary is not r.summary
+    with pytest.raises(AttributeError):
+        r.no_such_field
+    empty = frontier.ExploreResult.__new__(frontier.ExploreResult)
+    with pytest.raises(AttributeError):
+        empty.summary
+    with pytest.raises(AttributeError):
+        empty.coverage
+
+
 def test_regression_explore_many_starts_no_more_threads_than_runs():
     a = np.zeros((8, 8), bool)
     m = frontier.Map.from_numpy(a, 0.1)

@@ -34,7 +34,8 @@ __version__: str = _native.__version__
 
 class ExploreResult:
     """One run's result: the fields of ``frontier explore --json`` as attributes (and
-    :attr:`summary`), plus the final belief and the robots' trajectories as numpy arrays."""
+    :attr:`summary`), plus the final belief and the robots' trajectories as numpy arrays.
+    Results copy and pickle (to send them to another process)."""
 
     __slots__ = ("summary", "belief", "trajectories")
 
@@ -52,10 +53,19 @@ class ExploreResult:
         self.trajectories = trajectories
 
     def __getattr__(self, name: str) -> Any:
+        # Reached only for names that are not attributes. Dunder names (copy's and pickle's
+        # lookups) and the slots themselves (unset on an instance being copied) are never
+        # summary fields: reading ``self.summary`` there would recurse.
+        if name.startswith("__") or name in ExploreResult.__slots__:
+            raise AttributeError(name)
         try:
             return self.summary[name]
         except KeyError:
             raise AttributeError(name) from None
+
+    def __reduce__(self) -> Tuple[Any, ...]:
+        """Pickled and copied as its summary, belief and trajectories."""
+        return (ExploreResult, (self.summary, self.belief, self.trajectories))
 
     def __dir__(self) -> Iterable[str]:
         return list(self.summary) + ["summary", "belief", "trajectories", "to_json", "row"]
