@@ -53,6 +53,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(run::explore_many, m)?)?;
     m.add_function(wrap_pyfunction!(run::strategies, m)?)?;
     m.add_function(wrap_pyfunction!(store::load_rows, m)?)?;
+    m.add_function(wrap_pyfunction!(map::restore_map, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

@@ -8,6 +8,7 @@ use grid::{Grid, GridMap, Occ};
 use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
+use pyo3::types::PyBytes;
 use world::{EnvKind, EnvSpec};
 
 use crate::value_error;
@@ -305,6 +306,37 @@ impl Map {
         self.start.map(|c| (c.x, c.y))
     }
 
+    /// Pickled as its cells, size, resolution, origin, name and start, which
+    /// `frontier._native._restore_map` makes a map of again (so that maps reach worker
+    /// processes started with `spawn`).
+    #[allow(clippy::type_complexity)]
+    fn __reduce__<'py>(&self, py: Python<'py>) -> PyResult<(Bound<'py, PyAny>, MapState<'py>)> {
+        let restore = py.import("frontier._native")?.getattr("_restore_map")?;
+        let cells: Vec<u8> = self.map.cells.data().iter().map(|&o| o as u8).collect();
+        Ok((
+            restore,
+            (
+                PyBytes::new(py, &cells),
+                self.map.width(),
+                self.map.height(),
+                self.map.resolution,
+                self.origin(),
+                self.name.clone(),
+                self.start(),
+            ),
+        ))
+    }
+
+    /// The map itself: a map never changes, so a copy may share it.
+    fn __copy__(slf: Py<Self>) -> Py<Self> {
+        slf
+    }
+
+    /// The map itself: a map never changes, so a deep copy may share it.
+    fn __deepcopy__(slf: Py<Self>, _memo: &Bound<'_, PyAny>) -> Py<Self> {
+        slf
+    }
+
     fn __repr__(&self) -> String {
         format!(
             "Map('{}', {}x{} cells at {} m)",
@@ -314,6 +346,59 @@ impl Map {
             self.map.resolution
         )
     }
+}
+
+/// What a pickled map holds: cells (one byte each, row by row), width, height, resolution,
+/// origin, name and start.
+type MapState<'py> = (
+    Bound<'py, PyBytes>,
+    usize,
+    usize,
+    f64,
+    (f64, f64, f64),
+    String,
+    Option<(i32, i32)>,
+);
+
+/// A map from what `Map.__reduce__` gives (unpickling a map).
+#[pyfunction]
+#[pyo3(name = "_restore_map", signature = (cells, width, height, resolution, origin, name, start))]
+pub fn restore_map(
+    cells: &Bound<'_, PyBytes>,
+    width: usize,
+    height: usize,
+    resolution: f64,
+    origin: (f64, f64, f64),
+    name: String,
+    start: Option<(i32, i32)>,
+) -> PyResult<Map> {
+    check_resolution(resolution)?;
+    check_cells(width, height)?;
+    let bytes = cells.as_bytes();
+    if bytes.len() != width.saturating_mul(height) || bytes.is_empty() {
+        return Err(value_error(format!(
+            "cells: expected {width} x {height} cells, found {}",
+            bytes.len()
+        )));
+    }
+    let cells = bytes
+        .iter()
+        .map(|&b| match b {
+            0 => Ok(Occ::Unknown),
+            1 => Ok(Occ::Free),
+            2 => Ok(Occ::Occupied),
+            v => Err(value_error(format!(
+                "cells: expected 0 (unknown), 1 (free) or 2 (occupied), found {v}"
+            ))),
+        })
+        .collect::<PyResult<Vec<Occ>>>()?;
+    let grid =
+        Grid::from_vec(width, height, cells).ok_or_else(|| value_error("cells: bad shape"))?;
+    let mut map = GridMap::new(grid, resolution);
+    map.origin = [origin.0, origin.1, origin.2];
+    let mut m = Map::new(map, name);
+    m.start = start.map(|(x, y)| grid::Cell::new(x, y));
+    Ok(m)
 }
 
 /// Refuse an array of more cells than any map file may hold ([`grid::io::MAX_CELLS`]),

@@ -113,3 +113,41 @@ def test_from_numpy_refuses_more_cells_than_a_map_file_may_hold():
             frontier.Map.from_numpy(big, 0.1)
     ok = np.broadcast_to(np.ones(1, dtype=np.uint8), (2, 2**27))
     assert frontier.Map.from_numpy(ok, 0.1).shape == (2, 2**27)
+
+
+def _same_map(a, b):
+    assert np.array_equal(a.to_numpy(), b.to_numpy())
+    assert (a.resolution, a.name, a.origin, a.start) == (b.resolution, b.name, b.origin, b.start)
+
+
+def test_regression_maps_pickle_and_copy(office, tmp_path, write_png):
+    import copy
+    import pickle
+    from concurrent.futures import ProcessPoolExecutor
+    from multiprocessing import get_context
+
+    # A ROS map with an origin, a dungeon map with a marked start, and a generated one.
+    (tmp_path / "o.pgm").write_bytes(b"P5\n4 3\n255\n" + bytes([254] * 11 + [0]))
+    (tmp_path / "o.yaml").write_text(
+        "image: o.pgm\nresolution: 0.5\norigin: [-1.5, 2.25, 0.5]\nnegate: 0\n"
+        "occupied_thresh: 0.65\nfree_thresh: 0.196\n"
+    )
+    pixels = np.full((8, 12), 255, np.uint8)
+    pixels[[0, -1], :] = 0
+    pixels[:, [0, -1]] = 0
+    pixels[5, 4] = 208
+    write_png(tmp_path / "d.png", pixels)
+    ros = frontier.Map.load(tmp_path / "o.yaml")
+    dungeon = frontier.Map.load(tmp_path / "d.png", resolution=0.1, dungeon=True)
+    assert ros.origin == (-1.5, 2.25, 0.5) and dungeon.start == (4, 5)
+    for m in (office, ros, dungeon):
+        for other in (pickle.loads(pickle.dumps(m)), copy.copy(m), copy.deepcopy(m)):
+            _same_map(m, other)
+    again = pickle.loads(pickle.dumps(dungeon))
+    assert frontier.explore(again, seed=1).summary == frontier.explore(dungeon, seed=1).summary
+    # What Gymnasium's async vector env and a spawned process pool need.
+    with ProcessPoolExecutor(1, mp_context=get_context("spawn")) as pool:
+        got = pool.submit(frontier.explore, office, seed=4).result()
+    assert got.summary == frontier.explore(office, seed=4).summary
+    with pytest.raises(ValueError, match=r"cells: expected 2 x 2 cells, found 3"):
+        frontier._native._restore_map(b"\x01\x01\x01", 2, 2, 0.1, (0.0, 0.0, 0.0), "m", None)

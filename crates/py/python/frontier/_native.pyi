@@ -14,6 +14,7 @@ __all__ = [
     "explore_many",
     "strategies",
     "load_rows",
+    "_restore_map",
     "__version__",
 ]
 
@@ -77,6 +78,28 @@ class Map:
     @property
     def start(self) -> Optional[Tuple[int, int]]:
         """The start the file marks (x, y), or None; runs start there unless given one."""
+    def __reduce__(
+        self,
+    ) -> Tuple[
+        Callable[..., Map],
+        Tuple[bytes, int, int, float, Tuple[float, float, float], str, Optional[Tuple[int, int]]],
+    ]:
+        """Pickled as its cells, size, resolution, origin, name and start."""
+    def __copy__(self) -> Map:
+        """The map itself (maps never change)."""
+    def __deepcopy__(self, memo: Any, /) -> Map:
+        """The map itself (maps never change)."""
+
+def _restore_map(
+    cells: bytes,
+    width: int,
+    height: int,
+    resolution: float,
+    origin: Tuple[float, float, float],
+    name: str,
+    start: Optional[Tuple[int, int]],
+) -> Map:
+    """A map from what `Map.__reduce__` gives (unpickling a map)."""
 
 def explore(
     map: Map,
