@@ -123,3 +123,13 @@ def test_not_a_store(tmp_path):
         frontier.bench.load(bad)
     with pytest.raises(ValueError, match="backend: expected 'pandas' or 'polars'"):
         frontier.bench.load(bad, backend="excel")
+
+
+def test_regression_load_gives_integer_seeds_as_the_csv_does(store):
+    pd = pytest.importorskip("pandas")
+    df = frontier.bench.load(store / "tiny.sqlite")
+    csv = pd.read_csv(store / "tiny.csv")
+    assert df["seed"].dtype == csv["seed"].dtype and df["seed"].tolist() == csv["seed"].tolist()
+    seed = int(csv["seed"][0])
+    assert len(df[df["seed"] == seed]) == len(csv[csv["seed"] == seed]) >= 1
+    assert all(isinstance(r["seed"], int) for r in frontier.bench.rows(store / "tiny.sqlite"))

@@ -2,7 +2,8 @@
 
 The rows come through the bench crate's own reader, so the columns are exactly those of
 ``frontier bench export`` (CSV): one row per trial, ordered by key. JSON columns
-(``starts``, ``path_lengths``, ``coverage_curve``) are decoded into lists.
+(``starts``, ``path_lengths``, ``coverage_curve``) are decoded into lists, and ``seed`` (kept
+as decimal text, an unsigned 64-bit number) into an int, as pandas reads the CSV's.
 """
 
 from __future__ import annotations
@@ -25,6 +26,8 @@ def rows(db: Union[str, "os.PathLike[str]"]) -> List[Dict[str, Any]]:
         for c in _JSON_COLUMNS:
             if isinstance(r.get(c), str):
                 r[c] = json.loads(r[c])
+        if isinstance(r.get("seed"), str):
+            r["seed"] = int(r["seed"])
     return out
 
 
