@@ -351,3 +351,18 @@ def test_regression_explore_many_starts_no_more_threads_than_runs():
         frontier.explore_many([dict(map=m)], threads=10**6)
     with pytest.raises(ValueError, match="threads: expected at most 4096, found 4097"):
         frontier._native.explore_many([(m, None)], threads=4097)
+
+
+def test_regression_explore_many_refuses_batch_arguments_and_clashing_tags(office):
+    for key, value, what in [
+        ("timing", True, r"explore_many\(runs, timing=\.\.\.\)"),
+        ("memory_mb", 100, r"explore_many\(runs, memory_mb=\.\.\.\)"),
+        ("trajectories", False, "explore_many returns summaries only"),
+    ]:
+        with pytest.raises(TypeError, match=rf"run 1: '{key}': .*{what}"):
+            frontier.explore_many([dict(map=office), dict(map=office, **{key: value})])
+    for tag in ("env", "reason", "map_accuracy", "timing_ms_total"):
+        with pytest.raises(ValueError, match=rf"run 0: the tag '{tag}' is also a column"):
+            frontier.explore_many([dict(map=office, **{tag: "mine"})])
+    rows = frontier.explore_many([dict(map=office, trial=2, label="a")])
+    assert (rows[0]["trial"], rows[0]["label"]) == (2, "a")

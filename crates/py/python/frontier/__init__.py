@@ -10,10 +10,23 @@ PettingZoo environment for teams (:mod:`frontier.pettingzoo`).
 from __future__ import annotations
 
 import difflib
+import functools
 import json
 import sys
 import warnings
-from typing import Any, Callable, Dict, Iterable, List, Mapping, Optional, Sequence, Tuple, Union
+from typing import (
+    Any,
+    Callable,
+    Dict,
+    FrozenSet,
+    Iterable,
+    List,
+    Mapping,
+    Optional,
+    Sequence,
+    Tuple,
+    Union,
+)
 
 import numpy as np
 
@@ -203,6 +216,25 @@ def explore(
     return ExploreResult(json.loads(text), belief_arr, trails)
 
 
+#: Arguments of :func:`explore` that :func:`explore_many` takes for the whole batch only,
+#: and what to do instead of giving them to a run.
+_BATCH_ARGS = {
+    "timing": "an argument of the whole batch: explore_many(runs, timing=...)",
+    "memory_mb": "an argument of the whole batch: explore_many(runs, memory_mb=...)",
+    "trajectories": "explore_many returns summaries only (no trajectories): drop it, or "
+    "call explore for the runs whose trajectories you need",
+}
+
+
+@functools.lru_cache(maxsize=None)
+def _summary_columns() -> FrozenSet[str]:
+    """The columns of :func:`explore_many`'s rows (the flattened summary, whose keys every
+    run has), read from a run on a 3 x 3 room."""
+    room = Map.from_numpy(np.zeros((3, 3), bool), 1.0)
+    text, _, _ = _native.explore(room, {"trajectories": False})
+    return frozenset(_flatten(json.loads(text)))
+
+
 #: The most threads :func:`explore_many` takes (far more than any machine's cores).
 _MAX_THREADS = 4096
 
@@ -218,11 +250,14 @@ def explore_many(
 
     ``threads`` (default: one per core, at most 4096) is capped at the number of runs.
     Each run is a mapping with a ``map`` (a :class:`Map`) and any keyword arguments of
-    :func:`explore` but ``trajectories``; other keys (e.g. ``tag``) are copied into the
-    run's row. Returns one flat row per run, in order — ``pandas.DataFrame(rows)`` makes the
-    table. All runs are checked before any starts, and the batch is refused when its largest
-    runs, one per thread, would need more than ``memory_mb`` MiB or the memory the machine
-    has available.
+    :func:`explore` but ``trajectories``, ``timing`` and ``memory_mb`` (``timing`` and
+    ``memory_mb`` are the batch's arguments; a run giving one is a TypeError); other keys
+    (e.g. ``tag``) are copied into the run's row, and one named as a column of the summary
+    (``env``, ``reason``, ``map_accuracy``, ...) is refused with a ValueError, since the
+    summary would overwrite it. Returns one flat row per run, in order —
+    ``pandas.DataFrame(rows)`` makes the table. All runs are checked before any starts, and
+    the batch is refused when its largest runs, one per thread, would need more than
+    ``memory_mb`` MiB or the memory the machine has available.
 
     ``progress=True`` shows a bar (tqdm's when it is installed, else a line on standard
     error); a callable is called as ``progress(done, total)`` about ten times a second and
@@ -247,9 +282,17 @@ def explore_many(
         m = run["map"]
         if not isinstance(m, Map):
             raise TypeError(f"run {i}: map: expected a frontier.Map, found {type(m).__name__}")
+        for k in _BATCH_ARGS:
+            if k in run:
+                raise TypeError(f"run {i}: {k!r}: {_BATCH_ARGS[k]}")
         native_runs.append((m, {k: v for k, v in run.items() if k in keys}))
         extra = {k: v for k, v in run.items() if k not in keys and k != "map"}
         for k in extra:
+            if k in _summary_columns():
+                raise ValueError(
+                    f"run {i}: the tag {k!r} is also a column of the run's summary, which "
+                    "would overwrite it; rename the tag"
+                )
             near = difflib.get_close_matches(str(k), sorted(keys), n=1, cutoff=0.8)
             if near:
                 warnings.warn(
