@@ -17,12 +17,62 @@ pub mod map;
 pub mod run;
 pub mod store;
 
-use pyo3::exceptions::{PyRuntimeError, PyValueError};
+use pyo3::exceptions::{PyOverflowError, PyRuntimeError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
+use pyo3::types::{PyBool, PyFloat, PyString};
 
 /// A `ValueError` carrying `e`'s message.
 pub(crate) fn value_error(e: impl std::fmt::Display) -> PyErr {
     PyValueError::new_err(e.to_string())
+}
+
+/// The name of `v`'s type, for messages ("found str").
+pub(crate) fn type_name(v: &Bound<'_, PyAny>) -> String {
+    v.get_type()
+        .name()
+        .map(|n| n.to_string())
+        .unwrap_or_default()
+}
+
+/// A `TypeError`: argument `name` expected `what`, found `v`'s type.
+pub(crate) fn type_error(name: &str, what: &str, v: &Bound<'_, PyAny>) -> PyErr {
+    PyTypeError::new_err(format!("{name}: expected {what}, found {}", type_name(v)))
+}
+
+/// Argument `name` as a real number (an int, a float or a numpy scalar; not a bool).
+pub(crate) fn real_arg(v: &Bound<'_, PyAny>, name: &str, what: &str) -> PyResult<f64> {
+    if v.is_instance_of::<PyBool>() || v.is_instance_of::<PyString>() {
+        return Err(type_error(name, what, v));
+    }
+    v.extract::<f64>().map_err(|_| type_error(name, what, v))
+}
+
+/// Argument `name` as a bool (Python's or numpy's).
+pub(crate) fn bool_arg(v: &Bound<'_, PyAny>, name: &str) -> PyResult<bool> {
+    v.extract::<bool>()
+        .map_err(|_| type_error(name, "a bool", v))
+}
+
+/// Argument `name` as an integer in 0..2^64 (a Python or numpy integer; not a bool).
+pub(crate) fn u64_arg(v: &Bound<'_, PyAny>, name: &str) -> PyResult<u64> {
+    if v.is_instance_of::<PyBool>() || v.is_instance_of::<PyFloat>() {
+        return Err(type_error(name, "an int", v));
+    }
+    let big: i128 = match v.extract() {
+        Ok(n) => n,
+        Err(e) if e.is_instance_of::<PyOverflowError>(v.py()) => {
+            return Err(value_error(format!(
+                "{name}: expected an integer in 0..2^64, found {}",
+                v.str().map(|s| s.to_string()).unwrap_or_default()
+            )));
+        }
+        Err(_) => return Err(type_error(name, "an int", v)),
+    };
+    u64::try_from(big).map_err(|_| {
+        value_error(format!(
+            "{name}: expected an integer in 0..2^64, found {big}"
+        ))
+    })
 }
 
 /// Run `f`, turning a panic into an error message instead of unwinding further.

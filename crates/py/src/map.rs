@@ -11,7 +11,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyBytes;
 use world::{EnvKind, EnvSpec};
 
-use crate::value_error;
+use crate::{bool_arg, real_arg, u64_arg, value_error};
 
 /// A ground-truth occupancy map: cells (0 unknown, 1 free, 2 occupied), resolution in metres
 /// per cell, and the name runs report.
@@ -26,13 +26,31 @@ pub struct Map {
     pub start: Option<grid::Cell>,
 }
 
+/// What a resolution is, for messages.
+const RESOLUTION: &str = "a number of metres per cell";
+
+/// `border=` of `Map.load`.
+fn border_arg(v: &Bound<'_, PyAny>) -> PyResult<bool> {
+    bool_arg(v, "border")
+}
+
+/// `dungeon=` of `Map.load`.
+fn dungeon_arg(v: &Bound<'_, PyAny>) -> PyResult<bool> {
+    bool_arg(v, "dungeon")
+}
+
+/// `seed=` of `Map.generate`.
+fn seed_arg(v: &Bound<'_, PyAny>) -> PyResult<u64> {
+    u64_arg(v, "seed")
+}
+
 /// Metres per cell as the CLI's `--resolution` takes it: one number or (x, y).
 fn resolution_arg(v: Option<&Bound<'_, PyAny>>) -> PyResult<Option<(f64, f64)>> {
     let Some(v) = v else { return Ok(None) };
     if v.is_none() {
         return Ok(None);
     }
-    let (x, y) = if let Ok(r) = v.extract::<f64>() {
+    let (x, y) = if let Ok(r) = real_arg(v, "resolution", RESOLUTION) {
         (r, r)
     } else if let Ok((x, y)) = v.extract::<(f64, f64)>() {
         (x, y)
@@ -146,9 +164,9 @@ impl Map {
     fn load(
         path: PathBuf,
         resolution: Option<&Bound<'_, PyAny>>,
-        border: bool,
+        #[pyo3(from_py_with = border_arg)] border: bool,
         topic: Option<String>,
-        dungeon: bool,
+        #[pyo3(from_py_with = dungeon_arg)] dungeon: bool,
     ) -> PyResult<Self> {
         let resolution = resolution_arg(resolution)?;
         let (map, name, start) =
@@ -162,7 +180,12 @@ impl Map {
     /// 2 occupied); row 0 is the top row.
     #[staticmethod]
     #[pyo3(signature = (array, resolution, name="array"))]
-    fn from_numpy(array: &Bound<'_, PyAny>, resolution: f64, name: &str) -> PyResult<Self> {
+    fn from_numpy(
+        array: &Bound<'_, PyAny>,
+        resolution: &Bound<'_, PyAny>,
+        name: &str,
+    ) -> PyResult<Self> {
+        let resolution = real_arg(resolution, "resolution", RESOLUTION)?;
         check_resolution(resolution)?;
         let cells: Vec<Occ>;
         let (h, w);
@@ -220,13 +243,17 @@ impl Map {
     fn generate(
         py: Python<'_>,
         kind: &str,
-        seed: u64,
+        #[pyo3(from_py_with = seed_arg)] seed: u64,
         size: Option<(f64, f64)>,
-        resolution: Option<f64>,
+        resolution: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Self> {
         let kind: EnvKind = kind
             .parse()
             .map_err(|e| value_error(format!("--env: {e}")))?;
+        let resolution = resolution
+            .filter(|r| !r.is_none())
+            .map(|r| real_arg(r, "resolution", RESOLUTION))
+            .transpose()?;
         if let Some(r) = resolution {
             check_resolution(r)?;
         }

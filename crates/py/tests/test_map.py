@@ -151,3 +151,43 @@ def test_regression_maps_pickle_and_copy(office, tmp_path, write_png):
     assert got.summary == frontier.explore(office, seed=4).summary
     with pytest.raises(ValueError, match=r"cells: expected 2 x 2 cells, found 3"):
         frontier._native._restore_map(b"\x01\x01\x01", 2, 2, 0.1, (0.0, 0.0, 0.0), "m", None)
+
+
+def test_regression_conversion_errors_name_the_argument(tmp_path):
+    from frontier.gym import ExploreEnv
+
+    a = np.zeros((6, 6), bool)
+    m = frontier.Map.from_numpy(a, 0.1)
+    (tmp_path / "m.txt").write_text("....\n....\n")
+    cases = [
+        (lambda: frontier.Map.from_numpy(a, "0.1"), TypeError,
+         "resolution: expected a number of metres per cell, found str"),
+        (lambda: frontier.Map.from_numpy(a, True), TypeError, "resolution: expected a number"),
+        (lambda: frontier.Map.load(tmp_path / "m.txt", border="x"), TypeError,
+         "border: expected a bool, found str"),
+        (lambda: frontier.Map.load(tmp_path / "m.txt", dungeon=1), TypeError,
+         "dungeon: expected a bool, found int"),
+        (lambda: frontier.Map.generate("office", seed=-1), ValueError,
+         r"seed: expected an integer in 0\.\.2\^64, found -1"),
+        (lambda: frontier.Map.generate("office", seed=2**64), ValueError,
+         r"seed: expected an integer in 0\.\.2\^64, found 18446744073709551616"),
+        (lambda: frontier.Map.generate("office", seed=1.5), TypeError,
+         "seed: expected an int, found float"),
+        (lambda: frontier.Map.generate("office", resolution="x"), TypeError,
+         "resolution: expected a number of metres per cell, found str"),
+        (lambda: ExploreEnv(m, lam="x"), TypeError, "lam: expected a number"),
+        (lambda: ExploreEnv(m, gain="yes"), TypeError, "gain: expected a bool, found str"),
+        (lambda: ExploreEnv(m, max_path_m="far"), TypeError, "max_path_m: expected a number"),
+        (lambda: ExploreEnv(m, k=2**70), ValueError, "k: expected at most"),
+        (lambda: ExploreEnv(m, candidates=3), TypeError, "candidates: expected a str"),
+        (lambda: frontier.explore(m, timing="no"), TypeError, "timing: expected a bool"),
+        (lambda: frontier.explore(m, trajectories=0), TypeError, "trajectories: expected a bool"),
+        (lambda: frontier.explore_many([dict(map=m)], timing="no"), TypeError,
+         "timing: expected a bool"),
+    ]
+    for call, kind, message in cases:
+        with pytest.raises(kind, match=message):
+            call()
+    assert frontier.Map.generate("cave", seed=np.uint64(2**63), size=(8, 8)).shape == (80, 80)
+    assert frontier.Map.from_numpy(a, np.float32(0.5)).resolution == 0.5
+    assert ExploreEnv(m, lam=np.float64(0.5), gain=np.True_) is not None

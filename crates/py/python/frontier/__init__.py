@@ -155,6 +155,30 @@ def _count(name: str, value: Any, least: int, what: str = "") -> None:
         raise TypeError(f"{name}: expected an int, found {type(value).__name__}")
     if value < least:
         raise ValueError(f"{name}: expected at least {least}{what}, found {value}")
+    if value > sys.maxsize:
+        raise ValueError(f"{name}: expected at most {sys.maxsize}{what}, found {value}")
+
+
+def _flag(name: str, value: Any) -> bool:
+    """``value`` as a bool (Python's or numpy's); TypeError naming ``name`` otherwise."""
+    if not isinstance(value, (bool, np.bool_)):
+        raise TypeError(f"{name}: expected a bool, found {type(value).__name__}")
+    return bool(value)
+
+
+def _real(name: str, value: Any, what: str = "a number") -> float:
+    """``value`` (an int, a float or a numpy number, not a bool) as a float; TypeError
+    naming ``name`` otherwise."""
+    if isinstance(value, (bool, np.bool_)) or not isinstance(
+        value, (int, float, np.integer, np.floating)
+    ):
+        raise TypeError(f"{name}: expected {what}, found {type(value).__name__}")
+    return float(value)
+
+
+def _real_or_none(name: str, value: Any, what: str = "a number") -> Optional[float]:
+    """None, or ``value`` as :func:`_real` reads it."""
+    return None if value is None else _real(name, value, what + " or None")
 
 
 def _check_memory_mb(memory_mb: Any) -> None:
@@ -205,6 +229,8 @@ def explore(
     if not isinstance(map, Map):
         raise TypeError(f"map: expected a frontier.Map, found {type(map).__name__}")
     _check_memory_mb(memory_mb)
+    trajectories = _flag("trajectories", trajectories)
+    timing = _flag("timing", timing)
     kw = _kwargs(
         strategy, sensor, robots, seed, start, belief, sensing, clearance, speed, s_max, goal,
         max_moves, motion, coverage,
@@ -302,6 +328,7 @@ def explore_many(
                 )
         extras.append(extra)
     _check_memory_mb(memory_mb)
+    timing = _flag("timing", timing)
     _count("threads", threads, 1)
     if threads is not None and threads > _MAX_THREADS:
         raise ValueError(f"threads: expected at most {_MAX_THREADS}, found {threads}")

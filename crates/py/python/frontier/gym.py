@@ -28,7 +28,7 @@ from gymnasium.utils import seeding
 from gymnasium.vector import AutoresetMode, VectorEnv
 from gymnasium.vector.utils import batch_space
 
-from . import _count, _native
+from . import _count, _flag, _native, _real, _real_or_none
 from ._native import Map
 
 __all__ = ["ExploreEnv", "ExploreVectorEnv", "Baseline", "RandomPolicy", "load_folder"]
@@ -227,8 +227,13 @@ def _core_args(
     _count("k", k, 1, " candidate")
     _count("view", view, 1, " cell")
     _count("max_steps", max_steps, 1, " decision")
-    if not isinstance(dungeon, bool):
-        raise TypeError(f"dungeon: expected a bool, found {type(dungeon).__name__}")
+    dungeon = _flag("dungeon", dungeon)
+    gain = _flag("gain", gain)
+    lam = _real("lam", lam, "a number (the reward's price per metre)")
+    max_path_m = _real_or_none("max_path_m", max_path_m, "a number of metres")
+    resolution = _real_or_none("resolution", resolution, "a number of metres per cell")
+    if candidates is not None and not isinstance(candidates, str):
+        raise TypeError(f"candidates: expected a str or None, found {type(candidates).__name__}")
     listed, generator, files = _source(maps, size, resolution, dungeon)
     kwargs = dict(run)
     kwargs.update(strategy=strategy, sensor=sensor)
