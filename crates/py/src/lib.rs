@@ -19,7 +19,7 @@ pub mod store;
 
 use pyo3::exceptions::{PyOverflowError, PyRuntimeError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::{PyBool, PyFloat, PyString};
+use pyo3::types::{PyBool, PyBytes, PyFloat, PyString};
 
 /// A `ValueError` carrying `e`'s message.
 pub(crate) fn value_error(e: impl std::fmt::Display) -> PyErr {
@@ -73,6 +73,52 @@ pub(crate) fn u64_arg(v: &Bound<'_, PyAny>, name: &str) -> PyResult<u64> {
             "{name}: expected an integer in 0..2^64, found {big}"
         ))
     })
+}
+
+/// One number of a pair (an int, a float or a numpy number; not a bool).
+pub(crate) fn real_item(v: &Bound<'_, PyAny>) -> Option<f64> {
+    if v.is_instance_of::<PyBool>() || v.is_instance_of::<PyString>() {
+        return None;
+    }
+    v.extract().ok()
+}
+
+/// One integer of a pair (a Python or numpy integer; not a bool or a float).
+pub(crate) fn int_item(v: &Bound<'_, PyAny>) -> Option<i64> {
+    if v.is_instance_of::<PyBool>() || v.is_instance_of::<PyFloat>() {
+        return None;
+    }
+    v.extract().ok()
+}
+
+/// Argument `name` as a pair: any sequence of two items (a tuple, a list, a numpy array),
+/// each read by `item`; `what` says what was expected.
+pub(crate) fn pair_arg<T>(
+    v: &Bound<'_, PyAny>,
+    name: &str,
+    what: &str,
+    item: impl Fn(&Bound<'_, PyAny>) -> Option<T>,
+) -> PyResult<(T, T)> {
+    if v.is_instance_of::<PyString>() || v.is_instance_of::<PyBytes>() {
+        return Err(type_error(name, what, v));
+    }
+    let n = v.len().map_err(|_| type_error(name, what, v))?;
+    if n != 2 {
+        return Err(value_error(format!(
+            "{name}: expected {what}, found {n} values"
+        )));
+    }
+    let get = |i: usize| -> PyResult<T> {
+        let x = v.get_item(i).map_err(|_| type_error(name, what, v))?;
+        item(&x).ok_or_else(|| {
+            PyTypeError::new_err(format!(
+                "{name}: expected {what}, found {} ({}) among its values",
+                x.repr().map(|r| r.to_string()).unwrap_or_default(),
+                type_name(&x)
+            ))
+        })
+    };
+    Ok((get(0)?, get(1)?))
 }
 
 /// Run `f`, turning a panic into an error message instead of unwinding further.

@@ -11,7 +11,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyBytes;
 use world::{EnvKind, EnvSpec};
 
-use crate::{bool_arg, real_arg, u64_arg, value_error};
+use crate::{bool_arg, pair_arg, real_arg, real_item, u64_arg, value_error};
 
 /// A ground-truth occupancy map: cells (0 unknown, 1 free, 2 occupied), resolution in metres
 /// per cell, and the name runs report.
@@ -52,13 +52,13 @@ fn resolution_arg(v: Option<&Bound<'_, PyAny>>) -> PyResult<Option<(f64, f64)>> 
     }
     let (x, y) = if let Ok(r) = real_arg(v, "resolution", RESOLUTION) {
         (r, r)
-    } else if let Ok((x, y)) = v.extract::<(f64, f64)>() {
-        (x, y)
     } else {
-        return Err(PyTypeError::new_err(format!(
-            "resolution: expected a number of metres per cell or a pair (x, y), found {}",
-            v.get_type().name()?
-        )));
+        pair_arg(
+            v,
+            "resolution",
+            "a number of metres per cell or a pair (x, y)",
+            real_item,
+        )?
     };
     for r in [x, y] {
         check_resolution(r)?;
@@ -79,8 +79,12 @@ pub(crate) fn check_resolution(r: f64) -> PyResult<()> {
     }
 }
 
-/// A size in metres: (width, height).
-fn size_arg(v: Option<(f64, f64)>) -> PyResult<Option<(f64, f64)>> {
+/// A size in metres: (width, height), any sequence of two numbers.
+fn size_arg(v: Option<&Bound<'_, PyAny>>) -> PyResult<Option<(f64, f64)>> {
+    let v = match v.filter(|v| !v.is_none()) {
+        Some(v) => Some(pair_arg(v, "size", "(width, height) in metres", real_item)?),
+        None => None,
+    };
     match v {
         Some((w, h)) if !(w.is_finite() && h.is_finite() && w > 0.0 && h > 0.0) => {
             Err(value_error(format!(
@@ -244,7 +248,7 @@ impl Map {
         py: Python<'_>,
         kind: &str,
         #[pyo3(from_py_with = seed_arg)] seed: u64,
-        size: Option<(f64, f64)>,
+        size: Option<&Bound<'_, PyAny>>,
         resolution: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Self> {
         let kind: EnvKind = kind

@@ -90,7 +90,7 @@ pub(crate) fn options(kw: Option<&Bound<'_, PyDict>>) -> PyResult<ExploreOptions
                 })?;
             }
             "start" => {
-                let (x, y): (i64, i64) = v.extract().map_err(|_| typed("a cell (x, y)"))?;
+                let (x, y) = crate::pair_arg(&v, "start", "a cell (x, y)", crate::int_item)?;
                 let (x, y) = (
                     i32::try_from(x).unwrap_or(i32::MAX),
                     i32::try_from(y).unwrap_or(i32::MAX),

@@ -191,3 +191,39 @@ def test_regression_conversion_errors_name_the_argument(tmp_path):
     assert frontier.Map.generate("cave", seed=np.uint64(2**63), size=(8, 8)).shape == (80, 80)
     assert frontier.Map.from_numpy(a, np.float32(0.5)).resolution == 0.5
     assert ExploreEnv(m, lam=np.float64(0.5), gain=np.True_) is not None
+
+
+def test_regression_pairs_may_be_any_sequence_of_two(office, tmp_path):
+    from frontier.gym import ExploreEnv
+
+    tuple_made = frontier.Map.generate("office", seed=1, size=(12, 10))
+    for size in ([12, 10], np.array([12, 10]), np.array([12.0, 10.0])):
+        assert np.array_equal(frontier.Map.generate("office", seed=1, size=size).to_numpy(),
+                              tuple_made.to_numpy())
+    assert ExploreEnv("office", size=[12, 10]).observation_space["belief"].shape == \
+        ExploreEnv("office", size=(12, 10)).observation_space["belief"].shape
+    r = frontier.explore(office, start=(3, 3))
+    for start in ([3, 3], np.array([3, 3]), (np.int32(3), 3)):
+        assert frontier.explore(office, start=start).summary == r.summary
+    office.save(tmp_path / "o.pgm")
+    by_tuple = frontier.Map.load(tmp_path / "o.pgm", resolution=(0.05, 0.05))
+    for res in ([0.05, 0.05], np.array([0.05, 0.05])):
+        assert frontier.Map.load(tmp_path / "o.pgm", resolution=res).resolution == \
+            by_tuple.resolution
+    for call, kind, message in [
+        (lambda: frontier.Map.generate("office", size=[10]), ValueError,
+         r"size: expected \(width, height\) in metres, found 1 values"),
+        (lambda: frontier.Map.generate("office", size="10x8"), TypeError,
+         r"size: expected \(width, height\) in metres, found str"),
+        (lambda: ExploreEnv("office", size=[12, "8"]), TypeError,
+         r"size: expected \(width, height\) in metres, found '8' \(str\)"),
+        (lambda: ExploreEnv("office", size=5), TypeError, "size: expected"),
+        (lambda: frontier.explore(office, start=[3.5, 3]), TypeError,
+         r"start: expected a cell \(x, y\), found 3.5 \(float\)"),
+        (lambda: frontier.explore(office, start=[1, 2, 3]), ValueError,
+         r"start: expected a cell \(x, y\), found 3 values"),
+        (lambda: frontier.Map.load(tmp_path / "o.pgm", resolution=[0.05]), ValueError,
+         "resolution: expected a number of metres per cell or a pair"),
+    ]:
+        with pytest.raises(kind, match=message):
+            call()

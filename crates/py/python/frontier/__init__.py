@@ -117,7 +117,7 @@ def _kwargs(
     sensor: str,
     robots: int,
     seed: int,
-    start: Optional[Tuple[int, int]],
+    start: Optional[CellArg],
     belief: Optional[str],
     sensing: Optional[str],
     clearance: float,
@@ -176,6 +176,33 @@ def _real(name: str, value: Any, what: str = "a number") -> float:
     return float(value)
 
 
+#: A pair of numbers: a tuple, a list or a numpy array of two.
+Pair = Union[Tuple[float, float], Sequence[float], np.ndarray]
+
+#: A cell (x, y): a tuple, a list or a numpy array of two integers.
+CellArg = Union[Tuple[int, int], Sequence[int], np.ndarray]
+
+
+def _pair(name: str, value: Any, what: str) -> Optional[Tuple[float, float]]:
+    """None, or ``value`` (any sequence of two numbers: a tuple, a list, a numpy array) as a
+    tuple of floats; TypeError or ValueError naming ``name`` otherwise."""
+    if value is None:
+        return None
+    if isinstance(value, (str, bytes)) or not hasattr(value, "__len__"):
+        raise TypeError(f"{name}: expected {what}, found {type(value).__name__}")
+    if len(value) != 2:
+        raise ValueError(f"{name}: expected {what}, found {len(value)} values")
+    x, y = value
+    for v in (x, y):
+        if isinstance(v, (bool, np.bool_)) or not isinstance(
+            v, (int, float, np.integer, np.floating)
+        ):
+            raise TypeError(
+                f"{name}: expected {what}, found {v!r} ({type(v).__name__}) among its values"
+            )
+    return float(x), float(y)
+
+
 def _real_or_none(name: str, value: Any, what: str = "a number") -> Optional[float]:
     """None, or ``value`` as :func:`_real` reads it."""
     return None if value is None else _real(name, value, what + " or None")
@@ -198,7 +225,7 @@ def explore(
     robots: int = 1,
     seed: int = 0,
     *,
-    start: Optional[Tuple[int, int]] = None,
+    start: Optional[CellArg] = None,
     belief: Optional[str] = None,
     sensing: Optional[str] = None,
     clearance: float = 0.0,

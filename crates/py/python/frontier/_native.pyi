@@ -28,7 +28,7 @@ class Map:
     @staticmethod
     def load(
         path: Union[str, PathLike[str]],
-        resolution: Union[None, float, Tuple[float, float]] = None,
+        resolution: Union[None, float, Sequence[float], np.ndarray] = None,
         border: bool = False,
         *,
         topic: Optional[str] = None,
@@ -46,7 +46,7 @@ class Map:
     def generate(
         kind: str,
         seed: int = 0,
-        size: Optional[Tuple[float, float]] = None,
+        size: Union[None, Sequence[float], np.ndarray] = None,
         resolution: Optional[float] = None,
     ) -> Map:
         """Generate a built-in environment from (kind, seed, size in metres, resolution)."""

@@ -28,7 +28,7 @@ from gymnasium.utils import seeding
 from gymnasium.vector import AutoresetMode, VectorEnv
 from gymnasium.vector.utils import batch_space
 
-from . import _count, _flag, _native, _real, _real_or_none
+from . import Pair, _count, _flag, _native, _pair, _real, _real_or_none
 from ._native import Map
 
 __all__ = ["ExploreEnv", "ExploreVectorEnv", "Baseline", "RandomPolicy", "load_folder"]
@@ -89,7 +89,7 @@ _Source = Tuple[
 
 def _source(
     maps: MapsArg,
-    size: Optional[Tuple[float, float]],
+    size: Optional[Pair],
     resolution: Optional[float],
     dungeon: bool = False,
 ) -> _Source:
@@ -210,7 +210,7 @@ def _check_invalid_action(invalid_action: str) -> None:
 
 def _core_args(
     maps: MapsArg,
-    size: Optional[Tuple[float, float]],
+    size: Optional[Pair],
     resolution: Optional[float],
     strategy: str,
     sensor: str,
@@ -232,6 +232,7 @@ def _core_args(
     lam = _real("lam", lam, "a number (the reward's price per metre)")
     max_path_m = _real_or_none("max_path_m", max_path_m, "a number of metres")
     resolution = _real_or_none("resolution", resolution, "a number of metres per cell")
+    size = _pair("size", size, "(width, height) in metres")
     if candidates is not None and not isinstance(candidates, str):
         raise TypeError(f"candidates: expected a str or None, found {type(candidates).__name__}")
     listed, generator, files = _source(maps, size, resolution, dungeon)
@@ -340,7 +341,7 @@ class ExploreEnv(gymnasium.Env):
         self,
         maps: MapsArg = None,
         *,
-        size: Optional[Tuple[float, float]] = None,
+        size: Optional[Pair] = None,
         resolution: Optional[float] = None,
         dungeon: bool = False,
         strategy: str = "cf-rr",
@@ -439,7 +440,7 @@ class ExploreVectorEnv(VectorEnv):
         num_envs: int,
         maps: MapsArg = None,
         *,
-        size: Optional[Tuple[float, float]] = None,
+        size: Optional[Pair] = None,
         resolution: Optional[float] = None,
         dungeon: bool = False,
         strategy: str = "cf-rr",

@@ -21,7 +21,7 @@ from gymnasium import spaces
 from gymnasium.utils import seeding
 from pettingzoo import ParallelEnv
 
-from . import _native
+from . import Pair, _native
 from .gym import (
     MapsArg,
     _action,
@@ -49,7 +49,7 @@ class ExploreParallelEnv(ParallelEnv):
         maps: MapsArg = None,
         *,
         robots: int = 2,
-        size: Optional[Tuple[float, float]] = None,
+        size: Optional[Pair] = None,
         resolution: Optional[float] = None,
         dungeon: bool = False,
         strategy: str = "nearest",
