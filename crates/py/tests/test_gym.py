@@ -644,3 +644,23 @@ def test_regression_vector_env_autoresets_an_episode_ended_at_reset():
         assert list(rewards) == [0.0, 0.0]
         assert list(infos["coverage"]) == [1.0, 1.0]
     assert list(Baseline("cf-rr")(venv)) == [0, 0]
+
+
+def test_regression_render_draws_the_robot_at_the_centre_of_a_view(office):
+    blue = np.array([30, 60, 220], np.uint8)
+    for view in (21, 20):
+        env = ExploreEnv(office, view=view, render_mode="rgb_array")
+        obs, _ = env.reset(seed=0)
+        for _ in range(3):
+            img = env.render()
+            assert img.shape == (view, view, 3)
+            c = view // 2
+            assert (img[c, c] == blue).all()
+            ys, xs = np.nonzero((img == blue).all(axis=2))
+            assert (ys.min(), ys.max(), xs.min(), xs.max()) == (c - 1, c + 1, c - 1, c + 1)
+            env.step(0)
+    # The whole map: at the robot's pose.
+    env = ExploreEnv(office, render_mode="rgb_array")
+    obs, _ = env.reset(seed=0)
+    x, y = int(obs["pose"][0]), int(obs["pose"][1])
+    assert (env.render()[y, x] == blue).all()

@@ -272,14 +272,18 @@ def _episode_seed(rng: np.random.Generator) -> int:
     return int(rng.integers(0, 2**63))
 
 
-def _render(obs: Dict[str, np.ndarray]) -> np.ndarray:
+def _render(obs: Dict[str, np.ndarray], view: Optional[int] = None) -> np.ndarray:
     """An RGB picture of the belief: unknown grey, free white, occupied black, frontier
-    red, robot blue (full-map observations; a crop is drawn as it is)."""
+    red, robot blue (with a robot-centred ``view``, the robot is at the crop's centre)."""
     palette = np.array([[128, 128, 128], [255, 255, 255], [0, 0, 0]], dtype=np.uint8)
     img = palette[obs["belief"]]
     img[obs["frontier"] == 1] = (220, 30, 30)
     h, w = obs["belief"].shape
-    x, y = int(obs["pose"][0]), int(obs["pose"][1])
+    if view is None:
+        x, y = int(obs["pose"][0]), int(obs["pose"][1])
+    else:
+        # The crop's cell (view // 2, view // 2) is the robot's (pose is in map cells).
+        x = y = view // 2
     if 0 <= x < w and 0 <= y < h:
         img[max(0, y - 1) : y + 2, max(0, x - 1) : x + 2] = (30, 60, 220)
     return img
@@ -368,6 +372,7 @@ class ExploreEnv(gymnasium.Env):
             )
         )
         self._wrap = invalid_action == "wrap"
+        self._view = view
         self.render_mode = render_mode
         self.observation_space, self.action_space = _spaces(self._core.shape, self._core.k)
         self._obs: Optional[Dict[str, np.ndarray]] = None
@@ -422,7 +427,7 @@ class ExploreEnv(gymnasium.Env):
         """An RGB array of the current belief (``render_mode="rgb_array"``)."""
         if self.render_mode != "rgb_array" or self._obs is None:
             return None
-        return _render(self._obs)
+        return _render(self._obs, self._view)
 
 
 class ExploreVectorEnv(VectorEnv):
