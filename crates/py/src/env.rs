@@ -629,11 +629,14 @@ impl ObsArrays {
         Ok(out)
     }
 
-    /// The arrays as a dict of numpy arrays.
+    /// The arrays as a dict of numpy arrays. The belief and frontier layers go out as
+    /// read-only views of the kept arrays: numpy lets the owner of an array make it
+    /// writeable again, but not a view of a read-only array, so a caller cannot turn the
+    /// flag back on and write into a layer that later observations are written over.
     fn into_dict(self, py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
         let d = PyDict::new(py);
-        d.set_item("belief", self.belief)?;
-        d.set_item("frontier", self.frontier)?;
+        d.set_item("belief", self.belief.bind(py).call_method0("view")?)?;
+        d.set_item("frontier", self.frontier.bind(py).call_method0("view")?)?;
         d.set_item("pose", self.pose)?;
         d.set_item("candidates", self.candidates)?;
         d.set_item("action_mask", self.mask)?;

@@ -664,3 +664,28 @@ def test_regression_render_draws_the_robot_at_the_centre_of_a_view(office):
     obs, _ = env.reset(seed=0)
     x, y = int(obs["pose"][0]), int(obs["pose"][1])
     assert (env.render()[y, x] == blue).all()
+
+
+def test_regression_observation_layers_cannot_be_made_writeable(office):
+    from frontier.pettingzoo import ExploreParallelEnv
+
+    env = ExploreEnv(office, k=4)
+    venv = ExploreVectorEnv(2, office, k=4)
+    team = ExploreParallelEnv(office, robots=2, k=4)
+    observations = [env.reset(seed=0)[0], venv.reset(seed=0)[0],
+                    *team.reset(seed=0)[0].values()]
+    observations += [env.step(0)[0], venv.step(np.zeros(2, int))[0]]
+    for obs in observations:
+        for key in ("belief", "frontier"):
+            before = obs[key].copy()
+            with pytest.raises(ValueError):
+                obs[key].flags.writeable = True
+            with pytest.raises(ValueError, match="read-only"):
+                obs[key][...] = 2
+            assert np.array_equal(obs[key], before)
+    # Still written only when no one holds them: held observations never change.
+    first, _ = env.reset(seed=3)
+    kept = first["belief"].copy()
+    for _ in range(5):
+        env.step(0)
+    assert np.array_equal(first["belief"], kept)
