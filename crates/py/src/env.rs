@@ -1156,14 +1156,20 @@ impl VecEnvCore {
     }
 
     /// Start every environment's episode, environment i from `seeds[i]` (on map `maps[i]`
-    /// of the list or folder where given).
+    /// of the list or folder where given). Returns (observations, coverage, path lengths),
+    /// the last two as arrays, as `step` does.
+    #[allow(clippy::type_complexity)]
     #[pyo3(signature = (seeds, maps=None))]
     fn reset<'py>(
         &mut self,
         py: Python<'py>,
         seeds: Vec<u64>,
         maps: Option<Vec<Option<usize>>>,
-    ) -> PyResult<Bound<'py, PyDict>> {
+    ) -> PyResult<(
+        Bound<'py, PyDict>,
+        Bound<'py, PyArray1<f64>>,
+        Bound<'py, PyArray1<f64>>,
+    )> {
         let n = self.states.len();
         if seeds.len() != n {
             return Err(value_error(format!(
@@ -1191,7 +1197,13 @@ impl VecEnvCore {
             .collect::<Result<Vec<()>, String>>()
         })
         .map_err(py_error)?;
-        self.observations(py)
+        let obs = self.observations(py)?;
+        let states = || self.states.iter().map(|s| lock(s));
+        Ok((
+            obs,
+            PyArray1::from_iter(py, states().map(|s| s.coverage())),
+            PyArray1::from_iter(py, states().map(|s| s.path_length_m())),
+        ))
     }
 
     /// Step environment i with `actions[i]` (an ended episode resets instead); with `wrap`,

@@ -689,3 +689,13 @@ def test_regression_observation_layers_cannot_be_made_writeable(office):
     for _ in range(5):
         env.step(0)
     assert np.array_equal(first["belief"], kept)
+
+
+
+def test_regression_vector_reset_infos_hold_what_step_infos_hold(office):
+    venv = ExploreVectorEnv(2, office, k=4)
+    obs, infos = venv.reset(seed=0)
+    _, _, _, _, stepped = venv.step(np.zeros(2, int))
+    assert set(infos) == set(stepped) == {"coverage", "path_length_m"}
+    assert infos["coverage"].shape == (2,) and (infos["coverage"] > 0).all()
+    assert list(infos["path_length_m"]) == [0.0, 0.0]

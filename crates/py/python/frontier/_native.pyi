@@ -196,8 +196,9 @@ class VecEnvCore:
         """The names of the maps an episode may pick, by index (None for generated maps)."""
     def reset(
         self, seeds: List[int], maps: Optional[List[Optional[int]]] = None
-    ) -> Dict[str, np.ndarray]:
-        """Start every environment's episode (environment i on map `maps[i]` where given)."""
+    ) -> Tuple[Dict[str, np.ndarray], np.ndarray, np.ndarray]:
+        """Start every environment's episode (environment i on map `maps[i]` where given);
+        (observations, coverage, path lengths)."""
     def step(
         self, actions: np.ndarray, wrap: bool
     ) -> Tuple[Dict[str, np.ndarray], np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:

@@ -436,7 +436,8 @@ class ExploreVectorEnv(VectorEnv):
     ``num_envs``; the calling thread and ``threads - 1`` helpers, which keep looking for the
     next call for 0.5 ms before they sleep). An ended episode resets at the next step
     (Gymnasium's next-step autoreset); environment i of ``reset(seed=s)`` starts from seed
-    ``s + i``. ``infos`` holds arrays ``coverage`` and ``path_length_m``."""
+    ``s + i``. ``infos`` of ``reset`` and ``step`` hold arrays ``coverage`` and
+    ``path_length_m``."""
 
     metadata = {"autoreset_mode": AutoresetMode.NEXT_STEP, "render_modes": []}
 
@@ -519,9 +520,9 @@ class ExploreVectorEnv(VectorEnv):
             _episode_seed(seeding.np_random(int(s))[0] if s is not None else self.np_random)
             for s in given
         ]
-        obs = self._core.reset(seeds, maps)
+        obs, coverage, path = self._core.reset(seeds, maps)
         self._started = True
-        return obs, {}
+        return obs, {"coverage": coverage, "path_length_m": path}
 
     def step(
         self, actions: Any
