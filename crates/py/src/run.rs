@@ -91,11 +91,12 @@ pub(crate) fn options(kw: Option<&Bound<'_, PyDict>>) -> PyResult<ExploreOptions
             }
             "start" => {
                 let (x, y) = crate::pair_arg(&v, "start", "a cell (x, y)", crate::int_item)?;
-                let (x, y) = (
-                    i32::try_from(x).unwrap_or(i32::MAX),
-                    i32::try_from(y).unwrap_or(i32::MAX),
-                );
-                o.start = Some(Cell::new(x, y));
+                let (Ok(cx), Ok(cy)) = (i32::try_from(x), i32::try_from(y)) else {
+                    return Err(value_error(format!(
+                        "start: expected a cell (x, y) of 32-bit integers, found ({x}, {y})"
+                    )));
+                };
+                o.start = Some(Cell::new(cx, cy));
             }
             "clearance" => o.clearance = v.extract().map_err(|_| typed("a float"))?,
             "speed" => o.speed = v.extract().map_err(|_| typed("a float"))?,

@@ -366,3 +366,9 @@ def test_regression_explore_many_refuses_batch_arguments_and_clashing_tags(offic
             frontier.explore_many([dict(map=office, **{tag: "mine"})])
     rows = frontier.explore_many([dict(map=office, trial=2, label="a")])
     assert (rows[0]["trial"], rows[0]["label"]) == (2, "a")
+
+
+def test_regression_start_beyond_32_bits_is_reported_as_given(office):
+    with pytest.raises(ValueError, match=r"start: expected a cell \(x, y\) of 32-bit integers, "
+                       r"found \(8589934592, 1\)"):
+        frontier.explore(office, start=(2**33, 1))
