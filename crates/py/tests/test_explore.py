@@ -372,3 +372,10 @@ def test_regression_start_beyond_32_bits_is_reported_as_given(office):
     with pytest.raises(ValueError, match=r"start: expected a cell \(x, y\) of 32-bit integers, "
                        r"found \(8589934592, 1\)"):
         frontier.explore(office, start=(2**33, 1))
+
+
+def test_regression_memory_mb_takes_numpy_integers(office):
+    rows = frontier.explore_many([dict(map=office)], memory_mb=np.int64(100))
+    assert rows == frontier.explore_many([dict(map=office)], memory_mb=100)
+    assert frontier.explore(office, memory_mb=np.int32(100)).summary == \
+        frontier.explore(office).summary

@@ -208,14 +208,18 @@ def _real_or_none(name: str, value: Any, what: str = "a number") -> Optional[flo
     return None if value is None else _real(name, value, what + " or None")
 
 
-def _check_memory_mb(memory_mb: Any) -> None:
-    """``memory_mb`` is None or a positive int (MiB), as the CLI's ``--memory-mb``."""
+def _check_memory_mb(memory_mb: Any) -> Optional[int]:
+    """``memory_mb`` (None or a positive Python or numpy int, MiB, as the CLI's
+    ``--memory-mb``) as an int."""
     if memory_mb is None:
-        return
-    if isinstance(memory_mb, bool) or not isinstance(memory_mb, int):
+        return None
+    if isinstance(memory_mb, bool) or not isinstance(memory_mb, (int, np.integer)):
         raise TypeError(f"memory_mb: expected an int, found {type(memory_mb).__name__}")
     if memory_mb < 1:
         raise ValueError(f"memory_mb: expected a positive number of MiB, found {memory_mb}")
+    if memory_mb >= 2**64:
+        raise ValueError(f"memory_mb: expected less than 2^64 MiB, found {memory_mb}")
+    return int(memory_mb)
 
 
 def explore(
@@ -255,7 +259,7 @@ def explore(
     ``ValueError`` with the CLI's message for a bad argument."""
     if not isinstance(map, Map):
         raise TypeError(f"map: expected a frontier.Map, found {type(map).__name__}")
-    _check_memory_mb(memory_mb)
+    memory_mb = _check_memory_mb(memory_mb)
     trajectories = _flag("trajectories", trajectories)
     timing = _flag("timing", timing)
     kw = _kwargs(
@@ -354,7 +358,7 @@ def explore_many(
                     stacklevel=2,
                 )
         extras.append(extra)
-    _check_memory_mb(memory_mb)
+    memory_mb = _check_memory_mb(memory_mb)
     timing = _flag("timing", timing)
     _count("threads", threads, 1)
     if threads is not None and threads > _MAX_THREADS:
