@@ -699,3 +699,12 @@ def test_regression_vector_reset_infos_hold_what_step_infos_hold(office):
     assert set(infos) == set(stepped) == {"coverage", "path_length_m"}
     assert infos["coverage"].shape == (2,) and (infos["coverage"] > 0).all()
     assert list(infos["path_length_m"]) == [0.0, 0.0]
+
+
+def test_regression_vector_reset_refuses_seeds_that_are_not_ints(office):
+    venv = ExploreVectorEnv(2, office, k=4)
+    with pytest.raises(TypeError, match=r"seed\[0\]: expected an int or None, found float"):
+        venv.reset(seed=[1.5, 0])
+    with pytest.raises(ValueError, match=r"seed\[1\]: expected a non-negative int, found -1"):
+        venv.reset(seed=[1, -1])
+    assert venv.reset(seed=[np.int64(3), None])[0]["belief"].shape[0] == 2

@@ -515,6 +515,13 @@ class ExploreVectorEnv(VectorEnv):
             given = list(seed) if seed is not None else [None] * self.num_envs
             if len(given) != self.num_envs:
                 raise ValueError(f"seed: expected {self.num_envs} seeds, found {len(given)}")
+            for i, s in enumerate(given):
+                if s is None:
+                    continue
+                if isinstance(s, (bool, np.bool_)) or not isinstance(s, (int, np.integer)):
+                    raise TypeError(f"seed[{i}]: expected an int or None, found {type(s).__name__}")
+                if s < 0:
+                    raise ValueError(f"seed[{i}]: expected a non-negative int, found {s}")
         # Environment i seeded with s starts the episode ExploreEnv.reset(seed=s) starts.
         seeds = [
             _episode_seed(seeding.np_random(int(s))[0] if s is not None else self.np_random)
