@@ -203,6 +203,15 @@ impl Params {
                 _ => Err(format!("{name}: expected a number ≥ {min}, found '{v}'")),
             }
         }
+        fn bounded(name: &str, v: &str) -> Result<f64, String> {
+            let (min, max, unit) = bounds(name).expect("a bounded parameter");
+            match v.parse::<f64>() {
+                Ok(x) if (min..=max).contains(&x) => Ok(x),
+                _ => Err(format!(
+                    "{name}: expected a number from {min} to {max} {unit}, found '{v}'"
+                )),
+            }
+        }
         fn flag(name: &str, v: &str) -> Result<bool, String> {
             match v {
                 "true" | "True" => Ok(true),
@@ -229,16 +238,8 @@ impl Params {
                 self.sensor = value.into();
             }
             "clearance" => self.clearance = num(name, value, 0.0)?,
-            "planner_frequency" => {
-                let f = num(name, value, 0.0)?;
-                if f == 0.0 {
-                    return Err(format!(
-                        "{name}: expected a rate above 0 Hz, found '{value}'"
-                    ));
-                }
-                self.planner_frequency = f;
-            }
-            "progress_timeout" => self.progress_timeout = num(name, value, 0.0)?,
+            "planner_frequency" => self.planner_frequency = bounded(name, value)?,
+            "progress_timeout" => self.progress_timeout = bounded(name, value)?,
             "min_frontier_size" => self.min_frontier_size = num(name, value, 0.0)?,
             "goal_tolerance" => self.goal_tolerance = num(name, value, 0.0)?,
             "return_to_init" => self.return_to_init = flag(name, value)?,
@@ -301,8 +302,37 @@ impl Params {
         Ok(())
     }
 
+    /// Check the bounded numbers again (the fields are public, so they may have been set
+    /// without [`Params::set`]).
+    pub fn validate(&self) -> Result<(), String> {
+        for (name, v) in [
+            ("planner_frequency", self.planner_frequency),
+            ("progress_timeout", self.progress_timeout),
+        ] {
+            let (min, max, unit) = bounds(name).expect("a bounded parameter");
+            if !(min..=max).contains(&v) {
+                return Err(format!(
+                    "{name}: expected a number from {min} to {max} {unit}, found '{v}'"
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// The period of the periodic re-check, from `planner_frequency`.
+    pub fn planner_period(&self) -> Result<std::time::Duration, String> {
+        self.validate()?;
+        std::time::Duration::try_from_secs_f64(1.0 / self.planner_frequency).map_err(|e| {
+            format!(
+                "planner_frequency: expected a rate giving a period, found '{}' ({e})",
+                self.planner_frequency
+            )
+        })
+    }
+
     /// The explorer configuration these parameters give.
     pub fn explorer_config(&self) -> Result<crate::explorer::ExplorerConfig, String> {
+        self.validate()?;
         let strategy =
             explore::strategy::Strategy::preset(&self.strategy).map_err(|e| e.to_string())?;
         let sensor = self
@@ -318,6 +348,20 @@ impl Params {
             goal_tolerance_m: self.goal_tolerance,
             seed: self.seed,
         })
+    }
+}
+
+/// The smallest and largest value of a bounded number parameter, and its unit.
+///
+/// `planner_frequency` is the rate of a timer: below 0.01 Hz the period overflows no
+/// `Duration` but is longer than a run, and above 100 Hz the re-checks only queue up behind
+/// one another. `progress_timeout` below 1 s would give up a goal before Nav2 has planned a
+/// path to it.
+fn bounds(name: &str) -> Option<(f64, f64, &'static str)> {
+    match name {
+        "planner_frequency" => Some((0.01, 100.0, "Hz")),
+        "progress_timeout" => Some((1.0, 86_400.0, "s")),
+        _ => None,
     }
 }
 
@@ -422,6 +466,57 @@ mod tests {
         assert_eq!(
             e,
             "service_mapping: expected auto, enhanced or cyclone, found 'fastdds'"
+        );
+    }
+
+    /// `planner_frequency: 1e-300` panicked in `Duration::from_secs_f64` and `1e12` gave a
+    /// zero period whose timer flooded the event queue; `progress_timeout: 0` gave every
+    /// goal up at once.
+    #[test]
+    fn an_extreme_planner_frequency_or_progress_timeout_is_refused() {
+        let mut p = Params::default();
+        for v in ["1e-300", "1e12", "0", "-1", "inf", "NaN", "0.001", "101"] {
+            let e = p.set("planner_frequency", v).unwrap_err();
+            assert_eq!(
+                e,
+                format!("planner_frequency: expected a number from 0.01 to 100 Hz, found '{v}'")
+            );
+        }
+        for v in ["0", "0.5", "-3", "1e300"] {
+            let e = p.set("progress_timeout", v).unwrap_err();
+            assert!(
+                e.starts_with("progress_timeout: expected a number from 1 to 86400 s"),
+                "{e}"
+            );
+            assert!(e.ends_with(&format!("found '{v}'")), "{e}");
+        }
+        let e = p
+            .apply_yaml(
+                "n:\n  ros__parameters:\n    planner_frequency: 1.0e12\n",
+                "n",
+                "p.yaml",
+            )
+            .unwrap_err()
+            .to_string();
+        assert_eq!(
+            e,
+            "p.yaml: planner_frequency: expected a number from 0.01 to 100 Hz, found '1.0e12'"
+        );
+        for (f, period) in [("0.01", 100.0), ("100", 0.01), ("2", 0.5)] {
+            p.set("planner_frequency", f).unwrap();
+            assert_eq!(p.planner_period().unwrap().as_secs_f64(), period);
+        }
+        p.set("progress_timeout", "1").unwrap();
+        // Set directly, the fields are checked when used.
+        p.planner_frequency = 1e-300;
+        assert!(p.planner_period().is_err());
+        assert!(p.explorer_config().is_err());
+        p.planner_frequency = 1.0;
+        p.progress_timeout = 0.0;
+        assert!(
+            p.explorer_config()
+                .unwrap_err()
+                .starts_with("progress_timeout")
         );
     }
 

@@ -250,6 +250,7 @@ pub fn run(
     stop: async_channel::Receiver<()>,
 ) -> anyhow::Result<Mode> {
     let cfg = params.explorer_config().map_err(|e| anyhow::anyhow!(e))?;
+    let period = params.planner_period().map_err(|e| anyhow::anyhow!(e))?;
     let mut node = ctx
         .new_node(
             NodeName::new("/", node_name).map_err(|e| anyhow::anyhow!("node name: {e:?}"))?,
@@ -414,7 +415,6 @@ pub fn run(
     }
     {
         let tx = tx.clone();
-        let period = Duration::from_secs_f64(1.0 / params.planner_frequency);
         ex.spawn(async move {
             let mut t = smol::Timer::interval(period);
             while t.next().await.is_some() {
