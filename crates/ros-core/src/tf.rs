@@ -13,7 +13,7 @@
 
 use std::collections::HashMap;
 
-use record::msgs::{Quaternion, TransformStamped, Vector3};
+use record::msgs::{Point, Pose, Quaternion, TransformStamped, Vector3};
 
 /// Longest chain of frames followed (a longer one is taken for a loop).
 const MAX_DEPTH: usize = 64;
@@ -26,6 +26,27 @@ pub const MAX_FRAMES: usize = 4096;
 /// (`/map` and `map` are one frame, as tf2 has them).
 pub fn frame_name(frame: &str) -> &str {
     frame.trim_start_matches('/')
+}
+
+/// The robot's x, y and yaw from a pose message (a pose topic's), or what is wrong with it:
+/// a non-finite position or orientation, or an orientation of zero length, would later be
+/// sent to Nav2 as the start pose of `return_to_init`.
+pub fn planar_pose(p: &Pose) -> Result<(f64, f64, f64), String> {
+    let Point { x, y, z } = p.position;
+    let Quaternion {
+        x: qx,
+        y: qy,
+        z: qz,
+        w: qw,
+    } = p.orientation;
+    let norm = (qx * qx + qy * qy + qz * qz + qw * qw).sqrt();
+    if ![x, y, z, norm].iter().all(|v| v.is_finite()) || norm < 1e-9 {
+        return Err(format!(
+            "expected finite numbers and an orientation of non-zero length, found position \
+             ({x}, {y}, {z}), orientation ({qx}, {qy}, {qz}, {qw})"
+        ));
+    }
+    Ok((x, y, p.orientation.yaw()))
 }
 
 /// A rigid transform: rotate by `q` (unit quaternion x, y, z, w), then translate by `t`.
@@ -189,6 +210,47 @@ impl TfTree {
 
 #[cfg(test)]
 mod tests {
+    /// A pose with a NaN orientation was taken (only x and y were checked), and its NaN
+    /// quaternion later went to Nav2 as the goal of `return_to_init`.
+    #[test]
+    fn a_pose_with_a_non_finite_or_zero_orientation_is_refused() {
+        use super::planar_pose;
+        use record::msgs::{Pose, Quaternion};
+        let good = Pose::planar(1.0, 2.0, 0.5);
+        let (x, y, yaw) = planar_pose(&good).unwrap();
+        assert_eq!((x, y), (1.0, 2.0));
+        assert!((yaw - 0.5).abs() < 1e-12);
+        for q in [
+            Quaternion {
+                x: 0.0,
+                y: 0.0,
+                z: f64::NAN,
+                w: 1.0,
+            },
+            Quaternion {
+                x: 0.0,
+                y: 0.0,
+                z: 0.0,
+                w: f64::INFINITY,
+            },
+            Quaternion {
+                x: 0.0,
+                y: 0.0,
+                z: 0.0,
+                w: 0.0,
+            },
+        ] {
+            let mut p = good;
+            p.orientation = q;
+            let e = planar_pose(&p).unwrap_err();
+            assert!(e.starts_with("expected finite numbers"), "{e}");
+            assert!(e.contains("orientation ("), "{e}");
+        }
+        let mut p = good;
+        p.position.x = f64::NAN;
+        assert!(planar_pose(&p).is_err());
+    }
+
     use super::*;
     use record::msgs::{Header, Transform};
 

@@ -40,7 +40,7 @@ use record::msgs::{
 
 use crate::explorer::{Check, Decision, Explorer, StopReason};
 use crate::params::{Params, PoseType};
-use crate::tf::{TfTree, frame_name};
+use crate::tf::{TfTree, frame_name, planar_pose};
 
 /// A message of the `record` crate as ros2-client sends it (CDR of the struct itself).
 #[derive(Clone, Debug, Serialize, Deserialize)]
@@ -66,22 +66,29 @@ pub struct Text {
 /// Send the poses of a pose topic (`pose` picks a message's pose) to the event loop.
 async fn forward_poses<M: Serialize + DeserializeOwned + 'static>(
     sub: ros2_client::Subscription<Ros<M>>,
+    topic: String,
     tx: async_channel::Sender<Event>,
     pose: fn(M) -> (String, Pose),
 ) {
     let mut s = std::pin::pin!(sub.async_stream());
+    // The last problem logged, so that a pose stream repeats none.
+    let mut said = String::new();
     while let Some(m) = s.next().await {
         match m {
             Ok((Ros(msg), _)) => {
                 let (frame, p) = pose(msg);
-                let (x, y, yaw) = (p.position.x, p.position.y, p.orientation.yaw());
-                if x.is_finite() && y.is_finite() {
-                    let _ = tx.send(Event::Pose(x, y, yaw, frame)).await;
-                } else {
-                    log::warn!("pose with a non-finite position skipped");
+                match planar_pose(&p) {
+                    Ok((x, y, yaw)) => {
+                        let _ = tx.send(Event::Pose(x, y, yaw, frame)).await;
+                    }
+                    Err(e) if e != said => {
+                        log::warn!("pose on {topic} skipped: {e}");
+                        said = e;
+                    }
+                    Err(_) => {}
                 }
             }
-            Err(e) => log::warn!("pose message skipped: {e:?}"),
+            Err(e) => log::warn!("pose message on {topic} skipped: {e:?}"),
         }
     }
 }
@@ -347,9 +354,12 @@ pub fn run(
             let sub = node
                 .create_subscription::<Ros<PoseWithCovarianceStamped>>(&t, Some(reliable.clone()))
                 .map_err(err)?;
-            ex.spawn(forward_poses(sub, tx.clone(), |m| {
-                (m.header.frame_id, m.pose.pose)
-            }))
+            ex.spawn(forward_poses(
+                sub,
+                params.pose_topic.clone(),
+                tx.clone(),
+                |m| (m.header.frame_id, m.pose.pose),
+            ))
             .detach();
         }
         PoseType::Stamped => {
@@ -357,9 +367,12 @@ pub fn run(
             let sub = node
                 .create_subscription::<Ros<PoseStamped>>(&t, Some(reliable.clone()))
                 .map_err(err)?;
-            ex.spawn(forward_poses(sub, tx.clone(), |m| {
-                (m.header.frame_id, m.pose)
-            }))
+            ex.spawn(forward_poses(
+                sub,
+                params.pose_topic.clone(),
+                tx.clone(),
+                |m| (m.header.frame_id, m.pose),
+            ))
             .detach();
         }
         PoseType::Tf => {
