@@ -365,6 +365,20 @@ fn bounds(name: &str) -> Option<(f64, f64, &'static str)> {
     }
 }
 
+/// The highest DDS domain id ROS 2 uses (ROS_DOMAIN_ID; the ports of higher ones overflow
+/// on Linux).
+pub const MAX_DOMAIN_ID: u16 = 232;
+
+/// A DDS domain id from `source` (`--domain`, `ROS_DOMAIN_ID`): 0 to [`MAX_DOMAIN_ID`].
+pub fn domain_id(source: &str, value: &str) -> Result<u16, String> {
+    match value.trim().parse::<u16>() {
+        Ok(d) if d <= MAX_DOMAIN_ID => Ok(d),
+        _ => Err(format!(
+            "{source}: expected 0–{MAX_DOMAIN_ID}, found '{value}'"
+        )),
+    }
+}
+
 /// A YAML scalar as the text `Params::set` takes.
 fn yaml_value(v: &Yaml) -> String {
     match v {
@@ -518,6 +532,19 @@ mod tests {
                 .unwrap_err()
                 .starts_with("progress_timeout")
         );
+    }
+
+    /// `--domain 9999` and `ROS_DOMAIN_ID=500` were taken despite "expected 0–232".
+    #[test]
+    fn a_domain_id_above_232_is_refused() {
+        assert_eq!(domain_id("--domain", "0"), Ok(0));
+        assert_eq!(domain_id("ROS_DOMAIN_ID", " 232 "), Ok(232));
+        for v in ["233", "9999", "-1", "x", ""] {
+            assert_eq!(
+                domain_id("ROS_DOMAIN_ID", v).unwrap_err(),
+                format!("ROS_DOMAIN_ID: expected 0–232, found '{v}'")
+            );
+        }
     }
 
     #[test]

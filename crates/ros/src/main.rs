@@ -4,6 +4,7 @@ use std::path::PathBuf;
 
 use anyhow::Context as _;
 use frontier_ros::Params;
+use frontier_ros::params::domain_id;
 
 const USAGE: &str =
     "usage: frontier-ros [--params-file FILE] [--node NAME] [--domain ID] [-p NAME:=VALUE]...
@@ -30,10 +31,7 @@ fn main() -> anyhow::Result<()> {
             "--node" => node = value("--node")?,
             "--domain" => {
                 let v = value("--domain")?;
-                domain = Some(
-                    v.parse()
-                        .with_context(|| format!("--domain: expected 0–232, found '{v}'"))?,
-                );
+                domain = Some(domain_id("--domain", &v).map_err(anyhow::Error::msg)?);
             }
             "-p" => overrides.push(value("-p")?),
             "-h" | "--help" => {
@@ -58,9 +56,7 @@ fn main() -> anyhow::Result<()> {
     let domain = match domain {
         Some(d) => d,
         None => match std::env::var("ROS_DOMAIN_ID") {
-            Ok(v) if !v.is_empty() => v
-                .parse()
-                .with_context(|| format!("ROS_DOMAIN_ID: expected 0–232, found '{v}'"))?,
+            Ok(v) if !v.is_empty() => domain_id("ROS_DOMAIN_ID", &v).map_err(anyhow::Error::msg)?,
             _ => 0,
         },
     };
