@@ -222,12 +222,28 @@ pub fn context(domain_id: u16) -> anyhow::Result<Context> {
 
 /// A name in the root namespace (`/map`), or relative to it.
 pub fn topic_name(s: &str) -> anyhow::Result<Name> {
+    ros_name(s).map_err(|e| anyhow::anyhow!("topic name '{s}': {e}"))
+}
+
+/// `s` as a ROS 2 name, or what is wrong with it.
+fn ros_name(s: &str) -> Result<Name, String> {
     let s = s.trim_start_matches('/');
     let (ns, base) = match s.rsplit_once('/') {
         Some((ns, base)) => (format!("/{ns}"), base),
         None => ("/".to_string(), s),
     };
-    Name::new(&ns, base).map_err(|e| anyhow::anyhow!("topic name '{s}': {e:?}"))
+    Name::new(&ns, base).map_err(|e| format!("{e:?}"))
+}
+
+/// The name given by parameter `param` (`map_topic`, ...), checked by ROS 2's rules; an
+/// error names the parameter and its value.
+pub fn param_topic_name(param: &str, value: &str) -> anyhow::Result<Name> {
+    ros_name(value).map_err(|e| {
+        anyhow::anyhow!(
+            "{param}: expected a ROS 2 name (letters, digits and '_' between '/'), found \
+             '{value}' ({e})"
+        )
+    })
 }
 
 /// Create a topic of `package/Type` on `node`.
@@ -258,6 +274,15 @@ pub fn run(
 ) -> anyhow::Result<Mode> {
     let cfg = params.explorer_config().map_err(|e| anyhow::anyhow!(e))?;
     let period = params.planner_period().map_err(|e| anyhow::anyhow!(e))?;
+    for (param, value) in [
+        ("map_topic", &params.map_topic),
+        ("pose_topic", &params.pose_topic),
+        ("navigate_action", &params.navigate_action),
+        ("goal_topic", &params.goal_topic),
+        ("markers_topic", &params.markers_topic),
+    ] {
+        param_topic_name(param, value)?;
+    }
     let mut node = ctx
         .new_node(
             NodeName::new("/", node_name).map_err(|e| anyhow::anyhow!("node name: {e:?}"))?,

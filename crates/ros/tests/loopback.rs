@@ -311,3 +311,22 @@ fn publish_only_never_sends_a_goal_to_nav2() {
     assert!(seen.goals_sent.len() > 1);
     assert!(coverage > 0.999, "{coverage} {:?}", seen.status);
 }
+
+/// A bad topic name was refused as "topic name 'ns/~map': BadChar('~')", which named neither
+/// the parameter nor where the value came from.
+#[test]
+fn a_bad_topic_name_names_the_parameter() {
+    let e = node::param_topic_name("goal_topic", "a b")
+        .unwrap_err()
+        .to_string();
+    assert!(e.starts_with("goal_topic: expected a ROS 2 name"), "{e}");
+    let mut p = params(false);
+    p.set("map_topic", "ns/~map").unwrap();
+    let ctx = node::context(domain() + 2).unwrap();
+    let (_stop_tx, stop_rx) = async_channel::bounded(1);
+    let e = node::run(p, "frontier_explore", &ctx, stop_rx)
+        .unwrap_err()
+        .to_string();
+    assert!(e.starts_with("map_topic: expected a ROS 2 name"), "{e}");
+    assert!(e.contains("found 'ns/~map'"), "{e}");
+}
