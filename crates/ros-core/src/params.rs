@@ -237,7 +237,7 @@ impl Params {
                     .map_err(|e| format!("sensor: {e}"))?;
                 self.sensor = value.into();
             }
-            "clearance" => self.clearance = num(name, value, 0.0)?,
+            "clearance" => self.clearance = bounded(name, value)?,
             "planner_frequency" => self.planner_frequency = bounded(name, value)?,
             "progress_timeout" => self.progress_timeout = bounded(name, value)?,
             "min_frontier_size" => self.min_frontier_size = num(name, value, 0.0)?,
@@ -308,6 +308,7 @@ impl Params {
         for (name, v) in [
             ("planner_frequency", self.planner_frequency),
             ("progress_timeout", self.progress_timeout),
+            ("clearance", self.clearance),
         ] {
             let (min, max, unit) = bounds(name).expect("a bounded parameter");
             if !(min..=max).contains(&v) {
@@ -356,11 +357,13 @@ impl Params {
 /// `planner_frequency` is the rate of a timer: below 0.01 Hz the period overflows no
 /// `Duration` but is longer than a run, and above 100 Hz the re-checks only queue up behind
 /// one another. `progress_timeout` below 1 s would give up a goal before Nav2 has planned a
-/// path to it.
+/// path to it. `clearance` is a robot's radius: beyond 5 m, the disk the frontier upkeep
+/// keeps per cell grows towards the map's side (hundreds of MB per rebuild) for no robot.
 fn bounds(name: &str) -> Option<(f64, f64, &'static str)> {
     match name {
         "planner_frequency" => Some((0.01, 100.0, "Hz")),
         "progress_timeout" => Some((1.0, 86_400.0, "s")),
+        "clearance" => Some((0.0, 5.0, "m")),
         _ => None,
     }
 }
@@ -532,6 +535,23 @@ mod tests {
                 .unwrap_err()
                 .starts_with("progress_timeout")
         );
+    }
+
+    /// `clearance` had no upper bound: the clearance disk grew towards the map's side,
+    /// hundreds of MB per rebuild.
+    #[test]
+    fn a_clearance_beyond_a_robots_size_is_refused() {
+        let mut p = Params::default();
+        for v in ["5.01", "1e6", "-0.1", "inf"] {
+            assert_eq!(
+                p.set("clearance", v).unwrap_err(),
+                format!("clearance: expected a number from 0 to 5 m, found '{v}'")
+            );
+        }
+        p.set("clearance", "5").unwrap();
+        p.set("clearance", "0").unwrap();
+        p.clearance = 50.0;
+        assert!(p.explorer_config().unwrap_err().starts_with("clearance"));
     }
 
     /// `--domain 9999` and `ROS_DOMAIN_ID=500` were taken despite "expected 0–232".
