@@ -431,9 +431,15 @@ pub fn run(
         ex.spawn(async move {
             let mut s = std::pin::pin!(resume_sub.async_stream());
             while let Some(m) = s.next().await {
-                if let Ok((b, _)) = m {
-                    let c = if b.data { "resume" } else { "stop" };
-                    let _ = tx.send(Event::Command(c.into())).await;
+                match m {
+                    Ok((b, _)) => {
+                        let c = if b.data { "resume" } else { "stop" };
+                        let _ = tx.send(Event::Command(c.into())).await;
+                    }
+                    Err(e) => log::warn!(
+                        "message on /explore/resume skipped: expected a std_msgs/msg/Bool, \
+                         found one that does not decode ({e:?})"
+                    ),
                 }
             }
         })
@@ -444,8 +450,14 @@ pub fn run(
         ex.spawn(async move {
             let mut s = std::pin::pin!(command_sub.async_stream());
             while let Some(m) = s.next().await {
-                if let Ok((t, _)) = m {
-                    let _ = tx.send(Event::Command(t.data)).await;
+                match m {
+                    Ok((t, _)) => {
+                        let _ = tx.send(Event::Command(t.data)).await;
+                    }
+                    Err(e) => log::warn!(
+                        "message on /explore/command skipped: expected a std_msgs/msg/String, \
+                         found one that does not decode ({e:?})"
+                    ),
                 }
             }
         })
@@ -677,7 +689,8 @@ impl State {
                 self.return_to_start(ex);
             }
             other => log::warn!(
-                "command '{other}' skipped: expected start, stop, resume or return_to_init"
+                "command '{other}' on /explore/command skipped: expected start, stop, resume \
+                 or return_to_init"
             ),
         }
     }
