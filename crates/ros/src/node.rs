@@ -193,6 +193,9 @@ enum Outcome {
     Canceled,
 }
 
+/// How long shutting down waits for Nav2 to answer the cancel of the goal in flight.
+pub const SHUTDOWN_CANCEL_WAIT: Duration = Duration::from_secs(1);
+
 /// The QoS of `/map`: reliable, transient local, keep last 1 (map_server, slam_toolbox).
 pub fn map_qos() -> QosProfile {
     QosProfile::publisher_default()
@@ -524,9 +527,7 @@ pub fn run(
                 break;
             }
         }
-        state.cancel_in_flight(&ex);
-        // Let the cancel request go out.
-        smol::Timer::after(Duration::from_millis(100)).await;
+        state.shut_down(&ex).await;
         state.mode.clone()
     };
     Ok(smol::block_on(ex.run(main.fuse())))
@@ -781,6 +782,33 @@ impl State {
         let _ = self.markers_pub.publish(Ros(m));
     }
 
+    /// Cancel the goal in flight, waiting up to [`SHUTDOWN_CANCEL_WAIT`] for Nav2 to
+    /// confirm, and publish the final status.
+    async fn shut_down(&mut self, ex: &smol::LocalExecutor<'_>) {
+        self.cancel_in_flight(ex);
+        if let Some(cancel) = self.cancel_task.take() {
+            let answered = futures::select! {
+                _ = cancel.fuse() => true,
+                _ = FutureExt::fuse(smol::Timer::after(SHUTDOWN_CANCEL_WAIT)) => false,
+            };
+            if answered {
+                log::info!("shutting down: Nav2 answered the goal's cancel request");
+            } else {
+                log::warn!(
+                    "shutting down: no answer from Nav2 to the goal's cancel request in {} s; \
+                     the robot may still be driving to it",
+                    SHUTDOWN_CANCEL_WAIT.as_secs_f64()
+                );
+            }
+        }
+        let s = "shut down".to_string();
+        log::info!("status: {s}");
+        let _ = self.status_pub.publish(Text { data: s.clone() });
+        self.last_status = s;
+        // Let the status go out before the participant goes.
+        smol::Timer::after(Duration::from_millis(100)).await;
+    }
+
     fn cancel_in_flight(&mut self, ex: &smol::LocalExecutor<'_>) {
         self.seq += 1; // whatever comes back about older goals is ignored
         // Stop waiting for the old goal's answers: a service client of ros2-client takes
@@ -790,10 +818,14 @@ impl State {
         if let Some((_, id)) = self.in_flight.borrow_mut().take() {
             let nav = self.nav.clone();
             let cancel = ex.spawn(async move {
-                let _ = futures::select! {
-                    r = nav.async_cancel_goal(id, RosTime::ZERO).fuse() => r.ok(),
-                    _ = FutureExt::fuse(smol::Timer::after(Duration::from_secs(5))) => None,
-                };
+                futures::select! {
+                    r = nav.async_cancel_goal(id, RosTime::ZERO).fuse() => {
+                        if let Err(e) = r {
+                            log::warn!("cancel request to Nav2 failed: {e:?}");
+                        }
+                    }
+                    _ = FutureExt::fuse(smol::Timer::after(Duration::from_secs(5))) => {}
+                }
             });
             // One cancel request at a time, for the same reason; a newer one replaces it.
             self.cancel_task = Some(cancel);
