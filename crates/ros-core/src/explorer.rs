@@ -453,6 +453,14 @@ impl Explorer {
         }
     }
 
+    /// Start the current goal's no-progress time again at `now_s`: Nav2 has only now taken
+    /// the goal, or has not yet, so the robot could not get closer to it before.
+    pub fn restart_progress(&mut self, now_s: f64) {
+        if let Some(a) = self.active.as_mut() {
+            a.best_at_s = now_s;
+        }
+    }
+
     /// Drop the current goal without listing it (the node was stopped).
     pub fn forget_goal(&mut self) {
         self.active = None;

@@ -289,3 +289,27 @@ fn the_same_seed_gives_the_same_goals() {
     };
     assert_eq!(goals(4), goals(4));
 }
+
+/// A goal Nav2 rejected (its bt_navigator does until it is active) or left unanswered was
+/// blacklisted; now the node sends it again later and restarts its no-progress time, so
+/// waiting for Nav2 does not give a reachable goal up either.
+#[test]
+fn a_goal_waiting_for_nav2_is_not_given_up_for_no_progress() {
+    let mut c = config("cf", "los:r=3");
+    c.progress_timeout_s = 5.0;
+    c.goal_tolerance_m = 0.1;
+    let mut ex = Explorer::new(c);
+    let (_, x, y) = start_in_rooms(&mut ex);
+    let Decision::Goal(g) = ex.decide(x, y, 100.0) else {
+        panic!()
+    };
+    for t in [104.0, 108.0, 112.0] {
+        ex.restart_progress(t);
+        assert_eq!(ex.check(x, y, t + 1.0), Check::Keep);
+    }
+    assert!(ex.inaccessible().is_empty());
+    assert_eq!(ex.goal(), Some(g));
+    // Once taken, it is given up after the timeout as before.
+    assert_eq!(ex.check(x, y, 117.5), Check::NoProgress);
+    assert_eq!(ex.inaccessible(), &[(g.x, g.y)]);
+}

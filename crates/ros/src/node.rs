@@ -182,6 +182,10 @@ enum Event {
     Accepted(u64, UUID),
     /// Goal `seq` ended.
     Ended(u64, Outcome),
+    /// Nav2's NavigateToPose server has been discovered.
+    NavReady,
+    /// The backoff after goal `seq` was refused is over: send the goal again.
+    Retry(u64),
     Shutdown,
 }
 
@@ -189,8 +193,22 @@ enum Event {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Outcome {
     Succeeded,
+    /// Aborted by Nav2 (or its result lost).
     Failed,
     Canceled,
+    /// Nav2 rejected the goal (bt_navigator does until it is active).
+    Rejected,
+    /// No answer to the goal request within [`GOAL_ANSWER_WAIT`].
+    NoAnswer,
+}
+
+/// How long a goal request waits for Nav2's answer before it is sent again later.
+const GOAL_ANSWER_WAIT: Duration = Duration::from_secs(10);
+
+/// The wait before a goal Nav2 refused or left unanswered is sent again: 1 s, doubling at
+/// each refusal in a row, at most 30 s.
+fn retry_backoff(refusals: u32) -> Duration {
+    Duration::from_secs(1u64 << refusals.saturating_sub(1).min(5)).min(Duration::from_secs(30))
 }
 
 /// How long shutting down waits for Nav2 to answer the cancel of the goal in flight.
@@ -487,6 +505,38 @@ pub fn run(
         .detach();
     }
 
+    if !params.publish_only {
+        let tx = tx.clone();
+        let nav = nav.clone();
+        let node = &node;
+        let action = params.navigate_action.clone();
+        ex.spawn(async move {
+            // Asked again every second: a wait resolves on a discovery event, and ros2-client
+            // drops such events when many come at once, but a new wait sees a match made.
+            let t0 = Instant::now();
+            let mut warned = t0;
+            loop {
+                let found = futures::select! {
+                    _ = nav.goal_client().wait_for_service(node).fuse() => true,
+                    _ = FutureExt::fuse(smol::Timer::after(Duration::from_secs(1))) => false,
+                };
+                if found {
+                    break;
+                }
+                if warned.elapsed() >= Duration::from_secs(10) {
+                    log::warn!(
+                        "no NavigateToPose server on {action} after {} s: is Nav2 running on \
+                         this ROS_DOMAIN_ID?",
+                        t0.elapsed().as_secs()
+                    );
+                    warned = Instant::now();
+                }
+            }
+            let _ = tx.send(Event::NavReady).await;
+        })
+        .detach();
+    }
+
     let t0 = Instant::now();
     let mut state = State {
         params: params.clone(),
@@ -505,7 +555,7 @@ pub fn run(
         goal_pub,
         markers_pub,
         status_pub,
-        nav,
+        nav: nav.clone(),
         mapping,
         map_frame,
         wrong_frame: String::new(),
@@ -516,6 +566,10 @@ pub fn run(
         last_status: String::new(),
         waiting: None,
         reason: String::new(),
+        nav_ready: params.publish_only,
+        pending: None,
+        sent: None,
+        refusals: 0,
     };
     // The first status goes out with the first event (a map, a pose, or the first tick
     // after one period), not now: a sample written before discovery has matched anyone
@@ -568,6 +622,15 @@ struct State {
     waiting: Option<String>,
     /// Why exploring stopped (empty while it has not).
     reason: String,
+    /// Nav2's NavigateToPose server has been discovered (always, in publish-only mode).
+    nav_ready: bool,
+    /// The goal waiting for Nav2: until its server is discovered, or for the backoff after
+    /// it was refused.
+    pending: Option<(f64, f64, f64)>,
+    /// The goal last sent to Nav2.
+    sent: Option<(f64, f64, f64)>,
+    /// Goals Nav2 refused or left unanswered in a row.
+    refusals: u32,
 }
 
 impl State {
@@ -639,12 +702,43 @@ impl State {
             Event::Accepted(seq, id) => {
                 if seq == self.seq {
                     *self.in_flight.borrow_mut() = Some((seq, id));
+                    self.refusals = 0;
+                    if self.waiting.as_deref() == Some(&self.nav_waiting()) {
+                        self.waiting = None;
+                    }
+                    // The goal's no-progress time runs from now, not from the decision.
+                    let now = self.now_s();
+                    self.explorer.restart_progress(now);
+                }
+            }
+            Event::NavReady => {
+                log::info!("Nav2's {} server found", self.params.navigate_action);
+                self.nav_ready = true;
+                if self.waiting.as_deref() == Some(&self.nav_waiting()) {
+                    self.waiting = None;
+                }
+                if let Some((x, y, yaw)) = self.pending.take()
+                    && matches!(self.mode, Mode::Exploring | Mode::Returning)
+                {
+                    self.send(x, y, yaw, ex);
+                }
+            }
+            Event::Retry(seq) => {
+                if seq == self.seq
+                    && matches!(self.mode, Mode::Exploring | Mode::Returning)
+                    && let Some((x, y, yaw)) = self.pending.take()
+                {
+                    self.send(x, y, yaw, ex);
                 }
             }
             Event::Ended(seq, outcome) => {
                 if seq == self.seq {
                     *self.in_flight.borrow_mut() = None;
                     match (&self.mode, outcome) {
+                        (
+                            Mode::Exploring | Mode::Returning,
+                            Outcome::Rejected | Outcome::NoAnswer,
+                        ) => self.refused(outcome, ex),
                         (Mode::Returning, Outcome::Succeeded) => {
                             self.mode = Mode::Done(self.after("returned to the start pose"));
                         }
@@ -703,6 +797,10 @@ impl State {
         }
         let Some((x, y, _)) = self.pose else { return };
         let now = self.now_s();
+        if self.pending.is_some() {
+            // Nav2 has not taken the goal: the robot cannot be making progress to it.
+            self.explorer.restart_progress(now);
+        }
         match self.explorer.check(x, y, now) {
             Check::Keep => {}
             Check::NoGoal => {
@@ -809,8 +907,50 @@ impl State {
         smol::Timer::after(Duration::from_millis(100)).await;
     }
 
+    /// The status while a goal waits for Nav2.
+    fn nav_waiting(&self) -> String {
+        format!(
+            "Nav2 ({})",
+            self.params.navigate_action.trim_start_matches('/')
+        )
+    }
+
+    /// Nav2 rejected the goal just sent or left it unanswered: not a sign that the goal is
+    /// inaccessible (bt_navigator rejects every goal until it is active), so the same goal
+    /// goes again after a backoff.
+    fn refused(&mut self, outcome: Outcome, ex: &smol::LocalExecutor<'_>) {
+        let Some(goal) = self.sent else { return };
+        self.refusals += 1;
+        let wait = retry_backoff(self.refusals);
+        let why = if outcome == Outcome::Rejected {
+            "rejected the goal"
+        } else {
+            "did not answer the goal request"
+        };
+        log::warn!(
+            "Nav2 {why} ({:.2}, {:.2}), {} in a row: sending it again in {} s (Nav2 rejects \
+             goals until its bt_navigator is active)",
+            goal.0,
+            goal.1,
+            self.refusals,
+            wait.as_secs()
+        );
+        self.pending = Some(goal);
+        if self.mode == Mode::Exploring {
+            self.waiting = Some(self.nav_waiting());
+        }
+        let seq = self.seq;
+        let tx = self.tx.clone();
+        ex.spawn(async move {
+            smol::Timer::after(wait).await;
+            let _ = tx.send(Event::Retry(seq)).await;
+        })
+        .detach();
+    }
+
     fn cancel_in_flight(&mut self, ex: &smol::LocalExecutor<'_>) {
         self.seq += 1; // whatever comes back about older goals is ignored
+        self.pending = None;
         // Stop waiting for the old goal's answers: a service client of ros2-client takes
         // one call at a time (a call waiting on it drops every other call's reply), so the
         // old goal's result request would eat the next goal's.
@@ -847,6 +987,14 @@ impl State {
             return;
         }
         self.cancel_in_flight(ex);
+        if !self.nav_ready {
+            self.pending = Some((x, y, yaw));
+            if self.mode == Mode::Exploring {
+                self.waiting = Some(self.nav_waiting());
+            }
+            return;
+        }
+        self.sent = Some((x, y, yaw));
         let seq = self.seq;
         let nav = self.nav.clone();
         let tx = self.tx.clone();
@@ -858,20 +1006,21 @@ impl State {
             });
             let sent = futures::select! {
                 r = nav.async_send_goal(goal).fuse() => r.ok(),
-                _ = FutureExt::fuse(smol::Timer::after(Duration::from_secs(10))) => None,
+                _ = FutureExt::fuse(smol::Timer::after(GOAL_ANSWER_WAIT)) => None,
             };
             let Some((id, response)) = sent else {
                 log::warn!(
-                    "no answer from the NavigateToPose server in 10 s, over the {mapping:?} \
+                    "no answer from the NavigateToPose server in {} s, over the {mapping:?} \
                      service mapping: is Nav2 running on this ROS_DOMAIN_ID, and on \
                      rmw_cyclonedds_cpp (service_mapping: cyclone) or another RMW \
-                     (service_mapping: enhanced)?"
+                     (service_mapping: enhanced)?",
+                    GOAL_ANSWER_WAIT.as_secs()
                 );
-                let _ = tx.send(Event::Ended(seq, Outcome::Failed)).await;
+                let _ = tx.send(Event::Ended(seq, Outcome::NoAnswer)).await;
                 return;
             };
             if !response.accepted {
-                let _ = tx.send(Event::Ended(seq, Outcome::Failed)).await;
+                let _ = tx.send(Event::Ended(seq, Outcome::Rejected)).await;
                 return;
             }
             let _ = tx.send(Event::Accepted(seq, id)).await;

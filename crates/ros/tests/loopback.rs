@@ -72,17 +72,27 @@ fn params(publish_only: bool) -> Params {
     p
 }
 
-/// Run the node in a thread and a mock robot here until the node reports `done`, or fail
-/// after `limit`. The mock aborts the first `abort_first` goals Nav2 receives; the test
-/// sends `stop` after `stop_after` goals and `resume` a second later.
-fn scenario(publish_only: bool, abort_first: usize, stop_after: Option<usize>) -> (f64, Seen) {
-    let domain = domain() + u16::from(publish_only);
-    let node_ctx = node::context(domain).unwrap();
-    let (stop_tx, stop_rx) = async_channel::bounded(1);
-    let p = params(publish_only);
-    let handle = std::thread::spawn(move || node::run(p, "frontier_explore", &node_ctx, stop_rx));
+/// The mock's side: the map, pose and command publishers, the node's status and goals, and
+/// Nav2's NavigateToPose server (served as rmw_fastrtps does).
+struct Peer {
+    n: ros2_client::Node,
+    map_pub: ros2_client::Publisher<Ros<OccupancyGrid>>,
+    pose_pub: ros2_client::Publisher<Ros<PoseStamped>>,
+    cmd_pub: ros2_client::Publisher<Text>,
+    _resume_pub: ros2_client::Publisher<Bool>,
+    status_sub: ros2_client::Subscription<Text>,
+    goal_sub: ros2_client::Subscription<Ros<PoseStamped>>,
+    server: Nav2,
+}
 
-    let ctx = node::context(domain).unwrap();
+/// The mock's NavigateToPose server.
+type Nav2 = AsyncActionServer<
+    Ros<NavigateToPoseGoal>,
+    Ros<NavigateToPoseResult>,
+    Ros<NavigateToPoseFeedback>,
+>;
+
+fn peer(ctx: &ros2_client::Context) -> Peer {
     let mut n = ctx
         .new_node(
             NodeName::new("/", "mock_nav2").unwrap(),
@@ -149,6 +159,55 @@ fn scenario(publish_only: bool, abort_first: usize, stop_after: Option<usize>) -
         .unwrap(),
     );
     let _ = action_qos;
+    Peer {
+        n,
+        map_pub,
+        pose_pub,
+        cmd_pub,
+        _resume_pub,
+        status_sub,
+        goal_sub,
+        server,
+    }
+}
+
+/// What the mock Nav2 does with a goal.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Act {
+    /// Drive the robot there and succeed.
+    Succeed,
+    /// Abort it (unreachable).
+    Abort,
+    /// Reject it (as bt_navigator does until it is active).
+    Reject,
+}
+
+/// Run the node in a thread and a mock robot here until the node reports `done`, or fail
+/// after `limit`. The mock does `act(k)` with the k-th goal Nav2 receives (from 1); the
+/// test sends `stop` after `stop_after` goals, and `resume` 2.5 s after any pause.
+fn scenario(
+    offset: u16,
+    publish_only: bool,
+    act: fn(usize) -> Act,
+    stop_after: Option<usize>,
+) -> (f64, Seen) {
+    let domain = domain() + offset;
+    let node_ctx = node::context(domain).unwrap();
+    let (stop_tx, stop_rx) = async_channel::bounded(1);
+    let p = params(publish_only);
+    let handle = std::thread::spawn(move || node::run(p, "frontier_explore", &node_ctx, stop_rx));
+
+    let ctx = node::context(domain).unwrap();
+    let Peer {
+        mut n,
+        map_pub,
+        pose_pub,
+        cmd_pub,
+        _resume_pub,
+        status_sub,
+        goal_sub,
+        server,
+    } = peer(&ctx);
 
     let world = Arc::new(Mutex::new(World::new(
         parse_ascii(ROOMS, 0.5).unwrap(),
@@ -244,16 +303,22 @@ fn scenario(publish_only: bool, abort_first: usize, stop_after: Option<usize>) -
                 h = server.receive_new_goal().fuse() => {
                     let Ok(h) = h else { continue };
                     let Some(Ros(goal)) = server.get_new_goal(h.clone()) else { continue };
-                    let Ok(acc) = server.accept_goal(h).await else { continue };
-                    let Ok(exe) = server.start_executing_goal(acc).await else { continue };
                     let (x, y) = (goal.pose.pose.position.x, goal.pose.pose.position.y);
                     seen.lock().unwrap().nav_goals.push((x, y));
                     nav_count += 1;
-                    let end = if nav_count <= abort_first {
-                        GoalEndStatus::Aborted
-                    } else {
-                        publish(x, y);
-                        GoalEndStatus::Succeeded
+                    let act = act(nav_count);
+                    if act == Act::Reject {
+                        let _ = server.reject_goal(h).await;
+                        continue;
+                    }
+                    let Ok(acc) = server.accept_goal(h).await else { continue };
+                    let Ok(exe) = server.start_executing_goal(acc).await else { continue };
+                    let end = match act {
+                        Act::Abort => GoalEndStatus::Aborted,
+                        Act::Succeed | Act::Reject => {
+                            publish(x, y);
+                            GoalEndStatus::Succeeded
+                        }
                     };
                     let result = Ros(NavigateToPoseResult { error_code: 0, error_msg: String::new() });
                     let _ = server
@@ -284,7 +349,12 @@ use std::rc::Rc;
 
 #[test]
 fn the_node_explores_blacklists_and_honours_stop_and_resume() {
-    let (coverage, seen) = scenario(false, 1, Some(3));
+    let (coverage, seen) = scenario(
+        0,
+        false,
+        |k| if k == 1 { Act::Abort } else { Act::Succeed },
+        Some(3),
+    );
     let last = seen.status.last().unwrap();
     assert!(last.starts_with("done: explored"), "{:?}", seen.status);
     assert!(coverage > 0.999, "{coverage}");
@@ -306,7 +376,7 @@ fn the_node_explores_blacklists_and_honours_stop_and_resume() {
 
 #[test]
 fn publish_only_never_sends_a_goal_to_nav2() {
-    let (coverage, seen) = scenario(true, 0, None);
+    let (coverage, seen) = scenario(1, true, |_| Act::Succeed, None);
     assert!(seen.nav_goals.is_empty(), "{:?}", seen.nav_goals);
     assert!(seen.goals_sent.len() > 1);
     assert!(coverage > 0.999, "{coverage} {:?}", seen.status);
@@ -329,4 +399,32 @@ fn a_bad_topic_name_names_the_parameter() {
         .to_string();
     assert!(e.starts_with("map_topic: expected a ROS 2 name"), "{e}");
     assert!(e.contains("found 'ns/~map'"), "{e}");
+}
+
+/// Nav2's bt_navigator rejects goals until it is active: the node blacklisted each
+/// rejected goal in turn and stopped with "done: no reachable frontier". A rejection is now
+/// retried with the same goal after a backoff.
+#[test]
+fn a_goal_nav2_rejects_is_sent_again_not_blacklisted() {
+    let (coverage, seen) = scenario(
+        3,
+        false,
+        |k| if k <= 2 { Act::Reject } else { Act::Succeed },
+        None,
+    );
+    assert!(
+        seen.status.last().unwrap().starts_with("done: explored"),
+        "{:?}",
+        seen.status
+    );
+    assert!(coverage > 0.999, "{coverage}");
+    assert_eq!(seen.nav_goals[0], seen.nav_goals[1], "{:?}", seen.nav_goals);
+    assert_eq!(seen.nav_goals[0], seen.nav_goals[2], "{:?}", seen.nav_goals);
+    assert!(
+        seen.status
+            .iter()
+            .any(|s| s == "waiting: Nav2 (navigate_to_pose)"),
+        "{:?}",
+        seen.status
+    );
 }
