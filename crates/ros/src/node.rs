@@ -151,8 +151,8 @@ pub enum Mode {
     Idle,
     /// Deciding and sending goals.
     Exploring,
-    /// Stopped by `stop`; `resume` goes on.
-    Paused,
+    /// Stopped by `stop` (`None`), or by what it says; `resume` goes on.
+    Paused(Option<String>),
     /// Driving back to the start pose.
     Returning,
     /// Finished, with the reason.
@@ -164,7 +164,8 @@ impl Mode {
         match self {
             Mode::Idle => "idle".into(),
             Mode::Exploring => "exploring".into(),
-            Mode::Paused => "paused".into(),
+            Mode::Paused(None) => "paused".into(),
+            Mode::Paused(Some(why)) => format!("paused: {why}"),
             Mode::Returning => "returning".into(),
             Mode::Done(r) => format!("done: {r}"),
         }
@@ -755,6 +756,18 @@ impl State {
                             self.explorer.goal_failed();
                             self.decide(ex);
                         }
+                        (Mode::Exploring, Outcome::Canceled) => {
+                            // Not ours (ours are cancelled under an older seq): an operator
+                            // or another node took the robot over. Its goal is not
+                            // inaccessible; wait to be told to go on.
+                            log::warn!(
+                                "goal cancelled by another client: pausing until resume \
+                                 (/explore/resume true, or /explore/command resume)"
+                            );
+                            self.explorer.forget_goal();
+                            self.mode =
+                                Mode::Paused(Some("goal cancelled by another client".into()));
+                        }
                         _ => {}
                     }
                 }
@@ -768,7 +781,7 @@ impl State {
     fn command(&mut self, c: &str, ex: &smol::LocalExecutor<'_>) {
         match c {
             "start" | "resume" => {
-                if matches!(self.mode, Mode::Idle | Mode::Paused | Mode::Done(_)) {
+                if matches!(self.mode, Mode::Idle | Mode::Paused(_) | Mode::Done(_)) {
                     self.mode = Mode::Exploring;
                     self.reason.clear();
                     self.decide(ex);
@@ -777,7 +790,7 @@ impl State {
             "stop" => {
                 self.cancel_in_flight(ex);
                 self.explorer.forget_goal();
-                self.mode = Mode::Paused;
+                self.mode = Mode::Paused(None);
             }
             "return_to_init" => {
                 self.explorer.forget_goal();

@@ -180,6 +180,8 @@ enum Act {
     Abort,
     /// Reject it (as bt_navigator does until it is active).
     Reject,
+    /// End it as cancelled (as when another client cancels it).
+    Cancel,
 }
 
 /// Run the node in a thread and a mock robot here until the node reports `done`, or fail
@@ -277,7 +279,7 @@ fn scenario(
                 s = status.next() => {
                     let Some(Ok((t, _))) = s else { continue };
                     seen.lock().unwrap().status.push(t.data.clone());
-                    if t.data == "paused" {
+                    if t.data.starts_with("paused") {
                         paused_at = Some(Instant::now());
                     }
                     if t.data.starts_with("done") {
@@ -315,6 +317,7 @@ fn scenario(
                     let Ok(exe) = server.start_executing_goal(acc).await else { continue };
                     let end = match act {
                         Act::Abort => GoalEndStatus::Aborted,
+                        Act::Cancel => GoalEndStatus::Canceled,
                         Act::Succeed | Act::Reject => {
                             publish(x, y);
                             GoalEndStatus::Succeeded
@@ -427,4 +430,31 @@ fn a_goal_nav2_rejects_is_sent_again_not_blacklisted() {
         "{:?}",
         seen.status
     );
+}
+
+/// A goal cancelled by another client was ignored: the robot sat until progress_timeout,
+/// then the reachable goal was blacklisted. Now the node pauses, and after resume the goal
+/// is still a candidate.
+#[test]
+fn a_goal_cancelled_by_another_client_pauses_the_node() {
+    let (coverage, seen) = scenario(
+        4,
+        false,
+        |k| if k == 2 { Act::Cancel } else { Act::Succeed },
+        None,
+    );
+    let i = seen
+        .status
+        .iter()
+        .position(|s| s == "paused: goal cancelled by another client")
+        .unwrap_or_else(|| panic!("no pause: {:?}", seen.status));
+    assert_eq!(seen.status[i + 1], "exploring", "{:?}", seen.status);
+    assert!(
+        seen.status.last().unwrap().starts_with("done: explored"),
+        "{:?}",
+        seen.status
+    );
+    assert!(coverage > 0.999, "{coverage}");
+    // Not blacklisted: the same goal is chosen again from the same place.
+    assert_eq!(seen.nav_goals[1], seen.nav_goals[2], "{:?}", seen.nav_goals);
 }
