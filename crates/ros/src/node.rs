@@ -961,6 +961,16 @@ impl State {
         .detach();
     }
 
+    /// Stop following the goal in flight without cancelling it (a new goal preempts it):
+    /// its late result is ignored.
+    fn drop_in_flight(&mut self) {
+        self.seq += 1;
+        // A service client of ros2-client takes one call at a time (see cancel_in_flight):
+        // the old goal's result request must not eat the new goal's.
+        self.goal_task = None;
+        *self.in_flight.borrow_mut() = None;
+    }
+
     fn cancel_in_flight(&mut self, ex: &smol::LocalExecutor<'_>) {
         self.seq += 1; // whatever comes back about older goals is ignored
         self.pending = None;
@@ -999,7 +1009,9 @@ impl State {
         if self.params.publish_only {
             return;
         }
-        self.cancel_in_flight(ex);
+        // Nav2 preempts the running goal with the new one; cancelling it first would halt
+        // the controller and brake the robot at every re-plan.
+        self.drop_in_flight();
         if !self.nav_ready {
             self.pending = Some((x, y, yaw));
             if self.mode == Mode::Exploring {

@@ -458,3 +458,102 @@ fn a_goal_cancelled_by_another_client_pauses_the_node() {
     // Not blacklisted: the same goal is chosen again from the same place.
     assert_eq!(seen.nav_goals[1], seen.nav_goals[2], "{:?}", seen.nav_goals);
 }
+
+/// The node cancelled its running goal before sending a replacement, so the controller
+/// halted and the robot braked at every re-plan; and a SIGTERM (here the stop channel that
+/// Ctrl-C, SIGTERM and SIGHUP fire) left the goal running. Now a new goal preempts the old
+/// one with no cancel, and shutting down cancels the goal in flight, waits for Nav2's answer
+/// and says "shut down".
+#[test]
+fn a_new_goal_preempts_the_old_and_shutdown_cancels_the_last() {
+    let domain = domain() + 5;
+    let node_ctx = node::context(domain).unwrap();
+    let (stop_tx, stop_rx) = async_channel::bounded(1);
+    let handle = std::thread::spawn(move || {
+        node::run(params(false), "frontier_explore", &node_ctx, stop_rx)
+    });
+    let ctx = node::context(domain).unwrap();
+    let Peer {
+        mut n,
+        map_pub,
+        pose_pub,
+        status_sub,
+        server,
+        ..
+    } = peer(&ctx);
+    let mut world = World::new(parse_ascii(ROOMS, 0.5).unwrap(), "los:r=3");
+    let (x0, y0) = world.world(Cell::new(2, 2));
+    world.sense_at(x0, y0);
+    let ex = smol::LocalExecutor::new();
+    ex.spawn(n.spinner().unwrap().spin()).detach();
+    let deadline = Instant::now() + Duration::from_secs(60);
+    // Goals received, cancel requests with the goals each names, statuses.
+    let mut goals = Vec::new();
+    let mut cancels: Vec<usize> = Vec::new();
+    let mut status: Vec<String> = Vec::new();
+    let main = async {
+        // Executing goals, never ended by the mock.
+        let mut held = Vec::new();
+        let mut st = std::pin::pin!(status_sub.async_stream());
+        let mut tick = smol::Timer::interval(Duration::from_millis(250));
+        let mut stop_at: Option<Instant> = None;
+        loop {
+            assert!(
+                Instant::now() < deadline,
+                "no end within the limit; goals {goals:?}, cancels {cancels:?}, status {status:?}"
+            );
+            futures::select! {
+                _ = FutureExt::fuse(tick.next()) => {
+                    if stop_at.is_some_and(|t| Instant::now() > t) {
+                        stop_at = None;
+                        stop_tx.try_send(()).unwrap();
+                    }
+                    let _ = map_pub.publish(Ros(world.map_msg()));
+                    let mut p = PoseStamped::default();
+                    p.header.frame_id = "map".into();
+                    p.pose = Pose::planar(x0, y0, 0.0);
+                    let _ = pose_pub.publish(Ros(p));
+                }
+                s = st.next() => {
+                    let Some(Ok((t, _))) = s else { continue };
+                    status.push(t.data.clone());
+                    if t.data == "shut down" {
+                        break;
+                    }
+                }
+                h = server.receive_new_goal().fuse() => {
+                    let Ok(h) = h else { continue };
+                    let Some(Ros(goal)) = server.get_new_goal(h.clone()) else { continue };
+                    let Ok(acc) = server.accept_goal(h).await else { continue };
+                    let Ok(exe) = server.start_executing_goal(acc).await else { continue };
+                    held.push(exe);
+                    let (x, y) = (goal.pose.pose.position.x, goal.pose.pose.position.y);
+                    goals.push((x, y));
+                    if goals.len() == 1 {
+                        // Reveal the goal's surroundings while the robot stays: the goal
+                        // stops being a frontier, and cf-rr's re-checking re-plans.
+                        world.sense_at(x, y);
+                        let _ = map_pub.publish(Ros(world.map_msg()));
+                    } else if stop_at.is_none() {
+                        // Shut down once the node has had the acceptance.
+                        stop_at = Some(Instant::now() + Duration::from_secs(1));
+                    }
+                }
+                c = server.receive_cancel_request().fuse() => {
+                    let Ok(c) = c else { continue };
+                    cancels.push(c.goals().count());
+                    let ids: Vec<_> = c.goals().collect();
+                    let _ = server.respond_to_cancel_requests(&c, ids.into_iter()).await;
+                }
+            }
+        }
+    };
+    smol::block_on(ex.run(main));
+    let mode = handle.join().unwrap().unwrap();
+    eprintln!("goals {goals:?}\ncancels {cancels:?}\nstatus {status:?}\nmode {mode:?}");
+    assert_eq!(goals.len(), 2, "{goals:?}");
+    assert_ne!(goals[0], goals[1]);
+    // One cancel, at shutdown, naming the one goal in flight; none when goal 2 replaced 1.
+    assert_eq!(cancels, vec![1], "{status:?}");
+    assert_eq!(status.last().map(String::as_str), Some("shut down"));
+}
