@@ -203,6 +203,9 @@ enum Outcome {
     NoAnswer,
 }
 
+/// How often the node warns while no map or no pose has come.
+const STARVED_WARN_EVERY: Duration = Duration::from_secs(10);
+
 /// How long a goal request waits for Nav2's answer before it is sent again later.
 const GOAL_ANSWER_WAIT: Duration = Duration::from_secs(10);
 
@@ -571,6 +574,7 @@ pub fn run(
         pending: None,
         sent: None,
         refusals: 0,
+        starved_warned: t0,
     };
     // The first status goes out with the first event (a map, a pose, or the first tick
     // after one period), not now: a sample written before discovery has matched anyone
@@ -632,6 +636,8 @@ struct State {
     sent: Option<(f64, f64, f64)>,
     /// Goals Nav2 refused or left unanswered in a row.
     refusals: u32,
+    /// When the node last warned that no map or pose came (its start at first).
+    starved_warned: Instant,
 }
 
 impl State {
@@ -699,7 +705,10 @@ impl State {
                 }
                 self.check(ex);
             }
-            Event::Tick => self.check(ex),
+            Event::Tick => {
+                self.check(ex);
+                self.warn_if_starved();
+            }
             Event::Accepted(seq, id) => {
                 if seq == self.seq {
                     *self.in_flight.borrow_mut() = Some((seq, id));
@@ -718,6 +727,7 @@ impl State {
                 if self.waiting.as_deref() == Some(&self.nav_waiting()) {
                     self.waiting = None;
                 }
+                self.fed();
                 if let Some((x, y, yaw)) = self.pending.take()
                     && matches!(self.mode, Mode::Exploring | Mode::Returning)
                 {
@@ -808,7 +818,7 @@ impl State {
         if self.mode != Mode::Exploring {
             return;
         }
-        let Some((x, y, _)) = self.pose else { return };
+        let Some((x, y)) = self.fed() else { return };
         let now = self.now_s();
         if self.pending.is_some() {
             // Nav2 has not taken the goal: the robot cannot be making progress to it.
@@ -828,11 +838,32 @@ impl State {
         }
     }
 
+    /// The robot's position once a map and a pose have come; until then, the status says
+    /// which is missing.
+    fn fed(&mut self) -> Option<(f64, f64)> {
+        if self.explorer.frame().is_none() {
+            self.waiting = Some(format!("no map on {}", self.params.map_topic));
+            return None;
+        }
+        let Some((x, y, _)) = self.pose else {
+            self.waiting = Some(match self.params.pose_type {
+                PoseType::Tf => format!(
+                    "no pose from TF ({} in {})",
+                    self.params.robot_base_frame,
+                    self.map_frame.borrow()
+                ),
+                _ => format!("no pose on {}", self.params.pose_topic),
+            });
+            return None;
+        };
+        Some((x, y))
+    }
+
     fn decide(&mut self, ex: &smol::LocalExecutor<'_>) {
         if self.mode != Mode::Exploring {
             return;
         }
-        let Some((x, y, _)) = self.pose else { return };
+        let Some((x, y)) = self.fed() else { return };
         let now = self.now_s();
         match self.explorer.decide(x, y, now) {
             Decision::Goal(g) => {
@@ -918,6 +949,48 @@ impl State {
         self.last_status = s;
         // Let the status go out before the participant goes.
         smol::Timer::after(Duration::from_millis(100)).await;
+    }
+
+    /// While exploring waits for a first map or pose, say every [`STARVED_WARN_EVERY`] what
+    /// it waits for and what would match.
+    fn warn_if_starved(&mut self) {
+        if self.mode != Mode::Exploring || self.starved_warned.elapsed() < STARVED_WARN_EVERY {
+            return;
+        }
+        let p = &self.params;
+        let after = self.t0.elapsed().as_secs();
+        let what = if self.explorer.frame().is_none() {
+            format!(
+                "no map on {} after {after} s: expected nav_msgs/msg/OccupancyGrid from a SLAM \
+                 node or map_server, reliable and transient local (a best-effort or volatile \
+                 publisher does not match)",
+                p.map_topic
+            )
+        } else if self.pose.is_none() {
+            match p.pose_type {
+                PoseType::Tf => format!(
+                    "no pose from TF after {after} s: expected /tf and /tf_static to chain {} \
+                     up to the map frame '{}'",
+                    p.robot_base_frame,
+                    self.map_frame.borrow()
+                ),
+                t => format!(
+                    "no pose on {} after {after} s: expected geometry_msgs/msg/{} in the map \
+                     frame '{}', reliable (a best-effort publisher does not match)",
+                    p.pose_topic,
+                    if t == PoseType::Stamped {
+                        "PoseStamped"
+                    } else {
+                        "PoseWithCovarianceStamped"
+                    },
+                    self.map_frame.borrow()
+                ),
+            }
+        } else {
+            return;
+        };
+        log::warn!("{what}");
+        self.starved_warned = Instant::now();
     }
 
     /// The status while a goal waits for Nav2.
