@@ -9,12 +9,13 @@
 //! | out | `/navigate_to_pose` | `nav2_msgs/action/NavigateToPose` | goals (not in publish-only mode) |
 //! | out | `/explore/goal` | `geometry_msgs/msg/PoseStamped` | every goal chosen |
 //! | out | `/explore/frontiers` | `visualization_msgs/msg/MarkerArray` | frontier cells and goal candidates |
-//! | out | `/explore/status` | `std_msgs/msg/String` | `idle`, `exploring`, `waiting: <why>`, `paused`, `returning`, `done: <reason>` |
+//! | out | `/explore/status` | `std_msgs/msg/String` | `idle`, `exploring`, `waiting: <why>`, `paused[: <why>]`, `returning`, `done: <reason>`, `shut down` |
 //!
-//! The robot's pose comes from a pose topic rather than TF: AMCL (`/amcl_pose`) and
-//! slam_toolbox (`/pose`) publish one, and reading TF would need the whole tree of
-//! transforms. Decisions run on map updates, on poses (the re-plan policy's checks are
-//! O(1)), when Nav2 ends a goal, and at `planner_frequency`.
+//! The robot's pose comes from a pose topic (AMCL's `/amcl_pose`, slam_toolbox's `/pose`),
+//! or with `pose_type: tf` from `/tf` and `/tf_static` (`robot_base_frame` chained up to the
+//! map frame), for localisation that publishes no pose topic. Decisions run on map updates,
+//! on poses (the re-plan policy's checks are O(1)), when Nav2 ends a goal, and at
+//! `planner_frequency`.
 
 use std::cell::RefCell;
 use std::rc::Rc;
