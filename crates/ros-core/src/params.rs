@@ -140,25 +140,29 @@ pub struct ParamError {
 }
 
 impl Params {
-    /// Read the parameters for node `node` from the YAML file at `path`, over the defaults.
-    pub fn from_file(path: &Path, node: &str) -> Result<Self, ParamError> {
+    /// Read the parameters for node `node` from the YAML file at `path`, over the defaults,
+    /// with the warnings about what was taken but not used (see [`Params::apply_yaml`]).
+    pub fn from_file(path: &Path, node: &str) -> Result<(Self, Vec<String>), ParamError> {
         let name = path.display().to_string();
         let text = std::fs::read_to_string(path).map_err(|e| ParamError {
             source_name: name.clone(),
             what: format!("cannot read: {e}"),
         })?;
         let mut p = Params::default();
-        p.apply_yaml(&text, node, &name)?;
-        Ok(p)
+        let warnings = p.apply_yaml(&text, node, &name)?;
+        Ok((p, warnings))
     }
 
-    /// Apply the parameters of `node` (or `/**`) in YAML `text` from `source_name`.
+    /// Apply the parameters of `node` (or `/**`) in YAML `text` from `source_name`; returns
+    /// warnings, each naming the source: `use_sim_time` (taken, though the node times with
+    /// the wall clock), and names of the shared `/**` section that are not the node's (such
+    /// a section is meant for every node of a launch file), which are skipped.
     pub fn apply_yaml(
         &mut self,
         text: &str,
         node: &str,
         source_name: &str,
-    ) -> Result<(), ParamError> {
+    ) -> Result<Vec<String>, ParamError> {
         let err = |what: String| ParamError {
             source_name: source_name.into(),
             what,
@@ -170,6 +174,7 @@ impl Params {
             ));
         };
         let mut found = false;
+        let mut warnings = Vec::new();
         for (k, v) in top {
             let key = k.as_str().unwrap_or("");
             let bare = key.trim_start_matches('/');
@@ -184,7 +189,12 @@ impl Params {
                 let name = pk
                     .as_str()
                     .ok_or_else(|| err("a parameter name is not a string".into()))?;
-                self.set(name, &yaml_value(pv)).map_err(err)?;
+                if let Some(w) = self
+                    .set_param(name, &yaml_value(pv), key == "/**")
+                    .map_err(err)?
+                {
+                    warnings.push(format!("{source_name}: {w}"));
+                }
             }
         }
         if !found {
@@ -192,7 +202,40 @@ impl Params {
                 "expected a section for node {node} (or /**), found none"
             )));
         }
-        Ok(())
+        Ok(warnings)
+    }
+
+    /// Set one parameter as [`Params::set`] does, but take `use_sim_time` (with a warning
+    /// when true: the node times goals with the wall clock, not `/clock`), and, when the
+    /// parameter comes from a section `shared` by every node (`/**`), warn about a name that
+    /// is not the node's rather than refuse it. `Ok(Some(w))`: set or skipped, with warning
+    /// `w`.
+    pub fn set_param(
+        &mut self,
+        name: &str,
+        value: &str,
+        shared: bool,
+    ) -> Result<Option<String>, String> {
+        if name == "use_sim_time" {
+            return match value {
+                "true" | "True" => Ok(Some(
+                    "use_sim_time: true taken, but the node times progress_timeout and \
+                     planner_frequency with the wall clock, not /clock"
+                        .into(),
+                )),
+                "false" | "False" => Ok(None),
+                _ => Err(format!(
+                    "use_sim_time: expected true or false, found '{value}'"
+                )),
+            };
+        }
+        match self.set(name, value) {
+            Err(e) if shared && e.starts_with("unknown parameter") => Ok(Some(format!(
+                "parameter '{name}' of the shared /** section is not one of this node's: \
+                 skipped"
+            ))),
+            r => r.map(|()| None),
+        }
     }
 
     /// Set one parameter from its text form (as on a command line, `name:=value`).
@@ -565,6 +608,43 @@ mod tests {
                 format!("ROS_DOMAIN_ID: expected 0–232, found '{v}'")
             );
         }
+    }
+
+    /// `use_sim_time`, which launch files set for every node, was a fatal "unknown
+    /// parameter", and so was any name of another node in a shared `/**` section.
+    #[test]
+    fn use_sim_time_and_other_nodes_shared_parameters_warn_not_fail() {
+        let mut p = Params::default();
+        let w = p
+            .apply_yaml(
+                "/**:\n  ros__parameters:\n    use_sim_time: true\n    \
+                 controller_frequency: 20.0\n    seed: 3\n",
+                "n",
+                "p.yaml",
+            )
+            .unwrap();
+        assert_eq!(p.seed, 3);
+        assert_eq!(w.len(), 2, "{w:?}");
+        assert!(
+            w[0].starts_with("p.yaml: use_sim_time: true taken"),
+            "{w:?}"
+        );
+        assert_eq!(
+            w[1],
+            "p.yaml: parameter 'controller_frequency' of the shared /** section is not one \
+             of this node's: skipped"
+        );
+        // In the node's own section a misspelt name is still an error.
+        let e = p
+            .apply_yaml(
+                "n:\n  ros__parameters:\n    controller_frequency: 20.0\n",
+                "n",
+                "p.yaml",
+            )
+            .unwrap_err();
+        assert!(e.what.starts_with("unknown parameter"), "{e}");
+        assert_eq!(p.set_param("use_sim_time", "false", false), Ok(None));
+        assert!(p.set_param("use_sim_time", "yes", false).is_err());
     }
 
     #[test]

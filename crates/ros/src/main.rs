@@ -42,16 +42,25 @@ fn main() -> anyhow::Result<()> {
         }
     }
     let mut params = match &file {
-        Some(f) => Params::from_file(f, &node)?,
+        Some(f) => {
+            let (p, warnings) = Params::from_file(f, &node)?;
+            for w in warnings {
+                log::warn!("{w}");
+            }
+            p
+        }
         None => Params::default(),
     };
     for o in &overrides {
         let (k, v) = o
             .split_once(":=")
             .with_context(|| format!("-p {o}: expected NAME:=VALUE"))?;
-        params
-            .set(k, v)
-            .map_err(|e| anyhow::anyhow!("-p {o}: {e}"))?;
+        if let Some(w) = params
+            .set_param(k, v, false)
+            .map_err(|e| anyhow::anyhow!("-p {o}: {e}"))?
+        {
+            log::warn!("-p {o}: {w}");
+        }
     }
     let domain = match domain {
         Some(d) => d,
