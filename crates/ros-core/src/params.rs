@@ -143,14 +143,46 @@ impl Params {
     /// Read the parameters for node `node` from the YAML file at `path`, over the defaults,
     /// with the warnings about what was taken but not used (see [`Params::apply_yaml`]).
     pub fn from_file(path: &Path, node: &str) -> Result<(Self, Vec<String>), ParamError> {
+        Self::from_file_over(Params::default(), path, node)
+    }
+
+    /// [`Params::from_file`] over `params` rather than the defaults (for several files, as
+    /// ROS 2 takes them: later ones win).
+    pub fn from_file_over(
+        mut params: Params,
+        path: &Path,
+        node: &str,
+    ) -> Result<(Self, Vec<String>), ParamError> {
         let name = path.display().to_string();
         let text = std::fs::read_to_string(path).map_err(|e| ParamError {
             source_name: name.clone(),
             what: format!("cannot read: {e}"),
         })?;
-        let mut p = Params::default();
-        let warnings = p.apply_yaml(&text, node, &name)?;
-        Ok((p, warnings))
+        let warnings = params.apply_yaml(&text, node, &name)?;
+        Ok((params, warnings))
+    }
+
+    /// Resolve the relative topic names (`map`, not `/map`) in `namespace` (`/robot1`), as
+    /// a ROS 2 node in that namespace does; absolute names stay.
+    pub fn resolve_names(&mut self, namespace: &str) -> Result<(), String> {
+        let ns = namespace.trim_end_matches('/');
+        if !namespace.starts_with('/') || ns.contains(char::is_whitespace) {
+            return Err(format!(
+                "expected a namespace starting with '/', found '{namespace}'"
+            ));
+        }
+        for name in [
+            &mut self.map_topic,
+            &mut self.pose_topic,
+            &mut self.navigate_action,
+            &mut self.goal_topic,
+            &mut self.markers_topic,
+        ] {
+            if !name.starts_with('/') {
+                *name = format!("{ns}/{name}");
+            }
+        }
+        Ok(())
     }
 
     /// Apply the parameters of `node` (or `/**`) in YAML `text` from `source_name`; returns
@@ -178,7 +210,10 @@ impl Params {
         for (k, v) in top {
             let key = k.as_str().unwrap_or("");
             let bare = key.trim_start_matches('/');
-            if key != "/**" && bare != node.trim_start_matches('/') {
+            // The node's name, bare or with its namespace (`/ns/node`, as launch_ros writes).
+            let full = node.trim_start_matches('/');
+            let base = full.rsplit('/').next().unwrap_or(full);
+            if key != "/**" && bare != full && bare != base {
                 continue;
             }
             let Some(params) = v["ros__parameters"].as_hash() else {
@@ -645,6 +680,35 @@ mod tests {
         assert!(e.what.starts_with("unknown parameter"), "{e}");
         assert_eq!(p.set_param("use_sim_time", "false", false), Ok(None));
         assert!(p.set_param("use_sim_time", "yes", false).is_err());
+    }
+
+    /// launch_ros starts a node with `--ros-args -r __ns:=/robot1 --params-file F`, where F
+    /// has a section `/robot1/frontier_explore`; relative topic names are the namespace's.
+    #[test]
+    fn a_namespace_resolves_relative_names_and_finds_its_section() {
+        let mut p = Params::default();
+        p.apply_yaml(
+            "/robot1/frontier_explore:\n  ros__parameters:\n    map_topic: map\n    seed: 4\n",
+            "/robot1/frontier_explore",
+            "p.yaml",
+        )
+        .unwrap();
+        assert_eq!(p.seed, 4);
+        p.resolve_names("/robot1").unwrap();
+        assert_eq!(p.map_topic, "/robot1/map");
+        assert_eq!(p.pose_topic, "/pose");
+        let mut q = Params::default();
+        q.apply_yaml(
+            "frontier_explore:\n  ros__parameters:\n    seed: 5\n",
+            "/robot1/frontier_explore",
+            "p.yaml",
+        )
+        .unwrap();
+        assert_eq!(q.seed, 5);
+        q.map_topic = "map".into();
+        q.resolve_names("/").unwrap();
+        assert_eq!(q.map_topic, "/map");
+        assert!(q.resolve_names("robot1").is_err());
     }
 
     #[test]
