@@ -184,6 +184,27 @@ enum Act {
     Cancel,
 }
 
+/// The node run in a thread on `domain` with `p`, and the sender that stops it.
+fn start_node(
+    domain: u16,
+    p: Params,
+) -> (
+    std::thread::JoinHandle<anyhow::Result<node::Mode>>,
+    async_channel::Sender<()>,
+) {
+    let node_ctx = node::context(domain).unwrap();
+    let (stop_tx, stop_rx) = async_channel::bounded(1);
+    let handle = std::thread::spawn(move || node::run(p, "frontier_explore", &node_ctx, stop_rx));
+    (handle, stop_tx)
+}
+
+/// The rooms world the mock robot explores, and the robot's start (cell 2, 2) in metres.
+fn rooms_world() -> (World, (f64, f64)) {
+    let world = World::new(parse_ascii(ROOMS, 0.5).unwrap(), "los:r=3");
+    let start = world.world(Cell::new(2, 2));
+    (world, start)
+}
+
 /// Run the node in a thread and a mock robot here until the node reports `done`, or fail
 /// after `limit`. The mock does `act(k)` with the k-th goal Nav2 receives (from 1); the
 /// test sends `stop` after `stop_after` goals, and `resume` 2.5 s after any pause.
@@ -194,10 +215,7 @@ fn scenario(
     stop_after: Option<usize>,
 ) -> (f64, Seen) {
     let domain = domain() + offset;
-    let node_ctx = node::context(domain).unwrap();
-    let (stop_tx, stop_rx) = async_channel::bounded(1);
-    let p = params(publish_only);
-    let handle = std::thread::spawn(move || node::run(p, "frontier_explore", &node_ctx, stop_rx));
+    let (handle, stop_tx) = start_node(domain, params(publish_only));
 
     let ctx = node::context(domain).unwrap();
     let Peer {
@@ -211,12 +229,9 @@ fn scenario(
         server,
     } = peer(&ctx);
 
-    let world = Arc::new(Mutex::new(World::new(
-        parse_ascii(ROOMS, 0.5).unwrap(),
-        "los:r=3",
-    )));
+    let (world, start) = rooms_world();
+    let world = Arc::new(Mutex::new(world));
     let seen = Arc::new(Mutex::new(Seen::default()));
-    let start = world.lock().unwrap().world(Cell::new(2, 2));
     let robot = Arc::new(Mutex::new(start));
     let ex = smol::LocalExecutor::new();
     ex.spawn(n.spinner().unwrap().spin()).detach();
@@ -467,11 +482,7 @@ fn a_goal_cancelled_by_another_client_pauses_the_node() {
 #[test]
 fn a_new_goal_preempts_the_old_and_shutdown_cancels_the_last() {
     let domain = domain() + 5;
-    let node_ctx = node::context(domain).unwrap();
-    let (stop_tx, stop_rx) = async_channel::bounded(1);
-    let handle = std::thread::spawn(move || {
-        node::run(params(false), "frontier_explore", &node_ctx, stop_rx)
-    });
+    let (handle, stop_tx) = start_node(domain, params(false));
     let ctx = node::context(domain).unwrap();
     let Peer {
         mut n,
@@ -481,8 +492,7 @@ fn a_new_goal_preempts_the_old_and_shutdown_cancels_the_last() {
         server,
         ..
     } = peer(&ctx);
-    let mut world = World::new(parse_ascii(ROOMS, 0.5).unwrap(), "los:r=3");
-    let (x0, y0) = world.world(Cell::new(2, 2));
+    let (mut world, (x0, y0)) = rooms_world();
     world.sense_at(x0, y0);
     let ex = smol::LocalExecutor::new();
     ex.spawn(n.spinner().unwrap().spin()).detach();
@@ -563,11 +573,7 @@ fn a_new_goal_preempts_the_old_and_shutdown_cancels_the_last() {
 #[test]
 fn no_map_or_no_pose_is_a_waiting_status_naming_the_topic() {
     let domain = domain() + 6;
-    let node_ctx = node::context(domain).unwrap();
-    let (stop_tx, stop_rx) = async_channel::bounded(1);
-    let handle = std::thread::spawn(move || {
-        node::run(params(false), "frontier_explore", &node_ctx, stop_rx)
-    });
+    let (handle, stop_tx) = start_node(domain, params(false));
     let ctx = node::context(domain).unwrap();
     let Peer {
         mut n,
@@ -575,8 +581,7 @@ fn no_map_or_no_pose_is_a_waiting_status_naming_the_topic() {
         status_sub,
         ..
     } = peer(&ctx);
-    let mut world = World::new(parse_ascii(ROOMS, 0.5).unwrap(), "los:r=3");
-    let (x0, y0) = world.world(Cell::new(2, 2));
+    let (mut world, (x0, y0)) = rooms_world();
     world.sense_at(x0, y0);
     let ex = smol::LocalExecutor::new();
     ex.spawn(n.spinner().unwrap().spin()).detach();
