@@ -7,6 +7,40 @@ use clap::Args;
 use grid::{Grid, GridMap, Occ};
 use world::{EnvKind, EnvSpec};
 
+/// A map file as `--map` reads it (with `--resolution`, `--border`, `--topic` and
+/// `--dungeon`), and the start it marks (a dungeon PNG's), if any.
+pub fn load_map_file(
+    path: &Path,
+    opts: &grid::io::LoadOptions,
+    topic: Option<&str>,
+    dungeon: bool,
+) -> Result<(GridMap, Option<grid::Cell>)> {
+    let is_mcap = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("mcap"));
+    if topic.is_some() && !is_mcap {
+        bail!("--topic chooses the map topic of an MCAP recording (a FILE.mcap map)");
+    }
+    if is_mcap {
+        if opts.resolution.is_some() || opts.border || dungeon {
+            bail!(
+                "--resolution / --border / --dungeon: an MCAP recording's map carries its own \
+                 resolution"
+            );
+        }
+        return Ok((load_mcap_map(path, topic)?, None));
+    }
+    if dungeon {
+        let Some((rx, _)) = opts.resolution.filter(|(x, y)| x == y) else {
+            bail!("--dungeon: expected one --resolution (square cells) for the PNG");
+        };
+        let bytes = grid::io::read_bytes(path)?;
+        let d = grid::io::parse_dungeon(&bytes, path, rx)?;
+        return Ok((d.map, Some(d.start)));
+    }
+    Ok((grid::io::load_map(path, opts)?, None))
+}
+
 /// Where the ground truth comes from: a built-in environment or a map file.
 #[derive(Args, Clone, Debug)]
 pub struct MapSource {
@@ -160,31 +194,7 @@ impl MapSource {
                 resolution,
                 border: self.border,
             };
-            let is_mcap = path
-                .extension()
-                .is_some_and(|e| e.eq_ignore_ascii_case("mcap"));
-            if self.topic.is_some() && !is_mcap {
-                bail!("--topic chooses the map topic of an MCAP recording (--map FILE.mcap)");
-            }
-            let mut start = None;
-            let map = if is_mcap {
-                if resolution.is_some() || self.border {
-                    bail!(
-                        "--resolution / --border: an MCAP recording's map carries its own resolution"
-                    );
-                }
-                load_mcap_map(path, self.topic.as_deref())?
-            } else if self.dungeon {
-                let Some((rx, _)) = resolution.filter(|(x, y)| x == y) else {
-                    bail!("--dungeon: expected one --resolution (square cells) for the PNG");
-                };
-                let bytes = grid::io::read_bytes(path)?;
-                let d = grid::io::parse_dungeon(&bytes, path, rx)?;
-                start = Some(d.start);
-                d.map
-            } else {
-                grid::io::load_map(path, &opts)?
-            };
+            let (map, start) = load_map_file(path, &opts, self.topic.as_deref(), self.dungeon)?;
             let name = path
                 .file_stem()
                 .map(|s| s.to_string_lossy().into_owned())

@@ -2,7 +2,7 @@
 
 use std::path::PathBuf;
 
-use anyhow::{Result, bail};
+use anyhow::Result;
 use clap::Subcommand;
 use grid::Occ;
 use grid::components::{Connectivity, label};
@@ -49,32 +49,12 @@ pub fn run(cmd: MapCommand) -> Result<()> {
         json,
     } = cmd;
     let resolution = resolution.as_deref().map(parse_resolution).transpose()?;
-    let is_mcap = file
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("mcap"));
-    if topic.is_some() && !is_mcap {
-        bail!("--topic chooses the map topic of an MCAP recording (FILE.mcap)");
-    }
-    let mut start = None;
-    let map = if is_mcap {
-        if resolution.is_some() || border || dungeon {
-            bail!(
-                "--resolution / --border / --dungeon: an MCAP recording's map carries its own \
-                 resolution"
-            );
-        }
-        crate::args::load_mcap_map(&file, topic.as_deref())?
-    } else if dungeon {
-        let Some((rx, _)) = resolution.filter(|(x, y)| x == y) else {
-            bail!("--dungeon: expected one --resolution (square cells) for the PNG");
-        };
-        let bytes = grid::io::read_bytes(&file)?;
-        let d = grid::io::parse_dungeon(&bytes, &file, rx)?;
-        start = Some(d.start);
-        d.map
-    } else {
-        grid::io::load_map(&file, &grid::io::LoadOptions { resolution, border })?
-    };
+    let (map, start) = crate::args::load_map_file(
+        &file,
+        &grid::io::LoadOptions { resolution, border },
+        topic.as_deref(),
+        dungeon,
+    )?;
     let (free, occupied, unknown) = map.counts();
     let cells = &map.cells;
     let (_, components) = label(
