@@ -8,6 +8,8 @@
 //!   re-plan policy and Yamauchi's visited and inaccessible lists;
 //! - [`map_belief`]: the received map as the belief;
 //! - [`params`]: the node's parameters from a ROS 2 parameters file;
+//! - [`args`] and [`names`]: the command line (`--ros-args` as launch_ros passes it), and
+//!   the node's names resolved as rcl resolves them (namespace, remapping rules);
 //! - [`tf`]: the robot's pose from the TF tree, for robots that publish no pose topic.
 //!
 //! The messages and their CDR form live in the `record` crate, shared with the MCAP reader
@@ -15,8 +17,10 @@
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
+pub mod args;
 pub mod explorer;
 pub mod map_belief;
+pub mod names;
 pub mod params;
 pub mod tf;
 

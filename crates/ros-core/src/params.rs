@@ -122,8 +122,8 @@ impl Default for Params {
             robot_base_frame: "base_link".into(),
             navigate_action: "/navigate_to_pose".into(),
             service_mapping: ServiceMapping::Auto,
-            goal_topic: "/explore/goal".into(),
-            markers_topic: "/explore/frontiers".into(),
+            goal_topic: crate::names::GOAL_TOPIC.into(),
+            markers_topic: crate::names::MARKERS_TOPIC.into(),
             seed: 0,
         }
     }
@@ -162,25 +162,24 @@ impl Params {
         Ok((params, warnings))
     }
 
-    /// Resolve the relative topic names (`map`, not `/map`) in `namespace` (`/robot1`), as
-    /// a ROS 2 node in that namespace does; absolute names stay.
-    pub fn resolve_names(&mut self, namespace: &str) -> Result<(), String> {
-        let ns = namespace.trim_end_matches('/');
-        if !namespace.starts_with('/') || ns.contains(char::is_whitespace) {
-            return Err(format!(
-                "expected a namespace starting with '/', found '{namespace}'"
-            ));
-        }
-        for name in [
-            &mut self.map_topic,
-            &mut self.pose_topic,
-            &mut self.navigate_action,
-            &mut self.goal_topic,
-            &mut self.markers_topic,
+    /// Resolve the names the parameters give (`map_topic`, …, `navigate_action`) as the node
+    /// `names` describes resolves them: expanded to fully qualified names in its namespace
+    /// (`map` in `/robot1` is `/robot1/map`, `~/goal` is `/robot1/NODE/goal`), then remapped
+    /// by its rules. An error names the parameter and its value.
+    pub fn resolve_names(&mut self, names: &crate::names::NameResolver) -> Result<(), String> {
+        for (param, name) in [
+            ("map_topic", &mut self.map_topic),
+            ("pose_topic", &mut self.pose_topic),
+            ("navigate_action", &mut self.navigate_action),
+            ("goal_topic", &mut self.goal_topic),
+            ("markers_topic", &mut self.markers_topic),
         ] {
-            if !name.starts_with('/') {
-                *name = format!("{ns}/{name}");
-            }
+            *name = names.resolve(name).map_err(|why| {
+                format!(
+                    "{param}: expected a ROS 2 name ({}), found '{name}' ({why})",
+                    crate::names::NAME_FORM
+                )
+            })?;
         }
         Ok(())
     }
@@ -694,7 +693,14 @@ mod tests {
         )
         .unwrap();
         assert_eq!(p.seed, 4);
-        p.resolve_names("/robot1").unwrap();
+        let robot1 = |rules: &[&str]| {
+            let rules: Vec<_> = rules
+                .iter()
+                .map(|r| crate::names::parse_remap(r).unwrap())
+                .collect();
+            crate::names::NameResolver::new("frontier_explore", &rules).unwrap()
+        };
+        p.resolve_names(&robot1(&["__ns:=/robot1"])).unwrap();
         assert_eq!(p.map_topic, "/robot1/map");
         assert_eq!(p.pose_topic, "/pose");
         let mut q = Params::default();
@@ -706,9 +712,43 @@ mod tests {
         .unwrap();
         assert_eq!(q.seed, 5);
         q.map_topic = "map".into();
-        q.resolve_names("/").unwrap();
+        q.resolve_names(&robot1(&[])).unwrap();
         assert_eq!(q.map_topic, "/map");
-        assert!(q.resolve_names("robot1").is_err());
+        assert!(crate::names::parse_remap("__ns:=robot1").is_err());
+    }
+
+    /// Topic remaps (`-r /map:=/x`, a launch file's `remappings`) were refused with an
+    /// error; they apply to the parameters' names after their expansion, as in rcl.
+    #[test]
+    fn remaps_apply_to_the_names_the_parameters_give() {
+        let rules: Vec<_> = [
+            "__ns:=/robot1",
+            "map:=/slam/map",
+            "/pose:=amcl_pose",
+            "other:navigate_to_pose:=/x",
+            "frontier_explore:/navigate_to_pose:=navigate_to_pose",
+        ]
+        .iter()
+        .map(|r| crate::names::parse_remap(r).unwrap())
+        .collect();
+        let names = crate::names::NameResolver::new("frontier_explore", &rules).unwrap();
+        let mut p = Params {
+            map_topic: "map".into(),
+            ..Params::default()
+        };
+        p.resolve_names(&names).unwrap();
+        assert_eq!(p.map_topic, "/slam/map");
+        assert_eq!(p.pose_topic, "/robot1/amcl_pose");
+        assert_eq!(p.navigate_action, "/robot1/navigate_to_pose");
+        assert_eq!(p.goal_topic, "/explore/goal");
+        assert_eq!(p.markers_topic, "/explore/frontiers");
+        let mut q = Params::default();
+        q.set("goal_topic", "ns/~goal").unwrap();
+        assert_eq!(
+            q.resolve_names(&names).unwrap_err(),
+            "goal_topic: expected a ROS 2 name (letters, digits and '_' between '/'), found \
+             'ns/~goal' ('~' other than as '~' or '~/…' at the start)"
+        );
     }
 
     #[test]

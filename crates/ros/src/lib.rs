@@ -5,14 +5,15 @@
 //! them to Nav2's `NavigateToPose` action — an explore_lite replacement with every strategy
 //! of the papers, stop reasons, start/stop/resume, return to the start and a publish-only mode.
 //!
-//! The decisions, the map as belief and the parameters are `frontier-ros-core`'s (re-exported
-//! here as [`explorer`], [`map_belief`] and [`params`]), a crate of the main workspace that
+//! The decisions, the map as belief, the parameters and the command line are
+//! `frontier-ros-core`'s (re-exported here as [`explorer`], [`map_belief`], [`params`],
+//! [`args`] and [`names`]), a crate of the main workspace that
 //! CI tests without DDS; this crate adds `node` (feature `node`, on by default): the ROS 2
 //! node itself (ros2-client, no ROS installation needed).
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
-pub use frontier_ros_core::{explorer, map_belief, params, tf};
+pub use frontier_ros_core::{args, explorer, map_belief, names, params, tf};
 #[cfg(feature = "node")]
 pub mod node;
 

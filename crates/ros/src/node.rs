@@ -11,6 +11,9 @@
 //! | out | `/explore/frontiers` | `visualization_msgs/msg/MarkerArray` | frontier cells and goal candidates |
 //! | out | `/explore/status` | `std_msgs/msg/String` | `idle`, `exploring`, `waiting: <why>`, `paused[: <why>]`, `returning`, `done: <reason>`, `shut down` |
 //!
+//! The names are those with no namespace and no remapping rule: every one is resolved as
+//! rcl resolves it ([`crate::names`]; [`run_with`]).
+//!
 //! The robot's pose comes from a pose topic (AMCL's `/amcl_pose`, slam_toolbox's `/pose`),
 //! or with `pose_type: tf` from `/tf` and `/tf_static` (`robot_base_frame` chained up to the
 //! map frame), for localisation that publishes no pose topic. Decisions run on map updates,
@@ -40,6 +43,9 @@ use record::msgs::{
 };
 
 use crate::explorer::{Check, Decision, Explorer, StopReason};
+use crate::names::{
+    COMMAND_TOPIC, NameResolver, OwnTopics, RESUME_TOPIC, STATUS_TOPIC, TF_STATIC_TOPIC, TF_TOPIC,
+};
 use crate::params::{Params, PoseType};
 use crate::tf::{TfTree, frame_name, planar_pose};
 
@@ -291,15 +297,44 @@ fn stamp(now: Instant, t0: Instant) -> Time {
     Time::from_secs((now - t0).as_secs_f64())
 }
 
-/// Run the node until `stop` fires (or the channel closes); returns the final mode.
+/// Run the node until `stop` fires (or the channel closes); returns the final mode. The node
+/// is `node_name` in the root namespace, with no remapping rules.
 pub fn run(
     params: Params,
     node_name: &str,
     ctx: &Context,
     stop: async_channel::Receiver<()>,
 ) -> anyhow::Result<Mode> {
+    let names = NameResolver::new(node_name, &[]).map_err(|e| anyhow::anyhow!("node name: {e}"))?;
+    run_with(params, &names, ctx, stop)
+}
+
+/// [`run`] with the node's name, namespace and remapping rules (`--ros-args -r`): every
+/// topic and action name is resolved through `names`, as rcl resolves them.
+pub fn run_with(
+    mut params: Params,
+    names: &NameResolver,
+    ctx: &Context,
+    stop: async_channel::Receiver<()>,
+) -> anyhow::Result<Mode> {
     let cfg = params.explorer_config().map_err(|e| anyhow::anyhow!(e))?;
     let period = params.planner_period().map_err(|e| anyhow::anyhow!(e))?;
+    // The names as the node uses them, before remapping (for the rules that match none).
+    let mut used = vec![
+        params.map_topic.clone(),
+        params.navigate_action.clone(),
+        params.goal_topic.clone(),
+        params.markers_topic.clone(),
+        RESUME_TOPIC.to_string(),
+        COMMAND_TOPIC.to_string(),
+        STATUS_TOPIC.to_string(),
+    ];
+    match params.pose_type {
+        PoseType::Tf => used.extend([TF_TOPIC.to_string(), TF_STATIC_TOPIC.to_string()]),
+        _ => used.push(params.pose_topic.clone()),
+    }
+    params.resolve_names(names).map_err(anyhow::Error::msg)?;
+    let own = names.own_topics().map_err(anyhow::Error::msg)?;
     for (param, value) in [
         ("map_topic", &params.map_topic),
         ("pose_topic", &params.pose_topic),
@@ -309,6 +344,36 @@ pub fn run(
     ] {
         param_topic_name(param, value)?;
     }
+    let node_name = names.node();
+    let used: Vec<&str> = used.iter().map(String::as_str).collect();
+    for rule in names.unused_rules(&used) {
+        // Info, not a warning: launch files often give every node the same rules (/tf).
+        let expanded: Vec<String> = used
+            .iter()
+            .map(|n| names.expand(n).unwrap_or_else(|_| n.to_string()))
+            .collect();
+        log::info!(
+            "remapping rule '{rule}' matches none of the node's names ({}): it remaps nothing",
+            expanded.join(", ")
+        );
+    }
+    log::info!(
+        "node {}: map {}, pose {}, navigate {}, goals {}, markers {}, status {}, commands {} \
+         and {}",
+        names.fully_qualified_node_name(),
+        params.map_topic,
+        if params.pose_type == PoseType::Tf {
+            format!("from {} and {}", own.tf, own.tf_static)
+        } else {
+            params.pose_topic.clone()
+        },
+        params.navigate_action,
+        params.goal_topic,
+        params.markers_topic,
+        own.status,
+        own.command,
+        own.resume
+    );
     let mut node = ctx
         .new_node(
             NodeName::new("/", node_name).map_err(|e| anyhow::anyhow!("node name: {e:?}"))?,
@@ -319,8 +384,8 @@ pub fn run(
     let map_sub = node
         .create_subscription::<Ros<OccupancyGrid>>(&map_t, Some(map_qos()))
         .map_err(|e| anyhow::anyhow!("{e:?}"))?;
-    let resume_t = topic(&node, "/explore/resume", "std_msgs", "Bool")?;
-    let command_t = topic(&node, "/explore/command", "std_msgs", "String")?;
+    let resume_t = topic(&node, &own.resume, "std_msgs", "Bool")?;
+    let command_t = topic(&node, &own.command, "std_msgs", "String")?;
     let goal_t = topic(&node, &params.goal_topic, "geometry_msgs", "PoseStamped")?;
     let markers_t = topic(
         &node,
@@ -328,7 +393,7 @@ pub fn run(
         "visualization_msgs",
         "MarkerArray",
     )?;
-    let status_t = topic(&node, "/explore/status", "std_msgs", "String")?;
+    let status_t = topic(&node, &own.status, "std_msgs", "String")?;
     let reliable = QosProfile::publisher_default().history(History::KeepLast { depth: 10 });
     let latched = reliable
         .clone()
@@ -429,8 +494,8 @@ pub fn run(
         PoseType::Tf => {
             // TF: /tf (odometry, SLAM) and /tf_static (the robot's description, latched),
             // chained from the robot's base frame to the map frame at every message.
-            let dynamic = topic(&node, "/tf", "tf2_msgs", "TFMessage")?;
-            let fixed = topic(&node, "/tf_static", "tf2_msgs", "TFMessage")?;
+            let dynamic = topic(&node, &own.tf, "tf2_msgs", "TFMessage")?;
+            let fixed = topic(&node, &own.tf_static, "tf2_msgs", "TFMessage")?;
             let tf_qos = QosProfile::publisher_default().history(History::KeepLast { depth: 100 });
             let tf_sub = node
                 .create_subscription::<Ros<TfMessage>>(&dynamic, Some(tf_qos.clone()))
@@ -454,6 +519,7 @@ pub fn run(
     }
     {
         let tx = tx.clone();
+        let topic = own.resume.clone();
         ex.spawn(async move {
             let mut s = std::pin::pin!(resume_sub.async_stream());
             while let Some(m) = s.next().await {
@@ -463,8 +529,8 @@ pub fn run(
                         let _ = tx.send(Event::Command(c.into())).await;
                     }
                     Err(e) => log::warn!(
-                        "message on /explore/resume skipped: expected a std_msgs/msg/Bool, \
-                         found one that does not decode ({e:?})"
+                        "message on {topic} skipped: expected a std_msgs/msg/Bool, found one \
+                         that does not decode ({e:?})"
                     ),
                 }
             }
@@ -473,6 +539,7 @@ pub fn run(
     }
     {
         let tx = tx.clone();
+        let topic = own.command.clone();
         ex.spawn(async move {
             let mut s = std::pin::pin!(command_sub.async_stream());
             while let Some(m) = s.next().await {
@@ -481,8 +548,8 @@ pub fn run(
                         let _ = tx.send(Event::Command(t.data)).await;
                     }
                     Err(e) => log::warn!(
-                        "message on /explore/command skipped: expected a std_msgs/msg/String, \
-                         found one that does not decode ({e:?})"
+                        "message on {topic} skipped: expected a std_msgs/msg/String, found one \
+                         that does not decode ({e:?})"
                     ),
                 }
             }
@@ -545,6 +612,7 @@ pub fn run(
     let t0 = Instant::now();
     let mut state = State {
         params: params.clone(),
+        own: own.clone(),
         explorer: Explorer::new(cfg),
         mode: if params.autostart {
             Mode::Exploring
@@ -596,6 +664,8 @@ pub fn run(
 /// The event loop's state.
 struct State {
     params: Params,
+    /// The node's own topics, resolved.
+    own: OwnTopics,
     explorer: Explorer,
     mode: Mode,
     pose: Option<(f64, f64, f64)>,
@@ -772,8 +842,10 @@ impl State {
                             // or another node took the robot over. Its goal is not
                             // inaccessible; wait to be told to go on.
                             log::warn!(
-                                "goal cancelled by another client: pausing until resume \
-                                 (/explore/resume true, or /explore/command resume)"
+                                "goal cancelled by another client: pausing until resume ({} \
+                                 true, or {} resume)",
+                                self.own.resume,
+                                self.own.command
                             );
                             self.explorer.forget_goal();
                             self.mode =
@@ -808,8 +880,9 @@ impl State {
                 self.return_to_start(ex);
             }
             other => log::warn!(
-                "command '{other}' on /explore/command skipped: expected start, stop, resume \
-                 or return_to_init"
+                "command '{other}' on {} skipped: expected start, stop, resume or \
+                 return_to_init",
+                self.own.command
             ),
         }
     }
@@ -970,8 +1043,10 @@ impl State {
         } else if self.pose.is_none() {
             match p.pose_type {
                 PoseType::Tf => format!(
-                    "no pose from TF after {after} s: expected /tf and /tf_static to chain {} \
-                     up to the map frame '{}'",
+                    "no pose from TF after {after} s: expected {} and {} to chain {} up to the \
+                     map frame '{}'",
+                    self.own.tf,
+                    self.own.tf_static,
                     p.robot_base_frame,
                     self.map_frame.borrow()
                 ),

@@ -15,6 +15,7 @@ use std::time::{Duration, Instant};
 
 use common::World;
 use frontier_ros::Params;
+use frontier_ros::names::{NameResolver, parse_remap};
 use frontier_ros::node::{self, Bool, Ros, Text, action_qos, map_qos, topic};
 use futures::{FutureExt, StreamExt};
 use grid::Cell;
@@ -192,9 +193,23 @@ fn start_node(
     std::thread::JoinHandle<anyhow::Result<node::Mode>>,
     async_channel::Sender<()>,
 ) {
+    start_node_with(domain, p, &[])
+}
+
+/// [`start_node`] with remapping rules, as `--ros-args -r RULE` gives them.
+fn start_node_with(
+    domain: u16,
+    p: Params,
+    rules: &[&str],
+) -> (
+    std::thread::JoinHandle<anyhow::Result<node::Mode>>,
+    async_channel::Sender<()>,
+) {
+    let rules: Vec<_> = rules.iter().map(|r| parse_remap(r).unwrap()).collect();
+    let names = NameResolver::new("frontier_explore", &rules).unwrap();
     let node_ctx = node::context(domain).unwrap();
     let (stop_tx, stop_rx) = async_channel::bounded(1);
-    let handle = std::thread::spawn(move || node::run(p, "frontier_explore", &node_ctx, stop_rx));
+    let handle = std::thread::spawn(move || node::run_with(p, &names, &node_ctx, stop_rx));
     (handle, stop_tx)
 }
 
@@ -613,4 +628,91 @@ fn no_map_or_no_pose_is_a_waiting_status_naming_the_topic() {
     stop_tx.try_send(()).unwrap();
     handle.join().unwrap().unwrap();
     assert!(!status.iter().any(|s| s == "exploring"), "{status:?}");
+}
+
+/// Run the node with `rules` on `domain`, the map published on `map_topic` once the node says
+/// it waits for one there, and the status read on `status_topic`; returns the statuses up to
+/// the one that says the map came and the pose is awaited (`waiting: no pose on ...`).
+fn statuses_until_the_map_comes(
+    domain: u16,
+    p: Params,
+    rules: &[&str],
+    map_topic: &str,
+    status_topic: &str,
+) -> Vec<String> {
+    let (handle, stop_tx) = start_node_with(domain, p, rules);
+    let ctx = node::context(domain).unwrap();
+    let mut n = ctx
+        .new_node(
+            NodeName::new("/", "mock_slam").unwrap(),
+            NodeOptions::new().enable_rosout(false),
+        )
+        .unwrap();
+    let map_pub = n
+        .create_publisher::<Ros<OccupancyGrid>>(
+            &topic(&n, map_topic, "nav_msgs", "OccupancyGrid").unwrap(),
+            Some(map_qos()),
+        )
+        .unwrap();
+    let latched = QosProfile::publisher_default()
+        .durability(Durability::TransientLocal)
+        .history(History::KeepLast { depth: 1 });
+    let status_sub = n
+        .create_subscription::<Text>(
+            &topic(&n, status_topic, "std_msgs", "String").unwrap(),
+            Some(latched),
+        )
+        .unwrap();
+    let (mut world, (x0, y0)) = rooms_world();
+    world.sense_at(x0, y0);
+    let ex = smol::LocalExecutor::new();
+    ex.spawn(n.spinner().unwrap().spin()).detach();
+    let deadline = Instant::now() + Duration::from_secs(30);
+    let no_map = format!("waiting: no map on {map_topic}");
+    let mut status: Vec<String> = Vec::new();
+    let main = async {
+        let mut st = std::pin::pin!(status_sub.async_stream());
+        let mut tick = smol::Timer::interval(Duration::from_millis(250));
+        loop {
+            assert!(Instant::now() < deadline, "status {status:?}");
+            futures::select! {
+                _ = FutureExt::fuse(tick.next()) => {
+                    if status.contains(&no_map) {
+                        let _ = map_pub.publish(Ros(world.map_msg()));
+                    }
+                }
+                s = st.next() => {
+                    let Some(Ok((t, _))) = s else { continue };
+                    status.push(t.data.clone());
+                    if t.data.starts_with("waiting: no pose on") {
+                        break;
+                    }
+                }
+            }
+        }
+    };
+    smol::block_on(ex.run(main));
+    stop_tx.try_send(()).unwrap();
+    handle.join().unwrap().unwrap();
+    status
+}
+
+/// Topic remaps (`-r /map:=/slam/map`, a launch file's `remappings`) were refused with an
+/// error; the node now subscribes to the remapped name, and its status names it.
+#[test]
+fn a_remapped_map_topic_is_the_one_subscribed() {
+    let status = statuses_until_the_map_comes(
+        domain() + 7,
+        params(false),
+        &["/map:=/slam/map", "/pose:=amcl_pose"],
+        "/slam/map",
+        "/explore/status",
+    );
+    assert_eq!(
+        status,
+        [
+            "waiting: no map on /slam/map",
+            "waiting: no pose on /amcl_pose"
+        ]
+    );
 }
