@@ -123,7 +123,7 @@ mod tests {
         assert_eq!(n.fully_qualified_node_name(), "/robot1/explorer");
         assert_eq!(n.resolve("/map").unwrap(), "/robot1/map");
         let own = n.own_topics().unwrap();
-        assert_eq!(own.status, "/explore/status");
+        assert_eq!(own.status, "/robot1/explore/status");
         assert_eq!(own.tf, "/robot1/tf");
         assert_eq!(own.tf_static, "/robot1/tf_static");
         // Without any, the node is /frontier_explore and every name stays.

@@ -17,16 +17,19 @@
 //! As in rcl, the wildcards `*` and `**` and the back-references `\1`…`\9` of the design
 //! are not implemented; a rule with one is refused.
 
+// The node's own topics are relative, as explore_lite's are: in the node's namespace
+// (`/robot1/explore/status` under `__ns:=/robot1`), `/explore/status` in the root one.
+
 /// The node's resume topic (explore_lite's).
-pub const RESUME_TOPIC: &str = "/explore/resume";
+pub const RESUME_TOPIC: &str = "explore/resume";
 /// The node's command topic.
-pub const COMMAND_TOPIC: &str = "/explore/command";
+pub const COMMAND_TOPIC: &str = "explore/command";
 /// The node's status topic.
-pub const STATUS_TOPIC: &str = "/explore/status";
+pub const STATUS_TOPIC: &str = "explore/status";
 /// The default of `goal_topic`.
-pub const GOAL_TOPIC: &str = "/explore/goal";
-/// The default of `markers_topic`.
-pub const MARKERS_TOPIC: &str = "/explore/frontiers";
+pub const GOAL_TOPIC: &str = "explore/goal";
+/// The default of `markers_topic` (explore_lite's name).
+pub const MARKERS_TOPIC: &str = "explore/frontiers";
 /// TF, with `pose_type: tf` (absolute, as tf2_ros's listener names it).
 pub const TF_TOPIC: &str = "/tf";
 /// Static TF, with `pose_type: tf`.
@@ -612,7 +615,7 @@ mod tests {
     }
 
     #[test]
-    fn the_nodes_own_topics_follow_the_rules() {
+    fn the_nodes_own_topics_follow_the_namespace_and_the_rules() {
         let root = resolver("frontier_explore", &[]).own_topics().unwrap();
         assert_eq!(
             root,
@@ -630,12 +633,12 @@ mod tests {
                 "__ns:=/robot1",
                 "/tf:=tf",
                 "/tf_static:=tf_static",
-                "/explore/status:=status",
-                "/explore/command:=~/command",
+                "explore/status:=status",
+                "explore/command:=~/command",
             ],
         );
         let t = r.own_topics().unwrap();
-        assert_eq!(t.resume, "/explore/resume");
+        assert_eq!(t.resume, "/robot1/explore/resume");
         assert_eq!(t.command, "/robot1/frontier_explore/command");
         assert_eq!(t.status, "/robot1/status");
         assert_eq!(

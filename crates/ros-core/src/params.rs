@@ -740,8 +740,8 @@ mod tests {
         assert_eq!(p.map_topic, "/slam/map");
         assert_eq!(p.pose_topic, "/robot1/amcl_pose");
         assert_eq!(p.navigate_action, "/robot1/navigate_to_pose");
-        assert_eq!(p.goal_topic, "/explore/goal");
-        assert_eq!(p.markers_topic, "/explore/frontiers");
+        assert_eq!(p.goal_topic, "/robot1/explore/goal");
+        assert_eq!(p.markers_topic, "/robot1/explore/frontiers");
         let mut q = Params::default();
         q.set("goal_topic", "ns/~goal").unwrap();
         assert_eq!(

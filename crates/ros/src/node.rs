@@ -12,7 +12,9 @@
 //! | out | `/explore/status` | `std_msgs/msg/String` | `idle`, `exploring`, `waiting: <why>`, `paused[: <why>]`, `returning`, `done: <reason>`, `shut down` |
 //!
 //! The names are those with no namespace and no remapping rule: every one is resolved as
-//! rcl resolves it ([`crate::names`]; [`run_with`]).
+//! rcl resolves it ([`crate::names`]; [`run_with`]). The `explore/…` ones are relative, in
+//! the node's namespace (`/robot1/explore/status` under `__ns:=/robot1`), as explore_lite's
+//! are; the others absolute, as SLAM nodes and Nav2 name them.
 //!
 //! The robot's pose comes from a pose topic (AMCL's `/amcl_pose`, slam_toolbox's `/pose`),
 //! or with `pose_type: tf` from `/tf` and `/tf_static` (`robot_base_frame` chained up to the
@@ -376,7 +378,10 @@ pub fn run_with(
     );
     let mut node = ctx
         .new_node(
-            NodeName::new("/", node_name).map_err(|e| anyhow::anyhow!("node name: {e:?}"))?,
+            // In its namespace (`ros2 node list` shows /NS/NAME), whose relative names
+            // resolve there too; every name here is resolved already (absolute).
+            NodeName::new(names.namespace(), node_name)
+                .map_err(|e| anyhow::anyhow!("node name: {e:?}"))?,
             NodeOptions::new().enable_rosout(false),
         )
         .map_err(|e| anyhow::anyhow!("cannot create node {node_name}: {e:?}"))?;

@@ -716,3 +716,27 @@ fn a_remapped_map_topic_is_the_one_subscribed() {
         ]
     );
 }
+
+/// The node's status and command topics stayed in the root namespace under `__ns`; they are
+/// relative now, as explore_lite's are, and so in the node's namespace, like the relative
+/// names of its parameters.
+#[test]
+fn under_a_namespace_the_status_and_relative_names_are_in_it() {
+    let mut p = params(false);
+    p.set("map_topic", "map").unwrap();
+    p.set("pose_topic", "amcl_pose").unwrap();
+    let status = statuses_until_the_map_comes(
+        domain() + 8,
+        p,
+        &["__ns:=/robot1"],
+        "/robot1/map",
+        "/robot1/explore/status",
+    );
+    assert_eq!(
+        status,
+        [
+            "waiting: no map on /robot1/map",
+            "waiting: no pose on /robot1/amcl_pose"
+        ]
+    );
+}
