@@ -52,4 +52,4 @@ pub use error::BenchError;
 pub use plan::{Plan, Trial, Unbuilt};
 pub use runner::{RunOptions, RunSummary, Shard};
 pub use scenario::Source;
-pub use store::{Merged, Store, TrialRow};
+pub use store::{Merged, Store, TrialRow, TrialSetup};

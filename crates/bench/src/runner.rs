@@ -19,7 +19,7 @@ use sim::RunResult;
 
 use crate::error::BenchError;
 use crate::plan::{Plan, Trial};
-use crate::store::{Store, TrialRow};
+use crate::store::{Store, TrialRow, TrialSetup};
 
 /// The program version written into every row.
 pub const VERSION: &str = env!("CARGO_PKG_VERSION");
@@ -104,10 +104,11 @@ pub fn progress_wanted() -> bool {
 pub fn run(plan: &Plan, db: &Path, opts: &RunOptions) -> Result<RunSummary, BenchError> {
     let started = Instant::now();
     let store = Store::open(db, &plan.name, &plan.fingerprint())?;
+    let source = format!("the study ({})", plan.source);
     for env in &plan.envs {
-        store.put_env(&env_picture(env)?)?;
+        store.put_env(&env_picture(env)?, &source)?;
     }
-    let done = store.finished()?;
+    let done = check_setups(plan, &store, db)?;
     let mine: Vec<&Trial> = plan
         .trials
         .iter()
@@ -221,6 +222,35 @@ pub fn run(plan: &Plan, db: &Path, opts: &RunOptions) -> Result<RunSummary, Benc
     Ok(summary)
 }
 
+/// The keys of the finished trials, once every one of them that the plan holds is checked
+/// to have been run as the plan runs it: an edited scenario (another start, `s_max` or map
+/// under the same names) plans trials of the same keys that the store would otherwise
+/// count as done, keeping results of the old settings under the new ones.
+fn check_setups(
+    plan: &Plan,
+    store: &Store,
+    db: &Path,
+) -> Result<std::collections::BTreeSet<String>, BenchError> {
+    let stored = store.setups()?;
+    for t in &plan.trials {
+        let Some(have) = stored.get(&t.key) else {
+            continue;
+        };
+        if let Some((column, was, now)) = have.difference(&setup(plan, t)) {
+            return Err(BenchError::Store {
+                path: db.to_path_buf(),
+                message: format!(
+                    "holds trial {} run with {column} {was}, but {} now runs it with {column} \
+                     {now}: the study changed since these results were stored; run it into \
+                     another database file, or undo the change",
+                    t.key, plan.source
+                ),
+            });
+        }
+    }
+    Ok(stored.into_keys().collect())
+}
+
 /// Refuse to start when the largest trials, one per worker thread, would need more memory
 /// at once than the machine has `available` (estimated before any runs).
 fn check_memory(
@@ -321,33 +351,57 @@ pub fn thin_curve(curve: &[(f64, f64)]) -> Vec<(f64, f64)> {
     (0..=K).map(|k| curve[(k * n + K / 2) / K]).collect()
 }
 
+/// Start cells as stored, JSON `[[x, y], ...]`.
+fn starts_json(starts: &[grid::Cell]) -> String {
+    let cells: Vec<[i32; 2]> = starts.iter().map(|c| [c.x, c.y]).collect();
+    serde_json::to_string(&cells).unwrap_or_default()
+}
+
+/// How trial `t` runs, as its row will store it (starts only when fixed by the plan).
+pub fn setup(plan: &Plan, t: &Trial) -> TrialSetup {
+    let v = &plan.variants[t.variant];
+    let env = &plan.envs[t.env];
+    let cfg = plan.config(t);
+    TrialSetup {
+        env_kind: env.kind.clone(),
+        env_seed: env.env_seed.map(|s| s as i64),
+        resolution: env.map.resolution,
+        width: env.map.width() as i64,
+        height: env.map.height() as i64,
+        preset: v.strategy.name.clone(),
+        s_max: v.strategy.replan.every_moves.map(i64::from),
+        sensing: cfg.sensing_mode().to_string(),
+        seed: t.seed.to_string(),
+        starts: (!cfg.starts.is_empty()).then(|| starts_json(&cfg.starts)),
+    }
+}
+
 /// The database row of trial `t` with `result`.
 pub fn row(plan: &Plan, t: &Trial, result: &RunResult, wall_s: f64) -> TrialRow {
     let v = &plan.variants[t.variant];
     let env = &plan.envs[t.env];
-    let cfg = plan.config(t);
-    let starts: Vec<[i32; 2]> = result.starts.iter().map(|c| [c.x, c.y]).collect();
+    let s = setup(plan, t);
     TrialRow {
         key: t.key.clone(),
         scenario: plan.name.clone(),
         env: env.name.clone(),
-        env_kind: env.kind.clone(),
-        env_seed: env.env_seed.map(|s| s as i64),
+        env_kind: s.env_kind,
+        env_seed: s.env_seed,
         map_file: env.map_file.clone(),
-        resolution: env.map.resolution,
-        width: env.map.width() as i64,
-        height: env.map.height() as i64,
+        resolution: s.resolution,
+        width: s.width,
+        height: s.height,
         strategy: v.label.clone(),
-        preset: v.strategy.name.clone(),
-        s_max: v.strategy.replan.every_moves.map(i64::from),
+        preset: s.preset,
+        s_max: s.s_max,
         sensor: v.sensor.to_string(),
         belief: plan.common.belief.to_string(),
-        sensing: cfg.sensing_mode().to_string(),
+        sensing: s.sensing,
         robots: v.robots as i64,
         start_variant: i64::from(t.start_variant),
         trial: i64::from(t.trial),
-        seed: t.seed.to_string(),
-        starts: serde_json::to_string(&starts).unwrap_or_default(),
+        seed: s.seed,
+        starts: starts_json(&result.starts),
         clearance: plan.common.clearance_m,
         speed: plan.common.speed,
         coverage_goal: plan.common.coverage_goal,

@@ -165,6 +165,125 @@ pub struct EnvPicture {
     pub png: Vec<u8>,
 }
 
+impl EnvPicture {
+    /// How `new` (of `source`: the scenario, or a database being merged) differs from this
+    /// stored picture of the same name, in words; `None` when both draw the same map (the
+    /// same size, resolution and cells, however the PNG was encoded).
+    pub fn difference(&self, new: &EnvPicture, source: &str) -> Option<String> {
+        let size =
+            |e: &EnvPicture| format!("{} x {} cells at {} m", e.width, e.height, e.resolution);
+        if (self.width, self.height, self.resolution) != (new.width, new.height, new.resolution) {
+            return Some(format!(
+                "holds environment '{}' as {}, but {source} gives {}",
+                self.name,
+                size(self),
+                size(new)
+            ));
+        }
+        if self.png == new.png {
+            return None;
+        }
+        let cells = |e: &EnvPicture| crate::replays::truth_from_picture(e).map(|m| m.cells);
+        match (cells(self), cells(new)) {
+            (Ok(a), Ok(b)) if a == b => None,
+            (Ok(a), Ok(b)) => {
+                let differ = (0..a.len()).filter(|&i| a[i] != b[i]).count();
+                Some(format!(
+                    "holds environment '{}' ({}) with other cells than {source} gives ({differ} \
+                     of {} cells differ)",
+                    self.name,
+                    size(self),
+                    a.len()
+                ))
+            }
+            (Err(e), _) | (_, Err(e)) => Some(format!(
+                "holds environment '{}' ({}), which cannot be compared with the one {source} \
+                 gives: {e}",
+                self.name,
+                size(self)
+            )),
+        }
+    }
+}
+
+/// What a trial was run with, beyond what its key spells out (environment, strategy label,
+/// sensor, robots, start variant, trial) and the study's fingerprint holds (seed, speed,
+/// clearance, goal, belief, ...). A scenario edited after some of its trials ran — another
+/// `start`, `s_max` or map under the same names — gives trials of the same keys that run
+/// otherwise; comparing setups keeps them from passing for the stored ones.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TrialSetup {
+    /// Built-in kind or `map`.
+    pub env_kind: String,
+    /// Generation seed of a built-in environment.
+    pub env_seed: Option<i64>,
+    /// Metres per cell.
+    pub resolution: f64,
+    /// Map width in cells.
+    pub width: i64,
+    /// Map height in cells.
+    pub height: i64,
+    /// Preset the strategy comes from.
+    pub preset: String,
+    /// Re-planning period in moves (`None` = on arrival).
+    pub s_max: Option<i64>,
+    /// Sensing mode in force.
+    pub sensing: String,
+    /// The run's seed.
+    pub seed: String,
+    /// Start cells, JSON `[[x, y], ...]`; `None` where a planned trial draws them from its
+    /// seed (they are known only once it runs, and then follow from the seed and the map).
+    pub starts: Option<String>,
+}
+
+impl TrialSetup {
+    /// The setup stored in `r`.
+    pub fn of(r: &TrialRow) -> TrialSetup {
+        TrialSetup {
+            env_kind: r.env_kind.clone(),
+            env_seed: r.env_seed,
+            resolution: r.resolution,
+            width: r.width,
+            height: r.height,
+            preset: r.preset.clone(),
+            s_max: r.s_max,
+            sensing: r.sensing.clone(),
+            seed: r.seed.clone(),
+            starts: Some(r.starts.clone()),
+        }
+    }
+
+    /// The first setting in which `self` and `other` differ: (column, value in `self`,
+    /// value in `other`). Starts are compared only when both know them.
+    pub fn difference(&self, other: &TrialSetup) -> Option<(&'static str, String, String)> {
+        fn opt<T: std::fmt::Display>(v: &Option<T>) -> String {
+            v.as_ref().map_or("none".into(), |v| v.to_string())
+        }
+        let fields = [
+            ("env_kind", self.env_kind.clone(), other.env_kind.clone()),
+            ("env_seed", opt(&self.env_seed), opt(&other.env_seed)),
+            (
+                "resolution",
+                self.resolution.to_string(),
+                other.resolution.to_string(),
+            ),
+            ("width", self.width.to_string(), other.width.to_string()),
+            ("height", self.height.to_string(), other.height.to_string()),
+            ("preset", self.preset.clone(), other.preset.clone()),
+            ("s_max", opt(&self.s_max), opt(&other.s_max)),
+            ("sensing", self.sensing.clone(), other.sensing.clone()),
+            ("seed", self.seed.clone(), other.seed.clone()),
+        ];
+        if let Some(d) = fields.into_iter().find(|(_, a, b)| a != b) {
+            return Some(d);
+        }
+        match (&self.starts, &other.starts) {
+            (Some(a), Some(b)) if a != b => Some(("starts", a.clone(), b.clone())),
+            _ => None,
+        }
+    }
+}
+
 /// An open results database.
 pub struct Store {
     conn: Connection,
@@ -600,8 +719,18 @@ impl Store {
         .map_err(BenchError::sql(&self.path))
     }
 
-    /// Store the picture of environment `name` (PNG bytes) unless it is there already.
-    pub fn put_env(&self, e: &EnvPicture) -> Result<(), BenchError> {
+    /// Store the picture of an environment unless it is there already; one of the same
+    /// name that draws another map (`source`, the scenario or a database being merged,
+    /// changed it) is refused, as results of the two maps would pass for one.
+    pub fn put_env(&self, e: &EnvPicture, source: &str) -> Result<(), BenchError> {
+        if let Some(have) = self.env(&e.name)? {
+            return match have.difference(e, source) {
+                None => Ok(()),
+                Some(why) => Err(self.problem(format!(
+                    "{why}; these results are of another environment: use another database file"
+                ))),
+            };
+        }
         self.conn
             .execute(
                 "INSERT OR IGNORE INTO envs (name, width, height, resolution, png) VALUES (?1, ?2, ?3, ?4, ?5)",
@@ -651,6 +780,59 @@ impl Store {
             })
             .map_err(BenchError::sql(&self.path))?
             .collect::<Result<Vec<_>, _>>()
+            .map_err(BenchError::sql(&self.path))?;
+        Ok(rows)
+    }
+
+    /// The stored picture of environment `name`, if any.
+    pub fn env(&self, name: &str) -> Result<Option<EnvPicture>, BenchError> {
+        self.conn
+            .query_row(
+                "SELECT name, width, height, resolution, png FROM envs WHERE name = ?1",
+                [name],
+                |r| {
+                    Ok(EnvPicture {
+                        name: r.get(0)?,
+                        width: r.get(1)?,
+                        height: r.get(2)?,
+                        resolution: r.get(3)?,
+                        png: r.get(4)?,
+                    })
+                },
+            )
+            .optional()
+            .map_err(BenchError::sql(&self.path))
+    }
+
+    /// The setup of every stored trial, by key.
+    pub fn setups(&self) -> Result<std::collections::BTreeMap<String, TrialSetup>, BenchError> {
+        let mut st = self
+            .conn
+            .prepare(
+                "SELECT key, env_kind, env_seed, resolution, width, height, preset, s_max, \
+                 sensing, seed, starts FROM trials",
+            )
+            .map_err(BenchError::sql(&self.path))?;
+        let rows = st
+            .query_map([], |r| {
+                Ok((
+                    r.get::<_, String>(0)?,
+                    TrialSetup {
+                        env_kind: r.get(1)?,
+                        env_seed: r.get(2)?,
+                        resolution: r.get(3)?,
+                        width: r.get(4)?,
+                        height: r.get(5)?,
+                        preset: r.get(6)?,
+                        s_max: r.get(7)?,
+                        sensing: r.get(8)?,
+                        seed: r.get(9)?,
+                        starts: Some(r.get(10)?),
+                    },
+                ))
+            })
+            .map_err(BenchError::sql(&self.path))?
+            .collect::<Result<_, _>>()
             .map_err(BenchError::sql(&self.path))?;
         Ok(rows)
     }
@@ -812,17 +994,42 @@ impl Store {
             .unchecked_transaction()
             .map_err(BenchError::sql(&self.path))?;
         self.claim(scenario, fingerprint)?;
+        // Where each trial held so far comes from, and how it was run: a trial of the same
+        // key run otherwise (shards of an edited scenario) is refused, not dropped.
+        let mut held: std::collections::BTreeMap<String, (TrialSetup, &Path)> = self
+            .setups()?
+            .into_iter()
+            .map(|(k, s)| (k, (s, self.path.as_path())))
+            .collect();
         let mut added = 0;
         for input in inputs {
             let other = Store::open_read_only(input)?;
+            let source = input.display().to_string();
             for e in &other.envs()? {
-                self.put_env(e)?;
+                self.put_env(e, &source)?;
             }
             for (k, p) in &other.optimal_paths()? {
                 self.put_optimal(k, p)?;
             }
             for r in &other.rows()? {
+                let setup = TrialSetup::of(r);
+                if let Some((have, from)) = held.get(&r.key) {
+                    if let Some((column, a, b)) = have.difference(&setup) {
+                        return Err(BenchError::Store {
+                            path: input.clone(),
+                            message: format!(
+                                "holds trial {} run with {column} {b}, but {} holds it run \
+                                 with {column} {a}: these are not shards of one study \
+                                 (was the scenario changed between them?)",
+                                r.key,
+                                from.display()
+                            ),
+                        });
+                    }
+                    continue;
+                }
                 added += usize::from(self.insert(r)?);
+                held.insert(r.key.clone(), (setup, input.as_path()));
             }
         }
         let total = self.count()?;

@@ -613,3 +613,78 @@ fn the_real_floor_plan_suite_runs_on_the_yaml_maps_of_a_folder() {
         .to_string();
     assert!(e.contains("--maps") && e.contains("holz2010-real"), "{e}");
 }
+
+/// `TINY` with `edits` applied (each `(from, to)` must occur), and `extra` appended.
+fn edited(edits: &[(&str, &str)], extra: &str) -> Plan {
+    let mut text = TINY.to_string();
+    for (from, to) in edits {
+        assert!(text.contains(from), "{from}");
+        text = text.replacen(from, to, 1);
+    }
+    text.push_str(extra);
+    Plan::resolve(&source(&text), Unbuilt::Error).expect("the edited scenario resolves")
+}
+
+const MINE: &str = "\n[[strategy]]\npreset = \"ha-cc\"\ns_max = 5\nlabel = \"mine\"\n";
+
+/// Regression: a scenario edited after its trials ran (another `start`, another `s_max`
+/// under the same label, another map under the same name) planned trials of the same keys
+/// and the same fingerprint, so resuming counted them as done ("2 of 2 trials done before")
+/// and the store kept the old settings' results under the new scenario.
+#[test]
+fn regression_edited_scenario_is_not_resumed_as_done() {
+    let dir = tempfile::tempdir().unwrap();
+    let db = dir.path().join("a.sqlite");
+    let named = [("seeds = [0]", "seeds = [0]\nname = \"m\"")];
+    let p = edited(&named, MINE);
+    bench::runner::run(&p, &db, &opts(2)).unwrap();
+    let before = rows(&db);
+    // the same scenario resumes: nothing to do
+    let again = bench::runner::run(&p, &db, &opts(2)).unwrap();
+    assert_eq!((again.ran, again.already_done), (0, p.trials.len()));
+    let cases = [
+        (
+            edited(&[named[0], ("start = [3, 3]", "start = [4, 3]")], MINE),
+            "starts [[3,3]",
+        ),
+        (edited(&named, &MINE.replace("5", "7")), "s_max 5"),
+        (
+            edited(&[("seeds = [0]", "seeds = [1]\nname = \"m\"")], MINE),
+            "environment 'm'",
+        ),
+    ];
+    for (changed, what) in cases {
+        let e = bench::runner::run(&changed, &db, &opts(2))
+            .unwrap_err()
+            .to_string();
+        assert!(e.starts_with(&db.display().to_string()), "{e}");
+        assert!(e.contains(what), "{what}: {e}");
+        assert!(e.contains("another database file"), "{e}");
+    }
+    assert_eq!(rows(&db), before, "a refused run changes nothing");
+}
+
+/// Regression: shards of an edited scenario (the same keys and fingerprint, another start)
+/// merged silently, the first shard's trial kept and the other's dropped.
+#[test]
+fn regression_merge_refuses_shards_of_an_edited_scenario() {
+    let dir = tempfile::tempdir().unwrap();
+    let (a, b) = (dir.path().join("a.sqlite"), dir.path().join("b.sqlite"));
+    bench::runner::run(&plan(), &a, &opts(1)).unwrap();
+    let moved = edited(&[("start = [3, 3]", "start = [4, 3]")], "");
+    bench::runner::run(&moved, &b, &opts(1)).unwrap();
+    let out = dir.path().join("m.sqlite");
+    let e = Store::merge(&out, &[a.clone(), b.clone()])
+        .unwrap_err()
+        .to_string();
+    assert!(e.starts_with(&b.display().to_string()), "{e}");
+    assert!(
+        e.contains("starts [[4,3]") && e.contains("not shards of one study"),
+        "{e}"
+    );
+    assert!(!out.exists(), "nothing is written");
+    // the same shard twice is no conflict
+    let n = plan().trials.len();
+    let all = bench::Merged { added: n, total: n };
+    assert_eq!(Store::merge(&out, &[a.clone(), a]).unwrap(), all);
+}
