@@ -1,6 +1,6 @@
 //! The table of scenario keys in docs/usage.md names every key the scenario parser takes,
 //! at the top level and in `[[env]]`, `[[strategy]]` and `[optimal]`, and no key it
-//! refuses.
+//! refuses; and its table of CSV columns names every column `bench export` writes.
 
 use bench::{Plan, Source, Unbuilt};
 
@@ -89,4 +89,48 @@ fn usage_md_names_every_scenario_key() {
             );
         }
     }
+}
+
+/// The columns table of docs/usage.md names every column of `bench export`'s CSV, and no
+/// other.
+#[test]
+fn usage_md_names_every_csv_column() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = "name = \"c\"\nstrategies = [\"cf\"]\n[[env]]\nkind = \"maze\"\nseeds = [0]\n\
+                size = [6, 5]\nresolution = 0.5\n";
+    let src = Source {
+        file: "c.toml".into(),
+        text: text.into(),
+        dir: None,
+    };
+    let plan = Plan::resolve(&src, Unbuilt::Error).unwrap();
+    let db = dir.path().join("c.sqlite");
+    bench::runner::run(&plan, &db, &bench::RunOptions::default()).unwrap();
+    let csv = dir.path().join("c.csv");
+    bench::Store::open_read_only(&db)
+        .unwrap()
+        .export_csv(&csv)
+        .unwrap();
+    let out = std::fs::read_to_string(&csv).unwrap();
+    let header: Vec<&str> = out.lines().next().unwrap().split(',').collect();
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../docs/usage.md");
+    let doc = std::fs::read_to_string(path).expect("docs/usage.md");
+    let start = doc.find("| column | what |").expect("the columns table");
+    let mut documented = Vec::new();
+    for line in doc[start..]
+        .lines()
+        .skip(2)
+        .take_while(|l| l.starts_with('|'))
+    {
+        let first = line
+            .split(" | ")
+            .next()
+            .unwrap_or("")
+            .trim_start_matches("| ");
+        documented.extend(first.split(", ").map(|c| c.trim_matches('`').to_string()));
+    }
+    assert_eq!(
+        documented, header,
+        "docs/usage.md's columns table, in CSV order"
+    );
 }
