@@ -2,18 +2,23 @@
 # Build the Python package `frontier` into a virtualenv and install what its tests need.
 #
 #   scripts/py-setup.sh            # target/py-venv (FRONTIER_VENV=... for another place)
-#   scripts/py-setup.sh --dev      # the dev profile: reuses what `cargo test` built (CI)
+#   scripts/py-setup.sh --dev      # the dev profile, beside what `cargo test` built (CI)
 #   target/py-venv/bin/pytest crates/py/tests
 #
 # maturin and the test requirements come from PyPI (crates/py/requirements-dev.txt).
 # The extension is built once: in the release profile by default (the speed is the point
-# of it), or with --dev in the workspace's dev profile, whose dependencies `cargo test` has
-# already compiled, so CI pays for the package crate only.
+# of it), or with --dev in the workspace's dev profile, into target/debug beside what
+# `cargo test` compiled. That reuses most external crates, not all: `cargo test` builds
+# neither PyO3 nor numpy (crates/py has no Rust tests), and it builds rand, serde, bitflags
+# and either with features its dev-dependencies add, so the workspace's crates are built
+# again. --dev still takes about half as long as a release build, and the tests run as fast.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 profile=--release
 case "${1:-}" in
-    --dev) profile= ;;
+    # `--profile dev`, not only no `--release`: maturin would take pyproject.toml's
+    # `profile = "release"` and build in target/release.
+    --dev) profile="--profile dev" ;;
     "") ;;
     *) echo "usage: $0 [--dev]" >&2; exit 2 ;;
 esac
