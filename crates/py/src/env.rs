@@ -30,7 +30,7 @@ use sim::{Session, Status};
 use world::{EnvKind, EnvSpec};
 
 use crate::map::{Map, read_file, stem};
-use crate::{guarded, internal, value_error};
+use crate::{guarded, internal, str_arg, value_error};
 
 /// A generator spec from Python: (kind, size in metres, resolution).
 pub type Generator = (String, Option<(f64, f64)>, Option<f64>);
@@ -698,6 +698,11 @@ impl ObsPool {
     }
 }
 
+/// `preset=` of the baseline actions: a strategy preset's name.
+fn preset_arg(v: &Bound<'_, PyAny>) -> PyResult<String> {
+    str_arg(v, "preset", "a str")
+}
+
 /// A user error or a caught panic, as the right Python exception.
 fn py_error(e: String) -> PyErr {
     if e.starts_with("internal error") {
@@ -1039,9 +1044,12 @@ impl EnvCore {
 
     /// The action a paper's preset would take now: its assigner's choice among the offered
     /// candidates (drawing from the episode's strategy stream).
-    fn baseline_action(&mut self, preset: &str) -> PyResult<usize> {
+    fn baseline_action(
+        &mut self,
+        #[pyo3(from_py_with = preset_arg)] preset: String,
+    ) -> PyResult<usize> {
         let strategy =
-            Strategy::preset(preset).map_err(|e| value_error(format!("--strategy: {e}")))?;
+            Strategy::preset(&preset).map_err(|e| value_error(format!("--strategy: {e}")))?;
         let st = self.state.get_mut().unwrap_or_else(|p| p.into_inner());
         if st.ended_unreported {
             // Ended at its reset: nothing is offered, and the next step ends the episode.
@@ -1271,9 +1279,13 @@ impl VecEnvCore {
 
     /// Each environment's baseline action (see `EnvCore.baseline_action`); 0 for an
     /// environment about to reset.
-    fn baseline_actions(&mut self, py: Python<'_>, preset: &str) -> PyResult<Vec<usize>> {
+    fn baseline_actions(
+        &mut self,
+        py: Python<'_>,
+        #[pyo3(from_py_with = preset_arg)] preset: String,
+    ) -> PyResult<Vec<usize>> {
         let strategy =
-            Strategy::preset(preset).map_err(|e| value_error(format!("--strategy: {e}")))?;
+            Strategy::preset(&preset).map_err(|e| value_error(format!("--strategy: {e}")))?;
         let (states, pool) = (&self.states, &self.pool);
         py.detach(|| {
             pool.each(states.iter().collect(), |_, st| {
@@ -1470,9 +1482,12 @@ impl TeamEnvCore {
 
     /// Each robot's action under `preset`'s assigner, choosing for the deciding robots
     /// together among the candidates offered to any of them (0 for the others).
-    fn baseline_actions(&mut self, preset: &str) -> PyResult<Vec<usize>> {
+    fn baseline_actions(
+        &mut self,
+        #[pyo3(from_py_with = preset_arg)] preset: String,
+    ) -> PyResult<Vec<usize>> {
         let strategy =
-            Strategy::preset(preset).map_err(|e| value_error(format!("--strategy: {e}")))?;
+            Strategy::preset(&preset).map_err(|e| value_error(format!("--strategy: {e}")))?;
         let st = self.state.get_mut().unwrap_or_else(|p| p.into_inner());
         if st.ended_unreported {
             // Ended at its reset: nothing is offered, and the next step ends the episode.

@@ -9,13 +9,18 @@
 //! pandas' shapes.
 //!
 //! Errors from user input become `ValueError` (or `TypeError` for a wrong type or dtype)
-//! with the CLI's message; a panic inside a run is caught and raised as `RuntimeError`, so
-//! nothing unwinds across the boundary.
+//! with the CLI's message; a `TypeError` names the argument, what it expected and what it
+//! found (`kind: expected a str, found int`), where PyO3's conversion message would name
+//! none (the environments' cores take what their Python wrappers have checked). A panic
+//! inside a run is caught and raised as `RuntimeError`, so nothing unwinds across the
+//! boundary.
 
 pub mod env;
 pub mod map;
 pub mod run;
 pub mod store;
+
+use std::path::PathBuf;
 
 use pyo3::exceptions::{PyOverflowError, PyRuntimeError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
@@ -53,25 +58,52 @@ pub(crate) fn bool_arg(v: &Bound<'_, PyAny>, name: &str) -> PyResult<bool> {
         .map_err(|_| type_error(name, "a bool", v))
 }
 
-/// Argument `name` as an integer in 0..2^64 (a Python or numpy integer; not a bool).
-pub(crate) fn u64_arg(v: &Bound<'_, PyAny>, name: &str) -> PyResult<u64> {
+/// Argument `name` as a str (or a subclass, such as numpy's); `what` says what was expected
+/// ("a str", "a str or None").
+pub(crate) fn str_arg(v: &Bound<'_, PyAny>, name: &str, what: &str) -> PyResult<String> {
+    if !v.is_instance_of::<PyString>() {
+        return Err(type_error(name, what, v));
+    }
+    v.extract()
+}
+
+/// Argument `name` as a file path: a str or an `os.PathLike` (a `pathlib.Path`).
+pub(crate) fn path_arg(v: &Bound<'_, PyAny>, name: &str) -> PyResult<PathBuf> {
+    v.extract::<PathBuf>().map_err(|e| {
+        if e.is_instance_of::<PyTypeError>(v.py()) {
+            type_error(name, "a path (a str or os.PathLike)", v)
+        } else {
+            e
+        }
+    })
+}
+
+/// Argument `name` as an integer of type `T` (a Python or numpy integer; not a bool or a
+/// float); `out_of_range(digits)` is the error for an integer `T` cannot hold.
+pub(crate) fn int_arg<T: TryFrom<i128>>(
+    v: &Bound<'_, PyAny>,
+    name: &str,
+    out_of_range: impl FnOnce(&str) -> PyErr,
+) -> PyResult<T> {
     if v.is_instance_of::<PyBool>() || v.is_instance_of::<PyFloat>() {
         return Err(type_error(name, "an int", v));
     }
     let big: i128 = match v.extract() {
         Ok(n) => n,
         Err(e) if e.is_instance_of::<PyOverflowError>(v.py()) => {
-            return Err(value_error(format!(
-                "{name}: expected an integer in 0..2^64, found {}",
-                v.str().map(|s| s.to_string()).unwrap_or_default()
-            )));
+            return Err(out_of_range(
+                &v.str().map(|s| s.to_string()).unwrap_or_default(),
+            ));
         }
         Err(_) => return Err(type_error(name, "an int", v)),
     };
-    u64::try_from(big).map_err(|_| {
-        value_error(format!(
-            "{name}: expected an integer in 0..2^64, found {big}"
-        ))
+    T::try_from(big).map_err(|_| out_of_range(&big.to_string()))
+}
+
+/// Argument `name` as an integer in 0..2^64 (a Python or numpy integer; not a bool).
+pub(crate) fn u64_arg(v: &Bound<'_, PyAny>, name: &str) -> PyResult<u64> {
+    int_arg(v, name, |n| {
+        value_error(format!("{name}: expected an integer in 0..2^64, found {n}"))
     })
 }
 

@@ -11,7 +11,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyBytes;
 use world::{EnvKind, EnvSpec};
 
-use crate::{bool_arg, pair_arg, real_arg, real_item, u64_arg, value_error};
+use crate::{bool_arg, pair_arg, path_arg, real_arg, real_item, str_arg, u64_arg, value_error};
 
 /// A ground-truth occupancy map: cells (0 unknown, 1 free, 2 occupied), resolution in metres
 /// per cell, and the name runs report.
@@ -42,6 +42,29 @@ fn dungeon_arg(v: &Bound<'_, PyAny>) -> PyResult<bool> {
 /// `seed=` of `Map.generate`.
 fn seed_arg(v: &Bound<'_, PyAny>) -> PyResult<u64> {
     u64_arg(v, "seed")
+}
+
+/// `kind=` of `Map.generate`.
+fn kind_arg(v: &Bound<'_, PyAny>) -> PyResult<String> {
+    str_arg(v, "kind", "a str")
+}
+
+/// `name=` of `Map.from_numpy`.
+fn name_arg(v: &Bound<'_, PyAny>) -> PyResult<String> {
+    str_arg(v, "name", "a str")
+}
+
+/// `topic=` of `Map.load`.
+fn topic_arg(v: &Bound<'_, PyAny>) -> PyResult<Option<String>> {
+    if v.is_none() {
+        return Ok(None);
+    }
+    str_arg(v, "topic", "a str or None").map(Some)
+}
+
+/// `path=` of `Map.load` and `Map.save`.
+fn file_arg(v: &Bound<'_, PyAny>) -> PyResult<PathBuf> {
+    path_arg(v, "path")
 }
 
 /// Metres per cell as the CLI's `--resolution` takes it: one number or (x, y).
@@ -166,10 +189,10 @@ impl Map {
     #[staticmethod]
     #[pyo3(signature = (path, resolution=None, border=false, *, topic=None, dungeon=false))]
     fn load(
-        path: PathBuf,
+        #[pyo3(from_py_with = file_arg)] path: PathBuf,
         resolution: Option<&Bound<'_, PyAny>>,
         #[pyo3(from_py_with = border_arg)] border: bool,
-        topic: Option<String>,
+        #[pyo3(from_py_with = topic_arg)] topic: Option<String>,
         #[pyo3(from_py_with = dungeon_arg)] dungeon: bool,
     ) -> PyResult<Self> {
         let resolution = resolution_arg(resolution)?;
@@ -182,12 +205,16 @@ impl Map {
 
     /// A map from a 2-D numpy array: bool (True = occupied) or uint8 (0 unknown, 1 free,
     /// 2 occupied); row 0 is the top row.
+    // The default is written out for the signature: PyO3 shows only a literal default.
     #[staticmethod]
-    #[pyo3(signature = (array, resolution, name="array"))]
+    #[pyo3(
+        signature = (array, resolution, name=String::from("array")),
+        text_signature = "(array, resolution, name=\"array\")"
+    )]
     fn from_numpy(
         array: &Bound<'_, PyAny>,
         resolution: &Bound<'_, PyAny>,
-        name: &str,
+        #[pyo3(from_py_with = name_arg)] name: String,
     ) -> PyResult<Self> {
         let resolution = real_arg(resolution, "resolution", RESOLUTION)?;
         check_resolution(resolution)?;
@@ -237,7 +264,7 @@ impl Map {
             )));
         }
         let grid = Grid::from_vec(w, h, cells).ok_or_else(|| value_error("array: bad shape"))?;
-        Ok(Self::new(GridMap::new(grid, resolution), name.to_string()))
+        Ok(Self::new(GridMap::new(grid, resolution), name))
     }
 
     /// Generate a built-in environment (office, hospital, cave, maze, potholes, empty) from
@@ -246,7 +273,7 @@ impl Map {
     #[pyo3(signature = (kind, seed=0, size=None, resolution=None))]
     fn generate(
         py: Python<'_>,
-        kind: &str,
+        #[pyo3(from_py_with = kind_arg)] kind: String,
         #[pyo3(from_py_with = seed_arg)] seed: u64,
         size: Option<&Bound<'_, PyAny>>,
         resolution: Option<&Bound<'_, PyAny>>,
@@ -283,7 +310,7 @@ impl Map {
     }
 
     /// Write the map: `.yaml` (ROS map_server YAML + PGM), `.pgm` or `.png`.
-    fn save(&self, path: PathBuf) -> PyResult<()> {
+    fn save(&self, #[pyo3(from_py_with = file_arg)] path: PathBuf) -> PyResult<()> {
         grid::io::save_map(&self.map, &path).map_err(value_error)
     }
 

@@ -14,7 +14,7 @@ use std::sync::{Condvar, Mutex};
 use std::time::Duration;
 
 use crate::map::Map;
-use crate::{guarded, internal, value_error};
+use crate::{bool_arg, guarded, int_arg, internal, real_arg, str_arg, type_error, value_error};
 
 /// The most threads `explore_many` takes: far more than any machine's cores, so only a
 /// mistake (`threads=10**6`) is refused.
@@ -48,49 +48,50 @@ pub(crate) fn options(kw: Option<&Bound<'_, PyDict>>) -> PyResult<ExploreOptions
     };
     let Some(kw) = kw else { return Ok(o) };
     for (k, v) in kw.iter() {
-        let key: String = k.extract()?;
-        if v.is_none() {
-            if matches!(
+        let key = str_arg(&k, "kwargs", "str keys")?;
+        // None leaves these unset (the CLI's default, or no clutter); others refuse it.
+        if v.is_none()
+            && matches!(
                 key.as_str(),
-                "start" | "belief" | "sensing" | "motion" | "coverage" | "s_max" | "goal"
-            ) {
-                continue;
-            }
-            return Err(PyTypeError::new_err(format!("{key}: None is not allowed")));
+                "start"
+                    | "belief"
+                    | "sensing"
+                    | "motion"
+                    | "coverage"
+                    | "s_max"
+                    | "goal"
+                    | "clutter"
+            )
+        {
+            continue;
         }
-        let typed = |what: &str| {
-            PyTypeError::new_err(format!(
-                "{key}: expected {what}, found {}",
-                v.get_type()
-                    .name()
-                    .map(|n| n.to_string())
-                    .unwrap_or_default()
-            ))
-        };
+        let v = &v;
         match key.as_str() {
-            "strategy" => o.strategy = v.extract().map_err(|_| typed("a str"))?,
-            "sensor" => o.sensor = v.extract().map_err(|_| typed("a str"))?,
-            "belief" => o.belief = Some(v.extract().map_err(|_| typed("a str"))?),
-            "sensing" => o.sensing = Some(v.extract().map_err(|_| typed("a str"))?),
-            "motion" => o.motion = Some(v.extract().map_err(|_| typed("a str"))?),
-            "coverage" => o.coverage = Some(v.extract().map_err(|_| typed("a str"))?),
+            "strategy" => o.strategy = str_arg(v, "strategy", "a str")?,
+            "sensor" => o.sensor = str_arg(v, "sensor", "a str")?,
+            "belief" => o.belief = Some(str_arg(v, "belief", "a str or None")?),
+            "sensing" => o.sensing = Some(str_arg(v, "sensing", "a str or None")?),
+            "motion" => o.motion = Some(str_arg(v, "motion", "a str or None")?),
+            "coverage" => o.coverage = Some(str_arg(v, "coverage", "a str or None")?),
             "robots" => {
-                let n: i64 = v.extract().map_err(|_| typed("an int"))?;
-                if n < 1 {
-                    return Err(value_error(format!(
-                        "--robots: expected at least 1, found {n}"
-                    )));
+                o.robots = int_arg(v, "robots", |n| {
+                    value_error(if n.starts_with('-') {
+                        format!("--robots: expected at least 1, found {n}")
+                    } else {
+                        format!("--robots: expected at most {}, found {n}", usize::MAX)
+                    })
+                })?;
+                if o.robots < 1 {
+                    return Err(value_error("--robots: expected at least 1, found 0"));
                 }
-                o.robots = n as usize;
             }
             "seed" => {
-                let s: i128 = v.extract().map_err(|_| typed("an int"))?;
-                o.seed = u64::try_from(s).map_err(|_| {
-                    value_error(format!("--seed: expected an integer in 0..2^64, found {s}"))
+                o.seed = int_arg(v, "seed", |n| {
+                    value_error(format!("--seed: expected an integer in 0..2^64, found {n}"))
                 })?;
             }
             "start" => {
-                let (x, y) = crate::pair_arg(&v, "start", "a cell (x, y)", crate::int_item)?;
+                let (x, y) = crate::pair_arg(v, "start", "a cell (x, y)", crate::int_item)?;
                 let (Ok(cx), Ok(cy)) = (i32::try_from(x), i32::try_from(y)) else {
                     return Err(value_error(format!(
                         "start: expected a cell (x, y) of 32-bit integers, found ({x}, {y})"
@@ -98,19 +99,25 @@ pub(crate) fn options(kw: Option<&Bound<'_, PyDict>>) -> PyResult<ExploreOptions
                 };
                 o.start = Some(Cell::new(cx, cy));
             }
-            "clearance" => o.clearance = v.extract().map_err(|_| typed("a float"))?,
-            "speed" => o.speed = v.extract().map_err(|_| typed("a float"))?,
-            "s_max" => o.s_max = Some(v.extract().map_err(|_| typed("an int"))?),
-            "goal" => o.goal = Some(v.extract().map_err(|_| typed("a float"))?),
-            "max_moves" => {
-                let n: i128 = v.extract().map_err(|_| typed("an int"))?;
-                o.max_moves = u64::try_from(n).map_err(|_| {
+            "clearance" => o.clearance = real_arg(v, "clearance", "a number of metres")?,
+            "speed" => o.speed = real_arg(v, "speed", "a number of metres per second")?,
+            "s_max" => {
+                o.s_max = Some(int_arg(v, "s_max", |n| {
                     value_error(format!(
-                        "--max-moves: expected a non-negative integer, found {n}"
+                        "--s-max: expected a positive number of cell moves or -1 (on arrival), \
+                         found {n}"
+                    ))
+                })?);
+            }
+            "goal" => o.goal = Some(real_arg(v, "goal", "a number or None")?),
+            "max_moves" => {
+                o.max_moves = int_arg(v, "max_moves", |n| {
+                    value_error(format!(
+                        "--max-moves: expected an integer in 0..2^64, found {n}"
                     ))
                 })?;
             }
-            "trajectories" => o.record_trace = v.extract().map_err(|_| typed("a bool"))?,
+            "trajectories" => o.record_trace = bool_arg(v, "trajectories")?,
             // Read by `job` (it is a map, not an option).
             "clutter" => {}
             _ => {
@@ -149,15 +156,9 @@ fn job(map: &Map, kw: Option<&Bound<'_, PyDict>>, memory_mb: Option<u64>) -> PyR
 /// Off-plane obstacles (`clutter=`, as the CLI's `--clutter-map`): the occupied cells of
 /// a `Map` of the map's size.
 fn clutter_layer(map: &Map, v: &Bound<'_, PyAny>) -> PyResult<grid::Grid<bool>> {
-    let layer: PyRef<'_, Map> = v.extract().map_err(|_| {
-        PyTypeError::new_err(format!(
-            "clutter: expected a frontier.Map, found {}",
-            v.get_type()
-                .name()
-                .map(|n| n.to_string())
-                .unwrap_or_default()
-        ))
-    })?;
+    let layer: PyRef<'_, Map> = v
+        .extract()
+        .map_err(|_| type_error("clutter", "a frontier.Map", v))?;
     let (w, h) = (map.map.width(), map.map.height());
     if (layer.map.width(), layer.map.height()) != (w, h) {
         return Err(value_error(format!(

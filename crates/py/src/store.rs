@@ -5,12 +5,20 @@ use std::path::PathBuf;
 
 use pyo3::prelude::*;
 
-use crate::value_error;
+use crate::{path_arg, value_error};
+
+/// `path=` of `load_rows`.
+fn store_arg(v: &Bound<'_, PyAny>) -> PyResult<PathBuf> {
+    path_arg(v, "path")
+}
 
 /// Every trial of the study store at `path` as a JSON array of row objects (ordered by
 /// key); a file that is not a store of this version is refused with the CLI's message.
 #[pyfunction]
-pub fn load_rows(py: Python<'_>, path: PathBuf) -> PyResult<String> {
+pub fn load_rows(
+    py: Python<'_>,
+    #[pyo3(from_py_with = store_arg)] path: PathBuf,
+) -> PyResult<String> {
     if path.is_dir() {
         return Err(value_error(format!(
             "{}: is a folder; expected a study store (a file written by `frontier bench`)",

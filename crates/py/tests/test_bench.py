@@ -133,3 +133,19 @@ def test_regression_load_gives_integer_seeds_as_the_csv_does(store):
     seed = int(csv["seed"][0])
     assert len(df[df["seed"] == seed]) == len(csv[csv["seed"] == seed]) >= 1
     assert all(isinstance(r["seed"], int) for r in frontier.bench.rows(store / "tiny.sqlite"))
+
+
+def test_regression_arguments_of_a_wrong_type_name_the_argument():
+    """Regression: a store that is no path gave os.fspath's message, which names no
+    argument, and a backend that is no str was a ValueError."""
+    for call, message in [
+        (lambda: frontier.bench.load(3), r"db: expected a path \(a str or os.PathLike\), found int"),
+        (lambda: frontier.bench.rows(None),
+         r"db: expected a path \(a str or os.PathLike\), found NoneType"),
+        (lambda: frontier.bench.load("study.sqlite", backend=1),
+         "backend: expected 'pandas' or 'polars', found int"),
+        (lambda: frontier._native.load_rows(2.5),
+         r"path: expected a path \(a str or os.PathLike\), found float"),
+    ]:
+        with pytest.raises(TypeError, match=f"^{message}"):
+            call()

@@ -379,3 +379,45 @@ def test_regression_memory_mb_takes_numpy_integers(office):
     assert rows == frontier.explore_many([dict(map=office)], memory_mb=100)
     assert frontier.explore(office, memory_mb=np.int32(100)).summary == \
         frontier.explore(office).summary
+
+
+def test_regression_run_options_of_a_wrong_type_name_the_argument(office):
+    """Regression: a bool was taken as a number (robots=True ran one robot), an integer
+    beyond 64 bits was "expected an int, found int", and None was "not allowed" without
+    saying what was."""
+    for kwargs, error, message in [
+        (dict(robots=True), TypeError, "robots: expected an int, found bool"),
+        (dict(seed=False), TypeError, "seed: expected an int, found bool"),
+        (dict(s_max=True), TypeError, "s_max: expected an int, found bool"),
+        (dict(max_moves=np.float32(5)), TypeError, "max_moves: expected an int, found float32"),
+        (dict(clearance=True), TypeError, "clearance: expected a number of metres, found bool"),
+        (dict(speed="fast"), TypeError,
+         "speed: expected a number of metres per second, found str"),
+        (dict(goal="all"), TypeError, "goal: expected a number or None, found str"),
+        (dict(sensor=None), TypeError, "sensor: expected a str, found NoneType"),
+        (dict(belief=1), TypeError, "belief: expected a str or None, found int"),
+        (dict(motion=b"grid"), TypeError, "motion: expected a str or None, found bytes"),
+        (dict(seed=2**64), ValueError,
+         r"--seed: expected an integer in 0\.\.2\^64, found 18446744073709551616"),
+        (dict(seed=2**200), ValueError, r"--seed: expected an integer in 0\.\.2\^64, found 1606"),
+        (dict(robots=2**70), ValueError,
+         "--robots: expected at most 18446744073709551615, found 1180591620717411303424"),
+        (dict(robots=-2**70), ValueError,
+         "--robots: expected at least 1, found -1180591620717411303424"),
+        (dict(s_max=2**70), ValueError, "--s-max: expected a positive number of cell moves or "
+         r"-1 \(on arrival\), found 1180591620717411303424"),
+        (dict(max_moves=2**70), ValueError,
+         r"--max-moves: expected an integer in 0\.\.2\^64, found 1180591620717411303424"),
+    ]:
+        with pytest.raises(error, match=f"^{message}"):
+            frontier.explore(office, **kwargs)
+        with pytest.raises(error, match=f"^run 0: {message}"):
+            frontier.explore_many([dict(map=office, **kwargs)])
+    with pytest.raises(TypeError, match="^trajectories: expected a bool, found str"):
+        frontier._native.explore(office, {"trajectories": "yes"})
+    with pytest.raises(TypeError, match="^kwargs: expected str keys, found int"):
+        frontier._native.explore(office, {1: 2})
+    # None is an unset option, and no clutter (as explore's clutter=None).
+    assert frontier.explore_many([dict(map=office, seed=2, clutter=None, goal=None)]) == \
+        frontier.explore_many([dict(map=office, seed=2)])
+    assert frontier.explore(office, robots=np.int64(2), seed=np.uint64(2**63)).robots == 2

@@ -708,3 +708,34 @@ def test_regression_vector_reset_refuses_seeds_that_are_not_ints(office):
     with pytest.raises(ValueError, match=r"seed\[1\]: expected a non-negative int, found -1"):
         venv.reset(seed=[1, -1])
     assert venv.reset(seed=[np.int64(3), None])[0]["belief"].shape[0] == 2
+
+
+def test_regression_str_and_path_arguments_name_the_argument(office, tmp_path):
+    """Regression: a preset of another type gave PyO3's "'int' object is not an instance of
+    'str'", load_folder(3) listed file descriptor 3 and `invalid_action` or `render_mode`
+    of another type was a ValueError."""
+    env = ExploreEnv(office)
+    env.reset(seed=0)
+    venv = ExploreVectorEnv(2, office)
+    venv.reset(seed=0)
+    for call, message in [
+        (lambda: env.baseline_action(3), "preset: expected a str, found int"),
+        (lambda: venv.baseline_actions(None), "preset: expected a str, found NoneType"),
+        (lambda: Baseline(b"cf-rr"), "preset: expected a str, found bytes"),
+        (lambda: ExploreEnv(office, invalid_action=1), "invalid_action: expected 'wrap' or "
+         "'raise', found int"),
+        (lambda: ExploreVectorEnv(2, office, invalid_action=None), "invalid_action: expected "
+         "'wrap' or 'raise', found NoneType"),
+        (lambda: ExploreEnv(office, render_mode=1), "render_mode: expected 'rgb_array' or None, "
+         "found int"),
+        (lambda: ExploreEnv(office, strategy=3), "strategy: expected a str, found int"),
+        (lambda: ExploreEnv(office, sensing=3), "sensing: expected a str or None, found int"),
+        (lambda: ExploreEnv(office, s_max=True), "s_max: expected an int, found bool"),
+        (lambda: frontier.gym.load_folder(3),
+         r"folder: expected a path \(a str or os.PathLike\), found int"),
+    ]:
+        with pytest.raises(TypeError, match=f"^{message}"):
+            call()
+    assert env.baseline_action(np.str_("cf-rr")) == env.baseline_action("cf-rr")
+    office.save(tmp_path / "o.pgm")
+    assert len(frontier.gym.load_folder(tmp_path, resolution=0.25)) == 1

@@ -227,3 +227,29 @@ def test_regression_pairs_may_be_any_sequence_of_two(office, tmp_path):
     ]:
         with pytest.raises(kind, match=message):
             call()
+
+
+def test_regression_str_and_path_arguments_name_the_argument(tmp_path):
+    """Regression: a str or path argument of another type gave PyO3's "'int' object is not an
+    instance of 'str'" or os.fspath's message, which name no argument."""
+    a = np.zeros((6, 6), bool)
+    m = frontier.Map.from_numpy(a, 0.1)
+    (tmp_path / "m.txt").write_text("....\n....\n")
+    for call, message in [
+        (lambda: frontier.Map.generate(3), "kind: expected a str, found int"),
+        (lambda: frontier.Map.generate(None, seed=1), "kind: expected a str, found NoneType"),
+        (lambda: frontier.Map.from_numpy(a, 0.1, name=7), "name: expected a str, found int"),
+        (lambda: frontier.Map.from_numpy(a, 0.1, b"m"), "name: expected a str, found bytes"),
+        (lambda: frontier.Map.load(3), r"path: expected a path \(a str or os.PathLike\), found int"),
+        (lambda: frontier.Map.load(tmp_path / "m.txt", topic=5),
+         "topic: expected a str or None, found int"),
+        (lambda: m.save(None), r"path: expected a path \(a str or os.PathLike\), found NoneType"),
+    ]:
+        with pytest.raises(TypeError, match=f"^{message}"):
+            call()
+    # What they take: str subclasses (numpy's), paths, None for an optional str.
+    assert frontier.Map.generate(np.str_("empty"), size=(4, 4)).name.startswith("empty")
+    assert frontier.Map.from_numpy(a, 0.1, name=np.str_("six")).name == "six"
+    assert frontier.Map.load(str(tmp_path / "m.txt"), topic=None).shape == (2, 4)
+    # The signature still shows the default name.
+    assert 'name="array"' in frontier.Map.from_numpy.__text_signature__

@@ -130,3 +130,16 @@ def test_regression_team_episode_ended_at_reset_terminates_at_first_step():
     _, rewards, terms, truncs, _ = env.step({"robot_0": 0, "robot_1": 0})
     assert rewards == {"robot_0": 0.0, "robot_1": 0.0}
     assert all(terms.values()) and not any(truncs.values()) and env.agents == []
+
+
+def test_regression_arguments_of_a_wrong_type_name_the_argument(office):
+    """Regression: a preset of another type gave PyO3's "'int' object is not an instance of
+    'str'", and robots=True made a team of one."""
+    env = ExploreParallelEnv(office, robots=2)
+    env.reset(seed=0)
+    with pytest.raises(TypeError, match="^preset: expected a str, found int"):
+        env.baseline_actions(3)
+    with pytest.raises(TypeError, match="^robots: expected an int, found bool"):
+        ExploreParallelEnv(office, robots=True)
+    with pytest.raises(TypeError, match="^sensor: expected a str, found float"):
+        ExploreParallelEnv(office, sensor=1.0)

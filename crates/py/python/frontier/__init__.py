@@ -12,6 +12,7 @@ from __future__ import annotations
 import difflib
 import functools
 import json
+import os
 import sys
 import warnings
 from typing import (
@@ -166,6 +167,23 @@ def _flag(name: str, value: Any) -> bool:
     return bool(value)
 
 
+def _text(name: str, value: Any, what: str = "a str") -> str:
+    """``value`` (a str); TypeError naming ``name`` otherwise (``what`` says what was
+    expected)."""
+    if not isinstance(value, str):
+        raise TypeError(f"{name}: expected {what}, found {type(value).__name__}")
+    return value
+
+
+def _path(name: str, value: Any) -> None:
+    """Raise TypeError naming ``name`` unless ``value`` is a path: a str or an
+    ``os.PathLike`` (a ``pathlib.Path``)."""
+    if not isinstance(value, (str, os.PathLike)):
+        raise TypeError(
+            f"{name}: expected a path (a str or os.PathLike), found {type(value).__name__}"
+        )
+
+
 def _real(name: str, value: Any, what: str = "a number") -> float:
     """``value`` (an int, a float or a numpy number, not a bool) as a float; TypeError
     naming ``name`` otherwise."""
@@ -256,7 +274,8 @@ def explore(
     (``decide_ms``, ``timing_ms``), which are ``None`` otherwise so that equal runs give
     equal results. A run whose estimated peak memory exceeds ``memory_mb`` MiB (the CLI's
     ``--memory-mb``) or what the machine has available is refused before it starts. Raises
-    ``ValueError`` with the CLI's message for a bad argument."""
+    ``ValueError`` with the CLI's message for a bad argument, ``TypeError`` naming it for
+    one of a wrong type."""
     if not isinstance(map, Map):
         raise TypeError(f"map: expected a frontier.Map, found {type(map).__name__}")
     memory_mb = _check_memory_mb(memory_mb)

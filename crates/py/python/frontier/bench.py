@@ -12,7 +12,7 @@ import json
 import os
 from typing import Any, Dict, List, Union
 
-from . import _native
+from . import _native, _path, _text
 
 __all__ = ["load", "rows"]
 
@@ -21,6 +21,7 @@ _JSON_COLUMNS = ("starts", "path_lengths", "coverage_curve", "idle_s")
 
 def rows(db: Union[str, "os.PathLike[str]"]) -> List[Dict[str, Any]]:
     """Every trial of the store ``db`` as a list of dicts (no pandas needed)."""
+    _path("db", db)
     out = json.loads(_native.load_rows(os.fspath(db)))
     for r in out:
         for c in _JSON_COLUMNS:
@@ -34,6 +35,7 @@ def rows(db: Union[str, "os.PathLike[str]"]) -> List[Dict[str, Any]]:
 def load(db: Union[str, "os.PathLike[str]"], backend: str = "pandas") -> Any:
     """Every trial of the store ``db`` as a ``pandas.DataFrame`` (``backend="polars"``:
     a ``polars.DataFrame``). Raises ``ValueError`` if ``db`` is not a study store."""
+    _text("backend", backend, "'pandas' or 'polars'")
     if backend not in ("pandas", "polars"):
         raise ValueError(f"backend: expected 'pandas' or 'polars', found {backend!r}")
     data = rows(db)

@@ -28,7 +28,7 @@ from gymnasium.utils import seeding
 from gymnasium.vector import AutoresetMode, VectorEnv
 from gymnasium.vector.utils import batch_space
 
-from . import Pair, _count, _flag, _native, _pair, _real, _real_or_none
+from . import Pair, _count, _flag, _native, _pair, _path, _real, _real_or_none, _text
 from ._native import Map
 
 __all__ = ["ExploreEnv", "ExploreVectorEnv", "Baseline", "RandomPolicy", "load_folder"]
@@ -69,6 +69,7 @@ def load_folder(
     HouseExpo ``.json`` (needs ``resolution``) and ``.txt``; with ``dungeon=True`` its PNGs
     as dungeon maps (:meth:`Map.load`). (An environment given the folder itself reads each
     episode's map when the episode starts instead.)"""
+    _path("folder", folder)
     files = _folder_files(folder, dungeon)
     if dungeon:
         return [Map.load(p, resolution=resolution, dungeon=True) for p in files]
@@ -203,7 +204,8 @@ def _check_run(who: str, run: Dict[str, Any]) -> None:
 
 
 def _check_invalid_action(invalid_action: str) -> None:
-    """Raise ValueError unless ``invalid_action`` is 'wrap' or 'raise'."""
+    """Raise TypeError or ValueError unless ``invalid_action`` is 'wrap' or 'raise'."""
+    _text("invalid_action", invalid_action, "'wrap' or 'raise'")
     if invalid_action not in ("wrap", "raise"):
         raise ValueError(f"invalid_action: expected 'wrap' or 'raise', found {invalid_action!r}")
 
@@ -233,8 +235,8 @@ def _core_args(
     max_path_m = _real_or_none("max_path_m", max_path_m, "a number of metres")
     resolution = _real_or_none("resolution", resolution, "a number of metres per cell")
     size = _pair("size", size, "(width, height) in metres")
-    if candidates is not None and not isinstance(candidates, str):
-        raise TypeError(f"candidates: expected a str or None, found {type(candidates).__name__}")
+    if candidates is not None:
+        _text("candidates", candidates, "a str or None")
     listed, generator, files = _source(maps, size, resolution, dungeon)
     kwargs = dict(run)
     kwargs.update(strategy=strategy, sensor=sensor)
@@ -363,8 +365,12 @@ class ExploreEnv(gymnasium.Env):
     ) -> None:
         _check_invalid_action(invalid_action)
         _check_run("ExploreEnv", run)
-        if render_mode is not None and render_mode not in self.metadata["render_modes"]:
-            raise ValueError(f"render_mode: expected 'rgb_array' or None, found {render_mode!r}")
+        if render_mode is not None:
+            _text("render_mode", render_mode, "'rgb_array' or None")
+            if render_mode not in self.metadata["render_modes"]:
+                raise ValueError(
+                    f"render_mode: expected 'rgb_array' or None, found {render_mode!r}"
+                )
         self._core = _native.EnvCore(
             **_core_args(
                 maps, size, resolution, strategy, sensor, candidates, k, view, lam,
@@ -562,10 +568,8 @@ class Baseline:
     assigner takes among the candidates ``env`` offers (an array for a vector env)."""
 
     def __init__(self, preset: str) -> None:
-        if not isinstance(preset, str):
-            raise TypeError(f"preset: expected a str, found {type(preset).__name__}")
         #: The preset's name.
-        self.preset = preset
+        self.preset = _text("preset", preset)
 
     def __call__(self, env: Any) -> Any:
         u = getattr(env, "unwrapped", env)
