@@ -236,3 +236,38 @@ fn regression_houseexpo_many_room_boxes_rasterise() {
         .count();
     assert_eq!(roomless, 0, "the boxes tile the square");
 }
+
+/// Regression: a 400 KB plan of 20,000 room boxes, each over the whole 1000 m square, ran
+/// for over a minute at 0.5 m (every box visited every one of its 4 million cells, though
+/// the first box had labelled them all). Boxes now jump over cells already labelled.
+#[test]
+fn regression_houseexpo_overlapping_room_boxes_rasterise() {
+    let square = [(0.0, 0.0), (100.0, 0.0), (100.0, 100.0), (0.0, 100.0)];
+    let boxes = vec![[0.0, 0.0, 100.0, 100.0]; 20_000];
+    let mut rooms = vec![("hall", vec![[0.0, 0.0, 50.0, 100.0]])];
+    rooms.push(("room", boxes));
+    let text = plan_text(&square, &rooms);
+    let start = std::time::Instant::now();
+    let plan = parse_houseexpo(&text, Path::new("rooms.json"), 0.1).expect("rasterises");
+    assert!(start.elapsed().as_secs() < 20, "took {:?}", start.elapsed());
+    assert_eq!(plan.room_types.len(), 20_001);
+    let count = |id| plan.rooms.iter().filter(|&&r| r == id).count();
+    // The hall (first in the file) keeps its half; the first full box takes the rest.
+    assert_eq!((count(1), count(2), count(3)), (500 * 1000, 500 * 1000, 0));
+}
+
+/// Regression: more room boxes than any house has are refused, naming the count, before
+/// any is rasterised.
+#[test]
+fn regression_houseexpo_too_many_room_boxes_are_refused() {
+    let square = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)];
+    let n = grid::io::houseexpo::MAX_ROOM_BOXES + 1;
+    let text = plan_text(&square, &[("room", vec![[0.0, 0.0, 1.0, 1.0]; n])]);
+    let msg = parse_houseexpo(&text, Path::new("rooms.json"), 0.1)
+        .expect_err("refused")
+        .to_string();
+    assert!(
+        msg.contains("rooms.json") && msg.contains("room_category") && msg.contains("65537"),
+        "{msg}"
+    );
+}

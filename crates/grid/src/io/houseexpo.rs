@@ -137,6 +137,54 @@ fn fill_outline(poly: &[(f64, f64)], xs: Centres, ys: Centres, cells: &mut [Occ]
     }
 }
 
+/// The most room boxes a plan may have. HouseExpo's houses have tens; each box costs a step
+/// per row it spans, so a small file of many boxes over a large map would take hours.
+pub const MAX_ROOM_BOXES: usize = 65_536;
+
+/// The free cells no room box has labelled yet, as "the next unlabelled free cell at or
+/// after `i`" pointers with path halving, so that boxes overlapping cells already labelled
+/// (the first box in the file wins) skip them instead of visiting them again: labelling
+/// costs the cells labelled plus a step per row of each box, not the boxes' areas.
+struct Unlabelled {
+    /// `next[i] == i` for an unlabelled free cell, else a cell index further on (`next[n]
+    /// == n` is the end).
+    next: Vec<u32>,
+}
+
+impl Unlabelled {
+    /// Every free cell of `cells` unlabelled (the map has at most [`MAX_CELLS`] cells, so
+    /// indices fit in 32 bits).
+    ///
+    /// [`MAX_CELLS`]: super::MAX_CELLS
+    fn new(cells: &[Occ]) -> Self {
+        let mut next: Vec<u32> = (0..cells.len())
+            .map(|i| if cells[i] == Occ::Free { i } else { i + 1 } as u32)
+            .collect();
+        next.push(cells.len() as u32);
+        Self { next }
+    }
+
+    /// The first unlabelled free cell at or after `i` (or the end).
+    fn find(&mut self, mut i: usize) -> usize {
+        while self.next[i] as usize != i {
+            let up = self.next[i] as usize;
+            self.next[i] = self.next[up];
+            i = up;
+        }
+        i
+    }
+
+    /// Label (call `label` on, then mark labelled) every unlabelled free cell in `span`.
+    fn take(&mut self, span: std::ops::Range<usize>, mut label: impl FnMut(usize)) {
+        let mut i = self.find(span.start);
+        while i < span.end {
+            label(i);
+            self.next[i] = (i + 1) as u32;
+            i = self.find(i + 1);
+        }
+    }
+}
+
 /// Read a HouseExpo JSON text (`name` is the file named in errors) at `resolution` metres
 /// per cell.
 pub fn parse_houseexpo(text: &str, name: &Path, resolution: f64) -> Result<HouseExpoMap, MapError> {
@@ -214,6 +262,20 @@ pub fn parse_houseexpo(text: &str, name: &Path, resolution: f64) -> Result<House
     let mut rooms = vec![0u32; w * h];
     let mut room_types = Vec::new();
     if let Some(cats) = json.get("room_category").and_then(Value::as_object) {
+        let count: usize = cats
+            .values()
+            .filter_map(Value::as_array)
+            .map(Vec::len)
+            .sum();
+        if count > MAX_ROOM_BOXES {
+            return Err(bad(
+                name,
+                "room_category",
+                &format!("at most {MAX_ROOM_BOXES} room boxes"),
+                format!("{count} boxes"),
+            ));
+        }
+        let mut unlabelled = Unlabelled::new(cells.data());
         for (kind, boxes) in cats {
             let boxes = boxes.as_array().ok_or_else(|| {
                 bad(
@@ -235,16 +297,14 @@ pub fn parse_houseexpo(text: &str, name: &Path, resolution: f64) -> Result<House
                 room_types.push(kind.clone());
                 let id = room_types.len() as u32;
                 // The cells whose centre is in [b0, b2) × [b1, b3), free and in no room yet:
-                // only the box's own rows and columns are visited.
+                // each of the box's rows jumps over the cells already labelled.
                 let columns = xs.below(b[0])..xs.below(b[2]);
-                let rows_up = ys.below(b[1])..ys.below(b[3]);
-                for r in rows_up {
+                if columns.is_empty() {
+                    continue;
+                }
+                for r in ys.below(b[1])..ys.below(b[3]) {
                     let row = (h - 1 - r) * w;
-                    for i in columns.clone().map(|cx| row + cx) {
-                        if rooms[i] == 0 && cells.data()[i] == Occ::Free {
-                            rooms[i] = id;
-                        }
-                    }
+                    unlabelled.take(row + columns.start..row + columns.end, |i| rooms[i] = id);
                 }
             }
         }
