@@ -25,16 +25,18 @@ pub(crate) fn parse_ascii_named(
     resolution: f64,
 ) -> Result<GridMap, MapError> {
     check_resolution(resolution, name)?;
-    let lines: Vec<&str> = text.lines().collect();
-    // Trailing blank lines are not rows.
-    let rows = lines
-        .iter()
-        .rposition(|l| !l.is_empty())
-        .map_or(0, |i| i + 1);
-    let width = lines.first().map_or(0, |l| l.chars().count());
+    // Trailing blank lines are not rows. The lines are walked twice rather than collected:
+    // a list of them takes 16 bytes a line, 3.2 GB for a 200 MB file of newlines.
+    let rows = text
+        .lines()
+        .enumerate()
+        .filter(|(_, l)| !l.is_empty())
+        .last()
+        .map_or(0, |(i, _)| i + 1);
+    let width = text.lines().next().map_or(0, |l| l.chars().count());
     check_size(width as u64, rows as u64, name)?;
     let mut data = Vec::with_capacity(width * rows);
-    for (y, line) in lines[..rows].iter().enumerate() {
+    for (y, line) in text.lines().take(rows).enumerate() {
         let mut n = 0;
         for (x, ch) in line.chars().enumerate() {
             let occ = match ch {
