@@ -2,10 +2,11 @@
 //! file and the map, and little more, whatever the file claims or repeats.
 
 use std::alloc::{GlobalAlloc, Layout, System};
-use std::sync::Mutex;
+use std::path::Path;
 use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::{Mutex, MutexGuard};
 
-use grid::io::parse_ascii;
+use grid::io::{parse_ascii, parse_png};
 
 /// The system allocator, counting the bytes live and their peak.
 struct Counting;
@@ -32,12 +33,18 @@ unsafe impl GlobalAlloc for Counting {
 #[global_allocator]
 static COUNTING: Counting = Counting;
 
-/// One measurement at a time: the tests of this file share the counters.
+/// One test at a time: the tests of this file share the counters, so each holds this for
+/// its whole run (its allocations outside a measurement would count in another's).
 static ONE_AT_A_TIME: Mutex<()> = Mutex::new(());
 
-/// The result of `f` and the most bytes it held at once beyond what was live before it.
+/// This test's turn with the counters.
+fn turn() -> MutexGuard<'static, ()> {
+    ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner())
+}
+
+/// The result of `f` and the most bytes it held at once beyond what was live before it
+/// (call it during a [`turn`]).
 fn peak_of<T>(f: impl FnOnce() -> T) -> (T, usize) {
-    let _turn = ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner());
     let before = LIVE.load(Ordering::SeqCst);
     PEAK.store(before, Ordering::SeqCst);
     let out = f();
@@ -49,6 +56,7 @@ fn peak_of<T>(f: impl FnOnce() -> T) -> (T, usize) {
 /// before it was refused as empty. The lines are now walked, not kept.
 #[test]
 fn regression_ascii_lines_are_not_collected() {
+    let _turn = turn();
     let blank = "\n".repeat(4_000_000);
     let (result, peak) = peak_of(|| parse_ascii(&blank, 1.0));
     assert!(result.is_err(), "a file of blank lines is empty");
@@ -63,4 +71,169 @@ fn regression_ascii_lines_are_not_collected() {
         peak < 2_000_000,
         "{peak} bytes for a map of 1,000,000 cells"
     );
+}
+
+/// The CRC-32 of PNG chunks.
+fn crc32(bytes: &[u8]) -> u32 {
+    let mut crc = !0u32;
+    for &b in bytes {
+        crc ^= u32::from(b);
+        for _ in 0..8 {
+            crc = if crc & 1 != 0 {
+                (crc >> 1) ^ 0xEDB8_8320
+            } else {
+                crc >> 1
+            };
+        }
+    }
+    !crc
+}
+
+/// `data` as a zlib stream of stored (uncompressed) deflate blocks.
+fn zlib_stored(data: &[u8]) -> Vec<u8> {
+    let mut out = vec![0x78, 0x01];
+    let blocks: Vec<&[u8]> = data.chunks(65_535).collect();
+    for (k, block) in blocks.iter().enumerate() {
+        out.push(u8::from(k + 1 == blocks.len()));
+        let len = block.len() as u16;
+        out.extend_from_slice(&len.to_le_bytes());
+        out.extend_from_slice(&(!len).to_le_bytes());
+        out.extend_from_slice(block);
+    }
+    let (mut a, mut b) = (1u32, 0u32);
+    for &x in data {
+        a = (a + u32::from(x)) % 65_521;
+        b = (b + a) % 65_521;
+    }
+    out.extend_from_slice(&((b << 16) | a).to_be_bytes());
+    out
+}
+
+/// A `w × h` PNG of `bit_depth`-bit samples of `color_type` (0 grey, 2 RGB, 4 grey+alpha,
+/// 6 RGBA), `pixel(x, y)` giving each pixel's big-endian sample bytes, Adam7-interlaced or
+/// not.
+fn png_of(
+    (w, h): (usize, usize),
+    (bit_depth, color_type): (u8, u8),
+    interlaced: bool,
+    pixel: impl Fn(usize, usize) -> Vec<u8>,
+) -> Vec<u8> {
+    // The passes' (x0, y0, dx, dy), or one pass over every pixel.
+    let passes: &[(usize, usize, usize, usize)] = if interlaced {
+        &[
+            (0, 0, 8, 8),
+            (4, 0, 8, 8),
+            (0, 4, 4, 8),
+            (2, 0, 4, 4),
+            (0, 2, 2, 4),
+            (1, 0, 2, 2),
+            (0, 1, 1, 2),
+        ]
+    } else {
+        &[(0, 0, 1, 1)]
+    };
+    let mut raw = Vec::new();
+    for &(x0, y0, dx, dy) in passes {
+        if w <= x0 {
+            continue;
+        }
+        for y in (y0..h).step_by(dy) {
+            raw.push(0); // filter: none
+            for x in (x0..w).step_by(dx) {
+                raw.extend(pixel(x, y));
+            }
+        }
+    }
+    let chunk = |out: &mut Vec<u8>, kind: &[u8; 4], data: &[u8]| {
+        out.extend_from_slice(&(data.len() as u32).to_be_bytes());
+        let mut typed = kind.to_vec();
+        typed.extend_from_slice(data);
+        out.extend_from_slice(&typed);
+        out.extend_from_slice(&crc32(&typed).to_be_bytes());
+    };
+    let mut png = b"\x89PNG\r\n\x1a\n".to_vec();
+    let mut ihdr = (w as u32).to_be_bytes().to_vec();
+    ihdr.extend_from_slice(&(h as u32).to_be_bytes());
+    ihdr.extend_from_slice(&[bit_depth, color_type, 0, 0, u8::from(interlaced)]);
+    chunk(&mut png, b"IHDR", &ihdr);
+    chunk(&mut png, b"IDAT", &zlib_stored(&raw));
+    chunk(&mut png, b"IEND", &[]);
+    png
+}
+
+/// A 16-bit RGBA pixel of a pattern: channels from the position, some pixels transparent.
+fn rgba16(x: usize, y: usize) -> Vec<u8> {
+    let r = (x * 977 + y * 131) as u16;
+    let g = (x * 17 + y * 7919) as u16;
+    let b = (x ^ y) as u16;
+    let a = if (x + 3 * y) % 5 == 1 { 0 } else { 40_000 };
+    [r, g, b, a].iter().flat_map(|v| v.to_be_bytes()).collect()
+}
+
+/// Regression: a PNG was decoded whole before its pixels were summed, up to 8 bytes a
+/// pixel (16-bit RGBA) and a copy of as many as 16-bit words, beside the raster's 5: a
+/// 2 MB 16-bit RGBA PNG of 16384 x 16384 pixels peaked at 5.5 GB (aborted under a 4 GB
+/// limit). Rows are now summed as they are decoded.
+#[test]
+fn regression_png_rows_are_decoded_one_at_a_time() {
+    let _turn = turn();
+    let (w, h) = (512, 512);
+    let png = png_of((w, h), (16, 6), false, rgba16);
+    let (raster, peak) = peak_of(|| parse_png(&png, Path::new("rgba16.png")));
+    let raster = raster.expect("decodes");
+    assert_eq!((raster.width, raster.height), (w, h));
+    // The raster: a 4-byte value and a transparency flag a pixel, and some decoder state.
+    let pixels = w * h;
+    assert!(
+        peak < 6 * pixels + (1 << 20),
+        "{peak} bytes to decode {pixels} pixels ({} a pixel)",
+        peak / pixels
+    );
+    let x = (7, 3);
+    let i = x.1 * w + x.0;
+    let px = rgba16(x.0, x.1);
+    let sample = |c: usize| u32::from(u16::from_be_bytes([px[2 * c], px[2 * c + 1]]));
+    assert_eq!(raster.values[i], sample(0) + sample(1) + sample(2));
+    assert_eq!(raster.maxval, 3 * 65_535);
+    assert_eq!(raster.is_transparent(i), sample(3) == 0);
+}
+
+/// The rows of an interlaced PNG land where Adam7 puts them: the same raster as the same
+/// picture not interlaced, for sizes that leave passes empty or partial.
+#[test]
+fn interlaced_png_decodes_to_the_same_raster() {
+    let _turn = turn();
+    for (w, h) in [(1, 1), (3, 2), (5, 9), (13, 7), (16, 16), (33, 17)] {
+        for (depth, colour) in [(16, 6), (8, 0), (8, 2), (8, 4)] {
+            // The pattern's first channels, whole (16 bits) or their high bytes (8 bits).
+            let channels = match colour {
+                0 => 1,
+                2 => 3,
+                4 => 2,
+                _ => 4,
+            };
+            let pixel = |x: usize, y: usize| -> Vec<u8> {
+                let full = rgba16(x, y);
+                match depth {
+                    16 => full[..2 * channels].to_vec(),
+                    _ => (0..channels).map(|c| full[2 * c]).collect(),
+                }
+            };
+            let plain = parse_png(
+                &png_of((w, h), (depth, colour), false, pixel),
+                Path::new("p"),
+            )
+            .expect("plain decodes");
+            let adam7 = parse_png(
+                &png_of((w, h), (depth, colour), true, pixel),
+                Path::new("i"),
+            )
+            .expect("interlaced decodes");
+            assert_eq!(plain, adam7, "{w}x{h}, depth {depth}, colour type {colour}");
+            assert!(
+                plain.values.iter().any(|&v| v != plain.values[0]) || w * h == 1,
+                "the pattern varies"
+            );
+        }
+    }
 }

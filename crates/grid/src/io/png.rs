@@ -42,14 +42,9 @@ pub(crate) fn decode_png(bytes: &[u8], name: &Path, fits: &SizeCheck) -> Result<
     let mut reader = decoder.read_info().map_err(|e| err(png_error(e)))?;
     let (w, h) = reader.info().size();
     fits(u64::from(w), u64::from(h), name)?;
-    let size = reader
-        .output_buffer_size()
-        .ok_or_else(|| err(MapErrorKind::Png(format!("a {w}x{h} image is too large"))))?;
-    let mut buf = vec![0u8; size];
-    let frame = reader.next_frame(&mut buf).map_err(|e| err(png_error(e)))?;
-    buf.truncate(frame.buffer_size());
     let (w, h) = (w as usize, h as usize);
-    let (channels, alpha) = match frame.color_type {
+    let (color_type, bit_depth) = reader.output_color_type();
+    let (channels, alpha) = match color_type {
         ColorType::Grayscale => (1, false),
         ColorType::GrayscaleAlpha => (2, true),
         ColorType::Rgb => (3, false),
@@ -60,30 +55,147 @@ pub(crate) fn decode_png(bytes: &[u8], name: &Path, fits: &SizeCheck) -> Result<
             )));
         }
     };
-    let (maxval, values, transparent) = if frame.bit_depth == BitDepth::Sixteen {
-        // Samples are big-endian.
-        let wide: Vec<u16> = buf
-            .chunks_exact(2)
-            .map(|b| u16::from_be_bytes([b[0], b[1]]))
-            .collect();
-        samples(&wide, channels, alpha, 65535)
+    // Rows are decoded one at a time into the brightness sums: a whole decoded frame takes up
+    // to 8 bytes a pixel (16-bit RGBA), 2 GiB for a 16384 x 16384 image that a 2 MB file can
+    // hold, before the raster's own 4 or 5.
+    let wide = bit_depth == BitDepth::Sixteen;
+    let (sample_bytes, channel_max) = if wide { (2, 65535) } else { (1, 255) };
+    let colour = if alpha { channels - 1 } else { channels };
+    let mut values = vec![0u32; w * h];
+    let mut transparent = if alpha {
+        vec![false; w * h]
     } else {
-        samples(&buf, channels, alpha, 255)
+        Vec::new()
     };
-    if values.len() != w * h {
+    let passes: &[Pass] = if reader.info().interlaced {
+        &ADAM7
+    } else {
+        &[Pass {
+            x0: 0,
+            y0: 0,
+            dx: 1,
+            dy: 1,
+        }]
+    };
+    for pass in passes {
+        let (samples, lines) = (pass.samples(w), pass.lines(h));
+        if samples == 0 {
+            continue; // the decoder skips passes without pixels
+        }
+        for line in 0..lines {
+            let row = reader
+                .next_row()
+                .map_err(|e| err(png_error(e)))?
+                .ok_or_else(|| {
+                    err(MapErrorKind::Png(format!(
+                        "decoded fewer rows than the {w}x{h} image has"
+                    )))
+                })?;
+            let data = row.data();
+            let pixel_bytes = channels * sample_bytes;
+            if data.len() != samples * pixel_bytes {
+                return Err(err(MapErrorKind::Png(format!(
+                    "decoded a row of {} bytes for {samples} pixels of {pixel_bytes} bytes",
+                    data.len()
+                ))));
+            }
+            let y = pass.y0 + line * pass.dy;
+            for (k, px) in data.chunks_exact(pixel_bytes).enumerate() {
+                let sample = |c: usize| {
+                    if wide {
+                        u32::from(u16::from_be_bytes([px[2 * c], px[2 * c + 1]]))
+                    } else {
+                        u32::from(px[c])
+                    }
+                };
+                let i = y * w + pass.x0 + k * pass.dx;
+                values[i] = (0..colour).map(sample).sum();
+                if alpha {
+                    transparent[i] = sample(colour) == 0;
+                }
+            }
+        }
+    }
+    // Past the last row the decoder checks and skips the rest of the image data.
+    if reader.next_row().map_err(|e| err(png_error(e)))?.is_some() {
         return Err(err(MapErrorKind::Png(format!(
-            "decoded {} pixels for a {w}x{h} image",
-            values.len()
+            "decoded more rows than the {w}x{h} image has"
         ))));
     }
     Ok(Raster {
         width: w,
         height: h,
-        maxval,
+        maxval: channel_max * colour as u32,
         values,
         transparent,
     })
 }
+
+/// One pass over an image's pixels: columns `x0, x0 + dx, …` of rows `y0, y0 + dy, …`.
+struct Pass {
+    x0: usize,
+    y0: usize,
+    dx: usize,
+    dy: usize,
+}
+
+impl Pass {
+    /// How many pixels of a row of `width` the pass takes.
+    fn samples(&self, width: usize) -> usize {
+        width.saturating_sub(self.x0).div_ceil(self.dx)
+    }
+
+    /// How many rows of an image of `height` the pass takes.
+    fn lines(&self, height: usize) -> usize {
+        height.saturating_sub(self.y0).div_ceil(self.dy)
+    }
+}
+
+/// The seven passes of an Adam7-interlaced PNG, in the order its rows come.
+const ADAM7: [Pass; 7] = [
+    Pass {
+        x0: 0,
+        y0: 0,
+        dx: 8,
+        dy: 8,
+    },
+    Pass {
+        x0: 4,
+        y0: 0,
+        dx: 8,
+        dy: 8,
+    },
+    Pass {
+        x0: 0,
+        y0: 4,
+        dx: 4,
+        dy: 8,
+    },
+    Pass {
+        x0: 2,
+        y0: 0,
+        dx: 4,
+        dy: 4,
+    },
+    Pass {
+        x0: 0,
+        y0: 2,
+        dx: 2,
+        dy: 4,
+    },
+    Pass {
+        x0: 1,
+        y0: 0,
+        dx: 2,
+        dy: 2,
+    },
+    Pass {
+        x0: 0,
+        y0: 1,
+        dx: 1,
+        dy: 2,
+    },
+];
 
 /// What a PNG decoding error means for the user.
 fn png_error(e: ::png::DecodingError) -> MapErrorKind {
@@ -101,28 +213,6 @@ fn describe_png(bytes: &[u8]) -> String {
         Some(b"P2") | Some(b"P5") => "it is a PGM image (mislabelled?)".to_string(),
         _ => describe_magic(bytes),
     }
-}
-
-/// Brightness sums, their maximum and transparency of interleaved samples.
-fn samples<T: Copy + Into<u32>>(
-    raw: &[T],
-    channels: usize,
-    alpha: bool,
-    channel_max: u32,
-) -> (u32, Vec<u32>, Vec<bool>) {
-    let colour = if alpha { channels - 1 } else { channels };
-    let values = raw
-        .chunks_exact(channels)
-        .map(|px| px[..colour].iter().map(|&s| s.into()).sum::<u32>())
-        .collect();
-    let transparent = if alpha {
-        raw.chunks_exact(channels)
-            .map(|px| px[colour].into() == 0)
-            .collect()
-    } else {
-        Vec::new()
-    };
-    (channel_max * colour as u32, values, transparent)
 }
 
 /// Encode a grid as an 8-bit greyscale PNG: free 254, occupied 0, unknown 205.
