@@ -1534,3 +1534,57 @@ fn regression_list_names_every_sensor_kind() {
         );
     }
 }
+
+/// Regression: the memory a run may take was read from the machine's free memory only, so
+/// under an address-space limit (`ulimit -v`, as a batch system sets) a run the estimate
+/// knew was too large started and aborted with "memory allocation of … bytes failed"
+/// (SIGABRT). The limit is now room the check counts, and the run is refused up front.
+#[cfg(target_os = "linux")]
+#[test]
+fn regression_run_over_the_address_space_limit_is_refused() {
+    let under_limit = |kib: u32, args: &[&str]| {
+        Command::new("sh")
+            .arg("-c")
+            .arg(format!("ulimit -v {kib} && exec \"$0\" \"$@\""))
+            .arg(env!("CARGO_BIN_EXE_frontier"))
+            .args(args)
+            .output()
+            .expect("run frontier under sh")
+    };
+    // 8000 x 8000 cells: about 3.5 GiB to explore, under a limit of about 1 GiB.
+    let explore = [
+        "explore",
+        "--env",
+        "office",
+        "--size",
+        "400x400",
+        "--resolution",
+        "0.05",
+        "--max-moves",
+        "10",
+        "--no-progress",
+    ];
+    // 4000 x 4000 cells: about 800 MiB to segment, under a limit of about 300 MiB.
+    let segment = [
+        "segment",
+        "--env",
+        "office",
+        "--size",
+        "200x200",
+        "--resolution",
+        "0.05",
+    ];
+    for (kib, args) in [(1_000_000, &explore[..]), (300_000, &segment[..])] {
+        let out = under_limit(kib, args);
+        let e = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(
+            out.status.code(),
+            Some(1),
+            "{args:?} under ulimit -v {kib}: {e}"
+        );
+        assert!(
+            e.contains("needs about") && e.contains("MiB this machine has available"),
+            "{e}"
+        );
+    }
+}
