@@ -123,6 +123,7 @@ impl SensorSpec {
         };
         let max = match self {
             SensorSpec::Los { .. } => crate::ray_template::MAX_TEMPLATE_RANGE_CELLS,
+            SensorSpec::Square { .. } => crate::square::MAX_SQUARE_HALF_CELLS,
             _ => crate::footprint::MAX_RANGE_CELLS,
         };
         if r.is_nan() || r < 1.0 {
@@ -520,6 +521,25 @@ mod tests {
             "sensor 'los:r=200': range 400 cells at 0.5 m per cell: expected 1 to 256 cells \
              (0.5 to 128 m)"
         );
+    }
+
+    /// Regression: `square:r=1e6c` was accepted (the plain sensors' million cells) and cast
+    /// 8 million rays a scan whatever the map's size: `frontier explore --env office` (a
+    /// 50 x 40 map) ran for more than a minute. The window is bounded at 1024 cells.
+    #[test]
+    fn regression_square_window_past_its_bound_is_refused() {
+        let e = parse("square:r=1e6c")
+            .expect("valid")
+            .build(0.5)
+            .err()
+            .expect("refused");
+        assert_eq!(
+            e.to_string(),
+            "sensor 'square:r=1000000c': range 1000000 cells at 0.5 m per cell: expected 1 to \
+             1024 cells (0.5 to 512 m)"
+        );
+        assert!(parse("square:r=1024c").expect("valid").build(0.5).is_ok());
+        assert!(parse("square:r=1025c").expect("valid").build(0.5).is_err());
     }
 
     #[test]
