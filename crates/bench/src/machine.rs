@@ -3,6 +3,8 @@
 
 use std::path::{Path, PathBuf};
 
+use grid::memory::{Available, Limit};
+
 /// Bytes of memory this process can still take now; `None` where none of the limits can be
 /// read.
 ///
@@ -13,6 +15,13 @@ use std::path::{Path, PathBuf};
 /// limit the process is killed, and beyond the address-space limit an allocation fails and
 /// aborts, however much memory the machine has free.
 pub fn available_bytes() -> Option<u64> {
+    available().map(|a| a.bytes)
+}
+
+/// The memory this process can still take now ([`available_bytes`]) and the limit that
+/// leaves it (the tightest of the three), so that a refusal names it: "the 976 MiB ulimit -v
+/// leaves", not "this machine has available" of a machine with 20 GiB free.
+pub fn available() -> Option<Available> {
     let read = |p: &Path| std::fs::read_to_string(p).ok();
     let machine = read(Path::new("/proc/meminfo")).and_then(|t| mem_available(&t));
     let group = read(Path::new("/proc/self/cgroup"))
@@ -21,7 +30,24 @@ pub fn available_bytes() -> Option<u64> {
         let status = read(Path::new("/proc/self/status"))?;
         address_space_room(&limits, &status)
     });
-    [machine, group, address_space].into_iter().flatten().min()
+    tightest(machine, group, address_space)
+}
+
+/// The least of the room the machine, the control group and the address-space limit
+/// leave, with its limit (the machine's on a tie, then the group's).
+fn tightest(
+    machine: Option<u64>,
+    group: Option<u64>,
+    address_space: Option<u64>,
+) -> Option<Available> {
+    [
+        machine.map(|b| Available::new(b, Limit::Machine)),
+        group.map(|b| Available::new(b, Limit::Cgroup)),
+        address_space.map(|b| Available::new(b, Limit::AddressSpace)),
+    ]
+    .into_iter()
+    .flatten()
+    .min_by_key(|a| a.bytes)
 }
 
 /// The `MemAvailable` line of a `/proc/meminfo` text, in bytes.
@@ -133,6 +159,23 @@ fn groups(base: &Path, path: &str) -> Vec<PathBuf> {
 mod tests {
     use super::*;
     use std::collections::HashMap;
+
+    /// Regression: every refusal said "this machine has available" even when the room
+    /// was what `ulimit -v` or the cgroup limit left; the tightest limit is now named.
+    #[test]
+    fn regression_the_tightest_limit_is_named() {
+        let gib = 1u64 << 30;
+        let t = tightest(Some(20 * gib), Some(4 * gib), Some(gib)).unwrap();
+        assert_eq!(t, Available::new(gib, Limit::AddressSpace));
+        assert_eq!(t.to_string(), "the 1024 MiB ulimit -v leaves");
+        let t = tightest(Some(20 * gib), Some(4 * gib), None).unwrap();
+        assert_eq!(t.limit, Limit::Cgroup);
+        assert_eq!(
+            tightest(Some(gib), None, Some(gib)).unwrap().limit,
+            Limit::Machine
+        );
+        assert_eq!(tightest(None, None, None), None);
+    }
 
     #[test]
     fn mem_available_reads_the_kib_line() {

@@ -696,7 +696,7 @@ fn resolve(src: &Source, f: ScenarioFile, unbuilt: Unbuilt) -> Result<Plan, Benc
             ),
         ));
     }
-    check_env_memory(src, &extents, crate::machine::available_bytes())?;
+    check_env_memory(src, &extents, crate::machine::available())?;
 
     let mut envs: Vec<EnvInstance> = Vec::new();
     let mut checked = BTreeSet::new();
@@ -908,6 +908,7 @@ fn load_env(
             let opts = grid::io::LoadOptions {
                 resolution: resolution.map(|r| (r, r)),
                 border: e.border.unwrap_or(false),
+                memory: crate::machine::available(),
             };
             let map = grid::io::load_map(&path, &opts)
                 .map_err(|err| src.error(span_of(m), format!("{key}.map"), err.to_string()))?;
@@ -1105,7 +1106,7 @@ fn env_extent(
 fn check_env_memory(
     src: &Source,
     extents: &[EnvExtent],
-    available: Option<u64>,
+    available: Option<grid::memory::Available>,
 ) -> Result<(), BenchError> {
     let held = extents.iter().fold(0u64, |sum, x| {
         sum.saturating_add(
@@ -1263,13 +1264,15 @@ mod tests {
         assert_eq!(extents[1].count, 100);
         assert_eq!(extents[1].cells, 10_000 * 10_000);
         // 100 maps of 10^8 cells held: about 9.3 GiB.
-        let e = check_env_memory(&src, &extents, Some(4 << 30))
+        let gib4 = grid::memory::Available::new(4 << 30, grid::memory::Limit::Machine);
+        let e = check_env_memory(&src, &extents, Some(gib4))
             .unwrap_err()
             .to_string();
         assert!(e.starts_with("s.toml:8: key `env[1].count`"), "{e}");
         assert!(e.contains("101 environment(s)"), "{e}");
         assert!(e.contains("more than the 4096 MiB"), "{e}");
-        check_env_memory(&src, &extents, Some(64 << 30)).unwrap();
+        let gib64 = grid::memory::Available::new(64 << 30, grid::memory::Limit::Machine);
+        check_env_memory(&src, &extents, Some(gib64)).unwrap();
         check_env_memory(&src, &extents, None).unwrap();
     }
 }

@@ -141,12 +141,7 @@ pub fn run(plan: &Plan, db: &Path, opts: &RunOptions) -> Result<RunSummary, Benc
     } else {
         ProgressBar::hidden()
     };
-    check_memory(
-        plan,
-        &pending,
-        opts.threads,
-        crate::machine::available_bytes(),
-    )?;
+    check_memory(plan, &pending, opts.threads, crate::machine::available())?;
     let optimal_cache = crate::competitive::Cache::new(store.optimal_paths()?);
     let store = Mutex::new(store);
     let failed = Mutex::new(Vec::new());
@@ -257,7 +252,7 @@ fn check_memory(
     plan: &Plan,
     pending: &[&Trial],
     threads: Option<usize>,
-    available: Option<u64>,
+    available: Option<grid::memory::Available>,
 ) -> Result<(), BenchError> {
     let workers = worker_threads(threads, pending.len()).unwrap_or_else(rayon::current_num_threads);
     let needs: Vec<(u64, String)> = pending
@@ -452,8 +447,14 @@ mod tests {
         let plan = Plan::resolve(&src, Unbuilt::Error).expect("resolves");
         let pending: Vec<_> = plan.trials.iter().collect();
         assert!(check_memory(&plan, &pending, Some(2), None).is_ok());
-        assert!(check_memory(&plan, &pending, Some(2), Some(1 << 40)).is_ok());
-        let e = check_memory(&plan, &pending, Some(2), Some(20 << 20))
+        let machine = |b| {
+            Some(grid::memory::Available::new(
+                b,
+                grid::memory::Limit::Machine,
+            ))
+        };
+        assert!(check_memory(&plan, &pending, Some(2), machine(1 << 40)).is_ok());
+        let e = check_memory(&plan, &pending, Some(2), machine(20 << 20))
             .unwrap_err()
             .to_string();
         assert!(e.contains("running 2 trials on 2 threads"), "{e}");

@@ -34,8 +34,7 @@ pub fn load_map_file(
         let Some((rx, _)) = opts.resolution.filter(|(x, y)| x == y) else {
             bail!("--dungeon: expected one --resolution (square cells) for the PNG");
         };
-        let bytes = grid::io::read_bytes(path)?;
-        let d = grid::io::parse_dungeon(&bytes, path, rx)?;
+        let d = grid::io::load_dungeon(path, rx, opts)?;
         return Ok((d.map, Some(d.start)));
     }
     Ok((grid::io::load_map(path, opts)?, None))
@@ -193,6 +192,7 @@ impl MapSource {
             let opts = grid::io::LoadOptions {
                 resolution,
                 border: self.border,
+                memory: bench::machine::available(),
             };
             let (map, start) = load_map_file(path, &opts, self.topic.as_deref(), self.dungeon)?;
             let name = path
@@ -243,6 +243,7 @@ impl MapSource {
         let opts = grid::io::LoadOptions {
             resolution: Some((env.map.resolution, env.map.resolution)),
             border: false,
+            memory: bench::machine::available(),
         };
         let clutter = if self.clutter {
             if env.rooms.is_none() {

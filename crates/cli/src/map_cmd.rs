@@ -51,7 +51,11 @@ pub fn run(cmd: MapCommand) -> Result<()> {
     let resolution = resolution.as_deref().map(parse_resolution).transpose()?;
     let (map, start) = crate::args::load_map_file(
         &file,
-        &grid::io::LoadOptions { resolution, border },
+        &grid::io::LoadOptions {
+            resolution,
+            border,
+            memory: bench::machine::available(),
+        },
         topic.as_deref(),
         dungeon,
     )?;

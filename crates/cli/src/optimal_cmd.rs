@@ -121,8 +121,8 @@ fn check_setup_memory(
 ) -> Result<()> {
     let needed = setup_bytes_at(map, factor, spec)?;
     let budget = (memory_mb as u64).saturating_mul(1 << 20);
-    let available = bench::machine::available_bytes();
-    let limit = available.map_or(budget, |a| a.min(budget));
+    let available = bench::machine::available();
+    let limit = available.map_or(budget, |a| a.bytes.min(budget));
     if needed <= limit {
         return Ok(());
     }

@@ -77,7 +77,7 @@ pub fn run(a: SegmentArgs) -> Result<()> {
         &format!("segmenting this {w}x{h} map"),
         segment_bytes(w * h),
         a.memory_mb,
-        bench::machine::available_bytes(),
+        bench::machine::available(),
         "use a map with fewer, larger cells (scale the image down and raise its resolution)",
     )?;
     let rooms = match &a.truth {
@@ -167,6 +167,7 @@ fn truth_rooms(path: &std::path::Path, source: &MapSource, map: &GridMap) -> Res
     let opts = grid::io::LoadOptions {
         resolution,
         border: source.border,
+        memory: bench::machine::available(),
     };
     let t = grid::io::load_map(path, &opts)?;
     if (t.width(), t.height()) != (map.width(), map.height()) {

@@ -1582,8 +1582,51 @@ fn regression_run_over_the_address_space_limit_is_refused() {
             Some(1),
             "{args:?} under ulimit -v {kib}: {e}"
         );
+        // The limit that applies is named: ulimit -v, not the machine's free memory.
         assert!(
-            e.contains("needs about") && e.contains("MiB this machine has available"),
+            e.contains("needs about") && e.contains("MiB ulimit -v leaves"),
+            "{e}"
+        );
+    }
+}
+
+/// Regression: a map was loaded before any memory was checked: a valid 16384 x 16384 PGM
+/// (the cell limit) took about 1.6 GB and 6 to 23 s to load, and under `ulimit -v` the load
+/// aborted. The loader now estimates from the header and refuses before decoding.
+#[cfg(target_os = "linux")]
+#[test]
+fn regression_map_over_the_address_space_limit_is_refused_before_loading() {
+    let dir = tempfile::tempdir().unwrap();
+    let pgm = dir.path().join("max.pgm");
+    // The header of a 16384 x 16384 8-bit PGM; the pixels are never read.
+    std::fs::write(&pgm, "P5\n16384 16384\n255\n").unwrap();
+    let pgm = pgm.to_str().unwrap();
+    for args in [
+        &["map", "info", pgm, "--resolution", "0.1"][..],
+        &[
+            "explore",
+            "--map",
+            pgm,
+            "--resolution",
+            "0.1",
+            "--max-moves",
+            "1",
+            "--no-progress",
+        ][..],
+    ] {
+        let out = Command::new("sh")
+            .arg("-c")
+            .arg("ulimit -v 1000000 && exec \"$0\" \"$@\"")
+            .arg(env!("CARGO_BIN_EXE_frontier"))
+            .args(args)
+            .output()
+            .expect("run frontier under sh");
+        let e = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{args:?}: {e}");
+        assert!(
+            e.contains(&format!(
+                "{pgm}: loading this 16384x16384 PGM image needs about"
+            )) && e.contains("MiB ulimit -v leaves"),
             "{e}"
         );
     }

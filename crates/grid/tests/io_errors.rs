@@ -227,12 +227,28 @@ fn too_large_refused_before_allocating() {
     let opts = LoadOptions {
         resolution: Some((1.0, 1e-9)),
         border: false,
+        ..LoadOptions::default()
     };
     let e = msg(load_map(&path, &opts));
     assert!(
         e.contains("thin.txt: map too large: 2000000000x2 cells is more than the limit"),
         "{e}"
     );
+    // Regression: a side too long for an integer was reported saturated, "2x18446744073709551615";
+    // the pixels, the cells and their number (a float) are said instead.
+    let opts = LoadOptions {
+        resolution: Some((1e-300, 1.0)),
+        ..LoadOptions::default()
+    };
+    let e = msg(load_map(&path, &opts));
+    assert!(
+        e.contains(
+            "thin.txt: map too large: 2x2 pixels of 1e-300 x 1.0 m resampled to square cells \
+             of 1e-300 m make about 4.000e300 cells, more than the limit of 268435456 cells"
+        ),
+        "{e}"
+    );
+    assert!(!e.contains("18446744073709551615"), "{e}");
     let _ = std::fs::remove_dir_all(dir);
 }
 
@@ -306,6 +322,7 @@ fn bad_resolution() {
     let opts = LoadOptions {
         resolution: Some((0.1, f64::NAN)),
         border: false,
+        ..LoadOptions::default()
     };
     let e = msg(load_map(&path, &opts));
     assert!(
@@ -745,6 +762,7 @@ fn png_at_the_cell_limit_with_a_border_is_refused_before_decoding() {
     let opts = LoadOptions {
         resolution: Some((0.05, 0.05)),
         border: true,
+        ..LoadOptions::default()
     };
     let err = load_map(&path, &opts).expect_err("past the cell limit");
     assert!(
@@ -762,6 +780,7 @@ fn png_at_the_cell_limit_with_a_border_is_refused_before_decoding() {
     let opts = LoadOptions {
         resolution: Some((0.05, 0.1)),
         border: false,
+        ..LoadOptions::default()
     };
     let err = load_map(&path, &opts).expect_err("past the cell limit once resampled");
     assert!(matches!(err.kind, MapErrorKind::TooLarge { .. }), "{err}");
@@ -776,6 +795,7 @@ fn png_at_the_cell_limit_with_a_border_is_refused_before_decoding() {
         &LoadOptions {
             resolution: None,
             border: true,
+            ..LoadOptions::default()
         },
     )
     .expect_err("past the cell limit");
@@ -794,6 +814,7 @@ fn pgm_at_the_cell_limit_with_a_border_is_refused_before_reading() {
     let opts = LoadOptions {
         resolution: Some((0.05, 0.05)),
         border: true,
+        ..LoadOptions::default()
     };
     let err = load_map(&path, &opts).expect_err("past the cell limit");
     assert!(

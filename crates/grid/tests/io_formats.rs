@@ -215,6 +215,7 @@ fn bare_bitmap_with_border() {
     let opts = LoadOptions {
         resolution: Some((0.5, 0.5)),
         border: true,
+        ..LoadOptions::default()
     };
     let map = load_map(&path, &opts).expect("load");
     assert_eq!(to_ascii(&map.cells), "####\n#.?#\n####\n");
@@ -268,6 +269,7 @@ fn non_square_pixels_resample_to_square_cells() {
     let opts = LoadOptions {
         resolution: Some((0.1, 0.2)),
         border: false,
+        ..LoadOptions::default()
     };
     let map = load_map(&path, &opts).expect("load");
     assert_eq!(to_ascii(&map.cells), "#.\n#.\n?.\n?.\n");
@@ -276,6 +278,7 @@ fn non_square_pixels_resample_to_square_cells() {
     let opts = LoadOptions {
         resolution: Some((0.3, 0.1)),
         border: true,
+        ..LoadOptions::default()
     };
     let map = load_map(&path, &opts).expect("load");
     assert_eq!(

@@ -6,7 +6,10 @@ use std::path::Path;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Mutex, MutexGuard};
 
-use grid::io::{parse_ascii, parse_png};
+use grid::io::{LoadOptions, MapErrorKind, load_dungeon, load_map, parse_ascii, parse_png};
+use grid::memory::Available;
+
+mod common;
 
 /// The system allocator, counting the bytes live and their peak.
 struct Counting;
@@ -236,4 +239,153 @@ fn interlaced_png_decodes_to_the_same_raster() {
             );
         }
     }
+}
+
+/// The first bytes of a `w × h` 8-bit grey PNG: its header and the start of its image data,
+/// enough for a reader to know its size and no pixels.
+fn png_header(w: u32, h: u32) -> Vec<u8> {
+    let chunk = |out: &mut Vec<u8>, kind: &[u8; 4], data: &[u8]| {
+        out.extend_from_slice(&(data.len() as u32).to_be_bytes());
+        let mut typed = kind.to_vec();
+        typed.extend_from_slice(data);
+        out.extend_from_slice(&typed);
+        out.extend_from_slice(&crc32(&typed).to_be_bytes());
+    };
+    let mut png = b"\x89PNG\r\n\x1a\n".to_vec();
+    let mut ihdr = w.to_be_bytes().to_vec();
+    ihdr.extend_from_slice(&h.to_be_bytes());
+    ihdr.extend_from_slice(&[8, 0, 0, 0, 0]);
+    chunk(&mut png, b"IHDR", &ihdr);
+    chunk(&mut png, b"IDAT", &zlib_stored(&[0; 64]));
+    chunk(&mut png, b"IEND", &[]);
+    png
+}
+
+/// Regression: loading checked no memory: a valid 16384 x 16384 map (2^28 cells, the cell
+/// limit) was decoded, about 1.6 GB and 6 to 23 s, before the run's memory check refused
+/// it or an allocation aborted under `ulimit -v`. Given the memory available, every loader
+/// now estimates what loading takes from the size in the file's header (or text, or
+/// outline) and refuses before the map's cells are allocated, naming the file, the size
+/// needed and the limit.
+#[test]
+fn regression_loading_a_map_too_large_for_memory_is_refused_up_front() {
+    let _turn = turn();
+    let dir = common::scratch("io-memory", "budget");
+    let side = 16_384u32;
+    let write = |name: &str, bytes: &[u8]| {
+        let path = dir.join(name);
+        std::fs::write(&path, bytes).expect("write");
+        path
+    };
+    let pgm = write("max.pgm", format!("P5\n{side} {side}\n255\n").as_bytes());
+    let png = write("max.png", &png_header(side, side));
+    let image = write(
+        "max-image.pgm",
+        format!("P5\n{side} {side}\n255\n").as_bytes(),
+    );
+    let yaml = write(
+        "max.yaml",
+        b"image: max-image.pgm\nresolution: 0.1\norigin: [0, 0, 0]\nnegate: 0\n\
+          occupied_thresh: 0.65\nfree_thresh: 0.196\n",
+    );
+    let movingai = write(
+        "max.map",
+        format!("type octile\nheight {side}\nwidth {side}\nmap\n").as_bytes(),
+    );
+    // A first row 16384 cells wide and 16384 rows, most of them one cell: the rows are
+    // counted before any cell is read.
+    let mut text = ".".repeat(side as usize);
+    text.push_str(&"\n.".repeat(side as usize - 1));
+    let ascii = write("max.txt", text.as_bytes());
+    // A 1 km square outline at 0.1 m: 10002 x 10002 cells.
+    let house = write(
+        "max.json",
+        br#"{"verts": [[0, 0], [1000, 0], [1000, 1000], [0, 1000]]}"#,
+    );
+    let budget = 64u64 << 20;
+    let opts = LoadOptions {
+        resolution: Some((0.1, 0.1)),
+        memory: Some(Available::budget(budget)),
+        ..LoadOptions::default()
+    };
+    // The file loaded, the file named (a YAML's image) and what is loaded.
+    let cases = [
+        (&pgm, &pgm, "loading this 16384x16384 PGM image"),
+        (&png, &png, "loading this 16384x16384 PNG image"),
+        (&yaml, &image, "loading this 16384x16384 PGM image"),
+        (
+            &movingai,
+            &movingai,
+            "loading this 16384x16384 MovingAI map",
+        ),
+        (&ascii, &ascii, "loading this 16384x16384 ASCII map"),
+        (
+            &house,
+            &house,
+            "loading this 10002x10002 HouseExpo floor plan",
+        ),
+    ];
+    for (path, named, what) in cases {
+        let (result, peak) = peak_of(|| load_map(path, &opts));
+        let err = result.expect_err("over the budget");
+        let msg = err.to_string();
+        assert!(
+            matches!(err.kind, MapErrorKind::OutOfMemory { needed, .. } if needed > budget),
+            "{msg}"
+        );
+        // The file, what was expected and what was found: the size needed and the limit.
+        assert!(msg.starts_with(&named.display().to_string()), "{msg}");
+        assert!(msg.contains(what), "{msg}");
+        assert!(
+            msg.contains("MiB, more than the memory budget of 64 MiB"),
+            "{msg}"
+        );
+        // Refused with the file read and nothing of the map's size.
+        let file = std::fs::metadata(path).unwrap().len() as usize;
+        assert!(
+            peak < file + (1 << 20),
+            "{peak} bytes to refuse {}",
+            path.display()
+        );
+    }
+    // A PGM needs its file, a 4-byte value and a cell a pixel: 1280 MiB for 2^28 pixels.
+    let e = load_map(&pgm, &opts).unwrap_err().to_string();
+    assert!(e.contains("needs about 1281 MiB"), "{e}");
+
+    let (result, peak) = peak_of(|| load_dungeon(&png, 0.1, &opts));
+    let msg = result.expect_err("over the budget").to_string();
+    assert!(
+        msg.contains("loading this 16384x16384 dungeon PNG"),
+        "{msg}"
+    );
+    assert!(peak < 1 << 20, "{peak} bytes to refuse a dungeon PNG");
+
+    // Within the budget, or with none, the same loaders load.
+    let small = write(
+        "small.pgm",
+        b"P5\n4 3\n255\n\xfe\xfe\xfe\xfe\x00\x00\x00\x00\xcd\xcd\xcd\xcd",
+    );
+    assert!(load_map(&small, &opts).is_ok());
+    let unchecked = LoadOptions::with_resolution(0.1);
+    assert!(load_map(&small, &unchecked).is_ok());
+}
+
+/// A file larger than the memory available is refused before it is read.
+#[test]
+fn a_file_larger_than_the_budget_is_refused_unread() {
+    let _turn = turn();
+    let dir = common::scratch("io-memory", "file");
+    let path = dir.join("big.txt");
+    std::fs::write(&path, ".".repeat(3 << 20)).expect("write");
+    let opts = LoadOptions {
+        memory: Some(Available::budget(1 << 20)),
+        ..LoadOptions::default()
+    };
+    let (result, peak) = peak_of(|| load_map(&path, &opts));
+    let msg = result.expect_err("over the budget").to_string();
+    assert!(
+        msg.contains("reading this file of 3 MiB needs about 3 MiB"),
+        "{msg}"
+    );
+    assert!(peak < 1 << 20, "{peak} bytes to refuse a 3 MiB file");
 }

@@ -213,6 +213,7 @@ fn resolution_given_overrides_a_yamls() {
     let opts = LoadOptions {
         resolution: Some((0.1, 0.2)),
         border: false,
+        ..LoadOptions::default()
     };
     let tall = load_map(&path, &opts).expect("load");
     assert_eq!((tall.resolution, tall.width(), tall.height()), (0.1, 3, 4));

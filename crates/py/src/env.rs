@@ -246,7 +246,7 @@ impl State {
                 ),
                 bytes,
                 None,
-                bench::machine::available_bytes(),
+                bench::machine::available(),
                 "leave the largest maps out of the folder, or use fewer environments",
             )
             .map_err(|e| e.to_string())?;
@@ -892,7 +892,7 @@ fn check_memory(spec: &Spec, envs: usize, agents: usize) -> PyResult<()> {
         &what,
         per_env.saturating_mul(envs as u64),
         None,
-        bench::machine::available_bytes(),
+        bench::machine::available(),
         "use a smaller k or view (a robot-centred crop), smaller maps, or fewer environments",
     )
     .map_err(|e| value_error(e.to_string()))

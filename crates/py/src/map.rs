@@ -169,11 +169,18 @@ pub fn read_file(
         let Some((r, _)) = resolution.filter(|(x, y)| x == y) else {
             return Err("dungeon: expected one resolution (square cells) for the PNG".into());
         };
-        let bytes = grid::io::read_bytes(path).map_err(|e| e.to_string())?;
-        let d = grid::io::parse_dungeon(&bytes, path, r).map_err(|e| e.to_string())?;
+        let opts = grid::io::LoadOptions {
+            memory: bench::machine::available(),
+            ..Default::default()
+        };
+        let d = grid::io::load_dungeon(path, r, &opts).map_err(|e| e.to_string())?;
         return Ok((d.map, name, Some(d.start)));
     }
-    let opts = grid::io::LoadOptions { resolution, border };
+    let opts = grid::io::LoadOptions {
+        resolution,
+        border,
+        memory: bench::machine::available(),
+    };
     let map = grid::io::load_map(path, &opts).map_err(|e| e.to_string())?;
     Ok((map, name, None))
 }

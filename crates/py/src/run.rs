@@ -196,7 +196,7 @@ fn check_memory(jobs: &[Job], threads: Option<usize>, memory_mb: Option<u64>) ->
         &needs,
         workers,
         memory_mb,
-        bench::machine::available_bytes(),
+        bench::machine::available(),
         "use fewer threads (threads=...) or maps with fewer cells",
     )
     .map_err(|e| value_error(e.to_string()))

@@ -7,11 +7,13 @@
 //! bounds of peak resident memory measured on whole runs of the 0.05 m willow-full floor
 //! plan (1.1 M cells): 42 B/cell for one robot, 75 with 5 robots, 113 with 10, 64 for
 //! `dt500`, 160 for a 5-robot `ha-cc`. A map the loader accepts (up to 2^28 cells) can need
-//! tens of GiB; the commands compare this estimate with `--memory-mb` and the memory the
-//! machine has available (which they read: `sim` touches no files), and refuse up front
-//! instead of being killed half-way.
+//! tens of GiB; the commands compare this estimate with `--memory-mb` and the memory
+//! available (which they read: `sim` touches no files; the least the machine, a cgroup and
+//! `ulimit -v` leave, the refusal naming which), and refuse up front instead of being
+//! killed half-way.
 
 use explore::candidates::CandidateKind;
+use grid::memory::Available;
 
 use crate::RunConfig;
 
@@ -61,13 +63,13 @@ pub struct TooBig {
     pub fix: String,
 }
 
-/// Check `needed` bytes against `budget_mb` (a user's `--memory-mb`) and the machine's
-/// available memory: `Err` names the tighter limit exceeded.
+/// Check `needed` bytes against `budget_mb` (a user's `--memory-mb`) and the memory
+/// `available` (with the limit that leaves it): `Err` names the tighter limit exceeded.
 pub fn check(
     what: &str,
     needed: u64,
     budget_mb: Option<u64>,
-    available: Option<u64>,
+    available: Option<Available>,
     fix: &str,
 ) -> Result<(), TooBig> {
     let too_big = |limit: String| TooBig {
@@ -82,12 +84,9 @@ pub fn check(
         return Err(too_big(format!("--memory-mb {mb}")));
     }
     if let Some(avail) = available
-        && needed > avail
+        && needed > avail.bytes
     {
-        return Err(too_big(format!(
-            "the {} MiB this machine has available",
-            avail / (1 << 20)
-        )));
+        return Err(too_big(avail.to_string()));
     }
     Ok(())
 }
@@ -100,7 +99,7 @@ pub fn check_batch(
     needs: &[(u64, String)],
     workers: usize,
     budget_mb: Option<u64>,
-    available: Option<u64>,
+    available: Option<Available>,
     fix: &str,
 ) -> Result<(), TooBig> {
     let workers = workers.max(1);
@@ -125,6 +124,7 @@ pub fn check_batch(
 mod tests {
     use super::*;
     use explore::strategy::Strategy;
+    use grid::memory::Limit;
 
     #[test]
     fn estimate_grows_with_robots_and_coverage_candidates() {
@@ -157,16 +157,24 @@ mod tests {
 
     #[test]
     fn the_tighter_limit_is_named() {
-        let e = check("x", 3 << 30, Some(1024), Some(8 << 30), "fix it").unwrap_err();
+        let machine = |b: u64| Some(Available::new(b, Limit::Machine));
+        let e = check("x", 3 << 30, Some(1024), machine(8 << 30), "fix it").unwrap_err();
         assert!(e.to_string().contains("--memory-mb 1024"), "{e}");
         assert!(e.to_string().contains("about 3072 MiB"), "{e}");
-        let e = check("x", 3 << 30, None, Some(2 << 30), "fix it").unwrap_err();
+        let e = check("x", 3 << 30, None, machine(2 << 30), "fix it").unwrap_err();
         assert!(
             e.to_string()
                 .contains("2048 MiB this machine has available"),
             "{e}"
         );
-        assert!(check("x", 1 << 30, Some(2048), Some(2 << 30), "").is_ok());
+        let ulimit = Some(Available::new(2 << 30, Limit::AddressSpace));
+        let e = check("x", 3 << 30, None, ulimit, "fix it").unwrap_err();
+        assert!(
+            e.to_string()
+                .contains("more than the 2048 MiB ulimit -v leaves; fix it"),
+            "{e}"
+        );
+        assert!(check("x", 1 << 30, Some(2048), machine(2 << 30), "").is_ok());
         assert!(check("x", u64::MAX, None, None, "").is_ok());
     }
 

@@ -6,7 +6,7 @@
 use std::path::Path;
 
 use super::error::{MEMORY, MapError, MapErrorKind};
-use super::{check_resolution, check_size};
+use super::{SizeCheck, check_resolution, check_size};
 use crate::grid::Grid;
 use crate::occ::{GridMap, Occ};
 
@@ -15,14 +15,16 @@ const ALLOWED: &str = "'#' wall, '.' free, '?' unknown";
 
 /// Parse an ASCII map held in memory (errors name the file `<memory>`).
 pub fn parse_ascii(text: &str, resolution: f64) -> Result<GridMap, MapError> {
-    parse_ascii_named(text, Path::new(MEMORY), resolution)
+    parse_ascii_named(text, Path::new(MEMORY), resolution, &check_size)
 }
 
-/// Parse an ASCII map read from the file `name`.
+/// Parse an ASCII map read from the file `name` once `fits(width, height, name)` accepts
+/// its size (the first row's length, the number of rows).
 pub(crate) fn parse_ascii_named(
     text: &str,
     name: &Path,
     resolution: f64,
+    fits: &SizeCheck,
 ) -> Result<GridMap, MapError> {
     check_resolution(resolution, name)?;
     // Trailing blank lines are not rows. The lines are walked twice rather than collected:
@@ -34,7 +36,7 @@ pub(crate) fn parse_ascii_named(
         .last()
         .map_or(0, |(i, _)| i + 1);
     let width = text.lines().next().map_or(0, |l| l.chars().count());
-    check_size(width as u64, rows as u64, name)?;
+    fits(width as u64, rows as u64, name)?;
     let mut data = Vec::with_capacity(width * rows);
     for (y, line) in text.lines().take(rows).enumerate() {
         let mut n = 0;

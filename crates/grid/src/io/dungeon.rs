@@ -8,7 +8,8 @@
 use std::path::Path;
 
 use super::error::{MapError, MapErrorKind};
-use super::png::parse_png;
+use super::png::decode_png;
+use super::{LoadOptions, SizeCheck, check_file_memory, check_size, load_check, read_bytes};
 use crate::cell::Cell;
 use crate::grid::Grid;
 use crate::occ::{GridMap, Occ};
@@ -31,22 +32,57 @@ pub struct DungeonMap {
 
 /// Read a dungeon PNG (`name` is the file named in errors) at `resolution` metres per cell.
 pub fn parse_dungeon(bytes: &[u8], name: &Path, resolution: f64) -> Result<DungeonMap, MapError> {
-    let raster = parse_png(bytes, name)?;
+    parse_dungeon_checked(bytes, name, resolution, &check_size)
+}
+
+/// Read the dungeon PNG at `path` at `resolution` metres per cell, refusing before decoding
+/// a file or a picture that would need more than `opts.memory` (the file, the decoded
+/// pixels and the map; `opts.resolution` and `opts.border` do not apply).
+pub fn load_dungeon(
+    path: &Path,
+    resolution: f64,
+    opts: &LoadOptions,
+) -> Result<DungeonMap, MapError> {
+    check_file_memory(path, opts.memory)?;
+    let bytes = read_bytes(path)?;
+    let opts = LoadOptions {
+        memory: opts.memory,
+        ..LoadOptions::default()
+    };
+    let fits = load_check(
+        (resolution, resolution),
+        &opts,
+        bytes.len() as u64,
+        super::PNG_BYTES_PER_PIXEL + super::CELL_BYTES,
+        "dungeon PNG",
+    );
+    parse_dungeon_checked(&bytes, path, resolution, &fits)
+}
+
+/// Read a dungeon PNG once `fits(width, height, name)` accepts the size in its header.
+fn parse_dungeon_checked(
+    bytes: &[u8],
+    name: &Path,
+    resolution: f64,
+    fits: &SizeCheck,
+) -> Result<DungeonMap, MapError> {
+    let raster = decode_png(bytes, name, fits)?;
     let (w, h) = (raster.width, raster.height);
     // Brightness on a 0..=255 scale (grey images read exactly).
     let grey = |v: u32| {
         ((u64::from(v) * 255 + u64::from(raster.maxval) / 2) / u64::from(raster.maxval.max(1)))
             as u32
     };
-    let mut marked = Vec::new();
+    // The marked pixels are counted, then the start is found by a second walk: a list of
+    // them took 8 bytes a pixel of a picture that is all marker.
+    let mut marked = 0usize;
     let data: Vec<Occ> = raster
         .values
         .iter()
-        .enumerate()
-        .map(|(i, &v)| {
+        .map(|&v| {
             let g = grey(v);
             if g == START_VALUE {
-                marked.push(i);
+                marked += 1;
             }
             if g > FREE_ABOVE {
                 Occ::Free
@@ -55,7 +91,7 @@ pub fn parse_dungeon(bytes: &[u8], name: &Path, resolution: f64) -> Result<Dunge
             }
         })
         .collect();
-    if marked.is_empty() {
+    if marked == 0 {
         return Err(MapError::new(
             name,
             MapErrorKind::BadField {
@@ -65,13 +101,21 @@ pub fn parse_dungeon(bytes: &[u8], name: &Path, resolution: f64) -> Result<Dunge
             },
         ));
     }
-    let k = if marked.len() > START_INDEX {
+    let k = if marked > START_INDEX {
         START_INDEX
     } else {
-        marked.len() / 2
+        marked / 2
     };
+    let at = raster
+        .values
+        .iter()
+        .enumerate()
+        .filter(|&(_, &v)| grey(v) == START_VALUE)
+        .nth(k)
+        .map(|(i, _)| i)
+        .expect("k is less than the marked pixels' count");
     let cells = Grid::from_vec(w, h, data).expect("raster size checked");
-    let start = cells.cell(marked[k]);
+    let start = cells.cell(at);
     Ok(DungeonMap {
         map: GridMap::new(cells, resolution),
         start,

@@ -92,6 +92,42 @@ pub enum MapErrorKind {
         /// The largest number of cells accepted.
         limit: u64,
     },
+    /// Non-square pixels resampled to square cells would make more cells than
+    /// [`MAX_CELLS`](super::MAX_CELLS) (or more than a number can count); refused before
+    /// allocating.
+    #[error(
+        "map too large: {width}x{height} pixels of {rx:?} x {ry:?} m resampled to square cells of \
+         {side:?} m make about {cells:.3e} cells, more than the limit of {limit} cells"
+    )]
+    ResampledTooLarge {
+        /// Width of the picture in pixels.
+        width: u64,
+        /// Height of the picture in pixels.
+        height: u64,
+        /// Pixel width in metres.
+        rx: f64,
+        /// Pixel height in metres.
+        ry: f64,
+        /// Side of the square cells in metres (the smaller of `rx` and `ry`).
+        side: f64,
+        /// The cells resampling would make.
+        cells: f64,
+        /// The largest number of cells accepted.
+        limit: u64,
+    },
+    /// Loading the map would need more memory than is available; refused before the map's
+    /// cells are allocated.
+    #[error("{what} needs about {} MiB, more than {limit}; {fix}", .needed.div_ceil(1 << 20))]
+    OutOfMemory {
+        /// What would be loaded, e.g. "loading this 16384x16384 PGM".
+        what: String,
+        /// Estimated bytes.
+        needed: u64,
+        /// The memory available and the limit that leaves it.
+        limit: crate::memory::Available,
+        /// How to make it fit.
+        fix: &'static str,
+    },
     /// The bytes are not in the format the extension or the YAML says.
     #[error("not a {expected} file: {found}")]
     WrongFormat {

@@ -11,8 +11,8 @@ use std::path::Path;
 
 use serde_json::Value;
 
-use super::check_size;
 use super::error::{MapError, MapErrorKind};
+use super::{SizeCheck, check_size};
 use crate::grid::Grid;
 use crate::occ::{GridMap, Occ};
 
@@ -188,6 +188,21 @@ impl Unlabelled {
 /// Read a HouseExpo JSON text (`name` is the file named in errors) at `resolution` metres
 /// per cell.
 pub fn parse_houseexpo(text: &str, name: &Path, resolution: f64) -> Result<HouseExpoMap, MapError> {
+    parse_houseexpo_checked(text, name, resolution, &check_size)
+}
+
+/// Bytes a cell of the rasterised plan takes while it is made: the grid, its room label
+/// (`u32`) and the list of cells not yet in a room (`u32`).
+pub(crate) const BYTES_PER_CELL: u64 = 1 + 4 + 4;
+
+/// Read a HouseExpo plan once `fits(width, height, name)` accepts the size of the grid its
+/// outline makes at `resolution`.
+pub(crate) fn parse_houseexpo_checked(
+    text: &str,
+    name: &Path,
+    resolution: f64,
+    fits: &SizeCheck,
+) -> Result<HouseExpoMap, MapError> {
     super::check_resolution(resolution, name)?;
     let json: Value = serde_json::from_str(text)
         .map_err(|e| bad(name, "json", "a HouseExpo JSON object", e.to_string()))?;
@@ -228,7 +243,7 @@ pub fn parse_houseexpo(text: &str, name: &Path, resolution: f64) -> Result<House
     // One obstacle cell around the outline's box.
     let w = ((x_max - x_min) / resolution).ceil() + 2.0;
     let h = ((y_max - y_min) / resolution).ceil() + 2.0;
-    check_size(w as u64, h as u64, name)?;
+    fits(w as u64, h as u64, name)?;
     let (w, h) = (w as usize, h as usize);
     let (x0, y0) = (x_min - resolution, y_min - resolution);
     // Row 0 is the top of the map: y grows downwards in cells, upwards in metres, so the

@@ -11,7 +11,10 @@
 //!
 //! Every failure is a [`MapError`] naming the file and what is wrong; nothing a file
 //! contains makes these functions panic, and maps of more than [`MAX_CELLS`] cells are
-//! refused before anything is allocated for them.
+//! refused before anything is allocated for them. Given the memory available
+//! ([`LoadOptions::memory`]), [`load_map`] also estimates from a file's size and the map's
+//! size in its header what loading will take (the file, the decoded pixels and the grid
+//! made of them) and refuses, before decoding, a map that would not fit.
 
 pub mod ascii;
 pub mod bitmap;
@@ -28,7 +31,7 @@ use std::path::Path;
 
 pub use ascii::{ascii_map, parse_ascii, to_ascii};
 pub use bitmap::{add_border, parse_bitmap};
-pub use dungeon::{DungeonMap, parse_dungeon};
+pub use dungeon::{DungeonMap, load_dungeon, parse_dungeon};
 pub use error::{MEMORY, MapError, MapErrorKind};
 pub use houseexpo::{HouseExpoMap, parse_houseexpo};
 pub use movingai::{parse_movingai, to_movingai};
@@ -40,6 +43,7 @@ pub use ros::{
 };
 
 use crate::grid::Grid;
+use crate::memory::Available;
 use crate::occ::{GridMap, Occ};
 use crate::resample;
 
@@ -81,6 +85,10 @@ pub struct LoadOptions {
     /// Grow the map by one Occupied cell on each side (Stage bitmaps often have no
     /// outer wall). Applies to every format.
     pub border: bool,
+    /// The memory loading may take: a map whose loading is estimated to need more is
+    /// refused before its cells are allocated. `None`: not checked (maps are still bounded
+    /// by [`MAX_CELLS`]).
+    pub memory: Option<Available>,
 }
 
 impl LoadOptions {
@@ -88,7 +96,7 @@ impl LoadOptions {
     pub fn with_resolution(resolution: f64) -> Self {
         Self {
             resolution: Some((resolution, resolution)),
-            border: false,
+            ..Self::default()
         }
     }
 }
@@ -96,6 +104,7 @@ impl LoadOptions {
 /// Load a map, choosing the format by the extension of `path` (see the [module docs](self)).
 pub fn load_map(path: &Path, opts: &LoadOptions) -> Result<GridMap, MapError> {
     let ext = extension(path);
+    check_file_memory(path, opts.memory)?;
     let map = match ext.as_str() {
         "yaml" | "yml" => {
             let text = read_text(path)?;
@@ -106,7 +115,18 @@ pub fn load_map(path: &Path, opts: &LoadOptions) -> Result<GridMap, MapError> {
                 MapError::new(path, MapErrorKind::ResolutionRequired("a bare bitmap"))
             })?;
             let bytes = read_bytes(path)?;
-            let fits = finished_size_check((rx, ry), opts.border);
+            let (what, per_pixel) = if ext == "pgm" {
+                ("PGM image", PGM_BYTES_PER_PIXEL)
+            } else {
+                ("PNG image", PNG_BYTES_PER_PIXEL)
+            };
+            let fits = load_check(
+                (rx, ry),
+                opts,
+                bytes.len() as u64,
+                per_pixel + CELL_BYTES,
+                what,
+            );
             let raster = if ext == "pgm" {
                 pgm::decode_pgm(&bytes, path, &fits)?
             } else {
@@ -117,7 +137,9 @@ pub fn load_map(path: &Path, opts: &LoadOptions) -> Result<GridMap, MapError> {
         }
         "map" => {
             let text = read_text(path)?;
-            let map = parse_movingai(&text, path, 1.0)?;
+            let res = opts.resolution.unwrap_or((1.0, 1.0));
+            let fits = load_check(res, opts, text.len() as u64, CELL_BYTES, "MovingAI map");
+            let map = movingai::parse_movingai_checked(&text, path, 1.0, &fits)?;
             finish(
                 map,
                 opts.resolution.unwrap_or((1.0, 1.0)),
@@ -135,12 +157,22 @@ pub fn load_map(path: &Path, opts: &LoadOptions) -> Result<GridMap, MapError> {
                 )
             })?;
             let text = read_text(path)?;
-            let map = parse_houseexpo(&text, path, rx.min(ry))?.map;
+            let side = rx.min(ry);
+            let fits = load_check(
+                (side, side),
+                opts,
+                text.len() as u64,
+                houseexpo::BYTES_PER_CELL,
+                "HouseExpo floor plan",
+            );
+            let map = houseexpo::parse_houseexpo_checked(&text, path, side, &fits)?.map;
             finish(map, (rx.min(ry), rx.min(ry)), path, opts.border)?
         }
         "txt" => {
             let text = read_text(path)?;
-            let map = ascii::parse_ascii_named(&text, path, 1.0)?;
+            let res = opts.resolution.unwrap_or((1.0, 1.0));
+            let fits = load_check(res, opts, text.len() as u64, CELL_BYTES, "ASCII map");
+            let map = ascii::parse_ascii_named(&text, path, 1.0, &fits)?;
             finish(
                 map,
                 opts.resolution.unwrap_or((1.0, 1.0)),
@@ -203,43 +235,175 @@ fn extension(path: &Path) -> String {
 /// the path is the file named in the error.
 pub(crate) type SizeCheck = dyn Fn(u64, u64, &Path) -> Result<(), MapError>;
 
+/// Bytes a cell of a grid takes.
+pub(crate) const CELL_BYTES: u64 = 1;
+/// Bytes a pixel of a decoded PGM takes (its value, a `u32`).
+pub(crate) const PGM_BYTES_PER_PIXEL: u64 = 4;
+/// Bytes a pixel of a decoded PNG takes (its value and whether it is transparent).
+pub(crate) const PNG_BYTES_PER_PIXEL: u64 = 5;
+
+/// How to make a map's loading fit in memory, said in every refusal.
+const MEMORY_FIX: &str =
+    "use a map with fewer, larger cells (scale the image down, or a coarser resolution)";
+
+/// A map's `(width, height)` in cells.
+type Size = (u64, u64);
+
+/// The sizes, `(width, height)`, of what [`finish`] makes of a `w × h` map with pixel size
+/// `(rx, ry)` and `border`: the resampled map (the map itself if the pixels are square) and
+/// the finished one, each checked to be within [`MAX_CELLS`] (as the map itself is).
+fn finished_sizes(
+    w: u64,
+    h: u64,
+    (rx, ry): (f64, f64),
+    border: bool,
+    path: &Path,
+) -> Result<(Size, Size), MapError> {
+    check_size(w, h, path)?;
+    if !(rx.is_finite() && ry.is_finite() && rx > 0.0 && ry > 0.0) {
+        return Ok(((w, h), (w, h))); // `finish` names the bad resolution
+    }
+    let resampled = if rx == ry {
+        (w, h)
+    } else {
+        let side = rx.min(ry);
+        let size = usize::try_from(w)
+            .ok()
+            .zip(usize::try_from(h).ok())
+            .and_then(|(w, h)| resample::resampled_size(w, h, (rx, ry), side));
+        let Some((rw, rh)) = size else {
+            return Err(resampled_too_large(w, h, (rx, ry), path));
+        };
+        check_size(rw as u64, rh as u64, path)?;
+        (rw as u64, rh as u64)
+    };
+    let finished = if border {
+        check_size(resampled.0 + 2, resampled.1 + 2, path)?;
+        (resampled.0 + 2, resampled.1 + 2)
+    } else {
+        resampled
+    };
+    Ok((resampled, finished))
+}
+
+/// The refusal of a `w × h` picture whose pixels of `(rx, ry)` resampled to square cells
+/// would make more than [`MAX_CELLS`] cells: the resampled size, or where a side would not
+/// fit in an integer (a resolution of 1e-300 m), the picture, the pixels and the number of
+/// cells as a float (a side's cast saturated to 18446744073709551615).
+fn resampled_too_large(w: u64, h: u64, (rx, ry): (f64, f64), path: &Path) -> MapError {
+    let side = rx.min(ry);
+    let (rw, rh) = (
+        (w as f64 * rx / side).round(),
+        (h as f64 * ry / side).round(),
+    );
+    // Integers up to 2^53 are exact floats.
+    const EXACT: f64 = 9_007_199_254_740_992.0;
+    if rw < EXACT && rh < EXACT {
+        return MapError::new(
+            path,
+            MapErrorKind::TooLarge {
+                width: rw as u64,
+                height: rh as u64,
+                limit: MAX_CELLS,
+            },
+        );
+    }
+    let cells = rw * rh;
+    MapError::new(
+        path,
+        MapErrorKind::ResampledTooLarge {
+            width: w,
+            height: h,
+            rx,
+            ry,
+            side,
+            cells,
+            limit: MAX_CELLS,
+        },
+    )
+}
+
 /// The check that a raster's header size gives a map [`finish`] can make with pixel size
 /// `(rx, ry)` and `border`: the raster itself, its resampled size and the border all within
 /// [`MAX_CELLS`], so that a picture the map would outgrow is refused before it is decoded.
 pub(crate) fn finished_size_check(
-    (rx, ry): (f64, f64),
+    res: (f64, f64),
     border: bool,
 ) -> impl Fn(u64, u64, &Path) -> Result<(), MapError> {
+    move |w, h, path| finished_sizes(w, h, res, border, path).map(|_| ())
+}
+
+/// The check a loader makes of a map's size as soon as it knows it (from an image's
+/// header, a text's header or rows, a floor plan's outline), before allocating its cells:
+/// [`finished_size_check`] with `opts`' border, then the estimate of what loading will hold
+/// at its peak against `opts.memory`: `held` bytes already read (the file), `per_cell` bytes
+/// a cell of the map as read (its decoded pixels and the grid made of them), and the grids
+/// [`finish`] makes (resampled, bordered). `what` names the kind of map in the refusal.
+pub(crate) fn load_check<'a>(
+    res: (f64, f64),
+    opts: &LoadOptions,
+    held: u64,
+    per_cell: u64,
+    what: &'a str,
+) -> impl Fn(u64, u64, &Path) -> Result<(), MapError> + 'a {
+    let (border, memory) = (opts.border, opts.memory);
     move |w, h, path| {
-        check_size(w, h, path)?;
-        if !(rx.is_finite() && ry.is_finite() && rx > 0.0 && ry > 0.0) {
-            return Ok(()); // `finish` names the bad resolution
-        }
-        let (w, h) = if rx == ry {
-            (w, h)
-        } else {
-            let side = rx.min(ry);
-            let size = usize::try_from(w)
-                .ok()
-                .zip(usize::try_from(h).ok())
-                .and_then(|(w, h)| resample::resampled_size(w, h, (rx, ry), side));
-            let Some((w, h)) = size else {
-                return Err(MapError::new(
-                    path,
-                    MapErrorKind::TooLarge {
-                        width: (w as f64 * rx / side).round() as u64,
-                        height: (h as f64 * ry / side).round() as u64,
-                        limit: MAX_CELLS,
-                    },
-                ));
-            };
-            check_size(w as u64, h as u64, path)?;
-            (w as u64, h as u64)
+        let (resampled, finished) = finished_sizes(w, h, res, border, path)?;
+        let Some(memory) = memory else {
+            return Ok(());
         };
-        if border {
-            check_size(w + 2, h + 2, path)?;
+        // Every size is within MAX_CELLS (2^28): no product overflows.
+        let mut needed = held + w * h * per_cell;
+        if resampled != (w, h) || res.0 != res.1 {
+            needed += resampled.0 * resampled.1 * CELL_BYTES;
         }
-        Ok(())
+        if border {
+            needed += finished.0 * finished.1 * CELL_BYTES;
+        }
+        check_memory(
+            &format!("loading this {w}x{h} {what}"),
+            needed,
+            memory,
+            path,
+        )
+    }
+}
+
+/// Refuse, naming `path`, `what` needing `needed` bytes when more than `memory` are left.
+pub(crate) fn check_memory(
+    what: &str,
+    needed: u64,
+    memory: Available,
+    path: &Path,
+) -> Result<(), MapError> {
+    if needed <= memory.bytes {
+        return Ok(());
+    }
+    Err(MapError::new(
+        path,
+        MapErrorKind::OutOfMemory {
+            what: what.to_string(),
+            needed,
+            limit: memory,
+            fix: MEMORY_FIX,
+        },
+    ))
+}
+
+/// Refuse a file at `path` that is larger than `memory` before reading it (loading holds
+/// the whole file, then the map); a file that cannot be read is left to the reader.
+pub(crate) fn check_file_memory(path: &Path, memory: Option<Available>) -> Result<(), MapError> {
+    let Some(memory) = memory else {
+        return Ok(());
+    };
+    match std::fs::metadata(path) {
+        Ok(meta) if meta.is_file() => check_memory(
+            &format!("reading this file of {} MiB", meta.len().div_ceil(1 << 20)),
+            meta.len(),
+            memory,
+            path,
+        ),
+        _ => Ok(()),
     }
 }
 
@@ -261,14 +425,7 @@ pub(crate) fn finish(
     } else {
         let side = rx.min(ry);
         let cells = resample::resample_nearest(&map.cells, (rx, ry), side).ok_or_else(|| {
-            MapError::new(
-                path,
-                MapErrorKind::TooLarge {
-                    width: (map.width() as f64 * rx / side).round() as u64,
-                    height: (map.height() as f64 * ry / side).round() as u64,
-                    limit: MAX_CELLS,
-                },
-            )
+            resampled_too_large(map.width() as u64, map.height() as u64, (rx, ry), path)
         })?;
         map = GridMap {
             cells,

@@ -15,7 +15,7 @@
 use std::path::Path;
 
 use super::error::{MapError, MapErrorKind};
-use super::{check_resolution, check_size};
+use super::{SizeCheck, check_resolution, check_size};
 use crate::grid::Grid;
 use crate::occ::{GridMap, Occ};
 
@@ -24,6 +24,16 @@ const ALLOWED: &str = "'.', 'G', 'S' free; '@', 'O', 'T', 'W' blocked";
 
 /// Parse a MovingAI `.map` file's text; `name` is the file named in errors.
 pub fn parse_movingai(text: &str, name: &Path, resolution: f64) -> Result<GridMap, MapError> {
+    parse_movingai_checked(text, name, resolution, &check_size)
+}
+
+/// Parse a MovingAI map once `fits(width, height, name)` accepts the size in its header.
+pub(crate) fn parse_movingai_checked(
+    text: &str,
+    name: &Path,
+    resolution: f64,
+    fits: &SizeCheck,
+) -> Result<GridMap, MapError> {
     check_resolution(resolution, name)?;
     let bad_line =
         |line: usize, what: String| MapError::new(name, MapErrorKind::BadLine { line, what });
@@ -96,7 +106,7 @@ pub fn parse_movingai(text: &str, name: &Path, resolution: f64) -> Result<GridMa
         height.ok_or_else(|| bad_line(header_end, "header has no 'height' line".to_string()))?;
     let width =
         width.ok_or_else(|| bad_line(header_end, "header has no 'width' line".to_string()))?;
-    check_size(width, height, name)?;
+    fits(width, height, name)?;
     let (w, h) = (width as usize, height as usize);
     // Reserve no more than the text can hold, whatever the header claims.
     let mut data = Vec::with_capacity((w * h).min(text.len()));

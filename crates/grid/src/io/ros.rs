@@ -27,7 +27,10 @@ use super::error::{MapError, MapErrorKind};
 use super::pgm::decode_pgm;
 use super::png::decode_png;
 use super::raster::Thresholds;
-use super::{LoadOptions, check_resolution, finish, finished_size_check, read_bytes};
+use super::{
+    CELL_BYTES, LoadOptions, PGM_BYTES_PER_PIXEL, PNG_BYTES_PER_PIXEL, SizeCheck,
+    check_file_memory, check_resolution, finish, load_check, read_bytes,
+};
 use crate::occ::GridMap;
 
 /// How map_server turns pixel values into occupancy.
@@ -229,9 +232,13 @@ pub fn parse_ros_yaml(
         .and_then(|e| e.to_str())
         .unwrap_or("")
         .to_ascii_lowercase();
-    let decode = match ext.as_str() {
-        "pgm" | "pnm" => decode_pgm,
-        "png" => decode_png,
+    let (decode, what, per_pixel) = match ext.as_str() {
+        "pgm" | "pnm" => (
+            decode_pgm as fn(&[u8], &Path, &SizeCheck) -> _,
+            "PGM image",
+            PGM_BYTES_PER_PIXEL,
+        ),
+        "png" => (decode_png as _, "PNG image", PNG_BYTES_PER_PIXEL),
         _ => {
             return Err(MapError::new(
                 yaml_path,
@@ -245,6 +252,7 @@ pub fn parse_ros_yaml(
     };
     // The image may be anything the YAML names (a device, a pipe, a huge file): read it
     // with the same bounds as a map file, reporting failures as the YAML's image.
+    check_file_memory(&image, opts.memory)?;
     let bytes = read_bytes(&image).map_err(|e| {
         image_err(match e.kind {
             MapErrorKind::Read(source) => source,
@@ -254,7 +262,7 @@ pub fn parse_ros_yaml(
     let res = opts
         .resolution
         .unwrap_or((meta.resolution, meta.resolution));
-    let fits = finished_size_check(res, opts.border);
+    let fits = load_check(res, opts, bytes.len() as u64, per_pixel + CELL_BYTES, what);
     let raster = decode(&bytes, &image, &fits)?;
     let cells = match meta.mode {
         RosMode::Trinary | RosMode::Scale => meta.thresholds.classify_raster(&raster),

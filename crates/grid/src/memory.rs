@@ -1,0 +1,81 @@
+//! How much memory a process can still take and which limit leaves it: what the map loaders
+//! (and the runs of the crates above) compare their estimates with before allocating.
+//!
+//! `grid` reads no limits itself (`bench::machine` reads them from the operating system);
+//! a library user who wants no check passes none.
+
+use std::fmt;
+
+/// The limit that leaves a process the memory it has [`Available`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Limit {
+    /// The machine's free memory (`MemAvailable`).
+    Machine,
+    /// The memory limit of the process's control group (a container's, a Slurm job's).
+    Cgroup,
+    /// The address-space limit (`ulimit -v`).
+    AddressSpace,
+    /// A budget the caller chose.
+    Budget,
+}
+
+/// Bytes of memory a process can still take, and the limit that leaves them.
+///
+/// Displays as the limit would be named in a refusal, e.g. "the 976 MiB ulimit -v leaves".
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Available {
+    /// Bytes that can still be taken.
+    pub bytes: u64,
+    /// Which limit leaves them.
+    pub limit: Limit,
+}
+
+impl Available {
+    /// `bytes` left by `limit`.
+    pub fn new(bytes: u64, limit: Limit) -> Self {
+        Self { bytes, limit }
+    }
+
+    /// A budget of `bytes` chosen by the caller.
+    pub fn budget(bytes: u64) -> Self {
+        Self::new(bytes, Limit::Budget)
+    }
+}
+
+impl fmt::Display for Available {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let mib = self.bytes / (1 << 20);
+        match self.limit {
+            Limit::Machine => write!(f, "the {mib} MiB this machine has available"),
+            Limit::Cgroup => write!(f, "the {mib} MiB the cgroup memory limit leaves"),
+            Limit::AddressSpace => write!(f, "the {mib} MiB ulimit -v leaves"),
+            Limit::Budget => write!(f, "the memory budget of {mib} MiB"),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn each_limit_is_named() {
+        let mib = 1 << 20;
+        assert_eq!(
+            Available::new(2048 * mib, Limit::Machine).to_string(),
+            "the 2048 MiB this machine has available"
+        );
+        assert_eq!(
+            Available::new(512 * mib, Limit::Cgroup).to_string(),
+            "the 512 MiB the cgroup memory limit leaves"
+        );
+        assert_eq!(
+            Available::new(976 * mib + 5, Limit::AddressSpace).to_string(),
+            "the 976 MiB ulimit -v leaves"
+        );
+        assert_eq!(
+            Available::budget(64 * mib).to_string(),
+            "the memory budget of 64 MiB"
+        );
+    }
+}
