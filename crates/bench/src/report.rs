@@ -215,8 +215,8 @@ fn build(
             .or_default()
             .push(r);
     }
-    // Faigl-style totals: (a, b) -> [+, =, -].
-    let mut totals: BTreeMap<(String, String), [usize; 3]> = BTreeMap::new();
+    // Faigl-style totals: (a, b) -> [+, =, -, of the = those that could not be + or -].
+    let mut totals: BTreeMap<(String, String), [usize; 4]> = BTreeMap::new();
     let env_names: Vec<String> = {
         let mut v: Vec<String> = settings.keys().map(|k| k.0.clone()).collect();
         v.dedup();
@@ -275,16 +275,19 @@ fn build(
                 )?,
             ));
             if by_strategy.len() >= 2 {
-                let (table, verdicts) = matrix(by_strategy, opts.alpha);
+                let (table, notes, verdicts) = matrix(by_strategy, opts.alpha);
                 blocks.push(Block::Para(format!("+/=/- of L at α = {}:", opts.alpha)));
                 blocks.push(table);
-                for (a, b, v) in verdicts {
+                blocks.extend(notes.into_iter().map(Block::Para));
+                for (a, b, v, weak) in verdicts {
                     let slot = match v {
                         Verdict::Better => 0,
                         Verdict::Same => 1,
                         Verdict::Worse => 2,
                     };
-                    totals.entry((a, b)).or_default()[slot] += 1;
+                    let t = totals.entry((a, b)).or_default();
+                    t[slot] += 1;
+                    t[3] += usize::from(weak);
                 }
             }
         }
@@ -348,7 +351,8 @@ fn build(
                 let mut row = vec![a.clone()];
                 for b in &names {
                     row.push(match totals.get(&(a.clone(), b.clone())) {
-                        Some([p, e, m]) => format!("{p}/{e}/{m}"),
+                        Some([p, e, m, 0]) => format!("{p}/{e}/{m}"),
+                        Some([p, e, m, w]) => format!("{p}/{e}/{m} ({w} {UNDERPOWERED})"),
                         None => String::new(),
                     });
                 }
@@ -357,6 +361,16 @@ fn build(
             .collect();
         blocks.push(Block::Para("Cells: settings where the row strategy is significantly better / not different / significantly worse.".into()));
         blocks.push(Block::Table(header, body));
+        let weak: usize = totals.values().map(|t| t[3]).sum();
+        if weak > 0 {
+            let all: usize = totals.values().map(|t| t[0] + t[1] + t[2]).sum();
+            blocks.push(Block::Para(format!(
+                "{UNDERPOWERED}: {weak} of these {all} verdicts are = only because their setting \
+                 has too few observations for any p below α = {} (marked {UNDERPOWERED} and \
+                 explained under the setting's table): they say nothing about a difference.",
+                opts.alpha
+            )));
+        }
     }
     Ok(blocks)
 }
@@ -459,7 +473,8 @@ fn milestones_table(by_strategy: &BTreeMap<String, Vec<&TrialRow>>, team: bool) 
 }
 
 /// The values of `a` and `b` to compare, and how (see the module doc).
-fn samples(a: &[&TrialRow], b: &[&TrialRow]) -> (Vec<f64>, Vec<f64>, Pairing) {
+/// The last item names what one observation is, for the notes under the table.
+fn samples(a: &[&TrialRow], b: &[&TrialRow]) -> (Vec<f64>, Vec<f64>, Pairing, &'static str) {
     let by_trial = |rs: &[&TrialRow]| -> BTreeMap<(i64, i64), f64> {
         rs.iter()
             .map(|r| ((r.start_variant, r.trial), r.max_path))
@@ -471,6 +486,7 @@ fn samples(a: &[&TrialRow], b: &[&TrialRow]) -> (Vec<f64>, Vec<f64>, Pairing) {
             ta.into_values().collect(),
             tb.into_values().collect(),
             Pairing::Paired,
+            "pairs (same start variant and trial)",
         );
     }
     let by_start = |rs: &[&TrialRow]| -> BTreeMap<i64, (f64, usize)> {
@@ -486,24 +502,38 @@ fn samples(a: &[&TrialRow], b: &[&TrialRow]) -> (Vec<f64>, Vec<f64>, Pairing) {
     if sa.len() >= 5 && sa.keys().eq(sb.keys()) {
         let mean =
             |m: BTreeMap<i64, (f64, usize)>| m.into_values().map(|(s, n)| s / n as f64).collect();
-        return (mean(sa), mean(sb), Pairing::Paired);
+        return (
+            mean(sa),
+            mean(sb),
+            Pairing::Paired,
+            "pairs (start variants, means over trials)",
+        );
     }
     (
         a.iter().map(|r| r.max_path).collect(),
         b.iter().map(|r| r.max_path).collect(),
         Pairing::Unpaired,
+        "trials per strategy",
     )
 }
 
-/// The +/=/- table of one setting and its verdicts (a, b, verdict of a vs b).
+/// Marks a `=` that no outcome could have turned into `+` or `-` (see [`underpowered_note`]).
+const UNDERPOWERED: &str = "ⁿ";
+
+/// One verdict of a setting's table: a vs b, the verdict, and whether it was underpowered.
+type Verdicts = Vec<(String, String, Verdict, bool)>;
+
+/// The +/=/- table of one setting, the notes to print under it (one per kind of
+/// underpowered comparison), and its verdicts.
 fn matrix(
     by_strategy: &BTreeMap<String, Vec<&TrialRow>>,
     alpha: f64,
-) -> (Block, Vec<(String, String, Verdict)>) {
+) -> (Block, Vec<String>, Verdicts) {
     let names: Vec<&String> = by_strategy.keys().collect();
     let mut header = vec!["row vs column".to_string()];
     header.extend(names.iter().map(|s| (*s).clone()));
     let mut verdicts = Vec::new();
+    let mut notes = std::collections::BTreeSet::new();
     let mut body = Vec::new();
     for a in &names {
         let mut row = vec![(*a).clone()];
@@ -512,13 +542,20 @@ fn matrix(
                 row.push("·".into());
                 continue;
             }
-            let (x, y, pairing) = samples(&by_strategy[*a], &by_strategy[*b]);
+            let (x, y, pairing, unit) = samples(&by_strategy[*a], &by_strategy[*b]);
             match stats::compare(&x, &y, alpha, pairing) {
                 Ok(c) => {
-                    verdicts.push(((*a).clone(), (*b).clone(), c.verdict));
+                    let weak = c.underpowered(alpha);
+                    verdicts.push(((*a).clone(), (*b).clone(), c.verdict, weak));
                     let how = if pairing == Pairing::Paired { "W" } else { "U" };
+                    let mark = if weak {
+                        notes.insert(underpowered_note(&x, &y, pairing, unit, &c, alpha));
+                        format!(" {UNDERPOWERED}")
+                    } else {
+                        String::new()
+                    };
                     row.push(format!(
-                        "{} (p={:.2e}, {how})",
+                        "{}{mark} (p={:.2e}, {how})",
                         c.verdict.symbol(),
                         c.p_value
                     ));
@@ -528,7 +565,54 @@ fn matrix(
         }
         body.push(row);
     }
-    (Block::Table(header, body), verdicts)
+    (
+        Block::Table(header, body),
+        notes.into_iter().collect(),
+        verdicts,
+    )
+}
+
+/// The note under a table with an underpowered cell: α, the sample, the smallest p its test
+/// can give, and how many observations would be needed.
+fn underpowered_note(
+    x: &[f64],
+    y: &[f64],
+    pairing: Pairing,
+    unit: &str,
+    c: &stats::Comparison,
+    alpha: f64,
+) -> String {
+    let (test, sample, need) = match pairing {
+        Pairing::Paired => {
+            let zeros = x.iter().zip(y).filter(|(a, b)| a == b).count();
+            let zeros = if zeros > 0 {
+                format!(", {zeros} of them equal and dropped,")
+            } else {
+                String::new()
+            };
+            (
+                "Wilcoxon signed-rank test",
+                format!("{} {unit}{zeros}", x.len()),
+                "pairs",
+            )
+        }
+        Pairing::Unpaired => (
+            "Mann–Whitney U test",
+            format!("{} and {} {unit}", x.len(), y.len()),
+            "trials per strategy",
+        ),
+    };
+    let needed = stats::needed(alpha, pairing).map_or_else(
+        || format!("more than 10,000 {need}"),
+        |n| format!("at least {n} {need} (without ties or equal pairs)"),
+    );
+    format!(
+        "{UNDERPOWERED}: with {sample} the smallest two-sided p the {test} can give is {:.2e} \
+         ≥ α = {alpha}, so a = marked {UNDERPOWERED} could not be + or -: it does not show \
+         that there is no difference. Significance at α = {alpha} needs {needed}, or a \
+         larger --alpha.",
+        c.min_p_value
+    )
 }
 
 /// Mean coverage over team distance per strategy, on 41 distances from 0 to the longest.

@@ -688,3 +688,49 @@ fn regression_merge_refuses_shards_of_an_edited_scenario() {
     let all = bench::Merged { added: n, total: n };
     assert_eq!(Store::merge(&out, &[a.clone(), a]).unwrap(), all);
 }
+
+/// Regression: with 10 pairs the smallest two-sided Wilcoxon p is 2/2¹⁰ = 1.95·10⁻³, above
+/// the default α = 0.001, so every cell of the +/=/- table was `=` and the report did not say
+/// that no other verdict was possible. Such cells are marked, with a note naming α, the pairs
+/// and how many would be needed.
+#[test]
+fn regression_report_marks_verdicts_that_cannot_be_significant() {
+    let text = r#"
+name = "ten"
+sensors = ["los:r=4c"]
+strategies = ["cf", "cf-rr"]
+trials = 10
+
+[[env]]
+kind = "office"
+seeds = [0]
+size = [12, 10]
+resolution = 0.5
+"#;
+    let dir = tempfile::tempdir().unwrap();
+    let db = dir.path().join("ten.sqlite");
+    let plan = Plan::resolve(&source(text), Unbuilt::Error).unwrap();
+    bench::runner::run(&plan, &db, &opts(2)).unwrap();
+    let report = |alpha: f64, name: &str| {
+        let out = dir.path().join(name);
+        bench::report::write(&db, &out, &bench::report::ReportOptions { alpha }).unwrap();
+        std::fs::read_to_string(out.join("report.md")).unwrap()
+    };
+    let md = report(0.001, "r1");
+    assert!(md.contains("| cf | · | = ⁿ (p="), "{md}");
+    assert!(
+        md.contains(
+            "with 10 pairs (same start variant and trial) the smallest two-sided p the Wilcoxon \
+             signed-rank test can give is 1.95e-3 ≥ α = 0.001"
+        ),
+        "{md}"
+    );
+    assert!(md.contains("needs at least 11 pairs"), "{md}");
+    assert!(md.contains("0/1/0 (1 ⁿ)"), "{md}");
+    // At α = 0.01 the 10 pairs can be significant: nothing is marked.
+    let md = report(0.01, "r2");
+    assert!(
+        md.contains("+/=/- of L at α = 0.01") && !md.contains('ⁿ'),
+        "{md}"
+    );
+}

@@ -9,10 +9,20 @@
 //! variant and trial), both two-sided with SciPy's automatic method choice. Significance is
 //! strict (p < α); equal means with p < α give `=`.
 //!
+//! With few observations no outcome can be significant: the smallest two-sided p of the exact
+//! Wilcoxon test of n pairs is 2/2ⁿ (1.95·10⁻³ for n = 10, above α = 0.001), that of the
+//! exact Mann–Whitney test of sizes n₁, n₂ is 2/C(n₁+n₂, n₁). [`Comparison::min_p_value`] is
+//! that smallest p for the samples at hand (same test, method, ties and zeros; see
+//! [`smallest_p`]), so a `=` that could not have been anything else can be told apart
+//! ([`Comparison::underpowered`]), and [`needed`] says how many observations would do.
+//!
 //! The matrix computes each unordered pair once and mirrors it, so `m[a][b]` is always the
 //! opposite of `m[b][a]`.
 
-use super::{MethodUsed, StatsError, mann_whitney_u, wilcoxon_signed_rank};
+use super::{
+    Method, MethodUsed, StatsError, mann_whitney_u, wilcoxon_signed_rank,
+    wilcoxon_signed_rank_diffs,
+};
 
 /// Which two-sample test to use.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -68,9 +78,18 @@ pub struct Comparison {
     pub mean_a: f64,
     /// Mean of b.
     pub mean_b: f64,
+    /// The smallest p the same test could give with these sample sizes, ties and zero
+    /// differences (the most extreme arrangement of the same values; see [`smallest_p`]).
+    pub min_p_value: f64,
 }
 
 impl Comparison {
+    /// Whether no outcome could have been significant at `alpha` (min p ≥ α): a `=` that says
+    /// nothing about a difference.
+    pub fn underpowered(&self, alpha: f64) -> bool {
+        self.min_p_value >= alpha
+    }
+
     /// The same comparison seen as "b vs a".
     pub fn flip(self) -> Comparison {
         Comparison {
@@ -114,6 +133,47 @@ pub fn compare(
         method,
         mean_a,
         mean_b,
+        min_p_value: smallest_p(a, b, pairing)?,
+    })
+}
+
+/// The smallest two-sided p the test of [`compare`] can give for samples like `a` and `b`:
+/// the p of the most extreme arrangement of the same values, which keeps the sizes, ties and
+/// zero differences and so the method SciPy's automatic choice picks.
+///
+/// Paired: every difference |aᵢ − bᵢ| made positive (exact: 2/2ⁿ for n nonzero differences).
+/// Unpaired: a given the n₁ smallest of the pooled values (exact: 2/C(n₁+n₂, n₁)).
+pub fn smallest_p(a: &[f64], b: &[f64], pairing: Pairing) -> Result<f64, StatsError> {
+    match pairing {
+        Pairing::Paired => {
+            if a.len() != b.len() {
+                return Err(StatsError::LengthMismatch(a.len(), b.len()));
+            }
+            let d: Vec<f64> = a.iter().zip(b).map(|(x, y)| (x - y).abs()).collect();
+            Ok(wilcoxon_signed_rank_diffs(&d, Method::Auto)?.p_value)
+        }
+        Pairing::Unpaired => {
+            let mut pooled: Vec<f64> = a.iter().chain(b).copied().collect();
+            pooled.sort_by(f64::total_cmp);
+            let (lo, hi) = pooled.split_at(a.len());
+            Ok(mann_whitney_u(lo, hi)?.p_value)
+        }
+    }
+}
+
+/// The fewest observations with which the test can reach `p < alpha` for untied data without
+/// zero differences: pairs for [`Pairing::Paired`] (2/2ⁿ < α while exact), observations per
+/// sample (equal sizes) for [`Pairing::Unpaired`] (2/C(2n, n) < α while exact). `None` above
+/// 10,000.
+pub fn needed(alpha: f64, pairing: Pairing) -> Option<usize> {
+    (1..=10_000).find(|&n| {
+        let a: Vec<f64> = (0..n).map(|i| i as f64).collect();
+        let b: Vec<f64> = (0..n).map(|i| (n + i) as f64).collect();
+        let p = match pairing {
+            Pairing::Paired => wilcoxon_signed_rank_diffs(&b, Method::Auto).map(|w| w.p_value),
+            Pairing::Unpaired => mann_whitney_u(&a, &b).map(|r| r.p_value),
+        };
+        p.is_ok_and(|p| p < alpha)
     })
 }
 
@@ -189,6 +249,45 @@ mod tests {
         assert_eq!(
             (p.verdict, p.method),
             (Verdict::Better, MethodUsed::Asymptotic)
+        );
+    }
+
+    /// Regression: with 10 pairs every verdict at α = 0.001 was `=` and nothing said that no
+    /// other verdict was possible: the smallest exact Wilcoxon p is 2/2¹⁰ = 1.95·10⁻³.
+    #[test]
+    fn regression_min_p_of_few_pairs() {
+        let a: Vec<f64> = (0..10).map(f64::from).collect();
+        let b: Vec<f64> = (0..10)
+            .map(|i| f64::from(i) + 1.0 + f64::from(i) / 8.0)
+            .collect();
+        let c = compare(&a, &b, 0.001, Pairing::Paired).unwrap();
+        assert_eq!(c.verdict, Verdict::Same);
+        assert!((c.min_p_value - 2.0 / 1024.0).abs() < 1e-15, "{c:?}");
+        assert!(c.underpowered(0.001) && !c.underpowered(0.01));
+        // Unpaired 6 + 6, untied: 2/C(12, 6) = 2/924.
+        let u = compare(&a[..6], &b[4..], 0.001, Pairing::Unpaired).unwrap();
+        assert!((u.min_p_value - 2.0 / 924.0).abs() < 1e-15, "{u:?}");
+        // Ties and zero differences keep their method: 12 pairs, 4 equal → 8 nonzero, tied
+        // ranks → complete enumeration, smallest p 2/2⁸.
+        let x = [
+            1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0, 10.0, 11.0, 12.0,
+        ];
+        let y = [
+            2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0, 9.0, 10.0, 11.0, 12.0,
+        ];
+        assert!((smallest_p(&x, &y, Pairing::Paired).unwrap() - 2.0 / 256.0).abs() < 1e-15);
+        assert_eq!(needed(0.001, Pairing::Paired), Some(11));
+        assert_eq!(needed(0.001, Pairing::Unpaired), Some(7));
+        assert_eq!(needed(0.05, Pairing::Paired), Some(6));
+        // Enough pairs: 11 untied → 2/2048 < 0.001.
+        let a11: Vec<f64> = (0..11).map(f64::from).collect();
+        let b11: Vec<f64> = (0..11)
+            .map(|i| f64::from(i) + 1.0 + f64::from(i) / 8.0)
+            .collect();
+        let c = compare(&a11, &b11, 0.001, Pairing::Paired).unwrap();
+        assert!(
+            !c.underpowered(0.001) && c.verdict == Verdict::Better,
+            "{c:?}"
         );
     }
 }

@@ -24,7 +24,9 @@ mod summary;
 mod wilcoxon;
 
 pub use mann_whitney::{MannWhitney, mann_whitney_u, mann_whitney_u_with};
-pub use matrix::{Comparison, Pairing, PairwiseMatrix, Verdict, compare, pairwise_matrix};
+pub use matrix::{
+    Comparison, Pairing, PairwiseMatrix, Verdict, compare, needed, pairwise_matrix, smallest_p,
+};
 pub use normal::ndtr;
 pub use shapiro_wilk::{ShapiroWilk, shapiro_wilk};
 pub use summary::{Summary, quantile_linear, summarize};
