@@ -589,6 +589,23 @@ fn resolve(src: &Source, f: ScenarioFile, unbuilt: Unbuilt) -> Result<Plan, Benc
         None => 0,
     };
     let radius_m = match (&f.radius, perturbations) {
+        // The radius is only where perturbations are drawn: alone it would change nothing.
+        (Some(v), 0) => {
+            let why = if f.perturbations.is_some() {
+                "`perturbations = 0`"
+            } else {
+                "no `perturbations`"
+            };
+            return Err(src.error(
+                span_of(v),
+                "radius",
+                format!(
+                    "the radius of the start perturbations has no effect with {why}: add \
+                     `perturbations = N` (start variants drawn within the radius of each \
+                     environment's start) or remove `radius`"
+                ),
+            ));
+        }
         (Some(v), _) => Some(positive_f64(src, v, "radius")?),
         (None, 0) => None,
         (None, _) => {

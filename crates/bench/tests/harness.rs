@@ -734,3 +734,24 @@ resolution = 0.5
         "{md}"
     );
 }
+
+/// Regression: `radius` without `perturbations` (or with `perturbations = 0`) was accepted
+/// and silently ignored: every trial ran from the one start. It is refused, naming the file,
+/// the key and what it needs.
+#[test]
+fn regression_radius_without_perturbations_is_refused() {
+    let e = error_of(("trials = 2", "trials = 2\nradius = 1.5"));
+    assert!(e.contains("tiny.toml:8: key `radius`"), "{e}");
+    assert!(e.contains("no effect with no `perturbations`"), "{e}");
+    assert!(e.contains("add `perturbations = N`"), "{e}");
+    let e = error_of(("trials = 2", "trials = 2\nperturbations = 0\nradius = 1.5"));
+    assert!(e.contains("tiny.toml:9: key `radius`"), "{e}");
+    assert!(e.contains("with `perturbations = 0`"), "{e}");
+    // With perturbations the radius is used, as before.
+    let text = TINY.replacen(
+        "trials = 2",
+        "trials = 2\nperturbations = 2\nradius = 1.5",
+        1,
+    );
+    Plan::resolve(&source(&text), Unbuilt::Error).expect("radius with perturbations");
+}
