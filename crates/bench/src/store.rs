@@ -951,7 +951,7 @@ impl Store {
                 study = Some((scenario, fingerprint, input));
             }
         }
-        let Some((scenario, fingerprint, _)) = study else {
+        let Some((scenario, fingerprint, first)) = study else {
             return Err(BenchError::Other("merge: no input databases".into()));
         };
         let existed = std::fs::metadata(out).is_ok_and(|m| m.len() > 0);
@@ -960,13 +960,23 @@ impl Store {
             if have.meta("scenario")?.is_some() || have.meta("fingerprint")?.is_some() {
                 let (s, f) = have.study()?;
                 if (&s, &f) != (&scenario, &fingerprint) {
-                    let key = if s != scenario {
-                        "scenario"
+                    let (key, held, want) = if s != scenario {
+                        ("study", &s, &scenario)
                     } else {
-                        "fingerprint"
+                        ("fingerprint (settings)", &f, &fingerprint)
+                    };
+                    let inputs = if inputs.len() == 1 {
+                        format!("the input {}, which holds", first.display())
+                    } else {
+                        format!(
+                            "the {} inputs ({} and the others), which hold",
+                            inputs.len(),
+                            first.display()
+                        )
                     };
                     return Err(have.problem(format!(
-                        "holds results of another {key} than the inputs; merge into another file"
+                        "holds results of another {key}, '{held}', than {inputs} '{want}'; \
+                         merge into another file"
                     )));
                 }
             }

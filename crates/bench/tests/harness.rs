@@ -755,3 +755,47 @@ fn regression_radius_without_perturbations_is_refused() {
     );
     Plan::resolve(&source(&text), Unbuilt::Error).expect("radius with perturbations");
 }
+
+/// Regression: merging into a database of another study said only "holds results of another
+/// scenario than the inputs", naming neither study nor the input. Both studies' names and the
+/// input file are named.
+#[test]
+fn regression_merge_conflict_names_both_studies() {
+    let dir = tempfile::tempdir().unwrap();
+    let one = |text: &str, file: &str| {
+        let db = dir.path().join(file);
+        let plan = Plan::resolve(&source(text), Unbuilt::Error).unwrap();
+        let limit = RunOptions {
+            limit: Some(1),
+            ..opts(1)
+        };
+        bench::runner::run(&plan, &db, &limit).unwrap();
+        db
+    };
+    let m = one(
+        &TINY.replace("name = \"tiny\"", "name = \"other\""),
+        "m.sqlite",
+    );
+    let j1 = one(TINY, "j1.sqlite");
+    let e = Store::merge(&m, std::slice::from_ref(&j1))
+        .unwrap_err()
+        .to_string();
+    assert!(e.starts_with(&format!("{}: ", m.display())), "{e}");
+    assert!(
+        e.contains(&format!(
+            "another study, 'other', than the input {}, which holds 'tiny'",
+            j1.display()
+        )),
+        "{e}"
+    );
+    // Same study, other settings: both fingerprints are named.
+    let s = one(&TINY.replace("seed = 7", "seed = 8"), "s.sqlite");
+    let e = Store::merge(&s, std::slice::from_ref(&j1))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("another fingerprint (settings), 'strategies="),
+        "{e}"
+    );
+    assert!(e.contains("seed=8") && e.contains("seed=7"), "{e}");
+}
