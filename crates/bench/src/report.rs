@@ -66,12 +66,7 @@ pub fn write(
     let fingerprint = store.meta("fingerprint")?.unwrap_or_default();
     drop(store);
     let mut blocks = build(&scenario, &fingerprint, &rows, &envs, opts)?;
-    if out.exists() && !out.is_dir() {
-        return Err(BenchError::File {
-            path: out.to_path_buf(),
-            message: "is a file; expected the folder to write the report into".into(),
-        });
-    }
+    check_report_folder(out)?;
     std::fs::create_dir_all(out.join("plots")).map_err(BenchError::io(out))?;
     std::fs::create_dir_all(out.join("envs")).map_err(BenchError::io(out))?;
     // Every file the report writes, checked against the database it reads before any is
@@ -131,6 +126,33 @@ pub fn write(
     files.push(md);
     files.push(html);
     Ok(files)
+}
+
+/// Refuses `out` when it, or the nearest of its parents that exists, is not a folder: the
+/// report is written into `out`, made with its missing parents.
+fn check_report_folder(out: &Path) -> Result<(), BenchError> {
+    for dir in out.ancestors().filter(|d| !d.as_os_str().is_empty()) {
+        let Ok(meta) = std::fs::metadata(dir) else {
+            continue;
+        };
+        if meta.is_dir() {
+            return Ok(());
+        }
+        let message = if dir == out {
+            "is a file; expected the folder to write the report into".to_string()
+        } else {
+            format!(
+                "expected a folder to write the report into (made with its missing parents), \
+                 but {} is a file, so no folder can be made there; give a path outside it",
+                dir.display()
+            )
+        };
+        return Err(BenchError::File {
+            path: out.to_path_buf(),
+            message,
+        });
+    }
+    Ok(())
 }
 
 /// A file-name-safe version of `s`.

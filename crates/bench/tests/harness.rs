@@ -799,3 +799,40 @@ fn regression_merge_conflict_names_both_studies() {
     );
     assert!(e.contains("seed=8") && e.contains("seed=7"), "{e}");
 }
+
+/// Regression: `bench report --out afile/sub`, with `afile` a file, failed with only
+/// "afile/sub: Not a directory (os error 20)". It says what was expected and what was found,
+/// and writes nothing.
+#[test]
+fn regression_report_under_a_file_says_what_was_expected() {
+    let dir = tempfile::tempdir().unwrap();
+    let db = dir.path().join("a.sqlite");
+    let limit = RunOptions {
+        limit: Some(1),
+        ..opts(1)
+    };
+    bench::runner::run(&plan(), &db, &limit).unwrap();
+    let afile = dir.path().join("afile");
+    std::fs::write(&afile, "not a folder").unwrap();
+    let opts = bench::report::ReportOptions::default();
+    for out in [afile.join("sub"), afile.join("sub").join("deeper")] {
+        let e = bench::report::write(&db, &out, &opts)
+            .unwrap_err()
+            .to_string();
+        assert!(e.starts_with(&format!("{}: ", out.display())), "{e}");
+        assert!(
+            e.contains(&format!(
+                "expected a folder to write the report into (made with its missing parents), \
+                 but {} is a file",
+                afile.display()
+            )),
+            "{e}"
+        );
+        assert!(!e.contains("os error"), "{e}");
+    }
+    let e = bench::report::write(&db, &afile, &opts)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("is a file; expected the folder"), "{e}");
+    assert_eq!(std::fs::read_to_string(&afile).unwrap(), "not a folder");
+}
