@@ -415,7 +415,17 @@ fn resolve(src: &Source, f: ScenarioFile, unbuilt: Unbuilt) -> Result<Plan, Benc
     let trials = match &f.trials {
         Some(v) => {
             let n = nonneg(src, v, "trials", 1)?;
-            u32::try_from(n).map_err(|_| src.error(span_of(v), "trials", "too many trials"))?
+            if n > MAX_PLAN_TRIALS {
+                return Err(src.error(
+                    span_of(v),
+                    "trials",
+                    format!(
+                        "expected at most {MAX_PLAN_TRIALS} runs per start variant (the most \
+                         trials one study may plan), found {n}"
+                    ),
+                ));
+            }
+            n as u32
         }
         None => 1,
     };

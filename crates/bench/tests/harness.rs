@@ -836,3 +836,16 @@ fn regression_report_under_a_file_says_what_was_expected() {
     assert!(e.contains("is a file; expected the folder"), "{e}");
     assert_eq!(std::fs::read_to_string(&afile).unwrap(), "not a folder");
 }
+
+/// Regression: `trials = 99999999999999` was refused with only "too many trials"; the error
+/// gives the limit and what was found, with the file, line and key.
+#[test]
+fn regression_too_many_trials_gives_the_limit() {
+    let e = error_of(("trials = 2", "trials = 99999999999999"));
+    assert!(e.contains("tiny.toml:7: key `trials`"), "{e}");
+    assert!(
+        e.contains("expected at most 2000000 runs per start variant"),
+        "{e}"
+    );
+    assert!(e.contains("found 99999999999999"), "{e}");
+}
