@@ -587,8 +587,34 @@ impl Store {
         if version == SCHEMA_VERSION {
             return Ok(());
         }
+        // The program versions that ran its trials, when its trials table says (best effort:
+        // a foreign layout may not have that column).
+        let ran_by: Vec<String> = self
+            .conn
+            .prepare("SELECT DISTINCT version FROM trials ORDER BY version")
+            .and_then(|mut q| {
+                q.query_map([], |r| r.get::<_, String>(0))?
+                    .collect::<Result<Vec<_>, _>>()
+            })
+            .unwrap_or_default();
+        let which = if ran_by.is_empty() {
+            "the frontier version that wrote it".to_string()
+        } else {
+            format!(
+                "the frontier version that wrote it (its trials were run by version {})",
+                ran_by.join(", ")
+            )
+        };
+        let age = match (version.parse::<u32>(), SCHEMA_VERSION.parse::<u32>()) {
+            (Ok(v), Ok(ours)) if v > ours => "a newer",
+            (Ok(_), Ok(_)) => "an older",
+            _ => "another",
+        };
         Err(self.problem(format!(
-            "results of table layout {version}; this program writes layout {SCHEMA_VERSION}"
+            "results of table layout {version}, written by {age} frontier; this program reads \
+             and writes layout {SCHEMA_VERSION} only and cannot convert it. To report, export or \
+             resume it, use {which}; to continue the study with this program, run it into a new \
+             database file (its trials are run again there)"
         )))
     }
 

@@ -849,3 +849,43 @@ fn regression_too_many_trials_gives_the_limit() {
     );
     assert!(e.contains("found 99999999999999"), "{e}");
 }
+
+/// Regression: a store of another table layout was refused with only "results of table
+/// layout 2; this program writes layout 3", not saying what could be done with it.
+#[test]
+fn regression_other_table_layout_says_what_to_do() {
+    let dir = tempfile::tempdir().unwrap();
+    let db = dir.path().join("old.sqlite");
+    let limit = RunOptions {
+        limit: Some(1),
+        ..opts(1)
+    };
+    bench::runner::run(&plan(), &db, &limit).unwrap();
+    let conn = rusqlite::Connection::open(&db).unwrap();
+    conn.execute(
+        "UPDATE meta SET value = '2' WHERE key = 'schema_version'",
+        [],
+    )
+    .unwrap();
+    drop(conn);
+    let version = env!("CARGO_PKG_VERSION");
+    for e in [
+        Store::open_read_only(&db).err().unwrap().to_string(),
+        bench::runner::run(&plan(), &db, &opts(1))
+            .unwrap_err()
+            .to_string(),
+    ] {
+        assert!(
+            e.contains("results of table layout 2, written by an older frontier"),
+            "{e}"
+        );
+        assert!(e.contains("reads and writes layout 3 only"), "{e}");
+        assert!(
+            e.contains(&format!(
+                "use the frontier version that wrote it (its trials were run by version {version})"
+            )),
+            "{e}"
+        );
+        assert!(e.contains("run it into a new database file"), "{e}");
+    }
+}
