@@ -163,22 +163,6 @@ fn truncated_png() {
     assert!(e.starts_with("crc.png: bad PNG: "), "{e}");
 }
 
-/// CRC-32 (PNG's), bit by bit.
-fn crc32(bytes: &[u8]) -> u32 {
-    let mut crc = !0u32;
-    for &b in bytes {
-        crc ^= u32::from(b);
-        for _ in 0..8 {
-            crc = if crc & 1 != 0 {
-                (crc >> 1) ^ 0xEDB8_8320
-            } else {
-                crc >> 1
-            };
-        }
-    }
-    !crc
-}
-
 #[test]
 fn too_large_refused_before_allocating() {
     // PGM header claiming 2^15 x 2^14 = 2^29 pixels with almost no data.
@@ -201,7 +185,7 @@ fn too_large_refused_before_allocating() {
     let mut png = encode_png(&Grid::new(1, 1, Occ::Free), Path::new("x.png")).expect("encode");
     png[16..20].copy_from_slice(&100_000u32.to_be_bytes());
     png[20..24].copy_from_slice(&100_000u32.to_be_bytes());
-    let crc = crc32(&png[12..29]);
+    let crc = common::crc32(&png[12..29]);
     png[29..33].copy_from_slice(&crc.to_be_bytes());
     assert_eq!(
         msg(parse_png(&png, Path::new("big.png"))),
@@ -735,21 +719,8 @@ fn dev_zero_as_a_map_is_refused_at_once() {
 /// A PNG of `side × side` 8-bit grey pixels whose image data stops after a few bytes: a
 /// header promising a picture at the cell limit, at no cost to the test.
 fn png_header_only(side: u32) -> Vec<u8> {
-    let chunk = |out: &mut Vec<u8>, kind: &[u8; 4], data: &[u8]| {
-        out.extend_from_slice(&(data.len() as u32).to_be_bytes());
-        let mut typed = kind.to_vec();
-        typed.extend_from_slice(data);
-        out.extend_from_slice(&typed);
-        out.extend_from_slice(&crc32(&typed).to_be_bytes());
-    };
-    let mut png = b"\x89PNG\r\n\x1a\n".to_vec();
-    let mut ihdr = side.to_be_bytes().to_vec();
-    ihdr.extend_from_slice(&side.to_be_bytes());
-    ihdr.extend_from_slice(&[8, 0, 0, 0, 0]); // 8-bit grey, deflate, no interlace
-    chunk(&mut png, b"IHDR", &ihdr);
-    chunk(&mut png, b"IDAT", &[0x78, 0x9c, 0x62, 0x60]);
-    chunk(&mut png, b"IEND", &[]);
-    png
+    // 8-bit grey, deflate, no interlace; the image data stops after the zlib header.
+    common::png_with_idat((side, side), (8, 0), false, &[0x78, 0x9c, 0x62, 0x60])
 }
 
 /// A 16384 × 16384 picture is at the cell limit; `--border` takes it past, and that is known

@@ -76,22 +76,6 @@ fn regression_ascii_lines_are_not_collected() {
     );
 }
 
-/// The CRC-32 of PNG chunks.
-fn crc32(bytes: &[u8]) -> u32 {
-    let mut crc = !0u32;
-    for &b in bytes {
-        crc ^= u32::from(b);
-        for _ in 0..8 {
-            crc = if crc & 1 != 0 {
-                (crc >> 1) ^ 0xEDB8_8320
-            } else {
-                crc >> 1
-            };
-        }
-    }
-    !crc
-}
-
 /// `data` as a zlib stream of stored (uncompressed) deflate blocks.
 fn zlib_stored(data: &[u8]) -> Vec<u8> {
     let mut out = vec![0x78, 0x01];
@@ -147,21 +131,12 @@ fn png_of(
             }
         }
     }
-    let chunk = |out: &mut Vec<u8>, kind: &[u8; 4], data: &[u8]| {
-        out.extend_from_slice(&(data.len() as u32).to_be_bytes());
-        let mut typed = kind.to_vec();
-        typed.extend_from_slice(data);
-        out.extend_from_slice(&typed);
-        out.extend_from_slice(&crc32(&typed).to_be_bytes());
-    };
-    let mut png = b"\x89PNG\r\n\x1a\n".to_vec();
-    let mut ihdr = (w as u32).to_be_bytes().to_vec();
-    ihdr.extend_from_slice(&(h as u32).to_be_bytes());
-    ihdr.extend_from_slice(&[bit_depth, color_type, 0, 0, u8::from(interlaced)]);
-    chunk(&mut png, b"IHDR", &ihdr);
-    chunk(&mut png, b"IDAT", &zlib_stored(&raw));
-    chunk(&mut png, b"IEND", &[]);
-    png
+    common::png_with_idat(
+        (w as u32, h as u32),
+        (bit_depth, color_type),
+        interlaced,
+        &zlib_stored(&raw),
+    )
 }
 
 /// A 16-bit RGBA pixel of a pattern: channels from the position, some pixels transparent.
@@ -244,21 +219,7 @@ fn interlaced_png_decodes_to_the_same_raster() {
 /// The first bytes of a `w × h` 8-bit grey PNG: its header and the start of its image data,
 /// enough for a reader to know its size and no pixels.
 fn png_header(w: u32, h: u32) -> Vec<u8> {
-    let chunk = |out: &mut Vec<u8>, kind: &[u8; 4], data: &[u8]| {
-        out.extend_from_slice(&(data.len() as u32).to_be_bytes());
-        let mut typed = kind.to_vec();
-        typed.extend_from_slice(data);
-        out.extend_from_slice(&typed);
-        out.extend_from_slice(&crc32(&typed).to_be_bytes());
-    };
-    let mut png = b"\x89PNG\r\n\x1a\n".to_vec();
-    let mut ihdr = w.to_be_bytes().to_vec();
-    ihdr.extend_from_slice(&h.to_be_bytes());
-    ihdr.extend_from_slice(&[8, 0, 0, 0, 0]);
-    chunk(&mut png, b"IHDR", &ihdr);
-    chunk(&mut png, b"IDAT", &zlib_stored(&[0; 64]));
-    chunk(&mut png, b"IEND", &[]);
-    png
+    common::png_with_idat((w, h), (8, 0), false, &zlib_stored(&[0; 64]))
 }
 
 /// Regression: loading checked no memory: a valid 16384 x 16384 map (2^28 cells, the cell
