@@ -165,6 +165,17 @@ pub struct EnvPicture {
     pub png: Vec<u8>,
 }
 
+/// An [`EnvPicture`] from a row of `SELECT name, width, height, resolution, png FROM envs`.
+fn env_picture(r: &rusqlite::Row<'_>) -> rusqlite::Result<EnvPicture> {
+    Ok(EnvPicture {
+        name: r.get(0)?,
+        width: r.get(1)?,
+        height: r.get(2)?,
+        resolution: r.get(3)?,
+        png: r.get(4)?,
+    })
+}
+
 impl EnvPicture {
     /// How `new` (of `source`: the scenario, or a database being merged) differs from this
     /// stored picture of the same name, in words; `None` when both draw the same map (the
@@ -816,15 +827,7 @@ impl Store {
             .query_row(
                 "SELECT name, width, height, resolution, png FROM envs WHERE name = ?1",
                 [name],
-                |r| {
-                    Ok(EnvPicture {
-                        name: r.get(0)?,
-                        width: r.get(1)?,
-                        height: r.get(2)?,
-                        resolution: r.get(3)?,
-                        png: r.get(4)?,
-                    })
-                },
+                env_picture,
             )
             .optional()
             .map_err(BenchError::sql(&self.path))
@@ -870,15 +873,7 @@ impl Store {
             .prepare("SELECT name, width, height, resolution, png FROM envs ORDER BY name")
             .map_err(BenchError::sql(&self.path))?;
         let rows = st
-            .query_map([], |r| {
-                Ok(EnvPicture {
-                    name: r.get(0)?,
-                    width: r.get(1)?,
-                    height: r.get(2)?,
-                    resolution: r.get(3)?,
-                    png: r.get(4)?,
-                })
-            })
+            .query_map([], env_picture)
             .map_err(BenchError::sql(&self.path))?
             .collect::<Result<Vec<_>, _>>()
             .map_err(BenchError::sql(&self.path))?;
