@@ -5,8 +5,9 @@ use std::path::{Path, PathBuf};
 
 use grid::memory::{Available, Limit};
 
-/// Bytes of memory this process can still take now; `None` where none of the limits can be
-/// read.
+/// The memory this process can still take now, and the limit that leaves it, so that a
+/// refusal names it ("the 976 MiB ulimit -v leaves", not "this machine has available" of a
+/// machine with 20 GiB free); `None` where none of the limits can be read.
 ///
 /// The least of three (on Linux): the machine's `MemAvailable`; the room left under the
 /// memory limit of the process's control group and of each group above it (a container's
@@ -14,13 +15,6 @@ use grid::memory::{Available, Limit};
 /// the room left under the address-space limit (`ulimit -v`, `RLIMIT_AS`). Beyond a group's
 /// limit the process is killed, and beyond the address-space limit an allocation fails and
 /// aborts, however much memory the machine has free.
-pub fn available_bytes() -> Option<u64> {
-    available().map(|a| a.bytes)
-}
-
-/// The memory this process can still take now ([`available_bytes`]) and the limit that
-/// leaves it (the tightest of the three), so that a refusal names it: "the 976 MiB ulimit -v
-/// leaves", not "this machine has available" of a machine with 20 GiB free.
 pub fn available() -> Option<Available> {
     let read = |p: &Path| std::fs::read_to_string(p).ok();
     let machine = read(Path::new("/proc/meminfo")).and_then(|t| mem_available(&t));
