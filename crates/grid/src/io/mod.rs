@@ -140,12 +140,7 @@ pub fn load_map(path: &Path, opts: &LoadOptions) -> Result<GridMap, MapError> {
             let res = opts.resolution.unwrap_or((1.0, 1.0));
             let fits = load_check(res, opts, text.len() as u64, CELL_BYTES, "MovingAI map");
             let map = movingai::parse_movingai_checked(&text, path, 1.0, &fits)?;
-            finish(
-                map,
-                opts.resolution.unwrap_or((1.0, 1.0)),
-                path,
-                opts.border,
-            )?
+            finish(map, res, path, opts.border)?
         }
         "json" => {
             let (rx, ry) = opts.resolution.ok_or_else(|| {
@@ -166,19 +161,14 @@ pub fn load_map(path: &Path, opts: &LoadOptions) -> Result<GridMap, MapError> {
                 "HouseExpo floor plan",
             );
             let map = houseexpo::parse_houseexpo_checked(&text, path, side, &fits)?.map;
-            finish(map, (rx.min(ry), rx.min(ry)), path, opts.border)?
+            finish(map, (side, side), path, opts.border)?
         }
         "txt" => {
             let text = read_text(path)?;
             let res = opts.resolution.unwrap_or((1.0, 1.0));
             let fits = load_check(res, opts, text.len() as u64, CELL_BYTES, "ASCII map");
             let map = ascii::parse_ascii_named(&text, path, 1.0, &fits)?;
-            finish(
-                map,
-                opts.resolution.unwrap_or((1.0, 1.0)),
-                path,
-                opts.border,
-            )?
+            finish(map, res, path, opts.border)?
         }
         _ if path.is_dir() => return Err(MapError::new(path, MapErrorKind::Folder)),
         _ => return Err(MapError::new(path, MapErrorKind::UnknownFormat(ext))),
