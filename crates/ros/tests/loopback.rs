@@ -587,46 +587,17 @@ fn a_new_goal_preempts_the_old_and_shutdown_cancels_the_last() {
 /// which is missing and on which topic.
 #[test]
 fn no_map_or_no_pose_is_a_waiting_status_naming_the_topic() {
-    let domain = domain() + 6;
-    let (handle, stop_tx) = start_node(domain, params(false));
-    let ctx = node::context(domain).unwrap();
-    let Peer {
-        mut n,
-        map_pub,
-        status_sub,
-        ..
-    } = peer(&ctx);
-    let (mut world, (x0, y0)) = rooms_world();
-    world.sense_at(x0, y0);
-    let ex = smol::LocalExecutor::new();
-    ex.spawn(n.spinner().unwrap().spin()).detach();
-    let deadline = Instant::now() + Duration::from_secs(30);
-    let mut status: Vec<String> = Vec::new();
-    let main = async {
-        let mut st = std::pin::pin!(status_sub.async_stream());
-        let mut tick = smol::Timer::interval(Duration::from_millis(250));
-        loop {
-            assert!(Instant::now() < deadline, "status {status:?}");
-            futures::select! {
-                _ = FutureExt::fuse(tick.next()) => {
-                    // The map only once the node has said it has none; never a pose.
-                    if status.iter().any(|s| s == "waiting: no map on /map") {
-                        let _ = map_pub.publish(Ros(world.map_msg()));
-                    }
-                }
-                s = st.next() => {
-                    let Some(Ok((t, _))) = s else { continue };
-                    status.push(t.data.clone());
-                    if t.data == "waiting: no pose on /pose" {
-                        break;
-                    }
-                }
-            }
-        }
-    };
-    smol::block_on(ex.run(main));
-    stop_tx.try_send(()).unwrap();
-    handle.join().unwrap().unwrap();
+    let status =
+        statuses_until_the_map_comes(domain() + 6, params(false), &[], "/map", "/explore/status");
+    assert!(
+        status.iter().any(|s| s == "waiting: no map on /map"),
+        "{status:?}"
+    );
+    assert_eq!(
+        status.last().map(String::as_str),
+        Some("waiting: no pose on /pose"),
+        "{status:?}"
+    );
     assert!(!status.iter().any(|s| s == "exploring"), "{status:?}");
 }
 
