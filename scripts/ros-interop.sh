@@ -4,8 +4,9 @@
 # eProsima Fast DDS (rmw_fastrtps_cpp, the default RMW; Debian's libfastrtps and fastddsgen).
 # No ROS installation is needed. See crates/ros/interop/interop.py.
 #
-#   scripts/ros-interop.sh          # each DDS: Nav2's action, publish-only, the pose from TF;
-#                                   # and a Humble Nav2 on Cyclone: 7 runs, ~60 s
+#   scripts/ros-interop.sh          # each DDS: Nav2's action, publish-only, the pose from TF,
+#                                   # the node in /robot1 with remapping rules (one run
+#                                   # each); and a Humble Nav2 on Cyclone: 9 runs, ~45 s
 #
 # Installs what is missing: Debian's Fast DDS packages (apt-get, as root or through sudo),
 # the Cyclone binding into target/ros-interop/venv; builds the node (release) and the Fast
@@ -38,6 +39,14 @@ for dds in cyclone fastdds; do
         "$venv/bin/python" crates/ros/interop/interop.py --dds "$dds" $run \
             --node crates/ros/target/release/frontier-ros --fastdds-peer "$out/fastdds_peer" "$@"
     done
+done
+# A launch file's namespace and remaps: Nav2's action with the pose on Cyclone, from TF on
+# Fast DDS.
+for run in "cyclone --mode action" "fastdds --mode action --pose tf"; do
+    echo "== ${run%% *}, ${run#* } --namespaced"
+    # shellcheck disable=SC2086 # $run is three or five words
+    "$venv/bin/python" crates/ros/interop/interop.py --dds $run --namespaced \
+        --node crates/ros/target/release/frontier-ros --fastdds-peer "$out/fastdds_peer" "$@"
 done
 echo "== cyclone, --mode action --nav2 humble"
 "$venv/bin/python" crates/ros/interop/interop.py --dds cyclone --mode action --nav2 humble \

@@ -2,10 +2,17 @@
 // interop.py, which runs the scenario: it writes commands on stdin and reads events on
 // stdout, one line each.
 //
+//   fastdds_peer DOMAIN covariance|stamped|tf [NAME=TOPIC]...
+//
+// NAME=TOPIC gives the DDS name, without `rt/` (or `rq/` and `rr/`), of the topic `map`,
+// `pose`, `tf`, `tf_static`, `command`, `goal` or `status`, or of the action `action`
+// (by default `map`, ..., `explore/command`, ..., `navigate_to_pose`): for a node in a
+// namespace or with remapping rules. Below, the topics by their default names.
+//
 // in:  map W H RES V...           the map (V: -1, 0 or 100 per cell, row-major from the origin)
-//      pose X Y                   the robot's pose in the map frame, as `fastdds_peer DOMAIN
-//                                 POSE` says: covariance (PoseWithCovarianceStamped, as
-//                                 slam_toolbox and AMCL send it) or stamped (PoseStamped)
+//      pose X Y                   the robot's pose in the map frame, as POSE says:
+//                                 covariance (PoseWithCovarianceStamped, as slam_toolbox
+//                                 and AMCL send it) or stamped (PoseStamped)
 //      tf|tf_static EDGE...       with POSE tf: one TFMessage on /tf or (latched)
 //                                 /tf_static, each EDGE `PARENT CHILD X Y YAW Z`
 //      command TEXT               on /explore/command
@@ -135,9 +142,29 @@ static SampleIdentity request_id(const SampleInfo& info) {
 }
 
 int main(int argc, char** argv) {
-    const std::string pose = argc == 3 ? argv[2] : "";
-    if (argc != 3 || (pose != "covariance" && pose != "stamped" && pose != "tf")) {
-        std::cerr << "usage: fastdds_peer DOMAIN covariance|stamped|tf\n";
+    const std::string pose = argc >= 3 ? argv[2] : "";
+    std::map<std::string, std::string> name = {
+        {"map", "map"},
+        {"pose", "pose"},
+        {"tf", "tf"},
+        {"tf_static", "tf_static"},
+        {"command", "explore/command"},
+        {"goal", "explore/goal"},
+        {"status", "explore/status"},
+        {"action", "navigate_to_pose"},
+    };
+    bool ok = argc >= 3 && (pose == "covariance" || pose == "stamped" || pose == "tf");
+    for (int i = 3; ok && i < argc; ++i) {
+        const std::string arg = argv[i];
+        const size_t eq = arg.find('=');
+        ok = eq != std::string::npos && eq + 1 < arg.size() && name.count(arg.substr(0, eq)) > 0;
+        if (ok) {
+            name[arg.substr(0, eq)] = arg.substr(eq + 1);
+        }
+    }
+    if (!ok) {
+        std::cerr << "usage: fastdds_peer DOMAIN covariance|stamped|tf [NAME=TOPIC]...\n"
+                     "  NAME: map, pose, tf, tf_static, command, goal, status or action\n";
         return 2;
     }
     Peer p;
@@ -151,23 +178,25 @@ int main(int argc, char** argv) {
     p.sub = p.dp->create_subscriber(SUBSCRIBER_QOS_DEFAULT);
     using namespace nav_msgs::msg::dds_;
     using namespace std_msgs::msg::dds_;
-    DataWriter* map_w = p.writer<OccupancyGrid_PubSubType>("rt/map", true);
+    DataWriter* map_w = p.writer<OccupancyGrid_PubSubType>("rt/" + name["map"], true);
     using tf2_msgs::msg::dds_::TFMessage_;
     using tf2_msgs::msg::dds_::TFMessage_PubSubType;
     const bool tf = pose == "tf";
-    DataWriter* pose_w = pose == "stamped"      ? p.writer<geo::PoseStamped_PubSubType>("rt/pose")
-                         : pose == "covariance" ? p.writer<geo::PoseWithCovarianceStamped_PubSubType>("rt/pose")
+    const std::string pose_topic = "rt/" + name["pose"];
+    DataWriter* pose_w = pose == "stamped"      ? p.writer<geo::PoseStamped_PubSubType>(pose_topic)
+                         : pose == "covariance" ? p.writer<geo::PoseWithCovarianceStamped_PubSubType>(pose_topic)
                                                 : nullptr;
-    DataWriter* tf_w = tf ? p.writer<TFMessage_PubSubType>("rt/tf") : nullptr;
-    DataWriter* static_w = tf ? p.writer<TFMessage_PubSubType>("rt/tf_static", true) : nullptr;
+    DataWriter* tf_w = tf ? p.writer<TFMessage_PubSubType>("rt/" + name["tf"]) : nullptr;
+    DataWriter* static_w =
+        tf ? p.writer<TFMessage_PubSubType>("rt/" + name["tf_static"], true) : nullptr;
     if (tf ? !tf_w || !static_w : !pose_w) {
         std::cerr << "fastdds_peer: cannot create the pose writers\n";
         return 1;
     }
-    DataWriter* cmd_w = p.writer<String_PubSubType>("rt/explore/command");
-    DataReader* goal_r = p.reader<geo::PoseStamped_PubSubType>("rt/explore/goal");
-    DataReader* status_r = p.reader<String_PubSubType>("rt/explore/status", true);
-    const std::string base = "navigate_to_pose/_action/";
+    DataWriter* cmd_w = p.writer<String_PubSubType>("rt/" + name["command"]);
+    DataReader* goal_r = p.reader<geo::PoseStamped_PubSubType>("rt/" + name["goal"]);
+    DataReader* status_r = p.reader<String_PubSubType>("rt/" + name["status"], true);
+    const std::string base = name["action"] + "/_action/";
     DataReader* send_goal_r = p.reader<nav::NavigateToPose_SendGoal_Request_PubSubType>(
         "rq/" + base + "send_goalRequest");
     DataWriter* send_goal_w = p.writer<nav::NavigateToPose_SendGoal_Response_PubSubType>(

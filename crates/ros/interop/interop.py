@@ -24,6 +24,15 @@ with `RMW_IMPLEMENTATION` set as beside such a Nav2 and its default `service_map
 auto`. `--mode publish-only`: the node only publishes goals and the mock follows them;
 Nav2 must get nothing.
 
+`--namespaced`: the node runs as a launch file's `Node(namespace="robot1", ...)` with
+remapping rules (ROBOT1_ARGS), and the mock uses the names rcl gives them: the map on
+`rt/shared_map`, the pose on `rt/robot1/amcl_pose` (or TF on `rt/robot1/tf` and
+`rt/robot1/tf_static`), Nav2 at `rq/robot1/navigate_to_pose/_action/send_goalRequest` and
+so on, the status and commands on `rt/robot1/explore/...`. In every run the node's DDS
+readers and writers, as discovery announces them, must be on exactly the names expected,
+and besides only on ROS 2's global topics and under its own name (parameter services):
+none is left on an un-namespaced name.
+
 Run by `scripts/ros-interop.sh`, which installs what it needs.
 """
 
@@ -35,6 +44,12 @@ import sys
 import time
 from dataclasses import dataclass
 
+from cyclonedds.builtin import (
+    BuiltinDataReader,
+    BuiltinTopicDcpsPublication,
+    BuiltinTopicDcpsSubscription,
+    DcpsEndpoint,
+)
 from cyclonedds.core import Policy, Qos
 from cyclonedds.domain import DomainParticipant
 from cyclonedds.idl import IdlStruct
@@ -309,12 +324,98 @@ def transform(parent, child, x, y, yaw, z=0.0):
     return TransformStamped(Header(stamp(), parent), child, Transform(Vector3(x, y, z), q))
 
 
+# The node's names as DDS names (without `rt/`, `rq/`, `rr/`), as rcl resolves them: with
+# no namespace and no remapping rule, and with ROBOT1_ARGS. `node` is the node's fully
+# qualified name, under which its parameter services are.
+PLAIN = {
+    "map": "map",
+    "pose": "pose",
+    "tf": "tf",
+    "tf_static": "tf_static",
+    "command": "explore/command",
+    "resume": "explore/resume",
+    "goal": "explore/goal",
+    "markers": "explore/frontiers",
+    "status": "explore/status",
+    "action": "navigate_to_pose",
+    "node": "frontier_explore",
+}
+# `--namespaced`: a launch file's Node(namespace="robot1", parameters=[{"map_topic": "map"}],
+# remappings=[...]) for a robot that shares a map: a relative name remapped to an absolute
+# one (map), absolute defaults remapped to relative names (the pose, TF and the action, as a
+# namespaced Nav2 and AMCL name them), and the node's own relative names left to the
+# namespace. As in a launch file, the rules are there for either source of the pose: the
+# TF ones remap nothing when it comes from a topic, the pose's nothing with TF.
+ROBOT1_ARGS = [
+    "--ros-args",
+    "-p", "map_topic:=map",
+    "-r", "__ns:=/robot1",
+    "-r", "map:=/shared_map",
+    "-r", "/pose:=amcl_pose",
+    "-r", "/tf:=tf",
+    "-r", "/tf_static:=tf_static",
+    "-r", "/navigate_to_pose:=navigate_to_pose",
+]
+ROBOT1 = {
+    "map": "shared_map",
+    "pose": "robot1/amcl_pose",
+    "tf": "robot1/tf",
+    "tf_static": "robot1/tf_static",
+    "command": "robot1/explore/command",
+    "resume": "robot1/explore/resume",
+    "goal": "robot1/explore/goal",
+    "markers": "robot1/explore/frontiers",
+    "status": "robot1/explore/status",
+    "action": "robot1/navigate_to_pose",
+    "node": "robot1/frontier_explore",
+}
+# The names `fastdds_peer` takes as arguments.
+PEER_NAMES = ["map", "pose", "tf", "tf_static", "command", "goal", "status", "action"]
+# The topics every ROS 2 node's participant may use besides its own, whatever its namespace.
+ROS_GLOBAL = {"ros_discovery_info", "rt/parameter_events", "rt/rosout", "rt/clock"}
+
+
+def expected_endpoints(names, pose):
+    """The DDS topics of the node's readers and writers: its topics, and the action's three
+    services and two topics (created in publish-only mode too)."""
+    topics = [names[k] for k in ("map", "command", "resume", "goal", "markers", "status")]
+    topics += [names["tf"], names["tf_static"]] if pose == "tf" else [names["pose"]]
+    action = names["action"] + "/_action/"
+    out = {"rt/" + t for t in topics} | {f"rt/{action}feedback", f"rt/{action}status"}
+    for service in ("send_goal", "get_result", "cancel_goal"):
+        out |= {f"rq/{action}{service}Request", f"rr/{action}{service}Reply"}
+    return out
+
+
+class Endpoints:
+    """The DDS topics of the node's readers and writers, as discovery announces them to a
+    Cyclone participant of its own (so for either peer). The node's participant is the one
+    that writes `ros_discovery_info`, as every ROS 2 node's does; the peers' do not."""
+
+    def __init__(self, domain):
+        self.dp = DomainParticipant(domain)
+        self.writers = BuiltinDataReader(self.dp, BuiltinTopicDcpsPublication)
+        self.readers = BuiltinDataReader(self.dp, BuiltinTopicDcpsSubscription)
+        self.seen = set()  # (participant, is a writer, topic)
+
+    def poll(self):
+        for writer, r in ((True, self.writers), (False, self.readers)):
+            for e in r.take(N=256):
+                if isinstance(e, DcpsEndpoint):
+                    self.seen.add((e.participant_key, writer, e.topic_name))
+
+    def node_topics(self):
+        self.poll()
+        nodes = {p for p, writer, t in self.seen if writer and t == "ros_discovery_info"}
+        return {t for p, _, t in self.seen if p in nodes}
+
+
 class CyclonePeer:
     """The mock's DDS side in Cyclone DDS, as rmw_cyclonedds_cpp would carry it."""
 
     rmw = "rmw_cyclonedds_cpp"
 
-    def __init__(self, domain, pose, humble):
+    def __init__(self, domain, pose, humble, names):
         dp = DomainParticipant(domain)
         self.pose_kind = pose
         self.humble = humble
@@ -326,19 +427,19 @@ class CyclonePeer:
             Policy.History.KeepLast(1),
             xcdr1,
         )
-        self.map_w = DataWriter(dp, Topic(dp, "rt/map", OccupancyGrid), qos=latched)
+        self.map_w = DataWriter(dp, Topic(dp, "rt/" + names["map"], OccupancyGrid), qos=latched)
         if pose == "tf":
-            self.tf_w = DataWriter(dp, Topic(dp, "rt/tf", TFMessage), qos=reliable)
+            self.tf_w = DataWriter(dp, Topic(dp, "rt/" + names["tf"], TFMessage), qos=reliable)
             # Kept: a writer that goes takes its latched sample with it.
-            self.static_w = DataWriter(dp, Topic(dp, "rt/tf_static", TFMessage), qos=latched)
+            self.static_w = DataWriter(dp, Topic(dp, "rt/" + names["tf_static"], TFMessage), qos=latched)
             self.static_w.write(TFMessage([transform(*e) for e in STATIC_EDGES]))
         else:
             pose_type = PoseStamped if pose == "stamped" else PoseWithCovarianceStamped
-            self.pose_w = DataWriter(dp, Topic(dp, "rt/pose", pose_type), qos=reliable)
-        self.cmd_w = DataWriter(dp, Topic(dp, "rt/explore/command", String), qos=reliable)
-        self.goal_r = DataReader(dp, Topic(dp, "rt/explore/goal", PoseStamped), qos=reliable)
-        self.status_r = DataReader(dp, Topic(dp, "rt/explore/status", String), qos=latched)
-        base = "navigate_to_pose/_action/"
+            self.pose_w = DataWriter(dp, Topic(dp, "rt/" + names["pose"], pose_type), qos=reliable)
+        self.cmd_w = DataWriter(dp, Topic(dp, "rt/" + names["command"], String), qos=reliable)
+        self.goal_r = DataReader(dp, Topic(dp, "rt/" + names["goal"], PoseStamped), qos=reliable)
+        self.status_r = DataReader(dp, Topic(dp, "rt/" + names["status"], String), qos=latched)
+        base = names["action"] + "/_action/"
 
         def service(name, req, rep):
             return (
@@ -421,9 +522,9 @@ class FastDdsPeer:
 
     rmw = "rmw_fastrtps_cpp"
 
-    def __init__(self, domain, pose, binary):
+    def __init__(self, domain, pose, binary, names):
         self.proc = subprocess.Popen(
-            [binary, str(domain), pose],
+            [binary, str(domain), pose] + [f"{k}={names[k]}" for k in PEER_NAMES],
             stdin=subprocess.PIPE,
             stdout=subprocess.PIPE,
             text=True,
@@ -501,6 +602,9 @@ def main():
                          "default with --mode action), PoseStamped (with publish-only) or TF")
     ap.add_argument("--nav2", choices=["jazzy", "humble"], default="jazzy",
                     help="the NavigateToPose result's layout (humble: empty; --dds cyclone)")
+    ap.add_argument("--namespaced", action="store_true",
+                    help="run the node in /robot1 with remapping rules (ROBOT1_ARGS); the peer "
+                         "uses the names they give")
     ap.add_argument("--domain", type=int, default=150 + os.getpid() % 50)
     ap.add_argument("--limit", type=float, default=90.0, help="seconds before giving up")
     ap.add_argument("-p", dest="extra", action="append", default=[], metavar="NAME:=VALUE",
@@ -530,13 +634,17 @@ def main():
         cmd += ["-p", f"{k}:={v}"]
     for p in args.extra:
         cmd += ["-p", p]
+    names = ROBOT1 if args.namespaced else PLAIN
+    if args.namespaced:
+        cmd += ROBOT1_ARGS
+    endpoints = Endpoints(args.domain)
     if args.dds == "cyclone":
-        peer = CyclonePeer(args.domain, pose, args.nav2 == "humble")
+        peer = CyclonePeer(args.domain, pose, args.nav2 == "humble", names)
     else:
-        peer = FastDdsPeer(args.domain, pose, args.fastdds_peer)
+        peer = FastDdsPeer(args.domain, pose, args.fastdds_peer, names)
     node = subprocess.Popen(cmd, env=dict(os.environ, RMW_IMPLEMENTATION=peer.rmw))
     try:
-        ok = run(args, peer)
+        ok = run(args, peer, endpoints, names, pose)
     finally:
         node.terminate()
         try:
@@ -547,7 +655,7 @@ def main():
     sys.exit(0 if ok else 1)
 
 
-def run(args, peer):
+def run(args, peer, endpoints, names, pose):
     action = args.mode == "action"
     world = World()
     robot = START
@@ -565,6 +673,7 @@ def run(args, peer):
     while time.time() < deadline:
         if time.time() - last > 0.5:
             publish()
+            endpoints.poll()
             last = time.time()
         for e in peer.events():
             if e[0] == "status":
@@ -631,6 +740,21 @@ def run(args, peer):
         ]
     else:
         checks.append(("Nav2 received nothing", not nav_goals))
+    # The node's DDS endpoints: on `names`, and besides only on ROS 2's global topics and
+    # under its fully qualified name (ros2-client's parameter services).
+    found, expected = endpoints.node_topics(), expected_endpoints(names, pose)
+    missing = expected - found
+    others = {
+        t for t in found - expected
+        if t not in ROS_GLOBAL and not t.startswith((f"rq/{names['node']}/", f"rr/{names['node']}/"))
+    }
+    for t in sorted(missing):
+        print("no endpoint of the node on", t, flush=True)
+    for t in sorted(others):
+        print("an endpoint of the node on", t, flush=True)
+    checks.append((f"its DDS endpoints are rcl's names (rt/{names['map']}, rt/{names['status']}, "
+                   f"rq/{names['action']}/_action/send_goalRequest, …), and no others",
+                   not missing and not others))
     for what, ok in checks:
         print(("ok    " if ok else "FAIL  ") + what, flush=True)
     return all(ok for _, ok in checks)
