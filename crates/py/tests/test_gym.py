@@ -740,3 +740,58 @@ def test_regression_str_and_path_arguments_name_the_argument(office, tmp_path):
     assert env.baseline_action(np.str_("cf-rr")) == env.baseline_action("cf-rr")
     office.save(tmp_path / "o.pgm")
     assert len(frontier.gym.load_folder(tmp_path, resolution=0.25)) == 1
+
+
+@pytest.mark.parametrize(
+    "seed,error,message",
+    [
+        ("x", TypeError, "seed: expected an int or None, found str"),
+        (1.0, TypeError, "seed: expected an int or None, found float"),
+        (True, TypeError, "seed: expected an int or None, found bool"),
+        (np.bool_(True), TypeError, "seed: expected an int or None, found bool"),
+        (-1, ValueError, "seed: expected a non-negative int, found -1"),
+        (np.int32(-2), ValueError, "seed: expected a non-negative int, found -2"),
+    ],
+)
+def test_regression_reset_with_a_seed_that_is_not_a_non_negative_int_names_seed(
+    office, seed, error, message
+):
+    """Regression: Gymnasium's seeding raised its own ``gymnasium.error.Error`` ("Seed must
+    be a python integer, actual type: <class 'str'>"), neither a TypeError nor a ValueError,
+    and took a bool as the seed 0 or 1."""
+    env = ExploreEnv(office, k=4)
+    with pytest.raises(error, match=f"^{message}"):
+        env.reset(seed=seed)
+
+
+def test_regression_reset_takes_numpy_integer_seeds(office):
+    """Regression: ``reset(seed=np.int64(3))`` was refused by Gymnasium's seeding ("Seed must
+    be a python integer"); a numpy integer seed now gives the int's episode."""
+    env = ExploreEnv(office, k=4)
+    plain = episode(env, RandomPolicy(0), 3)
+    assert episode(env, RandomPolicy(0), np.int64(3)) == plain
+    assert episode(env, RandomPolicy(0), np.uint8(3)) == plain
+    assert env.reset(seed=2**64)[1]["seed"] != env.reset(seed=0)[1]["seed"]
+
+
+@pytest.mark.parametrize(
+    "seed,error,message",
+    [
+        ("x", TypeError, "seed: expected an int, None or a list of one per environment, found str"),
+        (1.5, TypeError, "seed: expected an int, None or a list of one per environment, found float"),
+        ({1, 2}, TypeError, "seed: expected an int, None or a list of one per environment, found set"),
+        (np.zeros((2, 1), np.int64), TypeError, r"seed: expected an int, None or a list of one per "
+         r"environment, found ndarray of shape \(2, 1\)"),
+        (True, TypeError, "seed: expected an int or None, found bool"),
+        (-1, ValueError, "seed: expected a non-negative int, found -1"),
+    ],
+)
+def test_regression_vector_reset_with_a_bad_seed_names_seed(office, seed, error, message):
+    """Regression: a str seed was read as a list of characters ("seed: expected 2 seeds,
+    found 1"), a float gave "'float' object is not iterable", -1 Gymnasium's own ``Error``,
+    and a set or True were taken."""
+    venv = ExploreVectorEnv(2, office, k=4)
+    with pytest.raises(error, match=f"^{message}"):
+        venv.reset(seed=seed)
+    obs, _ = venv.reset(seed=np.int64(3))
+    assert (obs["belief"] == venv.reset(seed=3)[0]["belief"]).all()

@@ -143,3 +143,18 @@ def test_regression_arguments_of_a_wrong_type_name_the_argument(office):
         ExploreParallelEnv(office, robots=True)
     with pytest.raises(TypeError, match="^sensor: expected a str, found float"):
         ExploreParallelEnv(office, sensor=1.0)
+
+
+def test_regression_reset_seed_is_checked_and_numpy_integers_are_taken(office):
+    """Regression: Gymnasium's seeding raised its own ``gymnasium.error.Error`` for a str, a
+    float, a negative or a numpy integer seed, and took True as the seed 1."""
+    env = ExploreParallelEnv(office, robots=2, k=4)
+    for seed, error, message in [
+        ("x", TypeError, "seed: expected an int or None, found str"),
+        (0.5, TypeError, "seed: expected an int or None, found float"),
+        (True, TypeError, "seed: expected an int or None, found bool"),
+        (-1, ValueError, "seed: expected a non-negative int, found -1"),
+    ]:
+        with pytest.raises(error, match=f"^{message}"):
+            env.reset(seed=seed)
+    assert env.reset(seed=np.int64(4))[1] == env.reset(seed=4)[1]

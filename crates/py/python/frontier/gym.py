@@ -171,6 +171,20 @@ def _map_option(options: Optional[Mapping[str, Any]]) -> Any:
     return options.get("map")
 
 
+def _seed(name: str, value: Any) -> Optional[int]:
+    """A seed of ``reset``: None, or a non-negative Python or numpy integer as an int (of
+    any size, as Gymnasium's seeding takes it); TypeError or ValueError naming ``name``
+    otherwise (a bool, a float, a str; Gymnasium's own check raises its ``Error`` for these,
+    or takes a bool as 0 or 1)."""
+    if value is None:
+        return None
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)):
+        raise TypeError(f"{name}: expected an int or None, found {type(value).__name__}")
+    if value < 0:
+        raise ValueError(f"{name}: expected a non-negative int, found {value}")
+    return int(value)
+
+
 def _action(action: Any) -> int:
     """An action as an int: a Python or numpy integer, or a 0-d integer array (TypeError for
     anything else, a float included)."""
@@ -399,7 +413,9 @@ class ExploreEnv(gymnasium.Env):
     ) -> Tuple[Dict[str, np.ndarray], Dict[str, Any]]:
         """Start an episode; the same ``seed`` gives the same map, start and episode.
         ``options={"map": i}`` runs it on map ``i`` of the list or folder (:attr:`map_names`)
-        instead of the one the seed picks, e.g. to evaluate on every test map once."""
+        instead of the one the seed picks, e.g. to evaluate on every test map once.
+        ``seed`` is None or a non-negative int (Python's or numpy's)."""
+        seed = _seed("seed", seed)
         index = _map_index(_map_option(options))
         super().reset(seed=seed)
         self._seed = _episode_seed(self.np_random)
@@ -502,7 +518,29 @@ class ExploreVectorEnv(VectorEnv):
     ) -> Tuple[Dict[str, np.ndarray], Dict[str, Any]]:
         """Start every environment's episode. ``options={"map": m}`` runs them on maps of the
         list or folder (:attr:`map_names`): ``m`` an index for all, or one index (or None:
-        the seed's pick) per environment. Episodes after an automatic reset pick by seed."""
+        the seed's pick) per environment. Episodes after an automatic reset pick by seed.
+        ``seed`` is None, a non-negative int (Python's or numpy's), or a sequence of one such
+        seed (or None) per environment."""
+        first: Optional[int] = None
+        if seed is None or isinstance(seed, (bool, np.bool_, int, np.integer)):
+            first = _seed("seed", seed)
+            given: List[Optional[int]] = (
+                [None] * self.num_envs if first is None
+                else [first + i for i in range(self.num_envs)]
+            )
+        elif (isinstance(seed, Sequence) and not isinstance(seed, (str, bytes))) or (
+            isinstance(seed, np.ndarray) and seed.ndim == 1
+        ):
+            if len(seed) != self.num_envs:
+                raise ValueError(f"seed: expected {self.num_envs} seeds, found {len(seed)}")
+            given = [_seed(f"seed[{i}]", s) for i, s in enumerate(seed)]
+        else:
+            found = type(seed).__name__
+            if isinstance(seed, np.ndarray):
+                found += f" of shape {seed.shape}"
+            raise TypeError(
+                f"seed: expected an int, None or a list of one per environment, found {found}"
+            )
         wanted = _map_option(options)
         if wanted is None or isinstance(wanted, (int, np.integer)):
             maps = [_map_index(wanted)] * self.num_envs
@@ -513,21 +551,7 @@ class ExploreVectorEnv(VectorEnv):
                 "options['map']: expected a map index or one per environment, found "
                 f"{type(wanted).__name__}"
             )
-        if isinstance(seed, (int, np.integer)):
-            super().reset(seed=int(seed))
-            given: List[Optional[int]] = [int(seed) + i for i in range(self.num_envs)]
-        else:
-            super().reset(seed=None)
-            given = list(seed) if seed is not None else [None] * self.num_envs
-            if len(given) != self.num_envs:
-                raise ValueError(f"seed: expected {self.num_envs} seeds, found {len(given)}")
-            for i, s in enumerate(given):
-                if s is None:
-                    continue
-                if isinstance(s, (bool, np.bool_)) or not isinstance(s, (int, np.integer)):
-                    raise TypeError(f"seed[{i}]: expected an int or None, found {type(s).__name__}")
-                if s < 0:
-                    raise ValueError(f"seed[{i}]: expected a non-negative int, found {s}")
+        super().reset(seed=first)
         # Environment i seeded with s starts the episode ExploreEnv.reset(seed=s) starts.
         seeds = [
             _episode_seed(seeding.np_random(int(s))[0] if s is not None else self.np_random)
@@ -589,13 +613,7 @@ class RandomPolicy:
     """Uniformly one of the offered candidates (by the observation's ``action_mask``)."""
 
     def __init__(self, seed: Optional[int] = None) -> None:
-        if isinstance(seed, bool) or (
-            seed is not None and not isinstance(seed, (int, np.integer))
-        ):
-            raise TypeError(f"seed: expected an int or None, found {type(seed).__name__}")
-        if seed is not None and seed < 0:
-            raise ValueError(f"seed: expected a non-negative int, found {seed}")
-        self._rng = np.random.default_rng(seed)
+        self._rng = np.random.default_rng(_seed("seed", seed))
 
     def __call__(self, obs: Dict[str, np.ndarray]) -> Any:
         mask = obs["action_mask"]

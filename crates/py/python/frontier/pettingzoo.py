@@ -30,6 +30,7 @@ from .gym import (
     _episode_seed,
     _map_index,
     _map_option,
+    _seed,
     _spaces,
 )
 
@@ -100,7 +101,9 @@ class ExploreParallelEnv(ParallelEnv):
         self, seed: Optional[int] = None, options: Optional[Dict[str, Any]] = None
     ) -> Tuple[Dict[str, Dict[str, np.ndarray]], Dict[str, Dict[str, Any]]]:
         """Start an episode; the same ``seed`` gives the same map, starts and episode.
-        ``options={"map": i}`` runs it on map ``i`` of the list or folder (:attr:`map_names`)."""
+        ``options={"map": i}`` runs it on map ``i`` of the list or folder (:attr:`map_names`).
+        ``seed`` is None or a non-negative int (Python's or numpy's)."""
+        seed = _seed("seed", seed)
         index = _map_index(_map_option(options))
         if seed is not None or self._rng is None:
             self._rng = seeding.np_random(seed)[0]
