@@ -795,3 +795,26 @@ def test_regression_vector_reset_with_a_bad_seed_names_seed(office, seed, error,
         venv.reset(seed=seed)
     obs, _ = venv.reset(seed=np.int64(3))
     assert (obs["belief"] == venv.reset(seed=3)[0]["belief"]).all()
+
+
+def test_regression_actions_beyond_64_bits_are_a_value_error_naming_the_action(office):
+    """Regression: ``step(2**64)`` raised OverflowError ("Python int too large to convert to
+    C long"), and the vector environment took np.uint64(2**63) as -2**63, wrapped."""
+    env = ExploreEnv(office, k=4)
+    env.reset(seed=0)
+    for action in (2**63, -(2**63) - 1, np.uint64(2**64 - 1)):
+        with pytest.raises(ValueError, match=rf"^action: expected an integer in -2\^63..2\^63, "
+                           rf"found {int(action)}$"):
+            env.step(action)
+    env.step(np.array(2, dtype=np.uint64))
+    venv = ExploreVectorEnv(2, office, k=4)
+    venv.reset(seed=0)
+    with pytest.raises(ValueError, match=r"^actions\[1\]: expected an integer in -2\^63..2\^63, "
+                       r"found 9223372036854775808$"):
+        venv.step(np.array([0, 2**63], dtype=np.uint64))
+    with pytest.raises(ValueError, match=r"^actions\[0\]: expected an integer in -2\^63..2\^63, "
+                       r"found 18446744073709551616$"):
+        venv.step([2**64, 0])
+    with pytest.raises(TypeError, match=r"^actions\[1\]: expected an int, found NoneType$"):
+        venv.step([0, None])
+    venv.step(np.array([1, 2], dtype=np.uint64))

@@ -158,3 +158,15 @@ def test_regression_reset_seed_is_checked_and_numpy_integers_are_taken(office):
         with pytest.raises(error, match=f"^{message}"):
             env.reset(seed=seed)
     assert env.reset(seed=np.int64(4))[1] == env.reset(seed=4)[1]
+
+
+def test_regression_a_bad_action_names_its_agent(office):
+    """Regression: an agent's action beyond 64-bit integers raised OverflowError, and a bad
+    action's message did not say whose it was."""
+    env = ExploreParallelEnv(office, robots=2, k=4)
+    env.reset(seed=0)
+    with pytest.raises(ValueError, match=r"^robot_1: action: expected an integer in "
+                       r"-2\^63..2\^63, found 18446744073709551616$"):
+        env.step({"robot_0": 0, "robot_1": 2**64})
+    with pytest.raises(TypeError, match="^robot_0: action: expected an int, found NoneType$"):
+        env.step({"robot_0": None, "robot_1": 0})

@@ -185,14 +185,18 @@ def _seed(name: str, value: Any) -> Optional[int]:
     return int(value)
 
 
-def _action(action: Any) -> int:
-    """An action as an int: a Python or numpy integer, or a 0-d integer array (TypeError for
-    anything else, a float included)."""
+def _action(action: Any, name: str = "action") -> int:
+    """An action as an int: a Python or numpy integer, or a 0-d integer array (TypeError
+    naming ``name`` for anything else, a float included; ValueError beyond the 64-bit
+    integers the environment reads actions as)."""
     if isinstance(action, np.ndarray) and action.ndim == 0 and action.dtype.kind in "iu":
-        return int(action)
+        action = action.item()
     if isinstance(action, bool) or not isinstance(action, (int, np.integer)):
-        raise TypeError(f"action: expected an int, found {type(action).__name__}")
-    return int(action)
+        raise TypeError(f"{name}: expected an int, found {type(action).__name__}")
+    value = int(action)
+    if not -(2**63) <= value < 2**63:
+        raise ValueError(f"{name}: expected an integer in -2^63..2^63, found {value}")
+    return value
 
 
 #: The run options of :func:`frontier.explore` an environment takes as keyword arguments
@@ -573,8 +577,14 @@ class ExploreVectorEnv(VectorEnv):
                 f"actions: expected one action per environment, shape ({self.num_envs},), "
                 f"found shape {given.shape}"
             )
+        if given.dtype == object:
+            # Python ints beyond 64 bits (or objects that are no ints) among the actions.
+            given = np.array([_action(a, f"actions[{i}]") for i, a in enumerate(given)])
         if given.dtype.kind not in "iu":
             raise TypeError(f"actions: expected integers, found dtype {given.dtype}")
+        if given.dtype == np.uint64 and (given >= 2**63).any():
+            i = int(np.argmax(given >= 2**63))
+            raise ValueError(f"actions[{i}]: expected an integer in -2^63..2^63, found {given[i]}")
         obs, rewards, terminated, truncated, coverage, path = self._core.step(
             given.astype(np.int64, copy=False), self._wrap
         )

@@ -139,7 +139,7 @@ class ExploreParallelEnv(ParallelEnv):
             )
         if not self._obs:
             raise gymnasium.error.ResetNeeded("step: call reset() before step()")
-        acts = [_action(actions.get(agent, 0)) for agent in self.possible_agents]
+        acts = [_action(actions.get(a, 0), f"{a}: action") for a in self.possible_agents]
         self._obs, reward, terminated, truncated = self._core.step(acts, True)
         agents = self.possible_agents
         obs = dict(zip(agents, self._obs))
