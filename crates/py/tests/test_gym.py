@@ -818,3 +818,20 @@ def test_regression_actions_beyond_64_bits_are_a_value_error_naming_the_action(o
     with pytest.raises(TypeError, match=r"^actions\[1\]: expected an int, found NoneType$"):
         venv.step([0, None])
     venv.step(np.array([1, 2], dtype=np.uint64))
+
+
+def test_regression_a_map_index_beyond_64_bits_is_a_value_error_naming_it(office):
+    """Regression: ``reset(options={"map": 2**70})`` raised OverflowError ("int too big to
+    convert"), naming no argument."""
+    env = ExploreEnv([office, office], k=4)
+    with pytest.raises(ValueError, match=r"^options\['map'\]: expected the index of a map of the "
+                       r"list or folder \(see map_names\), found 1180591620717411303424$"):
+        env.reset(seed=0, options={"map": 2**70})
+    venv = ExploreVectorEnv(2, [office, office], k=4)
+    with pytest.raises(ValueError, match=r"^options\['map'\]\[1\]: expected the index of a map of "
+                       r"the list or folder \(see map_names\), found 18446744073709551616$"):
+        venv.reset(seed=0, options={"map": [0, 2**64]})
+    with pytest.raises(TypeError, match=r"^options\['map'\]\[0\]: expected the index of a map "
+                       r"\(an int\), found str$"):
+        venv.reset(seed=0, options={"map": ["0", 1]})
+    assert env.reset(seed=0, options={"map": np.uint64(1)})[1]["map"] == office.name

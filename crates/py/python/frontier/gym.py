@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import difflib
 import os
+import sys
 import warnings
 from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
@@ -141,16 +142,22 @@ def _source(
     return loaded, None, None
 
 
-def _map_index(value: Any) -> Optional[int]:
-    """A map index of reset's ``options["map"]``: None, or a non-negative int."""
+def _map_index(value: Any, name: str = "options['map']") -> Optional[int]:
+    """A map index of reset's ``options["map"]``: None, or a non-negative int (one the
+    environment can count to; whether its list has that many maps is checked there)."""
     if value is None:
         return None
     if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
         raise TypeError(
-            f"options['map']: expected the index of a map (an int), found {type(value).__name__}"
+            f"{name}: expected the index of a map (an int), found {type(value).__name__}"
         )
     if value < 0:
-        raise ValueError(f"options['map']: expected the index of a map (0 or more), found {value}")
+        raise ValueError(f"{name}: expected the index of a map (0 or more), found {value}")
+    if value > sys.maxsize:
+        raise ValueError(
+            f"{name}: expected the index of a map of the list or folder (see map_names), "
+            f"found {value}"
+        )
     return int(value)
 
 
@@ -549,7 +556,7 @@ class ExploreVectorEnv(VectorEnv):
         if wanted is None or isinstance(wanted, (int, np.integer)):
             maps = [_map_index(wanted)] * self.num_envs
         elif isinstance(wanted, Sequence) and not isinstance(wanted, (str, bytes)):
-            maps = [_map_index(m) for m in wanted]
+            maps = [_map_index(m, f"options['map'][{i}]") for i, m in enumerate(wanted)]
         else:
             raise TypeError(
                 "options['map']: expected a map index or one per environment, found "
