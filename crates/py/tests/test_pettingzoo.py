@@ -170,3 +170,26 @@ def test_regression_a_bad_action_names_its_agent(office):
         env.step({"robot_0": 0, "robot_1": 2**64})
     with pytest.raises(TypeError, match="^robot_0: action: expected an int, found NoneType$"):
         env.step({"robot_0": None, "robot_1": 0})
+
+
+def test_regression_a_deciding_agent_left_out_of_the_actions_is_a_value_error(office):
+    """Regression: ``step({})`` sent every deciding robot to its candidate 0, an action no
+    policy chose; a deciding agent's action must now be given, the others' may be left out."""
+    env = ExploreParallelEnv(office, robots=2, k=4)
+    env.reset(seed=0)
+    assert env.deciding() == ["robot_0", "robot_1"]
+    with pytest.raises(ValueError, match=r"^actions: missing agent 'robot_1', whose decision is "
+                       r"due \(deciding: robot_0, robot_1\)$"):
+        env.step({"robot_0": 0})
+    with pytest.raises(ValueError, match="^actions: missing agent 'robot_0'"):
+        env.step({})
+    # A step in which one robot decides alone takes its action without the other's.
+    for _ in range(200):
+        if len(env.deciding()) == 1:
+            break
+        env.step(Baseline("nearest")(env))
+    (alone,) = env.deciding()
+    other = next(a for a in env.possible_agents if a != alone)
+    with pytest.raises(ValueError, match=f"^actions: missing agent '{alone}'"):
+        env.step({other: 0})
+    env.step({alone: 0})

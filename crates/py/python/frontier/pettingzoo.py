@@ -4,11 +4,12 @@ The robots explore together through the one loop (``sim::Session``), so they mov
 concurrently in the order of their clocks, exactly as in ``frontier.explore(...,
 robots=m)``. A step is the team's next decision: the robots whose decision is due
 (:meth:`ExploreParallelEnv.deciding`; their ``action_mask`` is not empty) go to their chosen
-candidates; the others' actions are ignored. Every agent gets the team's reward (newly known
-reachable free area in m² minus λ × metres travelled by the team). Each observation is
-:class:`frontier.gym.ExploreEnv`'s for that robot plus ``team``: the (x, y, heading) of every
-robot. :class:`~frontier.gym.Baseline` works here too (``Baseline("ha-cc")(env)``): the
-preset's assigner chooses for the deciding robots together.
+candidates, and each needs an action; the others' actions are ignored. Every agent gets
+the team's reward (newly known reachable free area in m² minus λ × metres travelled by the
+team). Each observation is :class:`frontier.gym.ExploreEnv`'s for that robot plus ``team``:
+the (x, y, heading) of every robot. :class:`~frontier.gym.Baseline` works here too
+(``Baseline("ha-cc")(env)``): the preset's assigner chooses for the deciding robots
+together.
 """
 
 from __future__ import annotations
@@ -129,7 +130,9 @@ class ExploreParallelEnv(ParallelEnv):
         Dict[str, Dict[str, Any]],
     ]:
         """The team's next decision: deciding agents go to their candidates (an index beyond
-        the offered ones is taken modulo their number)."""
+        the offered ones is taken modulo their number). Every deciding agent
+        (:meth:`deciding`) needs an action, a ValueError naming it otherwise; the others'
+        are ignored and may be left out."""
         if not isinstance(actions, Mapping):
             raise TypeError(f"actions: expected a dict of agent -> action, found {type(actions).__name__}")
         unknown = [a for a in actions if a not in self.possible_agents]
@@ -140,6 +143,14 @@ class ExploreParallelEnv(ParallelEnv):
         if not self._obs:
             raise gymnasium.error.ResetNeeded("step: call reset() before step()")
         acts = [_action(actions.get(a, 0), f"{a}: action") for a in self.possible_agents]
+        if self.agents:
+            due = self.deciding()
+            missing = [a for a in due if a not in actions]
+            if missing:
+                raise ValueError(
+                    f"actions: missing agent {missing[0]!r}, whose decision is due "
+                    f"(deciding: {', '.join(due)})"
+                )
         self._obs, reward, terminated, truncated = self._core.step(acts, True)
         agents = self.possible_agents
         obs = dict(zip(agents, self._obs))
