@@ -835,3 +835,40 @@ def test_regression_a_map_index_beyond_64_bits_is_a_value_error_naming_it(office
                        r"\(an int\), found str$"):
         venv.reset(seed=0, options={"map": ["0", 1]})
     assert env.reset(seed=0, options={"map": np.uint64(1)})[1]["map"] == office.name
+
+
+def test_regression_a_size_or_resolution_that_would_change_nothing_is_refused(office, tmp_path):
+    """Regression: ``size`` with maps that are not generated, and a ``resolution`` other
+    than frontier.Map maps' own, were taken and ignored: the episodes ran on the maps as they
+    were."""
+    office.save(tmp_path / "o.yaml")
+    for call, message in [
+        (lambda: ExploreEnv(office, size=(10, 10)), r"size: expected None, as only generated "
+         r"maps take a size and maps is a frontier.Map, found \(10.0, 10.0\)"),
+        (lambda: ExploreVectorEnv(2, [office], size=(10, 10)), "size: .* maps is a list of maps"),
+        (lambda: ExploreEnv(str(tmp_path), size=(10, 10)), "size: .* maps is a folder,"),
+        (lambda: ExploreEnv(tmp_path / "o.yaml", size=(10, 10)), "size: .* maps is a map file,"),
+        (lambda: ExploreEnv([tmp_path / "o.yaml"], size=(1, 1)), "size: .* a list of map files,"),
+        (lambda: ExploreEnv(office, resolution=0.1), r"resolution: expected None or the maps' "
+         r"own, as a frontier.Map keeps its resolution \(maps is a frontier.Map; "
+         r"office-s3-15x12m-r0.25 has 0.25 m per cell\), found 0.1"),
+        (lambda: ExploreEnv([office, office], resolution=0.5), "resolution: .* found 0.5"),
+    ]:
+        with pytest.raises(ValueError, match=f"^{message}"):
+            call()
+    # The maps' own resolution changes nothing, and is taken.
+    ExploreEnv([office], resolution=0.25)
+    # A map file's resolution is read as its cells' size (the cells stay as they are).
+    for maps in (str(tmp_path), tmp_path / "o.yaml", [tmp_path / "o.yaml"]):
+        assert ExploreEnv(maps, resolution=0.5).reset(seed=0)[0]["belief"].shape == (48, 60)
+
+
+def test_regression_bytes_as_maps_is_a_type_error_naming_maps(office):
+    """Regression: ``maps=b"office"`` was read as a list of ints ("maps[0]: expected a
+    frontier.Map or a map file's path ..., found int"), and a too large k said "at most …
+    candidate"."""
+    with pytest.raises(TypeError, match="^maps: expected a frontier.Map, a list of maps, a "
+                       "generator kind, a map file or a folder, found bytes$"):
+        ExploreEnv(b"office")
+    with pytest.raises(ValueError, match=r"^k: expected at most \d+ candidates, found \d+$"):
+        ExploreEnv(office, k=2**70)

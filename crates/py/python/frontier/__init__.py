@@ -157,7 +157,8 @@ def _count(name: str, value: Any, least: int, what: str = "") -> None:
     if value < least:
         raise ValueError(f"{name}: expected at least {least}{what}, found {value}")
     if value > sys.maxsize:
-        raise ValueError(f"{name}: expected at most {sys.maxsize}{what}, found {value}")
+        many = f"{what}s" if what else ""
+        raise ValueError(f"{name}: expected at most {sys.maxsize}{many}, found {value}")
 
 
 def _flag(name: str, value: Any) -> bool:

@@ -17,6 +17,7 @@ candidates, a baseline episode is exactly ``frontier.explore`` with the same see
 from __future__ import annotations
 
 import difflib
+import math
 import os
 import sys
 import warnings
@@ -89,6 +90,30 @@ _Source = Tuple[
 ]
 
 
+def _refuse_unused(
+    given: str,
+    size: Optional[Pair],
+    resolution: Optional[float] = None,
+    maps: Sequence[Map] = (),
+) -> None:
+    """Raise ValueError for a ``size`` that maps of the ``given`` kind would not use, or a
+    ``resolution`` other than the given ``maps``' own: taken and ignored, it would mislead.
+    (A resolution equal to theirs changes nothing and is taken, so that one set of keyword
+    arguments serves maps loaded first and the same maps read episode by episode.)"""
+    if size is not None:
+        raise ValueError(
+            f"size: expected None, as only generated maps take a size and maps is {given}, "
+            f"found {size}"
+        )
+    for m in maps:
+        if resolution is not None and not math.isclose(m.resolution, resolution):
+            raise ValueError(
+                f"resolution: expected None or the maps' own, as a frontier.Map keeps its "
+                f"resolution (maps is {given}; {m.name} has {m.resolution} m per cell), "
+                f"found {resolution}"
+            )
+
+
 def _source(
     maps: MapsArg,
     size: Optional[Pair],
@@ -104,19 +129,22 @@ def _source(
     if maps is None:
         return None, ("office", size, resolution), None
     if isinstance(maps, Map):
+        _refuse_unused("a frontier.Map", size, resolution, [maps])
         return [maps], None, None
     if isinstance(maps, (str, os.PathLike)):
         path = os.fspath(maps)
         if os.path.isdir(path):
+            _refuse_unused("a folder", size)
             return None, None, (_folder_files(path, dungeon), resolution, dungeon)
         if os.path.isfile(path):
+            _refuse_unused("a map file", size)
             return [Map.load(path, resolution=resolution, dungeon=dungeon)], None, None
         if isinstance(maps, os.PathLike) or os.sep in path or path.endswith(_MAP_EXTENSIONS):
             raise ValueError(f"maps: {path}: no such folder or map file")
         if dungeon:
             raise ValueError(f"dungeon: reads PNG files, but maps is the generator kind {path!r}")
         return None, (path, size, resolution), None
-    if not isinstance(maps, Sequence):
+    if isinstance(maps, (bytes, bytearray)) or not isinstance(maps, Sequence):
         raise TypeError(
             "maps: expected a frontier.Map, a list of maps, a generator kind, a map file or "
             f"a folder, found {type(maps).__name__}"
@@ -125,6 +153,7 @@ def _source(
     paths = [m for m in items if isinstance(m, (str, os.PathLike))]
     if items and len(paths) == len(items):
         # Map files (a dataset's train or test split): read episode by episode, as a folder's.
+        _refuse_unused("a list of map files", size)
         files = [os.fspath(m) for m in paths]
         for i, f in enumerate(files):
             if not os.path.isfile(f):
@@ -139,6 +168,7 @@ def _source(
             f"maps[{i}]: expected a frontier.Map or a map file's path (all of one kind), "
             f"found {type(m).__name__}"
         )
+    _refuse_unused("a list of maps", size, resolution, loaded)
     return loaded, None, None
 
 
@@ -327,9 +357,11 @@ class ExploreEnv(gymnasium.Env):
             episode reads the one its seed picks, so a dataset such as HouseExpo's 35,000
             plans is never all in memory (maps of different sizes need a ``view``). Default:
             generated offices.
-        size: (width, height) in metres of generated maps (default: the kind's).
+        size: (width, height) in metres of generated maps (default: the kind's); a
+            ValueError with maps that are not generated, which it would not change.
         resolution: metres per cell of generated maps, or of a bare bitmap or a HouseExpo
-            plan (a file or in a folder).
+            plan (a file or in a folder); with :class:`~frontier.Map` maps, which keep their
+            own, None or theirs (a ValueError otherwise).
         dungeon: read the PNGs of ``maps`` (a file or a folder) as dungeon maps of
             learned-exploration work (:meth:`~frontier.Map.load`): episodes start at the
             start each marks. Needs ``resolution``.
