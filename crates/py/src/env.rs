@@ -26,7 +26,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use sim::changes::CellBox;
 use sim::spin_pool::SpinPool;
-use sim::{Session, Status};
+use sim::{Session, SimError, Status};
 use world::{EnvKind, EnvSpec};
 
 use crate::map::{Map, read_file, stem};
@@ -86,6 +86,46 @@ fn splitmix(x: u64) -> u64 {
     z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
     z = (z ^ (z >> 27)).wrapping_mul(0x94D4_9BCB_133A_D049);
     z ^ (z >> 31)
+}
+
+/// Start the run of the episode of `seed` on `map` (named `name`, with the start its file
+/// marks) as `spec` configures it, stopped at its first decision.
+fn start_session(
+    spec: &Spec,
+    seed: u64,
+    map: GridMap,
+    name: &str,
+    marked: Option<grid::Cell>,
+) -> Result<Session<'static>, String> {
+    let mut o = spec.options.clone();
+    o.seed = seed;
+    o.start = o.start.or(marked);
+    o.record_trace = false;
+    let mut cfg = bench::explore::config(&o, &map, None)?;
+    if let Some(c) = spec.candidates {
+        cfg.strategy.candidates = c;
+    }
+    // A map read now may be larger than the one the environment was sized on.
+    let bytes = sim::memory::run_bytes(map.width() * map.height(), map.resolution, &cfg);
+    if bytes > spec.run_bytes {
+        sim::memory::check(
+            &format!(
+                "an episode on map {name} ({}x{} cells)",
+                map.width(),
+                map.height()
+            ),
+            bytes,
+            None,
+            bench::machine::available(),
+            "leave the largest maps out of the folder, or use fewer environments",
+        )
+        .map_err(|e| e.to_string())?;
+    }
+    guarded(|| Session::start(Cow::Owned(map), Cow::Owned(cfg), true))?.map_err(|e| match e {
+        // An option out of range (--speed, --clearance, --goal) is wrong on every map.
+        SimError::BadParameter { .. } => e.to_string(),
+        _ => format!("map {name}: {e}"),
+    })
 }
 
 impl Spec {
@@ -227,32 +267,7 @@ impl State {
                 spec.shape.0
             ));
         }
-        let mut o = spec.options.clone();
-        o.seed = seed;
-        o.start = o.start.or(marked);
-        o.record_trace = false;
-        let mut cfg = bench::explore::config(&o, &map, None)?;
-        if let Some(c) = spec.candidates {
-            cfg.strategy.candidates = c;
-        }
-        // A map read now may be larger than the one the environment was sized on.
-        let bytes = sim::memory::run_bytes(map.width() * map.height(), map.resolution, &cfg);
-        if bytes > spec.run_bytes {
-            sim::memory::check(
-                &format!(
-                    "an episode on map {name} ({}x{} cells)",
-                    map.width(),
-                    map.height()
-                ),
-                bytes,
-                None,
-                bench::machine::available(),
-                "leave the largest maps out of the folder, or use fewer environments",
-            )
-            .map_err(|e| e.to_string())?;
-        }
-        let mut session = guarded(|| Session::start(Cow::Owned(map), Cow::Owned(cfg), true))?
-            .map_err(|e| format!("map {name}: {e}"))?;
+        let mut session = start_session(&spec, seed, map, &name, marked)?;
         if spec.view.is_none() {
             session.track_changes();
         }
@@ -712,7 +727,11 @@ fn py_error(e: String) -> PyErr {
     }
 }
 
-/// Build the fixed part of an environment from the Python arguments.
+/// The map of the first episode (seed 0's pick) with its name and marked start, which an
+/// environment is sized on and tried with.
+type First = (GridMap, String, Option<grid::Cell>);
+
+/// Build the fixed part of an environment from the Python arguments, and the first map.
 #[allow(clippy::too_many_arguments)]
 fn spec(
     py: Python<'_>,
@@ -728,7 +747,7 @@ fn spec(
     max_steps: Option<u64>,
     gain: bool,
     team: bool,
-) -> PyResult<Spec> {
+) -> PyResult<(Spec, First)> {
     let options = crate::run::options(kwargs)?;
     if !team && options.robots != 1 {
         return Err(value_error(format!(
@@ -784,13 +803,26 @@ fn spec(
                 dungeon,
             }
         }
-        (None, Some((kind, size, resolution)), None) => Maps::Generated {
-            kind: kind
+        (None, Some((kind, size, resolution)), None) => {
+            // As Map.generate checks them, before a map is generated.
+            let kind: EnvKind = kind
                 .parse()
-                .map_err(|e| value_error(format!("--env: {e}")))?,
-            size,
-            resolution,
-        },
+                .map_err(|e| value_error(format!("--env: {e}")))?;
+            size.map(crate::map::check_size).transpose()?;
+            resolution.map(crate::map::check_resolution).transpose()?;
+            let first = EnvSpec {
+                kind,
+                seed: 0,
+                size_m: size,
+                resolution,
+            };
+            bench::explore::check_generate_memory(&first, None).map_err(value_error)?;
+            Maps::Generated {
+                kind,
+                size,
+                resolution,
+            }
+        }
         _ => {
             return Err(value_error(
                 "maps: give a non-empty list of maps, map files or a generator kind",
@@ -812,7 +844,7 @@ fn spec(
         run_bytes: 0,
     };
     // Check the options on the first map, and learn the observation's size.
-    let (first, name, _) = py.detach(|| s.map(0, None)).map_err(value_error)?;
+    let (first, name, marked) = py.detach(|| s.map(0, None)).map_err(value_error)?;
     let cfg = bench::explore::config(&s.options, &first, None).map_err(value_error)?;
     s.largest = match &s.maps {
         Maps::List(list) => list
@@ -854,7 +886,15 @@ fn spec(
             (first.height(), first.width())
         }
     };
-    Ok(s)
+    Ok((s, (first, name, marked)))
+}
+
+/// Start the first episode's run and drop it, once the memory it takes has been checked:
+/// options that only a run checks (`speed`, `clearance`, `goal`, a start cell that is not
+/// free) are refused when the environment is made, not at every reset after.
+fn try_first(py: Python<'_>, spec: &Spec, (map, name, marked): First) -> PyResult<()> {
+    py.detach(|| guarded(|| start_session(spec, 0, map, &name, marked).map(drop)).and_then(|r| r))
+        .map_err(py_error)
 }
 
 /// Bytes of one agent's observation, counted [`OBS_SETS`] + 2 times: the arrays the
@@ -951,11 +991,12 @@ impl EnvCore {
         max_steps: Option<u64>,
         gain: bool,
     ) -> PyResult<Self> {
-        let s = spec(
+        let (s, first) = spec(
             py, maps, generator, files, kwargs, candidates, k, view, lam, max_path_m, max_steps,
             gain, false,
         )?;
         check_memory(&s, 1, 1)?;
+        try_first(py, &s, first)?;
         Ok(Self {
             state: Mutex::new(State::new(Arc::new(s))),
             obs: Mutex::new(ObsPool::new(OBS_SETS)),
@@ -1130,11 +1171,13 @@ impl VecEnvCore {
         if threads == Some(0) {
             return Err(value_error("threads: expected at least 1, found 0"));
         }
-        let s = Arc::new(spec(
+        let (s, first) = spec(
             py, maps, generator, files, kwargs, candidates, k, view, lam, max_path_m, max_steps,
             gain, false,
-        )?);
+        )?;
         check_memory(&s, n, 1)?;
+        try_first(py, &s, first)?;
+        let s = Arc::new(s);
         // No more threads than environments: a helper with nothing to take would only spin.
         let pool = SpinPool::new(threads.unwrap_or_else(rayon::current_num_threads).min(n))
             .map_err(|e| PyRuntimeError::new_err(format!("starting helper threads: {e}")))?;
@@ -1387,11 +1430,12 @@ impl TeamEnvCore {
         max_steps: Option<u64>,
         gain: bool,
     ) -> PyResult<Self> {
-        let s = spec(
+        let (s, first) = spec(
             py, maps, generator, files, kwargs, candidates, k, view, lam, max_path_m, max_steps,
             gain, true,
         )?;
         check_memory(&s, 1, s.options.robots)?;
+        try_first(py, &s, first)?;
         let sets = OBS_SETS * s.options.robots;
         Ok(Self {
             state: Mutex::new(State::new(Arc::new(s))),

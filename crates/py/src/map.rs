@@ -102,20 +102,25 @@ pub(crate) fn check_resolution(r: f64) -> PyResult<()> {
     }
 }
 
+/// Refuse a generated map's size that is not two positive, finite numbers of metres.
+pub(crate) fn check_size((w, h): (f64, f64)) -> PyResult<()> {
+    if w.is_finite() && h.is_finite() && w > 0.0 && h > 0.0 {
+        Ok(())
+    } else {
+        Err(value_error(format!(
+            "--size: expected WxH in metres (e.g. 25x20), found '{w}x{h}'"
+        )))
+    }
+}
+
 /// A size in metres: (width, height), any sequence of two numbers.
 fn size_arg(v: Option<&Bound<'_, PyAny>>) -> PyResult<Option<(f64, f64)>> {
     let v = match v.filter(|v| !v.is_none()) {
         Some(v) => Some(pair_arg(v, "size", "(width, height) in metres", real_item)?),
         None => None,
     };
-    match v {
-        Some((w, h)) if !(w.is_finite() && h.is_finite() && w > 0.0 && h > 0.0) => {
-            Err(value_error(format!(
-                "--size: expected WxH in metres (e.g. 25x20), found '{w}x{h}'"
-            )))
-        }
-        v => Ok(v),
-    }
+    v.map(check_size).transpose()?;
+    Ok(v)
 }
 
 impl Map {

@@ -872,3 +872,33 @@ def test_regression_bytes_as_maps_is_a_type_error_naming_maps(office):
         ExploreEnv(b"office")
     with pytest.raises(ValueError, match=r"^k: expected at most \d+ candidates, found \d+$"):
         ExploreEnv(office, k=2**70)
+
+
+@pytest.mark.parametrize(
+    "kwargs,message",
+    [
+        (dict(speed=0), "--speed: expected a positive number of metres per second, from 0.001 "
+         "to 1000, found 0"),
+        (dict(speed=float("nan")), "--speed: .*found NaN"),
+        (dict(clearance=-1.0), "--clearance: expected a non-negative number of metres, found -1"),
+        (dict(goal=2.0), r"--goal: expected a coverage share in \(0, 1\], found 2"),
+        (dict(start=(0, 0)), r"map office-s3-15x12m-r0.25: start \(0, 0\): the cell is occupied"),
+        (dict(maps="office", size=(0, 0)), r"--size: expected WxH in metres \(e.g. 25x20\), "
+         "found '0x0'"),
+        (dict(maps="office", resolution=0), "--resolution: expected a positive number of "
+         "metres per cell, at most 1000, found '0'"),
+    ],
+)
+def test_regression_run_options_out_of_range_are_refused_at_construction(office, kwargs, message):
+    """Regression: a speed, clearance or goal out of range, or an occupied start, built the
+    environment, and every reset then failed with the message under the map's name; a
+    generator size of 0 said "invalid width_m = 0"."""
+    kwargs = dict(dict(maps=office), **kwargs)
+    maps = kwargs.pop("maps")
+    for make in (
+        lambda: ExploreEnv(maps, **kwargs),
+        lambda: ExploreVectorEnv(2, maps, **kwargs),
+        lambda: gymnasium.make("frontier/Explore-v0", maps=maps, **kwargs),
+    ):
+        with pytest.raises(ValueError, match=f"^{message}"):
+            make()

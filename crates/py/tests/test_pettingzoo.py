@@ -193,3 +193,10 @@ def test_regression_a_deciding_agent_left_out_of_the_actions_is_a_value_error(of
     with pytest.raises(ValueError, match=f"^actions: missing agent '{alone}'"):
         env.step({other: 0})
     env.step({alone: 0})
+
+
+def test_regression_run_options_out_of_range_are_refused_at_construction(office):
+    """Regression: ``speed=0`` built the team environment, and every reset then failed."""
+    with pytest.raises(ValueError, match="^--speed: expected a positive number of metres per "
+                       "second, from 0.001 to 1000, found 0"):
+        ExploreParallelEnv(office, robots=2, speed=0)
