@@ -9,9 +9,13 @@
 //!
 //! A store closed normally goes back to a rollback journal, so a finished database is one
 //! file that can be read without writing anything beside it. Reading (export, report, merge
-//! inputs) opens it read-only. Opening an existing database checks it first (SQLite's
-//! `quick_check`, and that it is a results store): a damaged file is refused rather than
-//! resumed or merged, and a merge checks every input before it writes its output.
+//! inputs) opens it read-only. Opening an existing database checks it first, read-only and
+//! before anything is written to it or beside it (SQLite's `quick_check`, frontier's tables
+//! and columns, the table layout version, and for a run the study it holds): a wrong path —
+//! another program's database, a store of another layout or study, a damaged file, a file
+//! that is not SQLite at all — is refused and left exactly as it was, rather than given
+//! frontier's tables and switched to WAL mode. A merge checks every input before it writes
+//! its output.
 
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
@@ -23,6 +27,9 @@ use crate::error::BenchError;
 
 /// Version of the table layout; databases of another version are refused.
 pub const SCHEMA_VERSION: &str = "3";
+
+/// The tables of a results store, as `CREATE` makes them.
+const TABLES: [&str; 4] = ["meta", "envs", "trials", "optimal"];
 
 /// One finished trial, as stored (and as exported to CSV, column for column).
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -329,12 +336,17 @@ pub struct Merged {
     pub total: usize,
 }
 
-/// A read-only connection to `path`. A database left in WAL mode (by an older version or
-/// a killed run) needs a `-shm` file beside it even to be read; in a directory the user
-/// cannot write, and when no `-wal` file holds unfinished work, it is opened as immutable
-/// instead (nothing is written to it then, so nothing can change under the reader).
-fn open_read_only(path: &Path) -> Result<Connection, BenchError> {
+/// A read-only connection to `path`, whose SQLite header says whether it is in WAL mode.
+/// A database in WAL mode (left so by an older version or a killed run, or another
+/// program's) makes every reader create a `-wal` and `-shm` file beside it and leave them
+/// there. When no `-wal` file holds unfinished work, or in a directory the user cannot
+/// write, it is opened as immutable instead: nothing is written to it or beside it then,
+/// and no writer is at work on it (a writer keeps a `-wal` file while it runs).
+fn open_read_only(path: &Path, wal_mode: bool) -> Result<Connection, BenchError> {
     let flags = OpenFlags::SQLITE_OPEN_READ_ONLY | OpenFlags::SQLITE_OPEN_NO_MUTEX;
+    if wal_mode && !sibling(path, "-wal").exists() {
+        return open_immutable(path);
+    }
     let first = Connection::open_with_flags(path, flags).and_then(|c| {
         c.busy_timeout(std::time::Duration::from_secs(30))?;
         c.query_row("SELECT COUNT(*) FROM sqlite_master", [], |_| Ok(()))?;
@@ -347,12 +359,43 @@ fn open_read_only(path: &Path) -> Result<Connection, BenchError> {
                 rusqlite::ffi::SQLITE_READONLY_DIRECTORY | rusqlite::ffi::SQLITE_CANTOPEN
             ) && !sibling(path, "-wal").exists() =>
         {
-            let uri = format!("file:{}?immutable=1", uri_path(path));
-            Connection::open_with_flags(uri, flags | OpenFlags::SQLITE_OPEN_URI)
-                .map_err(BenchError::sql(path))
+            open_immutable(path)
         }
         other => other.map_err(|e| sql_error(path, e)),
     }
+}
+
+/// A read-only connection to `path` as an immutable file: SQLite neither locks it nor
+/// reads or writes any file beside it (no `-wal`, `-shm` or `-journal`).
+fn open_immutable(path: &Path) -> Result<Connection, BenchError> {
+    let uri = format!("file:{}?immutable=1", uri_path(path));
+    let flags = OpenFlags::SQLITE_OPEN_READ_ONLY
+        | OpenFlags::SQLITE_OPEN_NO_MUTEX
+        | OpenFlags::SQLITE_OPEN_URI;
+    Connection::open_with_flags(uri, flags).map_err(|e| sql_error(path, e))
+}
+
+/// Whether a `-journal` file lies beside `path`: a write in rollback mode is under way, or
+/// was cut short (its process killed) and must be rolled back before the file is read.
+fn has_journal(path: &Path) -> bool {
+    std::fs::metadata(sibling(path, "-journal")).is_ok_and(|m| m.len() > 0)
+}
+
+/// The first 100 bytes of `path` (SQLite's file header; fewer in a shorter file), read
+/// without SQLite.
+fn sqlite_header(path: &Path) -> Result<Vec<u8>, BenchError> {
+    use std::io::Read;
+    let mut head = Vec::with_capacity(100);
+    std::fs::File::open(path)
+        .and_then(|f| f.take(100).read_to_end(&mut head))
+        .map_err(BenchError::io(path))?;
+    Ok(head)
+}
+
+/// Whether an SQLite header says the database is in WAL mode (its read and write
+/// versions, bytes 18 and 19, are 2).
+fn wal_mode(header: &[u8]) -> bool {
+    header.get(18..20) == Some(&[2, 2])
 }
 
 /// An SQLite error on `path`, in words when it says the file is not a database or is
@@ -364,6 +407,15 @@ fn sql_error(path: &Path, e: rusqlite::Error) -> BenchError {
             "is not an SQLite database; expected a frontier results database".to_string()
         }
         Some(rusqlite::ErrorCode::DatabaseCorrupt) => damaged(&e.to_string()),
+        Some(rusqlite::ErrorCode::ReadOnly)
+            if e.sqlite_error().map(|f| f.extended_code)
+                == Some(rusqlite::ffi::SQLITE_READONLY_ROLLBACK) =>
+        {
+            "has a write that was cut short (SQLite's -journal file beside it), which must be \
+             rolled back before it can be read, and reading writes nothing: resume the study \
+             into it once (which rolls it back), or open it with a program that may write it"
+                .to_string()
+        }
         _ => return BenchError::sql(path)(e),
     };
     BenchError::Store {
@@ -417,15 +469,70 @@ fn check_integrity(conn: &Connection, path: &Path) -> Result<(), BenchError> {
     }
 }
 
-/// Whether the database has the `meta` table every results store has.
-fn has_meta_table(conn: &Connection, path: &Path) -> Result<bool, BenchError> {
-    conn.query_row(
-        "SELECT COUNT(*) FROM sqlite_master WHERE type = 'table' AND name = 'meta'",
-        [],
-        |r| r.get::<_, i64>(0),
+/// The names of the tables of the database (SQLite's own left out), sorted.
+fn table_names(conn: &Connection, path: &Path) -> Result<Vec<String>, BenchError> {
+    conn.prepare(
+        "SELECT name FROM sqlite_master WHERE type = 'table' AND name NOT LIKE 'sqlite\\_%' \
+         ESCAPE '\\' ORDER BY name",
     )
-    .map(|n| n > 0)
+    .and_then(|mut st| {
+        st.query_map([], |r| r.get::<_, String>(0))?
+            .collect::<Result<Vec<_>, _>>()
+    })
     .map_err(BenchError::sql(path))
+}
+
+/// The column names of `table` in the database, in order (none if there is no such table).
+fn columns(conn: &Connection, table: &str) -> rusqlite::Result<Vec<String>> {
+    conn.prepare("SELECT name FROM pragma_table_info(?1)")?
+        .query_map([table], |r| r.get::<_, String>(0))?
+        .collect()
+}
+
+/// How the tables of the database differ from those `CREATE` makes (a table missing, a
+/// column missing or added), in words; `None` when they have the same columns. Other
+/// tables beside frontier's are no difference.
+fn layout_difference(conn: &Connection, path: &Path) -> Result<Option<String>, BenchError> {
+    let ours = Connection::open_in_memory()
+        .and_then(|c| c.execute_batch(CREATE).map(|()| c))
+        .map_err(BenchError::sql(path))?;
+    let mut found = Vec::new();
+    for table in TABLES {
+        let want = columns(&ours, table).map_err(BenchError::sql(path))?;
+        let have = columns(conn, table).map_err(BenchError::sql(path))?;
+        if have.is_empty() {
+            found.push(format!("it has no table {table}"));
+            continue;
+        }
+        let lacks: Vec<&str> = want
+            .iter()
+            .filter(|c| !have.contains(c))
+            .map(String::as_str)
+            .collect();
+        let extra: Vec<&str> = have
+            .iter()
+            .filter(|c| !want.contains(c))
+            .map(String::as_str)
+            .collect();
+        if !lacks.is_empty() {
+            found.push(format!("its table {table} lacks {}", lacks.join(", ")));
+        }
+        if !extra.is_empty() {
+            found.push(format!(
+                "its table {table} has {}, which layout {SCHEMA_VERSION} does not",
+                extra.join(", ")
+            ));
+        }
+    }
+    Ok((!found.is_empty()).then(|| found.join("; ")))
+}
+
+/// `tables` in words: at most 8 names, then how many there are in all.
+fn list_tables(tables: &[String]) -> String {
+    if tables.len() <= 8 {
+        return tables.join(", ");
+    }
+    format!("{}, ... ({} in all)", tables[..8].join(", "), tables.len())
 }
 
 /// Whether `a` and `b` name the same existing file, however they are spelled (relative or
@@ -475,20 +582,30 @@ pub fn refuse_overwriting(db: &Path, out: &Path, what: &str) -> Result<(), Bench
     Ok(())
 }
 
-fn not_a_store(path: &Path) -> BenchError {
+/// The error for an SQLite database that is not a results store, given its `tables`.
+fn not_a_store(path: &Path, tables: &[String]) -> BenchError {
+    let found = if tables.is_empty() {
+        "it has no tables".to_string()
+    } else {
+        format!(
+            "it has the tables {}, not frontier's ({})",
+            list_tables(tables),
+            TABLES.join(", ")
+        )
+    };
     BenchError::Store {
         path: path.to_path_buf(),
-        message: "is not a frontier results database (it has no results tables); give another file"
-            .into(),
+        message: format!("is not a frontier results database ({found}); give another file"),
     }
 }
 
 impl Store {
     /// Open (or create) the database at `path` for study `scenario` with `fingerprint`
     /// (see [`crate::plan::Plan::fingerprint`]); a database of another study or
-    /// fingerprint is refused, so results of different settings never mix.
+    /// fingerprint is refused before anything is written to it, so results of different
+    /// settings never mix.
     pub fn open(path: &Path, scenario: &str, fingerprint: &str) -> Result<Store, BenchError> {
-        let store = Store::open_raw(path)?;
+        let store = Store::open_checked(path, |s| s.check_study(scenario, fingerprint))?;
         store.claim(scenario, fingerprint)?;
         Ok(store)
     }
@@ -497,8 +614,23 @@ impl Store {
     ///
     /// An existing database is checked before anything is written to it: it must pass
     /// SQLite's `quick_check` (a damaged file would otherwise resume as "all done" from an
-    /// intact key index over lost rows) and be a results store, not some other database.
+    /// intact key index over lost rows) and be a results store of this table layout, not
+    /// some other database.
     pub fn open_raw(path: &Path) -> Result<Store, BenchError> {
+        Store::open_checked(path, |_| Ok(()))
+    }
+
+    /// Open (or create) the database at `path` for writing. An existing, non-empty file is
+    /// first opened read-only and checked (see [`Store::open_read_only`]; a store with
+    /// frontier's tables that does not record its layout yet, as when its making was cut
+    /// short, passes too), then given to `check`; only a store that passes both is opened
+    /// for writing, so a refused file is left byte for byte as it was, with nothing
+    /// written beside it. Only a new or empty file, or such a store, gets frontier's
+    /// tables and WAL mode.
+    pub fn open_checked(
+        path: &Path,
+        check: impl FnOnce(&Store) -> Result<(), BenchError>,
+    ) -> Result<Store, BenchError> {
         if path.is_dir() {
             return Err(BenchError::Store {
                 path: path.to_path_buf(),
@@ -515,17 +647,28 @@ impl Store {
             });
         }
         let existing = std::fs::metadata(path).is_ok_and(|m| m.len() > 0);
+        if existing {
+            if has_journal(path) {
+                // A write cut short must be rolled back before the file can be read, which a
+                // read-only connection cannot do. Whether the file is a store this program
+                // may write is told without the journal first, so that only a store is
+                // rolled back (by merely reading it for writing).
+                Store::inspect(path, false)?;
+                Connection::open(path)
+                    .and_then(|c| {
+                        c.busy_timeout(std::time::Duration::from_secs(30))?;
+                        c.query_row("SELECT COUNT(*) FROM sqlite_master", [], |_| Ok(()))
+                    })
+                    .map_err(BenchError::sql(path))?;
+            }
+            let (store, _) = Store::inspect(path, true)?;
+            check(&store)?;
+        }
         let sql = BenchError::sql(path);
         let conn = Connection::open(path).map_err(sql)?;
         let sql = BenchError::sql(path);
         conn.busy_timeout(std::time::Duration::from_secs(30))
             .map_err(sql)?;
-        if existing {
-            check_integrity(&conn, path)?;
-            if !has_meta_table(&conn, path)? {
-                return Err(not_a_store(path));
-            }
-        }
         let mode: String = conn
             .query_row("PRAGMA journal_mode=WAL", [], |r| r.get(0))
             .map_err(BenchError::sql(path))?;
@@ -551,9 +694,10 @@ impl Store {
     }
 
     /// Open an existing database for reading only (export, report, merge inputs): the
-    /// file is never written, so a database on a read-only file system or owned by
-    /// someone else can be read, and a wrong file given as an input stays as it was.
-    /// It must pass `quick_check` and be a results store of this table layout.
+    /// file is never written, nor anything beside it, so a database on a read-only file
+    /// system or owned by someone else can be read, and a wrong file given as an input
+    /// stays as it was. It must be an SQLite database that passes `quick_check` and a
+    /// results store of this table layout.
     pub fn open_read_only(path: &Path) -> Result<Store, BenchError> {
         let meta = match std::fs::metadata(path) {
             Ok(m) => m,
@@ -577,21 +721,67 @@ impl Store {
                 message: "is an empty file, not a frontier results database".into(),
             });
         }
-        let conn = open_read_only(path)?;
-        check_integrity(&conn, path)?;
-        if !has_meta_table(&conn, path)? {
-            return Err(not_a_store(path));
+        if has_journal(path) {
+            // Told without the journal first, so that another program's database says so
+            // rather than that it cannot be read as it is.
+            Store::inspect(path, false)?;
+        }
+        match Store::inspect(path, true)? {
+            (store, true) => Ok(store),
+            (_, false) => Err(BenchError::Store {
+                path: path.to_path_buf(),
+                message: "is not a frontier results database (it has frontier's tables but no \
+                          table layout version: it was never finished being made); give \
+                          another file"
+                    .into(),
+            }),
+        }
+    }
+
+    /// Open the existing, non-empty file `path` read-only and check that it is a results
+    /// store this program can use, writing nothing to it or beside it: an SQLite database
+    /// (by its header), passing `quick_check`, with frontier's `meta` table, a table
+    /// layout version this program reads and, at that version, frontier's tables and
+    /// columns. Also whether it records its layout version: a store whose making was cut
+    /// short before it did, with frontier's tables and columns, passes without.
+    ///
+    /// Not `whole`: only what the file is, read as immutable (any `-journal` beside it
+    /// ignored) and without `quick_check`, for a file whose last write was cut short and
+    /// which cannot be read whole before it is rolled back.
+    fn inspect(path: &Path, whole: bool) -> Result<(Store, bool), BenchError> {
+        let header = sqlite_header(path)?;
+        let conn = if whole {
+            open_read_only(path, wal_mode(&header))?
+        } else {
+            open_immutable(path)?
+        };
+        conn.busy_timeout(std::time::Duration::from_secs(30))
+            .map_err(BenchError::sql(path))?;
+        if whole {
+            check_integrity(&conn, path)?;
+        }
+        let tables = table_names(&conn, path)?;
+        let meta_columns = columns(&conn, "meta").map_err(BenchError::sql(path))?;
+        if meta_columns != ["key", "value"] {
+            return Err(not_a_store(path, &tables));
         }
         let store = Store {
             conn,
             path: path.to_path_buf(),
             writable: false,
         };
-        match store.meta("schema_version")? {
-            None => return Err(not_a_store(path)),
-            Some(v) => store.check_schema(&v)?,
+        let version = store.meta("schema_version")?;
+        if let Some(v) = &version {
+            store.check_schema(v)?;
         }
-        Ok(store)
+        match (layout_difference(&store.conn, path)?, &version) {
+            (None, _) => Ok((store, version.is_some())),
+            (Some(_), None) => Err(not_a_store(path, &tables)),
+            (Some(why), Some(v)) => Err(store.problem(format!(
+                "records table layout {v}, but its tables are not that layout's ({why}); it \
+                 was not written by frontier, or was changed since: give another file"
+            ))),
+        }
     }
 
     fn check_schema(&self, version: &str) -> Result<(), BenchError> {
@@ -649,15 +839,26 @@ impl Store {
 
     /// Record the study in an empty database, or check that it is the same study.
     pub fn claim(&self, scenario: &str, fingerprint: &str) -> Result<(), BenchError> {
+        self.check_study(scenario, fingerprint)?;
+        for (key, want) in [("scenario", scenario), ("fingerprint", fingerprint)] {
+            if self.meta(key)?.is_none() {
+                self.set_meta(key, want)?;
+            }
+        }
+        Ok(())
+    }
+
+    /// Refuse a database that holds another study than `scenario` with `fingerprint`
+    /// (one that holds none yet is no conflict); reads only.
+    pub fn check_study(&self, scenario: &str, fingerprint: &str) -> Result<(), BenchError> {
         for (key, want) in [("scenario", scenario), ("fingerprint", fingerprint)] {
             match self.meta(key)? {
-                None => self.set_meta(key, want)?,
-                Some(have) if have == want => {}
-                Some(have) => {
+                Some(have) if have != want => {
                     return Err(self.problem(format!(
                         "holds results of another {key} ('{have}', not '{want}'); use another database file"
                     )));
                 }
+                _ => {}
             }
         }
         Ok(())

@@ -1042,6 +1042,62 @@ fn report_reads_a_read_only_database() {
     );
 }
 
+/// Regression: `bench STUDY --db notes.db`, naming another program's SQLite database by
+/// mistake, gave it frontier's tables and switched it to WAL mode before (or instead of)
+/// refusing it, and `export`, `report` and `merge` left `-wal` and `-shm` files beside it.
+/// Every bench command refuses it, saying what it holds, and leaves its folder as it was.
+#[test]
+fn regression_bench_refuses_a_foreign_database_unchanged() {
+    let dir = tempfile::tempdir().unwrap();
+    let study = tiny_study(dir.path(), 7);
+    let good = dir.path().join("good.sqlite");
+    bench_shard(&study, &good, "1/1");
+    let theirs = dir.path().join("theirs");
+    std::fs::create_dir(&theirs).unwrap();
+    let notes = theirs.join("notes.db");
+    let conn = rusqlite::Connection::open(&notes).unwrap();
+    conn.query_row("PRAGMA journal_mode=WAL", [], |_| Ok(()))
+        .unwrap();
+    conn.execute_batch(
+        "CREATE TABLE meta (key TEXT PRIMARY KEY, value TEXT NOT NULL);
+         CREATE TABLE notes (body TEXT); INSERT INTO notes VALUES ('buy milk');",
+    )
+    .unwrap();
+    drop(conn);
+    let before = snapshot(&theirs);
+    let (s, g) = (study.to_str().unwrap(), good.to_str().unwrap());
+    let out = dir.path().join("out");
+    let o = out.to_str().unwrap();
+    for (db, found) in [(
+        &notes,
+        "is not a frontier results database (it has the tables meta, notes, not frontier's \
+         (meta, envs, trials, optimal)); give another file",
+    )] {
+        let d = db.to_str().unwrap();
+        let merged = format!("{o}.sqlite");
+        let commands: [&[&str]; 6] = [
+            &["bench", s, "--db", d, "-j", "1", "--no-progress"],
+            &["bench", "export", d, "--csv", &format!("{o}.csv")],
+            &["bench", "report", d, "--out", o],
+            &["bench", "merge", &merged, g, d],
+            &["bench", "merge", d, g],
+            &["bench", "merge", d, d],
+        ];
+        for args in commands {
+            let e = err(args);
+            assert!(e.contains(&format!("{d}: {found}")), "{args:?}: {e}");
+            assert!(!e.contains("panicked"), "{args:?}: {e}");
+            assert_eq!(snapshot(&theirs), before, "{args:?} changed {d}");
+        }
+        let left: Vec<_> = std::fs::read_dir(dir.path())
+            .unwrap()
+            .map(|e| e.unwrap().file_name().into_string().unwrap())
+            .filter(|n| n.starts_with("out"))
+            .collect();
+        assert!(left.is_empty(), "a refused command wrote {left:?}");
+    }
+}
+
 #[test]
 fn a_run_recorded_as_mcap_is_a_map_again() {
     let dir = tempfile::tempdir().unwrap();

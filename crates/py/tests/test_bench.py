@@ -125,6 +125,31 @@ def test_not_a_store(tmp_path):
         frontier.bench.load(bad, backend="excel")
 
 
+def test_regression_load_refuses_a_foreign_database_unchanged(tmp_path):
+    """Regression: ``load`` of another program's SQLite database in WAL mode left ``-wal``
+    and ``-shm`` files beside it, and said only that it had "no results tables". It names
+    the tables it found, and the folder is left as it was."""
+    import sqlite3
+
+    db = tmp_path / "notes.db"
+    conn = sqlite3.connect(db)
+    conn.execute("PRAGMA journal_mode=WAL")
+    conn.executescript(
+        "CREATE TABLE meta (key TEXT PRIMARY KEY, value TEXT NOT NULL);"
+        "CREATE TABLE notes (body TEXT); INSERT INTO notes VALUES ('buy milk');"
+    )
+    conn.close()
+    before = db.read_bytes()
+    assert before[18:20] == b"\x02\x02", "the database is in WAL mode"
+    with pytest.raises(
+        ValueError,
+        match=r"notes\.db: is not a frontier results database \(it has the tables meta, notes, "
+        r"not frontier's \(meta, envs, trials, optimal\)\)",
+    ):
+        frontier.bench.load(db)
+    assert db.read_bytes() == before
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["notes.db"]
+
 def test_regression_load_gives_integer_seeds_as_the_csv_does(store):
     pd = pytest.importorskip("pandas")
     df = frontier.bench.load(store / "tiny.sqlite")
