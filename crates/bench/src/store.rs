@@ -31,6 +31,9 @@ pub const SCHEMA_VERSION: &str = "3";
 /// The tables of a results store, as `CREATE` makes them.
 const TABLES: [&str; 4] = ["meta", "envs", "trials", "optimal"];
 
+/// The first bytes of every SQLite database file.
+const SQLITE_MAGIC: &[u8] = b"SQLite format 3\0";
+
 /// One finished trial, as stored (and as exported to CSV, column for column).
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct TrialRow {
@@ -382,14 +385,25 @@ fn has_journal(path: &Path) -> bool {
 }
 
 /// The first 100 bytes of `path` (SQLite's file header; fewer in a shorter file), read
-/// without SQLite.
+/// without SQLite: a file that does not begin as an SQLite database does is refused,
+/// saying what it begins with.
 fn sqlite_header(path: &Path) -> Result<Vec<u8>, BenchError> {
     use std::io::Read;
     let mut head = Vec::with_capacity(100);
     std::fs::File::open(path)
         .and_then(|f| f.take(100).read_to_end(&mut head))
         .map_err(BenchError::io(path))?;
-    Ok(head)
+    if head.starts_with(SQLITE_MAGIC) {
+        return Ok(head);
+    }
+    Err(BenchError::Store {
+        path: path.to_path_buf(),
+        message: format!(
+            "is not an SQLite database (it starts with \"{}\"); expected a frontier results \
+             database",
+            head[..head.len().min(16)].escape_ascii()
+        ),
+    })
 }
 
 /// Whether an SQLite header says the database is in WAL mode (its read and write
@@ -535,6 +549,27 @@ fn list_tables(tables: &[String]) -> String {
     format!("{}, ... ({} in all)", tables[..8].join(", "), tables.len())
 }
 
+/// The nearest existing ancestor of `path` that is not a folder: a file where the folder
+/// of `path` should be, so no database can be there.
+fn file_in_the_way(path: &Path) -> Option<&Path> {
+    path.ancestors()
+        .skip(1)
+        .filter(|d| !d.as_os_str().is_empty())
+        .find(|d| d.exists())
+        .filter(|d| !d.is_dir())
+}
+
+/// The error for a store path under `file`, a file and not a folder.
+fn under_a_file(path: &Path, file: &Path) -> BenchError {
+    BenchError::Store {
+        path: path.to_path_buf(),
+        message: format!(
+            "expected a results database in a folder, but {} is a file; give a path outside it",
+            file.display()
+        ),
+    }
+}
+
 /// Whether `a` and `b` name the same existing file, however they are spelled (relative or
 /// absolute, with `..`, through symbolic or hard links). A path that does not exist is no
 /// existing file, so it is the same as none.
@@ -580,6 +615,41 @@ pub fn refuse_overwriting(db: &Path, out: &Path, what: &str) -> Result<(), Bench
         }
     }
     Ok(())
+}
+
+/// The error for a store that this user cannot create or write, given SQLite's; any other
+/// SQLite error as it is. A run or merge writes into the file and keeps SQLite's `-wal`
+/// and `-shm` files beside it, so both the file and its folder must be writable.
+fn not_writable(path: &Path, e: rusqlite::Error) -> BenchError {
+    use rusqlite::ErrorCode::{CannotOpen, PermissionDenied, ReadOnly};
+    if !matches!(
+        e.sqlite_error_code(),
+        Some(CannotOpen | PermissionDenied | ReadOnly)
+    ) {
+        return BenchError::sql(path)(e);
+    }
+    let folder = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    let message = if path.exists() {
+        format!(
+            "cannot be written by this user: a run or merge writes into it and keeps SQLite's \
+             -wal and -shm files beside it, so expected the file and its folder {} to be \
+             writable; give a path you may write",
+            folder.display()
+        )
+    } else {
+        format!(
+            "cannot be created by this user: expected a folder ({}) this user may write, where \
+             a run or merge makes the file and SQLite's -wal and -shm files beside it",
+            folder.display()
+        )
+    };
+    BenchError::Store {
+        path: path.to_path_buf(),
+        message,
+    }
 }
 
 /// The error for an SQLite database that is not a results store, given its `tables`.
@@ -637,6 +707,9 @@ impl Store {
                 message: "is a folder; expected a results database file (e.g. study.sqlite)".into(),
             });
         }
+        if let Some(file) = file_in_the_way(path) {
+            return Err(under_a_file(path, file));
+        }
         if let Some(dir) = grid::io::missing_folder(path) {
             return Err(BenchError::Store {
                 path: path.to_path_buf(),
@@ -659,19 +732,18 @@ impl Store {
                         c.busy_timeout(std::time::Duration::from_secs(30))?;
                         c.query_row("SELECT COUNT(*) FROM sqlite_master", [], |_| Ok(()))
                     })
-                    .map_err(BenchError::sql(path))?;
+                    .map_err(|e| not_writable(path, e))?;
             }
             let (store, _) = Store::inspect(path, true)?;
             check(&store)?;
         }
-        let sql = BenchError::sql(path);
-        let conn = Connection::open(path).map_err(sql)?;
+        let conn = Connection::open(path).map_err(|e| not_writable(path, e))?;
         let sql = BenchError::sql(path);
         conn.busy_timeout(std::time::Duration::from_secs(30))
             .map_err(sql)?;
         let mode: String = conn
             .query_row("PRAGMA journal_mode=WAL", [], |r| r.get(0))
-            .map_err(BenchError::sql(path))?;
+            .map_err(|e| not_writable(path, e))?;
         if !mode.eq_ignore_ascii_case("wal") {
             return Err(BenchError::Store {
                 path: path.to_path_buf(),
@@ -701,14 +773,25 @@ impl Store {
     pub fn open_read_only(path: &Path) -> Result<Store, BenchError> {
         let meta = match std::fs::metadata(path) {
             Ok(m) => m,
-            Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
-                return Err(BenchError::Store {
-                    path: path.to_path_buf(),
-                    message: "no such file; expected a results database".into(),
-                });
+            Err(e) => {
+                if let Some(file) = file_in_the_way(path) {
+                    return Err(under_a_file(path, file));
+                }
+                if e.kind() == std::io::ErrorKind::NotFound {
+                    return Err(BenchError::Store {
+                        path: path.to_path_buf(),
+                        message: "no such file; expected a results database".into(),
+                    });
+                }
+                return Err(BenchError::io(path)(e));
             }
-            Err(e) => return Err(BenchError::io(path)(e)),
         };
+        if meta.is_dir() {
+            return Err(BenchError::Store {
+                path: path.to_path_buf(),
+                message: "is a folder; expected a results database file (e.g. study.sqlite)".into(),
+            });
+        }
         if !meta.is_file() {
             return Err(BenchError::Store {
                 path: path.to_path_buf(),

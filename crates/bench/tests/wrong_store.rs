@@ -1,8 +1,9 @@
 //! Regressions of giving a wrong file where a study store is expected (`--db`, resume,
 //! `merge` inputs and output, `report`, `export`): another program's SQLite database, a
-//! store of another table layout or study. Every opening path refuses it, naming the file,
-//! what was expected and what was found, and leaves it byte for byte as it was, with no
-//! `-wal`, `-shm` or `-journal` file beside it.
+//! store of another table layout or study, a file that is not SQLite at all, a path under
+//! a file. Every opening path refuses it, naming the file, what was expected and what was
+//! found, and leaves it byte for byte as it was, with no `-wal`, `-shm` or `-journal` file
+//! beside it.
 
 use std::path::{Path, PathBuf};
 
@@ -300,6 +301,113 @@ fn store_of_another_study_is_refused_unchanged() {
     // The study it holds still resumes (nothing left to run).
     let again = bench::runner::run(&plan(ONE), &db, &opts()).unwrap();
     assert_eq!((again.ran, again.already_done), (0, 2));
+}
+
+/// Regression: a file that is not SQLite at all (a CSV export, a PNG, a short text) given
+/// as `--db` was "file is not a database" from SQLite, or "is not an SQLite database"
+/// without a word on what it is. The error says what it starts with, and the file is
+/// left as it was.
+#[test]
+fn file_that_is_not_sqlite_is_refused_unchanged() {
+    let dir = tempfile::tempdir().unwrap();
+    let png = [
+        0x89, b'P', b'N', b'G', b'\r', b'\n', 0x1a, b'\n', 0, 0, 0, 13, b'I', b'H', b'D', b'R', 0,
+        0, 0, 1,
+    ];
+    let cases: [(&str, &[u8], &str); 4] = [
+        (
+            "all.csv",
+            b"key,scenario,env,env_kind\ne|cf,one,e,empty\n",
+            "(it starts with \"key,scenario,env\")",
+        ),
+        (
+            "map.png",
+            &png,
+            "(it starts with \"\\x89PNG\\r\\n\\x1a\\n\\x00\\x00\\x00\\rIHDR\")",
+        ),
+        ("short.sqlite", b"abc", "(it starts with \"abc\")"),
+        (
+            "garbled.sqlite",
+            b"SQLite format 3\0",
+            "is not an SQLite database; expected a frontier results database",
+        ),
+    ];
+    for (name, bytes, found) in cases {
+        let db = dir.path().join(name);
+        let mut bytes = bytes.to_vec();
+        if name == "garbled.sqlite" {
+            // An SQLite header followed by noise: no page size SQLite accepts.
+            bytes.resize(4096, 0xff);
+        }
+        std::fs::write(&db, bytes).unwrap();
+        for e in every_opening_error(&db, None) {
+            assert!(e.contains("is not an SQLite database"), "{name}: {e}");
+            assert!(e.contains(found), "{name}: {e}");
+            assert!(
+                e.contains("expected a frontier results database"),
+                "{name}: {e}"
+            );
+        }
+    }
+}
+
+/// Regression: a store path under a file (`afile/s.sqlite`, `afile` a file) was "the
+/// folder afile does not exist; create it first" when running and "Not a directory (os
+/// error 20)" when reading. Both say that `afile` is a file.
+#[test]
+fn store_under_a_file_says_the_file_is_in_the_way() {
+    let dir = tempfile::tempdir().unwrap();
+    let afile = dir.path().join("afile");
+    std::fs::write(&afile, "not a folder").unwrap();
+    let good = dir.path().join("good.sqlite");
+    run(ONE, &good);
+    for db in [afile.join("s.sqlite"), afile.join("sub").join("s.sqlite")] {
+        let errors = [
+            bench::runner::run(&plan(ONE), &db, &opts()).map(drop),
+            Store::open_raw(&db).map(drop),
+            Store::open_read_only(&db).map(drop),
+            Store::merge(&db, std::slice::from_ref(&good)).map(drop),
+            Store::merge(&dir.path().join("m.sqlite"), &[good.clone(), db.clone()]).map(drop),
+        ];
+        for e in errors {
+            let e = e.unwrap_err().to_string();
+            assert!(e.starts_with(&format!("{}: ", db.display())), "{e}");
+            assert!(
+                e.contains(&format!(
+                    "expected a results database in a folder, but {} is a file",
+                    afile.display()
+                )),
+                "{e}"
+            );
+            assert!(!e.contains("os error"), "{e}");
+        }
+    }
+    assert_eq!(std::fs::read_to_string(&afile).unwrap(), "not a folder");
+    assert!(!dir.path().join("m.sqlite").exists());
+}
+
+/// Regression: a folder given where a store is read (`export DIR`, a merge input) was "is
+/// not a file"; it is called a folder, as where a store is written.
+#[test]
+fn folder_given_as_a_store_to_read_is_called_a_folder() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("m.sqlite");
+    let folder = dir.path().to_path_buf();
+    for e in [
+        Store::open_read_only(&folder).map(drop),
+        Store::merge(&out, std::slice::from_ref(&folder)).map(drop),
+        Store::open_raw(&folder).map(drop),
+    ] {
+        let e = e.unwrap_err().to_string();
+        assert_eq!(
+            e,
+            format!(
+                "{}: is a folder; expected a results database file (e.g. study.sqlite)",
+                folder.display()
+            )
+        );
+    }
+    assert!(!out.exists());
 }
 
 /// The files beside `db` that SQLite makes (`-wal`, `-shm`, `-journal`).

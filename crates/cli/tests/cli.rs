@@ -1042,10 +1042,58 @@ fn report_reads_a_read_only_database() {
     );
 }
 
+/// Regression: a study run, resumed or merged into a folder the user may not write failed
+/// with SQLite's "unable to open database file" or "attempt to write a readonly database",
+/// which did not say what was wrong. It says which file or folder must be writable, and
+/// the store is left as it was.
+#[cfg(unix)]
+#[test]
+fn regression_bench_into_a_read_only_folder_says_what_must_be_writable() {
+    let dir = tempfile::tempdir().unwrap();
+    let (ro, out, db) = finished_study_in_ro(dir.path());
+    let before = snapshot(&ro);
+    let study = tiny_study(dir.path(), 7);
+    let (s, d, r) = (
+        study.to_str().unwrap(),
+        db.to_str().unwrap(),
+        ro.to_str().unwrap(),
+    );
+    let new = ro.join("new.sqlite");
+    let n = new.to_str().unwrap();
+    let cases: [(&[&str], String); 3] = [
+        (
+            &["bench", s, "--db", d, "-j", "1", "--no-progress"],
+            format!(
+                "{d}: cannot be written by this user: a run or merge writes into it and keeps \
+                 SQLite's -wal and -shm files beside it, so expected the file and its folder \
+                 {r} to be writable"
+            ),
+        ),
+        (
+            &["bench", s, "--db", n, "-j", "1", "--no-progress"],
+            format!(
+                "{n}: cannot be created by this user: expected a folder ({r}) this user may write"
+            ),
+        ),
+        (
+            &["bench", "merge", d, d],
+            format!("{d}: cannot be written by this user"),
+        ),
+    ];
+    for (args, want) in cases {
+        let o = frontier_on_a_read_only_database(&db, &out, args);
+        let e = String::from_utf8_lossy(&o.stderr);
+        assert!(!o.status.success(), "{args:?} should fail");
+        assert!(e.contains(&want), "{args:?}: {e}");
+        assert_eq!(snapshot(&ro), before, "{args:?} changed the store's folder");
+    }
+}
+
 /// Regression: `bench STUDY --db notes.db`, naming another program's SQLite database by
 /// mistake, gave it frontier's tables and switched it to WAL mode before (or instead of)
 /// refusing it, and `export`, `report` and `merge` left `-wal` and `-shm` files beside it.
-/// Every bench command refuses it, saying what it holds, and leaves its folder as it was.
+/// Every bench command refuses it, saying what it holds, and leaves its folder as it was;
+/// a file that is not SQLite at all is named by what it starts with.
 #[test]
 fn regression_bench_refuses_a_foreign_database_unchanged() {
     let dir = tempfile::tempdir().unwrap();
@@ -1064,15 +1112,24 @@ fn regression_bench_refuses_a_foreign_database_unchanged() {
     )
     .unwrap();
     drop(conn);
+    let csv = theirs.join("all.csv");
+    std::fs::write(&csv, "key,scenario,env\n").unwrap();
     let before = snapshot(&theirs);
     let (s, g) = (study.to_str().unwrap(), good.to_str().unwrap());
     let out = dir.path().join("out");
     let o = out.to_str().unwrap();
-    for (db, found) in [(
-        &notes,
-        "is not a frontier results database (it has the tables meta, notes, not frontier's \
-         (meta, envs, trials, optimal)); give another file",
-    )] {
+    for (db, found) in [
+        (
+            &notes,
+            "is not a frontier results database (it has the tables meta, notes, not frontier's \
+             (meta, envs, trials, optimal)); give another file",
+        ),
+        (
+            &csv,
+            "is not an SQLite database (it starts with \"key,scenario,env\"); expected a \
+             frontier results database",
+        ),
+    ] {
         let d = db.to_str().unwrap();
         let merged = format!("{o}.sqlite");
         let commands: [&[&str]; 6] = [
