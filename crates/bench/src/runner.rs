@@ -103,10 +103,22 @@ pub fn progress_wanted() -> bool {
 /// Run the trials of `plan` missing from the database at `db`.
 pub fn run(plan: &Plan, db: &Path, opts: &RunOptions) -> Result<RunSummary, BenchError> {
     let started = Instant::now();
-    let store = Store::open(db, &plan.name, &plan.fingerprint())?;
     let source = format!("the study ({})", plan.source);
-    for env in &plan.envs {
-        store.put_env(&env_picture(env)?, &source)?;
+    let pictures = plan
+        .envs
+        .iter()
+        .map(env_picture)
+        .collect::<Result<Vec<_>, _>>()?;
+    // An existing store is checked against the plan read-only first, so that a refused run
+    // (an edited scenario) leaves it as it was.
+    let store = Store::open(db, &plan.name, &plan.fingerprint(), |s| {
+        for p in &pictures {
+            s.check_env(p, &source)?;
+        }
+        check_setups(plan, s, db).map(drop)
+    })?;
+    for p in &pictures {
+        store.put_env(p, &source)?;
     }
     let done = check_setups(plan, &store, db)?;
     let mine: Vec<&Trial> = plan

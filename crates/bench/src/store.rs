@@ -672,10 +672,20 @@ fn not_a_store(path: &Path, tables: &[String]) -> BenchError {
 impl Store {
     /// Open (or create) the database at `path` for study `scenario` with `fingerprint`
     /// (see [`crate::plan::Plan::fingerprint`]); a database of another study or
-    /// fingerprint is refused before anything is written to it, so results of different
-    /// settings never mix.
-    pub fn open(path: &Path, scenario: &str, fingerprint: &str) -> Result<Store, BenchError> {
-        let store = Store::open_checked(path, |s| s.check_study(scenario, fingerprint))?;
+    /// fingerprint is refused, so results of different settings never mix. An existing
+    /// database is checked read-only first — that it holds no other study, then `check`
+    /// (a run's: that it holds the plan's environments and trials as the plan runs them) —
+    /// so a refused one is left as it was.
+    pub fn open(
+        path: &Path,
+        scenario: &str,
+        fingerprint: &str,
+        check: impl FnOnce(&Store) -> Result<(), BenchError>,
+    ) -> Result<Store, BenchError> {
+        let store = Store::open_checked(path, |s| {
+            s.check_study(scenario, fingerprint)?;
+            check(s)
+        })?;
         store.claim(scenario, fingerprint)?;
         Ok(store)
     }
@@ -1044,13 +1054,8 @@ impl Store {
     /// name that draws another map (`source`, the scenario or a database being merged,
     /// changed it) is refused, as results of the two maps would pass for one.
     pub fn put_env(&self, e: &EnvPicture, source: &str) -> Result<(), BenchError> {
-        if let Some(have) = self.env(&e.name)? {
-            return match have.difference(e, source) {
-                None => Ok(()),
-                Some(why) => Err(self.problem(format!(
-                    "{why}; these results are of another environment: use another database file"
-                ))),
-            };
+        if self.check_env(e, source)? {
+            return Ok(());
         }
         self.conn
             .execute(
@@ -1059,6 +1064,21 @@ impl Store {
             )
             .map(|_| ())
             .map_err(BenchError::sql(&self.path))
+    }
+
+    /// Refuse `e` (of `source`) when the store holds a picture of the same name that draws
+    /// another map, as [`Store::put_env`] does, without writing anything; whether the store
+    /// holds it already.
+    pub fn check_env(&self, e: &EnvPicture, source: &str) -> Result<bool, BenchError> {
+        let Some(have) = self.env(&e.name)? else {
+            return Ok(false);
+        };
+        match have.difference(e, source) {
+            None => Ok(true),
+            Some(why) => Err(self.problem(format!(
+                "{why}; these results are of another environment: use another database file"
+            ))),
+        }
     }
 
     /// Store the optimal path of `key` (see [`crate::competitive::key`]), committed at once.

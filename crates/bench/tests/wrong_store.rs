@@ -1,9 +1,9 @@
 //! Regressions of giving a wrong file where a study store is expected (`--db`, resume,
 //! `merge` inputs and output, `report`, `export`): another program's SQLite database, a
-//! store of another table layout or study, a file that is not SQLite at all, a path under
-//! a file. Every opening path refuses it, naming the file, what was expected and what was
-//! found, and leaves it byte for byte as it was, with no `-wal`, `-shm` or `-journal` file
-//! beside it.
+//! store of another table layout, study or edited scenario, a file that is not SQLite at
+//! all, a path under a file. Every opening path refuses it, naming the file, what was
+//! expected and what was found, and leaves it byte for byte as it was, with no `-wal`,
+//! `-shm` or `-journal` file beside it.
 
 use std::path::{Path, PathBuf};
 
@@ -455,6 +455,36 @@ fn reading_a_wal_mode_store_writes_nothing_beside_it() {
     let again = bench::runner::run(&plan(ONE), &db, &opts()).unwrap();
     assert_eq!(again.already_done, 2);
     assert!(siblings(&db).is_empty(), "{:?}", siblings(&db));
+}
+
+/// Regression: resuming a study whose scenario was edited (a start moved, an environment
+/// added) gave the store the new environment's picture, and switched it to WAL mode and
+/// back, before the moved start was found and the run refused. It is refused before
+/// anything is written, with the message it had.
+#[test]
+fn edited_scenario_is_refused_before_anything_is_written() {
+    let fixed = ONE.replace("resolution = 0.5", "resolution = 0.5\nstart = [2, 2]");
+    let dir = tempfile::tempdir().unwrap();
+    let db = dir.path().join("one.sqlite");
+    run(&fixed, &db);
+    let before = snapshot(&db);
+    let edited = format!(
+        "{}\n[[env]]\nkind = \"empty\"\nname = \"more\"\nsize = [5, 4]\nresolution = 0.5\n",
+        fixed.replace("start = [2, 2]", "start = [3, 2]")
+    );
+    let e = bench::runner::run(&plan(&edited), &db, &opts())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.starts_with(&format!("{}: holds trial ", db.display())),
+        "{e}"
+    );
+    assert!(
+        e.contains("run with starts [[2,2]], but s.toml now runs it with starts [[3,2]]"),
+        "{e}"
+    );
+    assert_eq!(snapshot(&db), before, "a refused run changed the store");
+    assert_eq!(Store::open_read_only(&db).unwrap().envs().unwrap().len(), 1);
 }
 
 /// A copy at `copy` of the database `db` as a process killed in the middle of a write
