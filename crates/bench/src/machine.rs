@@ -34,14 +34,11 @@ fn tightest(
     group: Option<u64>,
     address_space: Option<u64>,
 ) -> Option<Available> {
-    [
+    grid::memory::least([
         machine.map(|b| Available::new(b, Limit::Machine)),
         group.map(|b| Available::new(b, Limit::Cgroup)),
         address_space.map(|b| Available::new(b, Limit::AddressSpace)),
-    ]
-    .into_iter()
-    .flatten()
-    .min_by_key(|a| a.bytes)
+    ])
 }
 
 /// The `MemAvailable` line of a `/proc/meminfo` text, in bytes.

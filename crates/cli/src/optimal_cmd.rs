@@ -120,9 +120,8 @@ fn check_setup_memory(
     memory_mb: usize,
 ) -> Result<()> {
     let needed = setup_bytes_at(map, factor, spec)?;
-    let budget = (memory_mb as u64).saturating_mul(1 << 20);
     let available = bench::machine::available();
-    let limit = available.map_or(budget, |a| a.bytes.min(budget));
+    let limit = sim::memory::limit(Some(memory_mb as u64), available).map_or(u64::MAX, |l| l.bytes);
     if needed <= limit {
         return Ok(());
     }

@@ -1,5 +1,6 @@
-//! How much memory a process can still take and which limit leaves it: what the map loaders
-//! (and the runs of the crates above) compare their estimates with before allocating.
+//! How much memory a process can still take (or its user lets it take) and which limit
+//! leaves it: what the map loaders (and the runs of the crates above) compare their
+//! estimates with before allocating.
 //!
 //! `grid` reads no limits itself (`bench::machine` reads them from the operating system);
 //! a library user who wants no check passes none.
@@ -17,11 +18,14 @@ pub enum Limit {
     AddressSpace,
     /// A budget the caller chose.
     Budget,
+    /// A budget the user gave with the named flag (`--memory-mb`), in MiB.
+    Flag(&'static str),
 }
 
 /// Bytes of memory a process can still take, and the limit that leaves them.
 ///
-/// Displays as the limit would be named in a refusal, e.g. "the 976 MiB ulimit -v leaves".
+/// Displays as the limit would be named in a refusal, e.g. "the 976 MiB ulimit -v leaves"
+/// or, for a user's budget, as the user gave it: "--memory-mb 512".
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Available {
     /// Bytes that can still be taken.
@@ -40,6 +44,19 @@ impl Available {
     pub fn budget(bytes: u64) -> Self {
         Self::new(bytes, Limit::Budget)
     }
+
+    /// A budget of `mib` MiB the user gave with `flag` (e.g. `--memory-mb`).
+    pub fn flag(flag: &'static str, mib: u64) -> Self {
+        // A budget too large to count in bytes is no limit: it saturates, and no estimate
+        // exceeds it to be named.
+        Self::new(mib.saturating_mul(1 << 20), Limit::Flag(flag))
+    }
+}
+
+/// The least of the `limits` that are known (the first of equal ones): the one that applies
+/// when a process is under several (the machine's, a cgroup's, a user's budget).
+pub fn least(limits: impl IntoIterator<Item = Option<Available>>) -> Option<Available> {
+    limits.into_iter().flatten().min_by_key(|a| a.bytes)
 }
 
 impl fmt::Display for Available {
@@ -50,6 +67,7 @@ impl fmt::Display for Available {
             Limit::Cgroup => write!(f, "the {mib} MiB the cgroup memory limit leaves"),
             Limit::AddressSpace => write!(f, "the {mib} MiB ulimit -v leaves"),
             Limit::Budget => write!(f, "the memory budget of {mib} MiB"),
+            Limit::Flag(flag) => write!(f, "{flag} {mib}"),
         }
     }
 }
@@ -77,5 +95,22 @@ mod tests {
             Available::budget(64 * mib).to_string(),
             "the memory budget of 64 MiB"
         );
+        assert_eq!(
+            Available::flag("--memory-mb", 512).to_string(),
+            "--memory-mb 512"
+        );
+    }
+
+    #[test]
+    fn the_least_known_limit_applies() {
+        let machine = Available::new(8 << 30, Limit::Machine);
+        let budget = Available::flag("--memory-mb", 512);
+        assert_eq!(least([Some(machine), Some(budget)]), Some(budget));
+        assert_eq!(least([None, Some(machine), None]), Some(machine));
+        assert_eq!(least([None, None]), None);
+        // Of equal ones, the first.
+        let cgroup = Available::new(8 << 30, Limit::Cgroup);
+        assert_eq!(least([Some(machine), Some(cgroup)]), Some(machine));
+        assert_eq!(least([Some(cgroup), Some(machine)]), Some(cgroup));
     }
 }

@@ -63,8 +63,20 @@ pub struct TooBig {
     pub fix: String,
 }
 
+/// The memory a command may spend: the tighter of `budget_mb` (a user's `--memory-mb`) and
+/// the memory `available` (the budget on a tie), named as a refusal names it. A command
+/// compares every estimate with it, a run's ([`check`]) and a map file's loading
+/// (`grid::io::LoadOptions::memory`) alike.
+pub fn limit(budget_mb: Option<u64>, available: Option<Available>) -> Option<Available> {
+    grid::memory::least([
+        budget_mb.map(|mb| Available::flag("--memory-mb", mb)),
+        available,
+    ])
+}
+
 /// Check `needed` bytes against `budget_mb` (a user's `--memory-mb`) and the memory
-/// `available` (with the limit that leaves it): `Err` names the tighter limit exceeded.
+/// `available` (with the limit that leaves it): `Err` names the tighter limit exceeded
+/// ([`limit`]).
 pub fn check(
     what: &str,
     needed: u64,
@@ -72,23 +84,15 @@ pub fn check(
     available: Option<Available>,
     fix: &str,
 ) -> Result<(), TooBig> {
-    let too_big = |limit: String| TooBig {
-        what: what.to_string(),
-        needed,
-        limit,
-        fix: fix.to_string(),
-    };
-    if let Some(mb) = budget_mb
-        && needed > mb.saturating_mul(1 << 20)
-    {
-        return Err(too_big(format!("--memory-mb {mb}")));
+    match limit(budget_mb, available) {
+        Some(limit) if needed > limit.bytes => Err(TooBig {
+            what: what.to_string(),
+            needed,
+            limit: limit.to_string(),
+            fix: fix.to_string(),
+        }),
+        _ => Ok(()),
     }
-    if let Some(avail) = available
-        && needed > avail.bytes
-    {
-        return Err(too_big(avail.to_string()));
-    }
-    Ok(())
 }
 
 /// A batch run on `workers` threads: the largest of `needs` (estimated bytes and name of
@@ -174,6 +178,16 @@ mod tests {
                 .contains("more than the 2048 MiB ulimit -v leaves; fix it"),
             "{e}"
         );
+        // Over both, the tighter is named: lowering the estimate below the budget alone
+        // would not do.
+        let e = check("x", 3 << 30, Some(2560), machine(2 << 30), "fix it").unwrap_err();
+        assert!(
+            e.to_string()
+                .contains("2048 MiB this machine has available"),
+            "{e}"
+        );
+        let e = check("x", 3 << 30, Some(2048), machine(2 << 30), "fix it").unwrap_err();
+        assert!(e.to_string().contains("--memory-mb 2048"), "{e}");
         assert!(check("x", 1 << 30, Some(2048), machine(2 << 30), "").is_ok());
         assert!(check("x", u64::MAX, None, None, "").is_ok());
     }
