@@ -172,8 +172,10 @@ pub fn parse_cell(s: &str, flag: &str) -> Result<grid::Cell> {
 }
 
 impl MapSource {
-    /// Load the map file or generate the environment (`seed` is the default env seed).
-    pub fn resolve(&self, seed: u64) -> Result<Truth> {
+    /// Load the map file or generate the environment (`seed` is the default env seed),
+    /// refusing one that would need more than `memory_mb` (the command's `--memory-mb`) or
+    /// the memory available before it is loaded or generated.
+    pub fn resolve(&self, seed: u64, memory_mb: Option<u64>) -> Result<Truth> {
         let resolution = self
             .resolution
             .as_deref()
@@ -192,7 +194,7 @@ impl MapSource {
             let opts = grid::io::LoadOptions {
                 resolution,
                 border: self.border,
-                memory: bench::machine::available(),
+                memory: sim::memory::limit(memory_mb, bench::machine::available()),
             };
             let (map, start) = load_map_file(path, &opts, self.topic.as_deref(), self.dungeon)?;
             let name = path
@@ -238,12 +240,12 @@ impl MapSource {
             size_m: self.size.as_deref().map(parse_size).transpose()?,
             resolution,
         };
-        bench::explore::check_generate_memory(&spec, None).map_err(anyhow::Error::msg)?;
+        bench::explore::check_generate_memory(&spec, memory_mb).map_err(anyhow::Error::msg)?;
         let env = world::generate(&spec).with_context(|| format!("generating {kind}"))?;
         let opts = grid::io::LoadOptions {
             resolution: Some((env.map.resolution, env.map.resolution)),
             border: false,
-            memory: bench::machine::available(),
+            memory: sim::memory::limit(memory_mb, bench::machine::available()),
         };
         let clutter = if self.clutter {
             if env.rooms.is_none() {

@@ -81,8 +81,9 @@ pub struct ExploreArgs {
     /// Leave wall-clock timings out of the JSON (null), so that equal runs print equal bytes.
     #[arg(long)]
     pub no_timing: bool,
-    /// Refuse the run up front if its estimated memory exceeds this many MiB (the memory
-    /// the machine has available is always checked).
+    /// Refuse the run up front if its estimated memory exceeds this many MiB, and a --map
+    /// whose loading would, before it is loaded (the memory the machine has available is
+    /// always checked).
     #[arg(long)]
     pub memory_mb: Option<u64>,
     /// Never draw the progress bar (drawn on a terminal for runs longer than a second).
@@ -188,7 +189,7 @@ pub fn run(a: ExploreArgs) -> Result<()> {
     if let Some(dir) = &a.out {
         crate::args::make_output_folder("--out", dir)?;
     }
-    let truth = a.source.resolve(a.seed)?;
+    let truth = a.source.resolve(a.seed, a.memory_mb)?;
     let cfg = config(&a, &truth)?;
     let result = run_with_progress(
         &truth,

@@ -76,7 +76,8 @@ pub struct OptimalArgs {
     /// bound early on large maps whose search stops with bounds (0: off).
     #[arg(long, default_value_t = 0)]
     pub coarse_incumbent: usize,
-    /// Memory budget of the search in MiB.
+    /// Memory budget of the search in MiB (a --map whose loading would exceed it is refused
+    /// before it is loaded).
     #[arg(long, default_value_t = 1024)]
     pub memory_mb: usize,
     /// Online presets to compare, e.g. cf,cf-rr,yamauchi.
@@ -159,7 +160,10 @@ pub fn run(a: OptimalArgs) -> Result<()> {
     if let Some(dir) = &a.out {
         crate::args::make_output_folder("--out", dir)?;
     }
-    let truth = a.source.resolve(a.seed)?.plane_only("optimal")?;
+    let truth = a
+        .source
+        .resolve(a.seed, Some(a.memory_mb as u64))?
+        .plane_only("optimal")?;
     let map = &truth.map;
     let spec: SensorSpec = a
         .sensor

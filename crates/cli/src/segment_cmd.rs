@@ -42,8 +42,9 @@ pub struct SegmentArgs {
     /// Print JSON.
     #[arg(long)]
     pub json: bool,
-    /// Refuse up front if the estimated memory exceeds this many MiB (the memory the
-    /// machine has available is always checked).
+    /// Refuse up front if the estimated memory exceeds this many MiB, and a --map or --truth
+    /// whose loading would, before it is loaded (the memory the machine has available is
+    /// always checked).
     #[arg(long)]
     pub memory_mb: Option<u64>,
 }
@@ -71,7 +72,10 @@ pub fn run(a: SegmentArgs) -> Result<()> {
     if let Some(out) = &a.out {
         crate::args::check_output_file("--out", out)?;
     }
-    let truth = a.source.resolve(a.seed)?.plane_only("segment")?;
+    let truth = a
+        .source
+        .resolve(a.seed, a.memory_mb)?
+        .plane_only("segment")?;
     let (w, h) = (truth.map.width(), truth.map.height());
     sim::memory::check(
         &format!("segmenting this {w}x{h} map"),
@@ -81,7 +85,7 @@ pub fn run(a: SegmentArgs) -> Result<()> {
         "use a map with fewer, larger cells (scale the image down and raise its resolution)",
     )?;
     let rooms = match &a.truth {
-        Some(path) => Some(truth_rooms(path, &a.source, &truth.map)?),
+        Some(path) => Some(truth_rooms(path, &a.source, &truth.map, a.memory_mb)?),
         None if a.source.map.is_none() => generated_rooms(&a.source, a.seed)?,
         None => None,
     };
@@ -157,8 +161,14 @@ fn generated_rooms(source: &MapSource, seed: u64) -> Result<Option<Grid<u32>>> {
     Ok(env.rooms)
 }
 
-/// Room labels from a ground-truth floor plan: its free components, numbered from 1.
-fn truth_rooms(path: &std::path::Path, source: &MapSource, map: &GridMap) -> Result<Grid<u32>> {
+/// Room labels from a ground-truth floor plan (loaded within `memory_mb`, the command's
+/// `--memory-mb`): its free components, numbered from 1.
+fn truth_rooms(
+    path: &std::path::Path,
+    source: &MapSource,
+    map: &GridMap,
+    memory_mb: Option<u64>,
+) -> Result<Grid<u32>> {
     let resolution = source
         .resolution
         .as_deref()
@@ -167,7 +177,7 @@ fn truth_rooms(path: &std::path::Path, source: &MapSource, map: &GridMap) -> Res
     let opts = grid::io::LoadOptions {
         resolution,
         border: source.border,
-        memory: bench::machine::available(),
+        memory: sim::memory::limit(memory_mb, bench::machine::available()),
     };
     let t = grid::io::load_map(path, &opts)?;
     if (t.width(), t.height()) != (map.width(), map.height()) {

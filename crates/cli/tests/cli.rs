@@ -791,6 +791,72 @@ fn optimal_memory_mb_bounds_the_set_up() {
     assert!(e.contains("use --cell-size"), "{e}");
 }
 
+/// Regression: `--memory-mb` bounded the run but not the loading of its map, which was
+/// checked against the machine's memory only: a map whose loading needs more than the
+/// budget was loaded (an 8000 x 8000 PGM under `--memory-mb 100`: 371 MiB) before the run
+/// was refused. Every command that takes a map and `--memory-mb` now refuses it before
+/// decoding, naming the flag.
+#[test]
+fn memory_mb_budget_applies_to_map_loading() {
+    let dir = tempfile::tempdir().unwrap();
+    // A header claiming 16384 x 16384 pixels and no pixels: the estimate (1281 MiB) refuses
+    // it, not the missing pixels.
+    let pgm = dir.path().join("claimed.pgm");
+    std::fs::write(&pgm, b"P5\n16384 16384\n255\n").unwrap();
+    let pgm = pgm.to_str().unwrap();
+    let refusal = format!(
+        "{pgm}: loading this 16384x16384 PGM image needs about 1281 MiB, more than --memory-mb 64"
+    );
+    for command in ["explore", "segment", "optimal"] {
+        let e = err(&[
+            command,
+            "--map",
+            pgm,
+            "--resolution",
+            "0.1",
+            "--memory-mb",
+            "64",
+        ]);
+        assert!(e.contains(&refusal), "{command}: {e}");
+    }
+    // segment's ground truth and explore's off-plane clutter are loaded within it too.
+    let small = dir.path().join("small.pgm");
+    std::fs::write(
+        &small,
+        b"P5\n4 3\n255\n\xfe\xfe\xfe\xfe\xfe\x00\x00\xfe\xfe\xfe\xfe\xfe",
+    )
+    .unwrap();
+    let small = small.to_str().unwrap();
+    for (command, flag) in [("segment", "--truth"), ("explore", "--clutter-map")] {
+        let e = err(&[
+            command,
+            "--map",
+            small,
+            flag,
+            pgm,
+            "--resolution",
+            "0.1",
+            "--memory-mb",
+            "64",
+        ]);
+        assert!(e.contains(&refusal), "{command} {flag}: {e}");
+    }
+    // A generated environment's generation too.
+    let e = err(&[
+        "explore",
+        "--env",
+        "cave",
+        "--size",
+        "400x400",
+        "--resolution",
+        "0.05",
+        "--memory-mb",
+        "64",
+    ]);
+    assert!(e.contains("generating this cave of 64000000 cells"), "{e}");
+    assert!(e.contains("more than --memory-mb 64"), "{e}");
+}
+
 /// Regression: `--sensor laser-limited-sonar` on the default office (0.5 m cells) ended
 /// after 1 move at 1.4 % coverage as if explored; sonar on cells coarser than 0.1 m is
 /// refused, saying the resolution it needs, and the message is not repeated.

@@ -172,7 +172,14 @@ impl Spec {
                 dungeon,
             } => {
                 let path = &paths[pick(paths.len())?];
-                read_file(path, resolution.map(|r| (r, r)), false, None, *dungeon)
+                read_file(
+                    path,
+                    resolution.map(|r| (r, r)),
+                    false,
+                    None,
+                    *dungeon,
+                    None,
+                )
             }
         }
     }

@@ -11,7 +11,9 @@ use pyo3::prelude::*;
 use pyo3::types::PyBytes;
 use world::{EnvKind, EnvSpec};
 
-use crate::{bool_arg, pair_arg, path_arg, real_arg, real_item, str_arg, u64_arg, value_error};
+use crate::{
+    bool_arg, int_arg, pair_arg, path_arg, real_arg, real_item, str_arg, u64_arg, value_error,
+};
 
 /// A ground-truth occupancy map: cells (0 unknown, 1 free, 2 occupied), resolution in metres
 /// per cell, and the name runs report.
@@ -60,6 +62,27 @@ fn topic_arg(v: &Bound<'_, PyAny>) -> PyResult<Option<String>> {
         return Ok(None);
     }
     str_arg(v, "topic", "a str or None").map(Some)
+}
+
+/// `memory_mb=` of `Map.load`: None, or a positive number of MiB (a Python or numpy int),
+/// as `explore`'s.
+fn memory_mb_arg(v: &Bound<'_, PyAny>) -> PyResult<Option<u64>> {
+    if v.is_none() {
+        return Ok(None);
+    }
+    let mb: u64 = int_arg(v, "memory_mb", |n| {
+        value_error(if n.starts_with('-') {
+            format!("memory_mb: expected a positive number of MiB, found {n}")
+        } else {
+            format!("memory_mb: expected less than 2^64 MiB, found {n}")
+        })
+    })?;
+    if mb == 0 {
+        return Err(value_error(
+            "memory_mb: expected a positive number of MiB, found 0",
+        ));
+    }
+    Ok(Some(mb))
 }
 
 /// `path=` of `Map.load` and `Map.save`.
@@ -142,13 +165,16 @@ pub fn stem(path: &Path) -> String {
 }
 
 /// Read a map file as `frontier.Map.load` does (`resolution` already checked): the map, its
-/// [`stem`] and the start it marks (a dungeon PNG's). Errors name the file.
+/// [`stem`] and the start it marks (a dungeon PNG's). A file whose loading would need more
+/// than `memory_mb` MiB or the memory available is refused before it is loaded. Errors name
+/// the file.
 pub fn read_file(
     path: &Path,
     resolution: Option<(f64, f64)>,
     border: bool,
     topic: Option<&str>,
     dungeon: bool,
+    memory_mb: Option<u64>,
 ) -> Result<(GridMap, String, Option<grid::Cell>), String> {
     let is_mcap = path
         .extension()
@@ -160,6 +186,7 @@ pub fn read_file(
         ));
     }
     let name = stem(path);
+    let memory = sim::memory::limit(memory_mb, bench::machine::available());
     if is_mcap {
         if resolution.is_some() || border || dungeon {
             return Err(
@@ -175,7 +202,7 @@ pub fn read_file(
             return Err("dungeon: expected one resolution (square cells) for the PNG".into());
         };
         let opts = grid::io::LoadOptions {
-            memory: bench::machine::available(),
+            memory,
             ..Default::default()
         };
         let d = grid::io::load_dungeon(path, r, &opts).map_err(|e| e.to_string())?;
@@ -184,7 +211,7 @@ pub fn read_file(
     let opts = grid::io::LoadOptions {
         resolution,
         border,
-        memory: bench::machine::available(),
+        memory,
     };
     let map = grid::io::load_map(path, &opts).map_err(|e| e.to_string())?;
     Ok((map, name, None))
@@ -197,19 +224,31 @@ impl Map {
     /// `.txt`, or an MCAP recording (`.mcap`: its last OccupancyGrid, on `topic` if it has
     /// several). `dungeon=True` reads a PNG as a dungeon map of learned-exploration work
     /// (free above 150, the start marked by pixels of value 208, kept as `start`). A
-    /// `resolution` given with a ROS YAML overrides the YAML's.
+    /// `resolution` given with a ROS YAML overrides the YAML's. A map whose loading would
+    /// need more than `memory_mb` MiB (the CLI's `--memory-mb`) or the memory available is
+    /// refused before it is loaded.
     #[staticmethod]
-    #[pyo3(signature = (path, resolution=None, border=false, *, topic=None, dungeon=false))]
+    #[pyo3(signature = (
+        path, resolution=None, border=false, *, topic=None, dungeon=false, memory_mb=None
+    ))]
     fn load(
         #[pyo3(from_py_with = file_arg)] path: PathBuf,
         resolution: Option<&Bound<'_, PyAny>>,
         #[pyo3(from_py_with = border_arg)] border: bool,
         #[pyo3(from_py_with = topic_arg)] topic: Option<String>,
         #[pyo3(from_py_with = dungeon_arg)] dungeon: bool,
+        #[pyo3(from_py_with = memory_mb_arg)] memory_mb: Option<u64>,
     ) -> PyResult<Self> {
         let resolution = resolution_arg(resolution)?;
-        let (map, name, start) =
-            read_file(&path, resolution, border, topic.as_deref(), dungeon).map_err(value_error)?;
+        let (map, name, start) = read_file(
+            &path,
+            resolution,
+            border,
+            topic.as_deref(),
+            dungeon,
+            memory_mb,
+        )
+        .map_err(value_error)?;
         let mut m = Self::new(map, name);
         m.start = start;
         Ok(m)

@@ -103,6 +103,33 @@ def test_load_reads_what_the_cli_reads(cli, office, tmp_path, write_png):
         frontier.Map.load(png, dungeon=True)
 
 
+def test_memory_mb_applies_to_map_loading(tmp_path):
+    """Regression: Map.load checked a map's loading against the machine's memory only, with
+    no budget of the user's (explore's memory_mb came after the map was loaded); it takes
+    memory_mb and refuses a map whose loading would not fit before decoding it."""
+    # A header claiming 16384 x 16384 pixels and no pixels: the estimate refuses it, not
+    # the missing pixels.
+    pgm = tmp_path / "claimed.pgm"
+    pgm.write_bytes(b"P5\n16384 16384\n255\n")
+    with pytest.raises(ValueError, match=r"claimed\.pgm: loading this 16384x16384 PGM image "
+                       r"needs about 1281 MiB, more than --memory-mb 64; "):
+        frontier.Map.load(pgm, resolution=0.1, memory_mb=64)
+    with pytest.raises(ValueError, match="truncated"):
+        frontier.Map.load(pgm, resolution=0.1)
+    small = tmp_path / "small.pgm"
+    small.write_bytes(b"P5\n4 3\n255\n" + bytes([254] * 11 + [0]))
+    assert frontier.Map.load(small, resolution=0.1, memory_mb=np.int64(1)).shape == (3, 4)
+    with pytest.raises(ValueError, match="memory_mb: expected a positive number of MiB, found 0"):
+        frontier.Map.load(small, resolution=0.1, memory_mb=0)
+    with pytest.raises(ValueError, match="memory_mb: expected a positive number of MiB, found -1"):
+        frontier.Map.load(small, resolution=0.1, memory_mb=-1)
+    with pytest.raises(ValueError, match=r"memory_mb: expected less than 2\^64 MiB, found 18446744073709551616"):
+        frontier.Map.load(small, resolution=0.1, memory_mb=2**64)
+    for bad in (2.5, True, "64"):
+        with pytest.raises(TypeError, match=f"memory_mb: expected an int, found {type(bad).__name__}"):
+            frontier.Map.load(small, resolution=0.1, memory_mb=bad)
+
+
 def test_from_numpy_refuses_more_cells_than_a_map_file_may_hold():
     # Regression: from_numpy copied any array, 2^31 cells and more, where every map file
     # is refused above 2^28 cells (cells are numbered in 32 bits). Broadcast views: no

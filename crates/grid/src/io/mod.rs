@@ -86,8 +86,10 @@ pub struct LoadOptions {
     /// outer wall). Applies to every format.
     pub border: bool,
     /// The memory loading may take: a map whose loading is estimated to need more is
-    /// refused before its cells are allocated. `None`: not checked (maps are still bounded
-    /// by [`MAX_CELLS`]).
+    /// refused before its cells are allocated, the refusal naming this limit. A command
+    /// passes the least of what the machine leaves and the user's own budget, so that a
+    /// map is refused under `--memory-mb` as a run is. `None`: not checked (maps are still
+    /// bounded by [`MAX_CELLS`]).
     pub memory: Option<Available>,
 }
 

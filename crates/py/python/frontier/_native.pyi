@@ -33,11 +33,14 @@ class Map:
         *,
         topic: Optional[str] = None,
         dungeon: bool = False,
+        memory_mb: Optional[int] = None,
     ) -> Map:
         """Load a map file the CLI reads (ROS YAML + PGM/PNG, bare PGM/PNG with
         `resolution`, MovingAI `.map`, HouseExpo `.json`, ASCII `.txt`, the last
         OccupancyGrid of an MCAP recording on `topic`; `dungeon=True`: a dungeon PNG and its
-        marked start). A `resolution` given with a ROS YAML overrides the YAML's."""
+        marked start). A `resolution` given with a ROS YAML overrides the YAML's. A map whose
+        loading would need more than `memory_mb` MiB (the CLI's `--memory-mb`) or the memory
+        available is refused before it is loaded."""
     @staticmethod
     def from_numpy(array: np.ndarray, resolution: float, name: str = "array") -> Map:
         """A map from a 2-D bool (True = occupied) or uint8 (0 unknown, 1 free, 2 occupied)
