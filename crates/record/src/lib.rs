@@ -8,11 +8,13 @@
 //! - [`occupancy`]: an `OccupancyGrid` message to a frontier map and back (rows flipped,
 //!   the origin pose kept), with every malformation (wrong sizes, NaN resolution, an empty
 //!   map) an error rather than a panic, and world ⇄ cell transforms;
-//! - [`mcap_read`]: the last `OccupancyGrid` of a recording, as a map;
+//! - [`mcap_read`]: the last `OccupancyGrid` of a recording, as a map, read a record at a
+//!   time;
 //! - [`mcap_write`]: a run as a recording (map, belief over time, poses, goals, frontiers)
 //!   that Foxglove Studio opens beside the user's own data.
 //!
-//! Nothing here touches the file system: readers take bytes, writers take any
+//! Apart from [`mcap_read::load_map`], which opens the recording it is given, nothing here
+//! touches the file system: readers take bytes or any `Read`, writers take any
 //! `Write + Seek`.
 //!
 //! A map recorded as a run and read back, as `frontier explore --map run.mcap` does:

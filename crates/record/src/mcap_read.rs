@@ -3,6 +3,11 @@
 //! This is how a user's bag becomes a reproducible run: `ros2 bag record /map` (MCAP is
 //! rosbag2's default storage since Iron), then `frontier explore --map recording.mcap`.
 //! The last map on the topic is the most complete one a SLAM node published.
+//!
+//! A recording is read a record at a time, never whole (a long run's recording can be
+//! gigabytes around a map of a few megabytes).
+
+use std::io::Read;
 
 use grid::GridMap;
 
@@ -26,6 +31,9 @@ const MAX_EXPANSION: usize = 1024;
 
 /// Schema names an OccupancyGrid channel may carry (rosbag2 writes the first).
 const GRID_SCHEMAS: [&str; 2] = ["nav_msgs/msg/OccupancyGrid", "nav_msgs/OccupancyGrid"];
+
+/// Bytes read from a recording's file at a time (a record longer than this is read at once).
+const READ_BUFFER_BYTES: usize = 64 << 10;
 
 /// Why a recording gave no map.
 #[derive(Debug, thiserror::Error)]
@@ -83,18 +91,22 @@ pub enum RecordError {
         /// What is wrong with it.
         source: MapMsgError,
     },
+    /// The recording could not be read.
+    #[error("cannot read: {0}")]
+    Read(#[source] std::io::Error),
 }
 
 /// Recordings larger than this are refused before reading (the map message itself is at
 /// most [`crate::occupancy::MAX_CELLS`] bytes).
 pub const MAX_FILE_BYTES: u64 = 8 << 30;
 
-/// The last OccupancyGrid on `topic` of the MCAP recording at `path` ([`last_map`]); the
-/// error names the file. Used by every front end that takes a recording as a map.
+/// The last OccupancyGrid on `topic` of the MCAP recording at `path`, read a record at a
+/// time ([`read_last_map`]); the error names the file. Used by every front end that takes a
+/// recording as a map.
 pub fn load_map(path: &std::path::Path, topic: Option<&str>) -> Result<GridMap, String> {
-    // Bounded like a map file: a device, pipe or directory is refused unread (`/dev/zero`
+    // Bounded like a map file: a device, pipe or directory is refused unopened (`/dev/zero`
     // reports length 0 and reads without end), and so is a file over the limit.
-    let bytes = grid::io::read_bytes_at_most(path, MAX_FILE_BYTES).map_err(|e| match e.kind {
+    let (file, len) = grid::io::open_at_most(path, MAX_FILE_BYTES).map_err(|e| match e.kind {
         grid::io::MapErrorKind::FileTooLarge { size, .. } => format!(
             "{}: expected a recording of at most {MAX_FILE_BYTES} bytes, found {size}; record \
              only the map topic (ros2 bag record /map)",
@@ -102,7 +114,9 @@ pub fn load_map(path: &std::path::Path, topic: Option<&str>) -> Result<GridMap, 
         ),
         _ => e.to_string(),
     })?;
-    let (map, _) = last_map(&bytes, topic).map_err(|e| format!("{}: {e}", path.display()))?;
+    let source = std::io::BufReader::with_capacity(READ_BUFFER_BYTES, file);
+    let (map, _) =
+        read_last_map(source, len, topic).map_err(|e| format!("{}: {e}", path.display()))?;
     Ok(map)
 }
 
@@ -146,21 +160,24 @@ impl<'a> Fields<'a> {
     }
 }
 
-/// Call `each(channel, log_time, data)` for every message of the MCAP file in `bytes`, in
-/// file order, chunks decompressed. mcap's sans-io reader frames and decompresses the
-/// records with every record's length bounded before its bytes are allocated (by
-/// [`MAX_RECORD_BYTES`] and by [`MAX_EXPANSION`] times the file's size); the three records a
-/// map needs (schema, channel, message) are read here with every inner length checked
-/// against the record, and the others are skipped unread. (`mcap::MessageStream` trusts
-/// lengths read from the file, inside chunks and inside records, so a corrupt file could
-/// make it allocate gigabytes to exabytes and abort.)
+/// Call `each(channel, log_time, data)` for every message of the MCAP file of `len` bytes
+/// read from `source`, in file order, chunks decompressed; the file is read as the records
+/// need it, never whole. mcap's sans-io reader frames and decompresses the records with
+/// every record's length bounded before its bytes are allocated (by [`MAX_RECORD_BYTES`]
+/// and by [`MAX_EXPANSION`] times the file's size); the three records a map needs (schema,
+/// channel, message) are read here with every inner length checked against the record, and
+/// the others are skipped unread. (`mcap::MessageStream` trusts lengths
+/// read from the file, inside chunks and inside records, so a corrupt file could make it
+/// allocate gigabytes to exabytes and abort.)
 fn for_each_message(
-    bytes: &[u8],
+    mut source: impl Read,
+    len: u64,
     mut each: impl FnMut(&Channel, u64, &[u8]),
 ) -> Result<(), RecordError> {
     use mcap::records::op;
     use mcap::sans_io::{LinearReadEvent, LinearReader, LinearReaderOptions};
-    let expanded = bytes.len().saturating_mul(MAX_EXPANSION).max(1 << 20);
+    let file_len = usize::try_from(len).unwrap_or(usize::MAX);
+    let expanded = file_len.saturating_mul(MAX_EXPANSION).max(1 << 20);
     let limit = MAX_RECORD_BYTES.min(expanded);
     let why = || {
         if limit == MAX_RECORD_BYTES {
@@ -169,10 +186,7 @@ fn for_each_message(
                 crate::occupancy::MAX_CELLS
             )
         } else {
-            format!(
-                "{MAX_EXPANSION} times the file's {} bytes, as no map compresses better",
-                bytes.len()
-            )
+            format!("{MAX_EXPANSION} times the file's {len} bytes, as no map compresses better")
         }
     };
     let mut reader = LinearReader::new_with_options(
@@ -181,7 +195,7 @@ fn for_each_message(
     let short = |what: &str| RecordError::Mcap(format!("a {what} record shorter than its fields"));
     let mut schemas: std::collections::HashMap<u16, String> = Default::default();
     let mut channels: std::collections::HashMap<u16, Channel> = Default::default();
-    let mut rest = bytes;
+    let mut left = len;
     while let Some(event) = reader.next_event() {
         let event = event.map_err(|e| match e {
             // A message this long is a map over the cell limit (or another topic's huge
@@ -198,10 +212,19 @@ fn for_each_message(
         })?;
         match event {
             LinearReadEvent::ReadRequest(need) => {
-                let n = need.min(rest.len());
-                reader.insert(n).copy_from_slice(&rest[..n]);
-                reader.notify_read(n);
-                rest = &rest[n..];
+                // Never more than the file has left, however long a record claims to be.
+                let n = need.min(usize::try_from(left).unwrap_or(usize::MAX));
+                let buf = reader.insert(n);
+                let got = loop {
+                    match source.read(buf) {
+                        Ok(got) => break got,
+                        Err(e) if e.kind() == std::io::ErrorKind::Interrupted => {}
+                        Err(e) => return Err(RecordError::Read(e)),
+                    }
+                };
+                // 0 (the file ended, or shrank while read) is the end of the recording.
+                reader.notify_read(got);
+                left -= got as u64;
             }
             LinearReadEvent::Record { opcode, data } => match opcode {
                 op::SCHEMA => {
@@ -276,11 +299,21 @@ fn grid_size(ch: &Channel, data: &[u8]) -> Option<(u32, u32)> {
 /// The last OccupancyGrid on `topic` (default: the recording's only OccupancyGrid topic, or
 /// `/map` among several) of the MCAP file in `bytes`, with its topic name.
 pub fn last_map(bytes: &[u8], topic: Option<&str>) -> Result<(GridMap, String), RecordError> {
+    read_last_map(bytes, bytes.len() as u64, topic)
+}
+
+/// [`last_map`] of the MCAP file of `len` bytes read from `source` a record at a time (a
+/// file's size and the file): what is held is a record, not the file.
+pub fn read_last_map(
+    source: impl Read,
+    len: u64,
+    topic: Option<&str>,
+) -> Result<(GridMap, String), RecordError> {
     // Pass 1: the topics and their types; the latest message on each grid topic, or, for a
     // map whose header is over the cell limit, why it is refused (its cells are not copied).
     let mut topics: Vec<(String, String, String)> = Vec::new(); // topic, schema, encoding
     let mut latest: Vec<(String, u64, Result<Vec<u8>, MapMsgError>)> = Vec::new();
-    for_each_message(bytes, |ch, log_time, data| {
+    for_each_message(source, len, |ch, log_time, data| {
         if !topics.iter().any(|(t, _, _)| *t == ch.topic) {
             topics.push((ch.topic.clone(), ch.schema.clone(), ch.encoding.clone()));
         }

@@ -474,6 +474,32 @@ pub fn read_bytes(path: &Path) -> Result<Vec<u8>, MapError> {
 /// `limit` while read is refused once `limit` bytes have been read.
 pub fn read_bytes_at_most(path: &Path, limit: u64) -> Result<Vec<u8>, MapError> {
     let err = |e| MapError::new(path, MapErrorKind::Read(e));
+    let (file, size) = open_at_most(path, limit)?;
+    // A device or a file growing while read (e.g. /dev/zero, whose size reads 0) must not be
+    // read past the limit either.
+    let mut bytes = Vec::with_capacity(size as usize);
+    std::io::Read::read_to_end(
+        &mut std::io::Read::take(file, limit.saturating_add(1)),
+        &mut bytes,
+    )
+    .map_err(err)?;
+    if bytes.len() as u64 > limit {
+        return Err(MapError::new(
+            path,
+            MapErrorKind::FileTooLarge {
+                size: bytes.len() as u64,
+                limit,
+            },
+        ));
+    }
+    Ok(bytes)
+}
+
+/// Open a regular file of at most `limit` bytes for reading, with its size, as
+/// [`read_bytes_at_most`] reads one: for a reader that reads it piecewise (a recording,
+/// read a record at a time), which reads no more than that size.
+pub fn open_at_most(path: &Path, limit: u64) -> Result<(std::fs::File, u64), MapError> {
+    let err = |e| MapError::new(path, MapErrorKind::Read(e));
     let meta = std::fs::metadata(path).map_err(err)?;
     if !meta.is_file() {
         // A device (/dev/zero) or pipe has no size to check before reading: refuse it.
@@ -496,25 +522,8 @@ pub fn read_bytes_at_most(path: &Path, limit: u64) -> Result<Vec<u8>, MapError> 
             MapErrorKind::FileTooLarge { size, limit },
         ));
     }
-    // A device or a file growing while read (e.g. /dev/zero, whose size reads 0) must not be
-    // read past the limit either.
-    let mut bytes = Vec::with_capacity(size as usize);
     let file = std::fs::File::open(path).map_err(err)?;
-    std::io::Read::read_to_end(
-        &mut std::io::Read::take(file, limit.saturating_add(1)),
-        &mut bytes,
-    )
-    .map_err(err)?;
-    if bytes.len() as u64 > limit {
-        return Err(MapError::new(
-            path,
-            MapErrorKind::FileTooLarge {
-                size: bytes.len() as u64,
-                limit,
-            },
-        ));
-    }
-    Ok(bytes)
+    Ok((file, size))
 }
 
 /// Read a whole UTF-8 text file.
