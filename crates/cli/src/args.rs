@@ -8,7 +8,8 @@ use grid::{Grid, GridMap, Occ};
 use world::{EnvKind, EnvSpec};
 
 /// A map file as `--map` reads it (with `--resolution`, `--border`, `--topic` and
-/// `--dungeon`), and the start it marks (a dungeon PNG's), if any.
+/// `--dungeon`), and the start it marks (a dungeon PNG's), if any. A recording's map is
+/// checked against `opts.memory` as a map file is.
 pub fn load_map_file(
     path: &Path,
     opts: &grid::io::LoadOptions,
@@ -28,7 +29,7 @@ pub fn load_map_file(
                  resolution"
             );
         }
-        return Ok((load_mcap_map(path, topic)?, None));
+        return Ok((load_mcap_map(path, topic, opts.memory)?, None));
     }
     if dungeon {
         let Some((rx, _)) = opts.resolution.filter(|(x, y)| x == y) else {
@@ -110,9 +111,13 @@ impl Truth {
     }
 }
 
-/// The last OccupancyGrid of an MCAP recording.
-pub fn load_mcap_map(path: &std::path::Path, topic: Option<&str>) -> Result<GridMap> {
-    record::mcap_read::load_map(path, topic).map_err(anyhow::Error::msg)
+/// The last OccupancyGrid of an MCAP recording, loaded within `memory`.
+pub fn load_mcap_map(
+    path: &std::path::Path,
+    topic: Option<&str>,
+    memory: Option<grid::memory::Available>,
+) -> Result<GridMap> {
+    record::mcap_read::load_map(path, topic, memory).map_err(anyhow::Error::msg)
 }
 
 /// Parse "R" or "RX,RY" (metres per cell).

@@ -857,6 +857,34 @@ fn memory_mb_budget_applies_to_map_loading() {
     assert!(e.contains("more than --memory-mb 64"), "{e}");
 }
 
+/// Regression: a recording's map was loaded whatever the memory (only its cell count was
+/// checked), so `explore --map run.mcap --memory-mb 8` loaded a 2000 x 2000 map before the
+/// run was refused; it is refused from the message's header, naming the file, the topic,
+/// the map's size, the bytes needed and the budget.
+#[test]
+fn mcap_map_larger_than_the_budget_is_refused_before_loading() {
+    let dir = tempfile::tempdir().unwrap();
+    let rec = dir.path().join("run.mcap");
+    let map = grid::io::parse_ascii(&vec![".".repeat(2000); 2000].join("\n"), 0.05).unwrap();
+    let mut run = record::RunWriter::new(std::fs::File::create(&rec).unwrap()).unwrap();
+    run.map(0.0, &map).unwrap();
+    run.finish().unwrap();
+    drop(map);
+    let rec = rec.to_str().unwrap();
+    let e = err(&["explore", "--map", rec, "--memory-mb", "8"]);
+    assert!(
+        e.contains(&format!(
+            "{rec}: topic /map, message at 0 ns: loading this 2000x2000 OccupancyGrid needs about \
+             12 MiB, more than --memory-mb 8; record the map with fewer, larger cells"
+        )),
+        "{e}"
+    );
+    // Without a budget the machine's memory is the limit, and the map loads.
+    let info: serde_json::Value =
+        serde_json::from_str(&ok(&["map", "info", rec, "--json"])).unwrap();
+    assert_eq!(info["width"], 2000);
+}
+
 /// Regression: `--sensor laser-limited-sonar` on the default office (0.5 m cells) ended
 /// after 1 move at 1.4 % coverage as if explored; sonar on cells coarser than 0.1 m is
 /// refused, saying the resolution it needs, and the message is not repeated.

@@ -165,9 +165,9 @@ pub fn stem(path: &Path) -> String {
 }
 
 /// Read a map file as `frontier.Map.load` does (`resolution` already checked): the map, its
-/// [`stem`] and the start it marks (a dungeon PNG's). A file whose loading would need more
-/// than `memory_mb` MiB or the memory available is refused before it is loaded. Errors name
-/// the file.
+/// [`stem`] and the start it marks (a dungeon PNG's). A file (or a recording's map) whose
+/// loading would need more than `memory_mb` MiB or the memory available is refused before it
+/// is loaded. Errors name the file.
 pub fn read_file(
     path: &Path,
     resolution: Option<(f64, f64)>,
@@ -195,7 +195,11 @@ pub fn read_file(
                     .into(),
             );
         }
-        return Ok((record::mcap_read::load_map(path, topic)?, name, None));
+        return Ok((
+            record::mcap_read::load_map(path, topic, memory)?,
+            name,
+            None,
+        ));
     }
     if dungeon {
         let Some((r, _)) = resolution.filter(|(x, y)| x == y) else {

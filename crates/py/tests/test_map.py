@@ -130,6 +130,23 @@ def test_memory_mb_applies_to_map_loading(tmp_path):
             frontier.Map.load(small, resolution=0.1, memory_mb=bad)
 
 
+def test_mcap_map_larger_than_the_budget_is_refused_before_loading(cli, tmp_path):
+    """Regression: a recording's map was loaded whatever the memory; it is refused from its
+    message's header, naming the file, the topic, the size, the bytes needed and the
+    budget."""
+    import subprocess
+
+    yaml = tmp_path / "open.yaml"
+    frontier.Map.from_numpy(np.ones((1000, 1000), dtype=np.uint8), 0.05).save(yaml)
+    rec = tmp_path / "run.mcap"
+    subprocess.run([cli, "explore", "--map", str(yaml), "--max-moves", "1", "--mcap", str(rec)],
+                   check=True, capture_output=True)
+    with pytest.raises(ValueError, match=r"run\.mcap: topic /map, message at 0 ns: loading this "
+                       r"1000x1000 OccupancyGrid needs about 3 MiB, more than --memory-mb 2; "):
+        frontier.Map.load(rec, memory_mb=2)
+    assert frontier.Map.load(rec, memory_mb=4).shape == (1000, 1000)
+
+
 def test_from_numpy_refuses_more_cells_than_a_map_file_may_hold():
     # Regression: from_numpy copied any array, 2^31 cells and more, where every map file
     # is refused above 2^28 cells (cells are numbered in 32 bits). Broadcast views: no

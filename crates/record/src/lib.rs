@@ -9,7 +9,7 @@
 //!   the origin pose kept), with every malformation (wrong sizes, NaN resolution, an empty
 //!   map) an error rather than a panic, and world ⇄ cell transforms;
 //! - [`mcap_read`]: the last `OccupancyGrid` of a recording, as a map, read a record at a
-//!   time;
+//!   time and checked against the memory available before it is loaded;
 //! - [`mcap_write`]: a run as a recording (map, belief over time, poses, goals, frontiers)
 //!   that Foxglove Studio opens beside the user's own data.
 //!

@@ -5,11 +5,16 @@
 //! The last map on the topic is the most complete one a SLAM node published.
 //!
 //! A recording is read a record at a time, never whole (a long run's recording can be
-//! gigabytes around a map of a few megabytes).
+//! gigabytes around a map of a few megabytes). Given the memory a caller may spend, a record
+//! longer than that memory is refused from its length, before it is read, and a map whose
+//! loading would need more (the message, the copy of it kept while the rest of the
+//! recording is read, and the grid made of it) from its header, before its cells are copied,
+//! with the refusal every map loader gives (`grid::io::check_fits`).
 
 use std::io::Read;
 
 use grid::GridMap;
+use grid::memory::Available;
 
 use crate::cdr::{decode, decode_prefix};
 use crate::msgs::{Header, MapMetaData};
@@ -31,6 +36,20 @@ const MAX_EXPANSION: usize = 1024;
 
 /// Schema names an OccupancyGrid channel may carry (rosbag2 writes the first).
 const GRID_SCHEMAS: [&str; 2] = ["nav_msgs/msg/OccupancyGrid", "nav_msgs/OccupancyGrid"];
+
+/// Bytes loading a map message holds per cell besides the message as read: the copy of its
+/// cells kept while the rest of the recording is read, and the grid made of it (a byte
+/// each). The three counted together bound the peak from above: the reader, and the message
+/// in it, is gone before the grid is made, which leaves room for the reader's other buffers
+/// (measured on a 1500 x 1200 map: 3.7 MB held at the peak, 5.4 MB estimated).
+const BYTES_PER_CELL: u64 = 2;
+
+/// How to make a recording's map fit in memory, said in its refusal.
+const MAP_FIX: &str = "record the map with fewer, larger cells (a coarser resolution)";
+
+/// How to make a recording's records fit in memory, said in the refusal of one too long.
+const RECORD_FIX: &str =
+    "record only the map topic (ros2 bag record /map), and the map with fewer, larger cells";
 
 /// Bytes read from a recording's file at a time (a record longer than this is read at once).
 const READ_BUFFER_BYTES: usize = 64 << 10;
@@ -91,6 +110,20 @@ pub enum RecordError {
         /// What is wrong with it.
         source: MapMsgError,
     },
+    /// A record longer than the memory left; refused from its length, before it is read.
+    #[error("{0}")]
+    RecordOutOfMemory(grid::io::MapErrorKind),
+    /// Loading the last map would need more memory than is left; refused from the
+    /// message's header, before its cells are copied or decoded.
+    #[error("topic {topic}, message at {log_time} ns: {source}")]
+    OutOfMemory {
+        /// The topic.
+        topic: String,
+        /// The message's log time.
+        log_time: u64,
+        /// The map's size, the bytes its loading needs and the limit.
+        source: grid::io::MapErrorKind,
+    },
     /// The recording could not be read.
     #[error("cannot read: {0}")]
     Read(#[source] std::io::Error),
@@ -101,9 +134,13 @@ pub enum RecordError {
 pub const MAX_FILE_BYTES: u64 = 8 << 30;
 
 /// The last OccupancyGrid on `topic` of the MCAP recording at `path`, read a record at a
-/// time ([`read_last_map`]); the error names the file. Used by every front end that takes a
-/// recording as a map.
-pub fn load_map(path: &std::path::Path, topic: Option<&str>) -> Result<GridMap, String> {
+/// time within `memory` ([`read_last_map`]); the error names the file. Used by every front
+/// end that takes a recording as a map, with the memory it checks map files against.
+pub fn load_map(
+    path: &std::path::Path,
+    topic: Option<&str>,
+    memory: Option<Available>,
+) -> Result<GridMap, String> {
     // Bounded like a map file: a device, pipe or directory is refused unopened (`/dev/zero`
     // reports length 0 and reads without end), and so is a file over the limit.
     let (file, len) = grid::io::open_at_most(path, MAX_FILE_BYTES).map_err(|e| match e.kind {
@@ -115,8 +152,8 @@ pub fn load_map(path: &std::path::Path, topic: Option<&str>) -> Result<GridMap, 
         _ => e.to_string(),
     })?;
     let source = std::io::BufReader::with_capacity(READ_BUFFER_BYTES, file);
-    let (map, _) =
-        read_last_map(source, len, topic).map_err(|e| format!("{}: {e}", path.display()))?;
+    let (map, _) = read_last_map(source, len, topic, memory)
+        .map_err(|e| format!("{}: {e}", path.display()))?;
     Ok(map)
 }
 
@@ -163,22 +200,26 @@ impl<'a> Fields<'a> {
 /// Call `each(channel, log_time, data)` for every message of the MCAP file of `len` bytes
 /// read from `source`, in file order, chunks decompressed; the file is read as the records
 /// need it, never whole. mcap's sans-io reader frames and decompresses the records with
-/// every record's length bounded before its bytes are allocated (by [`MAX_RECORD_BYTES`]
-/// and by [`MAX_EXPANSION`] times the file's size); the three records a map needs (schema,
-/// channel, message) are read here with every inner length checked against the record, and
-/// the others are skipped unread. (`mcap::MessageStream` trusts lengths
+/// every record's length bounded before its bytes are allocated (by [`MAX_RECORD_BYTES`],
+/// by [`MAX_EXPANSION`] times the file's size and by `memory`); the three records a map
+/// needs (schema, channel, message) are read here with every inner length checked against
+/// the record, and the others are skipped unread. (`mcap::MessageStream` trusts lengths
 /// read from the file, inside chunks and inside records, so a corrupt file could make it
 /// allocate gigabytes to exabytes and abort.)
 fn for_each_message(
     mut source: impl Read,
     len: u64,
+    memory: Option<Available>,
     mut each: impl FnMut(&Channel, u64, &[u8]),
 ) -> Result<(), RecordError> {
     use mcap::records::op;
     use mcap::sans_io::{LinearReadEvent, LinearReader, LinearReaderOptions};
     let file_len = usize::try_from(len).unwrap_or(usize::MAX);
     let expanded = file_len.saturating_mul(MAX_EXPANSION).max(1 << 20);
-    let limit = MAX_RECORD_BYTES.min(expanded);
+    let room = memory.map_or(usize::MAX, |m| {
+        usize::try_from(m.bytes).unwrap_or(usize::MAX)
+    });
+    let limit = MAX_RECORD_BYTES.min(expanded).min(room);
     let why = || {
         if limit == MAX_RECORD_BYTES {
             format!(
@@ -189,15 +230,19 @@ fn for_each_message(
             format!("{MAX_EXPANSION} times the file's {len} bytes, as no map compresses better")
         }
     };
-    let mut reader = LinearReader::new_with_options(
-        LinearReaderOptions::default().with_record_length_limit(limit),
-    );
-    let short = |what: &str| RecordError::Mcap(format!("a {what} record shorter than its fields"));
-    let mut schemas: std::collections::HashMap<u16, String> = Default::default();
-    let mut channels: std::collections::HashMap<u16, Channel> = Default::default();
-    let mut left = len;
-    while let Some(event) = reader.next_event() {
-        let event = event.map_err(|e| match e {
+    // A record or chunk longer than the memory left has the refusal of a map loader.
+    let out_of_memory = |len: u64| {
+        let what = format!("reading a record of {} MiB", len.div_ceil(1 << 20));
+        let kind = grid::io::check_fits(&what, len, memory?, RECORD_FIX).err()?;
+        Some(RecordError::RecordOutOfMemory(kind))
+    };
+    let refused = |e: mcap::McapError| {
+        if let mcap::McapError::RecordTooLarge { len, .. } | mcap::McapError::ChunkTooLarge(len) = e
+            && let Some(refused) = out_of_memory(len)
+        {
+            return refused;
+        }
+        match e {
             // A message this long is a map over the cell limit (or another topic's huge
             // message): say so, rather than calling the file corrupt.
             mcap::McapError::RecordTooLarge {
@@ -209,7 +254,17 @@ fn for_each_message(
                 why: why(),
             },
             e => RecordError::Mcap(e.to_string()),
-        })?;
+        }
+    };
+    let mut reader = LinearReader::new_with_options(
+        LinearReaderOptions::default().with_record_length_limit(limit),
+    );
+    let short = |what: &str| RecordError::Mcap(format!("a {what} record shorter than its fields"));
+    let mut schemas: std::collections::HashMap<u16, String> = Default::default();
+    let mut channels: std::collections::HashMap<u16, Channel> = Default::default();
+    let mut left = len;
+    while let Some(event) = reader.next_event() {
+        let event = event.map_err(refused)?;
         match event {
             LinearReadEvent::ReadRequest(need) => {
                 // Never more than the file has left, however long a record claims to be.
@@ -278,6 +333,47 @@ fn for_each_message(
     Ok(())
 }
 
+/// Why a map message stating `width × height` cells, `len` bytes as read, is refused from
+/// its header: over the cell limit, or (given `memory`) needing more than it to load.
+fn refusal(width: u32, height: u32, len: usize, memory: Option<Available>) -> Option<Refusal> {
+    let cells = match cells_of(width, height) {
+        Ok(cells) => cells as u64,
+        Err(too_large) => return Some(Refusal::Map(too_large)),
+    };
+    let needed = (len as u64).saturating_add(BYTES_PER_CELL * cells);
+    let what = format!("loading this {width}x{height} OccupancyGrid");
+    grid::io::check_fits(&what, needed, memory?, MAP_FIX)
+        .err()
+        .map(Refusal::Memory)
+}
+
+/// Why a map message is refused from its header ([`refusal`]).
+enum Refusal {
+    /// Over the cell limit.
+    Map(MapMsgError),
+    /// Over the memory.
+    Memory(grid::io::MapErrorKind),
+}
+
+impl Refusal {
+    /// The error of this refusal of the message on `topic` at `log_time`.
+    fn at(self, topic: &str, log_time: u64) -> RecordError {
+        let topic = topic.to_string();
+        match self {
+            Refusal::Map(source) => RecordError::BadMap {
+                topic,
+                log_time,
+                source,
+            },
+            Refusal::Memory(source) => RecordError::OutOfMemory {
+                topic,
+                log_time,
+                source,
+            },
+        }
+    }
+}
+
 /// The fields of an OccupancyGrid before its cells.
 #[derive(serde::Deserialize)]
 struct GridHead {
@@ -299,21 +395,28 @@ fn grid_size(ch: &Channel, data: &[u8]) -> Option<(u32, u32)> {
 /// The last OccupancyGrid on `topic` (default: the recording's only OccupancyGrid topic, or
 /// `/map` among several) of the MCAP file in `bytes`, with its topic name.
 pub fn last_map(bytes: &[u8], topic: Option<&str>) -> Result<(GridMap, String), RecordError> {
-    read_last_map(bytes, bytes.len() as u64, topic)
+    read_last_map(bytes, bytes.len() as u64, topic, None)
 }
 
 /// [`last_map`] of the MCAP file of `len` bytes read from `source` a record at a time (a
-/// file's size and the file): what is held is a record, not the file.
+/// file's size and the file), within `memory`: given it, a record longer than `memory`
+/// leaves is refused from its length, before it is read, and a map whose loading would
+/// need more (the message, a copy of its cells and the grid) from its header, before its
+/// cells are copied ([`RecordError::OutOfMemory`] names the map's size, the bytes needed and
+/// the limit). `None`: not checked (maps are still bounded by
+/// [`crate::occupancy::MAX_CELLS`]).
 pub fn read_last_map(
     source: impl Read,
     len: u64,
     topic: Option<&str>,
+    memory: Option<Available>,
 ) -> Result<(GridMap, String), RecordError> {
     // Pass 1: the topics and their types; the latest message on each grid topic, or, for a
-    // map whose header is over the cell limit, why it is refused (its cells are not copied).
+    // map whose header is over the cell limit or the memory, why it is refused (its cells
+    // are not copied).
     let mut topics: Vec<(String, String, String)> = Vec::new(); // topic, schema, encoding
-    let mut latest: Vec<(String, u64, Result<Vec<u8>, MapMsgError>)> = Vec::new();
-    for_each_message(source, len, |ch, log_time, data| {
+    let mut latest: Vec<(String, u64, Result<Vec<u8>, RecordError>)> = Vec::new();
+    for_each_message(source, len, memory, |ch, log_time, data| {
         if !topics.iter().any(|(t, _, _)| *t == ch.topic) {
             topics.push((ch.topic.clone(), ch.schema.clone(), ch.encoding.clone()));
         }
@@ -330,7 +433,9 @@ pub fn read_last_map(
         {
             return;
         }
-        let size = grid_size(ch, data).map(|(w, h)| cells_of(w, h));
+        let refused = grid_size(ch, data)
+            .and_then(|(w, h)| refusal(w, h, data.len(), memory))
+            .map(|why| why.at(&ch.topic, log_time));
         let slot = match latest.iter().position(|(t, _, _)| *t == ch.topic) {
             Some(k) => &mut latest[k],
             None => {
@@ -339,14 +444,14 @@ pub fn read_last_map(
             }
         };
         slot.1 = log_time;
-        match (size, &mut slot.2) {
-            (Some(Err(too_large)), kept) => *kept = Err(too_large),
+        match (refused, &mut slot.2) {
+            (Some(refused), kept) => *kept = Err(refused),
             // The previous message's buffer is reused: never two maps in memory at once.
-            (_, Ok(kept)) => {
+            (None, Ok(kept)) => {
                 kept.clear();
                 kept.extend_from_slice(data);
             }
-            (_, kept) => *kept = Ok(data.to_vec()),
+            (None, kept) => *kept = Ok(data.to_vec()),
         }
     })?;
     let listing = || {
@@ -390,11 +495,7 @@ pub fn read_last_map(
             found: format!("{schema} in {encoding} encoding"),
         });
     }
-    let data = data.map_err(|source| RecordError::BadMap {
-        topic: name.clone(),
-        log_time,
-        source,
-    })?;
+    let data = data?;
     let map = map_from_cdr(&data).map_err(|e| match e {
         CdrMapError::Decode(why) => RecordError::Decode {
             topic: name.clone(),

@@ -29,7 +29,7 @@ impl Drop for Scratch {
 /// Load `path` as a recording, which must fail at once; the error's message.
 fn refused_quickly(path: &Path) -> String {
     let started = Instant::now();
-    let e = record::mcap_read::load_map(path, None).expect_err("not a recording");
+    let e = record::mcap_read::load_map(path, None, None).expect_err("not a recording");
     assert!(
         started.elapsed() < Duration::from_secs(2),
         "took {:?}",

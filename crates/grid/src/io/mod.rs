@@ -368,18 +368,28 @@ pub(crate) fn check_memory(
     memory: Available,
     path: &Path,
 ) -> Result<(), MapError> {
+    check_fits(what, needed, memory, MEMORY_FIX).map_err(|kind| MapError::new(path, kind))
+}
+
+/// Refuse `what` (e.g. "loading this 16384x16384 PGM image"), estimated to need `needed`
+/// bytes, when `memory` leaves fewer; `fix` says how to make it fit. The one refusal of
+/// every map loader: the map files' here and a recording's map (`record`), which name
+/// their source around it.
+pub fn check_fits(
+    what: &str,
+    needed: u64,
+    memory: Available,
+    fix: &'static str,
+) -> Result<(), MapErrorKind> {
     if needed <= memory.bytes {
         return Ok(());
     }
-    Err(MapError::new(
-        path,
-        MapErrorKind::OutOfMemory {
-            what: what.to_string(),
-            needed,
-            limit: memory,
-            fix: MEMORY_FIX,
-        },
-    ))
+    Err(MapErrorKind::OutOfMemory {
+        what: what.to_string(),
+        needed,
+        limit: memory,
+        fix,
+    })
 }
 
 /// Refuse a file at `path` that is larger than `memory` before reading it (loading holds
