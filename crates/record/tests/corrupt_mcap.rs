@@ -4,6 +4,8 @@
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicUsize, Ordering};
 
+mod common;
+
 /// The system allocator, recording the largest size asked for and the total.
 struct Largest;
 
@@ -94,13 +96,13 @@ fn a_corrupt_string_length_is_not_allocated() {
     assert!(largest < 16 << 20, "asked for {largest} bytes");
 }
 
-/// A recording of one all-free `width × height` map on `/map`, zstd-compressed, built
+/// A recording of one all-free `width × height` map on `/map` (logged at 1 ns), built
 /// without holding the map: the message is a zeroed allocation whose pages are only read.
 /// A message of 320 KB of noise on another topic comes first, so that the file is as
 /// large as a real recording of such a map (a bare one compresses to 10 KB, whose records
 /// are refused as expanding more than any map does).
 fn recording_of_free_map(width: u32, height: u32) -> Vec<u8> {
-    use record::msgs::{OccupancyGrid, RosMessage};
+    use record::msgs::OccupancyGrid;
     let mut msg = OccupancyGrid::default();
     msg.header.frame_id = "map".into();
     msg.info.resolution = 0.05;
@@ -115,45 +117,7 @@ fn recording_of_free_map(width: u32, height: u32) -> Vec<u8> {
     let mut data = vec![0u8; head.len() + cells];
     data[..count].copy_from_slice(&head[..count]);
     data[count..head.len()].copy_from_slice(&(cells as u32).to_le_bytes());
-    let mut out = mcap::WriteOptions::new()
-        .profile("ros2")
-        .compression(Some(mcap::Compression::Zstd))
-        .create(std::io::Cursor::new(Vec::new()))
-        .expect("writer");
-    let schema = out
-        .add_schema(
-            OccupancyGrid::TYPE,
-            "ros2msg",
-            OccupancyGrid::definition().as_bytes(),
-        )
-        .expect("schema");
-    let channel = out
-        .add_channel(schema, "/map", "cdr", &Default::default())
-        .expect("channel");
-    let noise_channel = out
-        .add_channel(0, "/noise", "application/octet-stream", &Default::default())
-        .expect("channel");
-    let mut state = 0x9e37_79b9_7f4a_7c15u64;
-    let noise: Vec<u8> = (0..320 << 10)
-        .map(|_| {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            state as u8
-        })
-        .collect();
-    for (channel_id, data) in [(noise_channel, &noise), (channel, &data)] {
-        let header = mcap::records::MessageHeader {
-            channel_id,
-            sequence: 0,
-            log_time: 0,
-            publish_time: 0,
-        };
-        out.write_to_known_channel(&header, data).expect("message");
-    }
-    drop(data);
-    out.finish().expect("finish");
-    out.into_inner().into_inner()
+    common::recording(&[common::noise(320 << 10, 0)], &[data])
 }
 
 /// Regression: a recording of about 300 KB holding one 16384×16385 all-free map
@@ -188,7 +152,7 @@ fn a_map_just_over_the_cell_limit_is_refused_from_its_header() {
     assert_eq!(
         e,
         format!(
-            "topic /map, message at 0 ns: map message: expected at most 268435456 cells, found 1x{over}"
+            "topic /map, message at 1 ns: map message: expected at most 268435456 cells, found 1x{over}"
         )
     );
     // The decompressed record, once.
