@@ -109,18 +109,6 @@ pub fn run(plan: &Plan, db: &Path, opts: &RunOptions) -> Result<RunSummary, Benc
         .iter()
         .map(env_picture)
         .collect::<Result<Vec<_>, _>>()?;
-    // An existing store is checked against the plan read-only first, so that a refused run
-    // (an edited scenario) leaves it as it was.
-    let store = Store::open(db, &plan.name, &plan.fingerprint(), |s| {
-        for p in &pictures {
-            s.check_env(p, &source)?;
-        }
-        check_setups(plan, s, db).map(drop)
-    })?;
-    for p in &pictures {
-        store.put_env(p, &source)?;
-    }
-    let done = check_setups(plan, &store, db)?;
     let mine: Vec<&Trial> = plan
         .trials
         .iter()
@@ -128,6 +116,24 @@ pub fn run(plan: &Plan, db: &Path, opts: &RunOptions) -> Result<RunSummary, Benc
         .filter(|(i, _)| opts.shard.is_none_or(|s| s.contains(*i)))
         .map(|(_, t)| t)
         .collect();
+    // An existing store is checked against the plan read-only first, so that a refused run
+    // (an edited scenario) leaves it as it was; one that holds every environment and trial
+    // of this run stays read-only, as nothing is left to write (a finished study re-run for
+    // its report, from a store the user may only read).
+    let store = Store::open_unless_finished(db, &plan.name, &plan.fingerprint(), |s| {
+        let mut have_envs = true;
+        for p in &pictures {
+            have_envs &= s.check_env(p, &source)?;
+        }
+        let done = check_setups(plan, s, db)?;
+        Ok(have_envs && mine.iter().all(|t| done.contains(&t.key)))
+    })?;
+    if store.is_writable() {
+        for p in &pictures {
+            store.put_env(p, &source)?;
+        }
+    }
+    let done = check_setups(plan, &store, db)?;
     let mut pending: Vec<&Trial> = mine
         .iter()
         .copied()

@@ -15,7 +15,8 @@
 //! another program's database, a store of another layout or study, a damaged file, a file
 //! that is not SQLite at all — is refused and left exactly as it was, rather than given
 //! frontier's tables and switched to WAL mode. A merge checks every input before it writes
-//! its output.
+//! its output. A run that finds every trial it plans already stored stays read-only, so a
+//! finished study's report can be made again from a store the user may only read.
 
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
@@ -682,12 +683,38 @@ impl Store {
         fingerprint: &str,
         check: impl FnOnce(&Store) -> Result<(), BenchError>,
     ) -> Result<Store, BenchError> {
-        let store = Store::open_checked(path, |s| {
+        Store::open_unless_finished(path, scenario, fingerprint, |s| check(s).map(|()| false))
+    }
+
+    /// Open the database at `path` for study `scenario` with `fingerprint` as
+    /// [`Store::open`] does, but for reading only when `check` (given the store read-only,
+    /// after the same checks) finds that it holds everything the run needs (`true`):
+    /// re-running a finished study to write its report then works on a store the user may
+    /// only read (a shared folder, a read-only mount), and writes nothing to it or beside
+    /// it. A store that does not record its layout or study yet, or has a `-journal` or
+    /// `-wal` file beside it (a write cut short, a run killed in WAL mode), is opened for
+    /// writing all the same, which rolls it back or checkpoints it into one file.
+    pub fn open_unless_finished(
+        path: &Path,
+        scenario: &str,
+        fingerprint: &str,
+        check: impl FnOnce(&Store) -> Result<bool, BenchError>,
+    ) -> Result<Store, BenchError> {
+        let store = Store::open_or_read(path, |s| {
             s.check_study(scenario, fingerprint)?;
-            check(s)
+            let finished = check(s)?;
+            Ok(finished && s.meta("scenario")?.is_some() && s.meta("fingerprint")?.is_some())
         })?;
-        store.claim(scenario, fingerprint)?;
+        if store.writable {
+            store.claim(scenario, fingerprint)?;
+        }
         Ok(store)
+    }
+
+    /// Whether this store was opened for writing (see [`Store::open_unless_finished`] for
+    /// one that is not).
+    pub fn is_writable(&self) -> bool {
+        self.writable
     }
 
     /// Open (or create) the database without checking what study it holds.
@@ -711,6 +738,18 @@ impl Store {
         path: &Path,
         check: impl FnOnce(&Store) -> Result<(), BenchError>,
     ) -> Result<Store, BenchError> {
+        Store::open_or_read(path, |s| check(s).map(|()| false))
+    }
+
+    /// [`Store::open_checked`], except that an existing store for which `check` returns
+    /// `true` (nothing to write) is returned as it was checked, read-only, provided it
+    /// records its table layout and nothing lies beside it: a `-journal` (a write cut
+    /// short, rolled back only by opening it for writing) or a `-wal` (a run killed in WAL
+    /// mode, which a reader would leave a `-shm` beside) takes the write path.
+    fn open_or_read(
+        path: &Path,
+        check: impl FnOnce(&Store) -> Result<bool, BenchError>,
+    ) -> Result<Store, BenchError> {
         if path.is_dir() {
             return Err(BenchError::Store {
                 path: path.to_path_buf(),
@@ -731,7 +770,8 @@ impl Store {
         }
         let existing = std::fs::metadata(path).is_ok_and(|m| m.len() > 0);
         if existing {
-            if has_journal(path) {
+            let journal = has_journal(path);
+            if journal {
                 // A write cut short must be rolled back before the file can be read, which a
                 // read-only connection cannot do. Whether the file is a store this program
                 // may write is told without the journal first, so that only a store is
@@ -744,8 +784,11 @@ impl Store {
                     })
                     .map_err(|e| not_writable(path, e))?;
             }
-            let (store, _) = Store::inspect(path, true)?;
-            check(&store)?;
+            let (store, versioned) = Store::inspect(path, true)?;
+            let finished = check(&store)?;
+            if finished && versioned && !journal && !sibling(path, "-wal").exists() {
+                return Ok(store);
+            }
         }
         let conn = Connection::open(path).map_err(|e| not_writable(path, e))?;
         let sql = BenchError::sql(path);

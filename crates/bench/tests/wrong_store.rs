@@ -451,7 +451,7 @@ fn reading_a_wal_mode_store_writes_nothing_beside_it() {
         (snapshot(&db).len, snapshot(&db).hash),
         (before.len, before.hash)
     );
-    // Resuming into it is writing: it runs, and closes as one file again.
+    // Resuming it finds every trial done, and leaves it one file.
     let again = bench::runner::run(&plan(ONE), &db, &opts()).unwrap();
     assert_eq!(again.already_done, 2);
     assert!(siblings(&db).is_empty(), "{:?}", siblings(&db));

@@ -1074,13 +1074,23 @@ fn frontier_on_a_read_only_database(db: &Path, writable: &Path, args: &[&str]) -
 fn finished_study_in_ro(
     dir: &Path,
 ) -> (std::path::PathBuf, std::path::PathBuf, std::path::PathBuf) {
+    study_in_ro(dir, "1/1")
+}
+
+/// The tiny study's `shard` run into `ro/tiny.sqlite` under `dir`, and an empty `out`
+/// folder beside it: (ro, out, db).
+#[cfg(unix)]
+fn study_in_ro(
+    dir: &Path,
+    shard: &str,
+) -> (std::path::PathBuf, std::path::PathBuf, std::path::PathBuf) {
     let ro = dir.join("ro");
     let out = dir.join("out");
     std::fs::create_dir(&ro).unwrap();
     std::fs::create_dir(&out).unwrap();
     let study = tiny_study(dir, 7);
     let db = ro.join("tiny.sqlite");
-    bench_shard(&study, &db, "1/1");
+    bench_shard(&study, &db, shard);
     (ro, out, db)
 }
 
@@ -1136,15 +1146,90 @@ fn report_reads_a_read_only_database() {
     );
 }
 
+/// Regression: re-running a finished study to regenerate its report (`bench STUDY --db
+/// FILE --report DIR`) from a store the user may only read (a shared folder, a read-only
+/// mount) failed: the run opened the store for writing though no trial was left, and said
+/// it "cannot be written by this user". It finds every trial done, reports, and leaves the
+/// store's folder byte for byte as it was, with no `-wal` or `-shm` file beside the store;
+/// an edited scenario is still refused as before.
+#[cfg(unix)]
+#[test]
+fn finished_study_reruns_from_a_read_only_store() {
+    let dir = tempfile::tempdir().unwrap();
+    let (ro, out, db) = finished_study_in_ro(dir.path());
+    let before = snapshot(&ro);
+    let study = tiny_study(dir.path(), 7);
+    let report = out.join("report");
+    let (s, d) = (study.to_str().unwrap(), db.to_str().unwrap());
+    let args = [
+        "bench",
+        s,
+        "--db",
+        d,
+        "-j",
+        "1",
+        "--no-progress",
+        "--report",
+        report.to_str().unwrap(),
+    ];
+    let o = frontier_on_a_read_only_database(&db, &out, &args);
+    let e = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{e}");
+    assert!(e.contains("4 of 4 trials done before, 0 run now"), "{e}");
+    assert!(report.join("report.md").exists() && report.join("report.html").exists());
+    for suffix in ["-wal", "-shm", "-journal"] {
+        let beside = ro.join(format!("tiny.sqlite{suffix}"));
+        assert!(!beside.exists(), "the re-run left {}", beside.display());
+    }
+    assert_eq!(
+        snapshot(&ro),
+        before,
+        "the re-run changed the store's folder"
+    );
+    // A scenario edited since (a start fixed) is refused from the read-only store too.
+    let edited = dir.path().join("edited.toml");
+    let text = std::fs::read_to_string(&study).unwrap();
+    std::fs::write(
+        &edited,
+        text.replace("resolution = 0.5", "resolution = 0.5\nstart = [1, 1]"),
+    )
+    .unwrap();
+    let args = [
+        "bench",
+        edited.to_str().unwrap(),
+        "--db",
+        d,
+        "-j",
+        "1",
+        "--no-progress",
+    ];
+    let o = frontier_on_a_read_only_database(&db, &out, &args);
+    let e = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success(), "the edited study should be refused");
+    let want = format!(
+        "{d}: holds trial maze-s0-6x5m-r0.5|cf|los:r=3c|m=1|start=0|trial=0 run with starts \
+         [[3,7]], but {} now runs it with starts [[1,1]]: the study changed since these \
+         results were stored",
+        edited.display()
+    );
+    assert!(e.contains(&want), "{e}");
+    assert_eq!(
+        snapshot(&ro),
+        before,
+        "the refused run changed the store's folder"
+    );
+}
+
 /// Regression: a study run, resumed or merged into a folder the user may not write failed
 /// with SQLite's "unable to open database file" or "attempt to write a readonly database",
 /// which did not say what was wrong. It says which file or folder must be writable, and
-/// the store is left as it was.
+/// the store is left as it was. (The store holds half the study, so the run has trials
+/// to write.)
 #[cfg(unix)]
 #[test]
 fn regression_bench_into_a_read_only_folder_says_what_must_be_writable() {
     let dir = tempfile::tempdir().unwrap();
-    let (ro, out, db) = finished_study_in_ro(dir.path());
+    let (ro, out, db) = study_in_ro(dir.path(), "1/2");
     let before = snapshot(&ro);
     let study = tiny_study(dir.path(), 7);
     let (s, d, r) = (
