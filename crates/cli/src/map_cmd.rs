@@ -35,6 +35,10 @@ pub enum MapCommand {
         /// Print JSON.
         #[arg(long)]
         json: bool,
+        /// Refuse the file up front if the estimated memory of its loading exceeds this many
+        /// MiB, before it is loaded (the memory the machine has available is always checked).
+        #[arg(long)]
+        memory_mb: Option<u64>,
     },
 }
 
@@ -47,6 +51,7 @@ pub fn run(cmd: MapCommand) -> Result<()> {
         topic,
         dungeon,
         json,
+        memory_mb,
     } = cmd;
     let resolution = resolution.as_deref().map(parse_resolution).transpose()?;
     let (map, start) = crate::args::load_map_file(
@@ -54,7 +59,7 @@ pub fn run(cmd: MapCommand) -> Result<()> {
         &grid::io::LoadOptions {
             resolution,
             border,
-            memory: bench::machine::available(),
+            memory: sim::memory::limit(memory_mb, bench::machine::available()),
         },
         topic.as_deref(),
         dungeon,

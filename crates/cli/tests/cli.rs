@@ -819,6 +819,17 @@ fn memory_mb_budget_applies_to_map_loading() {
         ]);
         assert!(e.contains(&refusal), "{command}: {e}");
     }
+    // map info's loading too (a regression: it checked the machine's memory only).
+    let e = err(&[
+        "map",
+        "info",
+        pgm,
+        "--resolution",
+        "0.1",
+        "--memory-mb",
+        "64",
+    ]);
+    assert!(e.contains(&refusal), "map info: {e}");
     // segment's ground truth and explore's off-plane clutter are loaded within it too.
     let small = dir.path().join("small.pgm");
     std::fs::write(
@@ -879,9 +890,22 @@ fn mcap_map_larger_than_the_budget_is_refused_before_loading() {
         )),
         "{e}"
     );
+    // map info refuses it within the budget the same way.
+    let e = err(&["map", "info", rec, "--memory-mb", "8"]);
+    assert!(
+        e.contains(&format!(
+            "{rec}: topic /map, message at 0 ns: loading this 2000x2000 OccupancyGrid needs about \
+             12 MiB, more than --memory-mb 8"
+        )),
+        "{e}"
+    );
     // Without a budget the machine's memory is the limit, and the map loads.
     let info: serde_json::Value =
         serde_json::from_str(&ok(&["map", "info", rec, "--json"])).unwrap();
+    assert_eq!(info["width"], 2000);
+    // And within a budget that holds it.
+    let info: serde_json::Value =
+        serde_json::from_str(&ok(&["map", "info", rec, "--json", "--memory-mb", "64"])).unwrap();
     assert_eq!(info["width"], 2000);
 }
 
