@@ -29,7 +29,7 @@ use sim::spin_pool::SpinPool;
 use sim::{Session, SimError, Status};
 use world::{EnvKind, EnvSpec};
 
-use crate::map::{Map, read_file, stem};
+use crate::map::{Map, memory_mb_arg, read_file, stem};
 use crate::{guarded, internal, str_arg, value_error};
 
 /// A generator spec from Python: (kind, size in metres, resolution).
@@ -78,6 +78,9 @@ struct Spec {
     /// one run on any of the maps ([`sim::memory::run_bytes`]).
     largest: (usize, usize),
     run_bytes: u64,
+    /// The user's budget in MiB (`memory_mb`, the CLI's `--memory-mb`): every check of the
+    /// environment's memory, its maps' loading and generation, is made within it too.
+    memory_mb: Option<u64>,
 }
 
 /// SplitMix64: the next seed of a stream (episode seeds after an automatic reset).
@@ -115,7 +118,7 @@ fn start_session(
                 map.height()
             ),
             bytes,
-            None,
+            spec.memory_mb,
             bench::machine::available(),
             "leave the largest maps out of the folder, or use fewer environments",
         )
@@ -178,7 +181,7 @@ impl Spec {
                     false,
                     None,
                     *dungeon,
-                    None,
+                    self.memory_mb,
                 )
             }
         }
@@ -754,6 +757,7 @@ fn spec(
     max_steps: Option<u64>,
     gain: bool,
     team: bool,
+    memory_mb: Option<u64>,
 ) -> PyResult<(Spec, First)> {
     let options = crate::run::options(kwargs)?;
     if !team && options.robots != 1 {
@@ -823,7 +827,7 @@ fn spec(
                 size_m: size,
                 resolution,
             };
-            bench::explore::check_generate_memory(&first, None).map_err(value_error)?;
+            bench::explore::check_generate_memory(&first, memory_mb).map_err(value_error)?;
             Maps::Generated {
                 kind,
                 size,
@@ -849,6 +853,7 @@ fn spec(
         gain,
         largest: (0, 0),
         run_bytes: 0,
+        memory_mb,
     };
     // Check the options on the first map, and learn the observation's size.
     let (first, name, marked) = py.detach(|| s.map(0, None)).map_err(value_error)?;
@@ -918,7 +923,8 @@ fn observation_bytes(spec: &Spec) -> u64 {
 }
 
 /// Refuse `envs` environments of `agents` observations each whose runs and observations
-/// would need more memory than the machine has available, before any is allocated.
+/// would need more memory than `memory_mb` MiB or the machine has available, before any is
+/// allocated.
 fn check_memory(spec: &Spec, envs: usize, agents: usize) -> PyResult<()> {
     let per_env = spec
         .run_bytes
@@ -938,7 +944,7 @@ fn check_memory(spec: &Spec, envs: usize, agents: usize) -> PyResult<()> {
     sim::memory::check(
         &what,
         per_env.saturating_mul(envs as u64),
-        None,
+        spec.memory_mb,
         bench::machine::available(),
         "use a smaller k or view (a robot-centred crop), smaller maps, or fewer environments",
     )
@@ -982,7 +988,7 @@ impl EnvCore {
 impl EnvCore {
     /// A new environment; see `frontier.gym.ExploreEnv` for the arguments.
     #[new]
-    #[pyo3(signature = (maps=None, generator=None, files=None, kwargs=None, candidates=None, k=16, view=None, lam=0.0, max_path_m=None, max_steps=None, gain=false))]
+    #[pyo3(signature = (maps=None, generator=None, files=None, kwargs=None, candidates=None, k=16, view=None, lam=0.0, max_path_m=None, max_steps=None, gain=false, memory_mb=None))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         py: Python<'_>,
@@ -997,10 +1003,11 @@ impl EnvCore {
         max_path_m: Option<f64>,
         max_steps: Option<u64>,
         gain: bool,
+        #[pyo3(from_py_with = memory_mb_arg)] memory_mb: Option<u64>,
     ) -> PyResult<Self> {
         let (s, first) = spec(
             py, maps, generator, files, kwargs, candidates, k, view, lam, max_path_m, max_steps,
-            gain, false,
+            gain, false, memory_mb,
         )?;
         check_memory(&s, 1, 1)?;
         try_first(py, &s, first)?;
@@ -1154,7 +1161,7 @@ impl VecEnvCore {
 impl VecEnvCore {
     /// `n` environments like `EnvCore(...)` on `threads` threads (default: one per core).
     #[new]
-    #[pyo3(signature = (n, maps=None, generator=None, files=None, kwargs=None, candidates=None, k=16, view=None, lam=0.0, max_path_m=None, max_steps=None, gain=false, threads=None))]
+    #[pyo3(signature = (n, maps=None, generator=None, files=None, kwargs=None, candidates=None, k=16, view=None, lam=0.0, max_path_m=None, max_steps=None, gain=false, threads=None, memory_mb=None))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         py: Python<'_>,
@@ -1171,6 +1178,7 @@ impl VecEnvCore {
         max_steps: Option<u64>,
         gain: bool,
         threads: Option<usize>,
+        #[pyo3(from_py_with = memory_mb_arg)] memory_mb: Option<u64>,
     ) -> PyResult<Self> {
         if n == 0 {
             return Err(value_error("num_envs: expected at least 1, found 0"));
@@ -1180,7 +1188,7 @@ impl VecEnvCore {
         }
         let (s, first) = spec(
             py, maps, generator, files, kwargs, candidates, k, view, lam, max_path_m, max_steps,
-            gain, false,
+            gain, false, memory_mb,
         )?;
         check_memory(&s, n, 1)?;
         try_first(py, &s, first)?;
@@ -1421,7 +1429,7 @@ impl TeamEnvCore {
 impl TeamEnvCore {
     /// A new team environment; `kwargs["robots"]` is the team's size.
     #[new]
-    #[pyo3(signature = (maps=None, generator=None, files=None, kwargs=None, candidates=None, k=16, view=None, lam=0.0, max_path_m=None, max_steps=None, gain=false))]
+    #[pyo3(signature = (maps=None, generator=None, files=None, kwargs=None, candidates=None, k=16, view=None, lam=0.0, max_path_m=None, max_steps=None, gain=false, memory_mb=None))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         py: Python<'_>,
@@ -1436,10 +1444,11 @@ impl TeamEnvCore {
         max_path_m: Option<f64>,
         max_steps: Option<u64>,
         gain: bool,
+        #[pyo3(from_py_with = memory_mb_arg)] memory_mb: Option<u64>,
     ) -> PyResult<Self> {
         let (s, first) = spec(
             py, maps, generator, files, kwargs, candidates, k, view, lam, max_path_m, max_steps,
-            gain, true,
+            gain, true, memory_mb,
         )?;
         check_memory(&s, 1, s.options.robots)?;
         try_first(py, &s, first)?;

@@ -64,9 +64,9 @@ fn topic_arg(v: &Bound<'_, PyAny>) -> PyResult<Option<String>> {
     str_arg(v, "topic", "a str or None").map(Some)
 }
 
-/// `memory_mb=` of `Map.load`: None, or a positive number of MiB (a Python or numpy int),
-/// as `explore`'s.
-fn memory_mb_arg(v: &Bound<'_, PyAny>) -> PyResult<Option<u64>> {
+/// `memory_mb=` of `Map.load` and the environments: None, or a positive number of MiB (a
+/// Python or numpy int), as `explore`'s.
+pub(crate) fn memory_mb_arg(v: &Bound<'_, PyAny>) -> PyResult<Option<u64>> {
     if v.is_none() {
         return Ok(None);
     }

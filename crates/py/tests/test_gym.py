@@ -183,6 +183,73 @@ def test_memory_is_estimated_before_it_is_spent():
         ExploreVectorEnv(10**9, maps="office")
 
 
+def test_explore_env_memory_mb_bounds_the_environments(office):
+    """Regression: the environments took no memory_mb, so a training script could not bound
+    them (explore and Map.load could be). A budget too small for the environments is
+    refused when they are made, naming it; one that holds them changes no episode."""
+    fix = "; use a smaller k or view"
+    with pytest.raises(ValueError, match=r"running this environment \(60x48-cell maps, "
+                       r"60x48-cell observations, k = 16\) needs about 17 MiB, more than "
+                       r"--memory-mb 16" + fix):
+        ExploreEnv(office, memory_mb=16)
+    # Four environments are bounded together: 67 MiB, though one fits in 64.
+    with pytest.raises(ValueError, match=r"running these 4 environments \(.*\) needs about "
+                       r"67 MiB, more than --memory-mb 64" + fix):
+        ExploreVectorEnv(4, office, memory_mb=64)
+    bounded = ExploreEnv(office, k=8, lam=0.1, memory_mb=np.int64(64))
+    free = ExploreEnv(office, k=8, lam=0.1)
+    assert episode(bounded, RandomPolicy(5), 11) == episode(free, RandomPolicy(5), 11)
+    venvs = [ExploreVectorEnv(4, office, memory_mb=mb) for mb in (70, None)]
+    obs = [v.reset(seed=3)[0] for v in venvs]
+    for _ in range(5):
+        assert all(obs[0][key].tobytes() == obs[1][key].tobytes() for key in obs[0])
+        acts = Baseline("cf-rr")(venvs[1])
+        obs = [v.step(acts)[0] for v in venvs]
+    # Checked as explore's memory_mb.
+    for bad, error, found in [(0, ValueError, "a positive number of MiB, found 0"),
+                              (-1, ValueError, "a positive number of MiB, found -1"),
+                              (2**64, ValueError, "less than 2\\^64 MiB, found 18446744073709551616"),
+                              (True, TypeError, "an int, found bool"),
+                              (2.5, TypeError, "an int, found float")]:
+        with pytest.raises(error, match="memory_mb: expected " + found):
+            ExploreEnv(office, memory_mb=bad)
+        with pytest.raises(error, match="memory_mb: expected " + found):
+            ExploreVectorEnv(2, office, memory_mb=bad)
+
+
+def test_memory_mb_bounds_the_environments_maps(tmp_path, write_png):
+    """The environments' budget bounds what they load and generate too: a map file or a
+    folder's map whose loading would need more is refused before it is decoded, a generated
+    map before it is generated, and an episode on a folder's map larger than the one the
+    environment was sized on before its run starts."""
+    claimed = tmp_path / "claimed"
+    claimed.mkdir()
+    # A header claiming 16384 x 16384 pixels and no pixels: refused by its estimate.
+    (claimed / "huge.pgm").write_bytes(b"P5\n16384 16384\n255\n")
+    refusal = r"huge.pgm: loading this 16384x16384 PGM image needs about 1281 MiB, more than --memory-mb 64"
+    for maps in (claimed, claimed / "huge.pgm", [claimed / "huge.pgm"]):
+        with pytest.raises(ValueError, match=refusal):
+            ExploreEnv(maps, resolution=0.1, memory_mb=64)
+    with pytest.raises(ValueError, match=r"generating this cave of 64000000 cells needs about "
+                       r"\d+ MiB, more than --memory-mb 64"):
+        ExploreEnv("cave", size=(400, 400), resolution=0.05, memory_mb=64)
+    folder = tmp_path / "plans"
+    folder.mkdir()
+    for name, side in (("a_large", 400), ("b_small", 20)):
+        pixels = np.full((side, side), 255, np.uint8)
+        pixels[[0, -1], :] = pixels[:, [0, -1]] = 0
+        write_png(folder / f"{name}.png", pixels)
+    # The environment is sized on the map seed 0 picks, b_small (index 1 of 2): 16 MiB and
+    # a run on a_large needs 26 MiB.
+    env = ExploreEnv(folder, resolution=0.25, view=16, memory_mb=20)
+    assert env.map_names == ["a_large", "b_small"]
+    env.reset(seed=0, options={"map": 1})
+    with pytest.raises(ValueError, match=r"an episode on map a_large \(400x400 cells\) needs "
+                       r"about 26 MiB, more than --memory-mb 20; leave the largest maps out"):
+        env.reset(seed=0, options={"map": 0})
+    ExploreEnv(folder, resolution=0.25, view=16, memory_mb=64).reset(seed=0, options={"map": 0})
+
+
 @pytest.mark.parametrize(
     "kwargs,error,message",
     [

@@ -86,6 +86,27 @@ def test_memory_is_estimated_before_it_is_spent():
         ExploreParallelEnv("office", robots=5, k=10**10)
 
 
+def test_memory_mb_bounds_the_team_environment(office):
+    """Regression: the team environment took no memory_mb; a budget too small for it is
+    refused when it is made, naming it, and one that holds it changes no episode."""
+    with pytest.raises(ValueError, match=r"running this environment of 3 robots \(.*\) needs "
+                       r"about 17 MiB, more than --memory-mb 16; use a smaller k"):
+        ExploreParallelEnv(office, robots=3, memory_mb=16)
+    with pytest.raises(TypeError, match="memory_mb: expected an int, found bool"):
+        ExploreParallelEnv(office, robots=3, memory_mb=True)
+    envs = [ExploreParallelEnv(office, robots=3, memory_mb=mb) for mb in (np.int32(64), None)]
+    obs = [e.reset(seed=4)[0] for e in envs]
+    while True:
+        assert all(obs[0][a][key].tobytes() == obs[1][a][key].tobytes()
+                   for a in obs[0] for key in obs[0][a])
+        acts = Baseline("nearest")(envs[1])
+        steps = [e.step(acts) for e in envs]
+        assert steps[0][1:4] == steps[1][1:4]
+        obs = [s[0] for s in steps]
+        if not envs[1].agents:
+            break
+
+
 def test_bad_actions_name_the_agent(office):
     env = ExploreParallelEnv(office, robots=2)
     env.reset(seed=0)

@@ -145,7 +145,11 @@ class EnvCore:
         max_path_m: Optional[float] = None,
         max_steps: Optional[int] = None,
         gain: bool = False,
-    ) -> EnvCore: ...
+        memory_mb: Optional[int] = None,
+    ) -> EnvCore:
+        """An environment whose estimated memory, map loading and generation, and episodes
+        on maps larger than the first are checked within `memory_mb` MiB (the CLI's
+        `--memory-mb`) as well as the memory available."""
     @property
     def shape(self) -> Tuple[int, int]:
         """Observation (height, width)."""
@@ -187,6 +191,7 @@ class VecEnvCore:
         max_steps: Optional[int] = None,
         gain: bool = False,
         threads: Optional[int] = None,
+        memory_mb: Optional[int] = None,
     ) -> VecEnvCore: ...
     @property
     def shape(self) -> Tuple[int, int]:
@@ -228,6 +233,7 @@ class TeamEnvCore:
         max_path_m: Optional[float] = None,
         max_steps: Optional[int] = None,
         gain: bool = False,
+        memory_mb: Optional[int] = None,
     ) -> TeamEnvCore: ...
     @property
     def robots(self) -> int:

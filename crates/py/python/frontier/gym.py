@@ -30,7 +30,9 @@ from gymnasium.utils import seeding
 from gymnasium.vector import AutoresetMode, VectorEnv
 from gymnasium.vector.utils import batch_space
 
-from . import Pair, _count, _flag, _native, _pair, _path, _real, _real_or_none, _text
+from . import (
+    Pair, _check_memory_mb, _count, _flag, _native, _pair, _path, _real, _real_or_none, _text,
+)
 from ._native import Map
 
 __all__ = ["ExploreEnv", "ExploreVectorEnv", "Baseline", "RandomPolicy", "load_folder"]
@@ -119,11 +121,13 @@ def _source(
     size: Optional[Pair],
     resolution: Optional[float],
     dungeon: bool = False,
+    memory_mb: Optional[int] = None,
 ) -> _Source:
     """(list of maps, None, None), (None, generator spec, None) or (None, None, (map files,
     resolution, dungeon)): map files (a folder's, or a list of paths) are read when an
     episode picks one, so that a dataset of thousands of plans is never all in memory (the
-    first is read at construction, to check the options and size the observation)."""
+    first is read at construction, to check the options and size the observation). A single
+    map file is loaded now, within ``memory_mb``."""
     if dungeon and (maps is None or isinstance(maps, Map)):
         raise ValueError(_DUNGEON_NEEDS_FILES)
     if maps is None:
@@ -138,7 +142,8 @@ def _source(
             return None, None, (_folder_files(path, dungeon), resolution, dungeon)
         if os.path.isfile(path):
             _refuse_unused("a map file", size)
-            return [Map.load(path, resolution=resolution, dungeon=dungeon)], None, None
+            one = Map.load(path, resolution=resolution, dungeon=dungeon, memory_mb=memory_mb)
+            return [one], None, None
         if isinstance(maps, os.PathLike) or os.sep in path or path.endswith(_MAP_EXTENSIONS):
             raise ValueError(f"maps: {path}: no such folder or map file")
         if dungeon:
@@ -280,19 +285,21 @@ def _core_args(
     gain: bool,
     run: Dict[str, Any],
     dungeon: bool = False,
+    memory_mb: Optional[int] = None,
 ) -> Dict[str, Any]:
     _count("k", k, 1, " candidate")
     _count("view", view, 1, " cell")
     _count("max_steps", max_steps, 1, " decision")
     dungeon = _flag("dungeon", dungeon)
     gain = _flag("gain", gain)
+    memory_mb = _check_memory_mb(memory_mb)
     lam = _real("lam", lam, "a number (the reward's price per metre)")
     max_path_m = _real_or_none("max_path_m", max_path_m, "a number of metres")
     resolution = _real_or_none("resolution", resolution, "a number of metres per cell")
     size = _pair("size", size, "(width, height) in metres")
     if candidates is not None:
         _text("candidates", candidates, "a str or None")
-    listed, generator, files = _source(maps, size, resolution, dungeon)
+    listed, generator, files = _source(maps, size, resolution, dungeon, memory_mb)
     kwargs = dict(run)
     kwargs.update(strategy=strategy, sensor=sensor)
     return dict(
@@ -307,6 +314,7 @@ def _core_args(
         max_path_m=max_path_m,
         max_steps=max_steps,
         gain=gain,
+        memory_mb=memory_mb,
     )
 
 
@@ -382,6 +390,13 @@ class ExploreEnv(gymnasium.Env):
         invalid_action: ``"wrap"`` (an index beyond the candidates offered is taken modulo
             their number, so every action of the space is legal) or ``"raise"``.
         render_mode: ``"rgb_array"`` or None.
+        memory_mb: a budget in MiB (a positive int; the CLI's ``--memory-mb``), or None.
+            Every memory check of the environment is made within it as well as within the
+            memory the machine has available: the environment's estimated memory (its run
+            and observations) when it is made, a ValueError naming the budget if it would
+            not fit; the loading of map files and the generation of maps, before they are
+            read or generated; and an episode's run on a map read larger than the one the
+            environment was sized on.
         **run: more run options of :func:`frontier.explore` (``belief``, ``sensing``,
             ``clearance``, ``speed``, ``s_max``, ``motion``, ``coverage``, ``start``,
             ``goal``, ``max_moves``; :data:`RUN_OPTIONS`).
@@ -418,6 +433,7 @@ class ExploreEnv(gymnasium.Env):
         gain: bool = False,
         invalid_action: str = "wrap",
         render_mode: Optional[str] = None,
+        memory_mb: Optional[int] = None,
         **run: Any,
     ) -> None:
         _check_invalid_action(invalid_action)
@@ -431,7 +447,7 @@ class ExploreEnv(gymnasium.Env):
         self._core = _native.EnvCore(
             **_core_args(
                 maps, size, resolution, strategy, sensor, candidates, k, view, lam,
-                max_path_m, max_steps, gain, run, dungeon=dungeon,
+                max_path_m, max_steps, gain, run, dungeon=dungeon, memory_mb=memory_mb,
             )
         )
         self._wrap = invalid_action == "wrap"
@@ -502,7 +518,7 @@ class ExploreVectorEnv(VectorEnv):
     next call for 0.5 ms before they sleep). An ended episode resets at the next step
     (Gymnasium's next-step autoreset); environment i of ``reset(seed=s)`` starts from seed
     ``s + i``. ``infos`` of ``reset`` and ``step`` hold arrays ``coverage`` and
-    ``path_length_m``."""
+    ``path_length_m``. ``memory_mb`` bounds the ``num_envs`` environments together."""
 
     metadata = {"autoreset_mode": AutoresetMode.NEXT_STEP, "render_modes": []}
 
@@ -525,6 +541,7 @@ class ExploreVectorEnv(VectorEnv):
         gain: bool = False,
         invalid_action: str = "wrap",
         threads: Optional[int] = None,
+        memory_mb: Optional[int] = None,
         **run: Any,
     ) -> None:
         _check_invalid_action(invalid_action)
@@ -536,7 +553,7 @@ class ExploreVectorEnv(VectorEnv):
             threads=threads,
             **_core_args(
                 maps, size, resolution, strategy, sensor, candidates, k, view, lam,
-                max_path_m, max_steps, gain, run, dungeon=dungeon,
+                max_path_m, max_steps, gain, run, dungeon=dungeon, memory_mb=memory_mb,
             ),
         )
         self._wrap = invalid_action == "wrap"

@@ -42,7 +42,8 @@ class ExploreParallelEnv(ParallelEnv):
     """A team of ``robots`` exploring an unknown map; agents ``robot_0`` … ``robot_{m-1}``.
 
     Takes :class:`frontier.gym.ExploreEnv`'s arguments (``strategy`` defaults to
-    ``"nearest"``, whose candidates are every frontier cell) plus ``robots``."""
+    ``"nearest"``, whose candidates are every frontier cell) plus ``robots``;
+    ``memory_mb`` bounds the team's run and its ``robots`` observations together."""
 
     metadata = {"name": "frontier_explore_v0", "render_modes": [], "is_parallelizable": True}
 
@@ -63,6 +64,7 @@ class ExploreParallelEnv(ParallelEnv):
         max_path_m: Optional[float] = None,
         max_steps: Optional[int] = None,
         gain: bool = False,
+        memory_mb: Optional[int] = None,
         **run: Any,
     ) -> None:
         _check_run("ExploreParallelEnv", run)
@@ -70,7 +72,7 @@ class ExploreParallelEnv(ParallelEnv):
         self._core = _native.TeamEnvCore(
             **_core_args(
                 maps, size, resolution, strategy, sensor, candidates, k, view, lam,
-                max_path_m, max_steps, gain, run, dungeon=dungeon,
+                max_path_m, max_steps, gain, run, dungeon=dungeon, memory_mb=memory_mb,
             )
         )
         m = self._core.robots
