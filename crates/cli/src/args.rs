@@ -61,7 +61,8 @@ pub struct MapSource {
     /// --env, the resolution to generate at.
     #[arg(long)]
     pub resolution: Option<String>,
-    /// Add a wall around a bare bitmap (Stage floor plans often have none).
+    /// Add a wall around a bare bitmap or a --dungeon PNG (Stage floor plans often have
+    /// none); a dungeon's marked start moves with the cells.
     #[arg(long)]
     pub border: bool,
     /// Read --map as a dungeon PNG of learned-exploration work (Chen et al. 2019): pixels

@@ -22,7 +22,7 @@ pub enum MapCommand {
         /// maps, 1 if not given for .map and .txt, and overriding a ROS YAML's own.
         #[arg(long)]
         resolution: Option<String>,
-        /// Add a wall around a bare bitmap.
+        /// Add a wall around a bare bitmap or a --dungeon PNG (whose start moves with it).
         #[arg(long)]
         border: bool,
         /// The OccupancyGrid topic of an MCAP file (default: its only one, or /map).

@@ -1472,6 +1472,21 @@ fn a_dungeon_png_gives_its_marked_start() {
     .unwrap();
     assert_eq!(info["start"], serde_json::json!([5, 3]));
     assert_eq!(info["free"], 60);
+    // --border walls it (a regression: it was ignored), and the start moves with the cells.
+    let info: serde_json::Value = serde_json::from_str(&ok(&[
+        "map",
+        "info",
+        p,
+        "--dungeon",
+        "--border",
+        "--resolution",
+        "0.1",
+        "--json",
+    ]))
+    .unwrap();
+    assert_eq!((&info["width"], &info["height"]), (&14.into(), &10.into()));
+    assert_eq!(info["start"], serde_json::json!([6, 4]));
+    assert_eq!((&info["free"], &info["occupied"]), (&60.into(), &80.into()));
     // Without a marker: an error naming the file.
     pixels[(3 * w + 4) as usize] = 255;
     pixels[(3 * w + 5) as usize] = 255;

@@ -2,8 +2,10 @@
 
 use std::path::{Path, PathBuf};
 
-use grid::io::{LoadOptions, ascii_map, load_map, parse_ascii, parse_movingai, save_map, to_ascii};
-use grid::{Grid, GridMap, Occ};
+use grid::io::{
+    LoadOptions, ascii_map, load_dungeon, load_map, parse_ascii, parse_movingai, save_map, to_ascii,
+};
+use grid::{Cell, Grid, GridMap, Occ};
 
 use Occ::{Free as F, Occupied as O, Unknown as U};
 
@@ -109,6 +111,40 @@ fn encode_png(
     writer.write_image_data(data).expect("pixels");
     writer.finish().expect("end");
     out
+}
+
+/// Regression: `border` was ignored for dungeon PNGs (the CLI's `--dungeon --border` and
+/// Python's `Map.load(..., border=True, dungeon=True)` read the picture as it was); it adds
+/// a wall around the map, as around a bare bitmap, and the marked start moves with it.
+#[test]
+fn dungeon_border_adds_a_wall_and_moves_the_start() {
+    let dir = scratch("dungeon-border");
+    let path = dir.join("d.png");
+    // 3 x 2: free, with the start marked at column 0 of row 1.
+    let pixels = [255, 255, 255, 208, 255, 255];
+    let png = grid::io::png::encode_grey(&pixels, 3, 2).expect("encode");
+    std::fs::write(&path, png).expect("write");
+    let plain = load_dungeon(&path, 0.5, &LoadOptions::default()).expect("reads");
+    let opts = LoadOptions {
+        border: true,
+        ..LoadOptions::default()
+    };
+    let walled = load_dungeon(&path, 0.5, &opts).expect("reads");
+    assert_eq!((plain.map.width(), plain.map.height()), (3, 2));
+    assert_eq!(plain.start, Cell::new(0, 1));
+    assert_eq!((walled.map.width(), walled.map.height()), (5, 4));
+    assert_eq!(walled.start, Cell::new(1, 2));
+    #[rustfmt::skip]
+    let want = vec![
+        O, O, O, O, O,
+        O, F, F, F, O,
+        O, F, F, F, O,
+        O, O, O, O, O,
+    ];
+    assert_eq!(row(&walled.map), want);
+    assert_eq!(walled.map.origin, [-0.5, -0.5, 0.0]);
+    assert_eq!(walled.map.resolution, 0.5);
+    std::fs::remove_dir_all(&dir).ok();
 }
 
 #[test]

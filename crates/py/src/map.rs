@@ -205,9 +205,11 @@ pub fn read_file(
         let Some((r, _)) = resolution.filter(|(x, y)| x == y) else {
             return Err("dungeon: expected one resolution (square cells) for the PNG".into());
         };
+        // As the CLI's --dungeon: `border` adds a wall (and moves the start with the cells).
         let opts = grid::io::LoadOptions {
+            resolution,
+            border,
             memory,
-            ..Default::default()
         };
         let d = grid::io::load_dungeon(path, r, &opts).map_err(|e| e.to_string())?;
         return Ok((d.map, name, Some(d.start)));
@@ -227,10 +229,11 @@ impl Map {
     /// (needs `resolution`), MovingAI `.map`, HouseExpo `.json` (needs `resolution`), ASCII
     /// `.txt`, or an MCAP recording (`.mcap`: its last OccupancyGrid, on `topic` if it has
     /// several). `dungeon=True` reads a PNG as a dungeon map of learned-exploration work
-    /// (free above 150, the start marked by pixels of value 208, kept as `start`). A
-    /// `resolution` given with a ROS YAML overrides the YAML's. A map whose loading would
-    /// need more than `memory_mb` MiB (the CLI's `--memory-mb`) or the memory available is
-    /// refused before it is loaded.
+    /// (free above 150, the start marked by pixels of value 208, kept as `start`).
+    /// `border=True` adds a wall around a bitmap, a dungeon PNG's too (the start moves with
+    /// the cells). A `resolution` given with a ROS YAML overrides the YAML's. A map whose
+    /// loading would need more than `memory_mb` MiB (the CLI's `--memory-mb`) or the memory
+    /// available is refused before it is loaded.
     #[staticmethod]
     #[pyo3(signature = (
         path, resolution=None, border=false, *, topic=None, dungeon=false, memory_mb=None

@@ -583,6 +583,14 @@ def test_a_folder_of_dungeon_maps_starts_where_each_marks(tmp_path, write_png):
         assert episode(env, Baseline("cf-rr"), s) == episode(eager, Baseline("cf-rr"), s)
     with pytest.raises(ValueError, match="dungeon: expected one resolution"):
         ExploreEnv(str(tmp_path), dungeon=True)
+    # Regression: load_folder(dungeon=True) ignored border; it walls each map as Map.load
+    # does, the start moving with the cells.
+    walled = frontier.gym.load_folder(tmp_path, 0.1, border=True, dungeon=True)
+    assert [m.start for m in walled] == [(x + 1, y + 1) for x, y in starts.values()]
+    assert [m.shape for m in walled] == [(10, 14)] * 2
+    for m in walled:
+        want = frontier.Map.load(tmp_path / f"{m.name}.png", 0.1, True, dungeon=True)
+        assert np.array_equal(m.to_numpy(), want.to_numpy())
     # Regression: load_folder(dungeon=True) on a folder without PNGs returned no maps.
     (tmp_path / "none").mkdir()
     (tmp_path / "none" / "a.txt").write_text("#")

@@ -103,6 +103,36 @@ def test_load_reads_what_the_cli_reads(cli, office, tmp_path, write_png):
         frontier.Map.load(png, dungeon=True)
 
 
+def test_dungeon_border_reads_what_the_cli_reads(cli, tmp_path, write_png):
+    """Regression: border was ignored for dungeon PNGs (Map.load read the picture as it
+    was, as did the CLI's --dungeon --border); it adds a wall around the map as for a bare
+    bitmap, the start moving with the cells, the same in Python and the CLI."""
+    import json
+    import subprocess
+
+    # A 12 x 8 dungeon of free space (255) to its edges, a start (208) at (4, 3).
+    pixels = np.full((8, 12), 255, np.uint8)
+    pixels[3, 4] = 208
+    png = tmp_path / "dungeon.png"
+    write_png(png, pixels)
+    d = frontier.Map.load(png, resolution=0.1, border=True, dungeon=True)
+    assert d.shape == (10, 14) and d.start == (5, 4)
+    assert d.origin == pytest.approx((-0.1, -0.1, 0.0))
+    cells = d.to_numpy()
+    assert (cells[[0, -1], :] == 2).all() and (cells[:, [0, -1]] == 2).all()
+    assert (cells[1:-1, 1:-1] == 1).all()
+    info = json.loads(subprocess.run(
+        [cli, "map", "info", str(png), "--resolution", "0.1", "--dungeon", "--border", "--json"],
+        check=True, capture_output=True, text=True).stdout)
+    assert (info["height"], info["width"]) == d.shape
+    assert tuple(info["start"]) == d.start
+    assert (info["free"], info["occupied"]) == (d.free_cells, 14 * 10 - d.free_cells)
+    out = subprocess.run([cli, "explore", "--map", str(png), "--resolution", "0.1", "--dungeon",
+                          "--border", "--json", "--no-timing"],
+                         check=True, capture_output=True, text=True)
+    assert frontier.explore(d).summary == json.loads(out.stdout)
+
+
 def test_memory_mb_applies_to_map_loading(tmp_path):
     """Regression: Map.load checked a map's loading against the machine's memory only, with
     no budget of the user's (explore's memory_mb came after the map was loaded); it takes

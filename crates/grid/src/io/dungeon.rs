@@ -9,7 +9,9 @@ use std::path::Path;
 
 use super::error::{MapError, MapErrorKind};
 use super::png::decode_png;
-use super::{LoadOptions, SizeCheck, check_file_memory, check_size, load_check, read_bytes};
+use super::{
+    LoadOptions, SizeCheck, add_border, check_file_memory, check_size, load_check, read_bytes,
+};
 use crate::cell::Cell;
 use crate::grid::Grid;
 use crate::occ::{GridMap, Occ};
@@ -24,7 +26,8 @@ pub const START_INDEX: usize = 127;
 /// A dungeon map and the start cell its marker gives.
 #[derive(Clone, Debug)]
 pub struct DungeonMap {
-    /// The map (resolution as given; origin at 0, 0).
+    /// The map (resolution as given; origin at 0, 0, or one cell down and left of it with a
+    /// border).
     pub map: GridMap,
     /// The marked start cell.
     pub start: Cell,
@@ -37,7 +40,9 @@ pub fn parse_dungeon(bytes: &[u8], name: &Path, resolution: f64) -> Result<Dunge
 
 /// Read the dungeon PNG at `path` at `resolution` metres per cell, refusing before decoding
 /// a file or a picture that would need more than `opts.memory` (the file, the decoded
-/// pixels and the map; `opts.resolution` and `opts.border` do not apply).
+/// pixels and the map, bordered too). `opts.border` adds a wall around the map, as around a
+/// bare bitmap ([`add_border`]), and the start moves with the cells; `opts.resolution`
+/// does not apply.
 pub fn load_dungeon(
     path: &Path,
     resolution: f64,
@@ -47,7 +52,8 @@ pub fn load_dungeon(
     let bytes = read_bytes(path)?;
     let opts = LoadOptions {
         memory: opts.memory,
-        ..LoadOptions::default()
+        border: opts.border,
+        resolution: None,
     };
     let fits = load_check(
         (resolution, resolution),
@@ -56,7 +62,14 @@ pub fn load_dungeon(
         super::PNG_BYTES_PER_PIXEL + super::CELL_BYTES,
         "dungeon PNG",
     );
-    parse_dungeon_checked(&bytes, path, resolution, &fits)
+    let d = parse_dungeon_checked(&bytes, path, resolution, &fits)?;
+    if !opts.border {
+        return Ok(d);
+    }
+    Ok(DungeonMap {
+        map: add_border(&d.map),
+        start: Cell::new(d.start.x + 1, d.start.y + 1),
+    })
 }
 
 /// Read a dungeon PNG once `fits(width, height, name)` accepts the size in its header.

@@ -71,13 +71,12 @@ def load_folder(
     """Every map file of ``folder`` (sorted by name), loaded now: ROS YAML files if there are
     any (their images are loaded through them), else every bitmap, MovingAI ``.map``,
     HouseExpo ``.json`` (needs ``resolution``) and ``.txt``; with ``dungeon=True`` its PNGs
-    as dungeon maps (:meth:`Map.load`). (An environment given the folder itself reads each
-    episode's map when the episode starts instead.)"""
+    as dungeon maps (:meth:`Map.load`). ``border`` adds a wall around each map, a dungeon's
+    too. (An environment given the folder itself reads each episode's map when the episode
+    starts instead.)"""
     _path("folder", folder)
     files = _folder_files(folder, dungeon)
-    if dungeon:
-        return [Map.load(p, resolution=resolution, dungeon=True) for p in files]
-    return [Map.load(p, resolution=resolution, border=border) for p in files]
+    return [Map.load(p, resolution=resolution, border=border, dungeon=dungeon) for p in files]
 
 
 _DUNGEON_NEEDS_FILES = (
