@@ -102,16 +102,9 @@ fn a_corrupt_string_length_is_not_allocated() {
 /// large as a real recording of such a map (a bare one compresses to 10 KB, whose records
 /// are refused as expanding more than any map does).
 fn recording_of_free_map(width: u32, height: u32) -> Vec<u8> {
-    use record::msgs::OccupancyGrid;
-    let mut msg = OccupancyGrid::default();
-    msg.header.frame_id = "map".into();
-    msg.info.resolution = 0.05;
-    msg.info.width = width;
-    msg.info.height = height;
-    msg.info.origin.orientation.w = 1.0;
     // Without cells the message ends with the cell count (0); write the real count there
     // and leave the cells (0, free) to the zeroed allocation.
-    let head = record::cdr::encode(&msg);
+    let head = common::grid_message(width, height, Vec::new());
     let cells = width as usize * height as usize;
     let count = head.len() - 4;
     let mut data = vec![0u8; head.len() + cells];

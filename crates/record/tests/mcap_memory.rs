@@ -7,27 +7,13 @@
 use grid::memory::Available;
 use record::RecordError;
 use record::mcap_read::{load_map, read_last_map};
-use record::msgs::OccupancyGrid;
 
 mod common;
 #[path = "../../grid/tests/common/counting.rs"]
 mod counting;
 
-use common::{Scratch, noise, recording};
+use common::{Scratch, grid_message, noise, recording};
 use counting::{peak_of, turn};
-
-/// An OccupancyGrid message (CDR) stating `width × height` cells in its header, with `data`
-/// as its cells (which need not be that many).
-fn grid_message(width: u32, height: u32, data: Vec<i8>) -> Vec<u8> {
-    let mut msg = OccupancyGrid::default();
-    msg.header.frame_id = "map".into();
-    msg.info.resolution = 0.05;
-    msg.info.width = width;
-    msg.info.height = height;
-    msg.info.origin.orientation.w = 1.0;
-    msg.data = data;
-    record::cdr::encode(&msg)
-}
 
 /// [`read_last_map`] of `bytes` on `/map` within `memory`.
 fn read(bytes: &[u8], memory: Option<Available>) -> Result<grid::GridMap, RecordError> {

@@ -76,3 +76,16 @@ pub fn recording(noise: &[Vec<u8>], maps: &[Vec<u8>]) -> Vec<u8> {
     out.finish().expect("finish");
     out.into_inner().into_inner()
 }
+
+/// An OccupancyGrid message (CDR) stating `width × height` cells in its header, with `data`
+/// as its cells (which need not be that many).
+pub fn grid_message(width: u32, height: u32, data: Vec<i8>) -> Vec<u8> {
+    let mut msg = OccupancyGrid::default();
+    msg.header.frame_id = "map".into();
+    msg.info.resolution = 0.05;
+    msg.info.width = width;
+    msg.info.height = height;
+    msg.info.origin.orientation.w = 1.0;
+    msg.data = data;
+    record::cdr::encode(&msg)
+}
