@@ -677,23 +677,14 @@ impl Store {
     /// database is checked read-only first — that it holds no other study, then `check`
     /// (a run's: that it holds the plan's environments and trials as the plan runs them) —
     /// so a refused one is left as it was.
-    pub fn open(
-        path: &Path,
-        scenario: &str,
-        fingerprint: &str,
-        check: impl FnOnce(&Store) -> Result<(), BenchError>,
-    ) -> Result<Store, BenchError> {
-        Store::open_unless_finished(path, scenario, fingerprint, |s| check(s).map(|()| false))
-    }
-
-    /// Open the database at `path` for study `scenario` with `fingerprint` as
-    /// [`Store::open`] does, but for reading only when `check` (given the store read-only,
-    /// after the same checks) finds that it holds everything the run needs (`true`):
-    /// re-running a finished study to write its report then works on a store the user may
-    /// only read (a shared folder, a read-only mount), and writes nothing to it or beside
-    /// it. A store that does not record its layout or study yet, or has a `-journal` or
-    /// `-wal` file beside it (a write cut short, a run killed in WAL mode), is opened for
-    /// writing all the same, which rolls it back or checkpoints it into one file.
+    ///
+    /// When `check` finds that the store holds everything the run needs (`true`), it is
+    /// kept read-only: re-running a finished study to write its report then works on a
+    /// store the user may only read (a shared folder, a read-only mount), and writes
+    /// nothing to it or beside it. A store that does not record its layout or study yet, or
+    /// has a `-journal` or `-wal` file beside it (a write cut short, a run killed in WAL
+    /// mode), is opened for writing all the same, which rolls it back or checkpoints it
+    /// into one file.
     pub fn open_unless_finished(
         path: &Path,
         scenario: &str,
@@ -717,33 +708,24 @@ impl Store {
         self.writable
     }
 
-    /// Open (or create) the database without checking what study it holds.
+    /// Open (or create) the database for writing without checking what study it holds.
     ///
-    /// An existing database is checked before anything is written to it: it must pass
-    /// SQLite's `quick_check` (a damaged file would otherwise resume as "all done" from an
-    /// intact key index over lost rows) and be a results store of this table layout, not
-    /// some other database.
+    /// An existing, non-empty file is first opened read-only and checked (see
+    /// [`Store::open_read_only`]; a store with frontier's tables that does not record its
+    /// layout yet, as when its making was cut short, passes too): it must pass SQLite's
+    /// `quick_check` (a damaged file would otherwise resume as "all done" from an intact
+    /// key index over lost rows) and be a results store of this table layout, not some
+    /// other database. Only a store that passes is opened for writing, so a refused file is
+    /// left byte for byte as it was, with nothing written beside it. Only a new or empty
+    /// file, or such a store, gets frontier's tables and WAL mode.
     pub fn open_raw(path: &Path) -> Result<Store, BenchError> {
-        Store::open_checked(path, |_| Ok(()))
+        Store::open_or_read(path, |_| Ok(false))
     }
 
-    /// Open (or create) the database at `path` for writing. An existing, non-empty file is
-    /// first opened read-only and checked (see [`Store::open_read_only`]; a store with
-    /// frontier's tables that does not record its layout yet, as when its making was cut
-    /// short, passes too), then given to `check`; only a store that passes both is opened
-    /// for writing, so a refused file is left byte for byte as it was, with nothing
-    /// written beside it. Only a new or empty file, or such a store, gets frontier's
-    /// tables and WAL mode.
-    pub fn open_checked(
-        path: &Path,
-        check: impl FnOnce(&Store) -> Result<(), BenchError>,
-    ) -> Result<Store, BenchError> {
-        Store::open_or_read(path, |s| check(s).map(|()| false))
-    }
-
-    /// [`Store::open_checked`], except that an existing store for which `check` returns
-    /// `true` (nothing to write) is returned as it was checked, read-only, provided it
-    /// records its table layout and nothing lies beside it: a `-journal` (a write cut
+    /// [`Store::open_raw`] with `check` given the store read-only after its checks, except
+    /// that an existing store for which `check` returns `true` (nothing to write) is
+    /// returned as it was checked, read-only, provided it records its table layout and
+    /// nothing lies beside it: a `-journal` (a write cut
     /// short, rolled back only by opening it for writing) or a `-wal` (a run killed in WAL
     /// mode, which a reader would leave a `-shm` beside) takes the write path.
     fn open_or_read(
