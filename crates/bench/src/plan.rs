@@ -215,8 +215,18 @@ impl Plan {
     /// Parse and resolve a scenario: load or generate every environment, check every value,
     /// and list the trials.
     pub fn resolve(src: &Source, unbuilt: Unbuilt) -> Result<Plan, BenchError> {
+        Plan::resolve_within(src, unbuilt, None)
+    }
+
+    /// [`Plan::resolve`], loading and holding the environments within `memory_mb` MiB (a
+    /// user's `--memory-mb`) as well as the memory the machine has available.
+    pub fn resolve_within(
+        src: &Source,
+        unbuilt: Unbuilt,
+        memory_mb: Option<u64>,
+    ) -> Result<Plan, BenchError> {
         let file: ScenarioFile = src.parse()?;
-        resolve(src, file, unbuilt)
+        resolve(src, file, unbuilt, memory_mb)
     }
 
     /// The run configuration of `t` (everything but the map).
@@ -332,7 +342,12 @@ fn study_name(src: &Source, n: &toml::Spanned<String>) -> Result<String, BenchEr
     Ok(name.clone())
 }
 
-fn resolve(src: &Source, f: ScenarioFile, unbuilt: Unbuilt) -> Result<Plan, BenchError> {
+fn resolve(
+    src: &Source,
+    f: ScenarioFile,
+    unbuilt: Unbuilt,
+    memory_mb: Option<u64>,
+) -> Result<Plan, BenchError> {
     let master_seed = match &f.seed {
         Some(s) => nonneg(src, s, "seed", 0)?,
         None => 0,
@@ -723,12 +738,12 @@ fn resolve(src: &Source, f: ScenarioFile, unbuilt: Unbuilt) -> Result<Plan, Benc
             ),
         ));
     }
-    check_env_memory(src, &extents, crate::machine::available())?;
+    check_env_memory(src, &extents, memory_limit(memory_mb))?;
 
     let mut envs: Vec<EnvInstance> = Vec::new();
     let mut checked = BTreeSet::new();
     for (i, (entry, extent)) in f.env.iter().zip(&extents).enumerate() {
-        for mut env in load_env(src, i, entry, &extent.seeds)? {
+        for mut env in load_env(src, i, entry, &extent.seeds, memory_mb)? {
             let key = format!("env[{i}]");
             let start = entry
                 .get_ref()
@@ -894,6 +909,7 @@ fn load_env(
     i: usize,
     entry: &toml::Spanned<crate::scenario::EnvEntry>,
     seeds: &[u64],
+    memory_mb: Option<u64>,
 ) -> Result<Vec<EnvInstance>, BenchError> {
     let e = entry.get_ref();
     let key = format!("env[{i}]");
@@ -935,7 +951,7 @@ fn load_env(
             let opts = grid::io::LoadOptions {
                 resolution: resolution.map(|r| (r, r)),
                 border: e.border.unwrap_or(false),
-                memory: crate::machine::available(),
+                memory: memory_limit(memory_mb),
             };
             let map = grid::io::load_map(&path, &opts)
                 .map_err(|err| src.error(span_of(m), format!("{key}.map"), err.to_string()))?;
@@ -1126,6 +1142,12 @@ fn env_extent(
         key,
         span,
     })
+}
+
+/// The memory a study's environments may take: the tighter of `memory_mb` (`--memory-mb`)
+/// and what the machine has available.
+fn memory_limit(memory_mb: Option<u64>) -> Option<grid::memory::Available> {
+    sim::memory::limit(memory_mb, crate::machine::available())
 }
 
 /// Refuse a study whose environments would not fit in the memory `available` (all of them

@@ -77,6 +77,9 @@ pub struct RunOptions {
     pub progress: bool,
     /// Run at most this many of the pending trials (the first ones in plan order).
     pub limit: Option<usize>,
+    /// Refuse to start when the largest trials, one per thread, would need more than this
+    /// many MiB at once (`--memory-mb`; the machine's available memory is checked always).
+    pub memory_mb: Option<u64>,
 }
 
 /// What a run did.
@@ -116,6 +119,17 @@ pub fn run(plan: &Plan, db: &Path, opts: &RunOptions) -> Result<RunSummary, Benc
         .filter(|(i, _)| opts.shard.is_none_or(|s| s.contains(*i)))
         .map(|(_, t)| t)
         .collect();
+    // A new store is made only for a run that fits in memory: refused, it leaves no file.
+    if !db.exists() {
+        let first = &mine[..opts.limit.map_or(mine.len(), |l| l.min(mine.len()))];
+        check_memory(
+            plan,
+            first,
+            opts.threads,
+            opts.memory_mb,
+            crate::machine::available(),
+        )?;
+    }
     // An existing store is checked against the plan read-only first, so that a refused run
     // (an edited scenario) leaves it as it was; one that holds every environment and trial
     // of this run stays read-only, as nothing is left to write (a finished study re-run for
@@ -159,7 +173,13 @@ pub fn run(plan: &Plan, db: &Path, opts: &RunOptions) -> Result<RunSummary, Benc
     } else {
         ProgressBar::hidden()
     };
-    check_memory(plan, &pending, opts.threads, crate::machine::available())?;
+    check_memory(
+        plan,
+        &pending,
+        opts.threads,
+        opts.memory_mb,
+        crate::machine::available(),
+    )?;
     let optimal_cache = crate::competitive::Cache::new(store.optimal_paths()?);
     let store = Mutex::new(store);
     let failed = Mutex::new(Vec::new());
@@ -265,14 +285,16 @@ fn check_setups(
 }
 
 /// Refuse to start when the largest trials, one per worker thread, would need more memory
-/// at once than the machine has `available` (estimated before any runs).
+/// at once than `memory_mb` MiB or the machine has `available` (estimated before any runs).
 fn check_memory(
     plan: &Plan,
     pending: &[&Trial],
     threads: Option<usize>,
+    memory_mb: Option<u64>,
     available: Option<grid::memory::Available>,
 ) -> Result<(), BenchError> {
-    let workers = worker_threads(threads, pending.len()).unwrap_or_else(rayon::current_num_threads);
+    let workers = worker_threads(threads, pending.len())
+        .unwrap_or_else(|| rayon::current_num_threads().min(pending.len()));
     let needs: Vec<(u64, String)> = pending
         .iter()
         .map(|t| {
@@ -287,7 +309,7 @@ fn check_memory(
         "trials",
         &needs,
         workers,
-        None,
+        memory_mb,
         available,
         "use fewer threads (-j) or maps with fewer cells",
     )
@@ -464,20 +486,26 @@ mod tests {
         };
         let plan = Plan::resolve(&src, Unbuilt::Error).expect("resolves");
         let pending: Vec<_> = plan.trials.iter().collect();
-        assert!(check_memory(&plan, &pending, Some(2), None).is_ok());
+        assert!(check_memory(&plan, &pending, Some(2), None, None).is_ok());
         let machine = |b| {
             Some(grid::memory::Available::new(
                 b,
                 grid::memory::Limit::Machine,
             ))
         };
-        assert!(check_memory(&plan, &pending, Some(2), machine(1 << 40)).is_ok());
-        let e = check_memory(&plan, &pending, Some(2), machine(20 << 20))
+        assert!(check_memory(&plan, &pending, Some(2), None, machine(1 << 40)).is_ok());
+        let e = check_memory(&plan, &pending, Some(2), None, machine(20 << 20))
             .unwrap_err()
             .to_string();
         assert!(e.contains("running 2 trials on 2 threads"), "{e}");
         assert!(e.contains("ha-cc"), "{e}");
         assert!(e.contains("20 MiB this machine has available"), "{e}");
+        // A user's --memory-mb is the tighter limit, and is named as given.
+        let e = check_memory(&plan, &pending, Some(2), Some(20), machine(1 << 40))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("more than --memory-mb 20"), "{e}");
+        assert!(check_memory(&plan, &pending, Some(2), Some(1 << 20), machine(1 << 40)).is_ok());
     }
 
     /// Regression: `-j 10000` started 10,000 threads for 6 trials.

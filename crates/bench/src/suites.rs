@@ -64,12 +64,17 @@ pub const MAP_FOLDER_SUITES: &[&str] = &["holz2010-real"];
 /// Resolve suite `name`, leaving out strategies that are not built yet (see
 /// [`Plan::skipped`]).
 pub fn plan(name: &str) -> Result<Plan, BenchError> {
-    plan_with_maps(name, None)
+    plan_with_maps(name, None, None)
 }
 
 /// Resolve suite `name`; the suites of [`MAP_FOLDER_SUITES`] take their environments from
-/// the ROS map_server YAML files of `maps` (sorted by file name), which they require.
-pub fn plan_with_maps(name: &str, maps: Option<&Path>) -> Result<Plan, BenchError> {
+/// the ROS map_server YAML files of `maps` (sorted by file name), which they require;
+/// the environments are loaded within `memory_mb` MiB ([`Plan::resolve_within`]).
+pub fn plan_with_maps(
+    name: &str,
+    maps: Option<&Path>,
+    memory_mb: Option<u64>,
+) -> Result<Plan, BenchError> {
     let mut src = source(name)?;
     let wants = MAP_FOLDER_SUITES.contains(&name);
     match (wants, maps) {
@@ -95,7 +100,7 @@ pub fn plan_with_maps(name: &str, maps: Option<&Path>) -> Result<Plan, BenchErro
         }
         (false, None) => {}
     }
-    Plan::resolve(&src, Unbuilt::Skip)
+    Plan::resolve_within(&src, Unbuilt::Skip, memory_mb)
 }
 
 /// The file names of the `.yaml` / `.yml` files in `dir`, sorted; an error when there are

@@ -574,7 +574,7 @@ fn the_real_floor_plan_suite_runs_on_the_yaml_maps_of_a_folder() {
     write_ros_map(dir.path(), "b-rooms");
     write_ros_map(dir.path(), "a \"quoted\" plan");
     std::fs::write(dir.path().join("notes.txt"), "not a map").unwrap();
-    let p = bench::suites::plan_with_maps("holz2010-real", Some(dir.path())).unwrap();
+    let p = bench::suites::plan_with_maps("holz2010-real", Some(dir.path()), None).unwrap();
     let names: Vec<&str> = p.envs.iter().map(|e| e.name.as_str()).collect();
     assert_eq!(names.len(), 2, "{names:?}");
     assert!(
@@ -604,11 +604,11 @@ fn the_real_floor_plan_suite_runs_on_the_yaml_maps_of_a_folder() {
     assert!(!md.contains("| cf | 0.0 ± 0.0"), "{md}");
     // an empty folder and a suite with its own environments say what was expected
     let empty = tempfile::tempdir().unwrap();
-    let e = bench::suites::plan_with_maps("holz2010-real", Some(empty.path()))
+    let e = bench::suites::plan_with_maps("holz2010-real", Some(empty.path()), None)
         .unwrap_err()
         .to_string();
     assert!(e.contains(".yaml") && e.contains("found none"), "{e}");
-    let e = bench::suites::plan_with_maps("holz2010", Some(dir.path()))
+    let e = bench::suites::plan_with_maps("holz2010", Some(dir.path()), None)
         .unwrap_err()
         .to_string();
     assert!(e.contains("--maps") && e.contains("holz2010-real"), "{e}");

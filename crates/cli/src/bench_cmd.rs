@@ -3,6 +3,7 @@
 //!
 //! ```text
 //! frontier bench study.toml [--db study.sqlite] [--threads N] [--shard I/N] [--trials N]
+//!                            [--memory-mb MIB]
 //! frontier bench --suite quick --report quick-report
 //! frontier bench merge all.sqlite shard-*.sqlite
 //! frontier bench export all.sqlite --csv all.csv
@@ -64,6 +65,11 @@ pub struct RunArgs {
     /// Never draw the progress bar.
     #[arg(long)]
     pub no_progress: bool,
+    /// Refuse the study up front if its environments, or its largest trials one per
+    /// thread, would need more than this many MiB (the memory the machine has available
+    /// is always checked).
+    #[arg(long)]
+    pub memory_mb: Option<u64>,
 }
 
 /// Subcommands of `frontier bench`.
@@ -153,10 +159,12 @@ fn run_study(a: RunArgs) -> Result<()> {
         bail!("--threads: expected at least 1");
     }
     let plan = match (&a.suite, &a.scenario) {
-        (Some(name), _) => bench::suites::plan_with_maps(name, a.maps.as_deref())?,
-        (None, Some(path)) => {
-            bench::Plan::resolve(&bench::Source::read(path)?, bench::Unbuilt::Error)?
-        }
+        (Some(name), _) => bench::suites::plan_with_maps(name, a.maps.as_deref(), a.memory_mb)?,
+        (None, Some(path)) => bench::Plan::resolve_within(
+            &bench::Source::read(path)?,
+            bench::Unbuilt::Error,
+            a.memory_mb,
+        )?,
         (None, None) => bail!("give a scenario file or --suite NAME"),
     };
     let mut plan = plan;
@@ -217,6 +225,7 @@ fn run_study(a: RunArgs) -> Result<()> {
         shard,
         progress: !a.no_progress && bench::runner::progress_wanted(),
         limit: a.limit,
+        memory_mb: a.memory_mb,
     };
     let summary =
         bench::runner::run(&plan, &db, &opts).with_context(|| format!("running {}", plan.name))?;

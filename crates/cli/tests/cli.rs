@@ -791,6 +791,47 @@ fn optimal_memory_mb_bounds_the_set_up() {
     assert!(e.contains("use --cell-size"), "{e}");
 }
 
+/// `bench --memory-mb` bounds a study as `explore --memory-mb` bounds a run: its
+/// environments when they are made, and its largest trials, one per thread, before any
+/// runs; a refused study leaves no database behind.
+#[test]
+fn bench_memory_mb_bounds_the_study_before_its_store_is_made() {
+    let dir = tempfile::tempdir().unwrap();
+    let scenario = dir.path().join("big.toml");
+    std::fs::write(
+        &scenario,
+        "name = \"big\"\nrobots = [5]\nstrategies = [\"ha-cc\"]\n\n[[env]]\n\
+         kind = \"office\"\nseeds = [0, 1]\nsize = [50, 50]\nresolution = 0.05\n",
+    )
+    .unwrap();
+    let db = dir.path().join("big.sqlite");
+    let run = |mb: &str| {
+        err(&[
+            "bench",
+            scenario.to_str().unwrap(),
+            "--db",
+            db.to_str().unwrap(),
+            "-j",
+            "2",
+            "--no-progress",
+            "--memory-mb",
+            mb,
+        ])
+    };
+    // The environment is made within the budget; five robots with CC candidates on its
+    // 1000 x 1000 cells are not.
+    let e = run("100");
+    assert!(e.contains("running 2 trials on 2 threads"), "{e}");
+    assert!(e.contains("ha-cc"), "{e}");
+    assert!(e.contains("more than --memory-mb 100"), "{e}");
+    assert!(!db.exists(), "a refused study made {}", db.display());
+    // Generating the environment alone needs more than 30 MiB.
+    let e = run("30");
+    assert!(e.contains("holding the study's 2 environment(s)"), "{e}");
+    assert!(e.contains("more than --memory-mb 30"), "{e}");
+    assert!(!db.exists(), "a refused study made {}", db.display());
+}
+
 /// Regression: `--memory-mb` bounded the run but not the loading of its map, which was
 /// checked against the machine's memory only: a map whose loading needs more than the
 /// budget was loaded (an 8000 x 8000 PGM under `--memory-mb 100`: 371 MiB) before the run

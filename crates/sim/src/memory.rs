@@ -114,6 +114,11 @@ pub fn check_batch(
         return Ok(());
     };
     let (largest, name) = &needs[first];
+    // "1 trial", not "1 trials"
+    let noun = match needs.len() {
+        1 => noun.strip_suffix('s').unwrap_or(noun),
+        _ => noun,
+    };
     let what = format!(
         "running {} {noun} on {workers} thread{} (the largest, {name}, about {} MiB)",
         needs.len(),
@@ -218,5 +223,11 @@ mod tests {
         // every thread busy: all four, 75 MiB
         assert!(check_batch("runs", &needs, 8, Some(74), None, "").is_err());
         assert!(check_batch("runs", &[], 2, Some(1), None, "").is_ok());
+        // Regression: a batch of one said "running 1 trials".
+        let e = check_batch("trials", &needs[1..2], 1, Some(1), None, "fewer").unwrap_err();
+        assert!(
+            e.to_string().starts_with("running 1 trial on 1 thread "),
+            "{e}"
+        );
     }
 }
