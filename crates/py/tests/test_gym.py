@@ -977,3 +977,24 @@ def test_regression_run_options_out_of_range_are_refused_at_construction(office,
     ):
         with pytest.raises(ValueError, match=f"^{message}"):
             make()
+
+
+def test_vector_env_step_bool_among_actions_refused(office):
+    """Regression: numpy reads ``[True, 0, 0]`` as the int array ``[1, 0, 0]``, so the vector
+    environment took a bool among ints as the action 1, where ``ExploreEnv.step(True)`` is a
+    TypeError; an all-bool array was refused already (its dtype is bool). A list of numpy
+    integers of mixed signedness, which numpy makes a float64 array, was refused as floats."""
+    env = ExploreEnv(office)
+    env.reset(seed=0)
+    with pytest.raises(TypeError, match=r"^action: expected an int, found bool$"):
+        env.step(True)
+    venv = ExploreVectorEnv(3, office)
+    venv.reset(seed=0)
+    for actions, i in [([True, 0, 0], 0), ((0, False, 0), 1), ([0, 0, np.True_], 2),
+                       ([0, np.array(True), 1], 1), ([True, True, False], 0)]:
+        with pytest.raises(TypeError, match=rf"^actions\[{i}\]: expected an int, found "):
+            venv.step(actions)
+    with pytest.raises(TypeError, match="^actions: expected integers, found dtype bool$"):
+        venv.step(np.array([True, False, True]))
+    # numpy integers of mixed types (an int array of float64 dtype to numpy) are ints.
+    venv.step([np.int8(1), 0, np.uint64(2)])

@@ -632,9 +632,14 @@ class ExploreVectorEnv(VectorEnv):
                 f"actions: expected one action per environment, shape ({self.num_envs},), "
                 f"found shape {given.shape}"
             )
-        if given.dtype == object:
-            # Python ints beyond 64 bits (or objects that are no ints) among the actions.
-            given = np.array([_action(a, f"actions[{i}]") for i, a in enumerate(given)])
+        if isinstance(actions, (list, tuple)) or given.dtype == object:
+            # Each action as ``step`` of the single environment reads it: numpy would make
+            # [True, 0, 0] an int array (a bool is no action), [np.uint64(2), 0] a float one,
+            # and [2**64, 0] an object one.
+            items = actions if isinstance(actions, (list, tuple)) else given
+            given = np.array(
+                [_action(a, f"actions[{i}]") for i, a in enumerate(items)], dtype=np.int64
+            )
         if given.dtype.kind not in "iu":
             raise TypeError(f"actions: expected integers, found dtype {given.dtype}")
         if given.dtype == np.uint64 and (given >= 2**63).any():
