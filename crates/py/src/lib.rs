@@ -44,9 +44,18 @@ pub(crate) fn type_error(name: &str, what: &str, v: &Bound<'_, PyAny>) -> PyErr 
     PyTypeError::new_err(format!("{name}: expected {what}, found {}", type_name(v)))
 }
 
+/// Whether `v` is a bool, Python's or numpy's: numpy's converts to a number (`float(np.True_)`
+/// is 1.0) and is no more a number than Python's.
+pub(crate) fn is_bool(v: &Bound<'_, PyAny>) -> bool {
+    v.is_instance_of::<PyBool>()
+        || v.get_type()
+            .fully_qualified_name()
+            .is_ok_and(|n| matches!(n.to_string().as_str(), "numpy.bool" | "numpy.bool_"))
+}
+
 /// Argument `name` as a real number (an int, a float or a numpy scalar; not a bool).
 pub(crate) fn real_arg(v: &Bound<'_, PyAny>, name: &str, what: &str) -> PyResult<f64> {
-    if v.is_instance_of::<PyBool>() || v.is_instance_of::<PyString>() {
+    if is_bool(v) || v.is_instance_of::<PyString>() {
         return Err(type_error(name, what, v));
     }
     v.extract::<f64>().map_err(|_| type_error(name, what, v))
@@ -85,7 +94,7 @@ pub(crate) fn int_arg<T: TryFrom<i128>>(
     name: &str,
     out_of_range: impl FnOnce(&str) -> PyErr,
 ) -> PyResult<T> {
-    if v.is_instance_of::<PyBool>() || v.is_instance_of::<PyFloat>() {
+    if is_bool(v) || v.is_instance_of::<PyFloat>() {
         return Err(type_error(name, "an int", v));
     }
     let big: i128 = match v.extract() {
@@ -109,7 +118,7 @@ pub(crate) fn u64_arg(v: &Bound<'_, PyAny>, name: &str) -> PyResult<u64> {
 
 /// One number of a pair (an int, a float or a numpy number; not a bool).
 pub(crate) fn real_item(v: &Bound<'_, PyAny>) -> Option<f64> {
-    if v.is_instance_of::<PyBool>() || v.is_instance_of::<PyString>() {
+    if is_bool(v) || v.is_instance_of::<PyString>() {
         return None;
     }
     v.extract().ok()
@@ -117,7 +126,7 @@ pub(crate) fn real_item(v: &Bound<'_, PyAny>) -> Option<f64> {
 
 /// One integer of a pair (a Python or numpy integer; not a bool or a float).
 pub(crate) fn int_item(v: &Bound<'_, PyAny>) -> Option<i64> {
-    if v.is_instance_of::<PyBool>() || v.is_instance_of::<PyFloat>() {
+    if is_bool(v) || v.is_instance_of::<PyFloat>() {
         return None;
     }
     v.extract().ok()

@@ -421,3 +421,35 @@ def test_regression_run_options_of_a_wrong_type_name_the_argument(office):
     assert frontier.explore_many([dict(map=office, seed=2, clutter=None, goal=None)]) == \
         frontier.explore_many([dict(map=office, seed=2)])
     assert frontier.explore(office, robots=np.int64(2), seed=np.uint64(2**63)).robots == 2
+
+
+def test_numpy_bool_as_a_number_refused(office):
+    """Regression: a numpy bool converts to a float, so ``goal=np.True_`` ran to the goal 1.0,
+    ``clearance=np.True_`` kept 1 m clear and ``Map.from_numpy(a, np.True_)`` made 1 m
+    cells, where Python's True was a TypeError."""
+    for kwargs, message in [
+        (dict(goal=np.True_), "goal: expected a number or None, found bool"),
+        (dict(clearance=np.True_), "clearance: expected a number of metres, found bool"),
+        (dict(speed=np.False_), "speed: expected a number of metres per second, found bool"),
+    ]:
+        with pytest.raises(TypeError, match=f"^{message}$"):
+            frontier.explore(office, **kwargs)
+        with pytest.raises(TypeError, match=f"^run 0: {message}$"):
+            frontier.explore_many([dict(map=office, **kwargs)])
+    a = np.zeros((4, 4), bool)
+    with pytest.raises(TypeError, match="^resolution: expected a number of metres per cell, "
+                       "found bool$"):
+        frontier.Map.from_numpy(a, np.True_)
+    with pytest.raises(TypeError, match="^resolution: expected a number of metres per cell, "
+                       "found bool$"):
+        frontier.Map.generate("empty", resolution=np.True_)
+    with pytest.raises(TypeError, match=r"^size: expected \(width, height\) in metres, found "
+                       r"np.True_ \(bool\) among its values$"):
+        frontier.Map.generate("empty", size=(np.True_, 5))
+    with pytest.raises(TypeError, match=r"^resolution: expected a number of metres per cell or "
+                       r"a pair \(x, y\), found np.True_ \(bool\) among its values$"):
+        frontier.Map.load("office.txt", resolution=(np.True_, 0.1))
+    # numpy numbers are numbers
+    assert frontier.Map.from_numpy(a, np.float32(0.5)).resolution == 0.5
+    assert frontier.explore(office, goal=np.float64(0.5)).summary == \
+        frontier.explore(office, goal=0.5).summary
