@@ -53,12 +53,29 @@ pub(crate) fn is_bool(v: &Bound<'_, PyAny>) -> bool {
             .is_ok_and(|n| matches!(n.to_string().as_str(), "numpy.bool" | "numpy.bool_"))
 }
 
+/// `v` as a float: an int beyond a float's range is infinite, as `float("1e400")` and the
+/// CLI's `1e400` are, so that the argument's range check refuses it with its message.
+fn real(v: &Bound<'_, PyAny>) -> Option<f64> {
+    match v.extract::<f64>() {
+        Ok(x) => Some(x),
+        Err(e) if e.is_instance_of::<PyOverflowError>(v.py()) => {
+            let negative = v.lt(0).ok()?;
+            Some(if negative {
+                f64::NEG_INFINITY
+            } else {
+                f64::INFINITY
+            })
+        }
+        Err(_) => None,
+    }
+}
+
 /// Argument `name` as a real number (an int, a float or a numpy scalar; not a bool).
 pub(crate) fn real_arg(v: &Bound<'_, PyAny>, name: &str, what: &str) -> PyResult<f64> {
     if is_bool(v) || v.is_instance_of::<PyString>() {
         return Err(type_error(name, what, v));
     }
-    v.extract::<f64>().map_err(|_| type_error(name, what, v))
+    real(v).ok_or_else(|| type_error(name, what, v))
 }
 
 /// Argument `name` as a bool (Python's or numpy's).
@@ -121,7 +138,7 @@ pub(crate) fn real_item(v: &Bound<'_, PyAny>) -> Option<f64> {
     if is_bool(v) || v.is_instance_of::<PyString>() {
         return None;
     }
-    v.extract().ok()
+    real(v)
 }
 
 /// One integer of a pair (a Python or numpy integer; not a bool or a float).

@@ -453,3 +453,47 @@ def test_numpy_bool_as_a_number_refused(office):
     assert frontier.Map.from_numpy(a, np.float32(0.5)).resolution == 0.5
     assert frontier.explore(office, goal=np.float64(0.5)).summary == \
         frontier.explore(office, goal=0.5).summary
+
+
+def test_number_beyond_float_range_refused_by_its_range_check(cli, office, tmp_path):
+    """Regression: an int beyond a float's range (10**400) was "clearance: expected a number
+    of metres, found int" (a TypeError, though an int is a number) in the native arguments,
+    and an OverflowError ("int too large to convert to float") in the environments'. It is
+    infinite now, as the CLI's 1e400 is, and refused by the argument's range check with the
+    CLI's message."""
+    big = 10**400
+    for kwargs, message in [
+        (dict(clearance=big), "--clearance: expected a non-negative number of metres, found inf"),
+        (dict(speed=-big), "--speed: expected a positive number of metres per second, from "
+         "0.001 to 1000, found -inf"),
+        (dict(goal=big), r"--goal: expected a coverage share in \(0, 1\], found inf"),
+    ]:
+        with pytest.raises(ValueError, match=f"^{message}$"):
+            frontier.explore(office, **kwargs)
+        with pytest.raises(ValueError, match=f"^run 0: {message}$"):
+            frontier.explore_many([dict(map=office, **kwargs)])
+    yaml = tmp_path / "office.yaml"
+    office.save(yaml)
+    out = subprocess.run([cli, "explore", "--map", str(yaml), "--clearance", "1e400"],
+                         capture_output=True, text=True)
+    with pytest.raises(ValueError) as e:
+        frontier.explore(office, clearance=big)
+    assert out.stderr.strip() == f"error: {e.value}"
+    resolution = r"^--resolution: expected a positive number of metres per cell, at most 1000, " \
+        r"found 'inf'$"
+    with pytest.raises(ValueError, match=resolution):
+        frontier.Map.from_numpy(np.zeros((4, 4), bool), big)
+    with pytest.raises(ValueError, match=resolution):
+        frontier.Map.load(yaml, resolution=(0.1, big))
+    with pytest.raises(ValueError, match=r"^--size: expected WxH in metres \(e.g. 25x20\), "
+                       r"found 'infx5'$"):
+        frontier.Map.generate("empty", size=(big, 5))
+    from frontier.gym import ExploreEnv
+
+    for call, message in [
+        (lambda: ExploreEnv(office, lam=big), "lam: expected a finite number, found inf"),
+        (lambda: ExploreEnv("empty", size=(5, -big)), "--size: expected WxH in metres"),
+        (lambda: ExploreEnv("empty", resolution=big), "--resolution: expected a positive"),
+    ]:
+        with pytest.raises(ValueError, match=f"^{message}"):
+            call()

@@ -192,7 +192,17 @@ def _real(name: str, value: Any, what: str = "a number") -> float:
         value, (int, float, np.integer, np.floating)
     ):
         raise TypeError(f"{name}: expected {what}, found {type(value).__name__}")
-    return float(value)
+    return _float(value)
+
+
+def _float(value: Any) -> float:
+    """``value`` (a number) as a float: an int beyond a float's range is infinite, as
+    ``float("1e400")`` and the CLI's ``1e400`` are, so that the argument's range check
+    refuses it with its message."""
+    try:
+        return float(value)
+    except OverflowError:
+        return float("-inf") if value < 0 else float("inf")
 
 
 #: A pair of numbers: a tuple, a list or a numpy array of two.
@@ -219,7 +229,7 @@ def _pair(name: str, value: Any, what: str) -> Optional[Tuple[float, float]]:
             raise TypeError(
                 f"{name}: expected {what}, found {v!r} ({type(v).__name__}) among its values"
             )
-    return float(x), float(y)
+    return _float(x), _float(y)
 
 
 def _real_or_none(name: str, value: Any, what: str = "a number") -> Optional[float]:
