@@ -141,14 +141,6 @@ pub(crate) fn real_item(v: &Bound<'_, PyAny>) -> Option<f64> {
     real(v)
 }
 
-/// One integer of a pair (a Python or numpy integer; not a bool or a float).
-pub(crate) fn int_item(v: &Bound<'_, PyAny>) -> Option<i64> {
-    if is_bool(v) || v.is_instance_of::<PyFloat>() {
-        return None;
-    }
-    v.extract().ok()
-}
-
 /// Argument `name` as a pair: any sequence of two items (a tuple, a list, a numpy array),
 /// each read by `item`; `what` says what was expected.
 pub(crate) fn pair_arg<T>(

@@ -91,10 +91,11 @@ pub(crate) fn options(kw: Option<&Bound<'_, PyDict>>) -> PyResult<ExploreOptions
                 })?;
             }
             "start" => {
-                let (x, y) = crate::pair_arg(v, "start", "a cell (x, y)", crate::int_item)?;
-                let (Ok(cx), Ok(cy)) = (i32::try_from(x), i32::try_from(y)) else {
+                let (x, y) = crate::pair_arg(v, "start", "a cell (x, y)", start_item)?;
+                let (Some(cx), Some(cy)) = (x.0, y.0) else {
                     return Err(value_error(format!(
-                        "start: expected a cell (x, y) of 32-bit integers, found ({x}, {y})"
+                        "start: expected a cell (x, y) of 32-bit integers, found ({}, {})",
+                        x.1, y.1
                     )));
                 };
                 o.start = Some(Cell::new(cx, cy));
@@ -129,6 +130,22 @@ pub(crate) fn options(kw: Option<&Bound<'_, PyDict>>) -> PyResult<ExploreOptions
         }
     }
     Ok(o)
+}
+
+/// One coordinate of `start=`: a Python or numpy integer of any size (not a bool or a
+/// float), as the 32-bit integer cells are numbered in if it is one, and its digits.
+fn start_item(v: &Bound<'_, PyAny>) -> Option<(Option<i32>, String)> {
+    if crate::is_bool(v) || v.is_instance_of::<pyo3::types::PyFloat>() {
+        return None;
+    }
+    let n: i128 = match v.extract() {
+        Ok(n) => n,
+        Err(e) if e.is_instance_of::<pyo3::exceptions::PyOverflowError>(v.py()) => {
+            return Some((None, v.str().ok()?.to_string()));
+        }
+        Err(_) => return None,
+    };
+    Some((i32::try_from(n).ok(), n.to_string()))
 }
 
 /// A run ready to go: the map and its resolved configuration.

@@ -497,3 +497,23 @@ def test_number_beyond_float_range_refused_by_its_range_check(cli, office, tmp_p
     ]:
         with pytest.raises(ValueError, match=f"^{message}"):
             call()
+
+
+def test_start_beyond_64_bits_is_a_value_error(office):
+    """Regression: a start coordinate beyond 64 bits was "start: expected a cell (x, y), found
+    1180591620717411303424 (int) among its values", a TypeError, though it is an int, and so
+    was np.uint64(2**63); beyond 32 bits (2**33) it was the ValueError it is now for all."""
+    for start, shown in [((2**70, 1), "1180591620717411303424, 1"),
+                         ((3, -(2**64)), "3, -18446744073709551616"),
+                         ((np.uint64(2**63), 2), "9223372036854775808, 2"),
+                         ((2**33, 1), "8589934592, 1")]:
+        message = rf"^start: expected a cell \(x, y\) of 32-bit integers, found \({shown}\)$"
+        with pytest.raises(ValueError, match=message):
+            frontier.explore(office, start=start)
+        with pytest.raises(ValueError, match=f"^run 0: {message[1:]}"):
+            frontier.explore_many([dict(map=office, start=start)])
+    with pytest.raises(TypeError, match=r"^start: expected a cell \(x, y\), found np.True_ "
+                       r"\(bool\) among its values$"):
+        frontier.explore(office, start=(np.True_, 3))
+    assert frontier.explore(office, start=(np.uint64(3), np.int8(3))).summary == \
+        frontier.explore(office, start=(3, 3)).summary
