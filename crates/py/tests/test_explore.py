@@ -517,3 +517,12 @@ def test_start_beyond_64_bits_is_a_value_error(office):
         frontier.explore(office, start=(np.True_, 3))
     assert frontier.explore(office, start=(np.uint64(3), np.int8(3))).summary == \
         frontier.explore(office, start=(3, 3)).summary
+
+
+def test_explore_many_threads_beyond_64_bits_names_the_limit(office):
+    """Regression: threads=2**70 was "threads: expected at most 9223372036854775807", a limit
+    explore_many does not have (it takes at most 4096, which 5000 was told)."""
+    for threads in (5000, 2**63, 2**70, np.uint64(2**64 - 1)):
+        with pytest.raises(ValueError, match=f"^threads: expected at most 4096, found {threads}$"):
+            frontier.explore_many([dict(map=office)], threads=threads)
+    assert len(frontier.explore_many([dict(map=office)], threads=4096)) == 1

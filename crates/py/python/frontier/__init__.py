@@ -147,18 +147,18 @@ def _kwargs(
     )
 
 
-def _count(name: str, value: Any, least: int, what: str = "") -> None:
-    """Raise TypeError unless ``value`` is an int (or None), ValueError if below ``least``
-    (the message names the argument, as the CLI's do)."""
+def _count(name: str, value: Any, least: int, what: str = "", most: int = sys.maxsize) -> None:
+    """Raise TypeError unless ``value`` is an int (or None), ValueError if below ``least`` or
+    above ``most`` (the message names the argument, as the CLI's do)."""
     if value is None:
         return
     if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
         raise TypeError(f"{name}: expected an int, found {type(value).__name__}")
     if value < least:
         raise ValueError(f"{name}: expected at least {least}{what}, found {value}")
-    if value > sys.maxsize:
+    if value > most:
         many = f"{what}s" if what else ""
-        raise ValueError(f"{name}: expected at most {sys.maxsize}{many}, found {value}")
+        raise ValueError(f"{name}: expected at most {most}{many}, found {value}")
 
 
 def _flag(name: str, value: Any) -> bool:
@@ -390,9 +390,7 @@ def explore_many(
         extras.append(extra)
     memory_mb = _check_memory_mb(memory_mb)
     timing = _flag("timing", timing)
-    _count("threads", threads, 1)
-    if threads is not None and threads > _MAX_THREADS:
-        raise ValueError(f"threads: expected at most {_MAX_THREADS}, found {threads}")
+    _count("threads", threads, 1, most=_MAX_THREADS)
     report, close = _progress(progress, len(native_runs))
     try:
         texts = _native.explore_many(native_runs, threads, timing, memory_mb, report)
