@@ -526,3 +526,13 @@ def test_explore_many_threads_beyond_64_bits_names_the_limit(office):
         with pytest.raises(ValueError, match=f"^threads: expected at most 4096, found {threads}$"):
             frontier.explore_many([dict(map=office)], threads=threads)
     assert len(frontier.explore_many([dict(map=office)], threads=4096)) == 1
+
+
+def test_explore_many_run_giving_threads_or_progress_refused(office):
+    """Regression: a run giving ``threads`` or ``progress``, arguments of the whole batch as
+    ``timing`` and ``memory_mb`` are, was copied into its row as a tag and did nothing (no
+    warning either: neither is close to an option's name)."""
+    for key, value in [("threads", 2), ("progress", True)]:
+        with pytest.raises(TypeError, match=rf"^run 1: '{key}': an argument of the whole batch: "
+                           rf"explore_many\(runs, {key}=\.\.\.\)$"):
+            frontier.explore_many([dict(map=office), dict(map=office, **{key: value})])

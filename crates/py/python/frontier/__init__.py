@@ -303,11 +303,14 @@ def explore(
     return ExploreResult(json.loads(text), belief_arr, trails)
 
 
-#: Arguments of :func:`explore` that :func:`explore_many` takes for the whole batch only,
-#: and what to do instead of giving them to a run.
+#: Keys a run of :func:`explore_many` may not give, and what to do instead: the arguments
+#: of the whole batch (a run's own would be copied into its row as a tag and do nothing)
+#: and ``trajectories``.
 _BATCH_ARGS = {
     "timing": "an argument of the whole batch: explore_many(runs, timing=...)",
     "memory_mb": "an argument of the whole batch: explore_many(runs, memory_mb=...)",
+    "threads": "an argument of the whole batch: explore_many(runs, threads=...)",
+    "progress": "an argument of the whole batch: explore_many(runs, progress=...)",
     "trajectories": "explore_many returns summaries only (no trajectories): drop it, or "
     "call explore for the runs whose trajectories you need",
 }
@@ -337,8 +340,9 @@ def explore_many(
 
     ``threads`` (default: one per core, at most 4096) is capped at the number of runs.
     Each run is a mapping with a ``map`` (a :class:`Map`) and any keyword arguments of
-    :func:`explore` but ``trajectories``, ``timing`` and ``memory_mb`` (``timing`` and
-    ``memory_mb`` are the batch's arguments; a run giving one is a TypeError); other keys
+    :func:`explore` but ``trajectories``, ``timing`` and ``memory_mb`` (``timing``,
+    ``memory_mb``, ``threads`` and ``progress`` are the batch's arguments; a run giving one
+    is a TypeError); other keys
     (e.g. ``tag``) are copied into the run's row, and one named as a column of the summary
     (``env``, ``reason``, ``map_accuracy``, ...) is refused with a ValueError, since the
     summary would overwrite it. Returns one flat row per run, in order —
