@@ -13,7 +13,7 @@ use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::{Condvar, Mutex};
 use std::time::Duration;
 
-use crate::map::Map;
+use crate::map::{Map, memory_mb_arg};
 use crate::{bool_arg, guarded, int_arg, internal, real_arg, str_arg, type_error, value_error};
 
 /// The most threads `explore_many` takes: far more than any machine's cores, so only a
@@ -294,6 +294,66 @@ fn summary(j: &Job, r: &RunResult, timing: bool) -> String {
     summary_json(&j.map.name, &j.map.map, &j.cfg, r, timing).to_string()
 }
 
+/// `map=` of `explore`.
+fn map_arg<'py>(v: &Bound<'py, PyAny>) -> PyResult<PyRef<'py, Map>> {
+    v.extract()
+        .map_err(|_| type_error("map", "a frontier.Map", v))
+}
+
+/// `kwargs=` of `explore`: the run's options, or None.
+fn kwargs_arg<'py>(v: &Bound<'py, PyAny>) -> PyResult<Option<Bound<'py, PyDict>>> {
+    if v.is_none() {
+        return Ok(None);
+    }
+    v.cast::<PyDict>()
+        .map(|d| Some(d.clone()))
+        .map_err(|_| type_error("kwargs", "a dict or None", v))
+}
+
+/// `timing=` of `explore` and `explore_many`.
+fn timing_arg(v: &Bound<'_, PyAny>) -> PyResult<bool> {
+    bool_arg(v, "timing")
+}
+
+/// `runs=` of `explore_many`: (map, kwargs) pairs.
+#[allow(clippy::type_complexity)]
+fn runs_arg<'py>(
+    v: &Bound<'py, PyAny>,
+) -> PyResult<Vec<(PyRef<'py, Map>, Option<Bound<'py, PyDict>>)>> {
+    v.extract()
+        .map_err(|_| type_error("runs", "a list of (frontier.Map, dict or None) pairs", v))
+}
+
+/// `threads=` of `explore_many`: None, or 1 to [`MAX_THREADS`] (a Python or numpy int).
+fn threads_arg(v: &Bound<'_, PyAny>) -> PyResult<Option<usize>> {
+    if v.is_none() {
+        return Ok(None);
+    }
+    let range = |n: &str| {
+        value_error(if n.starts_with('-') || n == "0" {
+            format!("threads: expected at least 1, found {n}")
+        } else {
+            format!("threads: expected at most {MAX_THREADS}, found {n}")
+        })
+    };
+    let n: i128 = int_arg(v, "threads", range)?;
+    if n < 1 || n > MAX_THREADS as i128 {
+        return Err(range(&n.to_string()));
+    }
+    Ok(Some(n as usize))
+}
+
+/// `progress=` of `explore_many`: None, or a callable.
+fn progress_arg(v: &Bound<'_, PyAny>) -> PyResult<Option<Py<PyAny>>> {
+    if v.is_none() {
+        return Ok(None);
+    }
+    if !v.is_callable() {
+        return Err(type_error("progress", "a callable or None", v));
+    }
+    Ok(Some(v.clone().unbind()))
+}
+
 /// One run: returns (summary JSON text, final belief (H, W) uint8, trajectories as a list
 /// of (n, 2) int32 arrays of (x, y) cells, or None when not recorded).
 /// A run whose estimated memory exceeds `memory_mb` MiB or what the machine has available
@@ -302,12 +362,12 @@ fn summary(j: &Job, r: &RunResult, timing: bool) -> String {
 #[pyo3(signature = (map, kwargs=None, timing=false, memory_mb=None))]
 pub fn explore<'py>(
     py: Python<'py>,
-    map: &Map,
-    kwargs: Option<&Bound<'py, PyDict>>,
-    timing: bool,
-    memory_mb: Option<u64>,
+    #[pyo3(from_py_with = map_arg)] map: PyRef<'py, Map>,
+    #[pyo3(from_py_with = kwargs_arg)] kwargs: Option<Bound<'py, PyDict>>,
+    #[pyo3(from_py_with = timing_arg)] timing: bool,
+    #[pyo3(from_py_with = memory_mb_arg)] memory_mb: Option<u64>,
 ) -> PyResult<(String, Bound<'py, PyAny>, Bound<'py, PyAny>)> {
-    let j = job(map, kwargs, memory_mb)?;
+    let j = job(&map, kwargs.as_ref(), memory_mb)?;
     let stop = AtomicBool::new(false);
     let r = with_checks(py, &stop, || execute(&j, &stop), |_| Ok(()))?
         .map_err(|e| {
@@ -351,13 +411,13 @@ pub fn explore<'py>(
 /// the end; an exception from it, or Ctrl-C, stops the batch and is raised.
 #[pyfunction]
 #[pyo3(signature = (runs, threads=None, timing=false, memory_mb=None, progress=None))]
-pub fn explore_many(
-    py: Python<'_>,
-    runs: Vec<(PyRef<'_, Map>, Option<Bound<'_, PyDict>>)>,
-    threads: Option<usize>,
-    timing: bool,
-    memory_mb: Option<u64>,
-    progress: Option<Py<PyAny>>,
+pub fn explore_many<'py>(
+    py: Python<'py>,
+    #[pyo3(from_py_with = runs_arg)] runs: Vec<(PyRef<'py, Map>, Option<Bound<'py, PyDict>>)>,
+    #[pyo3(from_py_with = threads_arg)] threads: Option<usize>,
+    #[pyo3(from_py_with = timing_arg)] timing: bool,
+    #[pyo3(from_py_with = memory_mb_arg)] memory_mb: Option<u64>,
+    #[pyo3(from_py_with = progress_arg)] progress: Option<Py<PyAny>>,
 ) -> PyResult<Vec<String>> {
     let mut jobs = Vec::with_capacity(runs.len());
     for (i, (map, kw)) in runs.iter().enumerate() {
@@ -378,15 +438,6 @@ pub fn explore_many(
         })?;
         j.cfg.record_trace = false;
         jobs.push(j);
-    }
-    match threads {
-        Some(0) => return Err(value_error("threads: expected at least 1, found 0")),
-        Some(n) if n > MAX_THREADS => {
-            return Err(value_error(format!(
-                "threads: expected at most {MAX_THREADS}, found {n}"
-            )));
-        }
-        _ => {}
     }
     check_memory(&jobs, threads, memory_mb)?;
     let pool = match threads {

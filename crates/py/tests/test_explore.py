@@ -536,3 +536,55 @@ def test_explore_many_run_giving_threads_or_progress_refused(office):
         with pytest.raises(TypeError, match=rf"^run 1: '{key}': an argument of the whole batch: "
                            rf"explore_many\(runs, {key}=\.\.\.\)$"):
             frontier.explore_many([dict(map=office), dict(map=office, **{key: value})])
+
+
+def test_native_explore_arguments_name_the_argument(office):
+    """Regression: the native ``explore`` and ``explore_many`` (which the .pyi stubs list)
+    raised OverflowError for memory_mb=-1 or threads=2**70 ("can't convert negative int to
+    unsigned"), took memory_mb=True as a budget of 1 MiB, memory_mb=0 as a budget of none
+    and threads=True as one thread, called a progress that is no callable only once the
+    runs had ended, and gave PyO3's messages naming no argument ("'int' object is not an
+    instance of 'bool'")."""
+    native = frontier._native
+    one = [(office, None)]
+    for call, error, message in [
+        (lambda: native.explore(office, None, False, -1), ValueError,
+         "memory_mb: expected a positive number of MiB, found -1"),
+        (lambda: native.explore(office, None, False, 2**64), ValueError,
+         r"memory_mb: expected less than 2\^64 MiB, found 18446744073709551616"),
+        (lambda: native.explore(office, None, False, 0), ValueError,
+         "memory_mb: expected a positive number of MiB, found 0"),
+        (lambda: native.explore(office, None, False, True), TypeError,
+         "memory_mb: expected an int, found bool"),
+        (lambda: native.explore(office, None, 1), TypeError, "timing: expected a bool, found int"),
+        (lambda: native.explore(None), TypeError, "map: expected a frontier.Map, found NoneType"),
+        (lambda: native.explore(office, [1]), TypeError,
+         "kwargs: expected a dict or None, found list"),
+        (lambda: native.explore_many(one, -1), ValueError,
+         "threads: expected at least 1, found -1"),
+        (lambda: native.explore_many(one, 0), ValueError,
+         "threads: expected at least 1, found 0"),
+        (lambda: native.explore_many(one, 2**70), ValueError,
+         "threads: expected at most 4096, found 1180591620717411303424"),
+        (lambda: native.explore_many(one, -(2**200)), ValueError,
+         "threads: expected at least 1, found -1606938044258990275541962092341162602522202993782"),
+        (lambda: native.explore_many(one, True), TypeError, "threads: expected an int, found bool"),
+        (lambda: native.explore_many(one, 1.0), TypeError,
+         "threads: expected an int, found float"),
+        (lambda: native.explore_many(one, None, 1), TypeError,
+         "timing: expected a bool, found int"),
+        (lambda: native.explore_many(one, None, False, -1), ValueError,
+         "memory_mb: expected a positive number of MiB, found -1"),
+        (lambda: native.explore_many(one, None, False, True), TypeError,
+         "memory_mb: expected an int, found bool"),
+        (lambda: native.explore_many(one, None, False, None, 5), TypeError,
+         "progress: expected a callable or None, found int"),
+        (lambda: native.explore_many([office]), TypeError,
+         r"runs: expected a list of \(frontier.Map, dict or None\) pairs, found list"),
+        (lambda: native.explore_many("ab"), TypeError,
+         r"runs: expected a list of \(frontier.Map, dict or None\) pairs, found str"),
+    ]:
+        with pytest.raises(error, match=f"^{message}"):
+            call()
+    text, _, _ = native.explore(office, {"seed": 1}, np.False_, np.int64(4096))
+    assert native.explore_many([(office, {"seed": 1})], np.int32(2), False, 4096) == [text]
