@@ -481,15 +481,28 @@ type MapState<'py> = (
 #[pyo3(name = "_restore_map", signature = (cells, width, height, resolution, origin, name, start))]
 pub fn restore_map(
     cells: &Bound<'_, PyBytes>,
-    width: usize,
-    height: usize,
-    resolution: f64,
+    #[pyo3(from_py_with = width_arg)] width: usize,
+    #[pyo3(from_py_with = height_arg)] height: usize,
+    #[pyo3(from_py_with = resolution_value)] resolution: f64,
     origin: (f64, f64, f64),
-    name: String,
-    start: Option<(i32, i32)>,
+    #[pyo3(from_py_with = name_arg)] name: String,
+    #[pyo3(from_py_with = start_arg)] start: Option<(i32, i32)>,
 ) -> PyResult<Map> {
     check_resolution(resolution)?;
     check_cells(width, height)?;
+    if ![origin.0, origin.1, origin.2].iter().all(|v| v.is_finite()) {
+        return Err(value_error(format!(
+            "origin: expected finite numbers (x, y, yaw), found ({}, {}, {})",
+            origin.0, origin.1, origin.2
+        )));
+    }
+    if let Some((x, y)) = start
+        && (x < 0 || y < 0 || x as usize >= width || y as usize >= height)
+    {
+        return Err(value_error(format!(
+            "start: expected a cell of the {width}x{height} map, found ({x}, {y})"
+        )));
+    }
     let bytes = cells.as_bytes();
     if bytes.len() != width.saturating_mul(height) || bytes.is_empty() {
         return Err(value_error(format!(
@@ -515,6 +528,49 @@ pub fn restore_map(
     let mut m = Map::new(map, name);
     m.start = start.map(|(x, y)| grid::Cell::new(x, y));
     Ok(m)
+}
+
+/// A map's size in cells along one side (`what`), as `_restore_map` takes it.
+fn side_arg(v: &Bound<'_, PyAny>, what: &str) -> PyResult<usize> {
+    let range = |n: &str| {
+        value_error(format!(
+            "{what}: expected a number of cells in 1..2^64, found {n}"
+        ))
+    };
+    match int_arg(v, what, range)? {
+        0 => Err(range("0")),
+        n => Ok(n),
+    }
+}
+
+/// `width=` of `_restore_map`.
+fn width_arg(v: &Bound<'_, PyAny>) -> PyResult<usize> {
+    side_arg(v, "width")
+}
+
+/// `height=` of `_restore_map`.
+fn height_arg(v: &Bound<'_, PyAny>) -> PyResult<usize> {
+    side_arg(v, "height")
+}
+
+/// `resolution=` of `_restore_map`: a number (checked by [`check_resolution`]).
+fn resolution_value(v: &Bound<'_, PyAny>) -> PyResult<f64> {
+    real_arg(v, "resolution", RESOLUTION)
+}
+
+/// `start=` of `_restore_map`: None, or a cell (x, y) of 32-bit integers.
+fn start_arg(v: &Bound<'_, PyAny>) -> PyResult<Option<(i32, i32)>> {
+    if v.is_none() {
+        return Ok(None);
+    }
+    let (x, y) = pair_arg(v, "start", "a cell (x, y) or None", crate::run::start_item)?;
+    match (x.0, y.0) {
+        (Some(x), Some(y)) => Ok(Some((x, y))),
+        _ => Err(value_error(format!(
+            "start: expected a cell (x, y) of 32-bit integers, found ({}, {})",
+            x.1, y.1
+        ))),
+    }
 }
 
 /// Refuse an array of more cells than any map file may hold ([`grid::io::MAX_CELLS`]),

@@ -134,7 +134,7 @@ pub(crate) fn options(kw: Option<&Bound<'_, PyDict>>) -> PyResult<ExploreOptions
 
 /// One coordinate of `start=`: a Python or numpy integer of any size (not a bool or a
 /// float), as the 32-bit integer cells are numbered in if it is one, and its digits.
-fn start_item(v: &Bound<'_, PyAny>) -> Option<(Option<i32>, String)> {
+pub(crate) fn start_item(v: &Bound<'_, PyAny>) -> Option<(Option<i32>, String)> {
     if crate::is_bool(v) || v.is_instance_of::<pyo3::types::PyFloat>() {
         return None;
     }

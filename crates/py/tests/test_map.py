@@ -327,3 +327,34 @@ def test_regression_str_and_path_arguments_name_the_argument(tmp_path):
     assert frontier.Map.load(str(tmp_path / "m.txt"), topic=None).shape == (2, 4)
     # The signature still shows the default name.
     assert 'name="array"' in frontier.Map.from_numpy.__text_signature__
+
+
+def test_restore_map_arguments_checked(office):
+    """Regression: ``_restore_map`` (what unpickling a map calls) raised OverflowError for a
+    negative width ("can't convert negative int to unsigned") or a start beyond 32 bits,
+    took a bool as the resolution 1 m, and made a map with a NaN origin or a start outside
+    it (a run on it then failed with "--start 50,50: outside the 2x2 map")."""
+    restore = frontier._native._restore_map
+    cells, origin = b"\x01" * 4, (0.0, 0.0, 0.0)
+    for args, error, message in [
+        ((cells, -1, 2, 0.1, origin, "m", None), ValueError,
+         r"width: expected a number of cells in 1\.\.2\^64, found -1"),
+        ((cells, 2, 0, 0.1, origin, "m", None), ValueError,
+         r"height: expected a number of cells in 1\.\.2\^64, found 0"),
+        ((cells, 2.0, 2, 0.1, origin, "m", None), TypeError, "width: expected an int, found float"),
+        ((cells, 2, 2, True, origin, "m", None), TypeError,
+         "resolution: expected a number of metres per cell, found bool"),
+        ((cells, 2, 2, 0.1, (float("nan"), 0.0, 0.0), "m", None), ValueError,
+         r"origin: expected finite numbers \(x, y, yaw\), found \(NaN, 0, 0\)"),
+        ((cells, 2, 2, 0.1, origin, 5, None), TypeError, "name: expected a str, found int"),
+        ((cells, 2, 2, 0.1, origin, "m", (50, 50)), ValueError,
+         r"start: expected a cell of the 2x2 map, found \(50, 50\)"),
+        ((cells, 2, 2, 0.1, origin, "m", (0, -1)), ValueError,
+         r"start: expected a cell of the 2x2 map, found \(0, -1\)"),
+        ((cells, 2, 2, 0.1, origin, "m", (2**40, 0)), ValueError,
+         r"start: expected a cell \(x, y\) of 32-bit integers, found \(1099511627776, 0\)"),
+    ]:
+        with pytest.raises(error, match=f"^{message}"):
+            restore(*args)
+    m = restore(cells, np.int64(2), 2, np.float32(0.5), origin, "m", (np.int32(1), 1))
+    assert (m.shape, m.resolution, m.start) == ((2, 2), 0.5, (1, 1))
