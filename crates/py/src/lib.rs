@@ -24,7 +24,7 @@ use std::path::PathBuf;
 
 use pyo3::exceptions::{PyOverflowError, PyRuntimeError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::{PyBool, PyBytes, PyFloat, PyString};
+use pyo3::types::{PyBool, PyBytes, PyFloat, PyMapping, PyString};
 
 /// A `ValueError` carrying `e`'s message.
 pub(crate) fn value_error(e: impl std::fmt::Display) -> PyErr {
@@ -142,14 +142,18 @@ pub(crate) fn real_item(v: &Bound<'_, PyAny>) -> Option<f64> {
 }
 
 /// Argument `name` as a pair: any sequence of two items (a tuple, a list, a numpy array),
-/// each read by `item`; `what` says what was expected.
+/// each read by `item`; `what` says what was expected. A mapping is no pair (`{0: x, 1: y}`
+/// has two items at 0 and 1, `{x: 0, y: 1}` none), nor a set (its order is not the user's).
 pub(crate) fn pair_arg<T>(
     v: &Bound<'_, PyAny>,
     name: &str,
     what: &str,
     item: impl Fn(&Bound<'_, PyAny>) -> Option<T>,
 ) -> PyResult<(T, T)> {
-    if v.is_instance_of::<PyString>() || v.is_instance_of::<PyBytes>() {
+    if v.is_instance_of::<PyString>()
+        || v.is_instance_of::<PyBytes>()
+        || v.cast::<PyMapping>().is_ok()
+    {
         return Err(type_error(name, what, v));
     }
     let n = v.len().map_err(|_| type_error(name, what, v))?;

@@ -358,3 +358,24 @@ def test_restore_map_arguments_checked(office):
             restore(*args)
     m = restore(cells, np.int64(2), 2, np.float32(0.5), origin, "m", (np.int32(1), 1))
     assert (m.shape, m.resolution, m.start) == ((2, 2), 0.5, (1, 1))
+
+
+def test_pair_given_as_a_set_or_a_mapping_refused(office):
+    """Regression: a pair may be any sequence of two, but a set or a mapping has a length of
+    two without a first and a second item: the environments took ``size={30, 12}`` as
+    12 x 30 m (a set's own order) and ``size={12: 'a', 30: 'b'}`` as its keys, and the native
+    arguments took ``size={0: 30, 1: 12}`` by its keys 0 and 1."""
+    from frontier.gym import ExploreEnv
+
+    for pair in ({30, 12}, frozenset((30, 12)), {12: "a", 30: "b"}, {0: 30, 1: 12}):
+        found = type(pair).__name__
+        for call in (lambda: frontier.Map.generate("office", size=pair),
+                     lambda: ExploreEnv("office", size=pair)):
+            with pytest.raises(TypeError, match=rf"^size: expected \(width, height\) in metres, "
+                               rf"found {found}$"):
+                call()
+        with pytest.raises(TypeError, match=rf"^start: expected a cell \(x, y\), found {found}$"):
+            frontier.explore(office, start=pair)
+    with pytest.raises(TypeError, match=r"^resolution: expected a number of metres per cell or "
+                       r"a pair \(x, y\), found dict$"):
+        frontier.Map.load("office.pgm", resolution={0: 0.1, 1: 0.1})

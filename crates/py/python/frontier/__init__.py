@@ -16,6 +16,7 @@ import os
 import sys
 import warnings
 from typing import (
+    AbstractSet,
     Any,
     Callable,
     Dict,
@@ -217,7 +218,9 @@ def _pair(name: str, value: Any, what: str) -> Optional[Tuple[float, float]]:
     tuple of floats; TypeError or ValueError naming ``name`` otherwise."""
     if value is None:
         return None
-    if isinstance(value, (str, bytes)) or not hasattr(value, "__len__"):
+    # A mapping or a set has a length of two too, but no first and second item: unpacking
+    # gives its keys, or its items in an order of its own ({30, 12} gives 12 first).
+    if isinstance(value, (str, bytes, Mapping, AbstractSet)) or not hasattr(value, "__len__"):
         raise TypeError(f"{name}: expected {what}, found {type(value).__name__}")
     if len(value) != 2:
         raise ValueError(f"{name}: expected {what}, found {len(value)} values")
