@@ -588,3 +588,12 @@ def test_native_explore_arguments_name_the_argument(office):
             call()
     text, _, _ = native.explore(office, {"seed": 1}, np.False_, np.int64(4096))
     assert native.explore_many([(office, {"seed": 1})], np.int32(2), False, 4096) == [text]
+
+
+def test_explore_many_progress_takes_numpy_bools(office, capsys):
+    """Regression: ``progress=np.True_`` was "progress: expected True, False, None or a
+    callable, found bool", though ``timing`` takes numpy's bools as Python's."""
+    rows = frontier.explore_many([dict(map=office)], progress=np.True_)
+    assert "explore_many" in capsys.readouterr().err  # tqdm's bar or the plain line
+    assert frontier.explore_many([dict(map=office)], progress=np.False_) == rows
+    assert capsys.readouterr().err == ""

@@ -416,6 +416,8 @@ def _progress(
 ) -> Tuple[Optional[Callable[[int, int], Any]], Callable[[], Any]]:
     """The native progress callback for ``explore_many``'s ``progress`` and a function that
     closes the display."""
+    if isinstance(progress, np.bool_):
+        progress = bool(progress)
     if progress is None or progress is False:
         return None, lambda: None
     if callable(progress) and progress is not True:
