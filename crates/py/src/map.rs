@@ -367,7 +367,9 @@ impl Map {
         Ok(a.reshape([cells.height(), cells.width()])?.into_any())
     }
 
-    /// Write the map: `.yaml` (ROS map_server YAML + PGM), `.pgm` or `.png`.
+    /// Write the map, in the format of the path's extension: `.yaml` (ROS map_server YAML +
+    /// PGM), `.pgm`, `.png`, `.map` (MovingAI: unknown cells are written as out of bounds
+    /// and read back as occupied) or `.txt`. Only the YAML keeps the resolution and origin.
     fn save(&self, #[pyo3(from_py_with = file_arg)] path: PathBuf) -> PyResult<()> {
         grid::io::save_map(&self.map, &path).map_err(value_error)
     }

@@ -58,7 +58,8 @@ class Map:
     def to_numpy(self) -> np.ndarray:
         """The cells as a (height, width) uint8 array."""
     def save(self, path: Union[str, PathLike[str]]) -> None:
-        """Write `.yaml` (ROS YAML + PGM), `.pgm` or `.png`."""
+        """Write `.yaml` (ROS YAML + PGM), `.pgm`, `.png`, `.map` (MovingAI: unknown cells
+        read back as occupied) or `.txt`; only the YAML keeps the resolution and origin."""
     @property
     def width(self) -> int:
         """Width in cells."""
