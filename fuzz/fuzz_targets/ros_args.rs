@@ -4,8 +4,7 @@
 #![no_main]
 use frontier_ros_core::args::parse;
 use frontier_ros_core::names::{
-    COMMAND_TOPIC, GOAL_TOPIC, MARKERS_TOPIC, RESUME_TOPIC, STATUS_TOPIC, TF_STATIC_TOPIC,
-    TF_TOPIC,
+    COMMAND_TOPIC, GOAL_TOPIC, MARKERS_TOPIC, RESUME_TOPIC, STATUS_TOPIC, TF_STATIC_TOPIC, TF_TOPIC,
 };
 use libfuzzer_sys::fuzz_target;
 
@@ -35,7 +34,10 @@ fuzz_target!(|bytes: &[u8]| {
     ];
     for n in used {
         if let Ok(full) = names.resolve(n) {
-            assert!(full.starts_with('/') && !full.contains("//"), "{n} → {full}");
+            assert!(
+                full.starts_with('/') && !full.contains("//"),
+                "{n} → {full}"
+            );
         }
     }
     assert!(names.fully_qualified_node_name().starts_with('/'));

@@ -19,8 +19,13 @@ fuzz_target!(|bytes: &[u8]| {
         }
     }
     if let Ok(msg) = decode::<OccupancyGrid>(bytes) {
-        let cfg = Params::default().explorer_config().expect("the default parameters");
-        let mut e = Explorer::new(ExplorerConfig { clearance_m: 0.0, ..cfg });
+        let cfg = Params::default()
+            .explorer_config()
+            .expect("the default parameters");
+        let mut e = Explorer::new(ExplorerConfig {
+            clearance_m: 0.0,
+            ..cfg
+        });
         if e.update_map(&msg).is_ok() {
             let o = &msg.info.origin.position;
             let r = f64::from(msg.info.resolution);
