@@ -98,7 +98,7 @@ pub fn check_memory(cfg: &RunConfig, map: &GridMap, memory_mb: Option<u64>) -> R
         &what,
         sim::memory::run_bytes(w * h, map.resolution, cfg),
         memory_mb,
-        crate::machine::available(),
+        grid::machine::available(),
         &fix,
     )
     .map_err(|e| e.to_string())
@@ -116,7 +116,7 @@ pub fn check_generate_memory(spec: &world::EnvSpec, memory_mb: Option<u64>) -> R
         sim::memory::BASE_BYTES
             .saturating_add(cells.saturating_mul(world::GENERATE_BYTES_PER_CELL)),
         memory_mb,
-        crate::machine::available(),
+        grid::machine::available(),
         "choose a smaller size or a coarser resolution",
     )
     .map_err(|e| e.to_string())

@@ -37,7 +37,6 @@ pub mod competitive;
 pub mod error;
 pub mod explore;
 pub mod holz_tables;
-pub mod machine;
 pub mod plan;
 pub mod plots;
 pub mod replays;

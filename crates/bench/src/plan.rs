@@ -1147,7 +1147,7 @@ fn env_extent(
 /// The memory a study's environments may take: the tighter of `memory_mb` (`--memory-mb`)
 /// and what the machine has available.
 fn memory_limit(memory_mb: Option<u64>) -> Option<grid::memory::Available> {
-    sim::memory::limit(memory_mb, crate::machine::available())
+    sim::memory::limit(memory_mb, grid::machine::available())
 }
 
 /// Refuse a study whose environments would not fit in the memory `available` (all of them

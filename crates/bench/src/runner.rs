@@ -127,7 +127,7 @@ pub fn run(plan: &Plan, db: &Path, opts: &RunOptions) -> Result<RunSummary, Benc
             first,
             opts.threads,
             opts.memory_mb,
-            crate::machine::available(),
+            grid::machine::available(),
         )?;
     }
     // An existing store is checked against the plan read-only first, so that a refused run
@@ -178,7 +178,7 @@ pub fn run(plan: &Plan, db: &Path, opts: &RunOptions) -> Result<RunSummary, Benc
         &pending,
         opts.threads,
         opts.memory_mb,
-        crate::machine::available(),
+        grid::machine::available(),
     )?;
     let optimal_cache = crate::competitive::Cache::new(store.optimal_paths()?);
     let store = Mutex::new(store);

@@ -200,7 +200,7 @@ impl MapSource {
             let opts = grid::io::LoadOptions {
                 resolution,
                 border: self.border,
-                memory: sim::memory::limit(memory_mb, bench::machine::available()),
+                memory: sim::memory::limit(memory_mb, grid::machine::available()),
             };
             let (map, start) = load_map_file(path, &opts, self.topic.as_deref(), self.dungeon)?;
             let name = path
@@ -251,7 +251,7 @@ impl MapSource {
         let opts = grid::io::LoadOptions {
             resolution: Some((env.map.resolution, env.map.resolution)),
             border: false,
-            memory: sim::memory::limit(memory_mb, bench::machine::available()),
+            memory: sim::memory::limit(memory_mb, grid::machine::available()),
         };
         let clutter = if self.clutter {
             if env.rooms.is_none() {

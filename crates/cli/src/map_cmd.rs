@@ -59,7 +59,7 @@ pub fn run(cmd: MapCommand) -> Result<()> {
         &grid::io::LoadOptions {
             resolution,
             border,
-            memory: sim::memory::limit(memory_mb, bench::machine::available()),
+            memory: sim::memory::limit(memory_mb, grid::machine::available()),
         },
         topic.as_deref(),
         dungeon,

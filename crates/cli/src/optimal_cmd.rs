@@ -121,7 +121,7 @@ fn check_setup_memory(
     memory_mb: usize,
 ) -> Result<()> {
     let needed = setup_bytes_at(map, factor, spec)?;
-    let available = bench::machine::available();
+    let available = grid::machine::available();
     let limit = sim::memory::limit(Some(memory_mb as u64), available).map_or(u64::MAX, |l| l.bytes);
     if needed <= limit {
         return Ok(());

@@ -81,7 +81,7 @@ pub fn run(a: SegmentArgs) -> Result<()> {
         &format!("segmenting this {w}x{h} map"),
         segment_bytes(w * h),
         a.memory_mb,
-        bench::machine::available(),
+        grid::machine::available(),
         "use a map with fewer, larger cells (scale the image down and raise its resolution)",
     )?;
     let rooms = match &a.truth {
@@ -177,7 +177,7 @@ fn truth_rooms(
     let opts = grid::io::LoadOptions {
         resolution,
         border: source.border,
-        memory: sim::memory::limit(memory_mb, bench::machine::available()),
+        memory: sim::memory::limit(memory_mb, grid::machine::available()),
     };
     let t = grid::io::load_map(path, &opts)?;
     if (t.width(), t.height()) != (map.width(), map.height()) {

@@ -26,6 +26,7 @@ pub mod components;
 pub mod edt;
 pub mod grid;
 pub mod io;
+pub mod machine;
 pub mod memory;
 pub mod occ;
 pub mod resample;

@@ -2,8 +2,8 @@
 //! leaves it: what the map loaders (and the runs of the crates above) compare their
 //! estimates with before allocating.
 //!
-//! `grid` reads no limits itself (`bench::machine` reads them from the operating system);
-//! a library user who wants no check passes none.
+//! The loaders read no limits themselves ([`crate::machine`] reads them from the operating
+//! system): a library user who wants no check passes none.
 
 use std::fmt;
 

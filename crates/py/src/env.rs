@@ -119,7 +119,7 @@ fn start_session(
             ),
             bytes,
             spec.memory_mb,
-            bench::machine::available(),
+            grid::machine::available(),
             "leave the largest maps out of the folder, or use fewer environments",
         )
         .map_err(|e| e.to_string())?;
@@ -945,7 +945,7 @@ fn check_memory(spec: &Spec, envs: usize, agents: usize) -> PyResult<()> {
         &what,
         per_env.saturating_mul(envs as u64),
         spec.memory_mb,
-        bench::machine::available(),
+        grid::machine::available(),
         "use a smaller k or view (a robot-centred crop), smaller maps, or fewer environments",
     )
     .map_err(|e| value_error(e.to_string()))

@@ -186,7 +186,7 @@ pub fn read_file(
         ));
     }
     let name = stem(path);
-    let memory = sim::memory::limit(memory_mb, bench::machine::available());
+    let memory = sim::memory::limit(memory_mb, grid::machine::available());
     if is_mcap {
         if resolution.is_some() || border || dungeon {
             return Err(

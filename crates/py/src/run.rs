@@ -213,7 +213,7 @@ fn check_memory(jobs: &[Job], threads: Option<usize>, memory_mb: Option<u64>) ->
         &needs,
         workers,
         memory_mb,
-        bench::machine::available(),
+        grid::machine::available(),
         "use fewer threads (threads=...) or maps with fewer cells",
     )
     .map_err(|e| value_error(e.to_string()))

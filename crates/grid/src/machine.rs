@@ -1,9 +1,10 @@
 //! What the machine offers a run: the memory available now, read from the operating system
-//! (the estimates of what runs need are `sim::memory`'s, which reads no files).
+//! (the estimates of what runs need are their crates' own, e.g. `sim::memory`'s, which read
+//! no files). Shared by the command line, the Python package and the ROS node.
 
 use std::path::{Path, PathBuf};
 
-use grid::memory::{Available, Limit};
+use crate::memory::{Available, Limit};
 
 /// The memory this process can still take now, and the limit that leaves it, so that a
 /// refusal names it ("the 976 MiB ulimit -v leaves", not "this machine has available" of a
@@ -34,7 +35,7 @@ fn tightest(
     group: Option<u64>,
     address_space: Option<u64>,
 ) -> Option<Available> {
-    grid::memory::least([
+    crate::memory::least([
         machine.map(|b| Available::new(b, Limit::Machine)),
         group.map(|b| Available::new(b, Limit::Cgroup)),
         address_space.map(|b| Available::new(b, Limit::AddressSpace)),
