@@ -59,7 +59,7 @@ pub struct MapSource {
     /// Metres per cell: needed for bare bitmaps, .json and --dungeon maps, 1 if not given for
     /// .map and .txt, and overriding a ROS YAML's own; "RX,RY" for non-square pixels; for
     /// --env, the resolution to generate at.
-    #[arg(long)]
+    #[arg(allow_negative_numbers = true, long)]
     pub resolution: Option<String>,
     /// Add a wall around a bare bitmap or a --dungeon PNG (Stage floor plans often have
     /// none); a dungeon's marked start moves with the cells.
@@ -74,7 +74,7 @@ pub struct MapSource {
     #[arg(long)]
     pub size: Option<String>,
     /// Seed of the generated environment (default: --seed).
-    #[arg(long)]
+    #[arg(allow_negative_numbers = true, long)]
     pub env_seed: Option<u64>,
     /// Furnish a generated office or hospital with tables and chairs off the laser plane
     /// (Yamauchi): planar sensors miss them, sonar hears them, the robot's body bumps into them.

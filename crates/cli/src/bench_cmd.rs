@@ -44,17 +44,17 @@ pub struct RunArgs {
     #[arg(long)]
     pub db: Option<PathBuf>,
     /// Worker threads (default: one per core; never more than the trials to run).
-    #[arg(long, short = 'j')]
+    #[arg(allow_negative_numbers = true, long, short = 'j')]
     pub threads: Option<usize>,
     /// Run only shard I of N (1-based, e.g. 3/8), for job arrays.
     #[arg(long)]
     pub shard: Option<String>,
     /// Run at most this many of the pending trials.
-    #[arg(long)]
+    #[arg(allow_negative_numbers = true, long)]
     pub limit: Option<usize>,
     /// Run only the first N trials of every start variant (a first look at every cell; the
     /// rest can follow later into the same database).
-    #[arg(long, value_name = "N")]
+    #[arg(allow_negative_numbers = true, long, value_name = "N")]
     pub trials: Option<u32>,
     /// Only print the plan (environments, variants, trial count); run nothing.
     #[arg(long)]
@@ -68,7 +68,7 @@ pub struct RunArgs {
     /// Refuse the study up front if its environments, or its largest trials one per
     /// thread, would need more than this many MiB (the memory the machine has available
     /// is always checked).
-    #[arg(long)]
+    #[arg(allow_negative_numbers = true, long)]
     pub memory_mb: Option<u64>,
 }
 
@@ -99,7 +99,7 @@ pub enum BenchCommand {
         #[arg(long)]
         out: PathBuf,
         /// Significance level of the +/=/- verdicts.
-        #[arg(long, default_value_t = 0.001)]
+        #[arg(allow_negative_numbers = true, long, default_value_t = 0.001)]
         alpha: f64,
     },
     /// List the built-in suites.

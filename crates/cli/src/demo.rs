@@ -21,7 +21,7 @@ use crate::args::parse_list;
 #[derive(Args, Clone, Debug)]
 pub struct DemoArgs {
     /// Number of seeds per environment and strategy (Holz et al. ran 10).
-    #[arg(long, default_value_t = 10)]
+    #[arg(allow_negative_numbers = true, long, default_value_t = 10)]
     pub seeds: u64,
     /// Environments, comma-separated.
     #[arg(long, default_value = "office,hospital,cave")]

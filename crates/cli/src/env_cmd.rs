@@ -17,13 +17,13 @@ pub struct EnvArgs {
     #[arg(long)]
     pub list: bool,
     /// Seed.
-    #[arg(long, default_value_t = 0)]
+    #[arg(allow_negative_numbers = true, long, default_value_t = 0)]
     pub seed: u64,
     /// Size in metres, "WxH".
     #[arg(long)]
     pub size: Option<String>,
     /// Metres per cell.
-    #[arg(long)]
+    #[arg(allow_negative_numbers = true, long)]
     pub resolution: Option<String>,
     /// Output file: .png, .yaml (ROS map_server YAML + PGM beside it), .pgm, .map or .txt.
     #[arg(long)]

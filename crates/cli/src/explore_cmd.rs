@@ -17,7 +17,7 @@ pub struct ExploreArgs {
     #[command(flatten)]
     pub source: MapSource,
     /// Master seed: start cell, random choices (and the environment, unless --env-seed).
-    #[arg(long, default_value_t = 0)]
+    #[arg(allow_negative_numbers = true, long, default_value_t = 0)]
     pub seed: u64,
     /// Start cell "X,Y" (column, row; row 0 at the top); default: a free cell chosen by seed.
     #[arg(long)]
@@ -36,31 +36,31 @@ pub struct ExploreArgs {
     #[arg(long)]
     pub sensing: Option<String>,
     /// Robot clearance from known obstacles in metres (Holz's d_max).
-    #[arg(long, default_value_t = 0.0)]
+    #[arg(allow_negative_numbers = true, long, default_value_t = 0.0)]
     pub clearance: f64,
     /// Speed in metres per second.
-    #[arg(long, default_value_t = 1.0)]
+    #[arg(allow_negative_numbers = true, long, default_value_t = 1.0)]
     pub speed: f64,
     /// How path length is measured: `grid` (cell moves, 1 or √2) or `any-angle` (the route
     /// string-pulled through traversable cells, like a robot with smooth controllers).
     #[arg(long, default_value = "grid")]
     pub motion: String,
     /// Number of robots.
-    #[arg(long, default_value_t = 1)]
+    #[arg(allow_negative_numbers = true, long, default_value_t = 1)]
     pub robots: usize,
     /// Re-plan every this many cell moves (Faigl & Kulich's s_max; -1 = on arrival only);
     /// default: the strategy's.
     #[arg(long, allow_negative_numbers = true)]
     pub s_max: Option<i64>,
     /// Stop at this coverage (0..1]; default: explore everything reachable.
-    #[arg(long)]
+    #[arg(allow_negative_numbers = true, long)]
     pub goal: Option<f64>,
     /// What coverage counts: `reachable` (known free among the reachable free cells) or
     /// `known` (Explore-Bench: known free or occupied among the cells the map knows).
     #[arg(long)]
     pub coverage: Option<String>,
     /// Stop after this many cell moves of the whole team.
-    #[arg(long, default_value_t = 10_000_000)]
+    #[arg(allow_negative_numbers = true, long, default_value_t = 10_000_000)]
     pub max_moves: u64,
     /// Write final.png, map.png, belief.yaml + belief.pgm (the map built, ROS format) and trace.json into this directory.
     #[arg(long)]
@@ -84,7 +84,7 @@ pub struct ExploreArgs {
     /// Refuse the run up front if its estimated memory exceeds this many MiB, and a --map
     /// whose loading would, before it is loaded (the memory the machine has available is
     /// always checked).
-    #[arg(long)]
+    #[arg(allow_negative_numbers = true, long)]
     pub memory_mb: Option<u64>,
     /// Never draw the progress bar (drawn on a terminal for runs longer than a second).
     #[arg(long)]

@@ -20,7 +20,7 @@ pub enum MapCommand {
         file: PathBuf,
         /// Metres per cell ("R" or "RX,RY"): needed for bare bitmaps, .json and --dungeon
         /// maps, 1 if not given for .map and .txt, and overriding a ROS YAML's own.
-        #[arg(long)]
+        #[arg(allow_negative_numbers = true, long)]
         resolution: Option<String>,
         /// Add a wall around a bare bitmap or a --dungeon PNG (whose start moves with it).
         #[arg(long)]
@@ -37,7 +37,7 @@ pub enum MapCommand {
         json: bool,
         /// Refuse the file up front if the estimated memory of its loading exceeds this many
         /// MiB, before it is loaded (the memory the machine has available is always checked).
-        #[arg(long)]
+        #[arg(allow_negative_numbers = true, long)]
         memory_mb: Option<u64>,
     },
 }

@@ -28,7 +28,7 @@ pub struct OptimalArgs {
     #[command(flatten)]
     pub source: MapSource,
     /// Seed of a generated environment (unless --env-seed) and of the compared runs.
-    #[arg(long, default_value_t = 0)]
+    #[arg(allow_negative_numbers = true, long, default_value_t = 0)]
     pub seed: u64,
     /// Start cell "X,Y" of the map (column, row; row 0 at the top); default: the free cell
     /// nearest the map's centre.
@@ -38,16 +38,16 @@ pub struct OptimalArgs {
     #[arg(long, default_value = "los:r=5")]
     pub sensor: String,
     /// Solve on cells this many map cells wide (the paper's 1, 2, 4).
-    #[arg(long, default_value_t = 1)]
+    #[arg(allow_negative_numbers = true, long, default_value_t = 1)]
     pub cell_size: usize,
     /// Coverage goal G in (0, 1]: the fraction of free cells to perceive.
-    #[arg(long, default_value_t = 1.0)]
+    #[arg(allow_negative_numbers = true, long, default_value_t = 1.0)]
     pub goal: f64,
     /// Move only to cluster representatives of the boundary cells.
     #[arg(long)]
     pub cluster: bool,
     /// Drop clusters with fewer than K boundary cells (implies --cluster).
-    #[arg(long)]
+    #[arg(allow_negative_numbers = true, long)]
     pub min_cluster: Option<usize>,
     /// Consider every reachable perceived cell as a position (exact, slow).
     #[arg(long, conflicts_with_all = ["cluster", "min_cluster"])]
@@ -57,28 +57,28 @@ pub struct OptimalArgs {
     #[arg(long, default_value = "landmarks")]
     pub heuristic: String,
     /// Number of landmarks of the landmark heuristic.
-    #[arg(long, default_value_t = 32)]
+    #[arg(allow_negative_numbers = true, long, default_value_t = 32)]
     pub landmarks: usize,
     /// Weighted A*: the result is at most W times the optimum (1 = optimal).
-    #[arg(long, default_value_t = 1.0)]
+    #[arg(allow_negative_numbers = true, long, default_value_t = 1.0)]
     pub weight: f64,
     /// Stop after this many seconds with the best bounds (then a little more: the most
     /// advanced open states are completed greedily, with at most 5% as many path searches as
     /// states expanded and for at most a tenth of the limit or 1 s, for a better upper
     /// bound).
-    #[arg(long)]
+    #[arg(allow_negative_numbers = true, long)]
     pub time_limit: Option<f64>,
     /// Stop after expanding this many states.
-    #[arg(long, default_value_t = 50_000_000)]
+    #[arg(allow_negative_numbers = true, long, default_value_t = 50_000_000)]
     pub max_nodes: u64,
     /// Start the best path found from the same problem solved on cells F times larger
     /// (with a tenth of the limits), mapped back and completed greedily: a better upper
     /// bound early on large maps whose search stops with bounds (0: off).
-    #[arg(long, default_value_t = 0)]
+    #[arg(allow_negative_numbers = true, long, default_value_t = 0)]
     pub coarse_incumbent: usize,
     /// Memory budget of the search in MiB (a --map whose loading would exceed it is refused
     /// before it is loaded).
-    #[arg(long, default_value_t = 1024)]
+    #[arg(allow_negative_numbers = true, long, default_value_t = 1024)]
     pub memory_mb: usize,
     /// Online presets to compare, e.g. cf,cf-rr,yamauchi.
     #[arg(long, value_delimiter = ',')]

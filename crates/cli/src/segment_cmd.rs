@@ -26,7 +26,7 @@ pub struct SegmentArgs {
     #[command(flatten)]
     pub source: MapSource,
     /// Seed of a generated environment (when --env-seed is not given).
-    #[arg(long, default_value_t = 0)]
+    #[arg(allow_negative_numbers = true, long, default_value_t = 0)]
     pub seed: u64,
     /// Critical-point rule: holz (relaxed, default), wurm (adjacent to a junction) or
     /// thrun (every local minimum).
@@ -45,7 +45,7 @@ pub struct SegmentArgs {
     /// Refuse up front if the estimated memory exceeds this many MiB, and a --map or --truth
     /// whose loading would, before it is loaded (the memory the machine has available is
     /// always checked).
-    #[arg(long)]
+    #[arg(allow_negative_numbers = true, long)]
     pub memory_mb: Option<u64>,
 }
 

@@ -30,7 +30,7 @@ pub struct SensorsArgs {
     #[arg(long, default_value = "office")]
     pub env: String,
     /// Number of seeds (each a different environment, furniture and start).
-    #[arg(long, default_value_t = 10)]
+    #[arg(allow_negative_numbers = true, long, default_value_t = 10)]
     pub seeds: u64,
     /// Strategy preset of every run.
     #[arg(long, default_value = "yamauchi")]
@@ -39,7 +39,7 @@ pub struct SensorsArgs {
     #[arg(long)]
     pub size: Option<String>,
     /// Metres per cell (sonar cones need cells well below their 10 ft range).
-    #[arg(long, default_value_t = 0.1)]
+    #[arg(allow_negative_numbers = true, long, default_value_t = 0.1)]
     pub resolution: f64,
     /// Print one JSON object instead of the table.
     #[arg(long)]

@@ -198,6 +198,42 @@ fn demo_prints_a_table() {
     assert!(dir.path().join("office-cf-rr.png").exists());
 }
 
+/// Regression: `--speed -1` and `--clearance -1` were taken for flags, and the error
+/// ("unexpected argument '-1' found") named neither the flag nor what it expects.
+#[test]
+fn negative_numbers_are_refused_naming_their_flag() {
+    for (args, expected) in [
+        (
+            &["explore", "--speed", "-1"][..],
+            "--speed: expected a positive number",
+        ),
+        (
+            &["explore", "--clearance", "-1"],
+            "--clearance: expected a non-negative",
+        ),
+        (
+            &["explore", "--resolution", "-0.1"],
+            "--resolution: expected a positive",
+        ),
+        (&["explore", "--goal", "-0.5"], "--goal"),
+        (
+            &["explore", "--seed", "-1"],
+            "invalid value '-1' for '--seed <SEED>'",
+        ),
+        (&["explore", "--robots", "-2"], "for '--robots <ROBOTS>'"),
+        (
+            &["bench", "report", "x.sqlite", "--out", "r", "--alpha", "-1"],
+            "--alpha: expected a level",
+        ),
+        (&["optimal", "--weight", "-2"], "--weight"),
+        (&["sensors", "--resolution", "-1"], "--resolution"),
+    ] {
+        let e = err(args);
+        assert!(e.contains(expected), "{args:?}: {e}");
+        assert!(!e.contains("unexpected argument"), "{args:?}: {e}");
+    }
+}
+
 #[test]
 fn errors_name_the_flag_and_what_was_found() {
     assert!(err(&["explore", "--strategy", "nearestt"]).contains(
