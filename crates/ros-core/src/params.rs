@@ -64,6 +64,9 @@ pub struct Params {
     pub markers_topic: String,
     /// Seed of the strategy's random choices.
     pub seed: u64,
+    /// Refuse a map whose exploration would need more than this many MiB (0: only the
+    /// memory the machine has available is checked).
+    pub memory_mb: u64,
 }
 
 /// The message type of the pose topic.
@@ -125,6 +128,7 @@ impl Default for Params {
             goal_topic: crate::names::GOAL_TOPIC.into(),
             markers_topic: crate::names::MARKERS_TOPIC.into(),
             seed: 0,
+            memory_mb: 0,
         }
     }
 }
@@ -366,13 +370,21 @@ impl Params {
                     format!("seed: expected a non-negative integer, found '{value}'")
                 })?
             }
+            "memory_mb" => {
+                self.memory_mb = value.parse().map_err(|_| {
+                    format!(
+                        "memory_mb: expected a non-negative integer of MiB (0: no budget), \
+                         found '{value}'"
+                    )
+                })?
+            }
             _ => {
                 return Err(format!(
                     "unknown parameter '{name}': expected one of strategy, sensor, clearance, \
                      planner_frequency, progress_timeout, min_frontier_size, goal_tolerance, \
                      return_to_init, visualize, publish_only, autostart, map_topic, pose_topic, \
                      pose_type, robot_base_frame, navigate_action, service_mapping, goal_topic, \
-                     markers_topic, seed"
+                     markers_topic, seed, memory_mb"
                 ));
             }
         }
@@ -425,6 +437,7 @@ impl Params {
             progress_timeout_s: self.progress_timeout,
             goal_tolerance_m: self.goal_tolerance,
             seed: self.seed,
+            memory_mb: (self.memory_mb > 0).then_some(self.memory_mb),
         })
     }
 }
@@ -501,6 +514,22 @@ mod tests {
             .unwrap();
         assert_eq!((p.clearance, p.return_to_init), (0.25, true));
         p.explorer_config().unwrap();
+    }
+
+    /// `memory_mb` is a budget in MiB for the explorer, 0 for none.
+    #[test]
+    fn memory_mb_is_a_budget_or_none() {
+        let mut p = Params::default();
+        assert_eq!(p.explorer_config().unwrap().memory_mb, None);
+        p.set("memory_mb", "512").unwrap();
+        assert_eq!(p.explorer_config().unwrap().memory_mb, Some(512));
+        p.set("memory_mb", "0").unwrap();
+        assert_eq!(p.explorer_config().unwrap().memory_mb, None);
+        let e = p.set("memory_mb", "-1").unwrap_err();
+        assert!(
+            e.starts_with("memory_mb: expected a non-negative integer"),
+            "{e}"
+        );
     }
 
     /// The example file is where docs/ros.md sends a user for the parameters: it sets every

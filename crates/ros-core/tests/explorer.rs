@@ -240,6 +240,30 @@ fn bad_map_messages_are_errors_and_change_nothing() {
     assert_eq!(ex.decide(x, y, 0.0), before);
 }
 
+/// A map message whose exploration would need more than `memory_mb` is refused before
+/// anything is built on it, naming its size, the memory and the budget; the explorer goes
+/// on with the last map.
+#[test]
+fn a_map_beyond_memory_mb_is_refused_and_the_last_one_kept() {
+    let mut c = config("cf", "los:r=3");
+    c.memory_mb = Some(64);
+    let mut ex = Explorer::new(c);
+    let (_, x, y) = start_in_rooms(&mut ex);
+    let before = ex.decide(x, y, 0.0);
+    let huge = record::occupancy::msg_from_map(
+        &GridMap::new(grid::Grid::new(2000, 2000, grid::Occ::Free), 0.05),
+        "map",
+        record::msgs::Time::default(),
+    );
+    let e = ex.update_map(&huge).unwrap_err().to_string();
+    assert!(
+        e.starts_with("a map of 2000 x 2000 cells at 0.05 m: exploring it with cf needs about"),
+        "{e}"
+    );
+    assert!(e.contains("more than memory_mb 64"), "{e}");
+    assert_eq!(ex.decide(x, y, 0.0), before);
+}
+
 #[test]
 fn a_growing_map_keeps_its_inaccessible_goals() {
     // A SLAM map grows: the same world with a border of unknown cells added on the left and
