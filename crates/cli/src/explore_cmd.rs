@@ -258,6 +258,15 @@ pub fn run(a: ExploreArgs) -> Result<()> {
         if let Some(dir) = &a.out {
             println!("pictures and trace written to {}", dir.display());
         }
+        for (what, path) in [
+            ("animation", &a.gif),
+            ("replay page", &a.html),
+            ("recording", &a.mcap),
+        ] {
+            if let Some(path) = path {
+                println!("{what} written to {}", path.display());
+            }
+        }
     }
     Ok(())
 }

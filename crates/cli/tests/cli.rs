@@ -234,6 +234,27 @@ fn negative_numbers_are_refused_naming_their_flag() {
     }
 }
 
+/// Regression: the summary named the folder of `--out` but not the files `--gif`,
+/// `--html` and `--mcap` wrote.
+#[test]
+fn the_summary_names_every_file_written() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = |name: &str| dir.path().join(name).to_str().unwrap().to_string();
+    let (gif, html, mcap) = (file("run.gif"), file("run.html"), file("run.mcap"));
+    let out = ok(&[
+        "explore", "--env", "office", "--size", "20x15", "--gif", &gif, "--html", &html, "--mcap",
+        &mcap,
+    ]);
+    for (what, path) in [
+        ("animation", &gif),
+        ("replay page", &html),
+        ("recording", &mcap),
+    ] {
+        assert!(out.contains(&format!("{what} written to {path}")), "{out}");
+        assert!(std::path::Path::new(path).is_file(), "{path}");
+    }
+}
+
 #[test]
 fn errors_name_the_flag_and_what_was_found() {
     assert!(err(&["explore", "--strategy", "nearestt"]).contains(
