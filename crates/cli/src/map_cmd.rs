@@ -78,7 +78,7 @@ pub fn run(cmd: MapCommand) -> Result<()> {
             "file": file.display().to_string(),
             "width": w, "height": h,
             "resolution": map.resolution,
-            "width_m": w as f64 * map.resolution, "height_m": h as f64 * map.resolution,
+            "width_m": metres(w, map.resolution), "height_m": metres(h, map.resolution),
             "origin": map.origin,
             "free": free, "occupied": occupied, "unknown": unknown,
             "free_components": components,
@@ -105,4 +105,10 @@ pub fn run(cmd: MapCommand) -> Result<()> {
         }
     }
     Ok(())
+}
+
+/// `cells` cells of `resolution` metres, in metres to the nanometre: the product's float
+/// error (604 × 0.05 = 30.200000000000003) is not the map's.
+fn metres(cells: usize, resolution: f64) -> f64 {
+    (cells as f64 * resolution * 1e9).round() / 1e9
 }

@@ -168,6 +168,29 @@ fn env_writes_a_ros_map_that_map_info_reads_back() {
     assert_eq!(info["unknown"], 0);
 }
 
+/// Regression: `map info --json` gave a 604-cell width at 0.05 m as 30.200000000000003 m.
+#[test]
+fn map_info_gives_sizes_in_metres_without_float_noise() {
+    let dir = tempfile::tempdir().unwrap();
+    let yaml = dir.path().join("m.yaml");
+    std::fs::write(dir.path().join("m.pgm"), {
+        let mut b = b"P5\n604 307\n255\n".to_vec();
+        b.extend(std::iter::repeat_n(254u8, 604 * 307));
+        b
+    })
+    .unwrap();
+    std::fs::write(
+        &yaml,
+        "image: m.pgm\nresolution: 0.05\norigin: [0, 0, 0]\nnegate: 0\n\
+         occupied_thresh: 0.65\nfree_thresh: 0.196\n",
+    )
+    .unwrap();
+    let info: serde_json::Value =
+        serde_json::from_str(&ok(&["map", "info", yaml.to_str().unwrap(), "--json"])).unwrap();
+    assert_eq!(info["width_m"], 30.2);
+    assert_eq!(info["height_m"], 15.35);
+}
+
 #[test]
 fn env_list_names_every_kind() {
     let text = ok(&["env", "--list"]);
