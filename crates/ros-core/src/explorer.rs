@@ -85,9 +85,9 @@ impl ExplorerConfig {
     /// lists) and what the strategy adds per cell, plus what building the sensor takes.
     /// Measured with a counting allocator on generated offices at 0.05 m
     /// (`tests/memory.rs` checks that it bounds the peak): about 31 bytes a cell, 54 with
-    /// the decision-theoretic samples, 80 with segmentation; coverage candidates keep a
-    /// visibility set per covering cell that grows with the frontier (up to about 50 MiB
-    /// on a 120,000-cell office).
+    /// the decision-theoretic samples, 80 with segmentation; coverage candidates' scans
+    /// grow with the range's cube, not the map (up to about 50 MiB on a 120,000-cell
+    /// office with an 8 m laser).
     pub fn memory_bytes(&self, cells: usize, resolution: f64) -> u64 {
         let per_cell = PER_CELL
             + match self.strategy.candidates {
@@ -99,12 +99,17 @@ impl ExplorerConfig {
                 AssignerKind::SegmentFirst { .. } => PER_CELL_SEGMENTS,
                 _ => 0,
             };
-        let fixed = match self.strategy.candidates {
-            CandidateKind::Coverage => BASE_BYTES + COVERAGE_BYTES,
-            _ => BASE_BYTES,
+        let scans = match self.strategy.candidates {
+            CandidateKind::Coverage => explore::candidates::coverage::scan_bytes_bound(
+                cells,
+                self.sensor.range_cells(resolution),
+                resolution,
+            ),
+            _ => 0,
         };
-        fixed
+        BASE_BYTES
             .saturating_add(per_cell.saturating_mul(cells as u64))
+            .saturating_add(scans)
             .saturating_add(self.sensor.build_bytes(resolution))
     }
 }
@@ -117,11 +122,9 @@ const PER_CELL: u64 = 40;
 const PER_CELL_SEGMENTS: u64 = 56;
 /// Per-cell bytes the decision-theoretic samples' gain evaluation adds (54 in all).
 const PER_CELL_DT: u64 = 32;
-/// Per-cell bytes coverage candidates add (their covering cells and scans).
+/// Per-cell bytes coverage candidates add (their covering cells), beside their scans
+/// (`scan_bytes_bound`).
 const PER_CELL_COVERAGE: u64 = 160;
-/// Bytes of coverage candidates' visibility sets beyond the per-cell part: they grow with
-/// the frontier, not the map (about 50 MiB at most on a 120,000-cell office).
-const COVERAGE_BYTES: u64 = 64 << 20;
 
 /// Why the explorer stopped.
 #[derive(Clone, Debug, PartialEq)]

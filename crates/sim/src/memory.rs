@@ -31,8 +31,10 @@ const PER_CELL_COVERAGE: u64 = 128;
 const PER_CELL_DT: u64 = 32;
 
 /// Estimated peak bytes of running `cfg` on a map of `cells` cells of `resolution` metres:
-/// the per-cell arrays and what building the sensor takes (the `los` kind's ray template,
-/// up to about 480 MiB at 256 cells of range, whatever the map's size).
+/// the per-cell arrays, the coverage candidates' scans (which grow with the range's cube,
+/// not the map: [`explore::candidates::coverage::scan_bytes_bound`]) and what building the
+/// sensor takes (the `los` kind's ray template, up to about 480 MiB at 256 cells of range,
+/// whatever the map's size). `tests/memory.rs` checks that it bounds whole runs' peaks.
 pub fn run_bytes(cells: usize, resolution: f64, cfg: &RunConfig) -> u64 {
     let mut per_cell = PER_CELL + PER_CELL_PER_ROBOT * cfg.robots.max(1) as u64;
     per_cell += match cfg.strategy.candidates {
@@ -40,8 +42,17 @@ pub fn run_bytes(cells: usize, resolution: f64, cfg: &RunConfig) -> u64 {
         CandidateKind::DtSamples { .. } => PER_CELL_DT,
         _ => 0,
     };
+    let scans = match cfg.strategy.candidates {
+        CandidateKind::Coverage => explore::candidates::coverage::scan_bytes_bound(
+            cells,
+            cfg.sensor.range_cells(resolution),
+            resolution,
+        ),
+        _ => 0,
+    };
     BASE_BYTES
         .saturating_add(per_cell.saturating_mul(cells as u64))
+        .saturating_add(scans)
         .saturating_add(cfg.sensor.build_bytes(resolution))
 }
 
