@@ -36,7 +36,9 @@
 //!
 //! The route is *open*: it starts at node 0 (the robot) and ends at whichever goal is
 //! best; there is no return. Costs come as a symmetric `n × n` matrix (path distances,
-//! or any metric), so the caller decides how goal-to-goal distances are obtained.
+//! or any metric), so the caller decides how goal-to-goal distances are obtained; or, when
+//! `n²` of them would not fit in memory, through [`Costs`], computed when read, with the
+//! same routes as on the matrix of their values.
 //! Deterministic: ties are broken by the lower index, improving moves are taken in a fixed
 //! scan order, and the perturbations use a fixed seed.
 
@@ -63,6 +65,63 @@ pub const EXACT_UP_TO: usize = 12;
 
 /// Candidate neighbours per node of the 2-opt and Or-opt moves on large routes.
 pub const NEIGHBOURS: usize = 10;
+
+/// Symmetric costs between the nodes `0..n` of an instance, as the solver reads them.
+///
+/// The solver is generic over them (monomorphised, nothing dynamic in its loops), so that
+/// costs too many to hold as a matrix can be computed when read: `n²` of them are
+/// quadratic memory, which MA's routes through clusters of thousands of goals cannot
+/// afford. Instances of up to [`FULL_3OPT_UP_TO`] nodes are always solved on a dense
+/// matrix (copied from [`get`](Costs::get) when not [`dense`](Costs::dense)).
+pub trait Costs {
+    /// The number of nodes.
+    fn n(&self) -> usize;
+    /// The cost between nodes `a` and `b`.
+    fn get(&self, a: u32, b: u32) -> f64;
+    /// The costs as a row-major `n × n` matrix, if they are held as one.
+    fn dense(&self) -> Option<&[f64]> {
+        None
+    }
+}
+
+/// A row-major `n × n` cost matrix.
+#[derive(Clone, Copy, Debug)]
+pub struct Dense<'a> {
+    n: usize,
+    d: &'a [f64],
+}
+
+impl<'a> Dense<'a> {
+    /// The `n × n` matrix `d`.
+    ///
+    /// # Panics
+    /// If `d.len() != n * n`.
+    pub fn new(n: usize, d: &'a [f64]) -> Self {
+        assert_eq!(d.len(), n * n, "cost matrix must be n × n");
+        Self { n, d }
+    }
+}
+
+impl Costs for Dense<'_> {
+    fn n(&self) -> usize {
+        self.n
+    }
+
+    #[inline]
+    fn get(&self, a: u32, b: u32) -> f64 {
+        self.d[a as usize * self.n + b as usize]
+    }
+
+    fn dense(&self) -> Option<&[f64]> {
+        Some(self.d)
+    }
+}
+
+/// The dense matrix of an instance small enough to always have one ([`Costs`]).
+fn small<C: Costs>(d: &C) -> &[f64] {
+    d.dense()
+        .expect("instances of up to FULL_3OPT_UP_TO nodes are solved on a dense matrix")
+}
 
 /// xorshift64* step: a tiny fixed-seed generator for the perturbations.
 fn next(state: &mut u64) -> u64 {
@@ -142,6 +201,8 @@ pub struct OpenTsp {
     /// Whether Or-opt skips the moves it knows fail (always, but in the test comparing the
     /// two).
     remember: bool,
+    /// A small instance's costs copied into a matrix ([`Costs`]).
+    small: Vec<f64>,
     starts: usize,
     kicks: usize,
 }
@@ -163,22 +224,22 @@ fn keep_nearest(near: &mut Vec<(f64, u32)>, k: usize) {
 }
 
 /// For each node `a` of `from..n` in turn, append its `k` nearest other nodes of
-/// `from..n` under the `n × n` matrix `d` ([`keep_nearest`]'s order) to `out`; `near` is
-/// scratch.
-fn nearest_lists(
+/// `from..n` under the costs `d` of `n` nodes ([`keep_nearest`]'s order) to `out`; `near`
+/// is scratch.
+fn nearest_lists<C: Costs>(
     near: &mut Vec<(f64, u32)>,
-    n: usize,
-    d: &[f64],
+    d: &C,
     from: usize,
     k: usize,
     out: &mut Vec<u32>,
 ) {
+    let n = d.n();
     for a in from..n {
         near.clear();
         near.extend(
             (from as u32..n as u32)
                 .filter(|&b| b as usize != a)
-                .map(|b| (d[a * n + b as usize], b)),
+                .map(|b| (d.get(a as u32, b), b)),
         );
         keep_nearest(near, k);
         out.extend(near.iter().map(|&(_, b)| b));
@@ -187,10 +248,12 @@ fn nearest_lists(
 
 /// Cost of the open route `route` (consecutive nodes) under the `n × n` matrix `d`.
 pub fn route_cost(n: usize, d: &[f64], route: &[u32]) -> f64 {
-    route
-        .windows(2)
-        .map(|w| d[w[0] as usize * n + w[1] as usize])
-        .sum()
+    route_cost_of(&Dense::new(n, d), route)
+}
+
+/// Cost of the open route `route` (consecutive nodes) under the costs `d`.
+pub fn route_cost_of<C: Costs>(d: &C, route: &[u32]) -> f64 {
+    route.windows(2).map(|w| d.get(w[0], w[1])).sum()
 }
 
 impl OpenTsp {
@@ -218,6 +281,7 @@ impl OpenTsp {
             failed_at: Vec::new(),
             floor: 0,
             remember: true,
+            small: Vec::new(),
             starts: starts.max(1),
             kicks,
         }
@@ -242,18 +306,39 @@ impl OpenTsp {
     /// If `d.len() != n * n`, or the lists are not `n - 1` lists of
     /// `min(NEIGHBOURS, n - 2)` nodes.
     pub fn solve_sharing(&mut self, n: usize, d: &[f64], goal_lists: Option<&[u32]>) -> f64 {
-        assert_eq!(d.len(), n * n, "cost matrix must be n × n");
+        self.solve_costs(&Dense::new(n, d), goal_lists)
+    }
+
+    /// [`solve_sharing`](Self::solve_sharing) under any [`Costs`]: the same route and cost
+    /// bits as on the matrix of their values.
+    ///
+    /// # Panics
+    /// If the lists are not `n - 1` lists of `min(NEIGHBOURS, n - 2)` nodes.
+    pub fn solve_costs<C: Costs>(&mut self, d: &C, goal_lists: Option<&[u32]>) -> f64 {
+        let n = d.n();
+        if n <= FULL_3OPT_UP_TO && d.dense().is_none() {
+            let mut m = std::mem::take(&mut self.small);
+            m.clear();
+            m.extend(
+                (0..n as u32)
+                    .flat_map(|a| (0..n as u32).map(move |b| (a, b)))
+                    .map(|(a, b)| d.get(a, b)),
+            );
+            let c = self.solve_costs(&Dense::new(n, &m), goal_lists);
+            self.small = m;
+            return c;
+        }
         self.route.clear();
         if n == 0 {
             return 0.0;
         }
         if self.kicks > 0 && (3..=EXACT_UP_TO).contains(&n) {
-            return self.held_karp(n, d);
+            return self.held_karp(n, small(d));
         }
         if n > FULL_3OPT_UP_TO {
             match goal_lists {
-                Some(lists) => self.merge_neighbours(n, d, lists),
-                None => self.build_neighbours(n, d),
+                Some(lists) => self.merge_neighbours(d, lists),
+                None => self.build_neighbours(d),
             }
         }
         // Multi-start: nearest neighbour after each of the first nodes nearest to the start,
@@ -261,16 +346,16 @@ impl OpenTsp {
         self.firsts.clear();
         self.firsts.extend(1..n as u32);
         self.firsts
-            .sort_by(|&a, &b| d[a as usize].total_cmp(&d[b as usize]).then(a.cmp(&b)));
+            .sort_by(|&a, &b| d.get(0, a).total_cmp(&d.get(0, b)).then(a.cmp(&b)));
         self.firsts
             .truncate(self.starts.min((WORK_BUDGET / n).max(1)));
         let mut best_cost = f64::INFINITY;
         self.best.clear();
         self.best.push(0);
         for s in 0..self.firsts.len() {
-            self.nearest_neighbour(n, d, self.firsts[s] as usize);
-            self.local_search(n, d);
-            let c = route_cost(n, d, &self.route);
+            self.nearest_neighbour(d, self.firsts[s] as usize);
+            self.local_search(d);
+            let c = route_cost_of(d, &self.route);
             if c < best_cost - EPS {
                 best_cost = c;
                 self.best.clear();
@@ -280,7 +365,7 @@ impl OpenTsp {
         if n < 5 || self.kicks == 0 {
             self.route.clear();
             self.route.extend_from_slice(&self.best);
-            return route_cost(n, d, &self.route);
+            return route_cost_of(d, &self.route);
         }
         // Chained local search: perturb the best route by a double bridge, re-optimise,
         // keep the result if shorter. The perturbations come from a fixed-seed generator,
@@ -290,8 +375,8 @@ impl OpenTsp {
             self.route.clear();
             self.route.extend_from_slice(&self.best);
             double_bridge(&mut self.route, &mut state);
-            self.local_search(n, d);
-            let c = route_cost(n, d, &self.route);
+            self.local_search(d);
+            let c = route_cost_of(d, &self.route);
             if c < best_cost - EPS {
                 best_cost = c;
                 self.best.clear();
@@ -374,14 +459,15 @@ impl OpenTsp {
         if self.route.len() != n {
             // Infinite costs (unreachable goals) leave no finite route: fall back on the
             // nearest-neighbour order.
-            self.nearest_neighbour(n, d, 1);
+            self.nearest_neighbour(&Dense::new(n, d), 1);
         }
         route_cost(n, d, &self.route)
     }
 
-    fn local_search(&mut self, n: usize, d: &[f64]) {
+    fn local_search<C: Costs>(&mut self, d: &C) {
+        let n = d.n();
         if self.route.len() <= FULL_3OPT_UP_TO {
-            while self.three_opt(n, d) {}
+            while self.three_opt(n, small(d)) {}
             return;
         }
         // A new route: nothing remembered from earlier ones holds.
@@ -392,8 +478,8 @@ impl OpenTsp {
             self.failed_at.resize(3 * n, 0);
         }
         loop {
-            let a = self.two_opt(n, d);
-            let b = self.or_opt(n, d);
+            let a = self.two_opt(d);
+            let b = self.or_opt(d);
             if !a && !b {
                 break;
             }
@@ -401,16 +487,10 @@ impl OpenTsp {
     }
 
     /// Each node's [`NEIGHBOURS`] nearest other nodes, nearest first (ties to the lower node).
-    fn build_neighbours(&mut self, n: usize, d: &[f64]) {
+    fn build_neighbours<C: Costs>(&mut self, d: &C) {
         self.nbrs.clear();
-        nearest_lists(
-            &mut self.near,
-            n,
-            d,
-            0,
-            NEIGHBOURS.min(n - 1),
-            &mut self.nbrs,
-        );
+        let k = NEIGHBOURS.min(d.n() - 1);
+        nearest_lists(&mut self.near, d, 0, k, &mut self.nbrs);
     }
 
     /// The goals' neighbour lists of an `n`-node instance for
@@ -419,15 +499,21 @@ impl OpenTsp {
     /// appended to `out`. Row and column 0 of `d` (the start) are not read, so one set of
     /// lists serves every start.
     pub fn goal_neighbours(&mut self, n: usize, d: &[f64], out: &mut Vec<u32>) {
-        let kg = NEIGHBOURS.min(n.saturating_sub(2));
-        nearest_lists(&mut self.near, n, d, 1, kg, out);
+        self.goal_neighbours_of(&Dense::new(n, d), out);
+    }
+
+    /// [`goal_neighbours`](Self::goal_neighbours) under any [`Costs`].
+    pub fn goal_neighbours_of<C: Costs>(&mut self, d: &C, out: &mut Vec<u32>) {
+        let kg = NEIGHBOURS.min(d.n().saturating_sub(2));
+        nearest_lists(&mut self.near, d, 1, kg, out);
     }
 
     /// [`build_neighbours`](Self::build_neighbours)' lists from the goals' own lists (see
     /// [`goal_neighbours`](Self::goal_neighbours)): node 0 joins a goal's list where its cost places it (before
     /// goals of equal cost: it has the lowest index), and its own list is selected from
     /// row 0.
-    fn merge_neighbours(&mut self, n: usize, d: &[f64], goal_lists: &[u32]) {
+    fn merge_neighbours<C: Costs>(&mut self, d: &C, goal_lists: &[u32]) {
+        let n = d.n();
         let k = NEIGHBOURS.min(n - 1);
         let kg = NEIGHBOURS.min(n.saturating_sub(2));
         assert_eq!(
@@ -437,15 +523,15 @@ impl OpenTsp {
         );
         self.nbrs.clear();
         self.near.clear();
-        self.near.extend((1..n as u32).map(|b| (d[b as usize], b)));
+        self.near.extend((1..n as u32).map(|b| (d.get(0, b), b)));
         keep_nearest(&mut self.near, k);
         self.nbrs.extend(self.near.iter().map(|&(_, b)| b));
         for a in 1..n {
             let list = &goal_lists[(a - 1) * kg..a * kg];
-            let d0 = d[a * n];
+            let d0 = d.get(a as u32, 0);
             let at = list
                 .iter()
-                .position(|&b| d0.total_cmp(&d[a * n + b as usize]).is_le())
+                .position(|&b| d0.total_cmp(&d.get(a as u32, b)).is_le())
                 .unwrap_or(kg);
             let start = self.nbrs.len();
             self.nbrs.extend_from_slice(&list[..at]);
@@ -492,10 +578,11 @@ impl OpenTsp {
     /// try to join it to a near neighbour by reversing the part of the route between them
     /// (so that the new edge replaces the node's edge to its successor or predecessor);
     /// the nodes of the edges changed go back on the list. Returns whether anything changed.
-    fn two_opt(&mut self, n: usize, d: &[f64]) -> bool {
+    fn two_opt<C: Costs>(&mut self, d: &C) -> bool {
+        let n = d.n();
         let len = self.route.len();
         let k = NEIGHBOURS.min(n - 1);
-        let c = |a: u32, b: u32| d[a as usize * n + b as usize];
+        let c = |a: u32, b: u32| d.get(a, b);
         self.index_route(n);
         self.queued.clear();
         self.queued.resize(n, false);
@@ -587,7 +674,8 @@ impl OpenTsp {
     }
 
     /// Nearest-neighbour route 0, `first`, then always the nearest unvisited node.
-    fn nearest_neighbour(&mut self, n: usize, d: &[f64], first: usize) {
+    fn nearest_neighbour<C: Costs>(&mut self, d: &C, first: usize) {
+        let n = d.n();
         self.route.clear();
         self.used.clear();
         self.used.resize(n, false);
@@ -617,9 +705,12 @@ impl OpenTsp {
             let mut best = usize::MAX;
             let mut bd = f64::INFINITY;
             for j in 1..n {
-                if !self.used[j] && (best == usize::MAX || d[at * n + j] < bd) {
-                    bd = d[at * n + j];
-                    best = j;
+                if !self.used[j] {
+                    let c = d.get(at as u32, j as u32);
+                    if best == usize::MAX || c < bd {
+                        bd = c;
+                        best = j;
+                    }
                 }
             }
             self.used[best] = true;
@@ -705,8 +796,9 @@ impl OpenTsp {
     /// again only once something they read has changed ([`still_fails`](Self::still_fails):
     /// the same moves, without re-reading the cost matrix for the ones known to fail).
     /// Returns whether anything changed.
-    fn or_opt(&mut self, n: usize, d: &[f64]) -> bool {
-        let c = |a: u32, b: u32| d[a as usize * n + b as usize];
+    fn or_opt<C: Costs>(&mut self, d: &C) -> bool {
+        let n = d.n();
+        let c = |a: u32, b: u32| d.get(a, b);
         let len = self.route.len();
         let k = NEIGHBOURS.min(n - 1);
         self.index_route(n);
@@ -981,8 +1073,8 @@ mod tests {
             let d = instance(n, seed, integer, holes);
             let first = 1 + first.index(n - 1);
             let mut tsp = OpenTsp::new();
-            tsp.build_neighbours(n, &d);
-            tsp.nearest_neighbour(n, &d, first);
+            tsp.build_neighbours(&Dense::new(n, &d));
+            tsp.nearest_neighbour(&Dense::new(n, &d), first);
             prop_assert_eq!(&tsp.route, &nearest_neighbour_plain(n, &d, first));
         }
 
