@@ -6,12 +6,17 @@
 //! so its peak is close to linear in the map's cells. The coefficients below are upper
 //! bounds of peak resident memory measured on whole runs of the 0.05 m willow-full floor
 //! plan (1.1 M cells): 42 B/cell for one robot, 75 with 5 robots, 113 with 10, 64 for
-//! `dt500`, 160 for a 5-robot `ha-cc`. A map the loader accepts (up to 2^28 cells) can need
-//! tens of GiB; the commands compare this estimate with `--memory-mb` and the memory
-//! available (which they read: `sim` touches no files; the least the machine, a cgroup and
-//! `ulimit -v` leave, the refusal naming which), and refuse up front instead of being
-//! killed half-way.
+//! `dt500`, 160 for a 5-robot `ha-cc`. MA adds its route matrices, at most
+//! [`matrix_budget`](explore::assign::mtsp::matrix_budget) (4 MiB and 24 B/cell), and
+//! 8 B/cell of per-goal buffers: a 5-robot `ma-af` run on a 1.7 M-cell warehouse at 3 cm
+//! peaked at 221 MiB (178 MiB without matrices), of 229 MiB counted. A map the loader
+//! accepts (up to 2^28 cells) can need tens of GiB; the commands compare this estimate
+//! with `--memory-mb` and the memory available (which they read: `sim` touches no files;
+//! the least the machine, a cgroup and `ulimit -v` leave, the refusal naming which), and
+//! refuse up front instead of being killed half-way.
 
+use explore::assign::AssignerKind;
+use explore::assign::mtsp::matrix_budget;
 use explore::candidates::CandidateKind;
 use grid::memory::Available;
 
@@ -29,12 +34,17 @@ const PER_CELL_PER_ROBOT: u64 = 10;
 const PER_CELL_COVERAGE: u64 = 128;
 /// Per-cell bytes of the decision-theoretic samples' gain evaluation.
 const PER_CELL_DT: u64 = 32;
+/// Per-cell bytes of MA's per-goal buffers (goals, their participants' costs, neighbour
+/// lists, the searches' settled goals: about 250 B per goal, and all frontier cells can
+/// be a few percent of the cells), beside its route matrices.
+const PER_CELL_MA: u64 = 8;
 
 /// Estimated peak bytes of running `cfg` on a map of `cells` cells of `resolution` metres:
 /// the per-cell arrays, the coverage candidates' scans (which grow with the range's cube,
-/// not the map: [`explore::candidates::coverage::scan_bytes_bound`]) and what building the
-/// sensor takes (the `los` kind's ray template, up to about 480 MiB at 256 cells of range,
-/// whatever the map's size). `tests/memory.rs` checks that it bounds whole runs' peaks.
+/// not the map: [`explore::candidates::coverage::scan_bytes_bound`]), MA's route matrices
+/// and what building the sensor takes (the `los` kind's ray template, up to about 480 MiB
+/// at 256 cells of range, whatever the map's size). `tests/memory.rs` checks that it
+/// bounds whole runs' peaks.
 pub fn run_bytes(cells: usize, resolution: f64, cfg: &RunConfig) -> u64 {
     let mut per_cell = PER_CELL + PER_CELL_PER_ROBOT * cfg.robots.max(1) as u64;
     per_cell += match cfg.strategy.candidates {
@@ -50,9 +60,16 @@ pub fn run_bytes(cells: usize, resolution: f64, cfg: &RunConfig) -> u64 {
         ),
         _ => 0,
     };
+    let matrices = match cfg.strategy.assigner {
+        AssignerKind::Mtsp => {
+            matrix_budget(cells).saturating_add(PER_CELL_MA.saturating_mul(cells as u64))
+        }
+        _ => 0,
+    };
     BASE_BYTES
         .saturating_add(per_cell.saturating_mul(cells as u64))
         .saturating_add(scans)
+        .saturating_add(matrices)
         .saturating_add(cfg.sensor.build_bytes(resolution))
 }
 
@@ -159,6 +176,23 @@ mod tests {
         // The measured peaks on willow-full (1.1 M cells) lie below the estimates.
         assert!(run_bytes(1_100_000, 0.05, &cf) > 50 << 20);
         assert!(run_bytes(1_100_000, 0.05, &cc) > 180 << 20);
+    }
+
+    /// MA's route matrices, kept within their budget, and per-goal buffers are counted (a
+    /// 5-robot `ma-af` run on a 1.7 M-cell warehouse at 3 cm peaked at 855 MiB when the
+    /// matrices were not capped, 221 MiB since).
+    #[test]
+    fn ma_route_matrices_are_counted() {
+        let mut ma = RunConfig::new(Strategy::preset("ma-af").unwrap());
+        ma.robots = 5;
+        let mut minpos = RunConfig::new(Strategy::preset("minpos").unwrap());
+        minpos.robots = 5;
+        let n = 1_684_044;
+        assert_eq!(
+            run_bytes(n, 0.03, &ma) - run_bytes(n, 0.03, &minpos),
+            matrix_budget(n) + PER_CELL_MA * n as u64
+        );
+        assert!(run_bytes(n, 0.03, &ma) > 221 << 20);
     }
 
     /// A 5 m line-of-sight sensor on 2 cm cells builds a ray template of 250 cells' range

@@ -21,6 +21,13 @@
 //!   cluster keeps one route matrix (the participant's costs written into row 0) and its
 //!   goals' neighbour lists, made once per decision: the routes are those of a matrix and
 //!   lists per route, without the O(goals²) copies and selections per route.
+//! - **Memory linear in the goals**: a cluster's matrix is O(goals²), and all frontier
+//!   cells of a large open map make clusters of thousands of goals (6,400 on a 1.7 M-cell
+//!   warehouse at 3 cm: 1.3 GB of matrices). The matrices are kept while they fit in
+//!   [`matrix_budget`] (a few bytes per map cell, which the run's memory estimate counts),
+//!   since reading a matrix is the fastest; the clusters beyond compute their route costs
+//!   when the solver reads them ([`crate::tsp::Costs`]), from the same expression in the
+//!   same order, so the routes and costs are bit for bit those of a matrix.
 //! - The optimal cluster-to-robot assignment is the `lsap` solver (SciPy's shortest
 //!   augmenting path) on that matrix; goals a robot cannot reach add a large finite penalty.
 //! - **Team semantics**: every robot that reaches a goal takes part in the clustering and the
@@ -35,10 +42,25 @@ use super::costs::LazyCosts;
 use crate::candidates::CandidateSet;
 use crate::decision::{DecisionCtx, Goal};
 use crate::kmeans::{Init, KMeans, Point};
-use crate::tsp::OpenTsp;
+use crate::tsp::{Costs, OpenTsp};
 
 /// Added to a route's cost for each goal of the cluster the robot cannot reach.
 const UNREACHABLE: f64 = 1e9;
+
+/// Bytes per map cell the route matrices of a decision may take, beyond
+/// [`MATRIX_BASE_BYTES`] ([`matrix_budget`]).
+pub const MATRIX_BYTES_PER_CELL: u64 = 24;
+
+/// Bytes the route matrices of a decision may take on any map ([`matrix_budget`]).
+pub const MATRIX_BASE_BYTES: u64 = 4 << 20;
+
+/// Most bytes the route matrices of a decision on a map of `cells` cells take: clusters
+/// are given matrices in turn while they fit, the others compute their route costs when
+/// read (see the module documentation). 29 MiB on willow-full's 1.1 M cells, more than
+/// the 22 MiB its largest MA decision needs for clusters of up to 1,100 goals.
+pub fn matrix_budget(cells: usize) -> u64 {
+    MATRIX_BASE_BYTES.saturating_add(MATRIX_BYTES_PER_CELL.saturating_mul(cells as u64))
+}
 
 /// Clusters, matrices and routes, kept across decisions.
 pub struct State {
@@ -52,12 +74,16 @@ pub struct State {
     /// Goals ordered by cluster: cluster j is `order[cstart[j]..cstart[j + 1]]`.
     order: Vec<u32>,
     cstart: Vec<usize>,
-    /// Matrix of one route.
-    dm: Vec<f64>,
+    /// The nodes of one route through a cluster without a matrix ([`on_demand_nodes`]).
+    ncell: Vec<grid::Cell>,
+    ndist: Vec<f64>,
+    /// Entries the route matrices may hold in all, if not [`matrix_budget`]'s (tests).
+    budget: Option<usize>,
     /// Each cluster's route matrix: cluster j's, `(c + 1) × (c + 1)` for its c goals
-    /// (node a + 1 = the cluster's goal a, row-major), starts at `gm[goff[j]]`; its goal
-    /// part holds the goal-to-goal bounds, row and column 0 the costs of the participant
-    /// routed last. And the cluster positions of a route's goals.
+    /// (node a + 1 = the cluster's goal a, row-major), starts at `gm[goff[j]]`
+    /// (`usize::MAX`: the cluster has none, beyond the budget); its goal part holds the
+    /// goal-to-goal bounds, row and column 0 the costs of the participant routed last.
+    /// And the cluster positions of a route's goals.
     gm: Vec<f64>,
     goff: Vec<usize>,
     at: Vec<usize>,
@@ -86,7 +112,9 @@ impl Default for State {
             kmeans: KMeans::new(),
             order: Vec::new(),
             cstart: Vec::new(),
-            dm: Vec::new(),
+            ncell: Vec::new(),
+            ndist: Vec::new(),
+            budget: None,
             gm: Vec::new(),
             goff: Vec::new(),
             at: Vec::new(),
@@ -128,6 +156,119 @@ impl State {
     /// The goals of cluster `j` in the last decision, as indices into [`goals`](Self::goals).
     pub fn cluster(&self, j: usize) -> &[u32] {
         &self.order[self.cstart[j]..self.cstart[j + 1]]
+    }
+
+    /// Let the route matrices hold `entries` entries in all instead of
+    /// [`matrix_budget`]'s bytes (`None`): for tests comparing the two ways of reading
+    /// route costs.
+    #[doc(hidden)]
+    pub fn set_matrix_budget(&mut self, entries: Option<usize>) {
+        self.budget = entries;
+    }
+}
+
+/// The bound max(octile(a, b), max_q |d_q(a) − d_q(b)|) of the module documentation
+/// between goals at cells `a` and `b`, from each participant's costs to the two (in
+/// participant order). Not symmetric to the bit in principle: every caller passes the
+/// goal earlier in its cluster first.
+#[inline]
+fn bound(a: grid::Cell, b: grid::Cell, costs: impl Iterator<Item = (f64, f64)>) -> f64 {
+    let mut d = a.octile(b);
+    for (x, y) in costs {
+        if x.is_finite() && y.is_finite() {
+            d = d.max((x - y).abs());
+        }
+    }
+    d
+}
+
+/// The route costs of a cluster without a matrix, computed when read, bit for bit the
+/// entries its matrix would hold: node a ≥ 1 is the goal at `cells[a]` (goals in cluster
+/// order), with the participants' costs `dist[a * np..(a + 1) * np]`; node 0 is
+/// participant `p` (`cells[0]` and `dist[..np]` are unused).
+struct OnDemand<'a> {
+    cells: &'a [grid::Cell],
+    dist: &'a [f64],
+    np: usize,
+    p: usize,
+}
+
+impl Costs for OnDemand<'_> {
+    fn n(&self) -> usize {
+        self.cells.len()
+    }
+
+    #[inline]
+    fn get(&self, a: u32, b: u32) -> f64 {
+        let (a, b) = (a.min(b) as usize, a.max(b) as usize);
+        let np = self.np;
+        if a == b {
+            0.0
+        } else if a == 0 {
+            self.dist[b * np + self.p]
+        } else {
+            let (da, db) = (
+                &self.dist[a * np..(a + 1) * np],
+                &self.dist[b * np..(b + 1) * np],
+            );
+            bound(
+                self.cells[a],
+                self.cells[b],
+                da.iter().copied().zip(db.iter().copied()),
+            )
+        }
+    }
+}
+
+/// The route costs of a participant that does not reach every goal of a cluster with a
+/// matrix, read from it: node a ≥ 1 is the goal at cluster position `at[a − 1]` (rows and
+/// columns `at[a − 1] + 1` of the cluster's matrix `m`, `stride × stride`), node 0 the
+/// participant, whose costs to the goals (indices into the decision's goals) are `start`.
+struct Reached<'a> {
+    m: &'a [f64],
+    stride: usize,
+    at: &'a [usize],
+    start: &'a [f64],
+    cluster: &'a [u32],
+}
+
+impl Costs for Reached<'_> {
+    fn n(&self) -> usize {
+        self.at.len() + 1
+    }
+
+    #[inline]
+    fn get(&self, a: u32, b: u32) -> f64 {
+        let (a, b) = (a as usize, b as usize);
+        match (a, b) {
+            (0, 0) => 0.0,
+            (0, g) | (g, 0) => self.start[self.cluster[self.at[g - 1]] as usize],
+            _ => self.m[(self.at[a - 1] + 1) * self.stride + self.at[b - 1] + 1],
+        }
+    }
+}
+
+/// The nodes of a route through a cluster without a matrix, for [`OnDemand`]: a dummy
+/// node 0, then the goals `nodes` (indices into `goals`, a map `width` wide), their cells
+/// into `cells` and the `np` participants' costs `dist[q * goals.len() + g]` into `costs`.
+fn on_demand_nodes(
+    goals: &[u32],
+    width: usize,
+    dist: &[f64],
+    np: usize,
+    nodes: impl Iterator<Item = u32>,
+    cells: &mut Vec<grid::Cell>,
+    costs: &mut Vec<f64>,
+) {
+    let ng = goals.len();
+    cells.clear();
+    costs.clear();
+    cells.push(grid::Cell::new(0, 0));
+    costs.resize(np, 0.0);
+    for g in nodes {
+        let c = goals[g as usize] as usize;
+        cells.push(grid::Cell::new((c % width) as i32, (c / width) as i32));
+        costs.extend((0..np).map(|q| dist[q * ng + g as usize]));
     }
 }
 
@@ -220,12 +361,15 @@ fn run(
             }
             st.cstart.push(st.order.len());
         }
-        bounds(st, width);
+        let budget = st
+            .budget
+            .unwrap_or((matrix_budget(ctx.known.len()) / 8) as usize);
+        bounds(st, width, budget);
         // Route second: the participants × clusters matrix.
         st.cost.resize(np * k, 0.0);
         for p in 0..np {
             for j in 0..k {
-                let (c, _) = route(st, p, j, false);
+                let (c, _) = route(st, p, j, false, width);
                 st.cost[p * k + j] = c;
             }
         }
@@ -242,7 +386,7 @@ fn run(
             if !ctx.deciding[r] || j == usize::MAX {
                 continue;
             }
-            let (_, first) = route(st, p, j, true);
+            let (_, first) = route(st, p, j, true, width);
             if let Some(g) = first {
                 let cell = st.goals[g];
                 out[r] = Some(Goal {
@@ -276,8 +420,9 @@ fn run(
 
 /// The goal-to-goal distances of each cluster, once per decision: the lower bound
 /// max(octile, max_q |d_q(a) − d_q(b)|) of the module documentation, in the goal part of
-/// the cluster's route matrix; and the goals' neighbour lists where routes use them.
-fn bounds(st: &mut State, width: usize) {
+/// the cluster's route matrix (while the matrices fit in `budget` entries; the other
+/// clusters compute it when read); and the goals' neighbour lists where routes use them.
+fn bounds(st: &mut State, width: usize, budget: usize) {
     let ng = st.goals.len();
     let np = st.part.len();
     st.gm.clear();
@@ -285,31 +430,47 @@ fn bounds(st: &mut State, width: usize) {
     st.lists.clear();
     st.loff.clear();
     st.loff.push(0);
+    let cell = |g: usize| {
+        let c = st.goals[g] as usize;
+        grid::Cell::new((c % width) as i32, (c / width) as i32)
+    };
     for j in 0..st.cstart.len() - 1 {
         let cluster = &st.order[st.cstart[j]..st.cstart[j + 1]];
-        let (c, off) = (cluster.len(), st.gm.len());
+        let n = cluster.len() + 1;
+        if st.gm.len() + n * n > budget {
+            st.goff.push(usize::MAX);
+            if n > crate::tsp::FULL_3OPT_UP_TO {
+                let nodes = cluster.iter().copied();
+                on_demand_nodes(
+                    &st.goals,
+                    width,
+                    &st.dist,
+                    np,
+                    nodes,
+                    &mut st.ncell,
+                    &mut st.ndist,
+                );
+                let d = OnDemand {
+                    cells: &st.ncell,
+                    dist: &st.ndist,
+                    np,
+                    p: 0,
+                };
+                st.fast.goal_neighbours_of(&d, &mut st.lists);
+            }
+            st.loff.push(st.lists.len());
+            continue;
+        }
+        let off = st.gm.len();
         st.goff.push(off);
-        let n = c + 1;
         st.gm.resize(off + n * n, 0.0);
         for (a, &ga) in cluster.iter().enumerate() {
             let ga = ga as usize;
-            let ca = grid::Cell::new(
-                (st.goals[ga] as usize % width) as i32,
-                (st.goals[ga] as usize / width) as i32,
-            );
+            let ca = cell(ga);
             for (b, &gb) in cluster.iter().enumerate().skip(a + 1) {
                 let gb = gb as usize;
-                let cb = grid::Cell::new(
-                    (st.goals[gb] as usize % width) as i32,
-                    (st.goals[gb] as usize / width) as i32,
-                );
-                let mut d = ca.octile(cb);
-                for q in 0..np {
-                    let (x, y) = (st.dist[q * ng + ga], st.dist[q * ng + gb]);
-                    if x.is_finite() && y.is_finite() {
-                        d = d.max((x - y).abs());
-                    }
-                }
+                let costs = (0..np).map(|q| (st.dist[q * ng + ga], st.dist[q * ng + gb]));
+                let d = bound(ca, cell(gb), costs);
                 st.gm[off + (a + 1) * n + b + 1] = d;
                 st.gm[off + (b + 1) * n + a + 1] = d;
             }
@@ -324,7 +485,7 @@ fn bounds(st: &mut State, width: usize) {
 
 /// Route participant `p` through cluster `j`: its cost (with penalties for unreachable
 /// goals) and the first goal (index into `st.goals`). `full` selects the thorough solver.
-fn route(st: &mut State, p: usize, j: usize, full: bool) -> (f64, Option<usize>) {
+fn route(st: &mut State, p: usize, j: usize, full: bool, width: usize) -> (f64, Option<usize>) {
     let ng = st.goals.len();
     let cluster = &st.order[st.cstart[j]..st.cstart[j + 1]];
     // The route's nodes: the cluster positions of the goals participant p reaches.
@@ -339,11 +500,33 @@ fn route(st: &mut State, p: usize, j: usize, full: bool) -> (f64, Option<usize>)
     }
     // The goal-to-goal bounds do not depend on the participant (see `bounds`): one who
     // reaches every goal of the cluster is routed on the cluster's matrix with its own row
-    // 0 and the shared neighbour lists; another on a matrix of the goals it reaches.
+    // 0 and the shared neighbour lists; another on a matrix of the goals it reaches. A
+    // cluster without a matrix gives the same costs when read.
     let (off, c) = (st.goff[j], cluster.len());
     let n = st.at.len() + 1;
     let solver = if full { &mut st.full } else { &mut st.fast };
-    let c = if n == c + 1 {
+    let c = if off == usize::MAX {
+        let np = st.part.len();
+        let nodes = st.at.iter().map(|&a| cluster[a]);
+        on_demand_nodes(
+            &st.goals,
+            width,
+            &st.dist,
+            np,
+            nodes,
+            &mut st.ncell,
+            &mut st.ndist,
+        );
+        let d = OnDemand {
+            cells: &st.ncell,
+            dist: &st.ndist,
+            np,
+            p,
+        };
+        let lists = &st.lists[st.loff[j]..st.loff[j + 1]];
+        let lists = (n == c + 1 && !lists.is_empty()).then_some(lists);
+        solver.solve_costs(&d, lists)
+    } else if n == c + 1 {
         let m = &mut st.gm[off..off + n * n];
         for a in 1..n {
             let d0 = st.dist[p * ng + cluster[a - 1] as usize];
@@ -353,19 +536,15 @@ fn route(st: &mut State, p: usize, j: usize, full: bool) -> (f64, Option<usize>)
         let lists = &st.lists[st.loff[j]..st.loff[j + 1]];
         solver.solve_sharing(n, m, (!lists.is_empty()).then_some(lists))
     } else {
-        st.dm.clear();
-        st.dm.resize(n * n, 0.0);
         let stride = c + 1;
-        for a in 1..n {
-            let d0 = st.dist[p * ng + cluster[st.at[a - 1]] as usize];
-            st.dm[a] = d0;
-            st.dm[a * n] = d0;
-            let row = off + (st.at[a - 1] + 1) * stride + 1;
-            for b in 1..n {
-                st.dm[a * n + b] = st.gm[row + st.at[b - 1]];
-            }
-        }
-        solver.solve(n, &st.dm)
+        let d = Reached {
+            m: &st.gm[off..off + stride * stride],
+            stride,
+            at: &st.at,
+            start: &st.dist[p * ng..(p + 1) * ng],
+            cluster,
+        };
+        solver.solve_costs(&d, None)
     };
     let first = solver
         .route()
