@@ -1,0 +1,69 @@
+//! The run estimate against what a run takes: a counting allocator measures the peak heap
+//! of whole runs, and `sim::memory::run_bytes`, which every command and the Python package
+//! check before a run, must bound it.
+
+#[path = "../../grid/tests/common/counting.rs"]
+mod counting;
+
+use explore::strategy::Strategy;
+use sim::RunConfig;
+
+/// Peak heap bytes of a whole run of `preset` with `robots` robots on `truth`, with Holz's
+/// laser and a 0.3 m clearance, and the estimate for it.
+fn peak_and_estimate(truth: &grid::GridMap, preset: &str, robots: usize) -> (u64, u64) {
+    let mut cfg = RunConfig::new(Strategy::preset(preset).unwrap());
+    cfg.sensor = "lidar:r=8,fov=180,res=1".parse().unwrap();
+    cfg.clearance_m = 0.3;
+    cfg.robots = robots;
+    let estimate = sim::memory::run_bytes(truth.cells.len(), truth.resolution, &cfg);
+    let (_, peak) = counting::peak_of(|| sim::run(truth, &cfg).unwrap());
+    (peak as u64, estimate)
+}
+
+fn env(kind: world::EnvKind, size: (f64, f64)) -> grid::GridMap {
+    let mut spec = world::EnvSpec::new(kind, 3);
+    spec.size_m = Some(size);
+    spec.resolution = Some(0.05);
+    world::generate(&spec).unwrap().map
+}
+
+/// Every kind of candidates and assigner, one robot and five, on offices of two sizes at
+/// 0.05 m (so that neither the fixed nor the per-cell part alone carries the estimate) and
+/// on an open space, where the frontier is longest for its map.
+#[test]
+fn the_run_estimate_bounds_what_a_run_takes() {
+    let _turn = counting::turn();
+    let maps = [
+        (
+            "office 14 x 10 m",
+            env(world::EnvKind::Office, (14.0, 10.0)),
+        ),
+        (
+            "office 28 x 20 m",
+            env(world::EnvKind::Office, (28.0, 20.0)),
+        ),
+        ("open 24 x 18 m", env(world::EnvKind::Empty, (24.0, 18.0))),
+    ];
+    for (name, truth) in &maps {
+        for (preset, robots) in [
+            ("cf-rr", 1),
+            ("cf-rr-seg", 1),
+            ("dt500", 1),
+            ("yamauchi", 1),
+            ("nearest-cc", 1),
+            ("ha-cc", 5),
+            ("ma-af", 5),
+            ("sga-af", 5),
+            ("minpos", 5),
+            ("greedy-utility", 5),
+        ] {
+            let (peak, estimate) = peak_and_estimate(truth, preset, robots);
+            assert!(
+                peak <= estimate,
+                "{preset} with {robots} robot(s) on the {name}: took {} MiB, estimated {} MiB",
+                peak >> 20,
+                estimate >> 20
+            );
+        }
+    }
+}
