@@ -7,7 +7,7 @@
 //! bounds of peak resident memory measured on whole runs of the 0.05 m willow-full floor
 //! plan (1.1 M cells): 42 B/cell for one robot, 75 with 5 robots, 113 with 10, 64 for
 //! `dt500`, 160 for a 5-robot `ha-cc`. MA adds its route matrices, at most
-//! [`matrix_budget`](explore::assign::mtsp::matrix_budget) (4 MiB and 24 B/cell), and
+//! [`matrix_budget`] (4 MiB and 24 B/cell), and
 //! 8 B/cell of per-goal buffers: a 5-robot `ma-af` run on a 1.7 M-cell warehouse at 3 cm
 //! peaked at 221 MiB (178 MiB without matrices), of 229 MiB counted. A map the loader
 //! accepts (up to 2^28 cells) can need tens of GiB; the commands compare this estimate
