@@ -74,7 +74,7 @@ pub struct State {
     /// Goals ordered by cluster: cluster j is `order[cstart[j]..cstart[j + 1]]`.
     order: Vec<u32>,
     cstart: Vec<usize>,
-    /// The nodes of one route through a cluster without a matrix ([`on_demand_nodes`]).
+    /// The nodes of one route through a cluster without a matrix ([`on_demand`]).
     ncell: Vec<grid::Cell>,
     ndist: Vec<f64>,
     /// Entries the route matrices may hold in all, if not [`matrix_budget`]'s (tests).
@@ -248,18 +248,21 @@ impl Costs for Reached<'_> {
     }
 }
 
-/// The nodes of a route through a cluster without a matrix, for [`OnDemand`]: a dummy
-/// node 0, then the goals `nodes` (indices into `goals`, a map `width` wide), their cells
-/// into `cells` and the `np` participants' costs `dist[q * goals.len() + g]` into `costs`.
-fn on_demand_nodes(
+/// The route costs of participant `p` through the goals `nodes` of a cluster without a
+/// matrix ([`OnDemand`]): a dummy node 0, then the goals (indices into `goals`, a map
+/// `width` wide), their cells written into `cells` and the `np` participants' costs
+/// `dist[q * goals.len() + g]` into `costs`.
+#[allow(clippy::too_many_arguments)]
+fn on_demand<'a>(
     goals: &[u32],
     width: usize,
     dist: &[f64],
     np: usize,
+    p: usize,
     nodes: impl Iterator<Item = u32>,
-    cells: &mut Vec<grid::Cell>,
-    costs: &mut Vec<f64>,
-) {
+    cells: &'a mut Vec<grid::Cell>,
+    costs: &'a mut Vec<f64>,
+) -> OnDemand<'a> {
     let ng = goals.len();
     cells.clear();
     costs.clear();
@@ -269,6 +272,12 @@ fn on_demand_nodes(
         let c = goals[g as usize] as usize;
         cells.push(grid::Cell::new((c % width) as i32, (c / width) as i32));
         costs.extend((0..np).map(|q| dist[q * ng + g as usize]));
+    }
+    OnDemand {
+        cells,
+        dist: costs,
+        np,
+        p,
     }
 }
 
@@ -441,21 +450,8 @@ fn bounds(st: &mut State, width: usize, budget: usize) {
             st.goff.push(usize::MAX);
             if n > crate::tsp::FULL_3OPT_UP_TO {
                 let nodes = cluster.iter().copied();
-                on_demand_nodes(
-                    &st.goals,
-                    width,
-                    &st.dist,
-                    np,
-                    nodes,
-                    &mut st.ncell,
-                    &mut st.ndist,
-                );
-                let d = OnDemand {
-                    cells: &st.ncell,
-                    dist: &st.ndist,
-                    np,
-                    p: 0,
-                };
+                let (cells, costs) = (&mut st.ncell, &mut st.ndist);
+                let d = on_demand(&st.goals, width, &st.dist, np, 0, nodes, cells, costs);
                 st.fast.goal_neighbours_of(&d, &mut st.lists);
             }
             st.loff.push(st.lists.len());
@@ -508,21 +504,8 @@ fn route(st: &mut State, p: usize, j: usize, full: bool, width: usize) -> (f64, 
     let c = if off == usize::MAX {
         let np = st.part.len();
         let nodes = st.at.iter().map(|&a| cluster[a]);
-        on_demand_nodes(
-            &st.goals,
-            width,
-            &st.dist,
-            np,
-            nodes,
-            &mut st.ncell,
-            &mut st.ndist,
-        );
-        let d = OnDemand {
-            cells: &st.ncell,
-            dist: &st.ndist,
-            np,
-            p,
-        };
+        let (cells, costs) = (&mut st.ncell, &mut st.ndist);
+        let d = on_demand(&st.goals, width, &st.dist, np, p, nodes, cells, costs);
         let lists = &st.lists[st.loff[j]..st.loff[j + 1]];
         let lists = (n == c + 1 && !lists.is_empty()).then_some(lists);
         solver.solve_costs(&d, lists)
