@@ -120,7 +120,9 @@ pub fn run(plan: &Plan, db: &Path, opts: &RunOptions) -> Result<RunSummary, Benc
         .map(|(_, t)| t)
         .collect();
     // A new store is made only for a run that fits in memory: refused, it leaves no file.
-    if !db.exists() {
+    // (Its pending trials are these; an existing store's are known once it is read.)
+    let new_store = !db.exists();
+    if new_store {
         let first = &mine[..opts.limit.map_or(mine.len(), |l| l.min(mine.len()))];
         check_memory(
             plan,
@@ -173,13 +175,15 @@ pub fn run(plan: &Plan, db: &Path, opts: &RunOptions) -> Result<RunSummary, Benc
     } else {
         ProgressBar::hidden()
     };
-    check_memory(
-        plan,
-        &pending,
-        opts.threads,
-        opts.memory_mb,
-        grid::machine::available(),
-    )?;
+    if !new_store {
+        check_memory(
+            plan,
+            &pending,
+            opts.threads,
+            opts.memory_mb,
+            grid::machine::available(),
+        )?;
+    }
     let optimal_cache = crate::competitive::Cache::new(store.optimal_paths()?);
     let store = Mutex::new(store);
     let failed = Mutex::new(Vec::new());
