@@ -99,14 +99,11 @@ impl ExplorerConfig {
                 AssignerKind::SegmentFirst { .. } => PER_CELL_SEGMENTS,
                 _ => 0,
             };
-        let scans = match self.strategy.candidates {
-            CandidateKind::Coverage => explore::candidates::coverage::scan_bytes_bound(
-                cells,
-                self.sensor.range_cells(resolution),
-                resolution,
-            ),
-            _ => 0,
-        };
+        let scans = self.strategy.candidates.scan_bytes_bound(
+            cells,
+            self.sensor.range_cells(resolution),
+            resolution,
+        );
         BASE_BYTES
             .saturating_add(per_cell.saturating_mul(cells as u64))
             .saturating_add(scans)

@@ -41,7 +41,7 @@ const PER_CELL_MA: u64 = 8;
 
 /// Estimated peak bytes of running `cfg` on a map of `cells` cells of `resolution` metres:
 /// the per-cell arrays, the coverage candidates' scans (which grow with the range's cube,
-/// not the map: [`explore::candidates::coverage::scan_bytes_bound`]), MA's route matrices
+/// not the map: [`CandidateKind::scan_bytes_bound`]), MA's route matrices
 /// and what building the sensor takes (the `los` kind's ray template, up to about 480 MiB
 /// at 256 cells of range, whatever the map's size). `tests/memory.rs` checks that it
 /// bounds whole runs' peaks.
@@ -52,14 +52,11 @@ pub fn run_bytes(cells: usize, resolution: f64, cfg: &RunConfig) -> u64 {
         CandidateKind::DtSamples { .. } => PER_CELL_DT,
         _ => 0,
     };
-    let scans = match cfg.strategy.candidates {
-        CandidateKind::Coverage => explore::candidates::coverage::scan_bytes_bound(
-            cells,
-            cfg.sensor.range_cells(resolution),
-            resolution,
-        ),
-        _ => 0,
-    };
+    let scans = cfg.strategy.candidates.scan_bytes_bound(
+        cells,
+        cfg.sensor.range_cells(resolution),
+        resolution,
+    );
     let matrices = match cfg.strategy.assigner {
         AssignerKind::Mtsp => {
             matrix_budget(cells).saturating_add(PER_CELL_MA.saturating_mul(cells as u64))

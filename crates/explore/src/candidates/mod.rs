@@ -156,6 +156,16 @@ impl CandidateKind {
             CandidateKind::DtSamples { n } => dt_samples::generate(ctx, n, out),
         }
     }
+
+    /// Bytes this kind's kept scans may take on a map of `cells` cells of `resolution`
+    /// metres with a sensor of `range_cells` cells, beside its per-cell arrays: only
+    /// coverage candidates keep scans ([`coverage::scan_bytes_bound`]).
+    pub fn scan_bytes_bound(&self, cells: usize, range_cells: f64, resolution: f64) -> u64 {
+        match self {
+            CandidateKind::Coverage => coverage::scan_bytes_bound(cells, range_cells, resolution),
+            _ => 0,
+        }
+    }
 }
 
 #[cfg(test)]
