@@ -2,8 +2,9 @@
 
 The rows come through the bench crate's own reader, so the columns are exactly those of
 ``frontier bench export`` (CSV): one row per trial, ordered by key. JSON columns
-(``starts``, ``path_lengths``, ``coverage_curve``) are decoded into lists, and ``seed`` (kept
-as decimal text, an unsigned 64-bit number) into an int, as pandas reads the CSV's.
+(``starts``, ``path_lengths``, ``coverage_curve``, ``idle_s``) are decoded into lists, and
+``seed`` (kept as decimal text, an unsigned 64-bit number) into an int, as pandas reads the
+CSV's.
 """
 
 from __future__ import annotations
