@@ -104,6 +104,21 @@ pub(crate) fn path_arg(v: &Bound<'_, PyAny>, name: &str) -> PyResult<PathBuf> {
     })
 }
 
+/// `v` as an integer (a Python or numpy one; not a bool or a float): `None` if it is no
+/// integer, `Err(digits)` if it is one beyond 128 bits.
+pub(crate) fn int_value(v: &Bound<'_, PyAny>) -> Option<Result<i128, String>> {
+    if is_bool(v) || v.is_instance_of::<PyFloat>() {
+        return None;
+    }
+    match v.extract() {
+        Ok(n) => Some(Ok(n)),
+        Err(e) if e.is_instance_of::<PyOverflowError>(v.py()) => {
+            Some(Err(v.str().map(|s| s.to_string()).unwrap_or_default()))
+        }
+        Err(_) => None,
+    }
+}
+
 /// Argument `name` as an integer of type `T` (a Python or numpy integer; not a bool or a
 /// float); `out_of_range(digits)` is the error for an integer `T` cannot hold.
 pub(crate) fn int_arg<T: TryFrom<i128>>(
@@ -111,19 +126,11 @@ pub(crate) fn int_arg<T: TryFrom<i128>>(
     name: &str,
     out_of_range: impl FnOnce(&str) -> PyErr,
 ) -> PyResult<T> {
-    if is_bool(v) || v.is_instance_of::<PyFloat>() {
-        return Err(type_error(name, "an int", v));
+    match int_value(v) {
+        None => Err(type_error(name, "an int", v)),
+        Some(Err(digits)) => Err(out_of_range(&digits)),
+        Some(Ok(big)) => T::try_from(big).map_err(|_| out_of_range(&big.to_string())),
     }
-    let big: i128 = match v.extract() {
-        Ok(n) => n,
-        Err(e) if e.is_instance_of::<PyOverflowError>(v.py()) => {
-            return Err(out_of_range(
-                &v.str().map(|s| s.to_string()).unwrap_or_default(),
-            ));
-        }
-        Err(_) => return Err(type_error(name, "an int", v)),
-    };
-    T::try_from(big).map_err(|_| out_of_range(&big.to_string()))
 }
 
 /// Argument `name` as an integer in 0..2^64 (a Python or numpy integer; not a bool).

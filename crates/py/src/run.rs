@@ -135,17 +135,10 @@ pub(crate) fn options(kw: Option<&Bound<'_, PyDict>>) -> PyResult<ExploreOptions
 /// One coordinate of `start=`: a Python or numpy integer of any size (not a bool or a
 /// float), as the 32-bit integer cells are numbered in if it is one, and its digits.
 pub(crate) fn start_item(v: &Bound<'_, PyAny>) -> Option<(Option<i32>, String)> {
-    if crate::is_bool(v) || v.is_instance_of::<pyo3::types::PyFloat>() {
-        return None;
-    }
-    let n: i128 = match v.extract() {
-        Ok(n) => n,
-        Err(e) if e.is_instance_of::<pyo3::exceptions::PyOverflowError>(v.py()) => {
-            return Some((None, v.str().ok()?.to_string()));
-        }
-        Err(_) => return None,
-    };
-    Some((i32::try_from(n).ok(), n.to_string()))
+    Some(match crate::int_value(v)? {
+        Ok(n) => (i32::try_from(n).ok(), n.to_string()),
+        Err(digits) => (None, digits),
+    })
 }
 
 /// A run ready to go: the map and its resolved configuration.
