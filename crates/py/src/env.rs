@@ -24,6 +24,7 @@ use numpy::{
 use pyo3::exceptions::PyRuntimeError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
+use rayon::prelude::*;
 use sim::changes::CellBox;
 use sim::spin_pool::SpinPool;
 use sim::{Session, SimError, Status};
@@ -880,17 +881,10 @@ fn spec(
     s.shape = match view {
         Some(v) => (v, v),
         None => {
-            if let Maps::List(list) = &s.maps
-                && let Some(m) = list
-                    .iter()
-                    .find(|m| (m.map.height(), m.map.width()) != (first.height(), first.width()))
-            {
+            if let Some((other, w, h)) = py.detach(|| odd_size(&s, &first))? {
                 return Err(value_error(format!(
-                    "maps: {} is {}x{} cells but {name} is {}x{}; maps of different sizes \
-                     need a robot-centred view (view=...)",
-                    m.name,
-                    m.map.width(),
-                    m.map.height(),
+                    "maps: {other} is {w}x{h} cells but {name} is {}x{}; maps of different \
+                     sizes need a robot-centred view (view=...)",
                     first.width(),
                     first.height()
                 )));
@@ -899,6 +893,37 @@ fn spec(
         }
     };
     Ok((s, (first, name, marked)))
+}
+
+/// The first map of the list or folder whose size is not `first`'s, with its size. Every
+/// file is read (on all cores) to tell: without a robot-centred view an odd one could never
+/// be observed, so it is refused when the environment is made rather than at the episode
+/// that draws it, perhaps hours into training.
+fn odd_size(s: &Spec, first: &GridMap) -> PyResult<Option<(String, usize, usize)>> {
+    let size = (first.width(), first.height());
+    match &s.maps {
+        Maps::List(list) => Ok(list
+            .iter()
+            .find(|m| (m.map.width(), m.map.height()) != size)
+            .map(|m| (m.name.clone(), m.map.width(), m.map.height()))),
+        Maps::Files { paths, .. } => {
+            let sizes: Vec<Result<_, String>> = (0..paths.len())
+                .into_par_iter()
+                .map(|i| {
+                    let (m, name, _) = s.map(0, Some(i))?;
+                    Ok((name, m.width(), m.height()))
+                })
+                .collect();
+            for got in sizes {
+                let (name, w, h) = got.map_err(value_error)?;
+                if (w, h) != size {
+                    return Ok(Some((name, w, h)));
+                }
+            }
+            Ok(None)
+        }
+        Maps::Generated { .. } => Ok(None),
+    }
 }
 
 /// Start the first episode's run and drop it, once the memory it takes has been checked:

@@ -547,17 +547,32 @@ def test_a_folder_of_houseexpo_plans_is_read_episode_by_episode(tmp_path):
 def test_a_folder_of_maps_of_different_sizes_needs_a_view(tmp_path):
     _house(tmp_path / "a.json", 6, 6)
     _house(tmp_path / "b.json", 8, 5)
-    env = ExploreEnv(str(tmp_path), resolution=0.1, k=4)
-    seen = set()
-    for s in range(12):
-        try:
-            seen.add(env.reset(seed=s)[1]["map"])
-        except ValueError as e:
-            assert "maps of different sizes need a robot-centred view" in str(e)
-            seen.add("refused")
-    assert "refused" in seen and len(seen) == 2
+    with pytest.raises(ValueError, match=r"[ab] is \d+x\d+ cells but [ab] is \d+x\d+; maps of "
+                       "different sizes need a robot-centred view"):
+        ExploreEnv(str(tmp_path), resolution=0.1, k=4)
     with pytest.raises(ValueError, match=r"[ab]\.json: --resolution is required for a HouseExpo"):
         ExploreEnv(str(tmp_path))
+
+
+def test_a_folder_without_a_view_is_checked_whole_when_made(tmp_path):
+    # Regression: without a view, an odd-sized or unreadable file of a folder was refused
+    # only at the reset that drew it (perhaps hours into training), not when the
+    # environment was made.
+    for name in "abc":
+        _house(tmp_path / f"{name}.json", 6, 6)
+    env = ExploreEnv(str(tmp_path), resolution=0.1, k=4)
+    assert {env.reset(seed=s)[1]["map"] for s in range(16)} == {"a", "b", "c"}
+    _house(tmp_path / "d.json", 8, 5)
+    odd = r"(d is 82x52 cells but [abc] is 62x62|[abc] is 62x62 cells but d is 82x52)"
+    with pytest.raises(ValueError, match=odd):
+        ExploreEnv(str(tmp_path), resolution=0.1, k=4)
+    (tmp_path / "d.json").write_text("{not json")
+    with pytest.raises(ValueError, match=r"d\.json"):
+        ExploreEnv(str(tmp_path), resolution=0.1, k=4)
+    # With a view every size is observed alike, and files are read when drawn.
+    _house(tmp_path / "d.json", 8, 5)
+    env = ExploreEnv(str(tmp_path), resolution=0.1, k=4, view=32)
+    assert {env.reset(seed=s)[1]["map"] for s in range(16)} == {"a", "b", "c", "d"}
 
 
 def test_a_folder_of_dungeon_maps_starts_where_each_marks(tmp_path, write_png):
