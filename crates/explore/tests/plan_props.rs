@@ -329,6 +329,46 @@ proptest! {
         }
     }
 
+    /// With more goals than `PROBE_FROM` the nearest is looked for unguided first, up to
+    /// a budget of settled cells, then guided: the same goal, cost and path whether the
+    /// probe finds it, finds none reachable or runs out (real goals every `keep`-th of
+    /// the guiding cells, from all of them to a few far ones).
+    #[test]
+    fn nearest_guided_with_many_goals_is_nearest_bit_for_bit(
+        (w, h, pass) in (20usize..70, 20usize..70, 0.5f64..0.95).prop_flat_map(|(w, h, p)| {
+            (Just(w), Just(h), proptest::collection::vec(prop::bool::weighted(p), w * h))
+        }),
+        s in any::<prop::sample::Index>(),
+        goals in proptest::collection::vec(any::<prop::sample::Index>(), 900..4000),
+        keep in prop_oneof![1u32..4, 100u32..4000],
+    ) {
+        let start = s.index(w * h);
+        let goals: Vec<u32> = goals.iter().map(|g| g.index(w * h) as u32).collect();
+        let mut real = vec![false; w * h];
+        for (p, &g) in goals.iter().enumerate() {
+            if (p as u32).is_multiple_of(keep) {
+                real[g as usize] = true;
+            }
+        }
+        let is_goal = |i: usize| real[i];
+        for canonical in [true, false] {
+            let mut plain = Reachability::new(w, h);
+            plain.set_canonical(canonical);
+            let want = plain.nearest(start, |i| pass[i], is_goal);
+            let mut guided = Reachability::new(w, h);
+            guided.set_canonical(canonical);
+            guided.compute((start + 1) % (w * h), |i| pass[i]);
+            let got = guided.nearest_guided(start, |i| pass[i], &goals, is_goal);
+            prop_assert_eq!(got, want);
+            if let Some(g) = want {
+                prop_assert_eq!(guided.cost(g).map(f64::to_bits), plain.cost(g).map(f64::to_bits));
+                let (mut a, mut b) = (Vec::new(), Vec::new());
+                prop_assert!(guided.path_to(g, &mut a) && plain.path_to(g, &mut b));
+                prop_assert_eq!(a, b);
+            }
+        }
+    }
+
     #[test]
     fn bucket_queue_is_the_heap_bit_for_bit(
         (w, h, pass) in map(),

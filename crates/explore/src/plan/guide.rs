@@ -68,12 +68,23 @@ pub struct Guide {
     by_area: Vec<(f64, f64)>,
     /// Set by [`flatten`](Self::flatten): the goals are only marked, the bound is 0.
     flat: bool,
+    /// Set by [`set`](Self::set) when the goals lie in more blocks than it was asked for:
+    /// `points` is then empty and the bound must not be asked.
+    too_many: bool,
 }
 
 impl Guide {
-    /// Toward the cells `goals` of a `width × height` grid (cells outside it are ignored).
-    pub fn set(&mut self, width: usize, height: usize, goals: &[u32]) {
+    /// Toward the cells `goals` of a `width × height` grid (cells outside it are ignored);
+    /// whether they lie in at least one and at most `most` blocks. Beyond `most` blocks the
+    /// bound is not worth asking: the guide then holds no goal (the caller searches
+    /// without it, or [`flatten`]s it toward the goals), and the blocks are neither all
+    /// found nor filed nor the goals marked. A rule whose goals are every frontier cell of
+    /// a large map sets a guide at every decision.
+    ///
+    /// [`flatten`]: Self::flatten
+    pub fn set(&mut self, width: usize, height: usize, goals: &[u32], most: usize) -> bool {
         self.flat = false;
+        self.too_many = false;
         let (bx, by) = (width.div_ceil(BLOCK), height.div_ceil(BLOCK));
         let tiles_x = width.div_ceil(TILE);
         let tiles = tiles_x * height.div_ceil(TILE);
@@ -84,7 +95,6 @@ impl Guide {
             self.tile_range = vec![(0, 0); tiles];
             self.epoch = 0;
         }
-        self.mark_goals(width, height, goals);
         self.width = width;
         self.tiles_x = tiles_x;
         self.epoch = crate::upkeep::next_gen(self.epoch, &mut self.block_mark);
@@ -94,27 +104,41 @@ impl Guide {
         self.points.clear();
         self.lists.clear();
         let half = (BLOCK as f64 - 1.0) / 2.0;
-        for i in 0..self.goals.len() {
-            let g = self.goals[i] as usize;
+        for &g in goals {
+            let g = g as usize;
+            if g >= width * height {
+                continue;
+            }
             let (x, y) = (g % width / BLOCK, g / width / BLOCK);
             let b = y * bx + x;
             if self.block_mark[b] != self.epoch {
+                if self.points.len() == most {
+                    // One block too many: the bound will not be asked.
+                    self.points.clear();
+                    self.too_many = true;
+                    self.mark_goals(width, height, &[]);
+                    return false;
+                }
                 self.block_mark[b] = self.epoch;
                 self.points
                     .push(((x * BLOCK) as f64 + half, (y * BLOCK) as f64 + half));
             }
         }
+        self.mark_goals(width, height, goals);
         if self.points.len() > FILED_FROM {
             self.file_by_area(width, height);
         }
+        !self.points.is_empty()
     }
 
-    /// Keep the goals last [`set`](Self::set) but drop their blocks: the bound is 0
-    /// everywhere, for a search that must settle every goal wherever it lies and only wants
-    /// the goals listed, not the way toward them.
-    pub fn flatten(&mut self) {
+    /// Toward the cells `goals` of a `width × height` grid, with a bound of 0 everywhere:
+    /// for a search that must settle every goal wherever it lies and only wants the goals
+    /// marked, not the way toward them.
+    pub fn flatten(&mut self, width: usize, height: usize, goals: &[u32]) {
+        self.mark_goals(width, height, goals);
         self.points.clear();
         self.flat = true;
+        self.too_many = false;
     }
 
     /// Forget the last goals' bits and mark the cells `goals` inside a `width × height`
@@ -155,16 +179,6 @@ impl Guide {
         }
     }
 
-    /// Number of blocks holding a goal.
-    pub fn len(&self) -> usize {
-        self.points.len()
-    }
-
-    /// Whether there is no goal.
-    pub fn is_empty(&self) -> bool {
-        self.points.is_empty()
-    }
-
     /// Whether cell `i` (of the grid last set) is one of the goals.
     #[inline(always)]
     pub fn is_goal(&self, i: usize) -> bool {
@@ -174,6 +188,7 @@ impl Guide {
     /// The lower bound at column `x`, row `y` (`INFINITY` without goals; 0 if flat).
     #[inline]
     pub fn bound(&mut self, x: usize, y: usize) -> f64 {
+        debug_assert!(!self.too_many, "the bound of goals in too many blocks");
         if self.flat {
             return 0.0;
         }
@@ -280,7 +295,7 @@ mod tests {
                 .chain(anywhere)
                 .collect();
             let mut guide = Guide::default();
-            guide.set(w, h, &goals);
+            guide.set(w, h, &goals, usize::MAX);
             let half = (BLOCK as f64 - 1.0) / 2.0;
             let centres: Vec<(f64, f64)> = goals
                 .iter()
@@ -302,6 +317,49 @@ mod tests {
             }
         }
 
+        /// With a block limit: true exactly when the goals lie in 1..=most blocks, and then
+        /// the goals marked and the same bounds as without a limit; beyond it no goal
+        /// marked (none of an earlier set either), and flattened toward them, all marked.
+        #[test]
+        fn a_block_limit_says_whether_the_goals_fit(
+            goals in prop::collection::vec(0u32..(200 * 120), 0..120),
+            most in 0usize..80,
+            cells in prop::collection::vec(0usize..(200 * 120), 1..40),
+        ) {
+            let (w, h) = (200usize, 120usize);
+            let blocks: std::collections::HashSet<(usize, usize)> = goals
+                .iter()
+                .map(|&g| (g as usize % w / BLOCK, g as usize / w / BLOCK))
+                .collect();
+            let mut limited = Guide::default();
+            // A guide set before with other goals, as a search's guide is.
+            limited.set(w, h, &[5, 7000, 23000], usize::MAX);
+            let fits = limited.set(w, h, &goals, most);
+            prop_assert_eq!(fits, !blocks.is_empty() && blocks.len() <= most);
+            let over = blocks.len() > most;
+            for i in 0..w * h {
+                prop_assert_eq!(limited.is_goal(i), !over && goals.contains(&(i as u32)));
+            }
+            if over {
+                let mut flat = limited.clone();
+                flat.flatten(w, h, &goals);
+                for i in 0..w * h {
+                    prop_assert_eq!(flat.is_goal(i), goals.contains(&(i as u32)));
+                }
+                prop_assert_eq!(flat.bound(cells[0] % w, cells[0] / w), 0.0);
+            }
+            if fits {
+                let mut full = Guide::default();
+                full.set(w, h, &goals, usize::MAX);
+                for &i in &cells {
+                    prop_assert_eq!(
+                        limited.bound(i % w, i / w).to_bits(),
+                        full.bound(i % w, i / w).to_bits()
+                    );
+                }
+            }
+        }
+
         /// Against the octile distance to every goal: never above it, 0 on a goal, and
         /// changing by at most the step's cost between neighbours.
         #[test]
@@ -311,7 +369,7 @@ mod tests {
         ) {
             let (w, h) = (70usize, 45usize);
             let mut guide = Guide::default();
-            guide.set(w, h, &goals);
+            guide.set(w, h, &goals, usize::MAX);
             let exact = |i: usize| {
                 goals.iter().map(|&g| {
                     let g = g as usize;
