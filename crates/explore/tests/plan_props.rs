@@ -167,6 +167,39 @@ fn map() -> impl Strategy<Value = (usize, usize, Vec<bool>)> {
     })
 }
 
+/// `nearest_guided` toward `goals` gives `nearest`'s goal, cost and path, in canonical
+/// order and as Dial's search, after an earlier search on the same buffers (so that stale
+/// data from it must not leak).
+fn same_nearest_guided(
+    w: usize,
+    h: usize,
+    pass: &[bool],
+    start: usize,
+    goals: &[u32],
+    is_goal: impl Fn(usize) -> bool + Copy,
+) -> Result<(), TestCaseError> {
+    for canonical in [true, false] {
+        let mut plain = Reachability::new(w, h);
+        plain.set_canonical(canonical);
+        let want = plain.nearest(start, |i| pass[i], is_goal);
+        let mut guided = Reachability::new(w, h);
+        guided.set_canonical(canonical);
+        guided.compute((start + 1) % (w * h), |i| pass[i]);
+        let got = guided.nearest_guided(start, |i| pass[i], goals, is_goal);
+        prop_assert_eq!(got, want);
+        if let Some(g) = want {
+            prop_assert_eq!(
+                guided.cost(g).map(f64::to_bits),
+                plain.cost(g).map(f64::to_bits)
+            );
+            let (mut a, mut b) = (Vec::new(), Vec::new());
+            prop_assert!(guided.path_to(g, &mut a) && plain.path_to(g, &mut b));
+            prop_assert_eq!(a, b);
+        }
+    }
+    Ok(())
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(192))]
 
@@ -310,23 +343,7 @@ proptest! {
         // guides, as candidates guide an assigner's search for its free goals)
         let goals: Vec<u32> = goals.iter().map(|g| g.index(w * h) as u32).collect();
         let is_goal = |i: usize| goals.iter().position(|&g| g as usize == i).is_some_and(|p| (p as u32).is_multiple_of(keep));
-        for canonical in [true, false] {
-            let mut plain = Reachability::new(w, h);
-            plain.set_canonical(canonical);
-            let want = plain.nearest(start, |i| pass[i], is_goal);
-            let mut guided = Reachability::new(w, h);
-            guided.set_canonical(canonical);
-            // a search first, so stale data from it must not leak
-            guided.compute((start + 1) % (w * h), |i| pass[i]);
-            let got = guided.nearest_guided(start, |i| pass[i], &goals, is_goal);
-            prop_assert_eq!(got, want);
-            if let Some(g) = want {
-                prop_assert_eq!(guided.cost(g).map(f64::to_bits), plain.cost(g).map(f64::to_bits));
-                let (mut a, mut b) = (Vec::new(), Vec::new());
-                prop_assert!(guided.path_to(g, &mut a) && plain.path_to(g, &mut b));
-                prop_assert_eq!(a, b);
-            }
-        }
+        same_nearest_guided(w, h, &pass, start, &goals, is_goal)?;
     }
 
     /// With more goals than `PROBE_FROM` the nearest is looked for unguided first, up to
@@ -351,22 +368,7 @@ proptest! {
             }
         }
         let is_goal = |i: usize| real[i];
-        for canonical in [true, false] {
-            let mut plain = Reachability::new(w, h);
-            plain.set_canonical(canonical);
-            let want = plain.nearest(start, |i| pass[i], is_goal);
-            let mut guided = Reachability::new(w, h);
-            guided.set_canonical(canonical);
-            guided.compute((start + 1) % (w * h), |i| pass[i]);
-            let got = guided.nearest_guided(start, |i| pass[i], &goals, is_goal);
-            prop_assert_eq!(got, want);
-            if let Some(g) = want {
-                prop_assert_eq!(guided.cost(g).map(f64::to_bits), plain.cost(g).map(f64::to_bits));
-                let (mut a, mut b) = (Vec::new(), Vec::new());
-                prop_assert!(guided.path_to(g, &mut a) && plain.path_to(g, &mut b));
-                prop_assert_eq!(a, b);
-            }
-        }
+        same_nearest_guided(w, h, &pass, start, &goals, is_goal)?;
     }
 
     #[test]
