@@ -1,4 +1,5 @@
-//! Planning on a 2000 × 2000 map: nearest frontier (near and far), full reachability, the
+//! Planning on a 2000 × 2000 map: nearest frontier (near and far, unguided and as the
+//! nearest rule searches), full reachability, the
 //! resumable search (whole, and to far goals with and without guidance, guided in
 //! canonical order and as Dial's), the reachability flood fill, A*, EDT.
 
@@ -40,6 +41,20 @@ fn bench(c: &mut Criterion) {
         );
         g.bench_function(name, |b| {
             b.iter(|| black_box(r.nearest(start, passable, is_goal)))
+        });
+    }
+    // the same, as the nearest rule searches: toward every frontier cell (more than
+    // PROBE_FROM of them, so tried unguided first; from far, the guide is then set)
+    let frontier = up.frontiers.cells().to_vec();
+    for (name, start) in [("nearest_guided_near", near), ("nearest_guided_far", far)] {
+        let goal = r.nearest_guided(start, passable, &frontier, is_goal);
+        eprintln!(
+            "{name}: {} goals, goal {goal:?}, settled {}",
+            frontier.len(),
+            r.settled().len()
+        );
+        g.bench_function(name, |b| {
+            b.iter(|| black_box(r.nearest_guided(start, passable, &frontier, is_goal)))
         });
     }
     let truth_passable = |i: usize| truth[i] == Occ::Free;
