@@ -19,6 +19,7 @@ each round's ratio.
 
 import argparse
 import json
+import os
 import statistics
 import subprocess
 import sys
@@ -72,7 +73,12 @@ def worker(a, common):
 def measure(kind, policy, n, argv):
     """Run one worker process and return its steps per second."""
     cmd = [sys.executable, __file__, *argv, "--worker", kind, "--policy", policy, "--n", str(n)]
-    out = subprocess.run(cmd, check=True, capture_output=True, text=True).stdout
+    # numpy's OpenBLAS starts a worker thread per core, which spins for about 0.1 s after
+    # numpy is imported: on two cores it would take one from the vector environment's
+    # threads at the start of its measurement. Nothing here calls BLAS.
+    env = dict(os.environ)
+    env.setdefault("OPENBLAS_NUM_THREADS", "1")
+    out = subprocess.run(cmd, check=True, capture_output=True, text=True, env=env).stdout
     return float(out.strip().splitlines()[-1])
 
 
