@@ -37,6 +37,9 @@ enum Extent {
     Full,
 }
 
+/// The id of [`Planner::grow_unguided`]'s searches among `guided_toward`'s.
+const UNGUIDED: u64 = u64::MAX;
+
 /// Per-robot reachability maps, reused across decisions (no allocation in steady state).
 pub struct Planner {
     maps: Vec<Reachability>,
@@ -228,6 +231,23 @@ impl Planner {
         self.grow_guided(r, from, (known, upkeep), (goals, Some(id)), through)
     }
 
+    /// [`grow`](Self::grow) unguided: a new resumable search with no guide if this
+    /// decision has none begun so, then grown until every cell of cost below `through + 1`
+    /// is settled. For a rule that wants the few candidates nearest the robot among many,
+    /// where setting a guide costs more than it saves
+    /// ([`Reachability::nearest_guided`]); a later [`grow`](Self::grow) begins a guided
+    /// search again.
+    pub fn grow_unguided(
+        &mut self,
+        r: usize,
+        from: u32,
+        known: &Grid<Occ>,
+        upkeep: &FrontierUpkeep,
+        through: usize,
+    ) -> bool {
+        self.grow_guided(r, from, (known, upkeep), (&[], Some(UNGUIDED)), through)
+    }
+
     fn grow_guided(
         &mut self,
         r: usize,
@@ -241,7 +261,11 @@ impl Planner {
             Extent::Full => return true,
             Extent::Growing if self.guided_toward[r] == id => {}
             Extent::Growing | Extent::Stale | Extent::Partial => {
-                self.maps[r].begin_guided(from as usize, pass, goals);
+                if id == Some(UNGUIDED) {
+                    self.maps[r].begin(from as usize, pass);
+                } else {
+                    self.maps[r].begin_guided(from as usize, pass, goals);
+                }
                 self.guided_toward[r] = id;
                 self.extent[r] = Extent::Growing;
             }

@@ -37,6 +37,7 @@ pub const BUMP_S: f64 = 1.0;
 pub const IMPERFECT_NO_PROGRESS_S: f64 = 30.0;
 use crate::changes::{CellBox, ChangeTracker};
 use crate::motion::{Motion, any_angle_length};
+use explore::plan::reachability::{PROBE_FROM, PROBE_SHARE};
 use explore::upkeep::FrontierUpkeep;
 use grid::{Cell, Grid, GridMap, Occ, step_cost};
 use rand_pcg::Pcg64Mcg;
@@ -500,12 +501,28 @@ impl<'a> Session<'a> {
         let known = team.belief.known();
         let mut seen = 0;
         let mut through = 0;
+        // As the nearest rule does (`Reachability::nearest_guided`): among many candidates
+        // an unguided search first, up to a budget of settled cells, then a guided one.
+        let many = team.offer.candidates.len();
+        let mut probe = (many > PROBE_FROM && !team.planner.is_searching(r))
+            .then(|| (many - PROBE_FROM) / PROBE_SHARE);
+        let mut search = None;
         loop {
             let goals = team.offer.candidates.cells();
-            let done = team
-                .planner
-                .grow(r, from, known, &team.upkeep, goals, through);
+            let done = match probe {
+                Some(_) => team
+                    .planner
+                    .grow_unguided(r, from, known, &team.upkeep, through),
+                None => team
+                    .planner
+                    .grow(r, from, known, &team.upkeep, goals, through),
+            };
             let map = team.planner.map(r);
+            if search != Some(map.search_id()) {
+                // a search begun (again, guided after the probe): read it from its start
+                (search, seen) = (Some(map.search_id()), 0);
+                out.clear();
+            }
             let settled = map.settled();
             for &c in &settled[seen.min(settled.len())..] {
                 if team.offer.candidates.contains(c as usize) {
@@ -518,6 +535,10 @@ impl<'a> Session<'a> {
                 break;
             }
             through = map.next_bucket();
+            if probe.is_some_and(|budget| seen > budget) {
+                // too far for the probe: the guided search from the start
+                (probe, through) = (None, 0);
+            }
         }
         out.sort_by(|a, b| a.cost.total_cmp(&b.cost).then(a.cell.cmp(&b.cell)));
         out.truncate(k);

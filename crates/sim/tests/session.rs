@@ -277,3 +277,57 @@ fn tracked_changes_hold_every_changed_cell() {
         assert_same_run(&s.finish(), &sim::run(map, &cfg).expect("run"), name);
     }
 }
+
+/// Among more candidates than `PROBE_FROM` the cheapest are looked for unguided first, then
+/// guided once the probe's budget is spent: the same candidates and costs as a full search
+/// of the belief, for one, a few and more candidates than the probe settles, at every
+/// decision of the start of a run whose frontier runs along every wall.
+#[test]
+fn nearest_candidates_among_many_equal_a_full_search() {
+    use explore::Reachability;
+    use explore::plan::reachability::PROBE_FROM;
+    use grid::Occ;
+    let spec = EnvSpec::new(EnvKind::Office, 1)
+        .with_size(50.0, 30.0)
+        .with_resolution(0.05);
+    let map = world::generate(&spec).expect("office").map;
+    let mut cfg = config("cf-rr", 1, 0);
+    cfg.sensor = SensorSpec::Los {
+        r: Range::Metres(5.0),
+    };
+    let mut s = Session::start(Cow::Borrowed(&map), Cow::Borrowed(&cfg), true).expect("start");
+    let (w, h) = (map.width(), map.height());
+    let mut full = Reachability::new(w, h);
+    let (mut decisions, mut many) = (0, 0);
+    while decisions < 400 && s.advance() == Status::Decide {
+        let (from, _) = s.pose(0);
+        let known = s.known();
+        full.compute(from as usize, |i| known[i] == Occ::Free);
+        let mut want: Vec<(f64, u32)> = s
+            .candidates()
+            .iter()
+            .filter_map(|&c| full.cost(c as usize).map(|cost| (cost, c)))
+            .collect();
+        want.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        many += usize::from(s.candidates().len() > PROBE_FROM);
+        // The first search of a decision probes, and runs out of its budget for the
+        // more candidates the more it is asked for; the others read the guided search.
+        let first = [1, 2, 3, 5, 16, 400][decisions % 6];
+        for k in [first, 16, 400] {
+            let mut got = Vec::new();
+            s.nearest_candidates(0, k, &mut got);
+            let got: Vec<(f64, u32)> = got.iter().map(|g| (g.cost, g.cell)).collect();
+            assert_eq!(
+                got,
+                want[..k.min(want.len())],
+                "decision {decisions}, k = {k}"
+            );
+        }
+        choose_as_the_assigner(&mut s, &cfg);
+        decisions += 1;
+    }
+    assert!(
+        many > 100,
+        "{many} of {decisions} decisions had many candidates"
+    );
+}
