@@ -420,7 +420,6 @@ impl Explorer {
         Ok(MapUpdate { rebuilt, changed })
     }
 
-    /// The robot's sensor at the resolution of `frame`.
     /// Refuse `frame` if exploring it would need more than `memory_mb` or the memory the
     /// machine has available (the old map's state, freed before the new one is built,
     /// counts as available).
@@ -453,6 +452,7 @@ impl Explorer {
         }
     }
 
+    /// The robot's sensor at the resolution of `frame`.
     fn sensor_for(&self, frame: &MapFrame) -> Result<Box<dyn Sensor>, UpdateError> {
         self.cfg
             .sensor
