@@ -43,6 +43,7 @@ use crate::candidates::CandidateSet;
 use crate::decision::{DecisionCtx, Goal};
 use crate::kmeans::{Init, KMeans, Point};
 use crate::tsp::{Costs, OpenTsp};
+use grid::{Grid, Occ};
 
 /// Added to a route's cost for each goal of the cluster the robot cannot reach.
 const UNREACHABLE: f64 = 1e9;
@@ -249,13 +250,13 @@ impl Costs for Reached<'_> {
 }
 
 /// The route costs of participant `p` through the goals `nodes` of a cluster without a
-/// matrix ([`OnDemand`]): a dummy node 0, then the goals (indices into `goals`, a map
-/// `width` wide), their cells written into `cells` and the `np` participants' costs
+/// matrix ([`OnDemand`]): a dummy node 0, then the goals (indices into `goals`, cells of
+/// `known`), their cells written into `cells` and the `np` participants' costs
 /// `dist[q * goals.len() + g]` into `costs`.
 #[allow(clippy::too_many_arguments)]
 fn on_demand<'a>(
     goals: &[u32],
-    width: usize,
+    known: &Grid<Occ>,
     dist: &[f64],
     np: usize,
     p: usize,
@@ -269,8 +270,7 @@ fn on_demand<'a>(
     cells.push(grid::Cell::new(0, 0));
     costs.resize(np, 0.0);
     for g in nodes {
-        let c = goals[g as usize] as usize;
-        cells.push(grid::Cell::new((c % width) as i32, (c / width) as i32));
+        cells.push(known.cell(goals[g as usize] as usize));
         costs.extend((0..np).map(|q| dist[q * ng + g as usize]));
     }
     OnDemand {
@@ -373,12 +373,12 @@ fn run(
         let budget = st
             .budget
             .unwrap_or((matrix_budget(ctx.known.len()) / 8) as usize);
-        bounds(st, width, budget);
+        bounds(st, ctx.known, budget);
         // Route second: the participants × clusters matrix.
         st.cost.resize(np * k, 0.0);
         for p in 0..np {
             for j in 0..k {
-                let (c, _) = route(st, p, j, false, width);
+                let (c, _) = route(st, p, j, false, ctx.known);
                 st.cost[p * k + j] = c;
             }
         }
@@ -395,7 +395,7 @@ fn run(
             if !ctx.deciding[r] || j == usize::MAX {
                 continue;
             }
-            let (_, first) = route(st, p, j, true, width);
+            let (_, first) = route(st, p, j, true, ctx.known);
             if let Some(g) = first {
                 let cell = st.goals[g];
                 out[r] = Some(Goal {
@@ -431,7 +431,7 @@ fn run(
 /// max(octile, max_q |d_q(a) − d_q(b)|) of the module documentation, in the goal part of
 /// the cluster's route matrix (while the matrices fit in `budget` entries; the other
 /// clusters compute it when read); and the goals' neighbour lists where routes use them.
-fn bounds(st: &mut State, width: usize, budget: usize) {
+fn bounds(st: &mut State, known: &Grid<Occ>, budget: usize) {
     let ng = st.goals.len();
     let np = st.part.len();
     st.gm.clear();
@@ -439,10 +439,7 @@ fn bounds(st: &mut State, width: usize, budget: usize) {
     st.lists.clear();
     st.loff.clear();
     st.loff.push(0);
-    let cell = |g: usize| {
-        let c = st.goals[g] as usize;
-        grid::Cell::new((c % width) as i32, (c / width) as i32)
-    };
+    let cell = |g: usize| known.cell(st.goals[g] as usize);
     for j in 0..st.cstart.len() - 1 {
         let cluster = &st.order[st.cstart[j]..st.cstart[j + 1]];
         let n = cluster.len() + 1;
@@ -451,7 +448,7 @@ fn bounds(st: &mut State, width: usize, budget: usize) {
             if n > crate::tsp::FULL_3OPT_UP_TO {
                 let nodes = cluster.iter().copied();
                 let (cells, costs) = (&mut st.ncell, &mut st.ndist);
-                let d = on_demand(&st.goals, width, &st.dist, np, 0, nodes, cells, costs);
+                let d = on_demand(&st.goals, known, &st.dist, np, 0, nodes, cells, costs);
                 st.fast.goal_neighbours_of(&d, &mut st.lists);
             }
             st.loff.push(st.lists.len());
@@ -481,7 +478,13 @@ fn bounds(st: &mut State, width: usize, budget: usize) {
 
 /// Route participant `p` through cluster `j`: its cost (with penalties for unreachable
 /// goals) and the first goal (index into `st.goals`). `full` selects the thorough solver.
-fn route(st: &mut State, p: usize, j: usize, full: bool, width: usize) -> (f64, Option<usize>) {
+fn route(
+    st: &mut State,
+    p: usize,
+    j: usize,
+    full: bool,
+    known: &Grid<Occ>,
+) -> (f64, Option<usize>) {
     let ng = st.goals.len();
     let cluster = &st.order[st.cstart[j]..st.cstart[j + 1]];
     // The route's nodes: the cluster positions of the goals participant p reaches.
@@ -505,7 +508,7 @@ fn route(st: &mut State, p: usize, j: usize, full: bool, width: usize) -> (f64, 
         let np = st.part.len();
         let nodes = st.at.iter().map(|&a| cluster[a]);
         let (cells, costs) = (&mut st.ncell, &mut st.ndist);
-        let d = on_demand(&st.goals, width, &st.dist, np, p, nodes, cells, costs);
+        let d = on_demand(&st.goals, known, &st.dist, np, p, nodes, cells, costs);
         let lists = &st.lists[st.loff[j]..st.loff[j + 1]];
         let lists = (n == c + 1 && !lists.is_empty()).then_some(lists);
         solver.solve_costs(&d, lists)
