@@ -90,7 +90,57 @@ impl CellBits {
     pub fn word(&self, k: usize) -> u64 {
         self.words[k]
     }
+
+    /// Cells `from..from + out.len()` as bytes, 1 present and 0 absent (a row of an
+    /// observation layer): eight cells per table look-up, not a bit test per cell.
+    ///
+    /// # Panics
+    /// If the cells run past `len`.
+    pub fn bytes_into(&self, from: usize, out: &mut [u8]) {
+        assert!(
+            from + out.len() <= self.len,
+            "cells {from}..{} outside a set of {} cells",
+            from + out.len(),
+            self.len
+        );
+        let mut i = from;
+        let mut out = out;
+        // Up to the next multiple of 8, one cell at a time.
+        while !i.is_multiple_of(8) && !out.is_empty() {
+            out[0] = u8::from(self.contains(i));
+            out = &mut out[1..];
+            i += 1;
+        }
+        let mut chunks = out.chunks_exact_mut(8);
+        for chunk in &mut chunks {
+            let byte = (self.words[i >> 6] >> (i & 63)) as u8;
+            chunk.copy_from_slice(&BYTES_OF_BITS[byte as usize].to_le_bytes());
+            i += 8;
+        }
+        for b in chunks.into_remainder() {
+            *b = u8::from(self.contains(i));
+            i += 1;
+        }
+    }
 }
+
+/// For each byte of bits, the eight bytes 0 or 1 they stand for (bit j → byte j, little
+/// endian).
+static BYTES_OF_BITS: [u64; 256] = {
+    let mut t = [0u64; 256];
+    let mut b = 0;
+    while b < 256 {
+        let mut j = 0;
+        while j < 8 {
+            if b >> j & 1 != 0 {
+                t[b] |= 1 << (8 * j);
+            }
+            j += 1;
+        }
+        b += 1;
+    }
+    t
+};
 
 #[cfg(test)]
 mod tests {
@@ -122,6 +172,27 @@ mod tests {
                 }
             }
             prop_assert_eq!(bits.len(), len);
+        }
+
+        /// Any run of cells as bytes is each cell's `contains`, at any alignment.
+        #[test]
+        fn bytes_into_is_contains_per_cell(
+            len in 0usize..300,
+            present in proptest::collection::vec(0usize..300, 0..150),
+            from in 0usize..300,
+            n in 0usize..300,
+        ) {
+            let mut bits = CellBits::new(len);
+            for i in present.into_iter().filter(|&i| i < len) {
+                bits.insert(i);
+            }
+            let from = from.min(len);
+            let n = n.min(len - from);
+            let mut out = vec![7u8; n];
+            bits.bytes_into(from, &mut out);
+            for (k, &b) in out.iter().enumerate() {
+                prop_assert_eq!(b, u8::from(bits.contains(from + k)), "cell {}", from + k);
+            }
         }
 
         /// Ranges set and cleared a word at a time: the bits hold what a `Vec<bool>` holds.

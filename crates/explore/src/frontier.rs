@@ -109,6 +109,12 @@ impl FrontierSet {
         self.dense.len()
     }
 
+    /// Cells `from..from + out.len()` as bytes, 1 for a member and 0 otherwise (a row of a
+    /// frontier layer; [`CellBits::bytes_into`]).
+    pub fn bytes_into(&self, from: usize, out: &mut [u8]) {
+        self.members.bytes_into(from, out);
+    }
+
     /// Whether the set is empty.
     #[inline]
     pub fn is_empty(&self) -> bool {

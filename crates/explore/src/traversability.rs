@@ -155,6 +155,15 @@ impl Traversability {
         self.clearance
     }
 
+    /// How many rows or columns away an Occupied cell can block a cell (the disk's reach).
+    pub fn reach(&self) -> usize {
+        self.disk
+            .iter()
+            .map(|&(dx, dy)| dx.unsigned_abs().max(dy.unsigned_abs()) as usize)
+            .max()
+            .unwrap_or(0)
+    }
+
     /// Number of columns.
     pub fn width(&self) -> usize {
         self.width

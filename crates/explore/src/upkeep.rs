@@ -54,6 +54,14 @@ impl FrontierUpkeep {
         }
     }
 
+    /// How many rows or columns from a changed cell of the belief a cell's frontier status
+    /// can change: its 8 neighbours and its clearance disk are all it depends on. A copy
+    /// of the frontier set is brought up to date by the box of the changed cells grown by
+    /// this much.
+    pub fn reach(&self) -> usize {
+        self.trav.reach().max(1)
+    }
+
     /// The rows of the belief each update changed (see [`crate::belief_rows`]).
     pub(crate) fn row_log(&self) -> &RowLog {
         &self.rows

@@ -241,8 +241,6 @@ struct Mark {
     valid: bool,
     /// The belief's cells changed since the part was written.
     stale: Option<CellBox>,
-    /// The frontier cells the part marks.
-    frontier: Vec<u32>,
 }
 
 impl State {
@@ -462,20 +460,21 @@ impl State {
                             *b = c as u8;
                         }
                     }
-                }
-                match kept {
-                    Some(m) => m.frontier.iter().for_each(|&f| o.frontier[f as usize] = 0),
-                    None => o.frontier.fill(0),
-                }
-                for &f in s.frontiers() {
-                    o.frontier[f as usize] = 1;
+                    // The frontier layer by rows of the box its changes lie in, not cell by
+                    // cell of the whole frontier: with many environments stepping on one
+                    // core, scattered writes over each layer evicted what the next
+                    // environment's step reads.
+                    let f = s.frontier_box(b);
+                    let (x0, x1) = (f.x0 as usize, f.x1 as usize + 1);
+                    for y in f.y0 as usize..=f.y1 as usize {
+                        let row = y * w;
+                        s.frontier_bytes(row + x0, &mut o.frontier[row + x0..row + x1]);
+                    }
                 }
                 if let Some(k) = slot {
                     let m = &mut self.marks[k];
                     m.valid = true;
                     m.stale = None;
-                    m.frontier.clear();
-                    m.frontier.extend_from_slice(s.frontiers());
                 }
             }
             Some(v) => {

@@ -672,6 +672,30 @@ impl<'a> Session<'a> {
         self.team.upkeep.frontiers.cells()
     }
 
+    /// The box of every cell whose frontier status can have changed while the belief changed
+    /// only within `changed` (a box from [`take_changes`](Self::take_changes)): `changed`
+    /// grown by the frontier test's reach ([`FrontierUpkeep::reach`]), within the map.
+    pub fn frontier_box(&self, changed: CellBox) -> CellBox {
+        let g = self.team.upkeep.reach() as u32;
+        let known = self.known();
+        let (w, h) = (known.width() as u32, known.height() as u32);
+        CellBox {
+            x0: changed.x0.saturating_sub(g),
+            y0: changed.y0.saturating_sub(g),
+            x1: changed.x1.saturating_add(g).min(w.saturating_sub(1)),
+            y1: changed.y1.saturating_add(g).min(h.saturating_sub(1)),
+        }
+    }
+
+    /// Cells `from..from + out.len()` as bytes, 1 for a frontier cell and 0 otherwise (a row
+    /// of a frontier layer).
+    ///
+    /// # Panics
+    /// If the cells run past the map.
+    pub fn frontier_bytes(&self, from: usize, out: &mut [u8]) {
+        self.team.upkeep.frontiers.bytes_into(from, out);
+    }
+
     /// Robot `r`'s cell index and heading (radians, x right, y down).
     pub fn pose(&self, r: usize) -> (u32, f64) {
         (self.robots[r].cell, self.robots[r].heading)

@@ -229,8 +229,9 @@ fn advancing_in_slices_equals_one_advance() {
 }
 
 /// Every cell whose belief changed between two decisions lies in the box `take_changes`
-/// reports for them, for one robot and a team, with the laser and with sonar; and tracking
-/// changes nothing in the run.
+/// reports for them, and every cell whose frontier status changed in that box's
+/// `frontier_box`, for one robot and a team, with the laser and with sonar, with and
+/// without a clearance; and tracking changes nothing in the run.
 #[test]
 fn tracked_changes_hold_every_changed_cell() {
     let office = office();
@@ -244,19 +245,50 @@ fn tracked_changes_hold_every_changed_cell() {
     let mut sonar = config("yamauchi", 1, 1);
     sonar.sensor = "sonar".parse().expect("sonar spec");
     sonar.belief = sense::BeliefKind::Evidence;
+    let mut clear = config("cf-rr", 1, 3);
+    clear.clearance_m = 0.35;
+    let frontier_layer = |s: &Session<'_>| {
+        let mut layer = vec![0u8; s.known().len()];
+        s.frontier_bytes(0, &mut layer);
+        layer
+    };
     for (name, map, cfg) in [
         ("cf-rr", &office, config("cf-rr", 1, 0)),
         ("greedy, 3 robots", &office, config("greedy", 3, 2)),
         ("sonar", &fine, sonar),
+        ("0.35 m clearance", &fine, clear),
     ] {
         let w = map.width() as u32;
         let mut s = Session::start(Cow::Borrowed(map), Cow::Borrowed(&cfg), true).expect("start");
         s.track_changes();
         let mut before = s.known().data().to_vec();
+        let mut frontier_before = frontier_layer(&s);
         let mut boxes = 0;
         while s.advance() == Status::Decide {
             let now = s.known().data().to_vec();
+            let frontier_now = frontier_layer(&s);
+            let mut want: Vec<u8> = vec![0; now.len()];
+            for &f in s.frontiers() {
+                want[f as usize] = 1;
+            }
+            assert_eq!(
+                frontier_now, want,
+                "{name}: frontier_bytes is the frontier set"
+            );
             let b = s.take_changes();
+            for (i, (a, z)) in frontier_before.iter().zip(&frontier_now).enumerate() {
+                if a == z {
+                    continue;
+                }
+                let (x, y) = (i as u32 % w, i as u32 / w);
+                let b = b.unwrap_or_else(|| panic!("{name}: frontier ({x}, {y}) changed, no box"));
+                let f = s.frontier_box(b);
+                assert!(
+                    (f.x0..=f.x1).contains(&x) && (f.y0..=f.y1).contains(&y),
+                    "{name}: frontier cell ({x}, {y}) outside {f:?}, grown from {b:?}"
+                );
+            }
+            frontier_before = frontier_now;
             for (i, (a, z)) in before.iter().zip(&now).enumerate() {
                 if a == z {
                     continue;
