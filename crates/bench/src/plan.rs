@@ -52,8 +52,10 @@ use crate::scenario::{ScenarioFile, Source};
 /// sums (the diagonal step √2 to 32 binary places), so paths of equal length tie exactly
 /// and break the tie by index instead of by rounding; v10: a study's start perturbations
 /// are distinct cells, drawn without replacement; v11: a robot sensing on arrival sweeps
-/// where it gives up a goal, as Yamauchi's does).
-pub const STRATEGY_REVISION: u32 = 11;
+/// where it gives up a goal, as Yamauchi's does; v12: a robot sensing on arrival or every
+/// n cells, with a clearance, looks around before it comes within its clearance of an
+/// obstacle its map does not show, and re-plans if it sees it).
+pub const STRATEGY_REVISION: u32 = 12;
 
 /// A resolved study: environments, variants, common settings and the flat trial list.
 #[derive(Clone, Debug)]

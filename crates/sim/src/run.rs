@@ -16,6 +16,12 @@
 //! pins those cells occupied in its belief and re-plans; the cells it stands on are pinned
 //! free. Yamauchi's no-progress rule then puts a goal that is not approached for its time
 //! limit on the inaccessible list, also across such re-plans.
+//!
+//! A robot that senses only on arrival or every n cells moves blind in between. Before it
+//! enters a cell within its clearance of an obstacle its map does not show yet, it stops,
+//! looks around (its reactive obstacle avoidance, Yamauchi §2.3) and re-plans if it now
+//! sees that it cannot enter; otherwise it would stand where its clearance forbids, and no
+//! search could lead it out. Continuous sensing has seen such obstacles already.
 
 use std::borrow::Cow;
 use std::time::Instant;
@@ -1458,6 +1464,22 @@ impl Team<'_> {
             passed_beside = beside.into_iter().find(|&i| body[i as usize] == Occ::Free);
             if passed_beside.is_none() {
                 self.bump(robots, r, &beside);
+                return;
+            }
+        }
+        if !self.reachable[next as usize] && self.cfg.sensing_mode() != SensingMode::Continuous {
+            // Free, but within the clearance of an obstacle the map does not show yet: a
+            // robot that senses only now and then would drive on and stand where its
+            // clearance forbids, and no search could lead it out. Its reactive obstacle
+            // avoidance (Yamauchi §2.3) stops it first: it looks around where it stands
+            // and re-plans if what it sees keeps it out of the next cell.
+            self.look(robots, r, a, true);
+            self.record(robots, r);
+            if !self
+                .upkeep
+                .is_traversable(self.belief.known(), next as usize)
+            {
+                self.decide(robots, &[r]);
                 return;
             }
         }
