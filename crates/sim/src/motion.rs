@@ -19,6 +19,8 @@
 use std::fmt;
 use std::str::FromStr;
 
+use grid::step_cost;
+
 /// How travelled distance is measured.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Motion {
@@ -144,6 +146,76 @@ pub fn polyline_length(width: usize, corners: &[u32]) -> f64 {
         .windows(2)
         .map(|p| distance(width, p[0] as usize, p[1] as usize))
         .sum()
+}
+
+/// The grid distance in cells travelled along `trail` by the time the robot stood on each
+/// of its cells (1 straight, √2 diagonal: the sums the loop adds up move by move).
+pub fn grid_prefix_lengths(width: usize, trail: &[u32]) -> Vec<f64> {
+    let mut out = Vec::with_capacity(trail.len());
+    let mut at = 0.0;
+    for (k, &b) in trail.iter().enumerate() {
+        if k > 0 {
+            let (a, b) = (trail[k - 1] as usize, b as usize);
+            if a != b {
+                at += step_cost(
+                    (b % width) as i32 - (a % width) as i32,
+                    (b / width) as i32 - (a / width) as i32,
+                );
+            }
+        }
+        out.push(at);
+    }
+    out
+}
+
+/// The distance in cells travelled along `trail` string-pulled ([`any_angle_corners`]) by
+/// the time the robot stood on each of its cells: exact at the corners, and in between in
+/// proportion to the grid distance travelled (1 straight, √2 diagonal) along the segment.
+/// Non-decreasing; the last is [`any_angle_length`] (the same sum, in the same order).
+pub fn any_angle_prefix_lengths(
+    width: usize,
+    trail: &[u32],
+    passable: impl Fn(usize) -> bool,
+) -> Vec<f64> {
+    let n = trail.len();
+    let mut out = vec![0.0; n];
+    if n == 0 {
+        return out;
+    }
+    let grid = grid_prefix_lengths(width, trail);
+    // The corners as trail positions, found as `any_angle_corners` finds them.
+    let mut corners = vec![0];
+    let (mut anchor, mut last) = (0, 0);
+    for k in 1..n {
+        if trail[k] == trail[last] {
+            continue;
+        }
+        if !line_of_sight(width, trail[anchor] as usize, trail[k] as usize, &passable) {
+            corners.push(last);
+            anchor = last;
+        }
+        last = k;
+    }
+    if trail[last] != trail[anchor] {
+        corners.push(last);
+    }
+    let mut at = 0.0;
+    for c in corners.windows(2) {
+        let (i, j) = (c[0], c[1]);
+        let seg = distance(width, trail[i] as usize, trail[j] as usize);
+        let span = grid[j] - grid[i];
+        for k in i..j {
+            out[k] = if span > 0.0 {
+                at + seg * ((grid[k] - grid[i]) / span)
+            } else {
+                at
+            };
+        }
+        at += seg;
+    }
+    let end = *corners.last().expect("the first cell is a corner");
+    out[end..].fill(at);
+    out
 }
 
 /// Length in cells of `trail` string-pulled ([`any_angle_corners`]): at most the grid length

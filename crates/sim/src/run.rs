@@ -42,7 +42,7 @@ pub const BUMP_S: f64 = 1.0;
 /// it, a goal behind an obstacle the map does not show would be chased forever.
 pub const IMPERFECT_NO_PROGRESS_S: f64 = 30.0;
 use crate::changes::{CellBox, ChangeTracker};
-use crate::motion::{Motion, any_angle_length};
+use crate::motion::{Motion, any_angle_prefix_lengths, grid_prefix_lengths};
 use explore::plan::reachability::{PROBE_FROM, PROBE_SHARE};
 use explore::upkeep::FrontierUpkeep;
 use grid::{Cell, Grid, GridMap, Occ, step_cost};
@@ -167,6 +167,12 @@ struct Team<'a> {
     total_dist_cells: f64,
     curve: Vec<(f64, f64)>,
     milestones: Vec<Milestone>,
+    /// With any-angle motion, to measure the curve and the milestones along the routes:
+    /// the robot of each move in order, and how many moves had been made at each point of
+    /// `curve` and at each milestone (with the robot whose sensing reached it).
+    move_log: Vec<u32>,
+    curve_moves: Vec<usize>,
+    milestone_moves: Vec<(usize, usize)>,
     /// The robot sensing now and its clock (for milestones and overlap).
     now: (usize, f64),
     /// The cells sensed first and sensed by a second robot (teams), from `unseen`.
@@ -379,6 +385,9 @@ impl<'a> Session<'a> {
             total_dist_cells: 0.0,
             curve: vec![(0.0, 0.0)],
             milestones: Vec::new(),
+            move_log: Vec::new(),
+            curve_moves: vec![0],
+            milestone_moves: Vec::new(),
             now: (0, 0.0),
             sensed_cells: 0,
             overlap_cells: 0,
@@ -801,9 +810,18 @@ impl<'a> Session<'a> {
                     }
                 }
                 let passable = |i: usize| stood[i] || team.upkeep.trav.is_traversable(known, i);
-                robots
+                let along: Vec<Vec<f64>> = robots
                     .iter()
-                    .map(|r| any_angle_length(w, &r.trail, passable) * res)
+                    .map(|r| any_angle_prefix_lengths(w, &r.trail, passable))
+                    .collect();
+                let grid: Vec<Vec<f64>> = robots
+                    .iter()
+                    .map(|r| grid_prefix_lengths(w, &r.trail))
+                    .collect();
+                team.measure_along(&along, &grid);
+                along
+                    .iter()
+                    .map(|a| a.last().copied().unwrap_or(0.0) * res)
                     .collect()
             }
         };
@@ -1047,6 +1065,10 @@ impl Team<'_> {
         if covered != before {
             let cov = self.coverage();
             self.curve.push((self.total_dist_cells, cov));
+            let any_angle = self.cfg.motion == Motion::AnyAngle;
+            if any_angle {
+                self.curve_moves.push(self.move_log.len());
+            }
             while let Some(&percent) = MILESTONES.get(self.milestones.len())
                 && covered as u128 * 100 >= u128::from(percent) * total as u128
             {
@@ -1055,6 +1077,9 @@ impl Team<'_> {
                     dist_m: self.total_dist_cells * self.truth.resolution,
                     time_s: self.now.1,
                 });
+                if any_angle {
+                    self.milestone_moves.push((self.move_log.len(), self.now.0));
+                }
             }
         }
         self.times.upkeep_s += (t2 - t1).as_secs_f64();
@@ -1171,6 +1196,44 @@ impl Team<'_> {
 
     /// Close the trace's current event: robot `r` is where it is, with the changes sensed
     /// since the last event.
+    /// With any-angle motion: the coverage curve's distances and the milestones' distances
+    /// and times measured along the robots' string-pulled routes (`along[r][k]`: robot r's
+    /// distance in cells when it stood on its k-th trail cell; `grid[r][k]`: the same on
+    /// the grid), as its lengths are; each milestone's time is its robot's clock less the
+    /// time the any-angle route saves it by then.
+    fn measure_along(&mut self, along: &[Vec<f64>], grid: &[Vec<f64>]) {
+        let res = self.truth.resolution;
+        let log = &self.move_log;
+        // Each robot's trail position once the first `moves` moves were made, in order.
+        let positions = |marks: &mut dyn Iterator<Item = usize>, f: &mut dyn FnMut(&[usize])| {
+            let (mut at, mut done) = (vec![0usize; along.len()], 0);
+            for moves in marks {
+                for &r in &log[done..moves] {
+                    at[r as usize] += 1;
+                }
+                done = moves;
+                f(&at);
+            }
+        };
+        let sum = |at: &[usize]| -> f64 { along.iter().zip(at).map(|(a, &k)| a[k]).sum() };
+        let mut curve = self.curve_moves.iter().copied();
+        let mut k = 0;
+        positions(&mut curve, &mut |at| {
+            self.curve[k].0 = sum(at);
+            k += 1;
+        });
+        let mut marks = self.milestone_moves.iter().map(|&(moves, _)| moves);
+        let mut k = 0;
+        let speed = self.cfg.speed;
+        positions(&mut marks, &mut |at| {
+            let r = self.milestone_moves[k].1;
+            let m = &mut self.milestones[k];
+            m.dist_m = sum(at) * res;
+            m.time_s -= (grid[r][at[r]] - along[r][at[r]]) * res / speed;
+            k += 1;
+        });
+    }
+
     fn record(&mut self, robots: &[Robot], r: usize) {
         let coverage = self.coverage();
         let frontiers = self.upkeep.frontiers.len() as u32;
@@ -1492,6 +1555,7 @@ impl Team<'_> {
             robot.dist_cells += len;
             if self.cfg.motion == Motion::AnyAngle {
                 robot.trail.push(next);
+                self.move_log.push(r as u32);
             }
             robot.remaining -= len;
             robot.clock += len * self.truth.resolution / self.cfg.speed;

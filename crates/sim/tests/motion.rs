@@ -2,7 +2,10 @@
 
 use grid::step_cost;
 use proptest::prelude::*;
-use sim::motion::{any_angle_corners, any_angle_length, line_of_sight, polyline_length};
+use sim::motion::{
+    any_angle_corners, any_angle_length, any_angle_prefix_lengths, grid_prefix_lengths,
+    line_of_sight, polyline_length,
+};
 
 /// The cells a segment between two cell centres touches, found by sampling it densely:
 /// every cell containing a sample point, and both cells beside a sample that lies on a cell
@@ -119,6 +122,52 @@ proptest! {
     }
 }
 
+proptest! {
+    /// The distance along the string-pulled route at each cell of the trail: exactly the
+    /// route's length at its end, the polyline's length at each corner, never decreasing,
+    /// and never more than the grid distance walked by then.
+    #[test]
+    fn prefix_lengths_follow_the_string_pulled_route(
+        w in 2usize..16, h in 2usize..16,
+        blocked in proptest::collection::vec(0u8..10, 256),
+        start in 0usize..256,
+        dirs in proptest::collection::vec(0u8..8, 0..120),
+    ) {
+        let n = w * h;
+        let mut pass: Vec<bool> = (0..n).map(|i| blocked[i] >= 3).collect();
+        let start = start % n;
+        pass[start] = true;
+        let trail = walk(w, h, &pass, start, &dirs);
+        let along = any_angle_prefix_lengths(w, &trail, |i| pass[i]);
+        let grid = grid_prefix_lengths(w, &trail);
+        prop_assert_eq!(along.len(), trail.len());
+        prop_assert_eq!(grid.len(), trail.len());
+        // exactly (the same sum in the same order; == takes an empty sum's −0 as 0)
+        let whole = any_angle_length(w, &trail, |i| pass[i]);
+        prop_assert!(*along.last().unwrap() == whole, "{:?} against {}", along.last(), whole);
+        prop_assert!((grid.last().unwrap() - grid_length(w, &trail)).abs() < 1e-9);
+        for k in 1..trail.len() {
+            prop_assert!(along[k] >= along[k - 1], "decreases at {}", k);
+            prop_assert!(along[k] <= grid[k] + 1e-9, "{} > grid {} at {}", along[k], grid[k], k);
+        }
+        // at each corner, the polyline so far (on a trail that visits each cell once, so
+        // that a corner's cell names its place on the trail)
+        let mut once = vec![false; n];
+        if trail.iter().all(|&c| !std::mem::replace(&mut once[c as usize], true)) {
+            let mut corners = Vec::new();
+            any_angle_corners(w, &trail, |i| pass[i], &mut corners);
+            for c in 1..corners.len() {
+                let k = trail.iter().position(|&t| t == corners[c]).unwrap();
+                let want = polyline_length(w, &corners[..=c]);
+                prop_assert!(
+                    (along[k] - want).abs() < 1e-9,
+                    "corner {}: {} against {}", c, along[k], want
+                );
+            }
+        }
+    }
+}
+
 #[test]
 fn an_l_shaped_route_in_an_open_room_becomes_one_straight_line() {
     // 10 × 10, all free: right 6 cells then down 8 cells; any-angle is the hypotenuse
@@ -180,5 +229,77 @@ fn any_angle_motion_changes_only_the_reported_length() {
             "{kind:?}: any-angle {s} against grid {g}"
         );
         assert!((smooth.time_s - s / cfg.speed).abs() < 1e-9);
+    }
+}
+
+/// Regression: with `--motion any-angle` the coverage curve and the D/T milestones were
+/// still grid distances and times while the lengths and `time_s` were any-angle ones, so
+/// that "distance to 99 %" came out longer than the whole run. Now they are measured along
+/// the same routes: the curve ends within the team's total any-angle length, no milestone
+/// lies beyond the run's length or time, each milestone is where the curve first reaches it,
+/// and the curve's coverage values are those of grid motion.
+#[test]
+fn regression_any_angle_curve_and_milestones_follow_the_route() {
+    use explore::strategy::Strategy;
+    use sim::{EndReason, Motion, RunConfig};
+    use world::{EnvKind, EnvSpec};
+    let env = world::generate(&EnvSpec::new(EnvKind::Office, 4)).expect("generate");
+    for (preset, robots) in [("cf", 1), ("greedy", 3)] {
+        let mut cfg = RunConfig::new(Strategy::preset(preset).expect("preset"));
+        cfg.robots = robots;
+        cfg.seed = 2;
+        let grid = sim::run(&env.map, &cfg).expect("run");
+        cfg.motion = Motion::AnyAngle;
+        let r = sim::run(&env.map, &cfg).expect("run");
+        assert_eq!(r.reason, EndReason::Complete, "{preset}");
+        let total: f64 = r.path_length_m.iter().sum();
+        let grid_total: f64 = grid.path_length_m.iter().sum();
+        assert!(
+            total < grid_total - 1.0,
+            "{preset}: {total} against {grid_total}"
+        );
+        let curve = &r.coverage_curve;
+        assert_eq!(curve.len(), grid.coverage_curve.len(), "{preset}");
+        for (k, (p, g)) in curve.iter().zip(&grid.coverage_curve).enumerate() {
+            assert_eq!(p.1, g.1, "{preset}: coverage at point {k}");
+            assert!(p.0 <= g.0 + 1e-9, "{preset}: point {k} beyond the grid's");
+            if k > 0 {
+                assert!(
+                    p.0 >= curve[k - 1].0,
+                    "{preset}: the curve goes back at {k}"
+                );
+            }
+        }
+        // (a run may end a move or, for a team, several after the last cell is seen)
+        let last = curve.last().expect("curve").0;
+        assert!(
+            last <= total + 1e-9,
+            "{preset}: curve ends at {last}, runs {total}"
+        );
+        assert_eq!(r.milestones.len(), grid.milestones.len(), "{preset}");
+        for m in &r.milestones {
+            assert!(
+                m.dist_m <= total + 1e-9,
+                "{preset}: D{} {} > {total}",
+                m.percent,
+                m.dist_m
+            );
+            assert!(
+                m.time_s <= r.time_s + 1e-9,
+                "{preset}: T{} {} > {}",
+                m.percent,
+                m.time_s,
+                r.time_s
+            );
+            let first = curve
+                .iter()
+                .find(|p| p.1 * 100.0 >= f64::from(m.percent) - 1e-12)
+                .expect("reached");
+            assert!(
+                (first.0 - m.dist_m).abs() < 1e-9,
+                "{preset}: D{} off the curve",
+                m.percent
+            );
+        }
     }
 }
