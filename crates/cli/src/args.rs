@@ -59,7 +59,7 @@ pub struct MapSource {
     /// Metres per cell: needed for bare bitmaps, .json and --dungeon maps, 1 if not given for
     /// .map and .txt, and overriding a ROS YAML's own; "RX,RY" for non-square pixels; for
     /// --env, the resolution to generate at.
-    #[arg(allow_negative_numbers = true, long)]
+    #[arg(allow_hyphen_values = true, long)]
     pub resolution: Option<String>,
     /// Add a wall around a bare bitmap or a --dungeon PNG (Stage floor plans often have
     /// none); a dungeon's marked start moves with the cells.
@@ -71,7 +71,7 @@ pub struct MapSource {
     #[arg(long)]
     pub dungeon: bool,
     /// Size of a generated environment in metres, "WxH".
-    #[arg(long)]
+    #[arg(allow_hyphen_values = true, long)]
     pub size: Option<String>,
     /// Seed of the generated environment (default: --seed).
     #[arg(allow_negative_numbers = true, long)]

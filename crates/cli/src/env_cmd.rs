@@ -20,10 +20,10 @@ pub struct EnvArgs {
     #[arg(allow_negative_numbers = true, long, default_value_t = 0)]
     pub seed: u64,
     /// Size in metres, "WxH".
-    #[arg(long)]
+    #[arg(allow_hyphen_values = true, long)]
     pub size: Option<String>,
     /// Metres per cell.
-    #[arg(allow_negative_numbers = true, long)]
+    #[arg(allow_hyphen_values = true, long)]
     pub resolution: Option<String>,
     /// Output file: .png, .yaml (ROS map_server YAML + PGM beside it), .pgm, .map or .txt.
     #[arg(long)]

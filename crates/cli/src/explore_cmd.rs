@@ -20,7 +20,7 @@ pub struct ExploreArgs {
     #[arg(allow_negative_numbers = true, long, default_value_t = 0)]
     pub seed: u64,
     /// Start cell "X,Y" (column, row; row 0 at the top); default: a free cell chosen by seed.
-    #[arg(long)]
+    #[arg(allow_hyphen_values = true, long)]
     pub start: Option<String>,
     /// Strategy preset (see `frontier list`).
     #[arg(long, default_value = "cf-rr")]

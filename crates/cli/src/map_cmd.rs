@@ -20,7 +20,7 @@ pub enum MapCommand {
         file: PathBuf,
         /// Metres per cell ("R" or "RX,RY"): needed for bare bitmaps, .json and --dungeon
         /// maps, 1 if not given for .map and .txt, and overriding a ROS YAML's own.
-        #[arg(allow_negative_numbers = true, long)]
+        #[arg(allow_hyphen_values = true, long)]
         resolution: Option<String>,
         /// Add a wall around a bare bitmap or a --dungeon PNG (whose start moves with it).
         #[arg(long)]

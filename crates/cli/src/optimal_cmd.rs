@@ -32,7 +32,7 @@ pub struct OptimalArgs {
     pub seed: u64,
     /// Start cell "X,Y" of the map (column, row; row 0 at the top); default: the free cell
     /// nearest the map's centre.
-    #[arg(long)]
+    #[arg(allow_hyphen_values = true, long)]
     pub start: Option<String>,
     /// Sensor: los:r=R or footprint:r=R (metres; cells with suffix c).
     #[arg(long, default_value = "los:r=5")]

@@ -36,7 +36,7 @@ pub struct SensorsArgs {
     #[arg(long, default_value = "yamauchi")]
     pub strategy: String,
     /// Size of the environments in metres, "WxH" (default: the kind's).
-    #[arg(long)]
+    #[arg(allow_hyphen_values = true, long)]
     pub size: Option<String>,
     /// Metres per cell (sonar cones need cells well below their 10 ft range).
     #[arg(allow_negative_numbers = true, long, default_value_t = 0.1)]

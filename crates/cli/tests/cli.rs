@@ -250,6 +250,20 @@ fn negative_numbers_are_refused_naming_their_flag() {
         ),
         (&["optimal", "--weight", "-2"], "--weight"),
         (&["sensors", "--resolution", "-1"], "--resolution"),
+        // Regression: the text values that start with a number were taken for flags too.
+        (&["explore", "--start", "-1,5"], "--start"),
+        (&["explore", "--size", "-5x5"], "--size"),
+        (&["explore", "--resolution", "-0.1,0.1"], "--resolution"),
+        (&["optimal", "--start", "-1,5"], "--start"),
+        (
+            &["env", "office", "--out", "x.png", "--size", "-5x5"],
+            "--size",
+        ),
+        (&["sensors", "--size", "-5x5"], "--size"),
+        (
+            &["map", "info", "x.pgm", "--resolution", "-1,1"],
+            "--resolution",
+        ),
     ] {
         let e = err(args);
         assert!(e.contains(expected), "{args:?}: {e}");
