@@ -21,7 +21,8 @@
 //! enters a cell within its clearance of an obstacle its map does not show yet, it stops,
 //! looks around (its reactive obstacle avoidance, Yamauchi §2.3) and re-plans if it now
 //! sees that it cannot enter; otherwise it would stand where its clearance forbids, and no
-//! search could lead it out. Continuous sensing has seen such obstacles already.
+//! search could lead it out. Continuous sensing, which looks from every cell it enters, is
+//! left as it was.
 
 use std::borrow::Cow;
 use std::time::Instant;
