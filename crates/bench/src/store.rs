@@ -1405,13 +1405,20 @@ impl Store {
             .map_err(BenchError::sql(&self.path))
     }
 
-    /// Write every trial as CSV (header = column names, rows ordered by key); `out` must
-    /// not be this database (nor its journal), which is checked before anything is written.
+    /// Write every trial as CSV (header = column names, also when there is no trial; rows
+    /// ordered by key); `out` must not be this database (nor its journal), which is checked
+    /// before anything is written.
     pub fn export_csv(&self, out: &Path) -> Result<usize, BenchError> {
         refuse_overwriting(&self.path, out, "the CSV")?;
         let rows = self.rows()?;
         let mut w = csv::Writer::from_path(out)
             .map_err(|e| BenchError::Other(format!("{}: {e}", out.display())))?;
+        if rows.is_empty() {
+            // The header a row would have written (the columns are the row's fields), so
+            // that an empty study still reads as a table of no rows.
+            w.write_record(COLUMNS.split(',').map(str::trim))
+                .map_err(|e| BenchError::Other(format!("{}: {e}", out.display())))?;
+        }
         for r in &rows {
             w.serialize(r)
                 .map_err(|e| BenchError::Other(format!("{}: {e}", out.display())))?;

@@ -211,6 +211,27 @@ fn merged_shards_equal_the_unsharded_run() {
     assert_eq!(n, p.trials.len());
     assert_eq!(text.lines().count(), n + 1);
     assert!(text.starts_with("key,scenario,env,env_kind,env_seed,"));
+    // Regression: a store with no trial (an empty shard) was exported as an empty file,
+    // which CSV readers refuse; it is the same header with no row.
+    let empty = dir.path().join("empty.sqlite");
+    bench::runner::run(
+        &p,
+        &empty,
+        &RunOptions {
+            limit: Some(0),
+            ..opts(1)
+        },
+    )
+    .unwrap();
+    let none = dir.path().join("none.csv");
+    let store = Store::open_read_only(&empty).unwrap();
+    assert_eq!(store.count().unwrap(), 0);
+    assert_eq!(store.export_csv(&none).unwrap(), 0);
+    let header = std::fs::read_to_string(&none).unwrap();
+    assert_eq!(
+        header.lines().collect::<Vec<_>>(),
+        [text.lines().next().unwrap()]
+    );
 }
 
 #[test]
