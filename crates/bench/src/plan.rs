@@ -790,7 +790,7 @@ fn resolve(
                     format!("environment '{}' appears twice", env.name),
                 ));
             }
-            check_sensors(src, &sensors, &sensor_at, &env, &mut checked)?;
+            check_sensors(src, &sensors, &sensor_at, &strategies, &env, &mut checked)?;
             envs.push(env);
         }
     }
@@ -1193,11 +1193,13 @@ fn check_env_memory(
 }
 
 /// Check that every sensor can run on `env` (its range in cells, its 360° sweep, a sonar's
-/// cell size), once per resolution: otherwise every trial would fail when it runs.
+/// cell size, a range the strategies' candidates can work with), once per resolution:
+/// otherwise every trial would fail when it runs.
 fn check_sensors(
     src: &Source,
     sensors: &[SensorSpec],
     sensor_at: &[(String, Option<std::ops::Range<usize>>)],
+    strategies: &[(String, Strategy)],
     env: &EnvInstance,
     checked: &mut BTreeSet<(u64, usize)>,
 ) -> Result<(), BenchError> {
@@ -1223,6 +1225,15 @@ fn check_sensors(
         };
         if let Some(p) = problem {
             return Err(src.error(span.clone(), key, format!("{sensor} on {}: {p}", env.name)));
+        }
+        for (label, strategy) in strategies {
+            if let Err(e) = sim::check_sensor_range(strategy.candidates, sensor, res) {
+                return Err(src.error(
+                    span.clone(),
+                    key,
+                    format!("{sensor} on {} with {label}: {e}", env.name),
+                ));
+            }
         }
     }
     Ok(())

@@ -246,6 +246,24 @@ fn regression_study_name_that_is_a_path_is_refused() {
     }
 }
 
+/// Regression: a coverage strategy with a 1-cell sensor was planned, and each of its trials
+/// ended at once with "no reachable frontier" (the cover looks within 0.8 of the range and
+/// found no candidate). It is refused at plan time, naming the sensor, the environment and
+/// the strategy; 1.25 cells is enough.
+#[test]
+fn regression_coverage_candidates_with_too_short_a_range_are_refused_at_plan_time() {
+    let text = "strategies = [\"ha-rfe\", \"ha-cc\"]\nsensors = [\"los:r=2c\", \"los:r=1c\"]\n\n\
+                [[env]]\nkind = \"office\"\nresolution = 0.5\n";
+    let e = error_of(text);
+    assert!(e.starts_with("s.toml:2: key `sensors[1]`"), "{e}");
+    assert!(
+        e.contains("office-s0-r0.5 with ha-cc") && e.contains("at least 1.25 cells"),
+        "{e}"
+    );
+    let ok = text.replace("los:r=1c", "los:r=1.25c");
+    Plan::resolve(&source(&ok), Unbuilt::Error).expect("1.25 cells");
+}
+
 /// Regression: a sonar on 0.5 m cells passed `--dry-run`, then every trial failed when it
 /// ran (the sonar needs cells of at most 0.1 m). It is refused at plan time.
 #[test]

@@ -49,7 +49,7 @@ use explore::upkeep::FrontierUpkeep;
 use grid::{Cell, Grid, GridMap, Occ, step_cost};
 use rand_pcg::Pcg64Mcg;
 use sense::Unseen;
-use sense::{Belief, Observation, Pose, Sensor, SonarMode, SonarReading, SonarSensor};
+use sense::{Belief, Observation, Pose, Sensor, SensorSpec, SonarMode, SonarReading, SonarSensor};
 
 use crate::config::{CoverageKind, RunConfig, SimError};
 use crate::metrics::{
@@ -290,6 +290,7 @@ impl<'a> Session<'a> {
         drop((trav_truth, components));
 
         let sensor = cfg.sensor.build(res)?;
+        check_sensor_range(cfg.strategy.candidates, &cfg.sensor, res)?;
         let sweep = cfg.sensor.sweep().build(res)?;
         let sonar = cfg.sensor.sonar(res).transpose()?;
         let imperfect = sonar.is_some() || cfg.clutter.is_some();
@@ -865,6 +866,26 @@ impl<'a> Session<'a> {
 /// The robot speeds accepted, in metres per second: a millimetre to a kilometre a second.
 /// Times are path lengths over the speed, so a speed near 0 made them infinite.
 pub const SPEED_RANGE: std::ops::RangeInclusive<f64> = 0.001..=1000.0;
+
+/// Whether `candidates` can be found with `sensor` on cells of `resolution` metres: with a
+/// range too short for the coverage candidates' cover there would be none, and the run
+/// would end at once with "no reachable frontier".
+pub fn check_sensor_range(
+    candidates: CandidateKind,
+    sensor: &SensorSpec,
+    resolution: f64,
+) -> Result<(), SimError> {
+    let range = sensor.range_cells(resolution);
+    if range < candidates.min_range_cells() {
+        return Err(SimError::BadParameter {
+            field: "--sensor",
+            expected: "a range of at least 1.25 cells with coverage candidates (the `-cc` \
+                       strategies cover from within 0.8 of the range)",
+            found: format!("{sensor}, {range} cell(s) at {resolution} m per cell"),
+        });
+    }
+    Ok(())
+}
 
 fn validate(cfg: &RunConfig) -> Result<(), SimError> {
     let bad = |field, expected, found: String| {

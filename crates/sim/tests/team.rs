@@ -99,3 +99,35 @@ presets! {
     ma_cc => "ma-cc",
     sga_af => "sga-af",
 }
+
+/// Regression: a coverage strategy with a sensor of 1 cell found no candidate (its cover
+/// looks within 0.8 of the range, short of the cell next to a frontier cell) and ended at
+/// once with "no reachable frontier" at 0.2 % coverage. Such a run is refused, naming the
+/// sensor and what range it needs; 1.25 cells explores everything, and other candidates
+/// still run with 1 cell.
+#[test]
+fn regression_coverage_candidates_need_a_range_of_1_25_cells() {
+    let map = world::generate(&EnvSpec::new(EnvKind::Office, 1))
+        .expect("office")
+        .map;
+    let with = |preset: &str, sensor: &str| {
+        let mut cfg = RunConfig::new(Strategy::preset(preset).expect("preset"));
+        cfg.robots = 2;
+        cfg.sensor = sensor.parse().expect("sensor");
+        sim::run(&map, &cfg)
+    };
+    for preset in ["ha-cc", "ma-cc", "nearest-cc"] {
+        let e = with(preset, "los:r=1c").expect_err(preset).to_string();
+        assert!(
+            e.starts_with("--sensor: expected a range of at least 1.25 cells")
+                && e.contains("found los:r=1c, 1 cell(s) at 0.5 m per cell"),
+            "{preset}: {e}"
+        );
+        let r = with(preset, "los:r=1.25c").expect(preset);
+        assert_eq!(r.reason, EndReason::Complete, "{preset}");
+    }
+    assert_eq!(
+        with("ha-rfe", "los:r=1c").expect("ha-rfe").reason,
+        EndReason::Complete
+    );
+}

@@ -142,6 +142,16 @@ pub enum CandidateKind {
 }
 
 impl CandidateKind {
+    /// The shortest sensor range, in cells, these candidates can be found with: Faigl &
+    /// Kulich's cover looks from within 0.8 of the range, which must reach the cell next
+    /// to a frontier cell (0 for the others).
+    pub fn min_range_cells(self) -> f64 {
+        match self {
+            CandidateKind::Coverage => 1.0 / coverage::COVER_FRACTION,
+            _ => 0.0,
+        }
+    }
+
     /// Fill `out` with the candidates of this kind for the current decision.
     pub fn generate(&self, ctx: &mut DecisionCtx<'_>, out: &mut CandidateSet) {
         out.clear();
