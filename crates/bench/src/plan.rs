@@ -783,11 +783,40 @@ fn resolve(
                     .map_or(Some(entry.span()), span_of);
                 src.error(span, format!("{key}.start"), format!("{}: {m}", env.name))
             })?;
+            let name_span = entry
+                .get_ref()
+                .name
+                .as_ref()
+                .map_or(Some(entry.span()), span_of);
+            if env.name.is_empty() || env.name.contains('|') {
+                // The name is part of each trial's key, whose parts '|' separates.
+                return Err(src.error(
+                    name_span,
+                    format!("{key}.name"),
+                    format!(
+                        "expected a non-empty name without '|', found '{}'",
+                        env.name
+                    ),
+                ));
+            }
             if envs.iter().any(|e| e.name == env.name) {
                 return Err(src.error(
                     Some(entry.span()),
                     format!("{key}.name"),
                     format!("environment '{}' appears twice", env.name),
+                ));
+            }
+            let file = crate::report::slug(&env.name);
+            if let Some(other) = envs.iter().find(|e| crate::report::slug(&e.name) == file) {
+                return Err(src.error(
+                    name_span,
+                    format!("{key}.name"),
+                    format!(
+                        "environment '{}' would write the report files of '{}' (both are \
+                         '{file}' in file names): expected a name that differs in letters, \
+                         digits, '-' or '.'",
+                        env.name, other.name
+                    ),
                 ));
             }
             check_sensors(src, &sensors, &sensor_at, &strategies, &env, &mut checked)?;

@@ -155,8 +155,8 @@ fn check_report_folder(out: &Path) -> Result<(), BenchError> {
     Ok(())
 }
 
-/// A file-name-safe version of `s`.
-fn slug(s: &str) -> String {
+/// A file-name-safe version of `s` (the report's file names of environments and variants).
+pub(crate) fn slug(s: &str) -> String {
     s.chars()
         .map(|c| {
             if c.is_ascii_alphanumeric() || c == '-' || c == '.' {

@@ -404,3 +404,41 @@ fn regression_generation_memory_is_estimated_first() {
     let office = world::EnvSpec::new(world::EnvKind::Office, 0);
     assert!(bench::explore::check_generate_memory(&office, Some(100)).is_ok());
 }
+
+/// Regression: an environment's name was barely checked. `name = ""` made trial keys
+/// start with '|' and the report write `envs/.png`; `name = "a|b"` made keys ambiguous
+/// (a strategy label with '|' was already refused); and "a/b" beside "a_b" wrote the same
+/// report files (`envs/a_b.png`, its replay and plots), one over the other. Each is refused
+/// at plan time, naming the key.
+#[test]
+fn regression_environment_names_that_break_keys_or_files_are_refused() {
+    let named = |name: &str| {
+        ONE.replace(
+            "kind = \"empty\"",
+            &format!("name = \"{name}\"\nkind = \"empty\""),
+        )
+    };
+    for bad in ["", "a|b"] {
+        let e = error_of(&named(bad));
+        assert!(e.starts_with("s.toml:7: key `env[0].name`"), "{bad}: {e}");
+        assert!(
+            e.contains(&format!(
+                "expected a non-empty name without '|', found '{bad}'"
+            )),
+            "{bad}: {e}"
+        );
+    }
+    let two = format!(
+        "{}\n[[env]]\nname = \"a_b\"\nkind = \"empty\"\nsize = [4, 4]\nresolution = 0.5\n",
+        named("a/b")
+    );
+    let e = error_of(&two);
+    assert!(e.starts_with("s.toml:13: key `env[1].name`"), "{e}");
+    assert!(
+        e.contains("'a_b' would write the report files of 'a/b'")
+            && e.contains("'a_b' in file names"),
+        "{e}"
+    );
+    let fine = two.replace("\"a_b\"", "\"a-b\"");
+    Plan::resolve(&source(&fine), Unbuilt::Error).expect("a/b and a-b");
+}
