@@ -55,7 +55,8 @@ use crate::scenario::{ScenarioFile, Source};
 /// where it gives up a goal, as Yamauchi's does; v12: a robot sensing on arrival or every
 /// n cells, with a clearance, looks around before it comes within its clearance of an
 /// obstacle its map does not show, and re-plans if it sees it; with any-angle motion, the
-/// coverage curve and the D/T milestones are measured along the string-pulled routes).
+/// coverage curve and the D/T milestones are measured along the string-pulled routes; a
+/// trial that stops short of its goal has no competitive ratio).
 pub const STRATEGY_REVISION: u32 = 12;
 
 /// A resolved study: environments, variants, common settings and the flat trial list.

@@ -362,7 +362,10 @@ fn with_optimal(
     r.optimal_m = path.length_m;
     r.optimal_lower_m = Some(path.lower_m);
     r.optimal_proven = Some(path.optimal);
-    r.ratio = path.ratio(r.total_path);
+    // A trial that stopped short of the goal has no competitive ratio.
+    r.ratio = path
+        .ratio(r.total_path)
+        .filter(|_| result.reason.reached_goal());
     Ok(())
 }
 

@@ -278,12 +278,17 @@ pub fn run(a: OptimalArgs) -> Result<()> {
             length_m,
             coverage: r.coverage,
             reason: r.reason.as_str(),
-            ratio: if out.upper_bound.is_finite() {
+            // A run that stopped short of the goal has no competitive ratio.
+            ratio: if out.upper_bound.is_finite() && r.reason.reached_goal() {
                 optimal::competitive_ratio(length_m, optimal_m)
             } else {
                 None
             },
-            ratio_max: optimal::competitive_ratio(length_m, out.lower_bound * res),
+            ratio_max: if r.reason.reached_goal() {
+                optimal::competitive_ratio(length_m, out.lower_bound * res)
+            } else {
+                None
+            },
         });
     }
 

@@ -17,6 +17,12 @@ pub enum EndReason {
 }
 
 impl EndReason {
+    /// Whether the run explored what it was asked to (everything reachable, or its goal):
+    /// only then does its length compare with an optimal path's.
+    pub fn reached_goal(self) -> bool {
+        matches!(self, EndReason::Complete | EndReason::GoalReached)
+    }
+
     /// The reason's stable name, as printed in JSON.
     pub fn as_str(self) -> &'static str {
         match self {
