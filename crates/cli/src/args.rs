@@ -301,8 +301,10 @@ impl MapSource {
     }
 }
 
-/// Check, before a run, that the file `flag` names can be written: its folder exists and it
-/// is not itself a folder, so that a long run does not end in an error about its output.
+/// Check, before a run, that the file `flag` names can be written: its folder exists, it
+/// is not itself a folder, and it opens for writing (a file that is there is left as it
+/// is, one made for the test is removed), so that a long run does not end in an error
+/// about its output.
 pub fn check_output_file(flag: &str, path: &Path) -> Result<()> {
     if path.is_dir() {
         bail!(
@@ -316,6 +318,21 @@ pub fn check_output_file(flag: &str, path: &Path) -> Result<()> {
             path.display(),
             folder.display()
         );
+    }
+    let existed = path.exists();
+    match std::fs::OpenOptions::new()
+        .append(true)
+        .create(true)
+        .open(path)
+    {
+        Ok(_) if !existed => {
+            let _ = std::fs::remove_file(path);
+        }
+        Ok(_) => {}
+        Err(e) => bail!(
+            "{flag} {}: expected a file that can be written, found {e}",
+            path.display()
+        ),
     }
     Ok(())
 }

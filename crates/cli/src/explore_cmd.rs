@@ -220,7 +220,8 @@ pub fn run(a: ExploreArgs) -> Result<()> {
     if let Some(path) = &a.gif {
         let bytes =
             viz::animate::animate_gif(&truth.map, &result, &viz::animate::GifOptions::default())?;
-        std::fs::write(path, bytes).with_context(|| format!("writing {}", path.display()))?;
+        std::fs::write(path, bytes)
+            .with_context(|| format!("--gif {}: writing", path.display()))?;
     }
     if let Some(path) = &a.html {
         let meta = format!(
@@ -235,13 +236,14 @@ pub fn run(a: ExploreArgs) -> Result<()> {
             truth.map.resolution
         );
         let page = viz::replay::replay_html(&truth.map, &result, &truth.name, &meta)?;
-        std::fs::write(path, page).with_context(|| format!("writing {}", path.display()))?;
+        std::fs::write(path, page)
+            .with_context(|| format!("--html {}: writing", path.display()))?;
     }
     if let Some(path) = &a.mcap {
-        let file =
-            std::fs::File::create(path).with_context(|| format!("writing {}", path.display()))?;
+        let file = std::fs::File::create(path)
+            .with_context(|| format!("--mcap {}: writing", path.display()))?;
         crate::mcap_out::write_run(std::io::BufWriter::new(file), &truth.map, &cfg, &result)
-            .with_context(|| format!("writing {}", path.display()))?;
+            .with_context(|| format!("--mcap {}: writing", path.display()))?;
     }
     if a.json {
         println!(

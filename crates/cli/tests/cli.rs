@@ -1837,6 +1837,50 @@ fn regression_output_paths_are_checked_before_the_run() {
         e.contains("--gif") && e.contains("expected a file in an existing folder"),
         "{e}"
     );
+    // Regression: a file in a folder that exists but takes no new file (/proc) was written
+    // only after the whole run, and the error did not name the flag.
+    // (Linux's /proc: a folder no one, not even root, can add a file to.)
+    let proc_fs = std::path::Path::new("/proc/self").exists();
+    for flag in ["--gif", "--html", "--mcap"]
+        .into_iter()
+        .filter(|_| proc_fs)
+    {
+        let e = err(&[
+            "explore",
+            "--env",
+            "office",
+            flag,
+            "/proc/frontier-test.out",
+        ]);
+        assert!(
+            e.contains(&format!(
+                "{flag} /proc/frontier-test.out: expected a file that can be written"
+            )),
+            "{e}"
+        );
+    }
+    // A file that exists is left as it is by the check; a new one is not left behind.
+    let kept = dir.path().join("kept.gif");
+    std::fs::write(&kept, b"old").expect("write");
+    let e = err(&[
+        "explore",
+        "--env",
+        "castle",
+        "--gif",
+        kept.to_str().expect("utf-8"),
+    ]);
+    assert!(e.contains("castle"), "{e}");
+    assert_eq!(std::fs::read(&kept).expect("read"), b"old");
+    let new = dir.path().join("new.gif");
+    let e = err(&[
+        "explore",
+        "--env",
+        "castle",
+        "--gif",
+        new.to_str().expect("utf-8"),
+    ]);
+    assert!(e.contains("castle"), "{e}");
+    assert!(!new.exists(), "the check left {}", new.display());
     let d = dir.path().to_str().expect("utf-8 path");
     let e = err(&["explore", "--env", "office", "--html", d]);
     assert!(e.contains("expected a file name, found a folder"), "{e}");
