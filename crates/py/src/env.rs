@@ -79,6 +79,11 @@ struct Spec {
     /// one run on any of the maps ([`sim::memory::run_bytes`]).
     largest: (usize, usize),
     run_bytes: u64,
+    /// Of those, the part runs in one process share ([`sim::memory::shared_bytes`], the
+    /// largest on any map) and the largest rest: n environments need the first once and the
+    /// second n times.
+    shared_bytes: u64,
+    own_bytes: u64,
     /// The user's budget in MiB (`memory_mb`, the CLI's `--memory-mb`): every check of the
     /// environment's memory, its maps' loading and generation, is made within it too.
     memory_mb: Option<u64>,
@@ -853,6 +858,8 @@ fn spec(
         gain,
         largest: (0, 0),
         run_bytes: 0,
+        shared_bytes: 0,
+        own_bytes: 0,
         memory_mb,
     };
     // Check the options on the first map, and learn the observation's size.
@@ -867,16 +874,24 @@ fn spec(
         Maps::Generated { .. } | Maps::Files { .. } => (first.width(), first.height()),
     };
     // The largest estimate: the largest map's arrays, or the finest map's sensor template.
-    s.run_bytes = match &s.maps {
+    let sized: Vec<(usize, f64)> = match &s.maps {
         Maps::List(list) => list
             .iter()
-            .map(|m| sim::memory::run_bytes(m.map.width() * m.map.height(), m.map.resolution, &cfg))
-            .max()
-            .unwrap_or(0),
+            .map(|m| (m.map.width() * m.map.height(), m.map.resolution))
+            .collect(),
         Maps::Generated { .. } | Maps::Files { .. } => {
-            sim::memory::run_bytes(first.width() * first.height(), first.resolution, &cfg)
+            vec![(first.width() * first.height(), first.resolution)]
         }
     };
+    for &(cells, res) in &sized {
+        let (run, shared) = (
+            sim::memory::run_bytes(cells, res, &cfg),
+            sim::memory::shared_bytes(res, &cfg),
+        );
+        s.run_bytes = s.run_bytes.max(run);
+        s.shared_bytes = s.shared_bytes.max(shared);
+        s.own_bytes = s.own_bytes.max(run.saturating_sub(shared));
+    }
     s.shape = match view {
         Some(v) => (v, v),
         None => {
@@ -950,8 +965,9 @@ fn observation_bytes(spec: &Spec) -> u64 {
 /// would need more memory than `memory_mb` MiB or the machine has available, before any is
 /// allocated.
 fn check_memory(spec: &Spec, envs: usize, agents: usize) -> PyResult<()> {
+    // What the environments' runs share (the program, a sensor's ray template) once.
     let per_env = spec
-        .run_bytes
+        .own_bytes
         .saturating_add(observation_bytes(spec).saturating_mul(agents as u64));
     let (w, h) = spec.largest;
     let what = format!(
@@ -967,7 +983,9 @@ fn check_memory(spec: &Spec, envs: usize, agents: usize) -> PyResult<()> {
     );
     sim::memory::check(
         &what,
-        per_env.saturating_mul(envs as u64),
+        per_env
+            .saturating_mul(envs as u64)
+            .saturating_add(spec.shared_bytes),
         spec.memory_mb,
         grid::machine::available(),
         "use a smaller k or view (a robot-centred crop), smaller maps, or fewer environments",

@@ -192,10 +192,14 @@ def test_explore_env_memory_mb_bounds_the_environments(office):
                        r"60x48-cell observations, k = 16\) needs about 17 MiB, more than "
                        r"--memory-mb 16" + fix):
         ExploreEnv(office, memory_mb=16)
-    # Four environments are bounded together: 67 MiB, though one fits in 64.
+    # Four environments are bounded together: 18 MiB, though one fits in 17.
     with pytest.raises(ValueError, match=r"running these 4 environments \(.*\) needs about "
-                       r"67 MiB, more than --memory-mb 64" + fix):
-        ExploreVectorEnv(4, office, memory_mb=64)
+                       r"18 MiB, more than --memory-mb 17" + fix):
+        ExploreVectorEnv(4, office, memory_mb=17)
+    # Regression: each environment was counted with the whole program (16 MiB) and its
+    # sensor's ray template, which the process holds once: 64 of these were "about 1090
+    # MiB", and 200 small ones with a view, which peak at 64 MiB, "about 3250 MiB".
+    assert ExploreVectorEnv(64, office, memory_mb=40).num_envs == 64
     bounded = ExploreEnv(office, k=8, lam=0.1, memory_mb=np.int64(64))
     free = ExploreEnv(office, k=8, lam=0.1)
     assert episode(bounded, RandomPolicy(5), 11) == episode(free, RandomPolicy(5), 11)

@@ -70,6 +70,13 @@ pub fn run_bytes(cells: usize, resolution: f64, cfg: &RunConfig) -> u64 {
         .saturating_add(cfg.sensor.build_bytes(resolution))
 }
 
+/// The part of [`run_bytes`] that runs in one process share: the program and its tables
+/// ([`BASE_BYTES`]) and the sensor's ray template (built once per range and resolution). A
+/// process running n such runs side by side needs this once and the rest n times.
+pub fn shared_bytes(resolution: f64, cfg: &RunConfig) -> u64 {
+    BASE_BYTES.saturating_add(cfg.sensor.build_bytes(resolution))
+}
+
 /// Why a run would not fit in memory.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 #[error(
