@@ -158,9 +158,20 @@ fn frame_of_parts(info: &MapMetaData, data_len: usize) -> Result<MapFrame, MapMs
     Ok(MapFrame {
         width: w as usize,
         height: h as usize,
-        resolution: f64::from(info.resolution),
+        resolution: as_written(info.resolution),
         origin: [p.x, p.y, q.yaw()],
     })
+}
+
+/// A message's `float32` resolution as the decimal it was written from: the shortest
+/// decimal that reads back as the same `f32` (0.05, not the 0.05000000074505806 that
+/// `f64::from` gives). A map saved as ROS YAML says 0.05 and a recording of it says the
+/// same, so the two explore alike (sensor ranges in cells, clearances, lengths).
+fn as_written(resolution: f32) -> f64 {
+    resolution
+        .to_string()
+        .parse()
+        .unwrap_or(f64::from(resolution))
 }
 
 /// The class of an OccupancyGrid value.
@@ -346,8 +357,27 @@ mod tests {
         map.origin = [-1.5, 2.0, 0.3];
         let back = map_from_msg(&msg_from_map(&map, "map", Default::default())).unwrap();
         assert_eq!(back.cells, map.cells);
-        assert!((back.resolution - 0.1).abs() < 1e-6);
+        assert_eq!(back.resolution, 0.1);
         assert!((back.origin[2] - 0.3).abs() < 1e-12);
+    }
+
+    /// Regression: a message's float32 resolution was read as 0.05000000074505806 for a map
+    /// of 0.05 m, so a run on a recording of a map differed from the run on the map (5 %
+    /// longer for a 3-robot `ha-cc` on nav2's depot: sensor ranges and clearances in cells
+    /// came out a hair different). It reads as the decimal it was written from, for any
+    /// resolution a ROS YAML file can hold.
+    #[test]
+    fn regression_a_resolution_reads_as_the_decimal_it_was_written_from() {
+        for written in [0.05, 0.03, 0.1, 0.025, 0.0368, 0.2, 0.5, 1.0, 0.0123456] {
+            let mut m = msg(1, 1, vec![0]);
+            m.info.resolution = written as f32;
+            assert_eq!(frame_of(&m).unwrap().resolution, written, "{written}");
+        }
+        // One that is not a short decimal stays the float32's value.
+        let mut m = msg(1, 1, vec![0]);
+        m.info.resolution = f32::from_bits(0.05f32.to_bits() + 1);
+        let r = frame_of(&m).unwrap().resolution;
+        assert_eq!(r as f32, m.info.resolution);
     }
 
     #[test]
