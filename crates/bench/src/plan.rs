@@ -767,6 +767,14 @@ fn resolve(
                     }
                 })
                 .transpose()?;
+            if start.is_none() && perturbations == 0 {
+                // Each trial draws its own start: check that there is room for one and its
+                // team with the clearance, or every trial would fail when it runs.
+                room_for_team(&env, clearance_m, max_robots).map_err(|m| {
+                    let span = f.clearance.as_ref().map_or(Some(entry.span()), span_of);
+                    src.error(span, "clearance", format!("{}: {m}", env.name))
+                })?;
+            }
             env.starts = start_variants(
                 &env,
                 start,
@@ -1266,6 +1274,19 @@ fn check_sensors(
             }
         }
     }
+    Ok(())
+}
+
+/// Whether a team of `robots` can start somewhere on `env` with `clearance_m`: a start the
+/// trials could draw, and its team around it (the error a trial would end with otherwise).
+fn room_for_team(env: &EnvInstance, clearance_m: f64, robots: usize) -> Result<(), String> {
+    let cells = &env.map.cells;
+    let trav = sim::truth::traversable(cells, clearance_m / env.map.resolution);
+    let components = sim::truth::components(cells, &trav);
+    let mut rng = sim::seed::rng(0, &format!("{}|room", env.name));
+    let first =
+        sim::truth::random_start(&components, &mut rng, clearance_m).map_err(|e| e.to_string())?;
+    sim::truth::team_starts(cells, &trav, first, robots).map_err(|e| e.to_string())?;
     Ok(())
 }
 

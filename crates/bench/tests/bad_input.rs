@@ -442,3 +442,24 @@ fn regression_environment_names_that_break_keys_or_files_are_refused() {
     let fine = two.replace("\"a_b\"", "\"a-b\"");
     Plan::resolve(&source(&fine), Unbuilt::Error).expect("a/b and a-b");
 }
+
+/// Regression: a clearance no robot has room for (`clearance = 1e300`, or one that leaves
+/// fewer cells than the team) passed planning and every trial failed when it ran ("the map
+/// has no free cell a robot with clearance ... can stand on"). It is refused at plan time
+/// at the `clearance` key, naming the environment.
+#[test]
+fn regression_a_clearance_with_no_room_is_refused_at_plan_time() {
+    let wide = ONE.replace("sensors", "clearance = 1e300\nsensors");
+    let e = error_of(&wide);
+    assert!(e.starts_with("s.toml:4: key `clearance`"), "{e}");
+    assert!(e.contains("no free cell a robot with clearance"), "{e}");
+    // 4 x 4 m of open space at 0.5 m with 1.2 m of clearance: room for one robot, not ten.
+    let team = ONE.replace("sensors", "clearance = 1.2\nrobots = [10]\nsensors");
+    let e = error_of(&team);
+    assert!(
+        e.contains("key `clearance`") && e.contains("10 robots need one each"),
+        "{e}"
+    );
+    let one = ONE.replace("sensors", "clearance = 1.2\nsensors");
+    Plan::resolve(&source(&one), Unbuilt::Error).expect("room for one");
+}
