@@ -160,6 +160,22 @@ def test_regression_load_gives_integer_seeds_as_the_csv_does(store):
     assert all(isinstance(r["seed"], int) for r in frontier.bench.rows(store / "tiny.sqlite"))
 
 
+def test_regression_numeric_columns_no_trial_filled_are_floats(store):
+    """Regression: a numeric column that no trial filled (no [optimal] section, no
+    coverage goal) came back as objects, all None, where the CSV export reads NaN floats,
+    so that its mean failed. It is float64 (polars: Float64) of NaN (null)."""
+    pd = pytest.importorskip("pandas")
+    df = frontier.bench.load(store / "tiny.sqlite")
+    csv = pd.read_csv(store / "tiny.csv")
+    for c in ("s_max", "coverage_goal", "optimal_m", "optimal_lower_m", "ratio"):
+        assert df[c].dtype == csv[c].dtype == "float64", c
+        assert df[c].isna().all(), c
+    assert pd.isna(df.groupby("strategy")["ratio"].mean()).all()
+    pl = pytest.importorskip("polars")
+    frame = frontier.bench.load(store / "tiny.sqlite", backend="polars")
+    assert frame["ratio"].dtype == pl.Float64 and frame["ratio"].null_count() == len(frame)
+
+
 def test_regression_arguments_of_a_wrong_type_name_the_argument():
     """Regression: a store that is no path gave os.fspath's message, which names no
     argument, and a backend that is no str was a ValueError."""

@@ -46,10 +46,27 @@ def load(db: Union[str, "os.PathLike[str]"], backend: str = "pandas") -> Any:
         from_rows = pd.DataFrame(data)
         if not data:
             from_rows = pd.DataFrame(columns=_columns())
+        # A numeric column that no trial filled (no [optimal] section, no coverage goal)
+        # is all None: as floats with NaN, as the CSV export reads, it sums and averages.
+        for c in _OPTIONAL_NUMBERS:
+            if from_rows[c].dtype == object:
+                from_rows[c] = pd.to_numeric(from_rows[c]).astype("float64")
         return from_rows
     import polars as pl
 
-    return pl.DataFrame(data) if data else pl.DataFrame(schema=_columns())
+    if not data:
+        return pl.DataFrame(schema=_columns())
+    frame = pl.DataFrame(data)
+    return frame.with_columns(
+        [pl.col(c).cast(pl.Float64) for c in _OPTIONAL_NUMBERS if frame[c].dtype == pl.Null]
+    )
+
+
+#: The numeric columns a trial may leave empty.
+_OPTIONAL_NUMBERS = (
+    "env_seed", "s_max", "coverage_goal", "optimal_m", "optimal_lower_m", "ratio", "d90_m",
+    "t90_s", "d99_m", "t99_s",
+)
 
 
 def _columns() -> List[str]:
