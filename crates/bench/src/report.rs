@@ -155,6 +155,27 @@ fn check_report_folder(out: &Path) -> Result<(), BenchError> {
     Ok(())
 }
 
+/// A study's settings as its fingerprint names them ([`crate::plan::Plan::fingerprint`]),
+/// worded for a reader: the strategies' revision named as one, and the coverage goal as a
+/// number or "none" rather than in the program's own notation.
+fn readable_settings(fingerprint: &str) -> String {
+    fingerprint
+        .split(' ')
+        .map(|part| match part.split_once('=') {
+            Some(("strategies", n)) => format!("strategy revision {n},"),
+            Some(("goal", "None")) => "goal=none".to_string(),
+            Some(("goal", g)) => format!(
+                "goal={}",
+                g.strip_prefix("Some(")
+                    .and_then(|g| g.strip_suffix(')'))
+                    .unwrap_or(g)
+            ),
+            _ => part.to_string(),
+        })
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
 /// A file-name-safe version of `s` (the report's file names of environments and variants).
 pub(crate) fn slug(s: &str) -> String {
     s.chars()
@@ -195,14 +216,18 @@ fn build(
     let mut blocks = vec![Block::Heading(1, format!("Benchmark report: {scenario}"))];
     let versions: std::collections::BTreeSet<&str> =
         rows.iter().map(|r| r.version.as_str()).collect();
-    let wall: f64 = rows.iter().map(|r| r.wall_s).sum();
+    // (0.0 +: an empty sum is −0.0, which would print as "-0.0 s")
+    let wall: f64 = 0.0 + rows.iter().map(|r| r.wall_s).sum::<f64>();
+    let settings = readable_settings(fingerprint);
+    let versions = match versions.len() {
+        0 => "none (no trial)".to_string(),
+        _ => versions.into_iter().collect::<Vec<_>>().join(", "),
+    };
     blocks.push(Block::Para(format!(
-        "{} trials; settings: {fingerprint}; program version {}; {:.1} s of trial wall time. \
+        "{} trials; settings: {settings}; program version {versions}; {wall:.1} s of trial wall time. \
          L = longest path of one robot (m); verdicts at α = {} (Faigl & Kulich: row vs column, \
          + = row significantly lower).",
         rows.len(),
-        versions.into_iter().collect::<Vec<_>>().join(", "),
-        wall,
         opts.alpha
     )));
     if scenario.starts_with("holz2010")
@@ -823,6 +848,20 @@ td:first-child,th:first-child{{text-align:left}}th{{background:#eee}}img.env{{im
 
 #[cfg(test)]
 mod tests {
+    /// Regression: the report's header printed the fingerprint as the program writes it:
+    /// "strategies=12" (the revision, read as a count of strategies), "goal=None",
+    /// "goal=Some(1.0)".
+    #[test]
+    fn regression_settings_read_as_words() {
+        assert_eq!(
+            super::readable_settings(
+                "strategies=12 seed=1 speed=1 clearance=0.3 goal=None max_moves=10 belief=known"
+            ),
+            "strategy revision 12, seed=1 speed=1 clearance=0.3 goal=none max_moves=10 belief=known"
+        );
+        assert!(super::readable_settings("strategies=12 goal=Some(0.9)").ends_with("goal=0.9"));
+    }
+
     use super::*;
 
     #[test]
