@@ -66,6 +66,26 @@ fn grid_length(w: usize, trail: &[u32]) -> f64 {
         .sum()
 }
 
+/// A random map (passable cells of a `w`-wide grid) and a trail walked on it from a
+/// passable start.
+fn map_and_trail() -> impl Strategy<Value = (usize, Vec<bool>, Vec<u32>)> {
+    (
+        2usize..16,
+        2usize..16,
+        proptest::collection::vec(0u8..10, 256),
+        0usize..256,
+        proptest::collection::vec(0u8..8, 0..120),
+    )
+        .prop_map(|(w, h, blocked, start, dirs)| {
+            let n = w * h;
+            let mut pass: Vec<bool> = (0..n).map(|i| blocked[i] >= 3).collect();
+            let start = start % n;
+            pass[start] = true;
+            let trail = walk(w, h, &pass, start, &dirs);
+            (w, pass, trail)
+        })
+}
+
 proptest! {
     #[test]
     fn line_of_sight_never_passes_a_blocked_cell_a_sample_touches(
@@ -87,16 +107,8 @@ proptest! {
 
     #[test]
     fn any_angle_length_lies_between_the_straight_line_and_the_grid_length(
-        w in 2usize..16, h in 2usize..16,
-        blocked in proptest::collection::vec(0u8..10, 256),
-        start in 0usize..256,
-        dirs in proptest::collection::vec(0u8..8, 0..120),
+        (w, pass, trail) in map_and_trail(),
     ) {
-        let n = w * h;
-        let mut pass: Vec<bool> = (0..n).map(|i| blocked[i] >= 3).collect();
-        let start = start % n;
-        pass[start] = true;
-        let trail = walk(w, h, &pass, start, &dirs);
         let mut corners = Vec::new();
         any_angle_corners(w, &trail, |i| pass[i], &mut corners);
         let len = polyline_length(w, &corners);
@@ -127,17 +139,8 @@ proptest! {
     /// route's length at its end, the polyline's length at each corner, never decreasing,
     /// and never more than the grid distance walked by then.
     #[test]
-    fn prefix_lengths_follow_the_string_pulled_route(
-        w in 2usize..16, h in 2usize..16,
-        blocked in proptest::collection::vec(0u8..10, 256),
-        start in 0usize..256,
-        dirs in proptest::collection::vec(0u8..8, 0..120),
-    ) {
-        let n = w * h;
-        let mut pass: Vec<bool> = (0..n).map(|i| blocked[i] >= 3).collect();
-        let start = start % n;
-        pass[start] = true;
-        let trail = walk(w, h, &pass, start, &dirs);
+    fn prefix_lengths_follow_the_string_pulled_route((w, pass, trail) in map_and_trail()) {
+        let n = pass.len();
         let along = any_angle_prefix_lengths(w, &trail, |i| pass[i]);
         let grid = grid_prefix_lengths(w, &trail);
         prop_assert_eq!(along.len(), trail.len());
