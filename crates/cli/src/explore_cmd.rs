@@ -181,9 +181,17 @@ fn progress_bar(elapsed: Duration) -> ProgressBar {
 
 /// Run `frontier explore`.
 pub fn run(a: ExploreArgs) -> Result<()> {
-    for (flag, path) in [("--gif", &a.gif), ("--html", &a.html), ("--mcap", &a.mcap)] {
+    let outputs = [("--gif", &a.gif), ("--html", &a.html), ("--mcap", &a.mcap)];
+    for (k, (flag, path)) in outputs.iter().enumerate() {
         if let Some(path) = path {
             crate::args::check_output_file(flag, path)?;
+            // One file for two outputs would keep only the one written last.
+            if let Some((other, _)) = outputs[..k].iter().find(|(_, p)| p.as_ref() == Some(path)) {
+                anyhow::bail!(
+                    "{flag} {}: expected a file of its own, found the file {other} names",
+                    path.display()
+                );
+            }
         }
     }
     if let Some(dir) = &a.out {

@@ -157,6 +157,13 @@ fn default_start(map: &grid::GridMap) -> Option<Cell> {
 
 /// Run `frontier optimal`.
 pub fn run(a: OptimalArgs) -> Result<()> {
+    // Presets are checked before the search, which may take long; each once.
+    for (i, name) in a.compare.iter().enumerate() {
+        Strategy::preset(name).map_err(|e| anyhow::anyhow!("--compare: {e}"))?;
+        if a.compare[..i].contains(name) {
+            anyhow::bail!("--compare: expected each preset once, found '{name}' twice");
+        }
+    }
     if let Some(dir) = &a.out {
         crate::args::make_output_folder("--out", dir)?;
     }

@@ -577,6 +577,21 @@ fn optimal_time_limit_overflow_is_no_limit() {
     }
 }
 
+/// Regression: `--compare cf,cf` ran cf twice and printed it twice, and an unknown preset
+/// was named only after the optimal search. Both are refused before it.
+#[test]
+fn regression_optimal_compares_each_known_preset_once() {
+    let dir = tempfile::tempdir().unwrap();
+    let args = optimal_on_two_rooms(dir.path(), &["--compare", "cf,cf-rr,cf"]);
+    let e = err(&strs(&args));
+    assert!(
+        e.contains("--compare: expected each preset once, found 'cf' twice"),
+        "{e}"
+    );
+    let args = optimal_on_two_rooms(dir.path(), &["--compare", "cf,nearestt"]);
+    assert!(err(&strs(&args)).contains("--compare: unknown strategy 'nearestt'"));
+}
+
 #[test]
 fn optimal_stopped_early_reports_the_ratio_as_an_interval() {
     let dir = tempfile::tempdir().unwrap();
@@ -1881,6 +1896,16 @@ fn regression_output_paths_are_checked_before_the_run() {
     ]);
     assert!(e.contains("castle"), "{e}");
     assert!(!new.exists(), "the check left {}", new.display());
+    // Regression: one file named by two outputs kept only the one written last.
+    let same = dir.path().join("same.out");
+    let same = same.to_str().expect("utf-8");
+    let e = err(&["explore", "--env", "office", "--gif", same, "--html", same]);
+    assert!(
+        e.contains(&format!(
+            "--html {same}: expected a file of its own, found the file --gif names"
+        )),
+        "{e}"
+    );
     let d = dir.path().to_str().expect("utf-8 path");
     let e = err(&["explore", "--env", "office", "--html", d]);
     assert!(e.contains("expected a file name, found a folder"), "{e}");
