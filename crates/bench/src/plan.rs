@@ -374,9 +374,10 @@ fn resolve(
                     "speed",
                     format!(
                         "expected a positive number of metres per second, from {} to {}, \
-                         found {x}",
+                         found {}",
                         sim::run::SPEED_RANGE.start(),
-                        sim::run::SPEED_RANGE.end()
+                        sim::run::SPEED_RANGE.end(),
+                        grid::Num(x)
                     ),
                 ));
             }
@@ -391,7 +392,7 @@ fn resolve(
                 return Err(src.error(
                     span_of(v),
                     "clearance",
-                    format!("expected a number of metres >= 0, found {x}"),
+                    format!("expected a number of metres >= 0, found {}", grid::Num(x)),
                 ));
             }
             x

@@ -193,7 +193,10 @@ pub fn run(a: OptimalArgs) -> Result<()> {
         );
     }
     if !(a.weight.is_finite() && a.weight >= 1.0) {
-        bail!("--weight: expected a number ≥ 1, found {}", a.weight);
+        bail!(
+            "--weight: expected a number ≥ 1, found {}",
+            grid::Num(a.weight)
+        );
     }
     if !(1..=64).contains(&a.cell_size) {
         bail!(

@@ -28,9 +28,11 @@ pub mod grid;
 pub mod io;
 pub mod machine;
 pub mod memory;
+pub mod num;
 pub mod occ;
 pub mod resample;
 
 pub use cell::{Cell, NEIGHBOURS4, NEIGHBOURS8, SQRT2, for_each_move, step_cost};
 pub use grid::Grid;
+pub use num::Num;
 pub use occ::{GridMap, Occ};

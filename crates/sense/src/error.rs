@@ -80,10 +80,12 @@ pub enum SenseError {
     /// A sensor's range, at the map's resolution, is under one cell or over the kind's
     /// largest: the robot would see only its own cell, or the scan could not be built.
     #[error(
-        "sensor '{spec}': range {cells} cells at {resolution} m per cell: expected 1 to {max} \
-         cells ({min_m} to {max_m} m){why}",
-        min_m = resolution,
-        max_m = max * resolution,
+        "sensor '{spec}': range {} cells at {} m per cell: expected 1 to {max} \
+         cells ({} to {} m){why}",
+        grid::Num(*.cells),
+        grid::Num(*.resolution),
+        grid::Num(*.resolution),
+        grid::Num(*.max * *.resolution),
         why = if *cells < 1.0 { "; with less the robot sees only the cell it stands on" } else { "" }
     )]
     RangeOutOfBounds {

@@ -49,7 +49,7 @@ impl Range {
 impl fmt::Display for Range {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            Range::Metres(m) => write!(f, "{m}"),
+            Range::Metres(m) => write!(f, "{}", grid::Num(*m)),
             Range::Cells(c) => write!(f, "{c}c"),
         }
     }

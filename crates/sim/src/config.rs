@@ -128,7 +128,10 @@ pub enum SimError {
         why: String,
     },
     /// The map has no traversable cell.
-    #[error("the map has no free cell a robot with clearance {clearance_m} m can stand on")]
+    #[error(
+        "the map has no free cell a robot with clearance {} m can stand on",
+        grid::Num(*.clearance_m)
+    )]
     NoFreeSpace {
         /// The clearance asked for.
         clearance_m: f64,

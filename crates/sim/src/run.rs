@@ -909,20 +909,24 @@ fn validate(cfg: &RunConfig) -> Result<(), SimError> {
         return bad(
             "--speed",
             "a positive number of metres per second, from 0.001 to 1000",
-            cfg.speed.to_string(),
+            grid::Num(cfg.speed).to_string(),
         );
     }
     if !(cfg.clearance_m.is_finite() && cfg.clearance_m >= 0.0) {
         return bad(
             "--clearance",
             "a non-negative number of metres",
-            cfg.clearance_m.to_string(),
+            grid::Num(cfg.clearance_m).to_string(),
         );
     }
     if let Some(g) = cfg.coverage_goal
         && !(g > 0.0 && g <= 1.0)
     {
-        return bad("--goal", "a coverage share in (0, 1]", g.to_string());
+        return bad(
+            "--goal",
+            "a coverage share in (0, 1]",
+            grid::Num(g).to_string(),
+        );
     }
     Ok(())
 }

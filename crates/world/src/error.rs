@@ -6,7 +6,7 @@ use thiserror::Error;
 #[derive(Debug, Clone, PartialEq, Error)]
 pub enum WorldError {
     /// A field of the [`EnvSpec`](crate::EnvSpec) has a value the kind cannot use.
-    #[error("invalid {field} = {value} for {kind}: {reason}")]
+    #[error("invalid {field} = {} for {kind}: {reason}", grid::Num(*.value))]
     InvalidSpec {
         /// The field at fault: `width_m`, `height_m` or `resolution`.
         field: &'static str,
@@ -19,8 +19,11 @@ pub enum WorldError {
     },
     /// The grid would have more cells than the limit.
     #[error(
-        "size {width_m} m x {height_m} m at resolution {resolution} m gives {cells} cells, \
-         more than the limit of {limit}"
+        "size {} m x {} m at resolution {} m gives {cells} cells, more than the limit of \
+         {limit}",
+        grid::Num(*.width_m),
+        grid::Num(*.height_m),
+        grid::Num(*.resolution)
     )]
     TooLarge {
         /// Width in metres.
