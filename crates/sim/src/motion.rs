@@ -168,13 +168,19 @@ pub fn grid_prefix_lengths(width: usize, trail: &[u32]) -> Vec<f64> {
     out
 }
 
-/// The distance in cells travelled along `trail` string-pulled ([`any_angle_corners`]) by
-/// the time the robot stood on each of its cells: exact at the corners, and in between in
-/// proportion to the grid distance travelled (1 straight, √2 diagonal) along the segment.
-/// Non-decreasing; the last is [`any_angle_length`] (the same sum, in the same order).
+/// The distance in cells travelled along `trail` string-pulled leg by leg by the time the
+/// robot stood on each of its cells. A leg is the trail from one of `legs` (the positions
+/// where the robot set out on a new path) to the next, and each is string-pulled alone
+/// ([`any_angle_corners`]): a robot follows its path to its goal smoothly, but it drove to
+/// the goal and from there on, so where it decided stays a corner (string-pulling the whole
+/// trail at once would cut straight across every goal in open space). Exact at the corners,
+/// and in between in proportion to the grid distance travelled (1 straight, √2 diagonal)
+/// along the segment. Non-decreasing; with no legs but the first, the last is
+/// [`any_angle_length`] (the same sum, in the same order).
 pub fn any_angle_prefix_lengths(
     width: usize,
     trail: &[u32],
+    legs: &[usize],
     passable: impl Fn(usize) -> bool,
 ) -> Vec<f64> {
     let n = trail.len();
@@ -183,21 +189,31 @@ pub fn any_angle_prefix_lengths(
         return out;
     }
     let grid = grid_prefix_lengths(width, trail);
-    // The corners as trail positions, found as `any_angle_corners` finds them.
+    let mut ends: Vec<usize> = legs.iter().copied().filter(|&l| l > 0 && l < n).collect();
+    ends.sort_unstable();
+    ends.dedup();
+    ends.push(n - 1);
+    // The corners as trail positions, found leg by leg as `any_angle_corners` finds them.
     let mut corners = vec![0];
-    let (mut anchor, mut last) = (0, 0);
-    for k in 1..n {
-        if trail[k] == trail[last] {
-            continue;
+    let mut from = 0;
+    for &to in &ends {
+        let (mut anchor, mut last) = (from, from);
+        for k in from + 1..=to {
+            if trail[k] == trail[last] {
+                continue;
+            }
+            if !line_of_sight(width, trail[anchor] as usize, trail[k] as usize, &passable) {
+                corners.push(last);
+                anchor = last;
+            }
+            last = k;
         }
-        if !line_of_sight(width, trail[anchor] as usize, trail[k] as usize, &passable) {
+        // The leg's end is a corner (the next leg's start), also where it is back at its
+        // anchor's cell (a segment of length 0).
+        if corners.last() != Some(&last) {
             corners.push(last);
-            anchor = last;
         }
-        last = k;
-    }
-    if trail[last] != trail[anchor] {
-        corners.push(last);
+        from = to;
     }
     let mut at = 0.0;
     for c in corners.windows(2) {

@@ -68,6 +68,9 @@ struct Robot {
     dist_cells: f64,
     /// Cells stood on, in order (kept only for any-angle motion).
     trail: Vec<u32>,
+    /// Positions in `trail` where the robot set out on a new path (any-angle motion: the
+    /// smoothed route keeps them as corners).
+    legs: Vec<usize>,
     /// Remaining cells of the current path (next cell first is at `path_pos`).
     path: Vec<u32>,
     path_pos: usize,
@@ -304,6 +307,7 @@ impl<'a> Session<'a> {
                 clock: 0.0,
                 dist_cells: 0.0,
                 trail: vec![cells.index(c) as u32],
+                legs: Vec::new(),
                 path: Vec::new(),
                 path_pos: 0,
                 goal: None,
@@ -814,7 +818,7 @@ impl<'a> Session<'a> {
                 let passable = |i: usize| stood[i] || team.upkeep.trav.is_traversable(known, i);
                 let along: Vec<Vec<f64>> = robots
                     .iter()
-                    .map(|r| any_angle_prefix_lengths(w, &r.trail, passable))
+                    .map(|r| any_angle_prefix_lengths(w, &r.trail, &r.legs, passable))
                     .collect();
                 let grid: Vec<Vec<f64>> = robots
                     .iter()
@@ -1392,6 +1396,12 @@ impl Team<'_> {
             robot.moves_since_decision = 0;
             robot.path.clear();
             robot.path_pos = 0;
+            if self.cfg.motion == Motion::AnyAngle {
+                let here = robot.trail.len() - 1;
+                if robot.legs.last() != Some(&here) {
+                    robot.legs.push(here);
+                }
+            }
             match self.out[r] {
                 Some(goal) if self.planner.path(r, goal.cell, &mut self.path_buf) => {
                     robot.goal = Some(goal.cell);

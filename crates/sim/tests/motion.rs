@@ -141,7 +141,7 @@ proptest! {
     #[test]
     fn prefix_lengths_follow_the_string_pulled_route((w, pass, trail) in map_and_trail()) {
         let n = pass.len();
-        let along = any_angle_prefix_lengths(w, &trail, |i| pass[i]);
+        let along = any_angle_prefix_lengths(w, &trail, &[], |i| pass[i]);
         let grid = grid_prefix_lengths(w, &trail);
         prop_assert_eq!(along.len(), trail.len());
         prop_assert_eq!(grid.len(), trail.len());
@@ -169,6 +169,61 @@ proptest! {
             }
         }
     }
+}
+
+proptest! {
+    /// Leg by leg: each leg's start stays a corner, so the length to it is at least the
+    /// straight lines joining the legs' starts; each leg is pulled as a trail of its own;
+    /// and with every cell a leg's start the route is the grid route.
+    #[test]
+    fn legs_stay_corners(
+        (w, pass, trail) in map_and_trail(),
+        cuts in proptest::collection::vec(0usize..130, 0..6),
+    ) {
+        let n = trail.len();
+        let mut legs: Vec<usize> = cuts.into_iter().filter(|&c| c < n).collect();
+        legs.sort_unstable();
+        legs.dedup();
+        let along = any_angle_prefix_lengths(w, &trail, &legs, |i| pass[i]);
+        let grid = grid_prefix_lengths(w, &trail);
+        let mut starts: Vec<usize> = std::iter::once(0).chain(legs.iter().copied()).collect();
+        starts.dedup();
+        let mut chain = 0.0;
+        for p in starts.windows(2) {
+            let (a, b) = (p[0], p[1]);
+            let (ca, cb) = (trail[a] as usize, trail[b] as usize);
+            chain += ((ca % w) as f64 - (cb % w) as f64).hypot((ca / w) as f64 - (cb / w) as f64);
+            prop_assert!(along[b] >= chain - 1e-9, "{} < chain {} at {}", along[b], chain, b);
+            // the leg a..=b alone, shifted by where it starts
+            let leg = any_angle_length(w, &trail[a..=b], |i| pass[i]);
+            prop_assert!((along[b] - along[a] - leg).abs() < 1e-9, "leg {}..={}", a, b);
+        }
+        for k in 1..n {
+            prop_assert!(along[k] >= along[k - 1] && along[k] <= grid[k] + 1e-9);
+        }
+        let every: Vec<usize> = (0..n).collect();
+        let stepwise = any_angle_prefix_lengths(w, &trail, &every, |i| pass[i]);
+        for k in 0..n {
+            prop_assert!((stepwise[k] - grid[k]).abs() < 1e-9, "{} against grid {}", stepwise[k], grid[k]);
+        }
+    }
+}
+
+/// Regression: the whole trail was string-pulled as one, and in open space every later
+/// cell is in sight of the first, so a robot that went to a goal and came back was given
+/// the straight line from its start to its end (8 × 8 m room, `cf`: 5.3 m for a 19.8 m
+/// grid route that crossed the room twice). Where the robot set out on a new path is a
+/// corner: there and back is twice the way.
+#[test]
+fn regression_a_route_there_and_back_is_twice_the_way() {
+    let w = 10;
+    let there: Vec<u32> = (0..=8).map(|x| x as u32).collect();
+    let back: Vec<u32> = (2..8).rev().map(|x| x as u32).collect();
+    let trail: Vec<u32> = there.iter().chain(&back).copied().collect();
+    let whole = any_angle_prefix_lengths(w, &trail, &[], |_| true);
+    assert!((whole.last().unwrap() - 2.0).abs() < 1e-12, "{whole:?}");
+    let legs = any_angle_prefix_lengths(w, &trail, &[8], |_| true);
+    assert!((legs.last().unwrap() - 14.0).abs() < 1e-12, "{legs:?}");
 }
 
 #[test]
