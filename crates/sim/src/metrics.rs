@@ -242,7 +242,9 @@ pub struct Milestone {
     pub percent: u32,
     /// Distance the team had travelled, in metres (summed over robots).
     pub dist_m: f64,
-    /// Time in seconds (the clock of the robot whose sensing reached it).
+    /// Time in seconds: the clock of the robot whose sensing reached it, or the level
+    /// below's time if that is later (a team's moves are taken in the order the robots set
+    /// out on them, so a move taken later can end earlier).
     pub time_s: f64,
 }
 

@@ -1102,10 +1102,13 @@ impl Team<'_> {
             while let Some(&percent) = MILESTONES.get(self.milestones.len())
                 && covered as u128 * 100 >= u128::from(percent) * total as u128
             {
+                // Moves are taken in the order robots set out, so a later one can end
+                // earlier: a level is reached no earlier than the one below it.
+                let below = self.milestones.last().map_or(0.0, |m| m.time_s);
                 self.milestones.push(Milestone {
                     percent,
                     dist_m: self.total_dist_cells * self.truth.resolution,
-                    time_s: self.now.1,
+                    time_s: self.now.1.max(below),
                 });
                 if any_angle {
                     self.milestone_moves.push((self.move_log.len(), self.now.0));
@@ -1255,11 +1258,15 @@ impl Team<'_> {
         let mut marks = self.milestone_moves.iter().map(|&(moves, _)| moves);
         let mut k = 0;
         let speed = self.cfg.speed;
+        let mut below = 0.0f64;
         positions(&mut marks, &mut |at| {
             let r = self.milestone_moves[k].1;
             let m = &mut self.milestones[k];
             m.dist_m = sum(at) * res;
             m.time_s -= (grid[r][at[r]] - along[r][at[r]]) * res / speed;
+            // as on the grid: no level earlier than the one below it
+            m.time_s = m.time_s.max(below);
+            below = m.time_s;
             k += 1;
         });
     }
