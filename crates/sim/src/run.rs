@@ -1248,6 +1248,24 @@ impl Team<'_> {
                 f(&at);
             }
         };
+        // The trace's events (pictures, the HTML replay) along the routes too: an event
+        // follows each move, so a robot's events step along its trail as its cell changes.
+        if let Some(trace) = self.trace.as_mut() {
+            // (position on the trail, its cell), from each robot's start
+            let mut at: Vec<(usize, u32)> = trace.starts.iter().map(|&c| (0, c)).collect();
+            for e in &mut trace.events {
+                let r = e.robot as usize;
+                let Some(&(k, cell)) = at.get(r) else {
+                    continue;
+                };
+                let k = if cell != e.cell { k + 1 } else { k };
+                at[r] = (k, e.cell);
+                if let (Some(a), Some(g)) = (along[r].get(k), grid[r].get(k)) {
+                    e.dist_m = a * res;
+                    e.t -= (g - a) * res / self.cfg.speed;
+                }
+            }
+        }
         let sum = |at: &[usize]| -> f64 { along.iter().zip(at).map(|(a, &k)| a[k]).sum() };
         let mut curve = self.curve_moves.iter().copied();
         let mut k = 0;

@@ -308,8 +308,16 @@ fn regression_any_angle_curve_and_milestones_follow_the_route() {
         cfg.seed = 2;
         let grid = sim::run(&env.map, &cfg).expect("run");
         cfg.motion = Motion::AnyAngle;
+        cfg.record_trace = true;
         let r = sim::run(&env.map, &cfg).expect("run");
         assert_eq!(r.reason, EndReason::Complete, "{preset}");
+        // The trace (pictures, the HTML replay) ends each robot at its any-angle length
+        // (it gave grid distances, so the replay's readout differed from the JSON).
+        let trace = r.trace.as_ref().expect("trace");
+        for (k, &len) in r.path_length_m.iter().enumerate() {
+            let last = trace.events.iter().rev().find(|e| e.robot as usize == k);
+            assert_eq!(last.expect("an event").dist_m, len, "{preset}: robot {k}");
+        }
         let total: f64 = r.path_length_m.iter().sum();
         let grid_total: f64 = grid.path_length_m.iter().sum();
         assert!(
