@@ -8,10 +8,10 @@
 # maturin and the test requirements come from PyPI (crates/py/requirements-dev.txt).
 # The extension is built once: in the release profile by default (the speed is the point
 # of it), or with --dev in the workspace's dev profile, into target/debug beside what
-# `cargo test` compiled. That reuses most external crates, not all: `cargo test` builds
-# neither PyO3 nor numpy (crates/py has no Rust tests), and it builds rand, serde, bitflags
-# and either with features its dev-dependencies add, so the workspace's crates are built
-# again. --dev still takes about half as long as a release build, and the tests run as fast.
+# `cargo test` compiled. That reuses every crate `cargo test` built (crates/py asks for the
+# features the tests' dev-dependencies turn on, so that none is built again): only PyO3,
+# numpy, ndarray and the package crate are new (crates/py has no Rust tests). The tests
+# run as fast on either build.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 profile=--release
