@@ -157,12 +157,14 @@ fn default_start(map: &grid::GridMap) -> Option<Cell> {
 
 /// Run `frontier optimal`.
 pub fn run(a: OptimalArgs) -> Result<()> {
-    // Presets are checked before the search, which may take long; each once.
+    // Presets are read before the search, which may take long; each once.
+    let mut presets = Vec::with_capacity(a.compare.len());
     for (i, name) in a.compare.iter().enumerate() {
-        Strategy::preset(name).map_err(|e| anyhow::anyhow!("--compare: {e}"))?;
         if a.compare[..i].contains(name) {
             anyhow::bail!("--compare: expected each preset once, found '{name}' twice");
         }
+        let strategy = Strategy::preset(name).map_err(|e| anyhow::anyhow!("--compare: {e}"))?;
+        presets.push((name, strategy));
     }
     if let Some(dir) = &a.out {
         crate::args::make_output_folder("--out", dir)?;
@@ -272,8 +274,7 @@ pub fn run(a: OptimalArgs) -> Result<()> {
     let optimal_m = out.upper_bound * res;
 
     let mut compared = Vec::new();
-    for name in &a.compare {
-        let strategy = Strategy::preset(name).map_err(|e| anyhow::anyhow!("--compare: {e}"))?;
+    for (name, strategy) in presets {
         let mut rc = RunConfig::new(strategy);
         rc.sensor = spec;
         rc.sensing = Some(SensingMode::OnArrival);

@@ -7,7 +7,8 @@
 //! same route, by up to 8 % (the worst grid detour, at 22.5°), more where a route bends.
 //!
 //! [`Motion::AnyAngle`] reports the length the robot's route would have had as a
-//! string-pulled path: the cells the robot stood on, in order, replaced by straight
+//! string-pulled path: the cells the robot stood on on each path it set out on (from one
+//! decision to the next, where it stays a corner), in order, replaced by straight
 //! segments between some of them, each segment seeing only passable cells
 //! ([`line_of_sight`]); the passable cells are those traversable in the final belief with
 //! the run's clearance, and the cells the robot stood on. The robot still decides and
@@ -118,26 +119,53 @@ pub fn any_angle_corners(
     out: &mut Vec<u32>,
 ) {
     out.clear();
-    let Some(&first) = trail.first() else {
-        return;
-    };
-    out.push(first);
-    let mut anchor = first as usize;
-    let mut last = anchor; // the farthest trail cell seen from the anchor
-    for &c in &trail[1..] {
-        let c = c as usize;
-        if c == last {
-            continue;
-        }
-        if !line_of_sight(width, anchor, c, &passable) {
-            out.push(last as u32);
-            anchor = last;
-        }
-        last = c;
+    out.extend(
+        corner_positions(width, trail, &[], passable)
+            .into_iter()
+            .map(|k| trail[k]),
+    );
+}
+
+/// The corners of `trail` string-pulled leg by leg ([`any_angle_prefix_lengths`]), as
+/// positions in the trail: each leg (from one of `legs` to the next) is pulled as
+/// [`any_angle_corners`] describes, and its end is a corner too.
+fn corner_positions(
+    width: usize,
+    trail: &[u32],
+    legs: &[usize],
+    passable: impl Fn(usize) -> bool,
+) -> Vec<usize> {
+    let n = trail.len();
+    if n == 0 {
+        return Vec::new();
     }
-    if last != anchor {
-        out.push(last as u32);
+    let mut ends: Vec<usize> = legs.iter().copied().filter(|&l| l > 0 && l < n).collect();
+    ends.sort_unstable();
+    ends.dedup();
+    ends.push(n - 1);
+    let mut corners = vec![0];
+    let mut from = 0;
+    for &to in &ends {
+        // the anchor, and the farthest trail cell seen from it
+        let (mut anchor, mut last) = (from, from);
+        for k in from + 1..=to {
+            if trail[k] == trail[last] {
+                continue;
+            }
+            if !line_of_sight(width, trail[anchor] as usize, trail[k] as usize, &passable) {
+                corners.push(last);
+                anchor = last;
+            }
+            last = k;
+        }
+        // The leg's end is a corner (the next leg's start), also where it is back at its
+        // anchor's cell (a segment of length 0).
+        if corners.last() != Some(&last) {
+            corners.push(last);
+        }
+        from = to;
     }
+    corners
 }
 
 /// Length in cells of a polyline through the centres of `corners`.
@@ -189,32 +217,7 @@ pub fn any_angle_prefix_lengths(
         return out;
     }
     let grid = grid_prefix_lengths(width, trail);
-    let mut ends: Vec<usize> = legs.iter().copied().filter(|&l| l > 0 && l < n).collect();
-    ends.sort_unstable();
-    ends.dedup();
-    ends.push(n - 1);
-    // The corners as trail positions, found leg by leg as `any_angle_corners` finds them.
-    let mut corners = vec![0];
-    let mut from = 0;
-    for &to in &ends {
-        let (mut anchor, mut last) = (from, from);
-        for k in from + 1..=to {
-            if trail[k] == trail[last] {
-                continue;
-            }
-            if !line_of_sight(width, trail[anchor] as usize, trail[k] as usize, &passable) {
-                corners.push(last);
-                anchor = last;
-            }
-            last = k;
-        }
-        // The leg's end is a corner (the next leg's start), also where it is back at its
-        // anchor's cell (a segment of length 0).
-        if corners.last() != Some(&last) {
-            corners.push(last);
-        }
-        from = to;
-    }
+    let corners = corner_positions(width, trail, legs, passable);
     let mut at = 0.0;
     for c in corners.windows(2) {
         let (i, j) = (c[0], c[1]);

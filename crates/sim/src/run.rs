@@ -1227,8 +1227,6 @@ impl Team<'_> {
         true
     }
 
-    /// Close the trace's current event: robot `r` is where it is, with the changes sensed
-    /// since the last event.
     /// With any-angle motion: the coverage curve's distances and the milestones' distances
     /// and times measured along the robots' string-pulled routes (`along[r][k]`: robot r's
     /// distance in cells when it stood on its k-th trail cell; `grid[r][k]`: the same on
@@ -1289,6 +1287,8 @@ impl Team<'_> {
         });
     }
 
+    /// Close the trace's current event: robot `r` is where it is, with the changes sensed
+    /// since the last event.
     fn record(&mut self, robots: &[Robot], r: usize) {
         let coverage = self.coverage();
         let frontiers = self.upkeep.frontiers.len() as u32;
