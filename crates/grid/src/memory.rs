@@ -72,6 +72,20 @@ impl fmt::Display for Available {
     }
 }
 
+/// `bytes` as a refusal says it: in MiB rounded up from 1 MiB on, else in KiB or bytes (a
+/// file of 18 bytes is not "about 1 MiB").
+pub fn describe_bytes(bytes: u64) -> String {
+    if bytes >= 1 << 20 {
+        format!("{} MiB", bytes.div_ceil(1 << 20))
+    } else if bytes >= 1 << 10 {
+        format!("{} KiB", bytes.div_ceil(1 << 10))
+    } else if bytes == 1 {
+        "1 byte".to_string()
+    } else {
+        format!("{bytes} bytes")
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

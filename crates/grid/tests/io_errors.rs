@@ -798,3 +798,90 @@ fn pgm_at_the_cell_limit_with_a_border_is_refused_before_reading() {
 fn scratch(test: &str) -> common::Scratch {
     common::scratch("io-errors", test)
 }
+
+/// Regression: a map file beginning with a UTF-8 byte order mark (which YAML 1.2 allows
+/// and Windows editors write) was refused: the mark became part of the first key
+/// ("missing field 'image'", "unknown header field \u{feff}type", "unknown character").
+#[test]
+fn regression_byte_order_mark_is_read_past() {
+    let dir = scratch("bom");
+    std::fs::write(dir.join("m.pgm"), b"P2 2 1 255 0 254").expect("write");
+    let bom = |text: &str| [b"\xEF\xBB\xBF".as_slice(), text.as_bytes()].concat();
+    let yaml = dir.join("m.yaml");
+    std::fs::write(&yaml, bom(&yaml_with("image", "m.pgm"))).expect("write");
+    let movingai = dir.join("m.map");
+    std::fs::write(&movingai, bom("type octile\nheight 1\nwidth 2\nmap\n@.\n")).expect("write");
+    let ascii = dir.join("m.txt");
+    std::fs::write(&ascii, bom("#.\n")).expect("write");
+    for path in [yaml, movingai, ascii] {
+        let map = load_map(&path, &LoadOptions::default()).expect("reads past the mark");
+        assert_eq!(
+            map.cells.data(),
+            &[Occ::Occupied, Occ::Free],
+            "{}",
+            path.display()
+        );
+    }
+}
+
+/// Regression: a comment between maxval and the raster ("255#made by X\n") was refused,
+/// though pgm(5) allows one before the whitespace that delimits the raster.
+#[test]
+fn regression_pgm_comment_after_maxval() {
+    let r = parse_pgm(
+        b"P5\n3 1\n255# made by hand\n\x00\x01\x02",
+        Path::new("c.pgm"),
+    )
+    .expect("a comment after maxval is valid");
+    assert_eq!(r.values, vec![0, 1, 2]);
+    let r = parse_pgm(b"P2 2 1 255#x\r1 2", Path::new("c.pgm")).expect("ends at CR too");
+    assert_eq!(r.values, vec![1, 2]);
+}
+
+/// Regression: a plain PGM value too large for 32 bits was reported as 4294967295 (the
+/// saturated number), which the file does not hold; the error now shows it as written.
+#[test]
+fn regression_pgm_huge_value_shown_as_written() {
+    assert_eq!(
+        msg(parse_pgm(b"P2 2 1 255 0 99999999999", Path::new("o.pgm"))),
+        "o.pgm: pixel (1, 0): value 99999999999 is above maxval 255"
+    );
+    let long = format!("P2 1 1 255 {}", "9".repeat(40));
+    assert_eq!(
+        msg(parse_pgm(long.as_bytes(), Path::new("o.pgm"))),
+        "o.pgm: pixel (0, 0): value 99999999999999999999… (40 digits) is above maxval 255"
+    );
+}
+
+/// Regression: an ASCII map beginning with a blank line was "empty map: width 0 and
+/// height 2"; the first row gives the width, so that line is named.
+#[test]
+fn regression_ascii_map_with_a_blank_first_line() {
+    let dir = scratch("ascii-blank");
+    let path = dir.join("a.txt");
+    std::fs::write(&path, "\n#.\n").expect("write");
+    let m = msg(load_map(&path, &LoadOptions::default()));
+    assert!(
+        m.ends_with("line 1: empty, but the first row gives the map's width"),
+        "{m}"
+    );
+}
+
+/// Regression: a HouseExpo plan given non-square pixels (`--resolution 0.5,2`) was read at
+/// the smaller side without a word; it is read at one resolution, so two are refused.
+#[test]
+fn regression_houseexpo_refuses_non_square_resolution() {
+    let dir = scratch("houseexpo-square");
+    let path = dir.join("h.json");
+    std::fs::write(&path, r#"{"verts": [[0,0],[4,0],[4,4],[0,4]]}"#).expect("write");
+    let opts = LoadOptions {
+        resolution: Some((0.5, 2.0)),
+        ..LoadOptions::default()
+    };
+    let m = msg(load_map(&path, &opts));
+    assert!(m.contains("h.json") && m.contains("found 0.5 x 2 m"), "{m}");
+    let bad = dir.join("v.json");
+    std::fs::write(&bad, r#"{"verts": [[0,0],[4,0],[4,"x"],[0,4]]}"#).expect("write");
+    let m = msg(load_map(&bad, &LoadOptions::with_resolution(0.5)));
+    assert!(m.contains(r#"found [4,"x"] at vertex 2"#), "{m}");
+}

@@ -166,15 +166,16 @@ fn ros_png_colour_and_alpha() {
     );
     std::fs::write(dir.join("m.png"), rgba).expect("save png");
     let yaml = dir.join("m.yaml");
-    for mode in ["trinary", "scale"] {
-        std::fs::write(
-            &yaml,
-            ros_yaml("m.png", &format!("negate: 0\nmode: {mode}\n")),
-        )
-        .expect("write");
-        let map = load_map(&yaml, &LoadOptions::default()).expect("load");
-        assert_eq!(row(&map), vec![U, O, F, U, O], "mode {mode}");
-    }
+    // Scale mode: the colour channels' mean; fully transparent is Unknown.
+    std::fs::write(&yaml, ros_yaml("m.png", "negate: 0\nmode: scale\n")).expect("write");
+    let map = load_map(&yaml, &LoadOptions::default()).expect("load");
+    assert_eq!(row(&map), vec![U, O, F, U, O]);
+    // Trinary mode: alpha averaged in with red, green and blue, as both map_servers do:
+    // (255·3 + 0)/4 → p 0.25; (255 + 255)/4 → 0.5; (254·3 + 255)/4 → 0.003;
+    // (205·3 + 255)/4 → 0.147; (0 + 1)/4 → 0.999.
+    std::fs::write(&yaml, ros_yaml("m.png", "negate: 0\nmode: trinary\n")).expect("write");
+    let map = load_map(&yaml, &LoadOptions::default()).expect("load");
+    assert_eq!(row(&map), vec![U, U, F, F, O]);
     // A 16-bit grey PNG.
     let wide: Vec<u8> = [0u16, 65535, 52685]
         .iter()
@@ -193,6 +194,62 @@ fn ros_png_colour_and_alpha() {
         row(&load_map(&yaml, &LoadOptions::default()).expect("load")),
         vec![O, F, U]
     );
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+/// Both map_servers average a PNG's alpha in with its colour in trinary mode ("alpha will
+/// be averaged in with color channels when using trinary mode", ROS 1's image_loader and
+/// nav2's map_io); frontier read the colour alone, so an opaque map_server grey of 205
+/// (free there) was Unknown and greys of 26–89 (Unknown there) walls. A grey+alpha pixel's
+/// grey counts three times, as red, green and blue.
+#[test]
+fn regression_trinary_png_averages_alpha_as_map_server() {
+    let dir = scratch("trinary-alpha");
+    let greys = [0u8, 50, 80, 150, 200, 205, 254];
+    let yaml = dir.join("m.yaml");
+    std::fs::write(&yaml, ros_yaml("m.png", "negate: 0\nmode: trinary\n")).expect("write");
+    // map_server: (3·g + 255) / 4 for an opaque pixel, then p = 1 − shade.
+    let want: Vec<Occ> = greys
+        .iter()
+        .map(|&g| {
+            let p = 1.0 - (3.0 * f64::from(g) + 255.0) / 4.0 / 255.0;
+            if p > 0.65 {
+                O
+            } else if p < 0.196 {
+                F
+            } else {
+                U
+            }
+        })
+        .collect();
+    assert_eq!(want, vec![O, U, U, U, F, F, F]);
+    let rgba: Vec<u8> = greys.iter().flat_map(|&g| [g, g, g, 255]).collect();
+    let grey_alpha: Vec<u8> = greys.iter().flat_map(|&g| [g, 255]).collect();
+    for (pixels, colour) in [
+        (rgba, png::ColorType::Rgba),
+        (grey_alpha, png::ColorType::GrayscaleAlpha),
+    ] {
+        let png = encode_png(7, 1, colour, png::BitDepth::Eight, &pixels);
+        std::fs::write(dir.join("m.png"), png).expect("save png");
+        let map = load_map(&yaml, &LoadOptions::default()).expect("load");
+        assert_eq!(row(&map), want, "{colour:?}");
+    }
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+/// A raw value written as a threshold is on its side: 55 with `occupied_thresh: 0.55` is
+/// Occupied and 29 with `free_thresh: 0.29` Free, although `100 · 0.55` is
+/// 55.00000000000001 and `100 · 0.29` 28.999999999999996 in floating point.
+#[test]
+fn regression_raw_value_at_a_threshold_is_on_its_side() {
+    let dir = scratch("raw-threshold");
+    std::fs::write(dir.join("m.pgm"), b"P2 4 1 255 55 29 56 28").expect("write");
+    let yaml = dir.join("m.yaml");
+    let text = "image: m.pgm\nresolution: 0.1\norigin: [0.0, 0.0, 0.0]\nnegate: 0\n\
+                occupied_thresh: 0.55\nfree_thresh: 0.29\nmode: raw\n";
+    std::fs::write(&yaml, text).expect("write");
+    let map = load_map(&yaml, &LoadOptions::default()).expect("load");
+    assert_eq!(row(&map), vec![O, F, O, F]);
     let _ = std::fs::remove_dir_all(dir);
 }
 

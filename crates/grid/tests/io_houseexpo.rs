@@ -84,6 +84,9 @@ fn oracle(text: &str, resolution: f64) -> Option<Raster> {
     let mut rooms = vec![0u32; w * h];
     let mut room_types = Vec::new();
     if let Some(cats) = json.get("room_category").and_then(Value::as_object) {
+        // In the file's order: by where each category's quoted name first appears.
+        let mut cats: Vec<_> = cats.iter().collect();
+        cats.sort_by_key(|(kind, _)| text.find(&format!("\"{kind}\"")));
         for (kind, boxes) in cats {
             for b in boxes.as_array()? {
                 let b = numbers(b, 4)?;
@@ -191,6 +194,28 @@ proptest! {
         prop_assert_eq!(&want.4, &got.4);
         prop_assert_eq!(want.5.map(f64::to_bits), got.5.map(f64::to_bits));
     }
+}
+
+/// Regression: room ids followed the categories' alphabetical order (serde_json's map
+/// sorts its keys), not the file's, so where boxes overlap the later category won.
+#[test]
+fn regression_houseexpo_rooms_numbered_in_file_order() {
+    let square = [(0.0, 0.0), (4.0, 0.0), (4.0, 4.0), (0.0, 4.0)];
+    let text = plan_text(
+        &square,
+        &[
+            ("zeta", vec![[0.0, 0.0, 4.0, 2.0]]),
+            ("alpha", vec![[0.0, 0.0, 4.0, 4.0]]),
+        ],
+    );
+    let plan = parse_houseexpo(&text, Path::new("h.json"), 0.5).expect("reads");
+    assert_eq!(
+        plan.room_types,
+        vec!["zeta".to_string(), "alpha".to_string()]
+    );
+    let count = |id| plan.rooms.iter().filter(|&&r| r == id).count();
+    // zeta's box comes first and keeps the half they share; alpha gets the rest.
+    assert_eq!((count(1), count(2)), (32, 32));
 }
 
 /// Regression: a 227 KB outline, a 20,001-vertex zigzag whose every row crosses 20,000

@@ -141,14 +141,14 @@ proptest! {
             }
         }
         let r = parse_pgm(&bytes, std::path::Path::new("t.pgm")).expect("decode");
-        prop_assert_eq!(r, Raster { width: w, height: h, maxval, values, transparent: vec![] });
+        prop_assert_eq!(r, Raster { width: w, height: h, maxval, values, alpha: vec![], alpha_max: 0, colours: 1 });
     }
 
     /// The threshold rule against ROS map_server's formula for 8-bit pixels.
     #[test]
     fn thresholds_match_map_server(v in 0u32..=255, occ_t in threshold(), free_t in threshold(), negate in any::<bool>()) {
         let t = Thresholds { occupied: occ_t, free: free_t, negate };
-        let r = Raster { width: 1, height: 1, maxval: 255, values: vec![v], transparent: vec![] };
+        let r = Raster { width: 1, height: 1, maxval: 255, values: vec![v], alpha: vec![], alpha_max: 0, colours: 1 };
         // map_server: color_avg (255 - v if negate); occ = (255 - color_avg) / 255.0.
         let color_avg = if negate { 255.0 - f64::from(v) } else { f64::from(v) };
         let p = (255.0 - color_avg) / 255.0;
@@ -178,7 +178,9 @@ fn thresholds_are_strict() {
                 height: 1,
                 maxval: 255,
                 values: vec![v],
-                transparent: vec![],
+                alpha: vec![],
+                alpha_max: 0,
+                colours: 1,
             };
             assert_eq!(
                 t.classify_raster(&r).data()[0],

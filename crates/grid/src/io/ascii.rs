@@ -36,6 +36,15 @@ pub(crate) fn parse_ascii_named(
         .last()
         .map_or(0, |(i, _)| i + 1);
     let width = text.lines().next().map_or(0, |l| l.chars().count());
+    if width == 0 && rows > 0 {
+        return Err(MapError::new(
+            name,
+            MapErrorKind::BadLine {
+                line: 1,
+                what: "empty, but the first row gives the map's width".into(),
+            },
+        ));
+    }
     fits(width as u64, rows as u64, name)?;
     let mut data = Vec::with_capacity(width * rows);
     for (y, line) in text.lines().take(rows).enumerate() {

@@ -68,6 +68,16 @@ pub enum MapErrorKind {
     /// A bare bitmap or a HouseExpo plan (the file named) was loaded without a resolution.
     #[error("--resolution is required for {0}")]
     ResolutionRequired(&'static str),
+    /// Non-square pixels were given for a format read at one resolution (the file named).
+    #[error("expected one resolution (square cells) for {what}, found {rx} x {ry} m")]
+    SquareResolution {
+        /// What is read at one resolution.
+        what: &'static str,
+        /// Width of a pixel given, in metres.
+        rx: crate::Num,
+        /// Height of a pixel given, in metres.
+        ry: crate::Num,
+    },
     /// A resolution was zero, negative, not finite or over [`super::MAX_RESOLUTION_M`].
     #[error(
         "resolution must be a positive number of metres per cell, at most {max}, found {0}",
@@ -117,7 +127,7 @@ pub enum MapErrorKind {
     },
     /// Loading the map would need more memory than is available; refused before the map's
     /// cells are allocated.
-    #[error("{what} needs about {} MiB, more than {limit}; {fix}", .needed.div_ceil(1 << 20))]
+    #[error("{what} needs about {}, more than {limit}; {fix}", crate::memory::describe_bytes(*.needed))]
     OutOfMemory {
         /// What would be loaded, e.g. "loading this 16384x16384 PGM".
         what: String,

@@ -9,6 +9,7 @@
 
 use std::path::Path;
 
+use serde::de::{Deserialize, Deserializer, MapAccess, Visitor};
 use serde_json::Value;
 
 use super::error::{MapError, MapErrorKind};
@@ -210,18 +211,22 @@ pub(crate) fn parse_houseexpo_checked(
         .get("verts")
         .and_then(Value::as_array)
         .ok_or_else(|| MapError::new(name, MapErrorKind::MissingField("verts")))?;
-    let poly: Vec<(f64, f64)> = verts
-        .iter()
-        .map(|v| numbers(v, 2).map(|p| (p[0], p[1])))
-        .collect::<Option<_>>()
-        .ok_or_else(|| {
-            bad(
+    let mut poly: Vec<(f64, f64)> = Vec::with_capacity(verts.len());
+    for (k, v) in verts.iter().enumerate() {
+        let Some(p) = numbers(v, 2) else {
+            let mut shown = v.to_string();
+            if shown.len() > 60 {
+                shown = format!("{}…", shown.chars().take(57).collect::<String>());
+            }
+            return Err(bad(
                 name,
                 "verts",
                 "[x, y] pairs of finite metres",
-                "another value".into(),
-            )
-        })?;
+                format!("{shown} at vertex {k}"),
+            ));
+        };
+        poly.push((p[0], p[1]));
+    }
     if poly.len() < 3 {
         return Err(bad(
             name,
@@ -276,10 +281,15 @@ pub(crate) fn parse_houseexpo_checked(
     fill_outline(&poly, xs, ys, cells.data_mut());
     let mut rooms = vec![0u32; w * h];
     let mut room_types = Vec::new();
-    if let Some(cats) = json.get("room_category").and_then(Value::as_object) {
+    if json.get("room_category").is_some_and(Value::is_object) {
+        // Read again for the categories in the file's order (a `Value`'s map sorts them).
+        let cats = serde_json::from_str::<Plan>(text)
+            .map_err(|e| bad(name, "json", "a HouseExpo JSON object", e.to_string()))?
+            .room_category
+            .map_or_else(Vec::new, |c| c.0);
         let count: usize = cats
-            .values()
-            .filter_map(Value::as_array)
+            .iter()
+            .filter_map(|(_, v)| v.as_array())
             .map(Vec::len)
             .sum();
         if count > MAX_ROOM_BOXES {
@@ -291,7 +301,7 @@ pub(crate) fn parse_houseexpo_checked(
             ));
         }
         let mut unlabelled = Unlabelled::new(cells.data());
-        for (kind, boxes) in cats {
+        for (kind, boxes) in &cats {
             let boxes = boxes.as_array().ok_or_else(|| {
                 bad(
                     name,
@@ -333,6 +343,37 @@ pub(crate) fn parse_houseexpo_checked(
     })
 }
 
+/// The part of a plan read in the file's order.
+#[derive(serde::Deserialize)]
+struct Plan {
+    /// `room_category`'s entries.
+    room_category: Option<InOrder>,
+}
+
+/// A JSON object's entries in the order of the file.
+struct InOrder(Vec<(String, Value)>);
+
+impl<'de> Deserialize<'de> for InOrder {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        /// Collects the entries as they come.
+        struct Entries;
+        impl<'de> Visitor<'de> for Entries {
+            type Value = InOrder;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str("an object")
+            }
+            fn visit_map<A: MapAccess<'de>>(self, mut a: A) -> Result<InOrder, A::Error> {
+                let mut entries = Vec::new();
+                while let Some(entry) = a.next_entry::<String, Value>()? {
+                    entries.push(entry);
+                }
+                Ok(InOrder(entries))
+            }
+        }
+        d.deserialize_map(Entries)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -352,12 +393,13 @@ mod tests {
         assert_eq!(g[0], Occ::Occupied);
         assert_eq!(g[g.index(crate::Cell::new(7, 2))], Occ::Occupied);
         assert_eq!(g[g.index(crate::Cell::new(2, 2))], Occ::Free);
+        // Room ids in the file's order.
         assert_eq!(
             h.room_types,
-            vec!["bedroom".to_string(), "kitchen".to_string()]
+            vec!["kitchen".to_string(), "bedroom".to_string()]
         );
         let count = |id| h.rooms.iter().filter(|&&r| r == id).count();
-        assert_eq!((count(1), count(2)), (16, 32));
+        assert_eq!((count(1), count(2)), (32, 16));
         assert_eq!(h.map.origin, [-0.5, -0.5, 0.0]);
     }
 

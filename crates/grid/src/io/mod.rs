@@ -153,8 +153,18 @@ pub fn load_map(path: &Path, opts: &LoadOptions) -> Result<GridMap, MapError> {
                     ),
                 )
             })?;
+            if rx != ry {
+                return Err(MapError::new(
+                    path,
+                    MapErrorKind::SquareResolution {
+                        what: "a HouseExpo floor plan (its outline is in metres)",
+                        rx: crate::Num(rx),
+                        ry: crate::Num(ry),
+                    },
+                ));
+            }
             let text = read_text(path)?;
-            let side = rx.min(ry);
+            let side = rx;
             let fits = load_check(
                 (side, side),
                 opts,
@@ -231,8 +241,8 @@ pub(crate) type SizeCheck = dyn Fn(u64, u64, &Path) -> Result<(), MapError>;
 pub(crate) const CELL_BYTES: u64 = 1;
 /// Bytes a pixel of a decoded PGM takes (its value, a `u32`).
 pub(crate) const PGM_BYTES_PER_PIXEL: u64 = 4;
-/// Bytes a pixel of a decoded PNG takes (its value and whether it is transparent).
-pub(crate) const PNG_BYTES_PER_PIXEL: u64 = 5;
+/// Bytes a pixel of a decoded PNG takes (its value, a `u32`, and its alpha, a `u16`).
+pub(crate) const PNG_BYTES_PER_PIXEL: u64 = 6;
 
 /// How to make a map's loading fit in memory, said in every refusal.
 const MEMORY_FIX: &str =
@@ -400,7 +410,10 @@ pub(crate) fn check_file_memory(path: &Path, memory: Option<Available>) -> Resul
     };
     match std::fs::metadata(path) {
         Ok(meta) if meta.is_file() => check_memory(
-            &format!("reading this file of {} MiB", meta.len().div_ceil(1 << 20)),
+            &format!(
+                "reading this file of {}",
+                crate::memory::describe_bytes(meta.len())
+            ),
             meta.len(),
             memory,
             path,
@@ -536,9 +549,13 @@ pub fn open_at_most(path: &Path, limit: u64) -> Result<(std::fs::File, u64), Map
     Ok((file, size))
 }
 
-/// Read a whole UTF-8 text file.
+/// Read a whole UTF-8 text file, without the byte order mark some editors write first
+/// (YAML 1.2 allows one at the start of a stream; ROS's yaml-cpp reads past it).
 pub(crate) fn read_text(path: &Path) -> Result<String, MapError> {
-    let bytes = read_bytes(path)?;
+    let mut bytes = read_bytes(path)?;
+    if bytes.starts_with(b"\xEF\xBB\xBF") {
+        bytes.drain(..3);
+    }
     String::from_utf8(bytes).map_err(|e| {
         MapError::new(
             path,

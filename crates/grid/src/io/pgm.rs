@@ -1,7 +1,8 @@
 //! Netpbm PGM greyscale images: plain (P2) and binary (P5), 8- and 16-bit.
 //!
 //! Header: magic `P2`/`P5`, width, height, maxval (1..=65535), separated by whitespace,
-//! with `#` comments; then one whitespace byte and the pixels, row-major from the top.
+//! with `#` comments; then one whitespace byte (after a comment, its newline) and the
+//! pixels, row-major from the top.
 //! Binary pixels take one byte if `maxval < 256`, else two bytes, most significant first.
 
 use std::path::Path;
@@ -46,7 +47,15 @@ pub(crate) fn decode_pgm(bytes: &[u8], name: &Path, fits: &SizeCheck) -> Result<
         ))));
     }
     fits(width, height, name)?;
-    // One whitespace byte ends the header.
+    // One whitespace byte ends the header; a comment may come before it, its newline
+    // then the byte (pgm(5): "before the whitespace character that delimits the raster,
+    // any characters from a '#' through the next carriage return or newline character,
+    // is a comment").
+    if bytes.get(pos) == Some(&b'#') {
+        while bytes.get(pos).is_some_and(|&b| b != b'\n' && b != b'\r') {
+            pos += 1;
+        }
+    }
     match bytes.get(pos) {
         Some(b) if b.is_ascii_whitespace() => pos += 1,
         Some(&b) => {
@@ -72,7 +81,9 @@ pub(crate) fn decode_pgm(bytes: &[u8], name: &Path, fits: &SizeCheck) -> Result<
         height: h,
         maxval,
         values,
-        transparent: Vec::new(),
+        alpha: Vec::new(),
+        alpha_max: 0,
+        colours: 1,
     })
 }
 
@@ -179,7 +190,7 @@ fn binary_pixels(
             u32::from(chunk[0]) << 8 | u32::from(chunk[1])
         };
         if v > maxval {
-            return Err(above_maxval(i, w, v, maxval, name));
+            return Err(above_maxval(i, w, &v.to_string(), maxval, name));
         }
         values.push(v);
     }
@@ -226,15 +237,23 @@ fn plain_pixels(
             ));
         }
         if v > maxval {
-            return Err(above_maxval(i, w, v, maxval, name));
+            // As written (a saturated `v` is not what the file holds); long runs of digits
+            // are shortened.
+            let digits = String::from_utf8_lossy(&data[start..pos]);
+            let shown = if digits.len() > 24 {
+                format!("{}… ({} digits)", &digits[..20], digits.len())
+            } else {
+                digits.into_owned()
+            };
+            return Err(above_maxval(i, w, &shown, maxval, name));
         }
         values.push(v);
     }
     Ok(values)
 }
 
-/// The error for pixel `i` whose value `v` exceeds `maxval`.
-fn above_maxval(i: usize, w: usize, v: u32, maxval: u32, name: &Path) -> MapError {
+/// The error for pixel `i` whose value (`v`, as written) exceeds `maxval`.
+fn above_maxval(i: usize, w: usize, v: &str, maxval: u32, name: &Path) -> MapError {
     MapError::new(
         name,
         MapErrorKind::BadPixel {

@@ -1,8 +1,8 @@
 //! PNG images, through the `png` crate: any PNG in, 8-bit greyscale out.
 //!
 //! Grey, grey+alpha, RGB, RGBA and palette images of 1 to 16 bits are read; a colour pixel's
-//! brightness is the mean of its colour channels (ROS 1 map_server) and alpha 0 marks a
-//! transparent pixel.
+//! brightness is the mean of its colour channels (ROS 1 map_server), and its alpha is kept
+//! for the rules that read it ([`Thresholds`](super::Thresholds)).
 
 use std::io::Cursor;
 use std::path::Path;
@@ -62,11 +62,7 @@ pub(crate) fn decode_png(bytes: &[u8], name: &Path, fits: &SizeCheck) -> Result<
     let (sample_bytes, channel_max) = if wide { (2, 65535) } else { (1, 255) };
     let colour = if alpha { channels - 1 } else { channels };
     let mut values = vec![0u32; w * h];
-    let mut transparent = if alpha {
-        vec![false; w * h]
-    } else {
-        Vec::new()
-    };
+    let mut alphas = if alpha { vec![0u16; w * h] } else { Vec::new() };
     let passes: &[Pass] = if reader.info().interlaced {
         &ADAM7
     } else {
@@ -111,7 +107,8 @@ pub(crate) fn decode_png(bytes: &[u8], name: &Path, fits: &SizeCheck) -> Result<
                 let i = y * w + pass.x0 + k * pass.dx;
                 values[i] = (0..colour).map(sample).sum();
                 if alpha {
-                    transparent[i] = sample(colour) == 0;
+                    // At most 65535: a sample is one or two bytes.
+                    alphas[i] = sample(colour) as u16;
                 }
             }
         }
@@ -127,7 +124,9 @@ pub(crate) fn decode_png(bytes: &[u8], name: &Path, fits: &SizeCheck) -> Result<
         height: h,
         maxval: channel_max * colour as u32,
         values,
-        transparent,
+        alpha: alphas,
+        alpha_max: if alpha { channel_max } else { 0 },
+        colours: colour as u32,
     })
 }
 

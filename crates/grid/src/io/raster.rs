@@ -4,7 +4,9 @@
 //! `negate`, `p = v / maxval`), computed in that order as ROS 1 map_server does:
 //! `p > occupied_thresh` is Occupied, `p < free_thresh` is Free, anything
 //! between is Unknown. Colour pixels use the mean of their colour channels (as ROS 1
-//! map_server); a fully transparent pixel (alpha 0) is Unknown.
+//! map_server); a fully transparent pixel (alpha 0) is Unknown — except in a ROS YAML's
+//! trinary mode, where both map_servers (ROS 1's and nav2's) average the alpha channel in
+//! with the red, green and blue ones, and so does [`Thresholds::classify_trinary`].
 
 use crate::grid::Grid;
 use crate::occ::Occ;
@@ -20,15 +22,20 @@ pub struct Raster {
     pub maxval: u32,
     /// Brightness of each pixel, row-major, in `0..=maxval` (for colour, the channel sum).
     pub values: Vec<u32>,
-    /// Whether each pixel is fully transparent (alpha 0); empty if the image has no alpha.
-    pub transparent: Vec<bool>,
+    /// Each pixel's alpha in `0..=alpha_max` (0 fully transparent); empty if the image has
+    /// no alpha.
+    pub alpha: Vec<u16>,
+    /// The alpha of an opaque pixel (255 or 65535); 0 if the image has no alpha.
+    pub alpha_max: u32,
+    /// How many colour channels `values` sums: 1 for grey, 3 for colour.
+    pub colours: u32,
 }
 
 impl Raster {
     /// Whether pixel `i` is fully transparent.
     #[inline]
     pub fn is_transparent(&self, i: usize) -> bool {
-        self.transparent.get(i).copied().unwrap_or(false)
+        self.alpha.get(i).is_some_and(|&a| a == 0)
     }
 
     /// Brightness of pixel `i` in `[0, 1]`.
@@ -83,7 +90,31 @@ impl Thresholds {
         }
     }
 
-    /// The states of every pixel of `raster` (trinary/scale mode; transparent → Unknown).
+    /// The states of every pixel of `raster` in a ROS YAML's `trinary` mode, as both
+    /// map_servers read it: a pixel with alpha is the mean of red, green, blue and alpha
+    /// (a grey pixel's grey counted as red, green and blue), so an opaque pixel reads
+    /// lighter than its colour and a transparent one darker ("alpha will be averaged in with
+    /// color channels when using trinary mode"). Without alpha, as
+    /// [`classify_raster`](Self::classify_raster).
+    pub fn classify_trinary(&self, raster: &Raster) -> Grid<Occ> {
+        if raster.alpha.is_empty() {
+            return self.classify_raster(raster);
+        }
+        // Red, green and blue sum to `values[i] · 3 / colours` of 3 · channel maxima.
+        let scale = 3 / raster.colours.clamp(1, 3);
+        let maxval = 4 * raster.alpha_max;
+        let data = (0..raster.values.len())
+            .map(|i| {
+                let v = raster.values[i] * scale + u32::from(raster.alpha[i]);
+                self.classify(v, maxval)
+            })
+            .collect();
+        Grid::from_vec(raster.width, raster.height, data)
+            .unwrap_or_else(|| Grid::new(0, 0, Occ::Unknown))
+    }
+
+    /// The states of every pixel of `raster` (bare bitmaps and ROS `scale` mode;
+    /// transparent → Unknown).
     pub fn classify_raster(&self, raster: &Raster) -> Grid<Occ> {
         let data = (0..raster.values.len())
             .map(|i| {
@@ -105,16 +136,18 @@ impl Thresholds {
     /// The pixel value scaled to `0..=255` (`round(255 · v / maxval)`) *is* the occupancy
     /// in percent, as nav2's map_server: values `≥ 100 · occupied` (up to 100) are Occupied,
     /// values `≤ 100 · free` are Free, everything else (between the thresholds, or above
-    /// 100 such as 255 = −1) is Unknown. `negate` and alpha are ignored, as in nav2.
+    /// 100 such as 255 = −1) is Unknown. `negate` and alpha are ignored, as in nav2. The
+    /// comparisons are made as `v / 100` against the thresholds, so that a value written as
+    /// a threshold (55 for 0.55) is on its side, whatever `100 · 0.55` rounds to.
     pub fn classify_raw(&self, raster: &Raster) -> Grid<Occ> {
         let data = (0..raster.values.len())
             .map(|i| {
                 let v = (raster.shade(i) * 255.0).round();
                 if v > 100.0 {
                     Occ::Unknown
-                } else if v >= 100.0 * self.occupied {
+                } else if v / 100.0 >= self.occupied {
                     Occ::Occupied
-                } else if v <= 100.0 * self.free {
+                } else if v / 100.0 <= self.free {
                     Occ::Free
                 } else {
                     Occ::Unknown

@@ -15,8 +15,11 @@
 //! [`Thresholds`]: in `trinary` and `scale` modes the occupancy `p = (maxval − v)/maxval`
 //! (`v/maxval` with `negate`) is Occupied above `occupied_thresh`, Free below
 //! `free_thresh`, else Unknown — `scale` mode's intermediate occupancies have no place in
-//! a three-state map, so they are Unknown too — and a fully transparent PNG pixel is
-//! Unknown. `raw` mode follows nav2 (see [`Thresholds::classify_raw`]). Image row 0 is
+//! a three-state map, so they are Unknown too. In `trinary` mode a PNG pixel's alpha is
+//! averaged in with its colour, as both map_servers do
+//! ([`Thresholds::classify_trinary`]); in `scale` mode a fully transparent pixel is
+//! Unknown (nav2 makes every pixel not fully opaque Unknown, ROS 1 only those between the
+//! thresholds). `raw` mode follows nav2 (see [`Thresholds::classify_raw`]). Image row 0 is
 //! grid row 0 (the top); `origin` stays the lower-left corner.
 
 use std::path::{Path, PathBuf};
@@ -265,7 +268,8 @@ pub fn parse_ros_yaml(
     let fits = load_check(res, opts, bytes.len() as u64, per_pixel + CELL_BYTES, what);
     let raster = decode(&bytes, &image, &fits)?;
     let cells = match meta.mode {
-        RosMode::Trinary | RosMode::Scale => meta.thresholds.classify_raster(&raster),
+        RosMode::Trinary => meta.thresholds.classify_trinary(&raster),
+        RosMode::Scale => meta.thresholds.classify_raster(&raster),
         RosMode::Raw => meta.thresholds.classify_raw(&raster),
     };
     let map = GridMap {
