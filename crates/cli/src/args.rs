@@ -33,7 +33,14 @@ pub fn load_map_file(
     }
     if dungeon {
         let Some((rx, _)) = opts.resolution.filter(|(x, y)| x == y) else {
-            bail!("--dungeon: expected one --resolution (square cells) for the PNG");
+            bail!(
+                "--dungeon: expected one --resolution (square cells) for {}, found {}",
+                path.display(),
+                match opts.resolution {
+                    Some((x, y)) => format!("{x},{y}"),
+                    None => "none".into(),
+                }
+            );
         };
         let d = grid::io::load_dungeon(path, rx, opts)?;
         return Ok((d.map, Some(d.start)));
@@ -119,6 +126,27 @@ pub fn load_mcap_map(
     memory: Option<grid::memory::Available>,
 ) -> Result<GridMap> {
     record::mcap_read::load_map(path, topic, memory).map_err(anyhow::Error::msg)
+}
+
+/// Parse `--memory-mb`: a positive number of MiB (a budget of 0 would refuse everything,
+/// as `memory_mb=0` from Python is refused).
+pub fn parse_memory_mb(s: &str) -> std::result::Result<u64, String> {
+    match s.trim().parse::<u64>() {
+        Ok(0) => Err("expected a positive number of MiB, found 0".into()),
+        Ok(v) => Ok(v),
+        Err(_) if s.trim().starts_with('-') => {
+            Err(format!("expected a positive number of MiB, found {s}"))
+        }
+        Err(_) => Err(format!(
+            "expected a positive whole number of MiB (less than 2^64), found '{s}'"
+        )),
+    }
+}
+
+/// [`parse_memory_mb`] for a budget kept as a `usize`.
+pub fn parse_memory_mb_usize(s: &str) -> std::result::Result<usize, String> {
+    parse_memory_mb(s)
+        .and_then(|v| usize::try_from(v).map_err(|_| format!("expected fewer MiB, found {v}")))
 }
 
 /// Parse "R" or "RX,RY" (metres per cell).

@@ -68,7 +68,7 @@ pub struct RunArgs {
     /// Refuse the study up front if its environments, or its largest trials one per
     /// thread, would need more than this many MiB (the memory the machine has available
     /// is always checked).
-    #[arg(allow_negative_numbers = true, long)]
+    #[arg(allow_negative_numbers = true, long, value_parser = crate::args::parse_memory_mb)]
     pub memory_mb: Option<u64>,
 }
 

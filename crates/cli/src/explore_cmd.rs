@@ -84,7 +84,7 @@ pub struct ExploreArgs {
     /// Refuse the run up front if its estimated memory exceeds this many MiB, and a --map
     /// whose loading would, before it is loaded (the memory the machine has available is
     /// always checked).
-    #[arg(allow_negative_numbers = true, long)]
+    #[arg(allow_negative_numbers = true, long, value_parser = crate::args::parse_memory_mb)]
     pub memory_mb: Option<u64>,
     /// Never draw the progress bar (drawn on a terminal for runs longer than a second).
     #[arg(long)]

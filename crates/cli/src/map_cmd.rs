@@ -37,7 +37,7 @@ pub enum MapCommand {
         json: bool,
         /// Refuse the file up front if the estimated memory of its loading exceeds this many
         /// MiB, before it is loaded (the memory the machine has available is always checked).
-        #[arg(allow_negative_numbers = true, long)]
+        #[arg(allow_negative_numbers = true, long, value_parser = crate::args::parse_memory_mb)]
         memory_mb: Option<u64>,
     },
 }

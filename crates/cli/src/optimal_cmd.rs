@@ -78,7 +78,12 @@ pub struct OptimalArgs {
     pub coarse_incumbent: usize,
     /// Memory budget of the search in MiB (a --map whose loading would exceed it is refused
     /// before it is loaded).
-    #[arg(allow_negative_numbers = true, long, default_value_t = 1024)]
+    #[arg(
+        allow_negative_numbers = true,
+        long,
+        default_value_t = 1024,
+        value_parser = crate::args::parse_memory_mb_usize
+    )]
     pub memory_mb: usize,
     /// Online presets to compare, e.g. cf,cf-rr,yamauchi.
     #[arg(long, value_delimiter = ',')]

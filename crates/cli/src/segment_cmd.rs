@@ -45,7 +45,7 @@ pub struct SegmentArgs {
     /// Refuse up front if the estimated memory exceeds this many MiB, and a --map or --truth
     /// whose loading would, before it is loaded (the memory the machine has available is
     /// always checked).
-    #[arg(allow_negative_numbers = true, long)]
+    #[arg(allow_negative_numbers = true, long, value_parser = crate::args::parse_memory_mb)]
     pub memory_mb: Option<u64>,
 }
 

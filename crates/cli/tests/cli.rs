@@ -271,6 +271,38 @@ fn negative_numbers_are_refused_naming_their_flag() {
     }
 }
 
+/// Regression: `--memory-mb 0` was taken (Python refuses `memory_mb=0`) and then refused
+/// an 18-byte file as needing "about 1 MiB, more than --memory-mb 0".
+#[test]
+fn regression_memory_budget_of_zero_is_refused() {
+    for cmd in [
+        &["explore", "--memory-mb", "0"][..],
+        &[
+            "map",
+            "info",
+            "x.pgm",
+            "--resolution",
+            "1",
+            "--memory-mb",
+            "0",
+        ],
+        &["bench", "--suite", "quick", "--memory-mb", "0"],
+        &["segment", "--memory-mb", "0"],
+        &["optimal", "--memory-mb", "0"],
+    ] {
+        let e = err(cmd);
+        assert!(
+            e.contains("'--memory-mb <MEMORY_MB>': expected a positive number of MiB, found 0"),
+            "{cmd:?}: {e}"
+        );
+    }
+    let e = err(&["explore", "--memory-mb", "-4"]);
+    assert!(
+        e.contains("expected a positive number of MiB, found -4"),
+        "{e}"
+    );
+}
+
 /// Regression: the summary named the folder of `--out` but not the files `--gif`,
 /// `--html` and `--mcap` wrote.
 #[test]

@@ -203,7 +203,14 @@ pub fn read_file(
     }
     if dungeon {
         let Some((r, _)) = resolution.filter(|(x, y)| x == y) else {
-            return Err("dungeon: expected one resolution (square cells) for the PNG".into());
+            return Err(format!(
+                "dungeon: expected one resolution (square cells) for {}, found {}",
+                path.display(),
+                match resolution {
+                    Some((x, y)) => format!("({x}, {y})"),
+                    None => "none".into(),
+                }
+            ));
         };
         // As the CLI's --dungeon: `border` adds a wall (and moves the start with the cells).
         let opts = grid::io::LoadOptions {
