@@ -312,6 +312,48 @@ fn positive_f64(src: &Source, v: &toml::Spanned<f64>, key: &str) -> Result<f64, 
     Ok(x)
 }
 
+/// A `resolution` as written, one number or `[x, y]`, each positive and at most
+/// [`grid::io::MAX_RESOLUTION_M`]: the pixel size `(x, y)`.
+fn resolution_of(
+    src: &Source,
+    v: &toml::Spanned<crate::scenario::Resolution>,
+    key: &str,
+) -> Result<(f64, f64), BenchError> {
+    let bad = |found: String| {
+        src.error(
+            span_of(v),
+            key,
+            format!(
+                "expected a positive number of metres per cell, at most {}, or [x, y] of them, \
+                 found {found}",
+                grid::io::MAX_RESOLUTION_M
+            ),
+        )
+    };
+    let ok = |x: f64| grid::io::is_valid_resolution(x);
+    match v.get_ref() {
+        crate::scenario::Resolution::Square(x) if ok(*x) => Ok((*x, *x)),
+        crate::scenario::Resolution::Square(x) => Err(bad(grid::Num(*x).to_string())),
+        crate::scenario::Resolution::Pixels(p) => match p.as_slice() {
+            &[x, y] if ok(x) && ok(y) => Ok((x, y)),
+            _ => Err(bad(format!(
+                "[{}]",
+                p.iter()
+                    .map(|x| grid::Num(*x).to_string())
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ))),
+        },
+    }
+}
+
+/// Whether a scenario's `map` names an MCAP recording.
+fn is_mcap(map: &str) -> bool {
+    std::path::Path::new(map)
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("mcap"))
+}
+
 /// s_max as written: -1 = on arrival, N > 0 = every N moves.
 fn s_max_value(src: &Source, v: &toml::Spanned<i64>, key: &str) -> Result<Option<u32>, BenchError> {
     match *v.get_ref() {
@@ -955,11 +997,18 @@ fn load_env(
 ) -> Result<Vec<EnvInstance>, BenchError> {
     let e = entry.get_ref();
     let key = format!("env[{i}]");
-    let resolution = e
+    let pixels = e
         .resolution
         .as_ref()
-        .map(|r| positive_f64(src, r, &format!("{key}.resolution")))
+        .map(|r| resolution_of(src, r, &format!("{key}.resolution")))
         .transpose()?;
+    if e.topic.is_some() && e.map.as_ref().is_none_or(|m| !is_mcap(m.get_ref())) {
+        return Err(src.error(
+            e.topic.as_ref().and_then(span_of),
+            format!("{key}.topic"),
+            "chooses the map topic of an MCAP recording (`map` = a .mcap file)",
+        ));
+    }
     match (&e.kind, &e.map) {
         (Some(_), Some(m)) => Err(src.error(
             span_of(m),
@@ -990,13 +1039,33 @@ fn load_env(
                 Some(d) => d.join(m.get_ref()),
                 None => std::path::PathBuf::from(m.get_ref()),
             };
-            let opts = grid::io::LoadOptions {
-                resolution: resolution.map(|r| (r, r)),
-                border: e.border.unwrap_or(false),
-                memory: memory_limit(memory_mb),
+            let map = if is_mcap(m.get_ref()) {
+                if let Some(field) = [
+                    ("resolution", e.resolution.is_some()),
+                    ("border", e.border.is_some()),
+                ]
+                .into_iter()
+                .find_map(|(f, given)| given.then_some(f))
+                {
+                    return Err(src.error(
+                        span_of(m),
+                        format!("{key}.{field}"),
+                        "an MCAP recording's map carries its own resolution (give no `resolution` or \
+                         `border`)",
+                    ));
+                }
+                let topic = e.topic.as_ref().map(|t| t.get_ref().as_str());
+                record::mcap_read::load_map(&path, topic, memory_limit(memory_mb))
+                    .map_err(|err| src.error(span_of(m), format!("{key}.map"), err))?
+            } else {
+                let opts = grid::io::LoadOptions {
+                    resolution: pixels,
+                    border: e.border.unwrap_or(false),
+                    memory: memory_limit(memory_mb),
+                };
+                grid::io::load_map(&path, &opts)
+                    .map_err(|err| src.error(span_of(m), format!("{key}.map"), err.to_string()))?
             };
-            let map = grid::io::load_map(&path, &opts)
-                .map_err(|err| src.error(span_of(m), format!("{key}.map"), err.to_string()))?;
             let name = match &e.name {
                 Some(n) => n.get_ref().clone(),
                 None => path
@@ -1045,6 +1114,16 @@ fn load_env(
                     "a name applies to one environment; several seeds are named by seed",
                 ));
             }
+            let resolution = match pixels {
+                Some((x, y)) if x != y => {
+                    return Err(src.error(
+                        e.resolution.as_ref().and_then(span_of),
+                        format!("{key}.resolution"),
+                        "a built-in environment has square cells; give one number",
+                    ));
+                }
+                other => other.map(|(x, _)| x),
+            };
             let mut out = Vec::new();
             for &seed in seeds {
                 let spec = EnvSpec {
@@ -1167,10 +1246,11 @@ fn env_extent(
         Some(&[w, h]) => (w, h),
         _ => info.size_m,
     };
-    let res = e
-        .resolution
-        .as_ref()
-        .map_or(info.resolution, |r| *r.get_ref());
+    let res = match e.resolution.as_ref().map(|r| r.get_ref()) {
+        Some(crate::scenario::Resolution::Square(r)) => *r,
+        Some(crate::scenario::Resolution::Pixels(p)) => p.first().copied().unwrap_or(f64::NAN),
+        None => info.resolution,
+    };
     let cells = (w_m / res).round() * (h_m / res).round();
     let cells = if cells.is_finite() && cells >= 0.0 && cells <= world::MAX_CELLS as f64 {
         cells as u64

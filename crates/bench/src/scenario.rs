@@ -129,16 +129,61 @@ pub struct EnvEntry {
     pub count: Option<Spanned<i64>>,
     /// Size `[width, height]` in metres of a built-in kind.
     pub size: Option<Spanned<Vec<f64>>>,
-    /// Metres per cell: generation resolution, or the map file's pixel size.
-    pub resolution: Option<Spanned<f64>>,
-    /// A map file (ROS YAML, PGM/PNG, MovingAI .map, ASCII .txt).
+    /// Metres per cell: generation resolution, or the map file's pixel size (a number, or
+    /// `[x, y]` for a bitmap's non-square pixels, as `--resolution RX,RY`).
+    pub resolution: Option<Spanned<Resolution>>,
+    /// A map file (ROS YAML, PGM/PNG, MovingAI .map, HouseExpo .json, ASCII .txt, MCAP).
     pub map: Option<Spanned<String>>,
+    /// The map topic of an MCAP recording (`--topic`).
+    pub topic: Option<Spanned<String>>,
     /// Add a wall around a bare bitmap.
     pub border: Option<bool>,
     /// Name in results (default: the generated name or the file's stem).
     pub name: Option<Spanned<String>>,
     /// Base start cell `[x, y]`.
     pub start: Option<Spanned<Vec<i64>>>,
+}
+
+/// A `resolution` as written: one number of metres per cell, or `[x, y]`.
+#[derive(Clone, Debug)]
+pub enum Resolution {
+    /// Square cells.
+    Square(f64),
+    /// Pixels of `[x, y]` metres (anything else is refused with its key).
+    Pixels(Vec<f64>),
+}
+
+impl<'de> Deserialize<'de> for Resolution {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        /// Takes a number or a list of numbers.
+        struct V;
+        impl<'de> serde::de::Visitor<'de> for V {
+            type Value = Resolution;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str("metres per cell: a number, or [x, y] for non-square pixels")
+            }
+            fn visit_f64<E>(self, v: f64) -> Result<Resolution, E> {
+                Ok(Resolution::Square(v))
+            }
+            fn visit_i64<E>(self, v: i64) -> Result<Resolution, E> {
+                Ok(Resolution::Square(v as f64))
+            }
+            fn visit_u64<E>(self, v: u64) -> Result<Resolution, E> {
+                Ok(Resolution::Square(v as f64))
+            }
+            fn visit_seq<A: serde::de::SeqAccess<'de>>(
+                self,
+                mut seq: A,
+            ) -> Result<Resolution, A::Error> {
+                let mut out = Vec::new();
+                while let Some(x) = seq.next_element::<f64>()? {
+                    out.push(x);
+                }
+                Ok(Resolution::Pixels(out))
+            }
+        }
+        d.deserialize_any(V)
+    }
 }
 
 /// One `[[strategy]]` table: a preset with parameters.

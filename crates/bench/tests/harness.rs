@@ -910,3 +910,86 @@ fn regression_other_table_layout_says_what_to_do() {
         assert!(e.contains("run it into a new database file"), "{e}");
     }
 }
+
+/// Regression: a scenario's `map` could not be an MCAP recording ("unknown map format"),
+/// though `--map` reads one, and `resolution` took one number only, so a plan of
+/// non-square pixels (`--resolution RX,RY`) could not be studied.
+#[test]
+fn regression_scenario_maps_read_as_the_map_flag() {
+    let dir = tempfile::tempdir().unwrap();
+    let cells = grid::Grid::from_vec(
+        6,
+        5,
+        "######\
+         #....#\
+         #....#\
+         #....#\
+         ######"
+            .bytes()
+            .map(|b| {
+                if b == b'#' {
+                    grid::Occ::Occupied
+                } else {
+                    grid::Occ::Free
+                }
+            })
+            .collect(),
+    )
+    .unwrap();
+    let map = grid::GridMap::new(cells, 0.5);
+    let mut rec = record::mcap_write::RunWriter::new(std::io::BufWriter::new(
+        std::fs::File::create(dir.path().join("run.mcap")).unwrap(),
+    ))
+    .unwrap();
+    rec.map(0.0, &map).unwrap();
+    rec.finish().unwrap();
+    grid::io::save_map(&map, &dir.path().join("plan.pgm")).unwrap();
+    let path = dir.path().join("s.toml");
+    let head = "strategies = [\"cf\"]\nsensors = [\"los:r=2\"]\n";
+    std::fs::write(
+        &path,
+        format!(
+            "{head}[[env]]\nmap = \"run.mcap\"\ntopic = \"/map\"\n\
+             [[env]]\nmap = \"plan.pgm\"\nresolution = [0.5, 0.25]\n"
+        ),
+    )
+    .unwrap();
+    let plan = Plan::resolve(&Source::read(&path).unwrap(), Unbuilt::Error).unwrap();
+    let sizes: Vec<_> = plan
+        .envs
+        .iter()
+        .map(|e| (e.map.width(), e.map.height(), e.map.resolution))
+        .collect();
+    // The recording's own 0.5 m; the bitmap's 0.5 × 0.25 m pixels resampled to 0.25 m
+    // cells, twice as many columns.
+    assert_eq!(sizes, vec![(6, 5, 0.5), (12, 5, 0.25)]);
+    for (env, want) in [
+        (
+            "[[env]]\nmap = \"run.mcap\"\nresolution = 0.1\n",
+            "key `env[0].resolution`: an MCAP recording's map carries its own resolution",
+        ),
+        (
+            "[[env]]\nmap = \"plan.pgm\"\nresolution = 0.5\ntopic = \"/map\"\n",
+            "key `env[0].topic`: chooses the map topic of an MCAP recording",
+        ),
+        (
+            "[[env]]\nkind = \"office\"\nresolution = [0.5, 0.25]\n",
+            "key `env[0].resolution`: a built-in environment has square cells",
+        ),
+        (
+            "[[env]]\nmap = \"plan.pgm\"\nresolution = [0.5]\n",
+            "or [x, y] of them, found [0.5]",
+        ),
+        (
+            "[[env]]\nmap = \"plan.pgm\"\nresolution = \"fine\"\n",
+            "expected metres per cell: a number, or [x, y]",
+        ),
+    ] {
+        std::fs::write(&path, format!("{head}{env}")).unwrap();
+        let e = Plan::resolve(&Source::read(&path).unwrap(), Unbuilt::Error)
+            .map(|_| ())
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains(want), "{env}: {e}");
+    }
+}
