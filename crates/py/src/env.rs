@@ -27,7 +27,7 @@ use pyo3::types::PyDict;
 use rayon::prelude::*;
 use sim::changes::CellBox;
 use sim::spin_pool::SpinPool;
-use sim::{Session, SimError, Status};
+use sim::{EndReason, Session, SimError, Status};
 use world::{EnvKind, EnvSpec};
 
 use crate::map::{Map, memory_mb_arg, read_file, stem};
@@ -93,7 +93,7 @@ struct Spec {
 fn splitmix(x: u64) -> u64 {
     let mut z = x.wrapping_add(0x9E37_79B9_7F4A_7C15);
     z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94D4_9BCB_133A_D049);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
     z ^ (z >> 31)
 }
 
@@ -228,11 +228,18 @@ struct State {
     steps: u64,
     done: bool,
     /// The episode ended at its reset (the first scan saw everything reachable) and no step
-    /// has reported it yet: the next step returns it as terminated.
+    /// has reported it yet: the next step returns it, as terminated (or truncated, if the
+    /// move budget ended it).
     ended_unreported: bool,
+    /// Why the run ended at its reset, for that step.
+    ended_at_reset: Option<EndReason>,
     seed: u64,
     /// Reset at the next step (vector environments reset automatically).
     needs_reset: bool,
+    /// The step a vector environment's call made but did not return, since another
+    /// environment's failed: the next call returns it (with the observation it left) rather
+    /// than stepping again.
+    pending: Option<StepOut>,
     /// What each kept observation set's part for this environment holds (by the set's
     /// place in its [`ObsPool`]).
     marks: Vec<Mark>,
@@ -260,8 +267,10 @@ impl State {
             steps: 0,
             done: true,
             ended_unreported: false,
+            ended_at_reset: None,
             seed: 0,
             needs_reset: false,
+            pending: None,
             marks: Vec::new(),
         }
     }
@@ -292,14 +301,16 @@ impl State {
         self.done = false;
         self.seed = seed;
         self.needs_reset = false;
+        self.pending = None;
         let ended = self.next_decision()?;
-        self.done = ended;
-        self.ended_unreported = ended;
+        self.done = ended.is_some();
+        self.ended_unreported = ended.is_some();
+        self.ended_at_reset = ended;
         Ok(())
     }
 
-    /// Run to the next decision with a candidate to offer (or the end); true if ended.
-    fn next_decision(&mut self) -> Result<bool, String> {
+    /// Run to the next decision with a candidate to offer, or to the end: why it ended.
+    fn next_decision(&mut self) -> Result<Option<EndReason>, String> {
         let spec = self.spec.clone();
         let s = self.session.as_mut().expect("a session");
         let m = s.config().robots;
@@ -309,7 +320,7 @@ impl State {
         self.gains.iter_mut().for_each(Vec::clear);
         loop {
             match s.advance() {
-                Status::Ended(_) => return Ok(true),
+                Status::Ended(reason) => return Ok(Some(reason)),
                 Status::Decide => {
                     let deciding = s.deciding().to_vec();
                     let mut offered = false;
@@ -341,7 +352,7 @@ impl State {
                         s.choose(&vec![None; m]).map_err(|e| e.to_string())?;
                         continue;
                     }
-                    return Ok(false);
+                    return Ok(None);
                 }
             }
         }
@@ -350,12 +361,15 @@ impl State {
     /// One decision: robot r (if deciding) goes to its candidate `actions[r]`; with `wrap`,
     /// an action outside the n candidates offered is taken modulo n (any other is refused).
     /// An episode that ended at its reset ends at its first step: terminated, reward 0.
+    /// The move budget (`max_moves`), like `max_path_m` and `max_steps`, truncates.
     fn step(&mut self, actions: &[i64], wrap: bool) -> Result<StepOut, String> {
         if self.ended_unreported && self.session.is_some() {
             self.ended_unreported = false;
             self.steps += 1;
+            let budget = self.ended_at_reset == Some(EndReason::StepLimit);
             return Ok(StepOut {
-                terminated: true,
+                terminated: !budget,
+                truncated: budget,
                 ..StepOut::default()
             });
         }
@@ -387,13 +401,15 @@ impl State {
         let s = self.session.as_mut().expect("a session");
         let (cov0, path0) = (s.covered_cells(), s.total_path_length_m());
         s.choose(&goals).map_err(|e| e.to_string())?;
-        let terminated = self.next_decision()?;
+        let ended = self.next_decision()?;
+        let terminated = ended.is_some_and(|r| r != EndReason::StepLimit);
         let s = self.session.as_ref().expect("a session");
         let res = s.truth().resolution;
         let (cov1, path1) = (s.covered_cells(), s.total_path_length_m());
         self.steps += 1;
         let truncated = !terminated
-            && (self.spec.max_path_m.is_some_and(|m| path1 >= m)
+            && (ended == Some(EndReason::StepLimit)
+                || self.spec.max_path_m.is_some_and(|m| path1 >= m)
                 || self.spec.max_steps.is_some_and(|m| self.steps >= m));
         self.done = terminated || truncated;
         Ok(StepOut {
@@ -403,10 +419,22 @@ impl State {
         })
     }
 
-    /// Reset if the last step ended the episode (vector environments), else step.
+    /// Reset if the last step ended the episode (vector environments), else step; a step
+    /// made but not returned by the last call is returned instead. A failed reset moves the
+    /// seed on, so that the next call draws the stream's next episode rather than failing
+    /// on the same map for ever.
     fn auto_step(&mut self, action: i64, wrap: bool) -> Result<StepOut, String> {
+        if let Some(out) = self.pending.take() {
+            return Ok(out);
+        }
         if self.needs_reset {
-            self.reset(splitmix(self.seed), None)?;
+            let seed = splitmix(self.seed);
+            if let Err(e) = self.reset(seed, None) {
+                self.seed = seed;
+                return Err(format!(
+                    "{e} (the episode of seed {seed}; the next step draws the next one)"
+                ));
+            }
             return Ok(StepOut::default());
         }
         let out = self.step(&[action], wrap)?;
@@ -771,6 +799,16 @@ fn spec(
             options.robots
         )));
     }
+    if let Some(m) = options.motion.as_deref()
+        && matches!(m.parse::<sim::Motion>(), Ok(sim::Motion::AnyAngle))
+    {
+        // A step's reward and the budget read the travel as it happens, and an any-angle
+        // length is known only at a run's end (each leg string-pulled on the final map), so
+        // the environment would reward and report grid metres under an any-angle name.
+        return Err(value_error(format!(
+            "motion: an environment moves on the grid (its rewards and max_path_m count each              step's travel, and any-angle lengths are measured once a run ends), found              {m:?}; frontier.explore(..., motion={m:?}) gives them"
+        )));
+    }
     if k == 0 {
         return Err(value_error("k: expected at least 1 candidate, found 0"));
     }
@@ -906,7 +944,25 @@ fn spec(
             (first.height(), first.width())
         }
     };
+    if let (Maps::List(list), Some(start)) = (&s.maps, s.options.start) {
+        py.detach(|| list_start_problem(list, start, s.options.clearance))
+            .map_or(Ok(()), |e| Err(value_error(e)))?;
+    }
     Ok((s, (first, name, marked)))
+}
+
+/// Why a fixed `start` cannot start a run on some map of a list (outside it, or not a free
+/// cell the robot fits in), checked on every map when the environment is made: the first
+/// episode's run checks only the first map, and another would be refused only at the
+/// episode that draws it (a vector environment's, inside `step()`).
+fn list_start_problem(list: &[Map], start: grid::Cell, clearance_m: f64) -> Option<String> {
+    list.iter().find_map(|m| {
+        let cells = &m.map.cells;
+        let trav = sim::truth::traversable(cells, clearance_m / m.map.resolution);
+        sim::truth::check_start(cells, &trav, start)
+            .err()
+            .map(|e| format!("map {}: {e}", m.name))
+    })
 }
 
 /// The first map of the list or folder whose size is not `first`'s, with its size. Every
@@ -1348,23 +1404,33 @@ impl VecEnvCore {
         let mut order: Vec<usize> = (0..states.len()).collect();
         order.sort_by_key(|&i| !lock(&states[i]).needs_reset);
         // One parallel pass per call: each environment steps, then writes its observation.
-        let outs = set
-            .write(py, &spec, |parts| {
-                let items: Vec<_> = actions.into_iter().zip(parts).collect();
-                py.detach(|| {
-                    pool.each_in_order(items, &order, |i, (a, o)| {
-                        let mut st = lock(&states[i]);
-                        let out = guarded(|| st.auto_step(a, wrap))
-                            .and_then(|r| r)
-                            .map_err(|e| format!("environment {i}: {e}"))?;
-                        st.write(0, slot, o);
-                        Ok(out)
-                    })
-                    .into_iter()
-                    .collect::<Result<Vec<StepOut>, String>>()
+        let results = set.write(py, &spec, |parts| {
+            let items: Vec<_> = actions.into_iter().zip(parts).collect();
+            py.detach(|| {
+                pool.each_in_order(items, &order, |i, (a, o)| -> Result<StepOut, String> {
+                    let mut st = lock(&states[i]);
+                    let out = guarded(|| st.auto_step(a, wrap))
+                        .and_then(|r| r)
+                        .map_err(|e| format!("environment {i}: {e}"))?;
+                    st.write(0, slot, o);
+                    Ok(out)
                 })
-            })?
-            .map_err(py_error)?;
+            })
+        })?;
+        // One environment's error is raised, but the others' steps were made: each keeps
+        // its own to return at the next call, so no transition is lost and none is made
+        // twice.
+        if let Some(e) = results.iter().find_map(|r| r.as_ref().err()) {
+            for (st, r) in states.iter().zip(&results) {
+                if let Ok(out) = r {
+                    lock(st).pending = Some(*out);
+                }
+            }
+            return Err(value_error(format!(
+                "{e}; the other environments' steps are kept: the next step() returns them                  (and retries this one), or reset() starts over"
+            )));
+        }
+        let outs: Vec<StepOut> = results.into_iter().flatten().collect();
         let obs = set.into_dict(py)?;
         let states = || self.states.iter().map(|s| lock(s));
         Ok((

@@ -7,6 +7,7 @@ import time
 import gymnasium
 import numpy as np
 import pytest
+from gymnasium.utils import seeding
 from gymnasium.utils.env_checker import check_env
 
 import frontier
@@ -285,7 +286,63 @@ def test_run_options_are_checked(office):
         ExploreVectorEnv(2, office, seed=3)
     with pytest.raises(TypeError, match="'trajectories'"):
         ExploreEnv(office, trajectories=True)
-    ExploreEnv(office, clearance=0.25, motion="any-angle", sensing="every-3", coverage="known")
+    ExploreEnv(office, clearance=0.25, motion="grid", sensing="every-3", coverage="known")
+
+
+def test_regression_any_angle_motion_is_refused(office):
+    """Regression: motion="any-angle" was taken, but rewards, max_path_m and
+    info["path_length_m"] stayed grid metres (42.19 against explore's 41.58): an any-angle
+    length is measured once a run ends."""
+    for make in (lambda: ExploreEnv(office, motion="any-angle"),
+                 lambda: ExploreVectorEnv(2, office, motion="ANY-ANGLE")):
+        with pytest.raises(ValueError, match=r"motion: an environment moves on the grid .*"
+                           r"frontier.explore\(\.\.\., motion="):
+            make()
+    with pytest.raises(ValueError, match="unknown motion 'diagonal'"):
+        ExploreEnv(office, motion="diagonal")
+
+
+def test_regression_move_budget_truncates(office):
+    """Regression: running out of max_moves ended the episode as terminated, though a budget
+    is a truncation (Gymnasium's contract: the task did not end, bootstrap past it)."""
+    env = ExploreEnv(office, max_moves=10)
+    env.reset(seed=0)
+    terminated = truncated = False
+    steps = 0
+    while not (terminated or truncated):
+        _, _, terminated, truncated, info = env.step(0)
+        steps += 1
+    assert truncated and not terminated, (steps, info)
+    assert info["coverage"] < 0.9
+    # Without the budget the same episode ends terminated, everything explored.
+    env = ExploreEnv(office)
+    env.reset(seed=0)
+    terminated = truncated = False
+    while not (terminated or truncated):
+        _, _, terminated, truncated, info = env.step(0)
+    assert terminated and not truncated and info["coverage"] == 1.0
+
+
+def test_regression_required_counts_refuse_none(office):
+    """Regression: k=None and num_envs=None gave "'NoneType' object cannot be interpreted
+    as an integer", naming no argument."""
+    with pytest.raises(TypeError, match="k: expected an int, found NoneType"):
+        ExploreEnv(office, k=None)
+    with pytest.raises(TypeError, match="num_envs: expected an int, found NoneType"):
+        ExploreVectorEnv(None, office)
+
+
+def test_regression_start_is_checked_on_every_map_of_a_list(office):
+    """Regression: a fixed start was checked on the first map of a list only; another map
+    refused it at the episode that drew it (a vector environment's, inside step())."""
+    walled = office.to_numpy().copy()
+    walled[2, 2] = 2
+    other = frontier.Map.from_numpy(walled, office.resolution)
+    free = office.to_numpy()[2, 2] == 1
+    assert free
+    ExploreEnv([office, office], start=(2, 2))
+    with pytest.raises(ValueError, match=r"start \(2, 2\): the cell is occupied"):
+        ExploreEnv([office, other], start=(2, 2))
 
 
 def test_bad_actions_name_the_argument(office):
@@ -791,7 +848,11 @@ def test_regression_vector_reset_infos_hold_what_step_infos_hold(office):
     venv = ExploreVectorEnv(2, office, k=4)
     obs, infos = venv.reset(seed=0)
     _, _, _, _, stepped = venv.step(np.zeros(2, int))
-    assert set(infos) == set(stepped) == {"coverage", "path_length_m"}
+    # Each key with Gymnasium's mask of the environments that set it (every one).
+    assert set(infos) == set(stepped) == {"coverage", "_coverage", "path_length_m",
+                                          "_path_length_m"}
+    assert all(d[f"_{k}"].dtype == bool and d[f"_{k}"].all()
+               for d in (infos, stepped) for k in ("coverage", "path_length_m"))
     assert infos["coverage"].shape == (2,) and (infos["coverage"] > 0).all()
     assert list(infos["path_length_m"]) == [0.0, 0.0]
 
@@ -1017,3 +1078,60 @@ def test_vector_env_step_bool_among_actions_refused(office):
         venv.step(np.array([True, False, True]))
     # numpy integers of mixed types (an int array of float64 dtype to numpy) are ints.
     venv.step([np.int8(1), 0, np.uint64(2)])
+
+
+def _splitmix(x):
+    """SplitMix64 (Steele, Lea & Flood 2014), as the environments draw episode seeds and
+    maps."""
+    m = (1 << 64) - 1
+    z = (x + 0x9E3779B97F4A7C15) & m
+    z = ((z ^ (z >> 30)) * 0xBF58476D1CE4E5B9) & m
+    z = ((z ^ (z >> 27)) * 0x94D049BB133111EB) & m
+    return z ^ (z >> 31)
+
+
+def test_regression_failed_automatic_reset_loses_no_step(office, tmp_path):
+    """Regression: once an automatic reset failed (a folder's unreadable file), every later
+    step() raised for ever, retrying the same seed, and the other environments' steps made
+    in the failing call were thrown away. Now the failed reset moves its seed on, and the
+    others' steps are returned by the next call: environment 1 plays exactly the episode a
+    lone ExploreEnv plays."""
+    room = np.full((7, 7), 2, np.uint8)
+    room[1:6, 1:6] = 1
+    frontier.Map.from_numpy(room, 0.25).save(tmp_path / "a.pgm")  # seen whole at once
+    office.save(tmp_path / "b.pgm")
+    (tmp_path / "c.pgm").write_bytes(b"P5 not a picture")
+    names = ["a", "b", "c"]
+    pick = lambda seed: names[_splitmix(seed) % 3]
+    episode = lambda s: frontier.gym._episode_seed(seeding.np_random(s)[0])
+    # Environment 0 plays the room, which ends at its first step, then draws the bad file
+    # at its automatic reset, then (on the retry) a good map; environment 1 the office.
+    s = next(s for s in range(10_000)
+             if pick(_splitmix(episode(s))) == "c"
+             and pick(_splitmix(_splitmix(episode(s)))) != "c")
+    kw = dict(resolution=0.25, view=16, k=4, invalid_action="wrap")
+    venv = ExploreVectorEnv(2, str(tmp_path), **kw)
+    venv.reset(seed=s, options={"map": [0, 1]})
+    rewards, errors = [], []
+    for _ in range(200):
+        try:
+            _, r, term, trunc, _ = venv.step(np.zeros(2, np.int64))
+        except ValueError as e:
+            errors.append(str(e))
+            continue
+        rewards.append(r[1])
+        if term[1] or trunc[1]:
+            break
+    assert len(errors) == 1, errors
+    assert "environment 0: " in errors[0] and "c.pgm" in errors[0], errors[0]
+    assert "the next step draws the next one" in errors[0], errors[0]
+    assert "the other environments' steps are kept" in errors[0], errors[0]
+    lone = ExploreEnv(str(tmp_path), **kw)
+    lone.reset(seed=s + 1, options={"map": 1})
+    want = []
+    while True:
+        _, r, term, trunc, _ = lone.step(0)
+        want.append(r)
+        if term or trunc:
+            break
+    assert rewards == want

@@ -148,10 +148,17 @@ def _kwargs(
     )
 
 
-def _count(name: str, value: Any, least: int, what: str = "", most: int = sys.maxsize) -> None:
-    """Raise TypeError unless ``value`` is an int (or None), ValueError if below ``least`` or
-    above ``most`` (the message names the argument, as the CLI's do)."""
-    if value is None:
+def _count(
+    name: str,
+    value: Any,
+    least: int,
+    what: str = "",
+    most: int = sys.maxsize,
+    optional: bool = True,
+) -> None:
+    """Raise TypeError unless ``value`` is an int (or None, if ``optional``), ValueError if
+    below ``least`` or above ``most`` (the message names the argument, as the CLI's do)."""
+    if value is None and optional:
         return
     if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
         raise TypeError(f"{name}: expected an int, found {type(value).__name__}")

@@ -286,7 +286,7 @@ def _core_args(
     dungeon: bool = False,
     memory_mb: Optional[int] = None,
 ) -> Dict[str, Any]:
-    _count("k", k, 1, " candidate")
+    _count("k", k, 1, " candidate", optional=False)
     _count("view", view, 1, " cell")
     _count("max_steps", max_steps, 1, " decision")
     dungeon = _flag("dungeon", dungeon)
@@ -334,6 +334,14 @@ def _spaces(shape: Tuple[int, int], k: int) -> Tuple[spaces.Dict, spaces.Discret
 def _episode_seed(rng: np.random.Generator) -> int:
     """The run seed of the next episode, drawn from the environment's generator."""
     return int(rng.integers(0, 2**63))
+
+
+def _vector_info(coverage: np.ndarray, path: np.ndarray) -> Dict[str, np.ndarray]:
+    """A vector environment's infos in Gymnasium's form: each key's array of one value per
+    environment beside ``_key``, the mask of the environments that set it (all of them)."""
+    every = np.ones(len(coverage), dtype=bool)
+    return {"coverage": coverage, "_coverage": every, "path_length_m": path,
+            "_path_length_m": every.copy()}
 
 
 def _render(obs: Dict[str, np.ndarray], view: Optional[int] = None) -> np.ndarray:
@@ -545,7 +553,7 @@ class ExploreVectorEnv(VectorEnv):
     ) -> None:
         _check_invalid_action(invalid_action)
         _check_run("ExploreVectorEnv", run)
-        _count("num_envs", num_envs, 1)
+        _count("num_envs", num_envs, 1, optional=False)
         _count("threads", threads, 1)
         self._core = _native.VecEnvCore(
             num_envs,
@@ -618,7 +626,7 @@ class ExploreVectorEnv(VectorEnv):
         ]
         obs, coverage, path = self._core.reset(seeds, maps)
         self._started = True
-        return obs, {"coverage": coverage, "path_length_m": path}
+        return obs, _vector_info(coverage, path)
 
     def step(
         self, actions: Any
@@ -648,7 +656,7 @@ class ExploreVectorEnv(VectorEnv):
         obs, rewards, terminated, truncated, coverage, path = self._core.step(
             given.astype(np.int64, copy=False), self._wrap
         )
-        return obs, rewards, terminated, truncated, {"coverage": coverage, "path_length_m": path}
+        return obs, rewards, terminated, truncated, _vector_info(coverage, path)
 
     def baseline_actions(self, preset: str) -> np.ndarray:
         """Each environment's action under ``preset``."""
