@@ -264,7 +264,8 @@ pub struct RunResult {
     pub grid_path_length_m: Vec<f64>,
     /// How `path_length_m` and `time_s` are measured.
     pub motion: crate::motion::Motion,
-    /// Exploration time in seconds: when the last robot finished.
+    /// Exploration time in seconds: when the last robot finished (its clock: travel at
+    /// `speed`, the stops after bumps, the waits for the others).
     pub time_s: f64,
     /// Number of decisions taken (one per robot that chose a goal or found none).
     pub decisions: u64,
@@ -289,7 +290,7 @@ pub struct RunResult {
     /// team's overlap ratio.
     pub overlap: f64,
     /// Seconds each robot did not travel before the run's end (`time_s` less its own
-    /// travel time): idle without a goal, or done before the others.
+    /// travel time): idle without a goal, stopped after a bump, or done before the others.
     pub idle_s: Vec<f64>,
     /// Wall-clock phase timings.
     pub times: PhaseTimes,

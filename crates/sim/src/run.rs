@@ -64,6 +64,8 @@ struct Robot {
     heading: f64,
     /// Seconds: distance / speed (plus waiting).
     clock: f64,
+    /// Seconds of `clock` not travelled: stops after bumps and waits for the others.
+    stopped_s: f64,
     /// Cells travelled (straight 1, diagonal √2).
     dist_cells: f64,
     /// Cells stood on, in order (kept only for any-angle motion).
@@ -305,6 +307,7 @@ impl<'a> Session<'a> {
                 cell: cells.index(c) as u32,
                 heading: 0.0,
                 clock: 0.0,
+                stopped_s: 0.0,
                 dist_cells: 0.0,
                 trail: vec![cells.index(c) as u32],
                 legs: Vec::new(),
@@ -831,7 +834,14 @@ impl<'a> Session<'a> {
                     .collect()
             }
         };
-        let time_s = path_length_m.iter().map(|&d| d / speed).fold(0.0, f64::max);
+        // Each robot's clock when it stopped, as the milestones and the trace read it: its
+        // travel (along the routes it is measured on) and its stops after bumps and waits
+        // for the others.
+        let time_s = path_length_m
+            .iter()
+            .zip(&robots)
+            .map(|(&d, r)| d / speed + r.stopped_s)
+            .fold(0.0, f64::max);
         let idle_s = path_length_m.iter().map(|&d| time_s - d / speed).collect();
         let overlap = if team.sensed_cells == 0 {
             0.0
@@ -1191,6 +1201,7 @@ impl Team<'_> {
     /// not approached for the no-progress limit goes on the inaccessible list.
     fn bump(&mut self, robots: &mut [Robot], r: usize, blocked: &[u32]) {
         robots[r].clock += BUMP_S;
+        robots[r].stopped_s += BUMP_S;
         let cell = self.truth.cells.cell(robots[r].cell as usize);
         self.look(robots, r, cell, false);
         self.changed.clear();
@@ -1509,7 +1520,10 @@ impl Team<'_> {
             .min_by(f64::total_cmp)
         {
             for robot in robots.iter_mut().filter(|r| r.idle) {
-                robot.clock = robot.clock.max(t);
+                if t > robot.clock {
+                    robot.stopped_s += t - robot.clock;
+                    robot.clock = t;
+                }
             }
         }
         self.times.decide_s += t0.elapsed().as_secs_f64();

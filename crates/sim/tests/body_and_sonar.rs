@@ -275,3 +275,44 @@ fn regression_yamauchi_sweeps_where_it_gives_up() {
     }
     assert!(gave_up > 0, "no goal was given up: the test lost its case");
 }
+
+/// Regression: the run's time was the longest travel over the speed, leaving out the stops
+/// after bumps (and waits) that the robots' clocks, hence the milestones' times and the
+/// trace, count: T90 came after the run's own end (52.5 s against 48.8 s, sweep repro).
+#[test]
+fn regression_run_time_counts_the_stops_after_bumps() {
+    let (map, clutter) = split_room();
+    let mut cfg = RunConfig::new(Strategy::preset("cf").expect("preset"));
+    cfg.sensor = SensorSpec::Los {
+        r: Range::Metres(1.5),
+    };
+    cfg.starts = vec![Cell::new(5, 10)];
+    cfg.clutter = Some(clutter);
+    cfg.record_trace = true;
+    let r = sim::run(&map, &cfg).expect("run");
+    assert!(r.audit.clutter_mapped > 0, "the body bumped");
+    let travel = r.path_length_m[0] / cfg.speed;
+    // At least one stop of BUMP_S beyond the travel, all of it not travelling.
+    assert!(
+        r.time_s >= travel + sim::BUMP_S - 1e-9,
+        "{} vs {travel}",
+        r.time_s
+    );
+    assert!((r.idle_s[0] - (r.time_s - travel)).abs() < 1e-9);
+    for m in &r.milestones {
+        assert!(
+            m.time_s <= r.time_s + 1e-9,
+            "T{} {} > {}",
+            m.percent,
+            m.time_s,
+            r.time_s
+        );
+    }
+    let trace = r.trace.as_ref().expect("trace");
+    let last = trace.events.iter().map(|e| e.t).fold(0.0, f64::max);
+    assert!(
+        last <= r.time_s + 1e-9,
+        "trace ends at {last}, the run at {}",
+        r.time_s
+    );
+}
