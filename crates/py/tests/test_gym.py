@@ -1135,3 +1135,26 @@ def test_regression_failed_automatic_reset_loses_no_step(office, tmp_path):
         if term or trunc:
             break
     assert rewards == want
+
+
+def test_regression_rechecking_watches_only_frontier_goals():
+    """Regression: cf-rr re-decides when its goal stops being a frontier cell, and a coverage
+    cell (candidates="cc") is almost never one, so it decided again at nearly every move
+    (513 decisions in 689 moves here). A goal that was no frontier cell when chosen is now
+    kept to arrival, as cf keeps it."""
+    kw = dict(maps="office", size=(25, 20), resolution=0.25, sensor="los:r=5", k=256,
+              candidates="cc")
+    counts = {}
+    for strategy in ("cf-rr", "cf"):
+        env = ExploreEnv(strategy=strategy, **kw)
+        env.reset(seed=1)
+        baseline = Baseline(strategy)
+        while True:
+            _, _, term, trunc, info = env.step(baseline(env))
+            if term or trunc:
+                break
+        assert term and info["coverage"] == 1.0
+        counts[strategy] = (info["decisions"], info["moves"])
+    decisions, moves = counts["cf-rr"]
+    assert decisions < moves / 3, counts
+    assert decisions <= 1.2 * counts["cf"][0], counts

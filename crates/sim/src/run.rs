@@ -92,6 +92,9 @@ struct Robot {
     /// `dt-rr`: the target's utility at decision time and the heading it was scored with.
     utility0: f64,
     heading0: f64,
+    /// The goal was an open frontier cell when chosen, so repetitive re-checking applies to
+    /// it (a coverage cell or region centroid, offered from Python, is not a frontier).
+    goal_was_frontier: bool,
 }
 
 /// Everything the loop owns besides the robots.
@@ -323,6 +326,7 @@ impl<'a> Session<'a> {
                 idle: false,
                 utility0: 0.0,
                 heading0: 0.0,
+                goal_was_frontier: false,
             })
             .collect();
         let trace = cfg.record_trace.then(|| Trace {
@@ -1441,6 +1445,7 @@ impl Team<'_> {
             match self.out[r] {
                 Some(goal) if self.planner.path(r, goal.cell, &mut self.path_buf) => {
                     robot.goal = Some(goal.cell);
+                    robot.goal_was_frontier = self.upkeep.frontiers.contains(goal.cell as usize);
                     robot.idle = false;
                     robot.path.extend_from_slice(&self.path_buf[1..]);
                     robot.remaining = goal.cost;
@@ -1668,8 +1673,11 @@ impl Team<'_> {
         }
         if next == goal {
             self.arrive(robots, r);
-        } else if replan.recheck && !self.is_open_frontier(goal) {
-            // Repetitive re-checking (Holz): an O(1) look-up per move.
+        } else if replan.recheck && robots[r].goal_was_frontier && !self.is_open_frontier(goal) {
+            // Repetitive re-checking (Holz): an O(1) look-up per move. A goal that was not
+            // a frontier cell when chosen (other candidates than frontier cells, from
+            // Python) is not a target the rule watches; otherwise it would decide again at
+            // every move.
             self.decide(robots, &[r]);
         } else if let (Some(fraction), AssignerKind::DtUtility { lambda }) =
             (replan.utility_drop, self.cfg.strategy.assigner)
