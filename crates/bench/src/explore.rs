@@ -191,6 +191,7 @@ pub fn config(
                 .map_err(|e| e.to_string())?;
         }
     }
+    sim::check_config(&cfg).map_err(|e| e.to_string())?;
     Ok(cfg)
 }
 

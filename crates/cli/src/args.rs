@@ -365,12 +365,19 @@ pub fn check_output_file(flag: &str, path: &Path) -> Result<()> {
     Ok(())
 }
 
-/// Create the output folder `flag` names before a run (or reuse it), so that a bad path is
-/// refused before the work rather than after it.
-pub fn make_output_folder(flag: &str, dir: &Path) -> Result<()> {
+/// Refuse `dir` for the folder `flag` names if a file is there: checked before any work,
+/// the folder itself made later ([`make_output_folder`]), once the command's input is read.
+pub fn check_output_folder(flag: &str, dir: &Path) -> Result<()> {
     if dir.exists() && !dir.is_dir() {
         bail!("{flag} {}: expected a folder, found a file", dir.display());
     }
+    Ok(())
+}
+
+/// Create the output folder `flag` names before a run (or reuse it), so that a bad path is
+/// refused before the work rather than after it.
+pub fn make_output_folder(flag: &str, dir: &Path) -> Result<()> {
+    check_output_folder(flag, dir)?;
     std::fs::create_dir_all(dir)
         .with_context(|| format!("{flag} {}: cannot create the folder", dir.display()))
 }

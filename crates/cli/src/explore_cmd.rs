@@ -195,10 +195,15 @@ pub fn run(a: ExploreArgs) -> Result<()> {
         }
     }
     if let Some(dir) = &a.out {
-        crate::args::make_output_folder("--out", dir)?;
+        crate::args::check_output_folder("--out", dir)?;
     }
     let truth = a.source.resolve(a.seed, a.memory_mb)?;
     let cfg = config(&a, &truth)?;
+    // Once the map and every flag are read and before the run: a failing command leaves
+    // no folder behind, and one that cannot be made fails before a long run.
+    if let Some(dir) = &a.out {
+        crate::args::make_output_folder("--out", dir)?;
+    }
     let result = run_with_progress(
         &truth,
         &cfg,

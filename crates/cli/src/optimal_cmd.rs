@@ -172,7 +172,7 @@ pub fn run(a: OptimalArgs) -> Result<()> {
         presets.push((name, strategy));
     }
     if let Some(dir) = &a.out {
-        crate::args::make_output_folder("--out", dir)?;
+        crate::args::check_output_folder("--out", dir)?;
     }
     let truth = a
         .source
@@ -263,6 +263,10 @@ pub fn run(a: OptimalArgs) -> Result<()> {
         coarse_incumbent: a.coarse_incumbent,
     };
     check_setup_memory(map, a.cell_size, &spec, a.memory_mb)?;
+    // Once every flag is checked and before the search: a failing command leaves no folder.
+    if let Some(dir) = &a.out {
+        crate::args::make_output_folder("--out", dir)?;
+    }
     let co = coarsen_problem(map, a.cell_size, start, &spec)?;
     if co.kept_area < KEPT_AREA_WARNING {
         eprintln!(

@@ -303,6 +303,30 @@ fn regression_memory_budget_of_zero_is_refused() {
     );
 }
 
+/// Regression: `--out DIR` was made, parents and all, before the map was read or the flags
+/// checked, so a command that failed left an empty folder behind.
+#[test]
+fn regression_failed_command_leaves_no_output_folder() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("new").join("sub");
+    let out_s = out.to_str().unwrap();
+    for args in [
+        &["explore", "--map", "/no/such/map.yaml", "--out", out_s][..],
+        &["explore", "--strategy", "bogus", "--out", out_s],
+        &["explore", "--robots", "0", "--out", out_s],
+        &["optimal", "--map", "/no/such/map.yaml", "--out", out_s],
+        &["optimal", "--sensor", "lidar:r=3", "--out", out_s],
+    ] {
+        err(args);
+        assert!(!dir.path().join("new").exists(), "{args:?} left a folder");
+    }
+    // A file where the folder should be is still refused by name, before any work.
+    let file = dir.path().join("f");
+    std::fs::write(&file, "").unwrap();
+    let e = err(&["explore", "--out", file.to_str().unwrap()]);
+    assert!(e.contains("expected a folder, found a file"), "{e}");
+}
+
 /// Regression: the summary named the folder of `--out` but not the files `--gif`,
 /// `--html` and `--mcap` wrote.
 #[test]

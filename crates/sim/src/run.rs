@@ -253,7 +253,7 @@ impl<'a> Session<'a> {
         external: bool,
     ) -> Result<Self, SimError> {
         let started = Instant::now();
-        validate(&cfg)?;
+        check_config(&cfg)?;
         let res = truth.resolution;
         let cells = &truth.cells;
         let (w, h) = (cells.width(), cells.height());
@@ -905,7 +905,10 @@ pub fn check_sensor_range(
     Ok(())
 }
 
-fn validate(cfg: &RunConfig) -> Result<(), SimError> {
+/// Whether `cfg`'s parameters are in range (robots, speed, clearance, goal, belief for the
+/// sensor, …), as a run checks them when it starts: a front end asks before it makes
+/// output folders or loads more.
+pub fn check_config(cfg: &RunConfig) -> Result<(), SimError> {
     let bad = |field, expected, found: String| {
         Err(SimError::BadParameter {
             field,
