@@ -105,6 +105,9 @@ struct Team<'a> {
     external: bool,
     /// An external decision is due: candidates are generated, goals not yet chosen.
     pending: bool,
+    /// No robot can reach a candidate: the exploration is over ("no frontiers are left"),
+    /// though robots may still be on their way to goals explored since.
+    exhausted: bool,
     /// Candidates offered to an assigner by [`Session::propose`].
     offered: CandidateSet,
     /// Goals an assigner proposed.
@@ -409,6 +412,7 @@ impl<'a> Session<'a> {
             trace,
             external,
             pending: false,
+            exhausted: false,
             offered: if external {
                 CandidateSet::new(len)
             } else {
@@ -473,9 +477,10 @@ impl<'a> Session<'a> {
             if team.moves >= team.cfg.max_moves {
                 break EndReason::StepLimit;
             }
-            // The active robot with the earliest clock moves next.
+            // The active robot with the earliest clock moves next; none is left to move
+            // once every robot is idle or no robot can reach a candidate.
             let Some(r) = (0..m)
-                .filter(|&r| !robots[r].idle)
+                .filter(|&r| !robots[r].idle && !team.exhausted)
                 .min_by(|&a, &b| robots[a].clock.total_cmp(&robots[b].clock).then(a.cmp(&b)))
             else {
                 break if team.covered == team.reachable_cells {
@@ -1328,6 +1333,36 @@ impl Team<'_> {
         self.upkeep.frontiers.contains(cell as usize)
     }
 
+    /// Whether some robot can still reach one of the last decision's candidates: one
+    /// heading for a goal that still is one can; else each robot's free component is
+    /// searched (a flood fill, made only when a deciding robot found no goal).
+    fn any_candidate_reachable(&mut self, robots: &[Robot]) -> bool {
+        let candidates = &self.offer.candidates;
+        if candidates.is_empty() {
+            return false;
+        }
+        let heading_for_one = robots.iter().any(|r| {
+            !r.idle
+                && r.goal
+                    .is_some_and(|g| candidates.index_of(g as usize).is_some())
+        });
+        if heading_for_one {
+            return true;
+        }
+        let known = self.belief.known();
+        for (r, robot) in robots.iter().enumerate() {
+            let reach = self.planner.component(r, robot.cell, known, &self.upkeep);
+            if candidates
+                .cells()
+                .iter()
+                .any(|&c| reach.contains(c as usize))
+            {
+                return true;
+            }
+        }
+        false
+    }
+
     /// Decide goals for the robots in `who` (plus any idle robot, which retries).
     // Robot r's state is spread over several parallel buffers, so index loops read best.
     #[allow(clippy::needless_range_loop)]
@@ -1519,6 +1554,12 @@ impl Team<'_> {
                     goal: robot.goal,
                 });
             }
+        }
+        // A team whose deciding robot found no goal may be done: both multi-robot papers end
+        // when no frontier is left, not when the last robot reaches a goal that was
+        // explored on its way (a single robot that finds none is done anyway).
+        if m > 1 && (0..m).any(|r| self.deciding[r] && robots[r].idle) {
+            self.exhausted = !self.any_candidate_reachable(robots);
         }
         // An idle robot waits for the others: its clock follows the earliest active one.
         if let Some(t) = robots

@@ -131,3 +131,28 @@ fn regression_coverage_candidates_need_a_range_of_1_25_cells() {
         EndReason::Complete
     );
 }
+
+/// Regression: a team ran on until its last robot reached a goal explored on its way,
+/// though both multi-robot papers end when no frontier is left: on the coordination
+/// study's maze (4 robots, `greedy`, a 4-cell sensor, seed 3) robot 1 found nothing left
+/// at 212.9 s and robot 0 walked to a goal it had been sent to until 428.1 s, the time
+/// reported. The run now ends when no robot can reach a candidate.
+#[test]
+fn regression_team_stops_when_no_frontier_is_left() {
+    let map = world::generate(&EnvSpec {
+        kind: EnvKind::Maze,
+        seed: 3,
+        size_m: None,
+        resolution: None,
+    })
+    .expect("generate")
+    .map;
+    let mut cfg = RunConfig::new(Strategy::preset("greedy").expect("preset"));
+    cfg.robots = 4;
+    cfg.seed = 3;
+    cfg.sensor = "los:r=4c".parse().expect("sensor");
+    let r = sim::run(&map, &cfg).expect("run");
+    assert_eq!(r.reason, EndReason::Complete);
+    let (_, t99) = r.milestone(99).expect("reached");
+    assert!(r.time_s < 1.1 * t99, "time {} against T99 {t99}", r.time_s);
+}
