@@ -23,7 +23,7 @@
 //! for random starts); a deterministic strategy at a fixed start would repeat the same run,
 //! so it runs once unless `repeat_deterministic = true`. `trials_for` narrows the repeated
 //! strategies to those it names, as a paper's protocol may (Faigl & Kulich repeat only the
-//! stochastic assignment methods, GA and MA, though RFE's k-means and SGA draw too).
+//! stochastic assignment methods, GA and MA, though RFE's k-means draws too).
 
 use std::collections::BTreeSet;
 
@@ -159,15 +159,14 @@ pub struct Trial {
     pub seed: u64,
 }
 
-/// Whether a strategy draws random numbers: random assigners, random-order greedy, the
-/// k-means based MA and SGA, RFE's k-means, and the decision-theoretic samples.
+/// Whether a strategy draws random numbers: random assigners, random-order greedy, MA's
+/// k-means (k-means++ starts), RFE's k-means, and the decision-theoretic samples. SGA's
+/// k-means starts from given centres (a circle about the map's centre, then the last
+/// decision's) and draws none.
 pub fn is_stochastic(s: &Strategy) -> bool {
     matches!(
         s.assigner,
-        AssignerKind::Random
-            | AssignerKind::RandomOrderGreedy
-            | AssignerKind::Mtsp
-            | AssignerKind::Sga
+        AssignerKind::Random | AssignerKind::RandomOrderGreedy | AssignerKind::Mtsp
     ) || matches!(
         s.candidates,
         CandidateKind::Rfe { .. } | CandidateKind::DtSamples { .. }
@@ -1438,6 +1437,46 @@ fn start_variants(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Regression: SGA was counted as drawing random numbers, so a scenario repeated its
+    /// runs `trials` times per start for identical results. Its runs are the same whatever
+    /// the run's seed; those that draw differ.
+    #[test]
+    fn regression_sga_is_deterministic() {
+        let map = world::generate(&EnvSpec {
+            kind: world::EnvKind::Office,
+            seed: 1,
+            size_m: None,
+            resolution: None,
+        })
+        .expect("generate")
+        .map;
+        let length = |preset: &str, seed: u64| {
+            let mut cfg = sim::RunConfig::new(Strategy::preset(preset).expect("preset"));
+            cfg.robots = 3;
+            cfg.seed = seed;
+            cfg.starts = vec![
+                grid::Cell::new(10, 10),
+                grid::Cell::new(11, 10),
+                grid::Cell::new(10, 11),
+            ];
+            sim::run(&map, &cfg).expect("run").path_length_m
+        };
+        for preset in ["sga-af", "sga-cc", "ha-af"] {
+            assert!(
+                !is_stochastic(&Strategy::preset(preset).expect("preset")),
+                "{preset}"
+            );
+            assert_eq!(length(preset, 1), length(preset, 2), "{preset}");
+        }
+        for preset in ["ga-af", "ma-af", "sga-rfe"] {
+            assert!(
+                is_stochastic(&Strategy::preset(preset).expect("preset")),
+                "{preset}"
+            );
+        }
+        assert_ne!(length("ga-af", 1), length("ga-af", 2));
+    }
 
     /// Environments that together need more memory than is available are refused before
     /// any is generated, naming the `[[env]]` that holds the most cells.
