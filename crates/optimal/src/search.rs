@@ -111,7 +111,8 @@ pub enum Status {
     Unproven,
     /// A limit was hit; bounds are reported (the solution, if any, is the best found).
     Stopped,
-    /// No sequence of actions reaches the goal (e.g. small clusters were dropped).
+    /// No sequence of actions reaches the goal (a share G of the targets that no position
+    /// perceives; dropped clusters widen the search rather than end it).
     NoSolution,
 }
 
