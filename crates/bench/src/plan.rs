@@ -57,7 +57,8 @@ use crate::scenario::{ScenarioFile, Source};
 /// obstacle its map does not show, and re-plans if it sees it; with any-angle motion, the
 /// coverage curve and the D/T milestones are measured along the string-pulled routes; a
 /// trial that stops short of its goal has no competitive ratio; v13: a run's time is the
-/// last robot's clock, stops after bumps and waits included, as its milestones' times are).
+/// last robot's clock, stops after bumps and waits included, as its milestones' times are,
+/// and a team's run ends when no robot can reach a candidate).
 pub const STRATEGY_REVISION: u32 = 13;
 
 /// A resolved study: environments, variants, common settings and the flat trial list.
