@@ -227,12 +227,10 @@ struct State {
     buf: Vec<Goal>,
     steps: u64,
     done: bool,
-    /// The episode ended at its reset (the first scan saw everything reachable) and no step
-    /// has reported it yet: the next step returns it, as terminated (or truncated, if the
-    /// move budget ended it).
-    ended_unreported: bool,
-    /// Why the run ended at its reset, for that step.
-    ended_at_reset: Option<EndReason>,
+    /// Why the episode ended at its reset (the first scan saw everything reachable), while
+    /// no step has reported it yet: the next step returns it, as terminated (or truncated,
+    /// if the move budget ended it).
+    unreported_end: Option<EndReason>,
     seed: u64,
     /// Reset at the next step (vector environments reset automatically).
     needs_reset: bool,
@@ -266,8 +264,7 @@ impl State {
             buf: Vec::new(),
             steps: 0,
             done: true,
-            ended_unreported: false,
-            ended_at_reset: None,
+            unreported_end: None,
             seed: 0,
             needs_reset: false,
             pending: None,
@@ -304,8 +301,7 @@ impl State {
         self.pending = None;
         let ended = self.next_decision()?;
         self.done = ended.is_some();
-        self.ended_unreported = ended.is_some();
-        self.ended_at_reset = ended;
+        self.unreported_end = ended;
         Ok(())
     }
 
@@ -363,10 +359,11 @@ impl State {
     /// An episode that ended at its reset ends at its first step: terminated, reward 0.
     /// The move budget (`max_moves`), like `max_path_m` and `max_steps`, truncates.
     fn step(&mut self, actions: &[i64], wrap: bool) -> Result<StepOut, String> {
-        if self.ended_unreported && self.session.is_some() {
-            self.ended_unreported = false;
+        if self.session.is_some()
+            && let Some(end) = self.unreported_end.take()
+        {
             self.steps += 1;
-            let budget = self.ended_at_reset == Some(EndReason::StepLimit);
+            let budget = end == EndReason::StepLimit;
             return Ok(StepOut {
                 terminated: !budget,
                 truncated: budget,
@@ -1204,7 +1201,7 @@ impl EnvCore {
         let strategy =
             Strategy::preset(&preset).map_err(|e| value_error(format!("--strategy: {e}")))?;
         let st = self.state.get_mut().unwrap_or_else(|p| p.into_inner());
-        if st.ended_unreported {
+        if st.unreported_end.is_some() {
             // Ended at its reset: nothing is offered, and the next step ends the episode.
             return Ok(0);
         }
@@ -1657,7 +1654,7 @@ impl TeamEnvCore {
         let strategy =
             Strategy::preset(&preset).map_err(|e| value_error(format!("--strategy: {e}")))?;
         let st = self.state.get_mut().unwrap_or_else(|p| p.into_inner());
-        if st.ended_unreported {
+        if st.unreported_end.is_some() {
             // Ended at its reset: nothing is offered, and the next step ends the episode.
             return Ok(vec![0; st.spec.options.robots]);
         }

@@ -103,32 +103,25 @@ impl Thresholds {
         // Red, green and blue sum to `values[i] · 3 / colours` of 3 · channel maxima.
         let scale = 3 / raster.colours.clamp(1, 3);
         let maxval = 4 * raster.alpha_max;
-        let data = (0..raster.values.len())
-            .map(|i| {
-                let v = raster.values[i] * scale + u32::from(raster.alpha[i]);
-                self.classify(v, maxval)
-            })
-            .collect();
-        Grid::from_vec(raster.width, raster.height, data)
-            .unwrap_or_else(|| Grid::new(0, 0, Occ::Unknown))
+        cells_of(raster, |i| {
+            let alpha = raster
+                .alpha
+                .get(i)
+                .map_or(raster.alpha_max, |&a| u32::from(a));
+            self.classify(raster.values[i] * scale + alpha, maxval)
+        })
     }
 
     /// The states of every pixel of `raster` (bare bitmaps and ROS `scale` mode;
     /// transparent → Unknown).
     pub fn classify_raster(&self, raster: &Raster) -> Grid<Occ> {
-        let data = (0..raster.values.len())
-            .map(|i| {
-                if raster.is_transparent(i) {
-                    Occ::Unknown
-                } else {
-                    self.classify(raster.values[i], raster.maxval)
-                }
-            })
-            .collect();
-        // The raster's length is width * height by construction; fall back to an empty grid
-        // rather than panic if a caller built an inconsistent one by hand.
-        Grid::from_vec(raster.width, raster.height, data)
-            .unwrap_or_else(|| Grid::new(0, 0, Occ::Unknown))
+        cells_of(raster, |i| {
+            if raster.is_transparent(i) {
+                Occ::Unknown
+            } else {
+                self.classify(raster.values[i], raster.maxval)
+            }
+        })
     }
 
     /// The states of every pixel of `raster` in ROS `raw` mode.
@@ -140,21 +133,26 @@ impl Thresholds {
     /// comparisons are made as `v / 100` against the thresholds, so that a value written as
     /// a threshold (55 for 0.55) is on its side, whatever `100 · 0.55` rounds to.
     pub fn classify_raw(&self, raster: &Raster) -> Grid<Occ> {
-        let data = (0..raster.values.len())
-            .map(|i| {
-                let v = (raster.shade(i) * 255.0).round();
-                if v > 100.0 {
-                    Occ::Unknown
-                } else if v / 100.0 >= self.occupied {
-                    Occ::Occupied
-                } else if v / 100.0 <= self.free {
-                    Occ::Free
-                } else {
-                    Occ::Unknown
-                }
-            })
-            .collect();
-        Grid::from_vec(raster.width, raster.height, data)
-            .unwrap_or_else(|| Grid::new(0, 0, Occ::Unknown))
+        cells_of(raster, |i| {
+            let v = (raster.shade(i) * 255.0).round();
+            if v > 100.0 {
+                Occ::Unknown
+            } else if v / 100.0 >= self.occupied {
+                Occ::Occupied
+            } else if v / 100.0 <= self.free {
+                Occ::Free
+            } else {
+                Occ::Unknown
+            }
+        })
     }
+}
+
+/// The grid of `raster`'s size whose cell `i` is `state(i)`. The raster's length is
+/// width × height by construction; an inconsistent one built by hand gives an empty grid
+/// rather than a panic.
+fn cells_of(raster: &Raster, state: impl Fn(usize) -> Occ) -> Grid<Occ> {
+    let data = (0..raster.values.len()).map(state).collect();
+    Grid::from_vec(raster.width, raster.height, data)
+        .unwrap_or_else(|| Grid::new(0, 0, Occ::Unknown))
 }
