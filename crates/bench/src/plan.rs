@@ -348,12 +348,9 @@ fn resolution_of(
     }
 }
 
-/// Whether a scenario's `map` names an MCAP recording.
-fn is_mcap(map: &str) -> bool {
-    std::path::Path::new(map)
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("mcap"))
-}
+/// Why a scenario's `topic` was refused: it chooses a recording's map topic.
+const TOPIC_WITHOUT_MCAP: &str =
+    "chooses the map topic of an MCAP recording (`map` = a .mcap file)";
 
 /// s_max as written: -1 = on arrival, N > 0 = every N moves.
 fn s_max_value(src: &Source, v: &toml::Spanned<i64>, key: &str) -> Result<Option<u32>, BenchError> {
@@ -1003,11 +1000,12 @@ fn load_env(
         .as_ref()
         .map(|r| resolution_of(src, r, &format!("{key}.resolution")))
         .transpose()?;
-    if e.topic.is_some() && e.map.as_ref().is_none_or(|m| !is_mcap(m.get_ref())) {
+    let names_mcap = |m: &toml::Spanned<String>| record::map_file::is_mcap(m.get_ref().as_ref());
+    if e.topic.is_some() && e.map.as_ref().is_none_or(|m| !names_mcap(m)) {
         return Err(src.error(
             e.topic.as_ref().and_then(span_of),
             format!("{key}.topic"),
-            "chooses the map topic of an MCAP recording (`map` = a .mcap file)",
+            TOPIC_WITHOUT_MCAP,
         ));
     }
     match (&e.kind, &e.map) {
@@ -1040,33 +1038,31 @@ fn load_env(
                 Some(d) => d.join(m.get_ref()),
                 None => std::path::PathBuf::from(m.get_ref()),
             };
-            let map = if is_mcap(m.get_ref()) {
-                if let Some(field) = [
-                    ("resolution", e.resolution.is_some()),
-                    ("border", e.border.is_some()),
-                ]
-                .into_iter()
-                .find_map(|(f, given)| given.then_some(f))
-                {
-                    return Err(src.error(
-                        span_of(m),
-                        format!("{key}.{field}"),
-                        "an MCAP recording's map carries its own resolution (give no `resolution` or \
-                         `border`)",
-                    ));
-                }
-                let topic = e.topic.as_ref().map(|t| t.get_ref().as_str());
-                record::mcap_read::load_map(&path, topic, memory_limit(memory_mb))
-                    .map_err(|err| src.error(span_of(m), format!("{key}.map"), err))?
-            } else {
-                let opts = grid::io::LoadOptions {
-                    resolution: pixels,
-                    border: e.border.unwrap_or(false),
-                    memory: memory_limit(memory_mb),
-                };
-                grid::io::load_map(&path, &opts)
-                    .map_err(|err| src.error(span_of(m), format!("{key}.map"), err.to_string()))?
+            let opts = grid::io::LoadOptions {
+                resolution: pixels,
+                border: e.border.unwrap_or(false),
+                memory: memory_limit(memory_mb),
             };
+            let topic = e.topic.as_ref().map(|t| t.get_ref().as_str());
+            let (map, _) = record::map_file::load(&path, &opts, topic, false).map_err(|err| {
+                use record::map_file::MapFileError;
+                let (field, message) = match err {
+                    MapFileError::McapOption(field) => (
+                        field,
+                        "an MCAP recording's map carries its own resolution (give no \
+                         `resolution` or `border`)"
+                            .to_string(),
+                    ),
+                    MapFileError::TopicWithoutMcap => ("topic", TOPIC_WITHOUT_MCAP.to_string()),
+                    // A scenario reads no dungeon maps, so this is not met.
+                    MapFileError::DungeonResolution(_) => (
+                        "resolution",
+                        "expected one resolution (square cells)".to_string(),
+                    ),
+                    MapFileError::Load(message) => ("map", message),
+                };
+                src.error(span_of(m), format!("{key}.{field}"), message)
+            })?;
             let name = match &e.name {
                 Some(n) => n.get_ref().clone(),
                 None => path

@@ -16,36 +16,25 @@ pub fn load_map_file(
     topic: Option<&str>,
     dungeon: bool,
 ) -> Result<(GridMap, Option<grid::Cell>)> {
-    let is_mcap = path
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("mcap"));
-    if topic.is_some() && !is_mcap {
-        bail!("--topic chooses the map topic of an MCAP recording (a FILE.mcap map)");
-    }
-    if is_mcap {
-        if opts.resolution.is_some() || opts.border || dungeon {
-            bail!(
-                "--resolution / --border / --dungeon: an MCAP recording's map carries its own \
-                 resolution"
-            );
+    use record::map_file::MapFileError;
+    record::map_file::load(path, opts, topic, dungeon).map_err(|e| match e {
+        MapFileError::TopicWithoutMcap => {
+            anyhow::anyhow!("--topic chooses the map topic of an MCAP recording (a FILE.mcap map)")
         }
-        return Ok((load_mcap_map(path, topic, opts.memory)?, None));
-    }
-    if dungeon {
-        let Some((rx, _)) = opts.resolution.filter(|(x, y)| x == y) else {
-            bail!(
-                "--dungeon: expected one --resolution (square cells) for {}, found {}",
-                path.display(),
-                match opts.resolution {
-                    Some((x, y)) => format!("{x},{y}"),
-                    None => "none".into(),
-                }
-            );
-        };
-        let d = grid::io::load_dungeon(path, rx, opts)?;
-        return Ok((d.map, Some(d.start)));
-    }
-    Ok((grid::io::load_map(path, opts)?, None))
+        MapFileError::McapOption(_) => anyhow::anyhow!(
+            "--resolution / --border / --dungeon: an MCAP recording's map carries its own \
+             resolution"
+        ),
+        MapFileError::DungeonResolution(found) => anyhow::anyhow!(
+            "--dungeon: expected one --resolution (square cells) for {}, found {}",
+            path.display(),
+            match found {
+                Some((x, y)) => format!("{x},{y}"),
+                None => "none".into(),
+            }
+        ),
+        MapFileError::Load(message) => anyhow::Error::msg(message),
+    })
 }
 
 /// Where the ground truth comes from: a built-in environment or a map file.
@@ -117,15 +106,6 @@ impl Truth {
         }
         Ok(self)
     }
-}
-
-/// The last OccupancyGrid of an MCAP recording, loaded within `memory`.
-pub fn load_mcap_map(
-    path: &std::path::Path,
-    topic: Option<&str>,
-    memory: Option<grid::memory::Available>,
-) -> Result<GridMap> {
-    record::mcap_read::load_map(path, topic, memory).map_err(anyhow::Error::msg)
 }
 
 /// Parse `--memory-mb`: a positive number of MiB (a budget of 0 would refuse everything,

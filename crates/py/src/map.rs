@@ -176,58 +176,35 @@ pub fn read_file(
     dungeon: bool,
     memory_mb: Option<u64>,
 ) -> Result<(GridMap, String, Option<grid::Cell>), String> {
-    let is_mcap = path
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("mcap"));
-    if topic.is_some() && !is_mcap {
-        return Err(format!(
-            "topic: chooses the map topic of an MCAP recording (a .mcap file), found {}",
-            path.display()
-        ));
-    }
-    let name = stem(path);
-    let memory = sim::memory::limit(memory_mb, grid::machine::available());
-    if is_mcap {
-        if resolution.is_some() || border || dungeon {
-            return Err(
-                "resolution / border / dungeon: an MCAP recording's map carries its own \
-                 resolution"
-                    .into(),
-            );
-        }
-        return Ok((
-            record::mcap_read::load_map(path, topic, memory)?,
-            name,
-            None,
-        ));
-    }
-    if dungeon {
-        let Some((r, _)) = resolution.filter(|(x, y)| x == y) else {
-            return Err(format!(
-                "dungeon: expected one resolution (square cells) for {}, found {}",
-                path.display(),
-                match resolution {
-                    Some((x, y)) => format!("({x}, {y})"),
-                    None => "none".into(),
-                }
-            ));
-        };
-        // As the CLI's --dungeon: `border` adds a wall (and moves the start with the cells).
-        let opts = grid::io::LoadOptions {
-            resolution,
-            border,
-            memory,
-        };
-        let d = grid::io::load_dungeon(path, r, &opts).map_err(|e| e.to_string())?;
-        return Ok((d.map, name, Some(d.start)));
-    }
+    use record::map_file::MapFileError;
     let opts = grid::io::LoadOptions {
         resolution,
         border,
-        memory,
+        memory: sim::memory::limit(memory_mb, grid::machine::available()),
     };
-    let map = grid::io::load_map(path, &opts).map_err(|e| e.to_string())?;
-    Ok((map, name, None))
+    // As the CLI's --dungeon: `border` adds a wall (and moves the start with the cells).
+    let (map, start) =
+        record::map_file::load(path, &opts, topic, dungeon).map_err(|e| match e {
+            MapFileError::TopicWithoutMcap => format!(
+                "topic: chooses the map topic of an MCAP recording (a .mcap file), found {}",
+                path.display()
+            ),
+            MapFileError::McapOption(_) => {
+                "resolution / border / dungeon: an MCAP recording's map \
+                                        carries its own resolution"
+                    .to_string()
+            }
+            MapFileError::DungeonResolution(found) => format!(
+                "dungeon: expected one resolution (square cells) for {}, found {}",
+                path.display(),
+                match found {
+                    Some((x, y)) => format!("({x}, {y})"),
+                    None => "none".into(),
+                }
+            ),
+            MapFileError::Load(message) => message,
+        })?;
+    Ok((map, stem(path), start))
 }
 
 #[pymethods]

@@ -10,12 +10,14 @@
 //!   map) an error rather than a panic, and world ⇄ cell transforms;
 //! - [`mcap_read`]: the last `OccupancyGrid` of a recording, as a map, read a record at a
 //!   time and checked against the memory available before it is loaded;
+//! - [`map_file`]: any map file a front end takes (a recording, a dungeon PNG or one of
+//!   grid's formats), read by one rule;
 //! - [`mcap_write`]: a run as a recording (map, belief over time, poses, goals, frontiers)
 //!   that Foxglove Studio opens beside the user's own data.
 //!
-//! Apart from [`mcap_read::load_map`], which opens the recording it is given, nothing here
-//! touches the file system: readers take bytes or any `Read`, writers take any
-//! `Write + Seek`.
+//! Apart from [`mcap_read::load_map`] and [`map_file::load`], which open the file they are
+//! given, nothing here touches the file system: readers take bytes or any `Read`, writers
+//! take any `Write + Seek`.
 //!
 //! A map recorded as a run and read back, as `frontier explore --map run.mcap` does:
 //!
@@ -37,6 +39,7 @@
 #![warn(missing_docs)]
 
 pub mod cdr;
+pub mod map_file;
 pub mod mcap_read;
 pub mod mcap_write;
 pub mod msgs;

@@ -1,0 +1,138 @@
+//! Any map file a front end takes, read by one rule: an MCAP recording (`.mcap`) gives its
+//! last `nav_msgs/OccupancyGrid`, a dungeon PNG gives its map and the start it marks, and
+//! every other file is one of [`grid::io::load_map`]'s formats.
+//!
+//! The CLI's `--map`, Python's `frontier.Map.load` and a study's `[[env]] map` all read
+//! maps through [`load`], so they tell formats apart and refuse options alike. Each front end
+//! names its own parameters in the message it makes of a [`MapFileError`] (a flag, a
+//! keyword argument, a scenario key).
+
+use std::path::Path;
+
+use grid::io::LoadOptions;
+use grid::{Cell, GridMap};
+
+/// Whether `path` names an MCAP recording (by its extension, in any case).
+pub fn is_mcap(path: &Path) -> bool {
+    path.extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("mcap"))
+}
+
+/// Why a map file was not read.
+#[derive(Debug, Clone, PartialEq)]
+pub enum MapFileError {
+    /// A topic was given for a file that is not an MCAP recording.
+    TopicWithoutMcap,
+    /// An option that sets pixels (`"resolution"`, `"border"` or `"dungeon"`, the first
+    /// given) was given for an MCAP recording, whose map carries its own resolution.
+    McapOption(&'static str),
+    /// A dungeon PNG needs one resolution for square cells; this was given instead.
+    DungeonResolution(Option<(f64, f64)>),
+    /// The file could not be read as a map; the message names the file.
+    Load(String),
+}
+
+/// The map in the file at `path` and the start it marks (a dungeon PNG's), read with
+/// `opts` (its memory bound applies to recordings too); `topic` chooses a recording's map
+/// topic, `dungeon` reads a PNG as a dungeon map.
+pub fn load(
+    path: &Path,
+    opts: &LoadOptions,
+    topic: Option<&str>,
+    dungeon: bool,
+) -> Result<(GridMap, Option<Cell>), MapFileError> {
+    let mcap = is_mcap(path);
+    if topic.is_some() && !mcap {
+        return Err(MapFileError::TopicWithoutMcap);
+    }
+    if mcap {
+        let pixel_option = [
+            ("resolution", opts.resolution.is_some()),
+            ("border", opts.border),
+            ("dungeon", dungeon),
+        ]
+        .into_iter()
+        .find_map(|(name, given)| given.then_some(name));
+        if let Some(name) = pixel_option {
+            return Err(MapFileError::McapOption(name));
+        }
+        let map =
+            crate::mcap_read::load_map(path, topic, opts.memory).map_err(MapFileError::Load)?;
+        return Ok((map, None));
+    }
+    if dungeon {
+        let Some((r, _)) = opts.resolution.filter(|(x, y)| x == y) else {
+            return Err(MapFileError::DungeonResolution(opts.resolution));
+        };
+        let d =
+            grid::io::load_dungeon(path, r, opts).map_err(|e| MapFileError::Load(e.to_string()))?;
+        return Ok((d.map, Some(d.start)));
+    }
+    let map = grid::io::load_map(path, opts).map_err(|e| MapFileError::Load(e.to_string()))?;
+    Ok((map, None))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn opts(resolution: Option<(f64, f64)>, border: bool) -> LoadOptions {
+        LoadOptions {
+            resolution,
+            border,
+            memory: None,
+        }
+    }
+
+    #[test]
+    fn a_topic_needs_a_recording() {
+        let e = load(
+            Path::new("plan.yaml"),
+            &opts(None, false),
+            Some("/map"),
+            false,
+        );
+        assert_eq!(e.unwrap_err(), MapFileError::TopicWithoutMcap);
+    }
+
+    #[test]
+    fn a_recording_refuses_pixel_options_by_name() {
+        let path = Path::new("run.MCAP");
+        let first = |o: &LoadOptions, dungeon| load(path, o, None, dungeon).unwrap_err();
+        assert_eq!(
+            first(&opts(Some((0.05, 0.05)), true), true),
+            MapFileError::McapOption("resolution")
+        );
+        assert_eq!(
+            first(&opts(None, true), true),
+            MapFileError::McapOption("border")
+        );
+        assert_eq!(
+            first(&opts(None, false), true),
+            MapFileError::McapOption("dungeon")
+        );
+    }
+
+    #[test]
+    fn a_dungeon_needs_one_square_resolution() {
+        let path = Path::new("dungeon.png");
+        for r in [None, Some((0.1, 0.2))] {
+            let e = load(path, &opts(r, false), None, true).unwrap_err();
+            assert_eq!(e, MapFileError::DungeonResolution(r));
+        }
+    }
+
+    #[test]
+    fn a_map_file_is_read_by_its_format() {
+        let dir = std::env::temp_dir().join(format!("record-map-file-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("plan.txt");
+        std::fs::write(&path, "####\n#..#\n####\n").unwrap();
+        let (map, start) = load(&path, &opts(Some((0.5, 0.5)), false), None, false).unwrap();
+        assert_eq!((map.width(), map.height(), start), (4, 3, None));
+        assert_eq!(map.resolution, 0.5);
+        let missing = load(&dir.join("none.txt"), &opts(None, false), None, false);
+        assert!(matches!(missing, Err(MapFileError::Load(m)) if m.contains("none.txt")));
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}
