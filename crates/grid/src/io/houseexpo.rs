@@ -9,7 +9,7 @@
 
 use std::path::Path;
 
-use serde::de::{Deserialize, Deserializer, MapAccess, Visitor};
+use serde::de::{Deserialize, Deserializer, IgnoredAny, MapAccess, SeqAccess, Visitor};
 use serde_json::Value;
 
 use super::error::{MapError, MapErrorKind};
@@ -205,10 +205,20 @@ pub(crate) fn parse_houseexpo_checked(
     fits: &SizeCheck,
 ) -> Result<HouseExpoMap, MapError> {
     super::check_resolution(resolution, name)?;
-    let json: Value = serde_json::from_str(text)
+    // serde reads a struct from an array too, by position: a plan is an object.
+    if let Some(c) = text.trim_start().chars().next().filter(|&c| c != '{') {
+        return Err(bad(
+            name,
+            "json",
+            "a HouseExpo JSON object",
+            format!("a value starting with {c:?}"),
+        ));
+    }
+    let plan: Plan = serde_json::from_str(text)
         .map_err(|e| bad(name, "json", "a HouseExpo JSON object", e.to_string()))?;
-    let verts = json
-        .get("verts")
+    let verts = plan
+        .verts
+        .as_ref()
         .and_then(Value::as_array)
         .ok_or_else(|| MapError::new(name, MapErrorKind::MissingField("verts")))?;
     let mut poly: Vec<(f64, f64)> = Vec::with_capacity(verts.len());
@@ -281,12 +291,7 @@ pub(crate) fn parse_houseexpo_checked(
     fill_outline(&poly, xs, ys, cells.data_mut());
     let mut rooms = vec![0u32; w * h];
     let mut room_types = Vec::new();
-    if json.get("room_category").is_some_and(Value::is_object) {
-        // Read again for the categories in the file's order (a `Value`'s map sorts them).
-        let cats = serde_json::from_str::<Plan>(text)
-            .map_err(|e| bad(name, "json", "a HouseExpo JSON object", e.to_string()))?
-            .room_category
-            .map_or_else(Vec::new, |c| c.0);
+    if let Some(Categories(Some(cats))) = plan.room_category {
         let count: usize = cats
             .iter()
             .filter_map(|(_, v)| v.as_array())
@@ -343,34 +348,60 @@ pub(crate) fn parse_houseexpo_checked(
     })
 }
 
-/// The part of a plan read in the file's order.
+/// The parts of a plan this reader uses; other fields are skipped unread.
 #[derive(serde::Deserialize)]
+#[serde(expecting = "a HouseExpo JSON object")]
 struct Plan {
-    /// `room_category`'s entries.
-    room_category: Option<InOrder>,
+    /// The outline, checked point by point where it is used.
+    verts: Option<Value>,
+    /// The room boxes by room type.
+    room_category: Option<Categories>,
 }
 
-/// A JSON object's entries in the order of the file.
-struct InOrder(Vec<(String, Value)>);
+/// `room_category`'s entries in the order of the file (a `Value`'s map would sort them), or
+/// `None` when it is not an object: such a field is ignored, as the plan's other fields are.
+struct Categories(Option<Vec<(String, Value)>>);
 
-impl<'de> Deserialize<'de> for InOrder {
+impl<'de> Deserialize<'de> for Categories {
     fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
-        /// Collects the entries as they come.
+        /// Collects an object's entries as they come and skips any other value.
         struct Entries;
         impl<'de> Visitor<'de> for Entries {
-            type Value = InOrder;
+            type Value = Categories;
             fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
-                f.write_str("an object")
+                f.write_str("any JSON value")
             }
-            fn visit_map<A: MapAccess<'de>>(self, mut a: A) -> Result<InOrder, A::Error> {
+            fn visit_map<A: MapAccess<'de>>(self, mut a: A) -> Result<Categories, A::Error> {
                 let mut entries = Vec::new();
                 while let Some(entry) = a.next_entry::<String, Value>()? {
                     entries.push(entry);
                 }
-                Ok(InOrder(entries))
+                Ok(Categories(Some(entries)))
+            }
+            fn visit_seq<A: SeqAccess<'de>>(self, mut a: A) -> Result<Categories, A::Error> {
+                while a.next_element::<IgnoredAny>()?.is_some() {}
+                Ok(Categories(None))
+            }
+            fn visit_bool<E>(self, _: bool) -> Result<Categories, E> {
+                Ok(Categories(None))
+            }
+            fn visit_i64<E>(self, _: i64) -> Result<Categories, E> {
+                Ok(Categories(None))
+            }
+            fn visit_u64<E>(self, _: u64) -> Result<Categories, E> {
+                Ok(Categories(None))
+            }
+            fn visit_f64<E>(self, _: f64) -> Result<Categories, E> {
+                Ok(Categories(None))
+            }
+            fn visit_str<E>(self, _: &str) -> Result<Categories, E> {
+                Ok(Categories(None))
+            }
+            fn visit_unit<E>(self) -> Result<Categories, E> {
+                Ok(Categories(None))
             }
         }
-        d.deserialize_map(Entries)
+        d.deserialize_any(Entries)
     }
 }
 
@@ -404,11 +435,35 @@ mod tests {
     }
 
     #[test]
+    fn a_room_category_that_is_not_an_object_is_ignored() {
+        for cats in [
+            "null",
+            "3",
+            "-1",
+            "2.5",
+            "true",
+            "\"rooms\"",
+            "[[0, 0, 1, 1], {}]",
+        ] {
+            let text =
+                format!(r#"{{"verts": [[0,0],[1,0],[1,1],[0,1]], "room_category": {cats}}}"#);
+            let h = parse_houseexpo(&text, Path::new("t.json"), 0.5).expect(&text);
+            assert!(
+                h.room_types.is_empty() && h.rooms.iter().all(|&r| r == 0),
+                "{text}"
+            );
+        }
+    }
+
+    #[test]
     fn errors_name_the_file_and_the_field() {
         let p = Path::new("maps/h.json");
         for (text, want) in [
             ("{", "json"),
             ("{}", "verts"),
+            ("[[[0,0],[1,0],[0,1]]]", "expected a HouseExpo JSON object"),
+            ("3", "expected a HouseExpo JSON object"),
+            (r#"{"verts": 3}"#, "verts"),
             (r#"{"verts": [[0,0],[1]]}"#, "verts"),
             (r#"{"verts": [[0,0],[1,0]]}"#, "3 points"),
             (
