@@ -234,18 +234,19 @@ impl Plan {
         resolve(src, file, unbuilt, memory_mb)
     }
 
+    /// The belief map trial `t` builds: the scenario's, but Yamauchi's evidence grid with a
+    /// sonar, whose graded evidence only that grid takes.
+    pub fn belief(&self, t: &Trial) -> BeliefKind {
+        belief_with(&self.variants[t.variant].sensor, self.common.belief)
+    }
+
     /// The run configuration of `t` (everything but the map).
     pub fn config(&self, t: &Trial) -> RunConfig {
         let v = &self.variants[t.variant];
         let env = &self.envs[t.env];
         let mut cfg = RunConfig::new(v.strategy.clone());
         cfg.sensor = v.sensor;
-        // Sonar adds graded evidence: it always builds Yamauchi's evidence grid.
-        cfg.belief = if v.sensor.sonar_mode().is_some() {
-            sense::BeliefKind::Evidence
-        } else {
-            self.common.belief
-        };
+        cfg.belief = self.belief(t);
         cfg.sensing = self.common.sensing;
         cfg.robots = v.robots;
         cfg.clearance_m = self.common.clearance_m;
@@ -345,6 +346,16 @@ fn resolution_of(
                     .join(", ")
             ))),
         },
+    }
+}
+
+/// The belief a run with `sensor` builds when `belief` is asked for: the evidence grid with a
+/// sonar (its graded evidence fits no other belief), `belief` otherwise.
+pub fn belief_with(sensor: &SensorSpec, belief: BeliefKind) -> BeliefKind {
+    if sensor.sonar_mode().is_some() {
+        BeliefKind::Evidence
+    } else {
+        belief
     }
 }
 

@@ -61,10 +61,13 @@ pub fn config_of(row: &TrialRow) -> Result<RunConfig, BenchError> {
         .sensor
         .parse()
         .map_err(|e: <sense::SensorSpec as std::str::FromStr>::Err| bad("sensor", e.to_string()))?;
-    cfg.belief = row
+    let belief = row
         .belief
         .parse()
         .map_err(|e: <sense::BeliefKind as std::str::FromStr>::Err| bad("belief", e.to_string()))?;
+    // Stores written before a sonar trial's row named its evidence grid hold the
+    // scenario's belief there; the run built the evidence grid all the same.
+    cfg.belief = crate::plan::belief_with(&cfg.sensor, belief);
     cfg.sensing = Some(row.sensing.parse().map_err(
         |e: <explore::strategy::SensingMode as std::str::FromStr>::Err| {
             bad("sensing", e.to_string())

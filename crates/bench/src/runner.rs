@@ -437,7 +437,7 @@ pub fn row(plan: &Plan, t: &Trial, result: &RunResult, wall_s: f64) -> TrialRow 
         preset: s.preset,
         s_max: s.s_max,
         sensor: v.sensor.to_string(),
-        belief: plan.common.belief.to_string(),
+        belief: plan.belief(t).to_string(),
         sensing: s.sensing,
         robots: v.robots as i64,
         start_variant: i64::from(t.start_variant),

@@ -453,6 +453,50 @@ fn report_links_each_environment_to_a_replay_of_one_of_its_runs() {
     }
 }
 
+/// Regression: a sonar trial's row named the scenario's belief (`known`) though the run
+/// built the evidence grid, and the report's replay re-ran it with `known`, which a sonar
+/// refuses, so `--report` failed after every trial had run.
+#[test]
+fn regression_sonar_rows_name_the_evidence_grid_they_built() {
+    let dir = tempfile::tempdir().unwrap();
+    let db = dir.path().join("a.sqlite");
+    let text = r#"
+name = "sonar"
+sensors = ["sonar", "los:r=3c"]
+strategies = ["yamauchi"]
+[[env]]
+kind = "empty"
+size = [5, 5]
+resolution = 0.1
+start = [20, 20]
+"#;
+    let plan = Plan::resolve(&source(text), Unbuilt::Error).unwrap();
+    bench::runner::run(&plan, &db, &opts(1)).unwrap();
+    let beliefs: Vec<(String, String)> = rows(&db)
+        .into_iter()
+        .map(|r| (r.sensor, r.belief))
+        .collect();
+    assert_eq!(beliefs.len(), 2, "{beliefs:?}");
+    for (sensor, belief) in &beliefs {
+        let want = if sensor.starts_with("sonar") {
+            "evidence"
+        } else {
+            "known"
+        };
+        assert_eq!(belief, want, "{sensor}");
+    }
+    let out = dir.path().join("report");
+    bench::report::write(&db, &out, &bench::report::ReportOptions::default()).unwrap();
+    // A store written before the fix holds `known` for the sonar trial: its replay still runs.
+    let mut old = rows(&db)
+        .into_iter()
+        .find(|r| r.sensor.starts_with("sonar"))
+        .unwrap();
+    old.belief = "known".into();
+    let cfg = bench::replays::config_of(&old).unwrap();
+    assert_eq!(cfg.belief, sense::BeliefKind::Evidence);
+}
+
 /// Regression: `trials = 1_000_000_000` planned (and held) a billion trials before anything
 /// ran, until memory ran out. The count is checked before a trial is built.
 #[test]
