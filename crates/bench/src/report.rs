@@ -64,8 +64,13 @@ pub fn write(
     let envs = store.envs()?;
     let scenario = store.meta("scenario")?.unwrap_or_default();
     let fingerprint = store.meta("fingerprint")?.unwrap_or_default();
+    let description = store.meta("description")?;
     drop(store);
     let mut blocks = build(&scenario, &fingerprint, &rows, &envs, opts)?;
+    if let Some(text) = description {
+        // The scenario's own words, under the title.
+        blocks.insert(1, Block::Para(text));
+    }
     check_report_folder(out)?;
     std::fs::create_dir_all(out.join("plots")).map_err(BenchError::io(out))?;
     std::fs::create_dir_all(out.join("envs")).map_err(BenchError::io(out))?;

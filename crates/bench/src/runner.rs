@@ -145,6 +145,7 @@ pub fn run(plan: &Plan, db: &Path, opts: &RunOptions) -> Result<RunSummary, Benc
         Ok(have_envs && mine.iter().all(|t| done.contains(&t.key)))
     })?;
     if store.is_writable() {
+        store.describe(&plan.description)?;
         for p in &pictures {
             store.put_env(p, &source)?;
         }

@@ -702,6 +702,15 @@ impl Store {
         Ok(store)
     }
 
+    /// Keep the scenario's free-text `description` for the report (an empty one is not
+    /// kept; a later run's replaces an earlier one).
+    pub fn describe(&self, description: &str) -> Result<(), BenchError> {
+        match description.trim() {
+            "" => Ok(()),
+            text => self.set_meta("description", text),
+        }
+    }
+
     /// Whether this store was opened for writing (see [`Store::open_unless_finished`] for
     /// one that is not).
     pub fn is_writable(&self) -> bool {
@@ -1365,6 +1374,11 @@ impl Store {
         for input in inputs {
             let other = Store::open_read_only(input)?;
             let source = input.display().to_string();
+            if self.meta("description")?.is_none()
+                && let Some(text) = other.meta("description")?
+            {
+                self.describe(&text)?;
+            }
             for e in &other.envs()? {
                 self.put_env(e, &source)?;
             }

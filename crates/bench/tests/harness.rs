@@ -453,6 +453,39 @@ fn report_links_each_environment_to_a_replay_of_one_of_its_runs() {
     }
 }
 
+/// Regression: a scenario's `description`, "free text shown in reports", was read and then
+/// dropped: neither the store nor the report held it. It is kept in the store, carried by a
+/// merge of its shards, and printed under the report's title.
+#[test]
+fn regression_a_scenario_description_reaches_its_report() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = TINY.replace(
+        "seed = 7\n",
+        "seed = 7\ndescription = \"Mazes & offices <small>\"\n",
+    );
+    let plan = Plan::resolve(&source(&text), Unbuilt::Error).unwrap();
+    let shard = dir.path().join("s.sqlite");
+    let one_of_two = RunOptions {
+        shard: Some(Shard { index: 1, count: 2 }),
+        ..opts(1)
+    };
+    bench::runner::run(&plan, &shard, &one_of_two).unwrap();
+    let merged = dir.path().join("m.sqlite");
+    Store::merge(&merged, &[shard]).unwrap();
+    let out = dir.path().join("report");
+    bench::report::write(&merged, &out, &bench::report::ReportOptions::default()).unwrap();
+    let md = std::fs::read_to_string(out.join("report.md")).unwrap();
+    let html = std::fs::read_to_string(out.join("report.html")).unwrap();
+    assert!(
+        md.starts_with("# Benchmark report: tiny\n\nMazes & offices <small>\n"),
+        "{md}"
+    );
+    assert!(
+        html.contains("<p>Mazes &amp; offices &lt;small&gt;</p>"),
+        "{html}"
+    );
+}
+
 /// Regression: a sonar trial's row named the scenario's belief (`known`) though the run
 /// built the evidence grid, and the report's replay re-ran it with `known`, which a sonar
 /// refuses, so `--report` failed after every trial had run.
