@@ -822,10 +822,8 @@ fn resolve(
             if start.is_none() && perturbations == 0 {
                 // Each trial draws its own start: check that there is room for one and its
                 // team with the clearance, or every trial would fail when it runs.
-                room_for_team(&env, clearance_m, max_robots).map_err(|m| {
-                    let span = f.clearance.as_ref().map_or(Some(entry.span()), span_of);
-                    src.error(span, "clearance", format!("{}: {m}", env.name))
-                })?;
+                room_for_team(&env, clearance_m, max_robots)
+                    .map_err(|p| p.error(src, &f, entry, &key, &env.name))?;
             }
             env.starts = start_variants(
                 &env,
@@ -836,14 +834,7 @@ fn resolve(
                 master_seed,
                 max_robots,
             )
-            .map_err(|m| {
-                let span = entry
-                    .get_ref()
-                    .start
-                    .as_ref()
-                    .map_or(Some(entry.span()), span_of);
-                src.error(span, format!("{key}.start"), format!("{}: {m}", env.name))
-            })?;
+            .map_err(|p| p.error(src, &f, entry, &key, &env.name))?;
             let name_span = entry
                 .get_ref()
                 .name
@@ -1070,6 +1061,10 @@ fn load_env(
                         "resolution",
                         "expected one resolution (square cells)".to_string(),
                     ),
+                    MapFileError::ResolutionRequired(file, what) => (
+                        "resolution",
+                        format!("{file}: `resolution` is required for {what}"),
+                    ),
                     MapFileError::Load(message) => ("map", message),
                 };
                 src.error(span_of(m), format!("{key}.{field}"), message)
@@ -1224,12 +1219,24 @@ fn env_extent(
                     "expected at least one environment seed, found an empty list",
                 ));
             }
-            let seeds = list
+            let seeds: Vec<u64> = list
                 .get_ref()
                 .iter()
                 .enumerate()
                 .map(|(j, s)| nonneg(src, s, &format!("{key}.seeds[{j}]"), 0))
                 .collect::<Result<_, _>>()?;
+            let mut seen = std::collections::BTreeMap::new();
+            for (j, &seed) in seeds.iter().enumerate() {
+                if let Some(first) = seen.insert(seed, j) {
+                    return Err(src.error(
+                        span_of(&list.get_ref()[j]),
+                        format!("{key}.seeds[{j}]"),
+                        format!(
+                            "expected distinct seeds, found {seed} again (also seeds[{first}])"
+                        ),
+                    ));
+                }
+            }
             (seeds, k, span_of(list))
         }
         (None, Some(c)) => {
@@ -1368,15 +1375,73 @@ fn check_sensors(
 
 /// Whether a team of `robots` can start somewhere on `env` with `clearance_m`: a start the
 /// trials could draw, and its team around it (the error a trial would end with otherwise).
-fn room_for_team(env: &EnvInstance, clearance_m: f64, robots: usize) -> Result<(), String> {
+fn room_for_team(env: &EnvInstance, clearance_m: f64, robots: usize) -> Result<(), StartProblem> {
     let cells = &env.map.cells;
     let trav = sim::truth::traversable(cells, clearance_m / env.map.resolution);
     let components = sim::truth::components(cells, &trav);
     let mut rng = sim::seed::rng(0, &format!("{}|room", env.name));
-    let first =
-        sim::truth::random_start(&components, &mut rng, clearance_m).map_err(|e| e.to_string())?;
-    sim::truth::team_starts(cells, &trav, first, robots).map_err(|e| e.to_string())?;
+    let first = sim::truth::random_start(&components, &mut rng, clearance_m)
+        .map_err(|e| StartProblem::Clearance(e.to_string()))?;
+    sim::truth::team_starts(cells, &trav, first, robots)
+        .map_err(|e| StartProblem::Robots(format!("a start drawn at random, {e}")))?;
     Ok(())
+}
+
+/// Why an environment's starts could not be placed, by the key that is to blame.
+#[derive(Debug)]
+enum StartProblem {
+    /// The `[[env]]`'s `start` is not a free cell with the clearance.
+    Start(String),
+    /// No cell has the clearance to start from.
+    Clearance(String),
+    /// The largest team does not fit around its first robot's start (with the clearance).
+    Robots(String),
+    /// There are fewer cells within the radius than perturbations asked for.
+    Perturbations(String),
+}
+
+impl StartProblem {
+    /// The scenario error: the key to blame (`key` is the environment's, `env[i]`), its
+    /// span in `f`, and the message with the environment's `name`.
+    fn error(
+        self,
+        src: &Source,
+        f: &ScenarioFile,
+        entry: &toml::Spanned<crate::scenario::EnvEntry>,
+        key: &str,
+        name: &str,
+    ) -> BenchError {
+        let or_entry = |span: Option<std::ops::Range<usize>>| span.or(Some(entry.span()));
+        let (span, key, message) = match self {
+            StartProblem::Start(m) => (
+                or_entry(entry.get_ref().start.as_ref().and_then(span_of)),
+                format!("{key}.start"),
+                m,
+            ),
+            StartProblem::Clearance(m) => (
+                or_entry(f.clearance.as_ref().and_then(span_of)),
+                "clearance".into(),
+                m,
+            ),
+            // A clearance the file sets is what shrinks the room, so it is blamed first.
+            StartProblem::Robots(m) if f.clearance.is_some() => (
+                or_entry(f.clearance.as_ref().and_then(span_of)),
+                "clearance".into(),
+                m,
+            ),
+            StartProblem::Robots(m) => (
+                or_entry(f.robots.as_ref().and_then(span_of)),
+                "robots".into(),
+                m,
+            ),
+            StartProblem::Perturbations(m) => (
+                or_entry(f.perturbations.as_ref().and_then(span_of)),
+                "perturbations".into(),
+                m,
+            ),
+        };
+        src.error(span, key, format!("{name}: {message}"))
+    }
 }
 
 /// The start variants of `env` (see the module doc).
@@ -1388,7 +1453,7 @@ fn start_variants(
     clearance_m: f64,
     master_seed: u64,
     max_robots: usize,
-) -> Result<Vec<Option<Vec<Cell>>>, String> {
+) -> Result<Vec<Option<Vec<Cell>>>, StartProblem> {
     let cells = &env.map.cells;
     if start.is_none() && perturbations == 0 {
         return Ok(vec![None]);
@@ -1397,17 +1462,19 @@ fn start_variants(
     let components = sim::truth::components(cells, &trav);
     let base = match start {
         Some(c) => {
-            sim::truth::check_start(cells, &trav, c).map_err(|e| e.to_string())?;
+            sim::truth::check_start(cells, &trav, c)
+                .map_err(|e| StartProblem::Start(e.to_string()))?;
             c
         }
         None => {
             let mut rng = sim::seed::rng(master_seed, &format!("{}|base", env.name));
             sim::truth::random_start(&components, &mut rng, clearance_m)
-                .map_err(|e| e.to_string())?
+                .map_err(|e| StartProblem::Clearance(e.to_string()))?
         }
     };
     let team = |first: Cell| {
-        sim::truth::team_starts(cells, &trav, first, max_robots).map_err(|e| e.to_string())
+        sim::truth::team_starts(cells, &trav, first, max_robots)
+            .map_err(|e| StartProblem::Robots(e.to_string()))
     };
     if perturbations == 0 {
         return Ok(vec![Some(team(base)?)]);
@@ -1422,12 +1489,12 @@ fn start_variants(
         })
         .collect();
     if perturbations as usize > near.len() {
-        return Err(format!(
+        return Err(StartProblem::Perturbations(format!(
             "{perturbations} perturbations of the start within {} m, but only {} reachable \
              cells lie there: expected at most that many (or a larger radius)",
             radius_m.unwrap_or(0.0),
             near.len()
-        ));
+        )));
     }
     // A partial Fisher–Yates shuffle: the first k cells of it are k distinct draws, and
     // the first j of them do not depend on k.

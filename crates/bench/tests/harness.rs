@@ -358,6 +358,51 @@ fn bad_scenarios_name_file_line_and_key() {
     assert!(e.contains("line 7") && e.contains("trials"), "{e}");
 }
 
+/// Regression: scenario errors blamed a key the file did not set or that was not at fault:
+/// a team too large for a drawn start blamed `clearance`, too many perturbations blamed
+/// `env[0].start`, a repeated seed `env[0].name`, and a bitmap without a resolution named
+/// the CLI's `--resolution`.
+#[test]
+fn regression_scenario_errors_blame_the_key_at_fault() {
+    let cases = [
+        (
+            ("robots = [1, 2]", "robots = [1, 1000]"),
+            "tiny.toml:4: key `robots`",
+            "1000 robots need one each",
+        ),
+        (
+            ("trials = 2", "trials = 2\nperturbations = 500\nradius = 1"),
+            "tiny.toml:8: key `perturbations`",
+            "500 perturbations of the start within 1 m",
+        ),
+        (
+            ("seeds = [0]", "seeds = [0, 3, 0]"),
+            "tiny.toml:11: key `env[0].seeds[2]`",
+            "expected distinct seeds, found 0 again (also seeds[0])",
+        ),
+    ];
+    for ((from, to), place, what) in cases {
+        let e = error_of((from, to));
+        assert!(e.starts_with(place), "{to}: {e}");
+        assert!(e.contains(what), "{to}: {e}");
+    }
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("plan.pgm"), b"P5\n2 2\n255\n\0\0\0\0").unwrap();
+    let path = dir.path().join("s.toml");
+    std::fs::write(
+        &path,
+        "strategies = [\"cf\"]\n[[env]]\nmap = \"plan.pgm\"\n",
+    )
+    .unwrap();
+    let src = Source::read(&path).unwrap();
+    let e = Plan::resolve(&src, Unbuilt::Error).unwrap_err().to_string();
+    assert!(e.contains("s.toml:3: key `env[0].resolution`"), "{e}");
+    assert!(
+        e.ends_with("plan.pgm: `resolution` is required for a bare bitmap"),
+        "{e}"
+    );
+}
+
 #[test]
 fn unreadable_map_file_names_the_key() {
     let dir = tempfile::tempdir().unwrap();

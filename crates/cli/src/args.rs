@@ -33,6 +33,9 @@ pub fn load_map_file(
                 None => "none".into(),
             }
         ),
+        MapFileError::ResolutionRequired(file, what) => {
+            anyhow::anyhow!("{file}: --resolution is required for {what}")
+        }
         MapFileError::Load(message) => anyhow::Error::msg(message),
     })
 }

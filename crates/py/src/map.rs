@@ -202,6 +202,10 @@ pub fn read_file(
                     None => "none".into(),
                 }
             ),
+            // In the CLI's words, as the other messages are.
+            MapFileError::ResolutionRequired(file, what) => {
+                format!("{file}: --resolution is required for {what}")
+            }
             MapFileError::Load(message) => message,
         })?;
     Ok((map, stem(path), start))

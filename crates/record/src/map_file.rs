@@ -9,7 +9,7 @@
 
 use std::path::Path;
 
-use grid::io::LoadOptions;
+use grid::io::{LoadOptions, MapErrorKind};
 use grid::{Cell, GridMap};
 
 /// Whether `path` names an MCAP recording (by its extension, in any case).
@@ -28,6 +28,9 @@ pub enum MapFileError {
     McapOption(&'static str),
     /// A dungeon PNG needs one resolution for square cells; this was given instead.
     DungeonResolution(Option<(f64, f64)>),
+    /// The file's format needs a resolution and none was given: the file as the message
+    /// shows it, and what it is (e.g. `a bare bitmap`).
+    ResolutionRequired(String, &'static str),
     /// The file could not be read as a map; the message names the file.
     Load(String),
 }
@@ -68,7 +71,12 @@ pub fn load(
             grid::io::load_dungeon(path, r, opts).map_err(|e| MapFileError::Load(e.to_string()))?;
         return Ok((d.map, Some(d.start)));
     }
-    let map = grid::io::load_map(path, opts).map_err(|e| MapFileError::Load(e.to_string()))?;
+    let map = grid::io::load_map(path, opts).map_err(|e| match e.kind {
+        MapErrorKind::ResolutionRequired(what) => {
+            MapFileError::ResolutionRequired(e.path.display().to_string(), what)
+        }
+        _ => MapFileError::Load(e.to_string()),
+    })?;
     Ok((map, None))
 }
 
@@ -131,6 +139,12 @@ mod tests {
         let (map, start) = load(&path, &opts(Some((0.5, 0.5)), false), None, false).unwrap();
         assert_eq!((map.width(), map.height(), start), (4, 3, None));
         assert_eq!(map.resolution, 0.5);
+        let bitmap = load(&dir.join("plan.png"), &opts(None, false), None, false);
+        let want = (dir.join("plan.png").display().to_string(), "a bare bitmap");
+        assert_eq!(
+            bitmap.unwrap_err(),
+            MapFileError::ResolutionRequired(want.0, want.1)
+        );
         let missing = load(&dir.join("none.txt"), &opts(None, false), None, false);
         assert!(matches!(missing, Err(MapFileError::Load(m)) if m.contains("none.txt")));
         std::fs::remove_dir_all(&dir).unwrap();
