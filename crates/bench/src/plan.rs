@@ -924,6 +924,9 @@ fn resolve(
         .as_ref()
         .map(|o| optimal_spec(src, o))
         .transpose()?;
+    if let Some(spec) = &optimal {
+        check_coarse_maps(src, &f, spec, &envs, &variants)?;
+    }
     // A competitive ratio compares lengths to the same goal: with `[optimal]`, online runs
     // stop once the goal's share of the free cells is perceived (all of them by default),
     // not when the last frontier (often an unseen wall cell) is gone.
@@ -943,6 +946,44 @@ fn resolve(
         skipped,
         optimal,
     })
+}
+
+/// Refuse an `[optimal]` cell size that leaves an environment's coarsened map with no free
+/// cell: every trial it applies to would run and then fail for want of an optimal path.
+fn check_coarse_maps(
+    src: &Source,
+    f: &ScenarioFile,
+    spec: &crate::competitive::OptimalSpec,
+    envs: &[EnvInstance],
+    variants: &[Variant],
+) -> Result<(), BenchError> {
+    let applies = variants
+        .iter()
+        .any(|v| crate::competitive::OptimalSpec::applies(&v.sensor, v.robots));
+    if spec.cell_size <= 1 || !applies {
+        return Ok(());
+    }
+    for env in envs {
+        let coarse = grid::resample::coarsen(&env.map, spec.cell_size);
+        if !coarse.cells.data().iter().any(|o| o.is_free()) {
+            let span = f
+                .optimal
+                .as_ref()
+                .and_then(|o| o.get_ref().cell_size.as_ref());
+            return Err(src.error(
+                span.and_then(span_of),
+                "optimal.cell_size",
+                format!(
+                    "{}: the map coarsened by {} ({} m cells) has no free cell: expected a \
+                     smaller cell size",
+                    env.name,
+                    spec.cell_size,
+                    grid::Num(coarse.resolution)
+                ),
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// Check the `[optimal]` table.

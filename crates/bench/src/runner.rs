@@ -353,7 +353,8 @@ fn with_optimal(
     let (path, solved) = cache.get_or_solve(&key, || {
         crate::competitive::solve_path(&env.map, start, &v.sensor, goal, spec)
     });
-    let path = path.map_err(|e| BenchError::Other(format!("{}: {e}", t.key)))?;
+    // The caller names the trial.
+    let path = path.map_err(BenchError::Other)?;
     if solved {
         store
             .lock()

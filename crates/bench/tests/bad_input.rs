@@ -463,3 +463,23 @@ fn regression_a_clearance_with_no_room_is_refused_at_plan_time() {
     let one = ONE.replace("sensors", "clearance = 1.2\nsensors");
     Plan::resolve(&source(&one), Unbuilt::Error).expect("room for one");
 }
+
+/// Regression: an `[optimal]` cell size that leaves a map no free cell passed planning, and
+/// every trial then ran and was thrown away ("the map coarsened by 2 has no free cell"),
+/// its key printed twice in the failure. It is refused at plan time at `optimal.cell_size`.
+#[test]
+fn regression_an_optimal_cell_size_with_no_free_cell_is_refused_at_plan_time() {
+    // An open 4 x 4 m room at 0.5 m: its 8 x 8 cells, walls around, coarsen by 2 to free
+    // cells inside and by 8 to one cell that holds walls.
+    let coarse = |k: u32| ONE.replace("[[env]]", &format!("[optimal]\ncell_size = {k}\n\n[[env]]"));
+    let e = error_of(&coarse(8));
+    assert!(e.starts_with("s.toml:7: key `optimal.cell_size`"), "{e}");
+    assert!(
+        e.contains("empty-s0-4x4m-r0.5: the map coarsened by 8 (4 m cells) has no free cell"),
+        "{e}"
+    );
+    Plan::resolve(&source(&coarse(2)), Unbuilt::Error).expect("room at 1 m cells");
+    // Only runs that get an optimal path are checked: a team's do not.
+    let team = coarse(8).replace("sensors", "robots = [2]\nsensors");
+    Plan::resolve(&source(&team), Unbuilt::Error).expect("no single-robot run");
+}
