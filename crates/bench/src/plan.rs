@@ -58,8 +58,10 @@ use crate::scenario::{ScenarioFile, Source};
 /// coverage curve and the D/T milestones are measured along the string-pulled routes; a
 /// trial that stops short of its goal has no competitive ratio; v13: a run's time is the
 /// last robot's clock, stops after bumps and waits included, as its milestones' times are,
-/// and a team's run ends when no robot can reach a candidate).
-pub const STRATEGY_REVISION: u32 = 13;
+/// and a team's run ends when no robot can reach a candidate; v14: under imperfect sensing
+/// (sonar, furniture) with a clearance, a robot standing within its clearance backs away
+/// to a cell that keeps it before it decides).
+pub const STRATEGY_REVISION: u32 = 14;
 
 /// A resolved study: environments, variants, common settings and the flat trial list.
 #[derive(Clone, Debug)]

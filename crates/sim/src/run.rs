@@ -14,7 +14,10 @@
 //! A robot whose next cell is an obstacle in the truth, or whose diagonal step passes a
 //! corner it cannot squeeze through, bumps: it stops for [`BUMP_S`] seconds, senses again,
 //! pins those cells occupied in its belief and re-plans; the cells it stands on are pinned
-//! free. Yamauchi's no-progress rule then puts a goal that is not approached for its time
+//! free. A robot that then stands within its clearance of what it met (or of an obstacle
+//! its evidence grid believed only once it was near) backs away to the nearest cell that
+//! keeps the clearance before it decides: no search leads out from deep inside the
+//! clearance. Yamauchi's no-progress rule then puts a goal that is not approached for its time
 //! limit on the inaccessible list, also across such re-plans.
 //!
 //! A robot that senses only on arrival or every n cells moves blind in between. Before it
@@ -1227,6 +1230,64 @@ impl Team<'_> {
         self.decide(robots, &[r]);
     }
 
+    /// Under imperfect sensing robot `r` may come to stand within its clearance of an
+    /// obstacle: one its body met (a bump), or one its evidence grid believed only once it
+    /// was near. A search leaves such a cell only through a neighbour that keeps the
+    /// clearance, so deep inside it the run would end with frontiers left. Before it decides,
+    /// the robot backs away along the cheapest way over cells its belief shows free to the
+    /// nearest cell that keeps the clearance (looked for within the clearance and two cells
+    /// of where it stands). A cell its body meets on the way is pinned occupied and ends the
+    /// retreat there.
+    fn back_off(&mut self, robots: &mut [Robot], r: usize) {
+        let known = self.belief.known();
+        let here = robots[r].cell as usize;
+        if self.upkeep.is_traversable(known, here) {
+            return;
+        }
+        let reach = self.cfg.clearance_m / self.truth.resolution + 2.0;
+        let route = retreat(known, here, reach, |i| self.upkeep.is_traversable(known, i));
+        for next in route {
+            if self.body()[next as usize] != Occ::Free {
+                self.changed.clear();
+                self.belief
+                    .pin(next as usize, Occ::Occupied, &mut self.changed);
+                self.absorb_changes();
+                break;
+            }
+            self.travel(robots, r, next);
+            if self.cfg.sensing_mode() == SensingMode::Continuous {
+                let cell = self.truth.cells.cell(next as usize);
+                self.look(robots, r, cell, false);
+            }
+            self.pin_free(next);
+            self.record(robots, r);
+        }
+    }
+
+    /// Robot `r` moves to the neighbouring cell `next`: its heading, distance, clock and
+    /// (any-angle motion) trail, and the run's move count and distance.
+    fn travel(&mut self, robots: &mut [Robot], r: usize, next: u32) {
+        let cells = &self.truth.cells;
+        let (a, b) = (
+            cells.cell(robots[r].cell as usize),
+            cells.cell(next as usize),
+        );
+        let (dx, dy) = (b.x - a.x, b.y - a.y);
+        let len = step_cost(dx, dy);
+        let robot = &mut robots[r];
+        robot.cell = next;
+        robot.heading = f64::from(dy).atan2(f64::from(dx));
+        robot.dist_cells += len;
+        if self.cfg.motion == Motion::AnyAngle {
+            robot.trail.push(next);
+            self.move_log.push(r as u32);
+        }
+        robot.clock += len * self.truth.resolution / self.cfg.speed;
+        robot.unsensed = robot.unsensed.saturating_add(1);
+        self.moves += 1;
+        self.total_dist_cells += len;
+    }
+
     /// Yamauchi's no-progress rule: if robot `r`'s goal has not come closer for the limit,
     /// put it on the inaccessible list and drop it (the caller decides again). A robot that
     /// senses on arrival then sweeps where it stands (§2.3: it "will then conduct a sensor
@@ -1367,6 +1428,11 @@ impl Team<'_> {
     // Robot r's state is spread over several parallel buffers, so index loops read best.
     #[allow(clippy::needless_range_loop)]
     fn decide(&mut self, robots: &mut [Robot], who: &[usize]) {
+        if self.imperfect && self.cfg.clearance_m > 0.0 {
+            for &r in who {
+                self.back_off(robots, r);
+            }
+        }
         if matches!(self.cfg.sensing_mode(), SensingMode::Every(_)) {
             // Sensing every n-th cell: a robot looks before it decides where it stands.
             for &r in who {
@@ -1670,25 +1736,13 @@ impl Team<'_> {
                 return;
             }
         }
-        let (dx, dy) = (b.x - a.x, b.y - a.y);
-        let len = step_cost(dx, dy);
+        self.travel(robots, r, next);
         {
             let robot = &mut robots[r];
-            robot.cell = next;
-            robot.heading = f64::from(dy).atan2(f64::from(dx));
-            robot.dist_cells += len;
-            if self.cfg.motion == Motion::AnyAngle {
-                robot.trail.push(next);
-                self.move_log.push(r as u32);
-            }
-            robot.remaining -= len;
-            robot.clock += len * self.truth.resolution / self.cfg.speed;
+            robot.remaining -= step_cost(b.x - a.x, b.y - a.y);
             robot.path_pos += 1;
             robot.moves_since_decision += 1;
         }
-        self.moves += 1;
-        self.total_dist_cells += len;
-        robots[r].unsensed = robots[r].unsensed.saturating_add(1);
         let scan = match self.cfg.sensing_mode() {
             SensingMode::Continuous => true,
             SensingMode::OnArrival => false,
@@ -1755,5 +1809,88 @@ impl Team<'_> {
             self.decide(robots, &all);
             self.all = all;
         }
+    }
+}
+
+/// The cells, in order, of the cheapest way (octile steps, no corner cut) from `from` over
+/// cells `known` shows free, within `reach` cells of it, to the nearest cell `keeps` accepts;
+/// empty if none lies within reach. Ties go to the lower cell index.
+fn retreat(known: &Grid<Occ>, from: usize, reach: f64, keeps: impl Fn(usize) -> bool) -> Vec<u32> {
+    use std::cmp::Reverse;
+    use std::collections::{BinaryHeap, HashMap};
+    let origin = known.cell(from);
+    let free = |c: Cell| known.contains(c) && *known.get(c) == Occ::Free;
+    let within = |c: Cell| {
+        let (dx, dy) = (f64::from(c.x - origin.x), f64::from(c.y - origin.y));
+        dx * dx + dy * dy <= reach * reach
+    };
+    // Costs are queued as the bits of non-negative f64s, which order as the values do.
+    let mut best: HashMap<usize, (f64, usize)> = HashMap::new();
+    let mut queue = BinaryHeap::new();
+    best.insert(from, (0.0, from));
+    queue.push(Reverse((0u64, from)));
+    while let Some(Reverse((bits, i))) = queue.pop() {
+        let cost = f64::from_bits(bits);
+        if best.get(&i).is_some_and(|&(c, _)| c < cost) {
+            continue;
+        }
+        if i != from && keeps(i) {
+            let mut route = Vec::new();
+            let mut at = i;
+            while at != from {
+                route.push(at as u32);
+                at = best[&at].1;
+            }
+            route.reverse();
+            return route;
+        }
+        let c = known.cell(i);
+        for (dx, dy) in [
+            (-1, -1),
+            (0, -1),
+            (1, -1),
+            (-1, 0),
+            (1, 0),
+            (-1, 1),
+            (0, 1),
+            (1, 1),
+        ] {
+            let n = Cell::new(c.x + dx, c.y + dy);
+            let diagonal_clear = dx == 0
+                || dy == 0
+                || (free(Cell::new(c.x + dx, c.y)) && free(Cell::new(c.x, c.y + dy)));
+            if !free(n) || !within(n) || !diagonal_clear {
+                continue;
+            }
+            let j = known.index(n);
+            let next = cost + step_cost(dx, dy);
+            if best.get(&j).is_none_or(|&(c, _)| next < c) {
+                best.insert(j, (next, i));
+                queue.push(Reverse((next.to_bits(), j)));
+            }
+        }
+    }
+    Vec::new()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::retreat;
+    use grid::io::parse_ascii;
+
+    /// The way out of a corridor's dead end: the cheapest over free cells, never cutting a
+    /// corner, to the nearest accepted cell within reach; none beyond reach.
+    #[test]
+    fn retreat_takes_the_cheapest_way_to_the_nearest_accepted_cell() {
+        let map = parse_ascii("#######\n#.....#\n#.#...#\n#######\n", 0.1).unwrap();
+        let known = &map.cells;
+        let at = |x, y| known.index(grid::Cell::new(x, y)) as u32;
+        // From (1, 2), to the nearest cell of column 4: up, then right along row 1 (the
+        // diagonal to (2, 1) would cut the wall's corner at (2, 2)).
+        let route = retreat(known, at(1, 2) as usize, 5.0, |i| known.cell(i).x == 4);
+        assert_eq!(route, [at(1, 1), at(2, 1), at(3, 1), at(4, 1)]);
+        // Column 5 lies beyond a reach of 3 cells.
+        let none = retreat(known, at(1, 2) as usize, 3.0, |i| known.cell(i).x == 5);
+        assert!(none.is_empty());
     }
 }
