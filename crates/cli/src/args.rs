@@ -324,10 +324,14 @@ pub fn check_output_file(flag: &str, path: &Path) -> Result<()> {
         );
     }
     if let Some(folder) = grid::io::missing_folder(path) {
+        let found = if folder.exists() {
+            format!("{}, which is a file", folder.display())
+        } else {
+            format!("no folder {}", folder.display())
+        };
         bail!(
-            "{flag} {}: expected a file in an existing folder, found no folder {}",
-            path.display(),
-            folder.display()
+            "{flag} {}: expected a file in an existing folder, found {found}",
+            path.display()
         );
     }
     let existed = path.exists();
@@ -357,10 +361,27 @@ pub fn check_output_folder(flag: &str, dir: &Path) -> Result<()> {
     Ok(())
 }
 
-/// Create the output folder `flag` names before a run (or reuse it), so that a bad path is
-/// refused before the work rather than after it.
+/// Create the output folder `flag` names before a run (or reuse it) and check that files
+/// can be written in it, so that a bad path is refused before the work rather than after
+/// it.
 pub fn make_output_folder(flag: &str, dir: &Path) -> Result<()> {
     check_output_folder(flag, dir)?;
     std::fs::create_dir_all(dir)
-        .with_context(|| format!("{flag} {}: cannot create the folder", dir.display()))
+        .with_context(|| format!("{flag} {}: cannot create the folder", dir.display()))?;
+    // A folder that is there may not be ours to write in (another user's, read-only).
+    let probe = dir.join(format!(".frontier-write-check-{}", std::process::id()));
+    match std::fs::OpenOptions::new()
+        .write(true)
+        .create_new(true)
+        .open(&probe)
+    {
+        Ok(_) => {
+            let _ = std::fs::remove_file(&probe);
+            Ok(())
+        }
+        Err(e) => bail!(
+            "{flag} {}: expected a folder files can be written in, found {e}",
+            dir.display()
+        ),
+    }
 }

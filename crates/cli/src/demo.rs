@@ -74,7 +74,7 @@ pub fn check_seeds(seeds: u64) -> Result<()> {
 /// Run `frontier demo`.
 pub fn run(a: DemoArgs) -> Result<()> {
     check_seeds(a.seeds)?;
-    crate::args::make_output_folder("--out", &a.out)?;
+    crate::args::check_output_folder("--out", &a.out)?;
     let kinds: Vec<EnvKind> = parse_list(&a.envs, "--envs", str::parse)?;
     let strategies = parse_list(&a.strategies, "--strategies", Strategy::preset)?;
     let sensor: SensorSpec = a
@@ -88,6 +88,8 @@ pub fn run(a: DemoArgs) -> Result<()> {
              `frontier sensors`)"
         );
     }
+    // Made once every flag is read: a refused command leaves no folder behind.
+    crate::args::make_output_folder("--out", &a.out)?;
     // One environment per (kind, seed), shared by all strategies.
     let envs: Vec<Vec<world::Environment>> = kinds
         .iter()

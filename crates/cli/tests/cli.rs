@@ -327,6 +327,33 @@ fn regression_failed_command_leaves_no_output_folder() {
     assert!(e.contains("expected a folder, found a file"), "{e}");
 }
 
+/// Regression: an `--out` folder that is there but cannot be written in was found out only
+/// when the run, done, wrote its pictures (`error: writing ro/final.png: Permission
+/// denied`, naming no flag); `demo` made its `--out` folder before it read `--sensor`, so
+/// a refused sensor left an empty folder; a `--gif` path through a file said "no folder".
+#[test]
+fn regression_an_unwritable_out_folder_is_refused_before_the_run() {
+    // Linux's /proc: a folder no one, not even root, can add a file to.
+    if std::path::Path::new("/proc/self").exists() {
+        let e = err(&["explore", "--env", "maze", "--out", "/proc"]);
+        assert!(
+            e.contains("--out /proc: expected a folder files can be written in"),
+            "{e}"
+        );
+        assert!(!e.contains("final.png"), "refused after the run: {e}");
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let demo = dir.path().join("demo");
+    let e = err(&["demo", "--out", demo.to_str().unwrap(), "--sensor", "sonar"]);
+    assert!(e.contains("--sensor"), "{e}");
+    assert!(!demo.exists(), "demo left its folder");
+    let file = dir.path().join("afile");
+    std::fs::write(&file, "").unwrap();
+    let gif = file.join("x.gif");
+    let e = err(&["explore", "--env", "maze", "--gif", gif.to_str().unwrap()]);
+    assert!(e.contains("which is a file"), "{e}");
+}
+
 /// Regression: the summary named the folder of `--out` but not the files `--gif`,
 /// `--html` and `--mcap` wrote.
 #[test]
