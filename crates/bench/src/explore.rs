@@ -159,7 +159,8 @@ pub fn config(
     cfg.belief = belief;
     cfg.sensing = sensing;
     cfg.robots = o.robots;
-    cfg.clearance_m = o.clearance;
+    // + 0.0: `--clearance -0` is no clearance, and prints as 0.
+    cfg.clearance_m = o.clearance + 0.0;
     cfg.speed = o.speed;
     cfg.seed = o.seed;
     cfg.coverage_goal = o.goal;
