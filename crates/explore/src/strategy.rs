@@ -11,7 +11,7 @@
 //! | `cf-rr-seg-any` | Holz et al. 2010, literal | all frontier cells | nearest in the robot's segment first, corridors included | as `cf-rr` | continuous |
 //! | `dt`, `dt500` | González-Baños & Latombe, Holz §3.2 | 100 / 500 samples near frontiers | max I·exp(−0.2 L) | on arrival | continuous |
 //! | `dt-rr` | beyond the paper | as `dt` | as `dt` | also when the target's utility halves | continuous |
-//! | `nearest`, `greedy`, `greedy-utility`, `minpos` | seed 002 | all frontier cells | as named | on arrival (per robot) | continuous |
+//! | `nearest`, `greedy`, `greedy-utility`, `minpos` | coordination study | all frontier cells | as named | on arrival (per robot) | continuous |
 //! | `<a>-<c>` e.g. `ha-cc` | Faigl & Kulich 2013 | `af`, `centroids`, `rfe`, `cc` | `nearest`, `greedy`/`ia`, `ga`, `greedy-utility`, `minpos`, `ha`, `ma`, `sga` | every s_max = 7 moves (team) | continuous |
 
 use crate::assign::AssignerKind;

@@ -1,4 +1,4 @@
-//! Greedy (seed 002 Alg. 2 / Faigl & Kulich's IA) and GA against slow re-implementations on
+//! Greedy (the coordination study's Alg. 2 / Faigl & Kulich's IA) and GA against slow re-implementations on
 //! random cost matrices with unreachable pairs and taken goals, plus a worked example.
 
 use explore::assign::{greedy, random_order};

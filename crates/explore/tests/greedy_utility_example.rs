@@ -1,4 +1,4 @@
-//! Greedy with utility (seed 002 Alg. 3) on worked examples: the utility reduction sends the
+//! Greedy with utility (the coordination study's Alg. 3) on worked examples: the utility reduction sends the
 //! second robot away from the first one's goal where plain greedy would not.
 
 use explore::assign::{greedy, greedy_utility};

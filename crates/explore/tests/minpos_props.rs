@@ -1,4 +1,4 @@
-//! MinPos (Bautin et al.; seed 002 Alg. 4): ranks from the robots' reachability maps equal a
+//! MinPos (Bautin et al.; the coordination study's Alg. 4): ranks from the robots' reachability maps equal a
 //! brute-force count over wavefronts grown from each frontier cell (Bautin's own method), and
 //! each deciding robot gets a goal of minimal (rank, cost), on small random maps.
 

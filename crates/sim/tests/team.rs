@@ -1,4 +1,4 @@
-//! Teams: every multi-robot preset (seed 002's nearest, greedy, greedy-utility, MinPos and
+//! Teams: every multi-robot preset (the coordination study's nearest, greedy, greedy-utility, MinPos and
 //! Faigl & Kulich's `<assigner>-<candidates>`) explores every built-in environment
 //! completely (coverage 1.0, no frontier left) with m ∈ {1, 3, 5, 10} robots, and a repeat
 //! run with the same seed gives the same result bit for bit.

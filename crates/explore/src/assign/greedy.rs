@@ -1,4 +1,4 @@
-//! Greedy assignment (seed 002 Alg. 2; Faigl & Kulich's IA).
+//! Greedy assignment (the coordination study's Alg. 2; Faigl & Kulich's IA).
 //!
 //! Repeatedly the globally cheapest (robot, goal) pair whose robot has no goal yet and whose
 //! goal is still free is taken, and both leave their lists. When the free goals run out

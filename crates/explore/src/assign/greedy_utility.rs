@@ -1,4 +1,4 @@
-//! Greedy with utility (seed 002 Alg. 3; Burgard et al., Simmons et al.).
+//! Greedy with utility (the coordination study's Alg. 3; Burgard et al., Simmons et al.).
 //!
 //! Every goal starts with utility U_j = 1. Repeatedly the pair (robot k, goal j) of a robot
 //! without a goal and a free goal maximising U_j − β·c_kj is taken, and the utility of every
@@ -8,7 +8,7 @@
 //! out before the robots; utilities are not reset by the refill, so a robot sent to an
 //! already chosen area prefers the least covered goal.
 //!
-//! Choice of β. Neither seed 002 nor the issue gives a value. Costs are path lengths in
+//! Choice of β. The coordination study gives no value. Costs are path lengths in
 //! cells and utilities lie in [0, 1], so 1/β is the detour (in cells) a robot accepts to
 //! avoid a goal whose whole utility was taken away by a goal chosen on top of it; the
 //! natural scale is β ≈ 1/ρ (a detour of about one sensor range). Measured with this code

@@ -1,4 +1,4 @@
-//! MinPos (Bautin, Simonin & Charpillet 2012; seed 002 Alg. 4).
+//! MinPos (Bautin, Simonin & Charpillet 2012; the coordination study's Alg. 4).
 //!
 //! For robot i and goal j the rank P_ij is the number of robots strictly closer to goal j
 //! than robot i, by path. Each deciding robot takes the goal of minimal rank, ties broken by

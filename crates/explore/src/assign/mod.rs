@@ -2,7 +2,7 @@
 //!
 //! One file per rule. Single-robot rules (nearest, random) also serve a team, each robot
 //! deciding on its own — which is the uncoordinated "nearest frontier" strategy of the
-//! multi-robot study (seed 002).
+//! multi-robot coordination study.
 
 pub mod costs;
 pub mod greedy;
@@ -23,17 +23,17 @@ use crate::decision::{DecisionCtx, Goal};
 /// Which assigner a strategy uses.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum AssignerKind {
-    /// Each robot takes the candidate nearest to it by path (Yamauchi; Holz's CF; seed 002's
+    /// Each robot takes the candidate nearest to it by path (Yamauchi; Holz's CF; the coordination study's
     /// uncoordinated "nearest frontier").
     Nearest,
     /// Each robot takes a reachable candidate uniformly at random (Holz's RF baseline).
     Random,
-    /// Repeatedly the globally cheapest free (robot, goal) pair (seed 002 Alg. 2; Faigl &
+    /// Repeatedly the globally cheapest free (robot, goal) pair (the coordination study's Alg. 2; Faigl &
     /// Kulich's IA, Broadcast of Local Eligibility).
     Greedy,
     /// Robots in random order each take their cheapest unassigned goal (Faigl & Kulich's GA).
     RandomOrderGreedy,
-    /// Greedy on U_j − β·c_ij with utilities lowered near chosen goals (Burgard/Simmons; seed 002 Alg. 3).
+    /// Greedy on U_j − β·c_ij with utilities lowered near chosen goals (Burgard/Simmons; the coordination study's Alg. 3).
     GreedyUtility {
         /// β: weight of the travel cost against the utility.
         beta: f64,

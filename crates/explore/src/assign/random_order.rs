@@ -7,7 +7,7 @@
 //! Precisions and deviations:
 //! - goals of robots that keep their goal this time count as assigned;
 //! - Faigl & Kulich do not say what a robot does when every goal is taken; as in greedy
-//!   (seed 002 Alg. 2) the goal set is then refilled, so that robot takes its cheapest goal
+//!   (the coordination study's Alg. 2) the goal set is then refilled, so that robot takes its cheapest goal
 //!   overall (later robots again prefer goals nobody took since the refill);
 //! - ties between goals of equal cost go to the earlier candidate;
 //! - each robot's search, guided toward the goals free at its turn, grows only until it

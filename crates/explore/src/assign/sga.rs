@@ -12,8 +12,8 @@
 //! the penalty o of every frontier within ρ of the chosen one (ρ: sensor range, cells).
 //!
 //! Choices and deviations:
-//! - ‖·‖² is read as the issue states it, the squared Euclidean distance (the extracted
-//!   formula is ambiguous between a square and an L2 subscript). All lengths are in cells.
+//! - ‖·‖² is read as the squared Euclidean distance (the extracted formula is ambiguous
+//!   between a square and an L2 subscript). All lengths are in cells.
 //! - "The map centre" start: m identical centres would leave all but one cluster empty, so
 //!   the first centres sit on a circle of one cell around the centre (angle 2πj/m). After
 //!   the first clustering, cluster j is given to robot r by an optimal assignment of the

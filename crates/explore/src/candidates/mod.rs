@@ -1,6 +1,6 @@
 //! Goal candidates: which cells a strategy may send a robot to.
 //!
-//! One file per kind: all frontier cells (Holz's closest frontier, seed 002, Faigl's AF),
+//! One file per kind: all frontier cells (Holz's closest frontier, the coordination study's, Faigl's AF),
 //! region centroids (Yamauchi), free-edge representatives (RFE) and coverage candidates
 //! (CC) of Faigl & Kulich, and decision-theoretic samples (González-Baños & Latombe).
 

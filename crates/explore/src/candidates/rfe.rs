@@ -8,8 +8,8 @@
 //!
 //! Deviations and choices:
 //! - A mean may lie off the edge (a curved edge) or in unknown space, so each one is
-//!   snapped to the nearest cell of its edge (ties: the lower cell index), as the issue
-//!   asks.
+//!   snapped to the nearest cell of its edge (ties: the lower cell index), so that every
+//!   candidate is a frontier cell a robot can go to.
 //! - Faigl & Kulich consider "only frontiers that are reachable by all robots"; we keep
 //!   the edge cells reachable by the first deciding robot (all free space of a run is one
 //!   component, so this is the same set in practice) and not on the visited/inaccessible
