@@ -873,7 +873,15 @@ fn resolve(
                     ),
                 ));
             }
-            check_sensors(src, &sensors, &sensor_at, &strategies, &env, &mut checked)?;
+            check_sensors(
+                src,
+                &sensors,
+                &sensor_at,
+                &strategies,
+                &env,
+                clearance_m,
+                &mut checked,
+            )?;
             envs.push(env);
         }
     }
@@ -1378,6 +1386,7 @@ fn check_sensors(
     sensor_at: &[(String, Option<std::ops::Range<usize>>)],
     strategies: &[(String, Strategy)],
     env: &EnvInstance,
+    clearance_m: f64,
     checked: &mut BTreeSet<(u64, usize)>,
 ) -> Result<(), BenchError> {
     let res = env.map.resolution;
@@ -1400,6 +1409,11 @@ fn check_sensors(
                 .err()
                 .map(|e| e.to_string()),
         };
+        let problem = problem.or_else(|| {
+            sim::check_range_beyond_clearance(sensor, clearance_m, res)
+                .err()
+                .map(|e| e.to_string())
+        });
         if let Some(p) = problem {
             return Err(src.error(span.clone(), key, format!("{sensor} on {}: {p}", env.name)));
         }

@@ -483,3 +483,16 @@ fn regression_an_optimal_cell_size_with_no_free_cell_is_refused_at_plan_time() {
     let team = coarse(8).replace("sensors", "robots = [2]\nsensors");
     Plan::resolve(&source(&team), Unbuilt::Error).expect("no single-robot run");
 }
+
+/// Regression: a sensor whose range is no longer than the clearance passed planning, and
+/// every trial stopped early with frontiers left: it is refused at the sensor's key.
+#[test]
+fn regression_a_range_within_the_clearance_is_refused_at_plan_time() {
+    // One cell of range at 0.5 m: 0.5 m.
+    let short = ONE.replace("los:r=3c", "los:r=1c");
+    let e = error_of(&short.replace("sensors", "clearance = 0.5\nsensors"));
+    assert!(e.starts_with("s.toml:5: key `sensors[0]`"), "{e}");
+    assert!(e.contains("expected a range beyond the clearance"), "{e}");
+    let fine = short.replace("sensors", "clearance = 0.4\nsensors");
+    Plan::resolve(&source(&fine), Unbuilt::Error).expect("0.5 m of range beyond 0.4 m");
+}

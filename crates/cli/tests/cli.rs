@@ -2269,3 +2269,27 @@ fn regression_a_negative_zero_clearance_is_no_clearance() {
     let json = String::from_utf8(out.stdout).unwrap();
     assert!(json.contains("\"clearance_m\": 0.0"), "{json}");
 }
+
+/// Regression: a sensor range no longer than the clearance was taken, and the run stopped
+/// early with "no reachable frontier" (`--sensor los:r=4c --clearance 1` on a 0.2 m
+/// hospital: 22 % coverage): the robot sees an obstacle only from within its clearance,
+/// where no search leads out.
+#[test]
+fn regression_a_range_within_the_clearance_is_refused() {
+    let e = err(&[
+        "explore",
+        "--env",
+        "hospital",
+        "--resolution",
+        "0.2",
+        "--sensor",
+        "los:r=4c",
+        "--clearance",
+        "1",
+    ]);
+    assert!(
+        e.contains("--sensor: expected a range beyond the clearance")
+            && e.contains("found los:r=4c: 0.8 m, with a clearance of 1 m"),
+        "{e}"
+    );
+}

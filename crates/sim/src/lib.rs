@@ -44,4 +44,7 @@ pub use metrics::{
     TraceEvent, TraceGoal,
 };
 pub use motion::Motion;
-pub use run::{BUMP_S, Session, Status, check_config, check_sensor_range, run, run_pausing};
+pub use run::{
+    BUMP_S, Session, Status, check_config, check_range_beyond_clearance, check_sensor_range, run,
+    run_pausing,
+};

@@ -305,6 +305,7 @@ impl<'a> Session<'a> {
 
         let sensor = cfg.sensor.build(res)?;
         check_sensor_range(cfg.strategy.candidates, &cfg.sensor, res)?;
+        check_range_beyond_clearance(&cfg.sensor, cfg.clearance_m, res)?;
         let sweep = cfg.sensor.sweep().build(res)?;
         let sonar = cfg.sensor.sonar(res).transpose()?;
         let imperfect = sonar.is_some() || cfg.clutter.is_some();
@@ -908,6 +909,32 @@ pub fn check_sensor_range(
             expected: "a range of at least 1.25 cells with coverage candidates (the `-cc` \
                        strategies cover from within 0.8 of the range)",
             found: format!("{sensor}, {range} cell(s) at {resolution} m per cell"),
+        });
+    }
+    Ok(())
+}
+
+/// Whether `sensor` sees beyond the clearance on cells of `resolution` metres: with a range
+/// of at most `clearance_m` a robot sees an obstacle only from where its clearance forbids
+/// it to stand, and no search leads out of there, so the run would stop early with
+/// frontiers left ("no reachable frontier").
+pub fn check_range_beyond_clearance(
+    sensor: &SensorSpec,
+    clearance_m: f64,
+    resolution: f64,
+) -> Result<(), SimError> {
+    let range = sensor.range_cells(resolution);
+    let clearance = clearance_m / resolution;
+    if clearance > 0.0 && range <= clearance {
+        return Err(SimError::BadParameter {
+            field: "--sensor",
+            expected: "a range beyond the clearance (a robot would see obstacles only from \
+                       within its clearance, where no path leads out)",
+            found: format!(
+                "{sensor}: {} m, with a clearance of {} m",
+                grid::Num(range * resolution),
+                grid::Num(clearance_m)
+            ),
         });
     }
     Ok(())
