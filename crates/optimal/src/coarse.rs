@@ -99,7 +99,9 @@ pub fn coarsen_problem(
             why: format!("the map coarsened by {factor} has no free cell"),
         });
     };
-    let model = SensorModel::from_spec(sensor, coarse.resolution)?;
+    // The sensor is the one on the map given (a range in cells counts that map's cells):
+    // resolved there, then measured in coarse cells.
+    let model = SensorModel::from_spec(sensor, map.resolution)?.scaled(1.0 / factor as f64);
     let problem = Problem::new(&coarse.cells, s, model)?;
     let kept_area = if factor == 1 {
         1.0
@@ -140,10 +142,7 @@ pub(crate) fn coarse_positions(problem: &Problem, factor: usize, cfg: &Config) -
     else {
         return Vec::new();
     };
-    let model = match problem.model() {
-        SensorModel::Los(r) => SensorModel::Los(r / factor as f64),
-        SensorModel::Footprint(r) => SensorModel::Footprint(r / factor as f64),
-    };
+    let model = problem.model().scaled(1.0 / factor as f64);
     let Ok(cp) = Problem::new(&coarse.cells, s, model) else {
         return Vec::new();
     };
@@ -179,4 +178,49 @@ pub(crate) fn coarse_positions(problem: &Problem, factor: usize, cfg: &Config) -
             block.iter().map(|&x| cells.index(x) as u32).collect()
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use sense::spec::Range;
+
+    /// Regression: a range in cells (`los:r=6c`) was counted in coarse cells, so at cell
+    /// size 2 the optimal path had a sensor twice the one of the online runs it was
+    /// compared with (12 map cells against 6), and the competitive ratios came out too
+    /// high. A range is the sensor's on the map given, in metres or in its cells.
+    #[test]
+    fn regression_a_range_in_cells_counts_the_cells_of_the_map_given() {
+        let map = GridMap::new(grid::Grid::new(40, 30, grid::Occ::Free), 0.2);
+        for (spec, fine_cells) in [
+            (
+                SensorSpec::Los {
+                    r: Range::Cells(6.0),
+                },
+                6.0,
+            ),
+            (
+                SensorSpec::Footprint {
+                    r: Range::Cells(8.0),
+                },
+                8.0,
+            ),
+            (
+                SensorSpec::Los {
+                    r: Range::Metres(2.0),
+                },
+                2.0 / 0.2,
+            ),
+        ] {
+            for factor in [1, 2, 4] {
+                let co = coarsen_problem(&map, factor, Cell::new(5, 5), &spec).unwrap();
+                let want = fine_cells / factor as f64;
+                let got = co.problem.model().range();
+                assert!(
+                    (got - want).abs() < 1e-9,
+                    "{spec} at {factor}: {got} cells, not {want}"
+                );
+            }
+        }
+    }
 }

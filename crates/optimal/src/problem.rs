@@ -62,6 +62,15 @@ impl SensorModel {
         }
     }
 
+    /// The same sensor with its range multiplied by `k` (a range in cells measured on cells
+    /// `1 / k` times as large).
+    pub fn scaled(self, k: f64) -> Self {
+        match self {
+            SensorModel::Los(r) => SensorModel::Los(r * k),
+            SensorModel::Footprint(r) => SensorModel::Footprint(r * k),
+        }
+    }
+
     /// The range in cells.
     pub fn range(self) -> f64 {
         match self {
