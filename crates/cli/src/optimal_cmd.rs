@@ -189,6 +189,10 @@ pub fn run(a: OptimalArgs) -> Result<()> {
              found {spec}"
         );
     }
+    // The online runs build the sensor on this map: its range is checked as `explore`
+    // checks it, with the same message.
+    spec.build(map.resolution)
+        .map_err(|e| anyhow::anyhow!("--sensor: {e}"))?;
     let heuristic: HeuristicKind = a
         .heuristic
         .parse()

@@ -2293,3 +2293,29 @@ fn regression_a_range_within_the_clearance_is_refused() {
         "{e}"
     );
 }
+
+/// Regression: `optimal` refused a range beyond a sensor's limit with the search's terse
+/// "sensor range: expected a finite number of cells in [0, 256], found 300" (no spec, no
+/// metres, and 0 is refused); it now checks the sensor as `explore` does.
+#[test]
+fn regression_optimal_refuses_a_long_range_as_explore_does() {
+    let args = |cmd| {
+        [
+            cmd,
+            "--env",
+            "office",
+            "--size",
+            "12x10",
+            "--resolution",
+            "0.1",
+            "--sensor",
+            "los:r=30",
+        ]
+    };
+    let want = "sensor 'los:r=30': range 300 cells at 0.1 m per cell: expected 1 to 256 cells \
+                (0.1 to 25.6 m)";
+    for cmd in ["optimal", "explore"] {
+        let e = err(&args(cmd));
+        assert!(e.contains(want), "{cmd}: {e}");
+    }
+}
