@@ -1,9 +1,10 @@
 //! `frontier segment`: segment a map into rooms (Holz et al. 2010, Figure 7), draw the
 //! segments and, with ground-truth rooms, score them.
 //!
-//! Ground truth comes from a generated office or hospital (its room labels) or from
-//! `--truth FILE`: the same floor plan with every doorway drawn closed, so that each room is
-//! one connected free region (the convention of public room-segmentation datasets).
+//! Ground truth comes from a generated office or hospital (its room labels), a HouseExpo
+//! plan (its room boxes), or `--truth FILE`: the same floor plan with every doorway drawn
+//! closed, so that each room is one connected free region (the convention of public
+//! room-segmentation datasets).
 
 use std::path::PathBuf;
 
@@ -84,10 +85,11 @@ pub fn run(a: SegmentArgs) -> Result<()> {
         grid::machine::available(),
         "use a map with fewer, larger cells (scale the image down and raise its resolution)",
     )?;
-    let rooms = match &a.truth {
-        Some(path) => Some(truth_rooms(path, &a.source, &truth.map, a.memory_mb)?),
-        None if a.source.map.is_none() => generated_rooms(&a.source, a.seed)?,
-        None => None,
+    let rooms = match (&a.truth, &a.source.map) {
+        (Some(path), _) => Some(truth_rooms(path, &a.source, &truth.map, a.memory_mb)?),
+        (None, None) => generated_rooms(&a.source, a.seed)?,
+        (None, Some(path)) if is_houseexpo(path) => houseexpo_rooms(path, &a.source, a.memory_mb)?,
+        (None, Some(_)) => None,
     };
     let seg = segment(&truth.map.cells, rule);
     let scores = rooms.as_ref().map(|r| score(&seg.labels, r.data()));
@@ -159,6 +161,38 @@ fn generated_rooms(source: &MapSource, seed: u64) -> Result<Option<Grid<u32>>> {
     };
     let env = world::generate(&spec).with_context(|| format!("generating {kind}"))?;
     Ok(env.rooms)
+}
+
+/// Whether `path` names a HouseExpo plan (`.json`), whose room boxes are its ground truth.
+fn is_houseexpo(path: &std::path::Path) -> bool {
+    path.extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("json"))
+}
+
+/// The rooms of a HouseExpo plan, numbered 1, 2, … in the order of its room boxes, 0
+/// outside every box; `None` for a plan without room boxes.
+fn houseexpo_rooms(
+    path: &std::path::Path,
+    source: &MapSource,
+    memory_mb: Option<u64>,
+) -> Result<Option<Grid<u32>>> {
+    let resolution = source
+        .resolution
+        .as_deref()
+        .map(parse_resolution)
+        .transpose()?;
+    let opts = grid::io::LoadOptions {
+        resolution,
+        border: source.border,
+        memory: sim::memory::limit(memory_mb, grid::machine::available()),
+    };
+    let plan = grid::io::load_houseexpo(path, &opts)?;
+    if plan.room_types.is_empty() {
+        return Ok(None);
+    }
+    let (w, h) = (plan.map.width(), plan.map.height());
+    // One label per cell of the map, as the reader makes them.
+    Ok(Grid::from_vec(w, h, plan.rooms))
 }
 
 /// Room labels from a ground-truth floor plan (loaded within `memory_mb`, the command's

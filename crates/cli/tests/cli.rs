@@ -2319,3 +2319,29 @@ fn regression_optimal_refuses_a_long_range_as_explore_does() {
         assert!(e.contains(want), "{cmd}: {e}");
     }
 }
+
+/// Regression: `frontier segment --map plan.json` printed `"scores": null` though a
+/// HouseExpo plan's room boxes are its ground truth: two rooms joined by a door, found.
+#[test]
+fn regression_segment_scores_a_houseexpo_plan_against_its_rooms() {
+    let dir = tempfile::tempdir().unwrap();
+    let plan = dir.path().join("house.json");
+    std::fs::write(
+        &plan,
+        r#"{"verts": [[0,0],[4,0],[4,1.6],[5,1.6],[5,0],[9,0],[9,4],[5,4],[5,2.4],[4,2.4],[4,4],[0,4]],
+            "room_category": {"bedroom": [[0,0,4,4]], "kitchen": [[5,0,9,4]]}}"#,
+    )
+    .unwrap();
+    let p = plan.to_str().unwrap();
+    for extra in [&[][..], &["--border"]] {
+        let mut args = vec!["segment", "--map", p, "--resolution", "0.1", "--json"];
+        args.extend_from_slice(extra);
+        let json: serde_json::Value = serde_json::from_str(&ok(&args)).unwrap();
+        let s = &json["scores"];
+        assert_eq!(
+            (s["rooms"].as_u64(), s["matched"].as_u64()),
+            (Some(2), Some(2)),
+            "{json}"
+        );
+    }
+}

@@ -296,3 +296,48 @@ fn regression_houseexpo_too_many_room_boxes_are_refused() {
         "{msg}"
     );
 }
+
+/// Regression: the room boxes were read and then dropped by every loader, so `frontier
+/// segment --map house.json` scored nothing though the docs promise it. `load_houseexpo`
+/// keeps them, grown with the map by `--border`.
+#[test]
+fn regression_load_houseexpo_keeps_the_rooms_with_the_border() {
+    let dir = std::env::temp_dir().join(format!("grid-houseexpo-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("two.json");
+    std::fs::write(
+        &path,
+        r#"{"verts": [[0,0],[4,0],[4,2],[0,2]], "room_category": {"a": [[0,0,2,2]], "b": [[2,0,4,2]]}}"#,
+    )
+    .unwrap();
+    let opts = |border| grid::io::LoadOptions {
+        resolution: Some((0.5, 0.5)),
+        border,
+        memory: None,
+    };
+    let plain = grid::io::load_houseexpo(&path, &opts(false)).unwrap();
+    let bordered = grid::io::load_houseexpo(&path, &opts(true)).unwrap();
+    assert_eq!(plain.room_types, ["a", "b"]);
+    let (w, h) = (plain.map.width(), plain.map.height());
+    assert_eq!(
+        (bordered.map.width(), bordered.map.height()),
+        (w + 2, h + 2)
+    );
+    assert_eq!(bordered.rooms.len(), (w + 2) * (h + 2));
+    for y in 0..h + 2 {
+        for x in 0..w + 2 {
+            let inner = (1..=w).contains(&x) && (1..=h).contains(&y);
+            let want = if inner {
+                plain.rooms[(y - 1) * w + x - 1]
+            } else {
+                0
+            };
+            assert_eq!(bordered.rooms[y * (w + 2) + x], want, "({x}, {y})");
+        }
+    }
+    let count = |id| plain.rooms.iter().filter(|&&r| r == id).count();
+    assert_eq!((count(1), count(2)), (16, 16));
+    // load_map reads the same map.
+    assert!(grid::io::load_map(&path, &opts(true)).unwrap().cells == bordered.map.cells);
+    std::fs::remove_dir_all(&dir).unwrap();
+}

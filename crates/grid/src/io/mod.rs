@@ -144,37 +144,7 @@ pub fn load_map(path: &Path, opts: &LoadOptions) -> Result<GridMap, MapError> {
             let map = movingai::parse_movingai_checked(&text, path, 1.0, &fits)?;
             finish(map, res, path, opts.border)?
         }
-        "json" => {
-            let (rx, ry) = opts.resolution.ok_or_else(|| {
-                MapError::new(
-                    path,
-                    MapErrorKind::ResolutionRequired(
-                        "a HouseExpo floor plan (metres per cell to rasterise it at)",
-                    ),
-                )
-            })?;
-            if rx != ry {
-                return Err(MapError::new(
-                    path,
-                    MapErrorKind::SquareResolution {
-                        what: "a HouseExpo floor plan (its outline is in metres)",
-                        rx: crate::Num(rx),
-                        ry: crate::Num(ry),
-                    },
-                ));
-            }
-            let text = read_text(path)?;
-            let side = rx;
-            let fits = load_check(
-                (side, side),
-                opts,
-                text.len() as u64,
-                houseexpo::BYTES_PER_CELL,
-                "HouseExpo floor plan",
-            );
-            let map = houseexpo::parse_houseexpo_checked(&text, path, side, &fits)?.map;
-            finish(map, (side, side), path, opts.border)?
-        }
+        "json" => load_houseexpo(path, opts)?.map,
         "txt" => {
             let text = read_text(path)?;
             let res = opts.resolution.unwrap_or((1.0, 1.0));
@@ -186,6 +156,56 @@ pub fn load_map(path: &Path, opts: &LoadOptions) -> Result<GridMap, MapError> {
         _ => return Err(MapError::new(path, MapErrorKind::UnknownFormat(ext))),
     };
     Ok(map)
+}
+
+/// A HouseExpo floor plan file (`.json`) with its rooms, read as [`load_map`] reads it
+/// (`opts.resolution` required and square; `opts.border` grows the rooms' labels by a ring
+/// of 0 with the map), for scoring a segmentation against its room boxes.
+pub fn load_houseexpo(path: &Path, opts: &LoadOptions) -> Result<HouseExpoMap, MapError> {
+    let (rx, ry) = opts.resolution.ok_or_else(|| {
+        MapError::new(
+            path,
+            MapErrorKind::ResolutionRequired(
+                "a HouseExpo floor plan (metres per cell to rasterise it at)",
+            ),
+        )
+    })?;
+    if rx != ry {
+        return Err(MapError::new(
+            path,
+            MapErrorKind::SquareResolution {
+                what: "a HouseExpo floor plan (its outline is in metres)",
+                rx: crate::Num(rx),
+                ry: crate::Num(ry),
+            },
+        ));
+    }
+    let text = read_text(path)?;
+    let fits = load_check(
+        (rx, rx),
+        opts,
+        text.len() as u64,
+        houseexpo::BYTES_PER_CELL,
+        "HouseExpo floor plan",
+    );
+    let plan = houseexpo::parse_houseexpo_checked(&text, path, rx, &fits)?;
+    let (w, h) = (plan.map.width(), plan.map.height());
+    let map = finish(plan.map, (rx, rx), path, opts.border)?;
+    let rooms = if opts.border {
+        let mut grown = vec![0u32; map.width() * map.height()];
+        for (y, row) in plan.rooms.chunks_exact(w.max(1)).take(h).enumerate() {
+            let at = (y + 1) * map.width() + 1;
+            grown[at..at + w].copy_from_slice(row);
+        }
+        grown
+    } else {
+        plan.rooms
+    };
+    Ok(HouseExpoMap {
+        map,
+        rooms,
+        room_types: plan.room_types,
+    })
 }
 
 /// Save a map, choosing the format by the extension of `path`.
