@@ -40,6 +40,22 @@ pub fn load_map_file(
     })
 }
 
+/// Generate `spec`, a size or resolution the kind cannot use named by its flag
+/// (`--size`, `--resolution`).
+pub fn generate(spec: &EnvSpec) -> Result<world::Environment> {
+    world::generate(spec).map_err(|e| match &e {
+        world::WorldError::InvalidSpec { field, .. } => {
+            let flag = if *field == "resolution" {
+                "--resolution"
+            } else {
+                "--size"
+            };
+            anyhow::anyhow!("{flag}: {e}")
+        }
+        _ => anyhow::Error::new(e).context(format!("generating {}", spec.kind)),
+    })
+}
+
 /// Where the ground truth comes from: a built-in environment or a map file.
 #[derive(Args, Clone, Debug)]
 pub struct MapSource {
@@ -258,7 +274,7 @@ impl MapSource {
             resolution,
         };
         bench::explore::check_generate_memory(&spec, memory_mb).map_err(anyhow::Error::msg)?;
-        let env = world::generate(&spec).with_context(|| format!("generating {kind}"))?;
+        let env = generate(&spec)?;
         let opts = grid::io::LoadOptions {
             resolution: Some((env.map.resolution, env.map.resolution)),
             border: false,

@@ -70,7 +70,7 @@ pub fn run(a: EnvArgs) -> Result<()> {
         resolution,
     };
     bench::explore::check_generate_memory(&spec, None).map_err(anyhow::Error::msg)?;
-    let env = world::generate(&spec)?;
+    let env = crate::args::generate(&spec)?;
     grid::io::save_map(&env.map, out).context("--out")?;
     let (free, occ, unk) = env.map.counts();
     println!(

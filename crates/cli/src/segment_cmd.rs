@@ -159,7 +159,7 @@ fn generated_rooms(source: &MapSource, seed: u64) -> Result<Option<Grid<u32>>> {
         size_m: source.size.as_deref().map(parse_size).transpose()?,
         resolution,
     };
-    let env = world::generate(&spec).with_context(|| format!("generating {kind}"))?;
+    let env = crate::args::generate(&spec)?;
     Ok(env.rooms)
 }
 

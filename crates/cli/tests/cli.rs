@@ -2345,3 +2345,19 @@ fn regression_segment_scores_a_houseexpo_plan_against_its_rooms() {
         );
     }
 }
+
+/// Regression: a size or resolution a generated kind cannot use was named by the library's
+/// field (`invalid width_m = 1 for office`), not by the flag that set it.
+#[test]
+fn regression_generation_errors_name_the_flag() {
+    let e = err(&["env", "office", "--size", "1x12", "--out", "x.png"]);
+    assert!(
+        e.contains("--size: width 1 m for office: too small, expected at least 10 m"),
+        "{e}"
+    );
+    let e = err(&["explore", "--env", "office", "--resolution", "10"]);
+    assert!(
+        e.contains("--resolution: resolution 10 m for office: too coarse"),
+        "{e}"
+    );
+}

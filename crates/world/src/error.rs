@@ -6,7 +6,11 @@ use thiserror::Error;
 #[derive(Debug, Clone, PartialEq, Error)]
 pub enum WorldError {
     /// A field of the [`EnvSpec`](crate::EnvSpec) has a value the kind cannot use.
-    #[error("invalid {field} = {} for {kind}: {reason}", grid::Num(*.value))]
+    #[error(
+        "{} {} m for {kind}: {reason}",
+        match *.field { "width_m" => "width", "height_m" => "height", f => f },
+        grid::Num(*.value)
+    )]
     InvalidSpec {
         /// The field at fault: `width_m`, `height_m` or `resolution`.
         field: &'static str,
