@@ -41,6 +41,9 @@ const DT_RECHECK_MOVES: u32 = 5;
 /// Seconds a robot loses when its body meets an obstacle (stop, sense again).
 pub const BUMP_S: f64 = 1.0;
 
+/// How many times a penned-in robot backs away before it decides ([`Team::back_off`]).
+const BACK_OFF_TRIES: usize = 3;
+
 /// Yamauchi's no-progress limit (the `yamauchi` preset's), applied to every strategy when
 /// the map can be wrong about where the robot can go (sonar, off-plane clutter): without
 /// it, a goal behind an obstacle the map does not show would be chased forever.
@@ -117,6 +120,8 @@ struct Team<'a> {
     proposed: Vec<Option<Goal>>,
     /// Buffers of information-gain predictions.
     gain_scratch: sense::gain::GainScratch,
+    /// The fill that tells whether a robot is penned in ([`Team::back_off`]).
+    pocket: Pocket,
     sensor: Box<dyn Sensor>,
     sweep: Box<dyn Sensor>,
     belief: Box<dyn Belief>,
@@ -424,6 +429,7 @@ impl<'a> Session<'a> {
             },
             proposed: vec![None; m],
             gain_scratch: sense::gain::GainScratch::new(),
+            pocket: Pocket::default(),
             truth,
             cfg,
         };
@@ -1258,36 +1264,51 @@ impl Team<'_> {
     }
 
     /// Under imperfect sensing robot `r` may come to stand within its clearance of an
-    /// obstacle: one its body met (a bump), or one its evidence grid believed only once it
-    /// was near. A search leaves such a cell only through a neighbour that keeps the
-    /// clearance, so deep inside it the run would end with frontiers left. Before it decides,
-    /// the robot backs away along the cheapest way over cells its belief shows free to the
-    /// nearest cell that keeps the clearance (looked for within the clearance and two cells
-    /// of where it stands). A cell its body meets on the way is pinned occupied and ends the
-    /// retreat there.
+    /// obstacle (one its body met, or one its evidence grid believed only once it was near),
+    /// or in a pocket of cells that keep it, cut off by such obstacles. A search leaves a
+    /// cell only through neighbours that keep the clearance, so there the run would end with
+    /// frontiers left. Before it decides, a robot whose search cannot get farther than
+    /// `reach` cells (twice the clearance and three cells) backs away along the cheapest
+    /// way over cells its belief shows free to the nearest cell that keeps the clearance and
+    /// from which a search gets that far. A cell its body meets on the way is pinned
+    /// occupied and ends the retreat there; what it senses on the way may pen it in again,
+    /// so it tries again, [`BACK_OFF_TRIES`] times in all.
     fn back_off(&mut self, robots: &mut [Robot], r: usize) {
-        let known = self.belief.known();
-        let here = robots[r].cell as usize;
-        if self.upkeep.is_traversable(known, here) {
-            return;
-        }
-        let reach = self.cfg.clearance_m / self.truth.resolution + 2.0;
-        let route = retreat(known, here, reach, |i| self.upkeep.is_traversable(known, i));
-        for next in route {
-            if self.body()[next as usize] != Occ::Free {
-                self.changed.clear();
-                self.belief
-                    .pin(next as usize, Occ::Occupied, &mut self.changed);
-                self.absorb_changes();
-                break;
+        let reach = 2.0 * self.cfg.clearance_m / self.truth.resolution + 3.0;
+        // What it senses on the way may pen it in again: a few tries.
+        for _ in 0..BACK_OFF_TRIES {
+            let known = self.belief.known();
+            let here = robots[r].cell as usize;
+            let origin = known.cell(here);
+            let trav = |i: usize| self.upkeep.is_traversable(known, i);
+            let mut pocket = std::mem::take(&mut self.pocket);
+            if !pocket.confined(known, &trav, here, origin, reach) {
+                self.pocket = pocket;
+                return;
             }
-            self.travel(robots, r, next);
-            if self.cfg.sensing_mode() == SensingMode::Continuous {
-                let cell = self.truth.cells.cell(next as usize);
-                self.look(robots, r, cell, false);
+            let route = retreat(known, here, reach, |i| {
+                trav(i) && !pocket.confined(known, &trav, i, origin, reach)
+            });
+            self.pocket = pocket;
+            if route.is_empty() {
+                return;
             }
-            self.pin_free(next);
-            self.record(robots, r);
+            for next in route {
+                if self.body()[next as usize] != Occ::Free {
+                    self.changed.clear();
+                    self.belief
+                        .pin(next as usize, Occ::Occupied, &mut self.changed);
+                    self.absorb_changes();
+                    break;
+                }
+                self.travel(robots, r, next);
+                if self.cfg.sensing_mode() == SensingMode::Continuous {
+                    let cell = self.truth.cells.cell(next as usize);
+                    self.look(robots, r, cell, false);
+                }
+                self.pin_free(next);
+                self.record(robots, r);
+            }
         }
     }
 
@@ -1455,11 +1476,6 @@ impl Team<'_> {
     // Robot r's state is spread over several parallel buffers, so index loops read best.
     #[allow(clippy::needless_range_loop)]
     fn decide(&mut self, robots: &mut [Robot], who: &[usize]) {
-        if self.imperfect && self.cfg.clearance_m > 0.0 {
-            for &r in who {
-                self.back_off(robots, r);
-            }
-        }
         if matches!(self.cfg.sensing_mode(), SensingMode::Every(_)) {
             // Sensing every n-th cell: a robot looks before it decides where it stands.
             for &r in who {
@@ -1468,6 +1484,12 @@ impl Team<'_> {
                     self.look(robots, r, cell, false);
                     self.record(robots, r);
                 }
+            }
+        }
+        if self.imperfect && self.cfg.clearance_m > 0.0 {
+            // After what it has just seen.
+            for &r in who {
+                self.back_off(robots, r);
             }
         }
         let t0 = Instant::now();
@@ -1839,10 +1861,72 @@ impl Team<'_> {
     }
 }
 
-/// The cells, in order, of the cheapest way (octile steps, no corner cut) from `from` over
+/// A fill of the cells a search from one cell reaches near it, telling whether they stay
+/// within a disk (a pocket) or get out of it; kept between fills, so that a fill allocates
+/// nothing once warm.
+#[derive(Default)]
+struct Pocket {
+    seen: std::collections::HashSet<u32>,
+    stack: Vec<u32>,
+}
+
+impl Pocket {
+    /// Whether a search from `from` (any cell) over the cells `trav` accepts, as the
+    /// planner's (8 neighbours, none squeezing between two refused cells), reaches no cell
+    /// farther than `reach` cells from `origin`.
+    fn confined(
+        &mut self,
+        known: &Grid<Occ>,
+        trav: &impl Fn(usize) -> bool,
+        from: usize,
+        origin: Cell,
+        reach: f64,
+    ) -> bool {
+        self.seen.clear();
+        self.stack.clear();
+        self.seen.insert(from as u32);
+        self.stack.push(from as u32);
+        let passes = |c: Cell| known.contains(c) && trav(known.index(c));
+        while let Some(i) = self.stack.pop() {
+            let c = known.cell(i as usize);
+            let (dx, dy) = (f64::from(c.x - origin.x), f64::from(c.y - origin.y));
+            if dx * dx + dy * dy > reach * reach {
+                return false;
+            }
+            for (ox, oy) in [
+                (-1, -1),
+                (0, -1),
+                (1, -1),
+                (-1, 0),
+                (1, 0),
+                (-1, 1),
+                (0, 1),
+                (1, 1),
+            ] {
+                let n = Cell::new(c.x + ox, c.y + oy);
+                let squeezed = ox != 0
+                    && oy != 0
+                    && !passes(Cell::new(c.x + ox, c.y))
+                    && !passes(Cell::new(c.x, c.y + oy));
+                if passes(n) && !squeezed && self.seen.insert(known.index(n) as u32) {
+                    self.stack.push(known.index(n) as u32);
+                }
+            }
+        }
+        true
+    }
+}
+
+/// The cells, in order, of the cheapest way (octile steps, none squeezing between two
+/// blocked cells) from `from` over
 /// cells `known` shows free, within `reach` cells of it, to the nearest cell `keeps` accepts;
 /// empty if none lies within reach. Ties go to the lower cell index.
-fn retreat(known: &Grid<Occ>, from: usize, reach: f64, keeps: impl Fn(usize) -> bool) -> Vec<u32> {
+fn retreat(
+    known: &Grid<Occ>,
+    from: usize,
+    reach: f64,
+    mut keeps: impl FnMut(usize) -> bool,
+) -> Vec<u32> {
     use std::cmp::Reverse;
     use std::collections::{BinaryHeap, HashMap};
     let origin = known.cell(from);
@@ -1883,9 +1967,11 @@ fn retreat(known: &Grid<Occ>, from: usize, reach: f64, keeps: impl Fn(usize) -> 
             (1, 1),
         ] {
             let n = Cell::new(c.x + dx, c.y + dy);
+            // As the planner and the body: no squeezing between two blocked cells.
             let diagonal_clear = dx == 0
                 || dy == 0
-                || (free(Cell::new(c.x + dx, c.y)) && free(Cell::new(c.x, c.y + dy)));
+                || free(Cell::new(c.x + dx, c.y))
+                || free(Cell::new(c.x, c.y + dy));
             if !free(n) || !within(n) || !diagonal_clear {
                 continue;
             }
@@ -1902,8 +1988,36 @@ fn retreat(known: &Grid<Occ>, from: usize, reach: f64, keeps: impl Fn(usize) -> 
 
 #[cfg(test)]
 mod tests {
-    use super::retreat;
+    use super::{Pocket, retreat};
     use grid::io::parse_ascii;
+
+    /// A pocket: the cells a search reaches from a cell all lie within the disk, or one
+    /// lies beyond it; a diagonal step between two refused cells does not count.
+    #[test]
+    fn a_pocket_is_what_a_search_cannot_get_out_of() {
+        let map = parse_ascii(
+            "##########\n#..#......\n#..#......\n###.......\n##........\n",
+            0.1,
+        )
+        .unwrap();
+        let known = &map.cells;
+        let trav = |i: usize| known[i] == grid::Occ::Free;
+        let at = |x, y| known.index(grid::Cell::new(x, y));
+        let origin = grid::Cell::new(1, 1);
+        let mut pocket = Pocket::default();
+        // The 2 x 2 room in the corner is shut; the open side reaches beyond 4 cells.
+        assert!(pocket.confined(known, &trav, at(1, 1), origin, 4.0));
+        assert!(pocket.confined(known, &trav, at(2, 2), origin, 4.0));
+        assert!(!pocket.confined(known, &trav, at(4, 1), origin, 4.0));
+        // From a refused cell, the search starts all the same (the wall cell at (3, 1)
+        // touches the open side).
+        assert!(!pocket.confined(known, &trav, at(3, 1), origin, 4.0));
+        // Within a large enough disk nothing is a way out.
+        assert!(pocket.confined(known, &trav, at(4, 1), origin, 20.0));
+        // (2, 2) to the open (3, 3) would squeeze between the walls at (3, 2) and (2, 3).
+        assert!(pocket.confined(known, &trav, at(2, 2), origin, 4.0));
+        assert!(!pocket.confined(known, &trav, at(3, 3), origin, 4.0));
+    }
 
     /// The way out of a corridor's dead end: the cheapest over free cells, never cutting a
     /// corner, to the nearest accepted cell within reach; none beyond reach.
@@ -1912,10 +2026,14 @@ mod tests {
         let map = parse_ascii("#######\n#.....#\n#.#...#\n#######\n", 0.1).unwrap();
         let known = &map.cells;
         let at = |x, y| known.index(grid::Cell::new(x, y)) as u32;
-        // From (1, 2), to the nearest cell of column 4: up, then right along row 1 (the
-        // diagonal to (2, 1) would cut the wall's corner at (2, 2)).
+        // From (1, 2), to the nearest cell of column 4: diagonally past the wall cell at
+        // (2, 2), whose other side (1, 1) is free, then along row 1.
         let route = retreat(known, at(1, 2) as usize, 5.0, |i| known.cell(i).x == 4);
-        assert_eq!(route, [at(1, 1), at(2, 1), at(3, 1), at(4, 1)]);
+        assert_eq!(route, [at(2, 1), at(3, 1), at(4, 1)]);
+        // Between two wall cells there is no way: from (1, 2) with (1, 1) walled too.
+        let mut shut = map.cells.clone();
+        shut.set(grid::Cell::new(1, 1), grid::Occ::Occupied);
+        assert!(retreat(&shut, at(1, 2) as usize, 5.0, |i| shut.cell(i).x == 4).is_empty());
         // Column 5 lies beyond a reach of 3 cells.
         let none = retreat(known, at(1, 2) as usize, 3.0, |i| known.cell(i).x == 5);
         assert!(none.is_empty());
