@@ -15,10 +15,10 @@
 //! corner it cannot squeeze through, bumps: it stops for [`BUMP_S`] seconds, senses again,
 //! pins those cells occupied in its belief and re-plans; the cells it stands on are pinned
 //! free. A robot that then stands within its clearance of what it met (or of an obstacle
-//! its evidence grid believed only once it was near) backs away to the nearest cell that
-//! keeps the clearance before it decides: no search leads out from deep inside the
-//! clearance. Yamauchi's no-progress rule then puts a goal that is not approached for its time
-//! limit on the inaccessible list, also across such re-plans.
+//! its evidence grid believed only once it was near), where no search leads out, backs
+//! away before it decides to the nearest cell from which a search does
+//! (`Team::back_off`). Yamauchi's no-progress rule then puts a goal that is not approached
+//! for its time limit on the inaccessible list, also across such re-plans.
 //!
 //! A robot that senses only on arrival or every n cells moves blind in between. Before it
 //! enters a cell within its clearance of an obstacle its map does not show yet, it stops,
