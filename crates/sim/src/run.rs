@@ -1861,6 +1861,18 @@ impl Team<'_> {
     }
 }
 
+/// The eight moves from a cell, as (dx, dy).
+const STEPS: [(i32, i32); 8] = [
+    (-1, -1),
+    (0, -1),
+    (1, -1),
+    (-1, 0),
+    (1, 0),
+    (-1, 1),
+    (0, 1),
+    (1, 1),
+];
+
 /// A fill of the cells a search from one cell reaches near it, telling whether they stay
 /// within a disk (a pocket) or get out of it; kept between fills, so that a fill allocates
 /// nothing once warm.
@@ -1893,16 +1905,7 @@ impl Pocket {
             if dx * dx + dy * dy > reach * reach {
                 return false;
             }
-            for (ox, oy) in [
-                (-1, -1),
-                (0, -1),
-                (1, -1),
-                (-1, 0),
-                (1, 0),
-                (-1, 1),
-                (0, 1),
-                (1, 1),
-            ] {
+            for (ox, oy) in STEPS {
                 let n = Cell::new(c.x + ox, c.y + oy);
                 let squeezed = ox != 0
                     && oy != 0
@@ -1956,16 +1959,7 @@ fn retreat(
             return route;
         }
         let c = known.cell(i);
-        for (dx, dy) in [
-            (-1, -1),
-            (0, -1),
-            (1, -1),
-            (-1, 0),
-            (1, 0),
-            (-1, 1),
-            (0, 1),
-            (1, 1),
-        ] {
+        for (dx, dy) in STEPS {
             let n = Cell::new(c.x + dx, c.y + dy);
             // As the planner and the body: no squeezing between two blocked cells.
             let diagonal_clear = dx == 0
