@@ -1982,8 +1982,138 @@ fn retreat(
 
 #[cfg(test)]
 mod tests {
-    use super::{Pocket, retreat};
+    use super::{Pocket, STEPS, retreat};
     use grid::io::parse_ascii;
+    use grid::{Cell, Grid, Occ, step_cost};
+    use proptest::prelude::*;
+
+    /// The oracle: the least cost from `from` to every cell, by relaxing every legal step
+    /// (over free cells within `reach`, none squeezing between two blocked cells) until
+    /// nothing changes.
+    fn costs_by_relaxing(known: &Grid<Occ>, from: usize, reach: f64) -> Vec<f64> {
+        let o = known.cell(from);
+        let free = |c: Cell| known.contains(c) && *known.get(c) == Occ::Free;
+        let within = |c: Cell| {
+            let (dx, dy) = (f64::from(c.x - o.x), f64::from(c.y - o.y));
+            dx * dx + dy * dy <= reach * reach
+        };
+        let mut cost = vec![f64::INFINITY; known.len()];
+        cost[from] = 0.0;
+        let mut changed = true;
+        while changed {
+            changed = false;
+            for i in 0..known.len() {
+                if !cost[i].is_finite() {
+                    continue;
+                }
+                let c = known.cell(i);
+                for (dx, dy) in STEPS {
+                    let n = Cell::new(c.x + dx, c.y + dy);
+                    let squeezed = dx != 0
+                        && dy != 0
+                        && !free(Cell::new(c.x + dx, c.y))
+                        && !free(Cell::new(c.x, c.y + dy));
+                    if free(n) && within(n) && !squeezed {
+                        let j = known.index(n);
+                        if cost[i] + step_cost(dx, dy) < cost[j] - 1e-12 {
+                            cost[j] = cost[i] + step_cost(dx, dy);
+                            changed = true;
+                        }
+                    }
+                }
+            }
+        }
+        cost
+    }
+
+    proptest! {
+        /// The retreat is a legal way to an accepted cell, and no accepted cell within
+        /// reach is cheaper to get to (the oracle's costs); none when no accepted cell can
+        /// be got to.
+        #[test]
+        fn retreat_is_a_cheapest_legal_way(
+            cells in proptest::collection::vec(prop::bool::weighted(0.7), 8 * 7),
+            accepted in proptest::collection::vec(prop::bool::weighted(0.15), 8 * 7),
+            from in 0usize..8 * 7,
+            reach in 1.0f64..6.0,
+        ) {
+            let occ = cells.iter().map(|&f| if f { Occ::Free } else { Occ::Occupied }).collect();
+            let known = Grid::from_vec(8, 7, occ).unwrap();
+            let keeps = |i: usize| accepted[i] && known[i] == Occ::Free;
+            let route = retreat(&known, from, reach, keeps);
+            let best = costs_by_relaxing(&known, from, reach);
+            let cheapest = (0..known.len())
+                .filter(|&i| i != from && keeps(i))
+                .map(|i| best[i])
+                .fold(f64::INFINITY, f64::min);
+            if route.is_empty() {
+                prop_assert!(cheapest.is_infinite(), "no route, but a cell at {}", cheapest);
+            } else {
+                let mut at = known.cell(from);
+                let mut total = 0.0;
+                for &next in &route {
+                    let n = known.cell(next as usize);
+                    let (dx, dy) = (n.x - at.x, n.y - at.y);
+                    prop_assert!(dx.abs() <= 1 && dy.abs() <= 1 && (dx, dy) != (0, 0));
+                    prop_assert!(best[next as usize].is_finite(), "off the free cells in reach");
+                    let beside = [Cell::new(at.x + dx, at.y), Cell::new(at.x, at.y + dy)];
+                    let open = |c: Cell| known.contains(c) && *known.get(c) == Occ::Free;
+                    prop_assert!(dx == 0 || dy == 0 || beside.into_iter().any(open), "squeezed");
+                    total += step_cost(dx, dy);
+                    at = n;
+                }
+                prop_assert!(keeps(*route.last().unwrap() as usize));
+                prop_assert!((total - cheapest).abs() < 1e-9, "{} vs {}", total, cheapest);
+            }
+        }
+
+        /// A pocket is what the flood fill from the cell, unbounded (the oracle, with every
+        /// cell reachable, not only those within reach), keeps within the disk.
+        #[test]
+        fn confined_is_the_fill_staying_in_the_disk(
+            cells in proptest::collection::vec(prop::bool::weighted(0.6), 9 * 8),
+            from in 0usize..9 * 8,
+            origin in (0i32..9, 0i32..8),
+            reach in 0.5f64..6.0,
+        ) {
+            let occ = cells.iter().map(|&f| if f { Occ::Free } else { Occ::Occupied }).collect();
+            let known = Grid::from_vec(9, 8, occ).unwrap();
+            let trav = |i: usize| known[i] == Occ::Free;
+            let origin = Cell::new(origin.0, origin.1);
+            // Every cell the fill reaches, by relaxing with unbounded reach from `from`.
+            let mut seen = vec![false; known.len()];
+            seen[from] = true;
+            let mut changed = true;
+            while changed {
+                changed = false;
+                for i in 0..known.len() {
+                    if !seen[i] {
+                        continue;
+                    }
+                    let c = known.cell(i);
+                    for (dx, dy) in STEPS {
+                        let n = Cell::new(c.x + dx, c.y + dy);
+                        let passes = |c: Cell| known.contains(c) && trav(known.index(c));
+                        let squeezed = dx != 0
+                            && dy != 0
+                            && !passes(Cell::new(c.x + dx, c.y))
+                            && !passes(Cell::new(c.x, c.y + dy));
+                        if passes(n) && !squeezed && !seen[known.index(n)] {
+                            seen[known.index(n)] = true;
+                            changed = true;
+                        }
+                    }
+                }
+            }
+            let beyond = (0..known.len()).filter(|&i| seen[i]).any(|i| {
+                let c = known.cell(i);
+                let (dx, dy) = (f64::from(c.x - origin.x), f64::from(c.y - origin.y));
+                dx * dx + dy * dy > reach * reach
+            });
+            let mut pocket = Pocket::default();
+            prop_assert_eq!(pocket.confined(&known, &trav, from, origin, reach), !beyond);
+        }
+    }
 
     /// A pocket: the cells a search reaches from a cell all lie within the disk, or one
     /// lies beyond it; a diagonal step between two refused cells does not count.
