@@ -2355,3 +2355,29 @@ fn regression_generation_errors_name_the_flag() {
         "{e}"
     );
 }
+
+/// Regression: `--goal 1` ended "goal reached" at full coverage with `"complete": false`,
+/// though everything reachable was explored.
+#[test]
+fn regression_a_full_coverage_goal_reached_is_complete() {
+    let run = |goal: &str| -> serde_json::Value {
+        let args = [
+            "explore",
+            "--env",
+            "maze",
+            "--goal",
+            goal,
+            "--json",
+            "--no-timing",
+        ];
+        serde_json::from_str(&ok(&args)).unwrap()
+    };
+    let full = run("1");
+    assert_eq!(
+        (full["reason"].as_str(), full["complete"].as_bool()),
+        (Some("goal reached"), Some(true)),
+        "{full}"
+    );
+    let half = run("0.5");
+    assert_eq!(half["complete"].as_bool(), Some(false), "{half}");
+}

@@ -369,9 +369,11 @@ impl MapAudit {
 }
 
 impl RunResult {
-    /// Whether every reachable free cell was explored.
+    /// Whether every reachable free cell was explored: the run ended with nothing left to
+    /// explore, or at a coverage goal of all of it.
     pub fn complete(&self) -> bool {
         self.reason == EndReason::Complete
+            || (self.reason == EndReason::GoalReached && self.coverage >= 1.0)
     }
 
     /// L: the longest path of one robot (Faigl & Kulich's metric), metres.
