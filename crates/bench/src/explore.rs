@@ -133,8 +133,7 @@ pub fn config(
     let sensor: SensorSpec = o.sensor.parse().map_err(|e| format!("--sensor: {e}"))?;
     let belief: BeliefKind = match o.belief.as_deref() {
         Some(b) => b.parse().map_err(|e| format!("--belief: {e}"))?,
-        None if sensor.sonar_mode().is_some() => BeliefKind::Evidence,
-        None => BeliefKind::Known,
+        None => crate::plan::belief_with(&sensor, BeliefKind::Known),
     };
     let sensing = o
         .sensing

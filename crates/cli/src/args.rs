@@ -205,6 +205,21 @@ pub fn parse_cell(s: &str, flag: &str) -> Result<grid::Cell> {
 }
 
 impl MapSource {
+    /// How a map file is read with these flags (`--resolution`, `--border`), within
+    /// `memory_mb` MiB (the command's `--memory-mb`) and the memory available.
+    pub fn load_options(&self, memory_mb: Option<u64>) -> Result<grid::io::LoadOptions> {
+        let resolution = self
+            .resolution
+            .as_deref()
+            .map(parse_resolution)
+            .transpose()?;
+        Ok(grid::io::LoadOptions {
+            resolution,
+            border: self.border,
+            memory: sim::memory::limit(memory_mb, grid::machine::available()),
+        })
+    }
+
     /// Load the map file or generate the environment (`seed` is the default env seed),
     /// refusing one that would need more than `memory_mb` (the command's `--memory-mb`) or
     /// the memory available before it is loaded or generated.
@@ -224,11 +239,7 @@ impl MapSource {
             if self.env_seed.is_some() {
                 bail!("--env-seed applies to generated environments (--env), not to --map");
             }
-            let opts = grid::io::LoadOptions {
-                resolution,
-                border: self.border,
-                memory: sim::memory::limit(memory_mb, grid::machine::available()),
-            };
+            let opts = self.load_options(memory_mb)?;
             let (map, start) = load_map_file(path, &opts, self.topic.as_deref(), self.dungeon)?;
             let name = path
                 .file_stem()

@@ -163,21 +163,6 @@ fn generated_rooms(source: &MapSource, seed: u64) -> Result<Option<Grid<u32>>> {
     Ok(env.rooms)
 }
 
-/// How `--map`'s flags read a ground-truth file (its `--resolution` and `--border`), within
-/// `memory_mb` MiB and the memory available.
-fn load_options(source: &MapSource, memory_mb: Option<u64>) -> Result<grid::io::LoadOptions> {
-    let resolution = source
-        .resolution
-        .as_deref()
-        .map(parse_resolution)
-        .transpose()?;
-    Ok(grid::io::LoadOptions {
-        resolution,
-        border: source.border,
-        memory: sim::memory::limit(memory_mb, grid::machine::available()),
-    })
-}
-
 /// Whether `path` names a HouseExpo plan (`.json`), whose room boxes are its ground truth.
 fn is_houseexpo(path: &std::path::Path) -> bool {
     path.extension()
@@ -191,7 +176,7 @@ fn houseexpo_rooms(
     source: &MapSource,
     memory_mb: Option<u64>,
 ) -> Result<Option<Grid<u32>>> {
-    let plan = grid::io::load_houseexpo(path, &load_options(source, memory_mb)?)?;
+    let plan = grid::io::load_houseexpo(path, &source.load_options(memory_mb)?)?;
     if plan.room_types.is_empty() {
         return Ok(None);
     }
@@ -208,7 +193,7 @@ fn truth_rooms(
     map: &GridMap,
     memory_mb: Option<u64>,
 ) -> Result<Grid<u32>> {
-    let t = grid::io::load_map(path, &load_options(source, memory_mb)?)?;
+    let t = grid::io::load_map(path, &source.load_options(memory_mb)?)?;
     if (t.width(), t.height()) != (map.width(), map.height()) {
         bail!(
             "--truth {}: {} x {} cells, but the map has {} x {}",

@@ -1275,7 +1275,6 @@ impl Team<'_> {
     /// so it tries again, [`BACK_OFF_TRIES`] times in all.
     fn back_off(&mut self, robots: &mut [Robot], r: usize) {
         let reach = 2.0 * self.cfg.clearance_m / self.truth.resolution + 3.0;
-        // What it senses on the way may pen it in again: a few tries.
         for _ in 0..BACK_OFF_TRIES {
             let known = self.belief.known();
             let here = robots[r].cell as usize;
@@ -1873,6 +1872,13 @@ const STEPS: [(i32, i32); 8] = [
     (1, 1),
 ];
 
+/// Whether the step (dx, dy) from `c` squeezes between two cells `open` refuses (a diagonal
+/// step with both straight neighbours refused), which neither the planner nor the body
+/// takes.
+fn squeezes(c: Cell, (dx, dy): (i32, i32), open: impl Fn(Cell) -> bool) -> bool {
+    dx != 0 && dy != 0 && !open(Cell::new(c.x + dx, c.y)) && !open(Cell::new(c.x, c.y + dy))
+}
+
 /// A fill of the cells a search from one cell reaches near it, telling whether they stay
 /// within a disk (a pocket) or get out of it; kept between fills, so that a fill allocates
 /// nothing once warm.
@@ -1907,11 +1913,10 @@ impl Pocket {
             }
             for (ox, oy) in STEPS {
                 let n = Cell::new(c.x + ox, c.y + oy);
-                let squeezed = ox != 0
-                    && oy != 0
-                    && !passes(Cell::new(c.x + ox, c.y))
-                    && !passes(Cell::new(c.x, c.y + oy));
-                if passes(n) && !squeezed && self.seen.insert(known.index(n) as u32) {
+                if passes(n)
+                    && !squeezes(c, (ox, oy), passes)
+                    && self.seen.insert(known.index(n) as u32)
+                {
                     self.stack.push(known.index(n) as u32);
                 }
             }
@@ -1961,12 +1966,7 @@ fn retreat(
         let c = known.cell(i);
         for (dx, dy) in STEPS {
             let n = Cell::new(c.x + dx, c.y + dy);
-            // As the planner and the body: no squeezing between two blocked cells.
-            let diagonal_clear = dx == 0
-                || dy == 0
-                || free(Cell::new(c.x + dx, c.y))
-                || free(Cell::new(c.x, c.y + dy));
-            if !free(n) || !within(n) || !diagonal_clear {
+            if !free(n) || !within(n) || squeezes(c, (dx, dy), free) {
                 continue;
             }
             let j = known.index(n);
