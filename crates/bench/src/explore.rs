@@ -185,7 +185,10 @@ pub fn config(
         if o.robots == 1 {
             cfg.starts = vec![first];
         } else {
-            let trav = sim::truth::traversable(&map.cells, o.clearance / map.resolution);
+            let trav = sim::truth::traversable(
+                &map.cells,
+                grid::units::cells(o.clearance, map.resolution),
+            );
             sim::truth::check_start(&map.cells, &trav, first).map_err(|e| e.to_string())?;
             cfg.starts = sim::truth::team_starts(&map.cells, &trav, first, o.robots)
                 .map_err(|e| e.to_string())?;

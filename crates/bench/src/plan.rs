@@ -60,8 +60,12 @@ use crate::scenario::{ScenarioFile, Source};
 /// last robot's clock, stops after bumps and waits included, as its milestones' times are,
 /// and a team's run ends when no robot can reach a candidate; v14: under imperfect sensing
 /// (sonar, furniture) with a clearance, a robot standing within its clearance backs away
-/// to a cell that keeps it before it decides).
-pub const STRATEGY_REVISION: u32 = 14;
+/// to a cell that keeps it before it decides; v15: a clearance, range or size that is a
+/// multiple of the cell size is that many cells exactly, and a cell exactly the clearance
+/// from an obstacle keeps it (Holz's d_max), so a clearance at an exact multiple (0.2 m on
+/// 0.05 m cells) blocks one ring of cells fewer; one the quotient fell just short of (0.3
+/// m on 0.05 m) is unchanged).
+pub const STRATEGY_REVISION: u32 = 15;
 
 /// A resolved study: environments, variants, common settings and the flat trial list.
 #[derive(Clone, Debug)]
@@ -1434,7 +1438,7 @@ fn check_sensors(
 /// trials could draw, and its team around it (the error a trial would end with otherwise).
 fn room_for_team(env: &EnvInstance, clearance_m: f64, robots: usize) -> Result<(), StartProblem> {
     let cells = &env.map.cells;
-    let trav = sim::truth::traversable(cells, clearance_m / env.map.resolution);
+    let trav = sim::truth::traversable(cells, grid::units::cells(clearance_m, env.map.resolution));
     let components = sim::truth::components(cells, &trav);
     let mut rng = sim::seed::rng(0, &format!("{}|room", env.name));
     let first = sim::truth::random_start(&components, &mut rng, clearance_m)
@@ -1515,7 +1519,7 @@ fn start_variants(
     if start.is_none() && perturbations == 0 {
         return Ok(vec![None]);
     }
-    let trav = sim::truth::traversable(cells, clearance_m / env.map.resolution);
+    let trav = sim::truth::traversable(cells, grid::units::cells(clearance_m, env.map.resolution));
     let components = sim::truth::components(cells, &trav);
     let base = match start {
         Some(c) => {
@@ -1536,7 +1540,7 @@ fn start_variants(
     if perturbations == 0 {
         return Ok(vec![Some(team(base)?)]);
     }
-    let r_cells = radius_m.unwrap_or(0.0) / env.map.resolution;
+    let r_cells = grid::units::cells(radius_m.unwrap_or(0.0), env.map.resolution);
     let reach = sim::truth::reachable_from(&components.0, cells.index(base));
     let near: Vec<usize> = (0..cells.len())
         .filter(|&i| {

@@ -38,7 +38,7 @@ pub fn write_run<W: Write + Seek>(
         resolution: map.resolution,
         origin: map.origin,
     };
-    let mut upkeep = FrontierUpkeep::new(w, h, cfg.clearance_m / map.resolution);
+    let mut upkeep = FrontierUpkeep::new(w, h, grid::units::cells(cfg.clearance_m, map.resolution));
     let world = |i: u32| frame.world_from_cell(belief_cell(w, i));
     let every = trace.goals.len().div_ceil(MAX_SNAPSHOTS).max(1);
     let mut next_goal = 0;

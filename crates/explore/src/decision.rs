@@ -529,7 +529,9 @@ pub fn decide(
     };
     kind.generate(ctx, &mut offer.candidates);
     offer.too_small = 0;
-    let min_cells = (min_region_m / ctx.resolution).ceil().max(1.0) as usize;
+    let min_cells = grid::units::cells(min_region_m, ctx.resolution)
+        .ceil()
+        .max(1.0) as usize;
     let narrow = kind == CandidateKind::AllFrontiers && min_cells > 1;
     if narrow {
         if !offer.narrowed.fits(ctx.known.len()) {

@@ -1,9 +1,11 @@
 //! Traversability with a robot clearance (Holz et al. 2010's `d_max`), kept incrementally.
 //!
-//! A cell is *traversable* iff it is known Free and no known Occupied cell lies within the
-//! robot's clearance of it: cell `c` is blocked iff some known Occupied `o` has centre distance
-//! `|c − o| ≤ clearance` (so clearance 0 blocks only the occupied cells themselves). Unknown
-//! cells are never traversable.
+//! A cell is *traversable* iff it is known Free and no known Occupied cell lies closer than
+//! the robot's clearance to it: cell `c` is blocked iff some known Occupied `o` has centre
+//! distance `|c − o| < clearance`, or is `c` itself (so a clearance of at most one cell blocks
+//! only the occupied cells themselves). Holz et al. neglect the cells "whose distance to the
+//! closest obstacle region falls below" `d_max`, so a cell exactly `d_max` away is kept.
+//! Unknown cells are never traversable.
 //!
 //! [`Traversability`] keeps, for every cell, the number of known Occupied cells within the
 //! clearance disk around it. When a cell becomes or stops being Occupied, the counts of the
@@ -19,7 +21,8 @@ pub struct Traversability {
     width: usize,
     height: usize,
     clearance: f64,
-    /// Offsets `(dx, dy)` with `√(dx² + dy²) ≤ clearance` (clipped to the grid size).
+    /// Offsets `(dx, dy)` with `√(dx² + dy²) < clearance`, and `(0, 0)` (clipped to the grid
+    /// size).
     disk: Vec<(i32, i32)>,
     /// The disk by rows: `(dy, h)` for the offsets `(−h..=h, dy)` (a disk's row is one run).
     spans: Vec<(i32, i32)>,
@@ -342,18 +345,21 @@ fn disk_spans(disk: &[(i32, i32)]) -> Vec<(i32, i32)> {
     spans
 }
 
-/// Offsets with centre distance `≤ clearance`, clipped to `|dx|, |dy| < max_side`.
+/// Offsets with centre distance `< clearance`, and `(0, 0)`, clipped to `|dx|, |dy| <
+/// max_side`.
 fn disk_offsets(clearance: f64, max_side: usize) -> Vec<(i32, i32)> {
     if clearance.is_nan() || clearance < 0.0 || max_side == 0 {
         // an occupied cell still blocks itself (it is not Free anyway)
         return vec![(0, 0)];
     }
     let r = clearance.floor().min((max_side - 1) as f64) as i32;
+    // Squared, as whole as the clearance (√2 cells keeps the diagonal neighbours).
+    let c2 = grid::units::snap(clearance * clearance);
     let mut out = Vec::new();
     for dy in -r..=r {
         for dx in -r..=r {
-            let d = f64::from(dx * dx + dy * dy).sqrt();
-            if d <= clearance {
+            let d2 = dx * dx + dy * dy;
+            if d2 == 0 || f64::from(d2) < c2 {
                 out.push((dx, dy));
             }
         }
@@ -367,11 +373,14 @@ mod tests {
 
     #[test]
     fn disk_sizes() {
+        // A cell exactly the clearance away is outside the disk (Holz's d_max keeps it).
         assert_eq!(disk_offsets(0.0, 10).len(), 1);
-        assert_eq!(disk_offsets(1.0, 10).len(), 5);
+        assert_eq!(disk_offsets(1.0, 10).len(), 1);
+        assert_eq!(disk_offsets(1.01, 10).len(), 5);
         assert_eq!(disk_offsets(1.5, 10).len(), 9);
-        assert_eq!(disk_offsets(2.0, 10).len(), 13);
+        assert_eq!(disk_offsets(2.0, 10).len(), 9);
         assert_eq!(disk_offsets(2.5, 10).len(), 21);
+        assert_eq!(disk_offsets(3.0, 10).len(), 25);
         assert_eq!(disk_offsets(-1.0, 10).len(), 1);
         assert_eq!(disk_offsets(f64::NAN, 10).len(), 1);
         assert_eq!(disk_offsets(1e12, 2).len(), 9);
@@ -395,14 +404,19 @@ mod tests {
 
     #[test]
     fn worked_example() {
-        // 5x1 corridor: F F O F F with clearance 1 blocks x = 1..=3
+        // 5x1 corridor: F F O F F with clearance 1.5 blocks x = 1..=3
         let known = Grid::from_vec(
             5,
             1,
             vec![Occ::Free, Occ::Free, Occ::Occupied, Occ::Free, Occ::Free],
         )
         .unwrap();
-        let mut t = Traversability::new(5, 1, 1.0);
+        // A cell exactly the clearance away is kept (Holz's d_max): 1.0 blocks only x = 2.
+        let mut exact = Traversability::new(5, 1, 1.0);
+        exact.update(&known, &[0, 1, 2, 3, 4], &mut Vec::new());
+        let tr: Vec<bool> = (0..5).map(|i| exact.is_traversable(&known, i)).collect();
+        assert_eq!(tr, [true, true, false, true, true]);
+        let mut t = Traversability::new(5, 1, 1.5);
         let mut touched = Vec::new();
         t.update(&known, &[0, 1, 2, 3, 4], &mut touched);
         let tr: Vec<bool> = (0..5).map(|i| t.is_traversable(&known, i)).collect();

@@ -455,7 +455,7 @@ fn with_clearance(fx: &mut Fixture, cells: f64) {
 #[test]
 fn dt_stops_when_no_reachable_frontier_is_left() {
     // The right room is seen through a one-cell gap in the wall, too narrow to pass with a
-    // clearance of one cell: its frontier cells (next to the unknown column) cannot be
+    // clearance of 1.5 cells (the gap's cell is one cell from the wall): its frontier cells (next to the unknown column) cannot be
     // reached. Holz et al.'s termination: no reachable frontier cell, so no goal — however
     // much a scan through the gap could still reveal.
     let g = map(&[
@@ -469,7 +469,7 @@ fn dt_stops_when_no_reachable_frontier_is_left() {
     ]);
     let robot = g.index(Cell::new(2, 3)) as u32;
     let mut fx = Fixture::new(&g, vec![robot], sensor(true, 12.0), 2);
-    with_clearance(&mut fx, 1.0);
+    with_clearance(&mut fx, 1.5);
     assert!(!fx.upkeep.frontiers.cells().is_empty());
     assert_eq!(fx.decide(500, 0.2)[0], None);
     assert!(fx.candidates.cells().is_empty());

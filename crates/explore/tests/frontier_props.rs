@@ -8,7 +8,8 @@ use proptest::prelude::*;
 use rand::{RngExt, SeedableRng};
 use rand_pcg::Pcg64Mcg;
 
-/// Brute force: known Free and no known Occupied cell within centre distance ≤ clearance.
+/// Brute force: known Free and no known Occupied cell closer than the clearance (centre
+/// distance < clearance: a cell exactly the clearance away is kept, as Holz's d_max keeps it).
 fn brute_traversable(known: &Grid<Occ>, clearance: f64) -> Vec<bool> {
     let w = known.width();
     (0..known.len())
@@ -16,7 +17,7 @@ fn brute_traversable(known: &Grid<Occ>, clearance: f64) -> Vec<bool> {
             let c = known.cell(i);
             known[i] == Occ::Free
                 && !(0..known.len())
-                    .any(|j| known[j] == Occ::Occupied && c.dist(known.cell(j)) <= clearance)
+                    .any(|j| known[j] == Occ::Occupied && c.dist(known.cell(j)) < clearance)
         })
         .inspect(|_| debug_assert!(w > 0))
         .collect()
@@ -281,8 +282,20 @@ fn worked_example_regions() {
     assert_eq!(regions[1].cells, [3, 8]);
     up.regions(5, 3, &mut regions);
     assert!(regions.is_empty());
-    // clearance 1 blocks the obstacle's 4-neighbours; (1,0) and (3,0) are √2 away
+    // clearance 1 keeps the obstacle's 4-neighbours, exactly 1 away (Holz's d_max)
     let mut up = FrontierUpkeep::new(5, 3, 1.0);
+    up.rebuild(&known);
+    let mut f = up.frontiers.cells().to_vec();
+    f.sort_unstable();
+    assert_eq!(f, [1, 3, 6, 8]);
+    // clearance 1.2 blocks the 4-neighbours; (1,0) and (3,0) are √2 away
+    let mut up = FrontierUpkeep::new(5, 3, 1.2);
+    up.rebuild(&known);
+    let mut f = up.frontiers.cells().to_vec();
+    f.sort_unstable();
+    assert_eq!(f, [1, 3]);
+    // so does √2, which keeps them, exactly √2 away
+    let mut up = FrontierUpkeep::new(5, 3, std::f64::consts::SQRT_2);
     up.rebuild(&known);
     let mut f = up.frontiers.cells().to_vec();
     f.sort_unstable();

@@ -31,6 +31,7 @@ pub mod memory;
 pub mod num;
 pub mod occ;
 pub mod resample;
+pub mod units;
 
 pub use cell::{Cell, NEIGHBOURS4, NEIGHBOURS8, SQRT2, for_each_move, step_cost};
 pub use grid::Grid;

@@ -66,8 +66,8 @@ impl SensorModel {
     /// `1 / k` times as large).
     pub fn scaled(self, k: f64) -> Self {
         match self {
-            SensorModel::Los(r) => SensorModel::Los(r * k),
-            SensorModel::Footprint(r) => SensorModel::Footprint(r * k),
+            SensorModel::Los(r) => SensorModel::Los(grid::units::snap(r * k)),
+            SensorModel::Footprint(r) => SensorModel::Footprint(grid::units::snap(r * k)),
         }
     }
 

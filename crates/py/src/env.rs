@@ -955,7 +955,8 @@ fn spec(
 fn list_start_problem(list: &[Map], start: grid::Cell, clearance_m: f64) -> Option<String> {
     list.iter().find_map(|m| {
         let cells = &m.map.cells;
-        let trav = sim::truth::traversable(cells, clearance_m / m.map.resolution);
+        let trav =
+            sim::truth::traversable(cells, grid::units::cells(clearance_m, m.map.resolution));
         sim::truth::check_start(cells, &trav, start)
             .err()
             .map(|e| format!("map {}: {e}", m.name))

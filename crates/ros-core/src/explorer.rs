@@ -474,7 +474,11 @@ impl Explorer {
             sensor,
             frame,
             belief: MapBelief::from_known(known),
-            upkeep: FrontierUpkeep::new(w, h, self.cfg.clearance_m / frame.resolution),
+            upkeep: FrontierUpkeep::new(
+                w,
+                h,
+                grid::units::cells(self.cfg.clearance_m, frame.resolution),
+            ),
             planner: Planner::new(w, h, 1),
             lists: GoalLists::new(w * h),
             offer: Offer::new(w * h),
@@ -598,7 +602,8 @@ impl Explorer {
         };
         let known = st.belief.known();
         let at = known.index(cell) as u32;
-        let radius = (self.cfg.clearance_m / st.frame.resolution).ceil() as usize + 2;
+        let radius =
+            grid::units::cells(self.cfg.clearance_m, st.frame.resolution).ceil() as usize + 2;
         let Some(start) = nearest_traversable(st, at, radius, &mut self.queue, &mut self.seen)
         else {
             return Decision::Stop(StopReason::RobotNotOnFreeSpace { x, y });

@@ -117,7 +117,7 @@ impl SonarParams {
     /// readings mark free space.
     pub fn yamauchi(resolution: f64) -> Self {
         Self {
-            range: DEFAULT_RANGE_M / resolution,
+            range: grid::units::cells(DEFAULT_RANGE_M, resolution),
             cone_deg: DEFAULT_CONE_DEG,
             incidence_deg: DEFAULT_INCIDENCE_DEG,
             noise_sd: DEFAULT_NOISE_M / resolution,

@@ -40,7 +40,7 @@ impl Range {
     /// The range in cells for a map of `resolution` metres per cell.
     pub fn cells(self, resolution: f64) -> f64 {
         match self {
-            Range::Metres(m) => m / resolution,
+            Range::Metres(m) => grid::units::cells(m, resolution),
             Range::Cells(c) => c,
         }
     }

@@ -279,7 +279,7 @@ impl<'a> Session<'a> {
         }
         // Where the robot's body can be: the plane's free cells less the off-plane clutter.
         let body = cfg.clutter.as_ref().map(|c| truth::with_clutter(cells, c));
-        let clearance_cells = cfg.clearance_m / res;
+        let clearance_cells = grid::units::cells(cfg.clearance_m, res);
         let cells_for_body = body.as_ref().unwrap_or(cells);
         let trav_truth = truth::traversable(cells_for_body, clearance_cells);
         let components = truth::components(cells_for_body, &trav_truth);
@@ -879,7 +879,7 @@ impl<'a> Session<'a> {
             moves: team.moves,
             scans: team.scans,
             gave_up: team.gave_up,
-            clearance_cells: team.cfg.clearance_m / res,
+            clearance_cells: grid::units::cells(team.cfg.clearance_m, res),
             starts,
             ends,
             coverage_curve: team.curve.iter().map(|&(d, c)| (d * res, c)).collect(),
@@ -930,7 +930,7 @@ pub fn check_range_beyond_clearance(
     resolution: f64,
 ) -> Result<(), SimError> {
     let range = sensor.range_cells(resolution);
-    let clearance = clearance_m / resolution;
+    let clearance = grid::units::cells(clearance_m, resolution);
     if clearance > 0.0 && range <= clearance {
         return Err(SimError::BadParameter {
             field: "--sensor",
@@ -1274,7 +1274,7 @@ impl Team<'_> {
     /// occupied and ends the retreat there; what it senses on the way may pen it in again,
     /// so it tries again, [`BACK_OFF_TRIES`] times in all.
     fn back_off(&mut self, robots: &mut [Robot], r: usize) {
-        let reach = 2.0 * self.cfg.clearance_m / self.truth.resolution + 3.0;
+        let reach = 2.0 * grid::units::cells(self.cfg.clearance_m, self.truth.resolution) + 3.0;
         for _ in 0..BACK_OFF_TRIES {
             let known = self.belief.known();
             let here = robots[r].cell as usize;

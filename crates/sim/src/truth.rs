@@ -8,17 +8,20 @@ use rand::RngExt;
 
 use crate::config::SimError;
 
-/// Ground-truth traversability: free and farther than `clearance_cells` from every
-/// non-free cell (outside-the-world cells count as obstacles, as sensors report them).
+/// Ground-truth traversability: free and at least `clearance_cells` from every non-free
+/// cell, centre to centre (Holz et al.'s `d_max`: a cell closer than it is neglected;
+/// outside-the-world cells count as obstacles, as sensors report them). The belief's
+/// [`explore::traversability`] applies the same rule to known obstacles.
 pub fn traversable(truth: &Grid<Occ>, clearance_cells: f64) -> Vec<bool> {
     if clearance_cells <= 0.0 {
         // A free cell is at least one cell from every other: no distances needed.
         return truth.data().iter().map(|&c| c == Occ::Free).collect();
     }
     let d2 = edt_squared(truth.width(), truth.height(), |i| truth[i] != Occ::Free);
-    let c2 = clearance_cells * clearance_cells;
+    // Squared, as whole as the clearance (√2 cells keeps the diagonal neighbours).
+    let c2 = grid::units::snap(clearance_cells * clearance_cells);
     (0..truth.len())
-        .map(|i| truth[i] == Occ::Free && d2[i] > c2)
+        .map(|i| truth[i] == Occ::Free && d2[i] >= c2)
         .collect()
 }
 
@@ -161,6 +164,24 @@ mod tests {
         })
     }
 
+    /// Regression: 0.3 m on 0.05 m cells was 5.999999999999999 cells, which kept the cells
+    /// exactly 6 cells from a wall, while 0.25 m (5 cells exactly) blocked those 5 away: both
+    /// clearances kept the same cells. A cell exactly the clearance away is kept (d_max).
+    #[test]
+    fn regression_clearances_at_multiples_of_the_cell_size_keep_cells_that_far() {
+        // A wall, then 11 free cells.
+        let mut truth = Grid::new(12, 1, Occ::Free);
+        truth[0] = Occ::Occupied;
+        let first_kept = |clearance_m: f64| {
+            let trav = traversable(&truth, grid::units::cells(clearance_m, 0.05));
+            trav.iter().position(|&t| t)
+        };
+        assert_eq!(first_kept(0.25), Some(5));
+        assert_eq!(first_kept(0.3), Some(6));
+        assert_eq!(first_kept(0.31), Some(7));
+        assert_eq!(first_kept(0.05), Some(1));
+    }
+
     proptest! {
         /// Regression test for the shortcut without distances: with no clearance the
         /// traversable cells are the free ones, as the distance test finds them.
@@ -169,6 +190,26 @@ mod tests {
             let d2 = edt_squared(truth.width(), truth.height(), |i| truth[i] != Occ::Free);
             let want: Vec<bool> = (0..truth.len()).map(|i| truth[i] == Occ::Free && d2[i] > 0.0).collect();
             prop_assert_eq!(traversable(&truth, 0.0), want);
+        }
+
+        /// The ground truth's clearance rule is the belief's ([`explore::traversability`]):
+        /// on a map of free and occupied cells both keep the same cells, for clearances at
+        /// whole numbers of cells, at √2 and between them.
+        #[test]
+        fn truth_and_belief_keep_the_same_cells(truth in map(), ci in 0usize..9) {
+            let clearance = [0.0, 0.5, 1.0, std::f64::consts::SQRT_2, 1.5, 2.0, 2.5, 3.0,
+                grid::units::cells(0.15, 0.05)][ci];
+            let mut known = truth.clone();
+            for i in 0..known.len() {
+                if known[i] == Occ::Unknown {
+                    known[i] = Occ::Free;
+                }
+            }
+            let all: Vec<u32> = (0..known.len() as u32).collect();
+            let mut belief = explore::traversability::Traversability::new(known.width(), known.height(), clearance);
+            belief.update(&known, &all, &mut Vec::new());
+            let want: Vec<bool> = (0..known.len()).map(|i| belief.is_traversable(&known, i)).collect();
+            prop_assert_eq!(traversable(&known, clearance), want, "clearance {}", clearance);
         }
 
         /// The reachable cells are the start's motion component (or none from a cell that

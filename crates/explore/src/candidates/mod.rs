@@ -158,7 +158,9 @@ impl CandidateKind {
         match *self {
             CandidateKind::AllFrontiers => all_frontiers::generate(ctx, out),
             CandidateKind::RegionCentroids { min_size_m } => {
-                let min_cells = (min_size_m / ctx.resolution).ceil().max(1.0) as usize;
+                let min_cells = grid::units::cells(min_size_m, ctx.resolution)
+                    .ceil()
+                    .max(1.0) as usize;
                 centroids::generate(ctx, min_cells, out)
             }
             CandidateKind::Rfe { min_edge } => rfe::generate(ctx, min_edge, out),
