@@ -162,6 +162,45 @@ pub const PRESETS: &[(&str, &str)] = &[
     ),
 ];
 
+/// The assigners of team names `<assigner>-<candidates>` (Faigl & Kulich's naming; `greedy`
+/// and `ia` are the same).
+pub const TEAM_ASSIGNERS: &[&str] = &[
+    "nearest",
+    "greedy",
+    "ia",
+    "ga",
+    "greedy-utility",
+    "minpos",
+    "ha",
+    "ma",
+    "sga",
+];
+
+/// The candidate generators of team names `<assigner>-<candidates>`.
+pub const TEAM_CANDIDATES: &[&str] = &["af", "centroids", "rfe", "cc"];
+
+/// Every strategy name [`Strategy::preset`] takes, with a description: the presets of
+/// [`PRESETS`] but its summary line of team names, then each team name spelled out.
+pub fn every_name() -> Vec<(String, String)> {
+    let mut out: Vec<(String, String)> = PRESETS
+        .iter()
+        .filter(|(name, _)| Strategy::preset(name).is_ok())
+        .map(|&(n, d)| (n.to_string(), d.to_string()))
+        .collect();
+    for a in TEAM_ASSIGNERS {
+        for c in TEAM_CANDIDATES {
+            out.push((
+                format!("{a}-{c}"),
+                format!(
+                    "Faigl & Kulich 2013: assigner {a} over candidates {c}, re-plan every \
+                     s_max = 7 moves"
+                ),
+            ));
+        }
+    }
+    out
+}
+
 /// Error for a strategy name that is not a preset.
 #[derive(Debug, thiserror::Error)]
 #[error(
@@ -303,5 +342,28 @@ impl Strategy {
             replan,
             sensing,
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Regression: the names front ends list held the summary line "ga-af, ia-cc, …",
+    /// which no run takes. Every name listed is one a run takes, and every team name is
+    /// listed.
+    #[test]
+    fn regression_every_name_listed_is_a_strategy() {
+        let names = every_name();
+        for (n, _) in &names {
+            assert!(Strategy::preset(n).is_ok(), "{n}");
+        }
+        let summaries = PRESETS.iter().filter(|(n, _)| n.contains(", ")).count();
+        assert_eq!(summaries, 1);
+        assert_eq!(
+            names.len(),
+            PRESETS.len() - summaries + TEAM_ASSIGNERS.len() * TEAM_CANDIDATES.len()
+        );
+        assert!(names.iter().any(|(n, _)| n == "ha-rfe"));
     }
 }

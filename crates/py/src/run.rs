@@ -495,8 +495,9 @@ pub fn explore_many<'py>(
     Ok(texts)
 }
 
-/// The strategy presets: (name, description) pairs, as `frontier list` prints them.
+/// Every strategy name a run takes: (name, description) pairs, the presets `frontier list`
+/// prints, then each team name `<assigner>-<candidates>` spelled out.
 #[pyfunction]
-pub fn strategies() -> Vec<(&'static str, &'static str)> {
-    ::explore::strategy::PRESETS.to_vec()
+pub fn strategies() -> Vec<(String, String)> {
+    ::explore::strategy::every_name()
 }

@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 
 import frontier
+import frontier.gym
 
 
 def cli_json(cli, *args):
@@ -236,9 +237,12 @@ def test_explore_many_warns_of_a_misspelt_option(office):
         frontier.explore_many([dict(map=office, tag="baseline", trial=3)])
 
 
-def test_strategies_lists_the_presets():
+def test_strategies_lists_the_presets(office):
     names = [n for n, _ in frontier.strategies()]
-    assert {"cf-rr", "yamauchi", "dt500", "random"} <= set(names)
+    assert {"cf-rr", "yamauchi", "dt500", "random", "ha-rfe", "ma-cc"} <= set(names)
+    # Regression: the list held the summary line "ga-af, ia-cc, ...", which no run takes.
+    for name in names:
+        frontier.gym.ExploreEnv(office, strategy=name)
 
 
 def test_explore_many_reports_progress_and_gives_the_same_rows(office):

@@ -468,5 +468,6 @@ def __dir__() -> List[str]:
 
 
 def strategies() -> List[Tuple[str, str]]:
-    """The strategy presets as (name, description) pairs, as ``frontier list`` prints them."""
+    """Every strategy name a run takes, as (name, description) pairs: the presets ``frontier
+    list`` prints, then each team name ``<assigner>-<candidates>`` (``ha-rfe``) spelled out."""
     return list(_native.strategies())
