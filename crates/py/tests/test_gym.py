@@ -1158,3 +1158,70 @@ def test_regression_rechecking_watches_only_frontier_goals():
     decisions, moves = counts["cf-rr"]
     assert decisions < moves / 3, counts
     assert decisions <= 1.2 * counts["cf"][0], counts
+
+
+def _folder_with_a_bad_file(office, tmp_path):
+    """A folder of two good maps and an unreadable one, by name: a.pgm, b.pgm, c.pgm."""
+    office.save(tmp_path / "a.pgm")
+    office.save(tmp_path / "b.pgm")
+    (tmp_path / "c.pgm").write_bytes(b"P5 not a picture")
+    return str(tmp_path)
+
+
+def test_regression_a_failed_reset_leaves_no_episode(office, tmp_path):
+    """Regression: a reset that raised (a folder's unreadable file) left the previous episode
+    running: step() went on with it while info["seed"] named the seed of the failed reset,
+    and a vector environment stepped a mix of new and old episodes."""
+    folder = _folder_with_a_bad_file(office, tmp_path)
+    env = ExploreEnv(folder, resolution=0.25, view=16, k=4)
+    _, info = env.reset(seed=0, options={"map": 0})
+    env.step(0)
+    with pytest.raises(ValueError, match="c.pgm"):
+        env.reset(seed=5, options={"map": 2})
+    with pytest.raises(gymnasium.error.ResetNeeded):
+        env.step(0)
+    _, again = env.reset(seed=0, options={"map": 0})
+    assert again["seed"] == info["seed"]
+    venv = ExploreVectorEnv(2, folder, resolution=0.25, view=16, k=4)
+    venv.reset(seed=0, options={"map": [0, 1]})
+    venv.step(np.zeros(2, np.int64))
+    with pytest.raises(ValueError, match="c.pgm"):
+        venv.reset(seed=7, options={"map": [1, 2]})
+    with pytest.raises(gymnasium.error.ResetNeeded):
+        venv.step(np.zeros(2, np.int64))
+    venv.reset(seed=7, options={"map": [1, 0]})
+    venv.step(np.zeros(2, np.int64))
+
+
+def test_regression_a_list_of_seeds_seeds_the_later_resets(office):
+    """Regression: after reset(seed=[...]) the later unseeded resets drew from a generator
+    nobody had seeded, so a run seeded by a list could not be repeated; an int could."""
+    def episodes(first):
+        venv = ExploreVectorEnv(2, office, k=4)
+        _, info = venv.reset(seed=first)
+        paths = [info["path_length_m"].tolist()]
+        for _ in range(2):
+            for _ in range(3):
+                venv.step(np.zeros(2, np.int64))
+            obs, _ = venv.reset()
+            paths.append([obs["pose"].tolist()])
+        return paths
+    assert episodes([3, 11]) == episodes([3, 11])
+    assert episodes([3, 11]) != episodes([3, 12])
+
+
+def test_regression_a_closed_vector_env_stops_its_threads(office):
+    """Regression: close() did nothing: the helper threads stayed until garbage collection
+    and the environment went on stepping."""
+    import threading
+    before = threading.active_count()
+    venv = ExploreVectorEnv(2, office, k=4, threads=2)
+    venv.reset(seed=0)
+    venv.step(np.zeros(2, np.int64))
+    venv.close()
+    venv.close()
+    with pytest.raises(gymnasium.error.ClosedEnvironmentError, match="step: the environment is closed"):
+        venv.step(np.zeros(2, np.int64))
+    with pytest.raises(gymnasium.error.ClosedEnvironmentError, match="reset"):
+        venv.reset(seed=0)
+    assert threading.active_count() == before

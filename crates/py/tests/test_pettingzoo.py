@@ -2,6 +2,7 @@
 
 import os
 
+import gymnasium
 import numpy as np
 import pytest
 
@@ -221,3 +222,38 @@ def test_regression_run_options_out_of_range_are_refused_at_construction(office)
     with pytest.raises(ValueError, match="^--speed: expected a positive number of metres per "
                        "second, from 0.001 to 1000, found 0"):
         ExploreParallelEnv(office, robots=2, speed=0)
+
+
+def test_regression_a_failed_reset_leaves_no_agents(office, tmp_path):
+    """Regression: a reset that raised (a folder's unreadable file) kept the agents and the
+    previous episode, which step() went on with."""
+    office.save(tmp_path / "a.pgm")
+    office.save(tmp_path / "b.pgm")
+    (tmp_path / "c.pgm").write_bytes(b"P5 not a picture")
+    env = ExploreParallelEnv(str(tmp_path), robots=2, resolution=0.25, view=16, k=4)
+    env.reset(seed=0, options={"map": 0})
+    env.step(Baseline("nearest")(env))
+    with pytest.raises(ValueError, match="c.pgm"):
+        env.reset(seed=9, options={"map": 2})
+    assert env.agents == []
+    with pytest.raises(gymnasium.error.ResetNeeded):
+        env.step({a: 0 for a in env.possible_agents})
+
+
+def test_regression_agents_not_deciding_may_send_none(office):
+    """Regression: the actions of agents whose decision is not due are ignored, yet None
+    for them raised a TypeError."""
+    env = ExploreParallelEnv(office, robots=3, k=8, strategy="nearest")
+    env.reset(seed=0)
+    plain = ExploreParallelEnv(office, robots=3, k=8, strategy="nearest")
+    plain.reset(seed=0)
+    waited = 0
+    for _ in range(30):
+        due = set(env.deciding())
+        waited += len(env.agents) - len(due)
+        got = env.step({a: (0 if a in due else None) for a in env.agents})
+        want = plain.step({a: 0 for a in plain.agents})
+        assert got[1] == want[1]
+        if not env.agents:
+            break
+    assert waited > 0

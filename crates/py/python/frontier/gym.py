@@ -480,12 +480,16 @@ class ExploreEnv(gymnasium.Env):
         """Start an episode; the same ``seed`` gives the same map, start and episode.
         ``options={"map": i}`` runs it on map ``i`` of the list or folder (:attr:`map_names`)
         instead of the one the seed picks, e.g. to evaluate on every test map once.
-        ``seed`` is None or a non-negative int (Python's or numpy's)."""
+        ``seed`` is None or a non-negative int (Python's or numpy's). A reset that raises
+        (a map file that cannot be read) leaves no episode: ``step`` then raises
+        ``ResetNeeded`` until a reset succeeds."""
         seed = _seed("seed", seed)
         index = _map_index(_map_option(options))
         super().reset(seed=seed)
-        self._seed = _episode_seed(self.np_random)
-        self._obs = self._core.reset(self._seed, map=index)
+        episode = _episode_seed(self.np_random)
+        self._obs = None
+        self._obs = self._core.reset(episode, map=index)
+        self._seed = episode
         return self._obs, self._info()
 
     def step(
@@ -555,7 +559,7 @@ class ExploreVectorEnv(VectorEnv):
         _check_run("ExploreVectorEnv", run)
         _count("num_envs", num_envs, 1, optional=False)
         _count("threads", threads, 1)
-        self._core = _native.VecEnvCore(
+        core = _native.VecEnvCore(
             num_envs,
             threads=threads,
             **_core_args(
@@ -563,11 +567,12 @@ class ExploreVectorEnv(VectorEnv):
                 max_path_m, max_steps, gain, run, dungeon=dungeon, memory_mb=memory_mb,
             ),
         )
+        self._core: Optional[_native.VecEnvCore] = core
         self._wrap = invalid_action == "wrap"
         self._started = False
         self.num_envs = num_envs
         self.single_observation_space, self.single_action_space = _spaces(
-            self._core.shape, self._core.k
+            core.shape, core.k
         )
         self.observation_space = batch_space(self.single_observation_space, num_envs)
         self.action_space = batch_space(self.single_action_space, num_envs)
@@ -575,7 +580,21 @@ class ExploreVectorEnv(VectorEnv):
     @property
     def map_names(self) -> Optional[List[str]]:
         """The names of the maps of a list or folder, by index (None for generated maps)."""
-        return self._core.map_names
+        return self._open("map_names").map_names
+
+    def _open(self, what: str) -> _native.VecEnvCore:
+        """The native environments, or ClosedEnvironmentError once :meth:`close` ran."""
+        if self._core is None:
+            raise gymnasium.error.ClosedEnvironmentError(
+                f"{what}: the environment is closed"
+            )
+        return self._core
+
+    def close_extras(self, **kwargs: Any) -> None:
+        """Stop the helper threads and free the environments (``close()``); the
+        environment cannot be reset or stepped after."""
+        self._core = None
+        self._started = False
 
     def reset(
         self,
@@ -587,7 +606,9 @@ class ExploreVectorEnv(VectorEnv):
         list or folder (:attr:`map_names`): ``m`` an index for all, or one index (or None:
         the seed's pick) per environment. Episodes after an automatic reset pick by seed.
         ``seed`` is None, a non-negative int (Python's or numpy's), or a sequence of one such
-        seed (or None) per environment."""
+        seed (or None) per environment; a sequence without None also seeds the later
+        unseeded resets, as an int does. A reset that raises (a map file that cannot be read)
+        leaves no episode: ``step`` then raises ``ResetNeeded`` until a reset succeeds."""
         first: Optional[int] = None
         if seed is None or isinstance(seed, (bool, np.bool_, int, np.integer)):
             first = _seed("seed", seed)
@@ -618,13 +639,20 @@ class ExploreVectorEnv(VectorEnv):
                 "options['map']: expected a map index or one per environment, found "
                 f"{type(wanted).__name__}"
             )
+        if first is None and given and all(s is not None for s in given):
+            # The later unseeded resets draw from the whole list, as from an int.
+            state = np.random.SeedSequence([s for s in given if s is not None]).generate_state(
+                2, np.uint32
+            )
+            first = int(state[0]) << 31 | int(state[1]) >> 1
         super().reset(seed=first)
         # Environment i seeded with s starts the episode ExploreEnv.reset(seed=s) starts.
         seeds = [
             _episode_seed(seeding.np_random(int(s))[0] if s is not None else self.np_random)
             for s in given
         ]
-        obs, coverage, path = self._core.reset(seeds, maps)
+        self._started = False
+        obs, coverage, path = self._open("reset").reset(seeds, maps)
         self._started = True
         return obs, _vector_info(coverage, path)
 
@@ -632,6 +660,7 @@ class ExploreVectorEnv(VectorEnv):
         self, actions: Any
     ) -> Tuple[Dict[str, np.ndarray], np.ndarray, np.ndarray, np.ndarray, Dict[str, Any]]:
         """Step every environment (an ended one resets instead)."""
+        core = self._open("step")
         if not self._started:
             raise gymnasium.error.ResetNeeded("step: call reset() before step()")
         given = np.asarray(actions)
@@ -653,16 +682,17 @@ class ExploreVectorEnv(VectorEnv):
         if given.dtype == np.uint64 and (given >= 2**63).any():
             i = int(np.argmax(given >= 2**63))
             raise ValueError(f"actions[{i}]: expected an integer in -2^63..2^63, found {given[i]}")
-        obs, rewards, terminated, truncated, coverage, path = self._core.step(
+        obs, rewards, terminated, truncated, coverage, path = core.step(
             given.astype(np.int64, copy=False), self._wrap
         )
         return obs, rewards, terminated, truncated, _vector_info(coverage, path)
 
     def baseline_actions(self, preset: str) -> np.ndarray:
         """Each environment's action under ``preset``."""
+        core = self._open("baseline_actions")
         if not self._started:
             raise gymnasium.error.ResetNeeded("baseline_actions: call reset() before asking")
-        return np.asarray(self._core.baseline_actions(preset), dtype=np.int64)
+        return np.asarray(core.baseline_actions(preset), dtype=np.int64)
 
 
 class Baseline:

@@ -41,8 +41,10 @@ __all__ = ["ExploreParallelEnv"]
 class ExploreParallelEnv(ParallelEnv):
     """A team of ``robots`` exploring an unknown map; agents ``robot_0`` … ``robot_{m-1}``.
 
-    Takes :class:`frontier.gym.ExploreEnv`'s arguments (``strategy`` defaults to
-    ``"nearest"``, whose candidates are every frontier cell) plus ``robots``;
+    Takes :class:`frontier.gym.ExploreEnv`'s arguments but ``invalid_action`` (an index
+    beyond the offered candidates is always taken modulo their number) and ``render_mode``
+    (nothing is rendered); ``strategy`` defaults to ``"nearest"``, whose candidates are
+    every frontier cell; plus ``robots``;
     ``memory_mb`` bounds the team's run and its ``robots`` observations together."""
 
     metadata = {"name": "frontier_explore_v0", "render_modes": [], "is_parallelizable": True}
@@ -105,13 +107,17 @@ class ExploreParallelEnv(ParallelEnv):
     ) -> Tuple[Dict[str, Dict[str, np.ndarray]], Dict[str, Dict[str, Any]]]:
         """Start an episode; the same ``seed`` gives the same map, starts and episode.
         ``options={"map": i}`` runs it on map ``i`` of the list or folder (:attr:`map_names`).
-        ``seed`` is None or a non-negative int (Python's or numpy's)."""
+        ``seed`` is None or a non-negative int (Python's or numpy's). A reset that raises
+        (a map file that cannot be read) leaves no episode and no agents: ``step`` then
+        raises ``ResetNeeded`` until a reset succeeds."""
         seed = _seed("seed", seed)
         index = _map_index(_map_option(options))
         if seed is not None or self._rng is None:
             self._rng = seeding.np_random(seed)[0]
-        self._seed = _episode_seed(self._rng)
-        self._obs = self._core.reset(self._seed, map=index)
+        episode = _episode_seed(self._rng)
+        self._obs, self.agents = [], []
+        self._obs = self._core.reset(episode, map=index)
+        self._seed = episode
         self.agents = list(self.possible_agents)
         return dict(zip(self.possible_agents, self._obs)), self._infos()
 
@@ -134,7 +140,7 @@ class ExploreParallelEnv(ParallelEnv):
         """The team's next decision: deciding agents go to their candidates (an index beyond
         the offered ones is taken modulo their number). Every deciding agent
         (:meth:`deciding`) needs an action, a ValueError naming it otherwise; the others'
-        are ignored and may be left out."""
+        are ignored (any value, None too) and may be left out."""
         if not isinstance(actions, Mapping):
             raise TypeError(f"actions: expected a dict of agent -> action, found {type(actions).__name__}")
         unknown = [a for a in actions if a not in self.possible_agents]
@@ -144,15 +150,17 @@ class ExploreParallelEnv(ParallelEnv):
             )
         if not self._obs:
             raise gymnasium.error.ResetNeeded("step: call reset() before step()")
-        acts = [_action(actions.get(a, 0), f"{a}: action") for a in self.possible_agents]
-        if self.agents:
-            due = self.deciding()
-            missing = [a for a in due if a not in actions]
-            if missing:
-                raise ValueError(
-                    f"actions: missing agent {missing[0]!r}, whose decision is due "
-                    f"(deciding: {', '.join(due)})"
-                )
+        due = self.deciding() if self.agents else []
+        acts = [
+            _action(actions[a], f"{a}: action") if a in due and a in actions else 0
+            for a in self.possible_agents
+        ]
+        missing = [a for a in due if a not in actions]
+        if missing:
+            raise ValueError(
+                f"actions: missing agent {missing[0]!r}, whose decision is due "
+                f"(deciding: {', '.join(due)})"
+            )
         self._obs, reward, terminated, truncated = self._core.step(acts, True)
         agents = self.possible_agents
         obs = dict(zip(agents, self._obs))
