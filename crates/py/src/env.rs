@@ -149,7 +149,8 @@ impl Spec {
             None => Ok((splitmix(seed) % n as u64) as usize),
             Some(i) if i < n => Ok(i),
             Some(i) => Err(format!(
-                "options['map']: expected the index of one of the {n} maps (0..{n}), found {i}"
+                "options['map']: expected the index of one of the {n} maps, 0 to {}, found {i}",
+                n - 1
             )),
         };
         match &self.maps {
@@ -803,7 +804,9 @@ fn spec(
         // length is known only at a run's end (each leg string-pulled on the final map), so
         // the environment would reward and report grid metres under an any-angle name.
         return Err(value_error(format!(
-            "motion: an environment moves on the grid (its rewards and max_path_m count each              step's travel, and any-angle lengths are measured once a run ends), found              {m:?}; frontier.explore(..., motion={m:?}) gives them"
+            "motion: an environment moves on the grid (its rewards and max_path_m count each \
+             step's travel, and any-angle lengths are measured once a run ends), found \
+             {m:?}; frontier.explore(..., motion={m:?}) gives them"
         )));
     }
     if k == 0 {
@@ -827,6 +830,13 @@ fn spec(
     if !lambda.is_finite() {
         return Err(value_error(format!(
             "lam: expected a finite number, found {lambda}"
+        )));
+    }
+    if lambda < 0.0 {
+        // A negative price would reward travelling for its own sake.
+        return Err(value_error(format!(
+            "lam: expected a price per metre travelled of at least 0, found {}",
+            grid::Num(lambda)
         )));
     }
     let candidates = candidates
@@ -1425,7 +1435,8 @@ impl VecEnvCore {
                 }
             }
             return Err(value_error(format!(
-                "{e}; the other environments' steps are kept: the next step() returns them                  (and retries this one), or reset() starts over"
+                "{e}; the other environments' steps are kept: the next step() returns them \
+                 (and retries this one), or reset() starts over"
             )));
         }
         let outs: Vec<StepOut> = results.into_iter().flatten().collect();

@@ -449,7 +449,7 @@ impl Map {
             self.name,
             self.map.width(),
             self.map.height(),
-            self.map.resolution
+            grid::Num(self.map.resolution)
         )
     }
 }

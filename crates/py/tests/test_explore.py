@@ -496,6 +496,8 @@ def test_number_beyond_float_range_refused_by_its_range_check(cli, office, tmp_p
 
     for call, message in [
         (lambda: ExploreEnv(office, lam=big), "lam: expected a finite number, found inf"),
+        # Regression: a negative price, which rewards travelling, was taken without a word.
+        (lambda: ExploreEnv(office, lam=-1), "lam: expected a price per metre travelled of at least 0, found -1"),
         (lambda: ExploreEnv("empty", size=(5, -big)), "--size: expected WxH in metres"),
         (lambda: ExploreEnv("empty", resolution=big), "--resolution: expected a positive"),
     ]:

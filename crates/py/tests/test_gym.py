@@ -696,7 +696,7 @@ def test_reset_options_choose_the_map(tmp_path):
     assert listed.map_names == ["a", "b", "c"]
     pick = lambda e, s: episode_on(e, s, 2)
     assert pick(env, 5) == pick(listed, 5) == pick(env, 5)
-    with pytest.raises(ValueError, match=r"expected the index of one of the 3 maps \(0\.\.3\), found 3"):
+    with pytest.raises(ValueError, match=r"expected the index of one of the 3 maps, 0 to 2, found 3"):
         env.reset(seed=0, options={"map": 3})
     with pytest.raises(ValueError, match=r"0 or more\), found -1"):
         env.reset(seed=0, options={"map": -1})
@@ -1225,3 +1225,11 @@ def test_regression_a_closed_vector_env_stops_its_threads(office):
     with pytest.raises(gymnasium.error.ClosedEnvironmentError, match="reset"):
         venv.reset(seed=0)
     assert threading.active_count() == before
+
+
+def test_regression_messages_have_no_runs_of_spaces(office):
+    """Regression: a string continued over lines without its backslash put 14 spaces in the
+    middle of the any-angle message."""
+    with pytest.raises(ValueError) as e:
+        ExploreEnv(office, motion="any-angle")
+    assert "  " not in str(e.value), str(e.value)

@@ -379,3 +379,10 @@ def test_pair_given_as_a_set_or_a_mapping_refused(office):
     with pytest.raises(TypeError, match=r"^resolution: expected a number of metres per cell or "
                        r"a pair \(x, y\), found dict$"):
         frontier.Map.load("office.pgm", resolution={0: 0.1, 1: 0.1})
+
+
+def test_regression_a_map_repr_prints_its_resolution_short():
+    """Regression: a map at 1e-300 m per cell printed its resolution in 300 digits."""
+    tiny = frontier.Map.from_numpy(np.zeros((2, 3), bool), 1e-300)
+    assert repr(tiny) == f"Map('{tiny.name}', 3x2 cells at 1e-300 m)"
+    assert "at 0.05 m" in repr(frontier.Map.from_numpy(np.zeros((2, 3), bool), 0.05))
