@@ -190,3 +190,34 @@ def test_regression_arguments_of_a_wrong_type_name_the_argument():
     ]:
         with pytest.raises(TypeError, match=f"^{message}"):
             call()
+
+
+def test_regression_every_store_gives_the_same_column_types(cli, store, tmp_path):
+    """Regression: an empty store's frame had 36 object columns (polars: all Null), and a
+    column no trial filled took another type than a filled one, so that frames of a study's
+    shards concatenated into object columns; optimal_proven was an object column of None."""
+    pd = pytest.importorskip("pandas")
+    (tmp_path / "tiny.toml").write_text(SCENARIO)
+    empty = tmp_path / "empty.sqlite"
+    subprocess.run(
+        [cli, "bench", str(tmp_path / "tiny.toml"), "--db", str(empty), "--limit", "0",
+         "--no-progress"],
+        check=True, capture_output=True,
+    )
+    full = frontier.bench.load(store / "tiny.sqlite")
+    none = frontier.bench.load(empty)
+    assert len(none) == 0 and list(none.columns) == list(full.columns)
+    both = pd.concat([full, none])
+    for c in full.columns:
+        if c not in ("env_seed", "map_file"):  # int64 / object when filled, float64 / str empty
+            assert none[c].dtype == full[c].dtype, c
+        assert both[c].dtype == full[c].dtype or c in ("env_seed", "map_file"), c
+    assert full["optimal_proven"].dtype == "boolean"
+    assert ([c for c in both.columns if both[c].dtype == object]
+            == ["map_file", "starts", "path_lengths", "coverage_curve", "idle_s"])
+    pl = pytest.importorskip("polars")
+    full = frontier.bench.load(store / "tiny.sqlite", backend="polars")
+    none = frontier.bench.load(empty, backend="polars")
+    assert full.schema == none.schema
+    assert full["seed"].dtype == pl.UInt64 and full["map_file"].dtype == pl.String
+    assert pl.concat([full, none]).height == full.height

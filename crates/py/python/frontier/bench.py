@@ -35,7 +35,13 @@ def rows(db: Union[str, "os.PathLike[str]"]) -> List[Dict[str, Any]]:
 
 def load(db: Union[str, "os.PathLike[str]"], backend: str = "pandas") -> Any:
     """Every trial of the store ``db`` as a ``pandas.DataFrame`` (``backend="polars"``:
-    a ``polars.DataFrame``). Raises ``ValueError`` if ``db`` is not a study store."""
+    a ``polars.DataFrame``). Raises ``ValueError`` if ``db`` is not a study store.
+
+    Every store gives the same column types, whatever its trials filled, so that frames
+    of several stores (a study's shards) concatenate: a numeric column no trial filled is
+    float64 of NaN (polars: the column's type, all null), ``optimal_proven`` is pandas'
+    nullable ``boolean`` (polars: ``Boolean``), and an empty store's frame has every
+    column's type (pandas: the one it reads a filled column as)."""
     _text("backend", backend, "'pandas' or 'polars'")
     if backend not in ("pandas", "polars"):
         raise ValueError(f"backend: expected 'pandas' or 'polars', found {backend!r}")
@@ -43,39 +49,73 @@ def load(db: Union[str, "os.PathLike[str]"], backend: str = "pandas") -> Any:
     if backend == "pandas":
         import pandas as pd
 
-        from_rows = pd.DataFrame(data)
         if not data:
-            from_rows = pd.DataFrame(columns=_columns())
+            return pd.DataFrame({c: pd.Series(dtype=_PANDAS[k]) for c, k in _SCHEMA})
+        from_rows = pd.DataFrame(data)
         # A numeric column that no trial filled (no [optimal] section, no coverage goal)
         # is all None: as floats with NaN, as the CSV export reads, it sums and averages.
         for c in _OPTIONAL_NUMBERS:
             if from_rows[c].dtype == object:
                 from_rows[c] = pd.to_numeric(from_rows[c]).astype("float64")
+        from_rows["optimal_proven"] = from_rows["optimal_proven"].astype("boolean")
         return from_rows
     import polars as pl
 
+    types = {c: _polars(pl, k) for c, k in _SCHEMA}
     if not data:
-        return pl.DataFrame(schema=_columns())
+        return pl.DataFrame(schema=types)
     frame = pl.DataFrame(data)
+    # A column no trial filled is Null-typed, and seeds beyond 2^63 made the seeds Int128:
+    # each gets its own type, the same in every store.
     return frame.with_columns(
-        [pl.col(c).cast(pl.Float64) for c in _OPTIONAL_NUMBERS if frame[c].dtype == pl.Null]
+        [pl.col(c).cast(t) for c, t in types.items() if frame[c].dtype != t]
     )
 
 
+#: Every column of a store's frame, in order, with its kind of values.
+_SCHEMA = (
+    ("key", "str"), ("scenario", "str"), ("env", "str"), ("env_kind", "str"),
+    ("env_seed", "optional int"), ("map_file", "str"), ("resolution", "float"),
+    ("width", "int"), ("height", "int"), ("strategy", "str"), ("preset", "str"),
+    ("s_max", "optional int"), ("sensor", "str"), ("belief", "str"), ("sensing", "str"),
+    ("robots", "int"), ("start_variant", "int"), ("trial", "int"), ("seed", "seed"),
+    ("starts", "cells"), ("clearance", "float"), ("speed", "float"),
+    ("coverage_goal", "float"), ("max_moves", "int"), ("path_lengths", "floats"),
+    ("max_path", "float"), ("total_path", "float"), ("time_s", "float"),
+    ("coverage", "float"), ("decisions", "int"), ("moves", "int"), ("reason", "str"),
+    ("reachable_cells", "int"), ("coverage_curve", "pairs"), ("version", "str"),
+    ("wall_s", "float"), ("optimal_m", "float"), ("optimal_lower_m", "float"),
+    ("optimal_proven", "bool"), ("ratio", "float"), ("d90_m", "float"), ("t90_s", "float"),
+    ("d99_m", "float"), ("t99_s", "float"), ("overlap", "float"), ("idle_s", "floats"),
+)
+
+#: The pandas dtype of each kind in an empty store's frame: what pandas makes of a filled
+#: column ("str": pandas' own string type; an optional int is float64, NaN where empty).
+_PANDAS = {
+    "str": "str", "int": "int64", "optional int": "float64", "float": "float64",
+    "seed": "uint64", "bool": "boolean", "cells": "object", "floats": "object",
+    "pairs": "object",
+}
+
+
+def _polars(pl: Any, kind: str) -> Any:
+    """The polars type of a column of ``kind``."""
+    return {
+        "str": pl.String, "int": pl.Int64, "optional int": pl.Int64, "float": pl.Float64,
+        "seed": pl.UInt64, "bool": pl.Boolean, "cells": pl.List(pl.List(pl.Int64)),
+        "floats": pl.List(pl.Float64), "pairs": pl.List(pl.List(pl.Float64)),
+    }[kind]
+
+
 #: The numeric columns a trial may leave empty.
-_OPTIONAL_NUMBERS = (
-    "env_seed", "s_max", "coverage_goal", "optimal_m", "optimal_lower_m", "ratio", "d90_m",
-    "t90_s", "d99_m", "t99_s",
+_OPTIONAL_NUMBERS = tuple(
+    c for c, k in _SCHEMA
+    if k == "optional int" or c in (
+        "coverage_goal", "optimal_m", "optimal_lower_m", "ratio", "d90_m", "t90_s", "d99_m",
+        "t99_s",
+    )
 )
 
 
 def _columns() -> List[str]:
-    return [
-        "key", "scenario", "env", "env_kind", "env_seed", "map_file", "resolution", "width",
-        "height", "strategy", "preset", "s_max", "sensor", "belief", "sensing", "robots",
-        "start_variant", "trial", "seed", "starts", "clearance", "speed", "coverage_goal",
-        "max_moves", "path_lengths", "max_path", "total_path", "time_s", "coverage",
-        "decisions", "moves", "reason", "reachable_cells", "coverage_curve", "version",
-        "wall_s", "optimal_m", "optimal_lower_m", "optimal_proven", "ratio", "d90_m", "t90_s",
-        "d99_m", "t99_s", "overlap", "idle_s",
-    ]
+    return [c for c, _ in _SCHEMA]
