@@ -71,6 +71,24 @@ pub fn write(
         // The scenario's own words, under the title.
         blocks.insert(1, Block::Para(text));
     }
+    // One replay page per environment picture, re-run from a stored trial: made before
+    // anything is written, so that a trial that cannot be re-run (its map file moved)
+    // leaves no half-written report behind.
+    let mut pages = Vec::new();
+    for b in &mut blocks {
+        let Block::Png(name, _, link) = b else {
+            continue;
+        };
+        let Some(pic) = envs.iter().find(|e| slug(&e.name) == *name) else {
+            continue;
+        };
+        let Some(row) = crate::replays::representative(&rows, &pic.name) else {
+            continue;
+        };
+        let rel = format!("replays/{name}.html");
+        pages.push((out.join(&rel), crate::replays::replay_page(pic, row)?));
+        *link = Some(rel);
+    }
     check_report_folder(out)?;
     std::fs::create_dir_all(out.join("plots")).map_err(BenchError::io(out))?;
     std::fs::create_dir_all(out.join("envs")).map_err(BenchError::io(out))?;
@@ -91,24 +109,10 @@ pub fn write(
         crate::store::refuse_overwriting(db, t, "the report")?;
     }
     let mut files = Vec::new();
-    // One replay page per environment picture, re-run from a stored trial.
-    for b in &mut blocks {
-        let Block::Png(name, _, link) = b else {
-            continue;
-        };
-        let Some(pic) = envs.iter().find(|e| slug(&e.name) == *name) else {
-            continue;
-        };
-        let Some(row) = crate::replays::representative(&rows, &pic.name) else {
-            continue;
-        };
-        let page = crate::replays::replay_page(pic, row)?;
+    for (path, page) in pages {
         std::fs::create_dir_all(out.join("replays")).map_err(BenchError::io(out))?;
-        let rel = format!("replays/{name}.html");
-        let path = out.join(&rel);
         std::fs::write(&path, page).map_err(BenchError::io(&path))?;
         files.push(path);
-        *link = Some(rel);
     }
     for b in &blocks {
         let (path, bytes) = match b {

@@ -1115,3 +1115,32 @@ fn regression_scenario_maps_read_as_the_map_flag() {
         assert!(e.contains(want), "{env}: {e}");
     }
 }
+
+/// Regression: a report whose replay could not be made (a trial that cannot be re-run, here
+/// a damaged picture of its environment) failed after writing some of the report, leaving a
+/// half-written folder; the replays are now made before anything is written.
+#[test]
+fn regression_a_failed_replay_leaves_no_report_behind() {
+    let dir = tempfile::tempdir().unwrap();
+    let db = dir.path().join("a.sqlite");
+    let plan = plan();
+    bench::runner::run(&plan, &db, &opts(2)).unwrap();
+    let last = &plan.envs.last().unwrap().name;
+    let conn = rusqlite::Connection::open(&db).unwrap();
+    let damaged = conn
+        .execute(
+            "UPDATE envs SET png = x'89504e47' WHERE name = ?1",
+            [last.as_str()],
+        )
+        .unwrap();
+    assert_eq!(damaged, 1);
+    drop(conn);
+    let out = dir.path().join("report");
+    let e = bench::report::write(&db, &out, &bench::report::ReportOptions::default());
+    assert!(e.is_err(), "a damaged picture cannot be replayed");
+    assert!(
+        !out.exists(),
+        "{:?}",
+        std::fs::read_dir(&out).map(|d| d.count())
+    );
+}
