@@ -6,22 +6,9 @@
 //! coverage candidates' ray casting, O(frontier cells × cells within 0.8 ρ) per decision,
 //! within a test's time.)
 
-use explore::strategy::Strategy;
+use explore::strategy::{Strategy, TEAM_ASSIGNERS as ASSIGNERS, TEAM_CANDIDATES as CANDIDATES};
 use sim::{EndReason, RunConfig};
 use world::{EnvKind, EnvSpec};
-
-const ASSIGNERS: [&str; 9] = [
-    "nearest",
-    "greedy",
-    "ia",
-    "ga",
-    "greedy-utility",
-    "minpos",
-    "ha",
-    "ma",
-    "sga",
-];
-const CANDIDATES: [&str; 4] = ["af", "centroids", "rfe", "cc"];
 
 fn check(preset: &str, map: &grid::GridMap) {
     let mut cfg = RunConfig::new(Strategy::preset(preset).expect("preset"));
