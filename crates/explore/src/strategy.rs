@@ -202,14 +202,32 @@ pub fn every_name() -> Vec<(String, String)> {
 }
 
 /// Error for a strategy name that is not a preset.
-#[derive(Debug, thiserror::Error)]
-#[error(
-    "unknown strategy '{found}': expected yamauchi, cf, cf-rr, cf-rr-seg, cf-rr-seg-any, random, dt, dt500, dt-rr, nearest, greedy, greedy-utility, minpos, or <assigner>-<candidates> with an assigner of nearest, greedy, ia, ga, greedy-utility, minpos, ha, ma, sga and candidates af, centroids, rfe, cc"
-)]
+#[derive(Debug)]
 pub struct UnknownStrategy {
     /// The name given.
     pub found: String,
 }
+
+impl std::fmt::Display for UnknownStrategy {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let presets: Vec<&str> = PRESETS
+            .iter()
+            .map(|&(name, _)| name)
+            .filter(|name| !name.contains(", "))
+            .collect();
+        write!(
+            f,
+            "unknown strategy '{}': expected {}, or <assigner>-<candidates> with an assigner \
+             of {} and candidates {}",
+            self.found,
+            presets.join(", "),
+            TEAM_ASSIGNERS.join(", "),
+            TEAM_CANDIDATES.join(", ")
+        )
+    }
+}
+
+impl std::error::Error for UnknownStrategy {}
 
 fn assigner_named(name: &str) -> Option<AssignerKind> {
     Some(match name {
@@ -365,5 +383,17 @@ mod tests {
             PRESETS.len() - summaries + TEAM_ASSIGNERS.len() * TEAM_CANDIDATES.len()
         );
         assert!(names.iter().any(|(n, _)| n == "ha-rfe"));
+    }
+
+    #[test]
+    fn an_unknown_name_is_answered_with_every_name() {
+        let e = Strategy::preset("ha-xyz").unwrap_err().to_string();
+        assert_eq!(
+            e,
+            "unknown strategy 'ha-xyz': expected yamauchi, cf, cf-rr, cf-rr-seg, \
+             cf-rr-seg-any, random, dt, dt500, dt-rr, nearest, greedy, greedy-utility, minpos, \
+             or <assigner>-<candidates> with an assigner of nearest, greedy, ia, ga, \
+             greedy-utility, minpos, ha, ma, sga and candidates af, centroids, rfe, cc"
+        );
     }
 }
