@@ -76,8 +76,8 @@ pub struct MapSource {
     /// --env, the resolution to generate at.
     #[arg(allow_hyphen_values = true, long)]
     pub resolution: Option<String>,
-    /// Add a wall around a bare bitmap or a --dungeon PNG (Stage floor plans often have
-    /// none); a dungeon's marked start moves with the cells.
+    /// Add a wall one cell thick around the map (any format; Stage floor plans often have
+    /// none); the origin and a dungeon's marked start move with the cells.
     #[arg(long)]
     pub border: bool,
     /// Read --map as a dungeon PNG of learned-exploration work (Chen et al. 2019): pixels
@@ -260,7 +260,7 @@ impl MapSource {
             });
         }
         if self.border {
-            bail!("--border adds a wall around a bare bitmap --map, not to --env");
+            bail!("--border adds a wall around a --map, not to --env");
         }
         if self.dungeon {
             bail!("--dungeon reads --map as a dungeon PNG; it does not apply to --env");

@@ -22,7 +22,8 @@ pub enum MapCommand {
         /// maps, 1 if not given for .map and .txt, and overriding a ROS YAML's own.
         #[arg(allow_hyphen_values = true, long)]
         resolution: Option<String>,
-        /// Add a wall around a bare bitmap or a --dungeon PNG (whose start moves with it).
+        /// Add a wall one cell thick around the map (any format; the origin and a dungeon's
+        /// marked start move with the cells).
         #[arg(long)]
         border: bool,
         /// The OccupancyGrid topic of an MCAP file (default: its only one, or /map).
@@ -87,14 +88,26 @@ pub fn run(cmd: MapCommand) -> Result<()> {
         println!("{}", serde_json::to_string_pretty(&v)?);
     } else {
         println!("{}", file.display());
+        // To the centimetre; a size below one (a resolution of 1e-9 m) as it is, not 0.00.
+        let metres = |cells: usize| {
+            let m = cells as f64 * map.resolution;
+            if m >= 0.01 {
+                format!("{m:.2}")
+            } else {
+                grid::Num(m).to_string()
+            }
+        };
         println!(
-            "  size        {w} x {h} cells, {:.2} m x {:.2} m",
-            w as f64 * map.resolution,
-            h as f64 * map.resolution
+            "  size        {w} x {h} cells, {} m x {} m",
+            metres(w),
+            metres(h)
         );
         println!(
             "  resolution  {} m/cell, origin [{}, {}, {}]",
-            map.resolution, map.origin[0], map.origin[1], map.origin[2]
+            grid::Num(map.resolution),
+            map.origin[0],
+            map.origin[1],
+            map.origin[2]
         );
         println!("  cells       {free} free, {occupied} occupied, {unknown} unknown");
         println!(

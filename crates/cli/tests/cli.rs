@@ -189,6 +189,22 @@ fn map_info_gives_sizes_in_metres_without_float_noise() {
         serde_json::from_str(&ok(&["map", "info", yaml.to_str().unwrap(), "--json"])).unwrap();
     assert_eq!(info["width_m"], 30.2);
     assert_eq!(info["height_m"], 15.35);
+    let text = ok(&["map", "info", yaml.to_str().unwrap()]);
+    assert!(
+        text.contains("604 x 307 cells, 30.20 m x 15.35 m"),
+        "{text}"
+    );
+}
+
+/// Regression: a map at 1e-9 m per cell was "0.00 m x 0.00 m" across.
+#[test]
+fn map_info_gives_sizes_below_a_centimetre() {
+    let dir = tempfile::tempdir().unwrap();
+    let map = dir.path().join("t.map");
+    std::fs::write(&map, "type octile\nheight 1\nwidth 2\nmap\n..\n").unwrap();
+    let text = ok(&["map", "info", map.to_str().unwrap(), "--resolution", "1e-9"]);
+    assert!(text.contains("2 x 1 cells, 2e-9 m x 1e-9 m"), "{text}");
+    assert!(text.contains("resolution  1e-9 m/cell"), "{text}");
 }
 
 #[test]
@@ -1883,7 +1899,7 @@ fn regression_coverage_known_summary_names_what_it_counts() {
 fn regression_map_flags_that_do_not_apply_are_refused() {
     let e = err(&["explore", "--env", "office", "--border"]);
     assert!(
-        e.contains("--border adds a wall around a bare bitmap --map"),
+        e.contains("--border adds a wall around a --map, not to --env"),
         "{e}"
     );
     let e = err(&["explore", "--env", "office", "--dungeon"]);

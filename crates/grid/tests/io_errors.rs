@@ -51,6 +51,11 @@ fn truncated_binary_pgm() {
         msg(parse_pgm(&bytes, Path::new("a.pgm"))),
         "a.pgm: truncated: header says 2x2 pixels (8 bytes), file has 7 bytes of pixel data"
     );
+    // Regression: "file has 1 bytes".
+    assert_eq!(
+        msg(parse_pgm(b"P5 2 2 255 \x00", Path::new("a.pgm"))),
+        "a.pgm: truncated: header says 2x2 pixels (4 bytes), file has 1 byte of pixel data"
+    );
 }
 
 #[test]
@@ -386,11 +391,16 @@ fn yaml_bad_field_types() {
             "[0.0, 0.0, \"north\"]",
             "field 'origin': expected a finite number as its yaw ([x, y, yaw]), found \"north\"",
         ),
-        ("negate", "2", "field 'negate': expected 0 or 1, found 2"),
+        // nav2 reads any integer or a YAML boolean (yes, on, …): see `negate_as_nav2_reads_it`.
         (
             "negate",
-            "yes",
-            "field 'negate': expected 0 or 1, found \"yes\"",
+            "0.5",
+            "field 'negate': expected 0 or 1 (or a boolean), found 0.5",
+        ),
+        (
+            "negate",
+            "maybe",
+            "field 'negate': expected 0 or 1 (or a boolean), found \"maybe\"",
         ),
         (
             "occupied_thresh",
@@ -431,6 +441,20 @@ fn yaml_bad_field_types() {
         msg(parse_ros_yaml_meta(&text, p)),
         "maps/office.yaml: field 'mode': expected trinary, scale or raw, found \"fancy\""
     );
+    // Regression: `negate: 2` and `negate: yes` were refused, though nav2 reads any
+    // integer (not 0: negate) or a boolean in yaml-cpp's spellings.
+    for (value, want) in [
+        ("2", true),
+        ("-1", true),
+        ("0", false),
+        ("yes", true),
+        ("On", true),
+        ("no", false),
+        ("false", false),
+    ] {
+        let meta = parse_ros_yaml_meta(&yaml_with("negate", value), p).expect(value);
+        assert_eq!(meta.thresholds.negate, want, "negate: {value}");
+    }
     // Quoted numbers are numbers (yaml-cpp reads them so too); extra fields are allowed.
     let text = format!("{}\nextra: [1, 2]\n", yaml_with("resolution", "\"0.1\""));
     assert_eq!(
@@ -466,6 +490,17 @@ fn yaml_missing_field_and_syntax() {
         msg(parse_ros_yaml_meta("", p)),
         "office.yaml: YAML syntax error: the file is empty: expected a mapping of fields \
          (image, resolution, ...)"
+    );
+    // Regression: the parser's debug print of the key, `String("image"): duplicated key`.
+    assert_eq!(
+        msg(parse_ros_yaml_meta("image: a.pgm\nimage: b.pgm\n", p)),
+        "office.yaml: YAML syntax error: image: duplicated key in mapping at byte 20 line 2 \
+         column 8"
+    );
+    assert_eq!(
+        msg(parse_ros_yaml_meta("- 1\n", p)),
+        "office.yaml: YAML syntax error: expected a mapping of fields (image, resolution, ...), \
+         found a list of 1 item"
     );
     assert_eq!(
         msg(parse_ros_yaml_meta("- 1\n- 2\n", p)),

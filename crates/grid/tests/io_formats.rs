@@ -155,7 +155,7 @@ fn ros_png_colour_and_alpha() {
         [255, 0, 0, 255],   // mean 85: p = 0.667, occupied
         [254, 254, 254, 255],
         [205, 205, 205, 255],
-        [0, 0, 0, 1], // barely opaque black: occupied
+        [0, 0, 0, 1], // barely opaque black: unknown in scale mode, occupied in trinary
     ];
     let rgba = encode_png(
         5,
@@ -166,10 +166,21 @@ fn ros_png_colour_and_alpha() {
     );
     std::fs::write(dir.join("m.png"), rgba).expect("save png");
     let yaml = dir.join("m.yaml");
-    // Scale mode: the colour channels' mean; fully transparent is Unknown.
-    std::fs::write(&yaml, ros_yaml("m.png", "negate: 0\nmode: scale\n")).expect("write");
+    // Scale mode: the colour channels' mean; a pixel not fully opaque is Unknown, as nav2
+    // reads it (regression: the barely opaque black was Occupied, as ROS 1 reads it, while
+    // the transparent white was Unknown, as nav2 does). nav2 lower-cases the mode.
+    std::fs::write(&yaml, ros_yaml("m.png", "negate: 0\nmode: Scale\n")).expect("write");
     let map = load_map(&yaml, &LoadOptions::default()).expect("load");
-    assert_eq!(row(&map), vec![U, O, F, U, O]);
+    assert_eq!(row(&map), vec![U, O, F, U, U]);
+    // A bare bitmap reads colour alone: only the fully transparent pixel is Unknown.
+    let bare = LoadOptions {
+        resolution: Some((1.0, 1.0)),
+        ..LoadOptions::default()
+    };
+    assert_eq!(
+        row(&load_map(&dir.join("m.png"), &bare).expect("load")),
+        vec![U, O, F, U, O]
+    );
     // Trinary mode: alpha averaged in with red, green and blue, as both map_servers do:
     // (255·3 + 0)/4 → p 0.25; (255 + 255)/4 → 0.5; (254·3 + 255)/4 → 0.003;
     // (205·3 + 255)/4 → 0.147; (0 + 1)/4 → 0.999.
@@ -351,6 +362,13 @@ fn movingai_characters() {
         row(&parse_movingai(text, Path::new("m.map"), 1.0).expect("parse")),
         vec![F, O]
     );
+    // Regression: a CRLF file without its final newline kept the last row's '\r', an
+    // "unknown character"; so did ASCII art.
+    let text = "type octile\r\nheight 2\r\nwidth 4\r\nmap\r\n.GS@\r\nOTW.\r";
+    let map = parse_movingai(text, Path::new("m.map"), 0.25).expect("parse");
+    assert_eq!(row(&map), vec![F, F, F, O, O, O, O, F]);
+    let art = parse_ascii("#.\r\n.#\r", 1.0).expect("parse");
+    assert_eq!(row(&art), vec![O, F, F, O]);
 }
 
 #[test]
@@ -427,5 +445,30 @@ fn yml_extension_and_absolute_image_path() {
             .cells,
         map.cells
     );
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+/// Regression: a PNG whose header chunk fails its checksum was refused with the decoder's
+/// debug print of the chunk type ("ChunkType { type: IHDR, critical: true, … }").
+#[test]
+fn regression_png_errors_name_chunks_plainly() {
+    let dir = scratch("png-crc");
+    let mut bytes = encode_png(
+        2,
+        2,
+        png::ColorType::Grayscale,
+        png::BitDepth::Eight,
+        &[0, 255, 255, 0],
+    );
+    bytes[29] ^= 0xff; // the IHDR chunk's CRC
+    let path = dir.join("bad.png");
+    std::fs::write(&path, bytes).expect("write");
+    let opts = LoadOptions {
+        resolution: Some((0.1, 0.1)),
+        ..LoadOptions::default()
+    };
+    let e = load_map(&path, &opts).expect_err("bad CRC").to_string();
+    assert!(e.contains("bad.png") && e.contains("IHDR"), "{e}");
+    assert!(!e.contains("ChunkType"), "{e}");
     let _ = std::fs::remove_dir_all(dir);
 }

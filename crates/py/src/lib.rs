@@ -104,6 +104,17 @@ pub(crate) fn path_arg(v: &Bound<'_, PyAny>, name: &str) -> PyResult<PathBuf> {
     })
 }
 
+/// Refuse an empty `path` given as `name`: messages name a file as "<path>: …", and an
+/// empty one left them starting with ": ".
+pub(crate) fn check_not_empty(path: &std::path::Path, name: &str) -> PyResult<()> {
+    if path.as_os_str().is_empty() {
+        return Err(value_error(format!(
+            "{name}: expected a path, found an empty one"
+        )));
+    }
+    Ok(())
+}
+
 /// `v` as an integer (a Python or numpy one; not a bool or a float): `None` if it is no
 /// integer, `Err(digits)` if it is one beyond 128 bits.
 pub(crate) fn int_value(v: &Bound<'_, PyAny>) -> Option<Result<i128, String>> {

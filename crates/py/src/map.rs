@@ -119,8 +119,9 @@ pub(crate) fn check_resolution(r: f64) -> PyResult<()> {
         Ok(())
     } else {
         Err(value_error(format!(
-            "--resolution: expected a positive number of metres per cell, at most {}, found '{r}'",
-            grid::io::MAX_RESOLUTION_M
+            "--resolution: expected a positive number of metres per cell, at most {}, found '{}'",
+            grid::io::MAX_RESOLUTION_M,
+            grid::Num(r)
         )))
     }
 }
@@ -131,7 +132,9 @@ pub(crate) fn check_size((w, h): (f64, f64)) -> PyResult<()> {
         Ok(())
     } else {
         Err(value_error(format!(
-            "--size: expected WxH in metres (e.g. 25x20), found '{w}x{h}'"
+            "--size: expected WxH in metres (e.g. 25x20), found '{}x{}'",
+            grid::Num(w),
+            grid::Num(h)
         )))
     }
 }
@@ -218,8 +221,8 @@ impl Map {
     /// `.txt`, or an MCAP recording (`.mcap`: its last OccupancyGrid, on `topic` if it has
     /// several). `dungeon=True` reads a PNG as a dungeon map of learned-exploration work
     /// (free above 150, the start marked by pixels of value 208, kept as `start`).
-    /// `border=True` adds a wall around a bitmap, a dungeon PNG's too (the start moves with
-    /// the cells). A `resolution` given with a ROS YAML overrides the YAML's. A map whose
+    /// `border=True` adds a wall one cell thick around the map, of any format (the origin
+    /// and a dungeon PNG's start move with the cells). A `resolution` given with a ROS YAML overrides the YAML's. A map whose
     /// loading would need more than `memory_mb` MiB (the CLI's `--memory-mb`) or the memory
     /// available is refused before it is loaded.
     #[staticmethod]
@@ -234,6 +237,7 @@ impl Map {
         #[pyo3(from_py_with = dungeon_arg)] dungeon: bool,
         #[pyo3(from_py_with = memory_mb_arg)] memory_mb: Option<u64>,
     ) -> PyResult<Self> {
+        crate::check_not_empty(&path, "path")?;
         let resolution = resolution_arg(resolution)?;
         let (map, name, start) = read_file(
             &path,
@@ -359,6 +363,7 @@ impl Map {
     /// PGM), `.pgm`, `.png`, `.map` (MovingAI: unknown cells are written as out of bounds
     /// and read back as occupied) or `.txt`. Only the YAML keeps the resolution and origin.
     fn save(&self, #[pyo3(from_py_with = file_arg)] path: PathBuf) -> PyResult<()> {
+        crate::check_not_empty(&path, "path")?;
         grid::io::save_map(&self.map, &path).map_err(value_error)
     }
 

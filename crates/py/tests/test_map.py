@@ -386,3 +386,12 @@ def test_regression_a_map_repr_prints_its_resolution_short():
     tiny = frontier.Map.from_numpy(np.zeros((2, 3), bool), 1e-300)
     assert repr(tiny) == f"Map('{tiny.name}', 3x2 cells at 1e-300 m)"
     assert "at 0.05 m" in repr(frontier.Map.from_numpy(np.zeros((2, 3), bool), 0.05))
+
+
+def test_regression_an_empty_path_and_a_huge_resolution_are_named_plainly():
+    """Regression: Map.load('') said ': unknown map format ""…', and a resolution of
+    1e308 was echoed in 309 digits."""
+    with pytest.raises(ValueError, match="^path: expected a path, found an empty one$"):
+        frontier.Map.load("")
+    with pytest.raises(ValueError, match=r"at most 1000, found '1e308'$"):
+        frontier.Map.from_numpy(np.zeros((2, 2), bool), 1e308)

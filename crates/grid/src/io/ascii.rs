@@ -29,13 +29,14 @@ pub(crate) fn parse_ascii_named(
     check_resolution(resolution, name)?;
     // Trailing blank lines are not rows. The lines are walked twice rather than collected:
     // a list of them takes 16 bytes a line, 3.2 GB for a 200 MB file of newlines.
-    let rows = text
-        .lines()
+    let rows = super::text_lines(text)
         .enumerate()
         .filter(|(_, l)| !l.is_empty())
         .last()
         .map_or(0, |(i, _)| i + 1);
-    let width = text.lines().next().map_or(0, |l| l.chars().count());
+    let width = super::text_lines(text)
+        .next()
+        .map_or(0, |l| l.chars().count());
     if width == 0 && rows > 0 {
         return Err(MapError::new(
             name,
@@ -47,7 +48,7 @@ pub(crate) fn parse_ascii_named(
     }
     fits(width as u64, rows as u64, name)?;
     let mut data = Vec::with_capacity(width * rows);
-    for (y, line) in text.lines().take(rows).enumerate() {
+    for (y, line) in super::text_lines(text).take(rows).enumerate() {
         let mut n = 0;
         for (x, ch) in line.chars().enumerate() {
             let occ = match ch {

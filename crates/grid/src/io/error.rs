@@ -152,7 +152,8 @@ pub enum MapErrorKind {
     /// The pixel data is shorter than the header says.
     #[error(
         "truncated: header says {width}x{height} pixels ({expected} bytes), \
-         file has {found} bytes of pixel data"
+         file has {} of pixel data",
+        bytes(*found)
     )]
     Truncated {
         /// Width in the header.
@@ -228,4 +229,13 @@ pub enum MapErrorKind {
     /// A file name that cannot be written into a ROS YAML file.
     #[error("file name {0:?} is not valid UTF-8")]
     BadFileName(PathBuf),
+}
+
+/// `n` bytes, or one byte.
+fn bytes(n: u64) -> String {
+    if n == 1 {
+        "1 byte".to_string()
+    } else {
+        format!("{n} bytes")
+    }
 }

@@ -257,6 +257,12 @@ fn extension(path: &Path) -> String {
 /// the path is the file named in the error.
 pub(crate) type SizeCheck = dyn Fn(u64, u64, &Path) -> Result<(), MapError>;
 
+/// The lines of a text map, as [`str::lines`] gives them, but a last line that ends in a
+/// bare `\r` (a CRLF file without its final newline) without it.
+pub(crate) fn text_lines(text: &str) -> impl Iterator<Item = &str> {
+    text.lines().map(|l| l.strip_suffix('\r').unwrap_or(l))
+}
+
 /// Bytes a cell of a grid takes.
 pub(crate) const CELL_BYTES: u64 = 1;
 /// Bytes a pixel of a decoded PGM takes (its value, a `u32`).
@@ -265,8 +271,8 @@ pub(crate) const PGM_BYTES_PER_PIXEL: u64 = 4;
 pub(crate) const PNG_BYTES_PER_PIXEL: u64 = 6;
 
 /// How to make a map's loading fit in memory, said in every refusal.
-const MEMORY_FIX: &str =
-    "use a map with fewer, larger cells (scale the image down, or a coarser resolution)";
+const MEMORY_FIX: &str = "use a map with fewer, larger cells (scale the image down, or read a \
+                          .json plan at a coarser resolution)";
 
 /// A map's `(width, height)` in cells.
 type Size = (u64, u64);

@@ -37,7 +37,7 @@ pub(crate) fn parse_movingai_checked(
     check_resolution(resolution, name)?;
     let bad_line =
         |line: usize, what: String| MapError::new(name, MapErrorKind::BadLine { line, what });
-    let mut lines = text.lines().enumerate().map(|(i, l)| (i + 1, l));
+    let mut lines = super::text_lines(text).enumerate().map(|(i, l)| (i + 1, l));
     let (mut kind, mut height, mut width) = (None, None, None);
     let mut last = 0;
     loop {

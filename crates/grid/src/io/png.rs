@@ -198,11 +198,39 @@ const ADAM7: [Pass; 7] = [
 
 /// What a PNG decoding error means for the user.
 fn png_error(e: ::png::DecodingError) -> MapErrorKind {
-    match e {
+    MapErrorKind::Png(match e {
         ::png::DecodingError::IoError(io) if io.kind() == std::io::ErrorKind::UnexpectedEof => {
-            MapErrorKind::Png("truncated: the file ends before the image data does".to_string())
+            "truncated: the file ends before the image data does".to_string()
         }
-        e => MapErrorKind::Png(e.to_string()),
+        ::png::DecodingError::LimitsExceeded => "an image row or chunk is larger than the \
+                                                 PNG decoder's limit of 64 MiB"
+            .to_string(),
+        e => tidy_chunk_names(&e.to_string()),
+    })
+}
+
+/// `message` with the decoder's debug print of a chunk type (`ChunkType { type: IHDR,
+/// critical: true, … }`) shortened to the chunk's name, and its capital first letter
+/// (`Invalid image dimensions`, `CRC error`) kept where it is an acronym only.
+fn tidy_chunk_names(message: &str) -> String {
+    const OPEN: &str = "ChunkType { type: ";
+    let mut out = String::new();
+    let mut rest = message;
+    while let Some(at) = rest.find(OPEN) {
+        out.push_str(&rest[..at]);
+        let after = &rest[at + OPEN.len()..];
+        let name_end = after.find([',', ' ', '}']).unwrap_or(after.len());
+        out.push_str(&after[..name_end]);
+        rest = after.find('}').map_or("", |end| &after[end + 1..]);
+    }
+    out.push_str(rest);
+    match out.split_whitespace().next() {
+        Some(word) if word.chars().skip(1).any(|c| c.is_ascii_lowercase()) => {
+            let mut chars = out.chars();
+            let first = chars.next().map(|c| c.to_ascii_lowercase());
+            first.into_iter().chain(chars).collect()
+        }
+        _ => out,
     }
 }
 
@@ -249,4 +277,26 @@ fn encode_8bit(
     writer.write_image_data(pixels)?;
     writer.finish()?;
     Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::tidy_chunk_names;
+
+    #[test]
+    fn chunk_types_are_named_and_sentences_start_small() {
+        assert_eq!(
+            tidy_chunk_names(
+                "CRC error: expected 0x5a3c22bf have 0x5ac322bf while decoding ChunkType { \
+                 type: IHDR, critical: true, private: false, reserved: false, safecopy: false } \
+                 chunk."
+            ),
+            "CRC error: expected 0x5a3c22bf have 0x5ac322bf while decoding IHDR chunk."
+        );
+        assert_eq!(
+            tidy_chunk_names("Invalid image dimensions"),
+            "invalid image dimensions"
+        );
+        assert_eq!(tidy_chunk_names("ChunkType { type: tEXt"), "tEXt");
+    }
 }

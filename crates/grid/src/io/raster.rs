@@ -4,9 +4,11 @@
 //! `negate`, `p = v / maxval`), computed in that order as ROS 1 map_server does:
 //! `p > occupied_thresh` is Occupied, `p < free_thresh` is Free, anything
 //! between is Unknown. Colour pixels use the mean of their colour channels (as ROS 1
-//! map_server); a fully transparent pixel (alpha 0) is Unknown — except in a ROS YAML's
-//! trinary mode, where both map_servers (ROS 1's and nav2's) average the alpha channel in
-//! with the red, green and blue ones, and so does [`Thresholds::classify_trinary`].
+//! map_server); in a bare bitmap a fully transparent pixel (alpha 0) is Unknown. A ROS
+//! YAML's modes read alpha as the map_servers do: in trinary mode both (ROS 1's and nav2's)
+//! average it in with the red, green and blue channels ([`Thresholds::classify_trinary`]);
+//! in scale mode nav2 makes every pixel that is not fully opaque Unknown
+//! ([`Thresholds::classify_scale`]).
 
 use crate::grid::Grid;
 use crate::occ::Occ;
@@ -112,8 +114,7 @@ impl Thresholds {
         })
     }
 
-    /// The states of every pixel of `raster` (bare bitmaps and ROS `scale` mode;
-    /// transparent → Unknown).
+    /// The states of every pixel of `raster` (bare bitmaps; transparent → Unknown).
     pub fn classify_raster(&self, raster: &Raster) -> Grid<Occ> {
         cells_of(raster, |i| {
             if raster.is_transparent(i) {
@@ -121,6 +122,17 @@ impl Thresholds {
             } else {
                 self.classify(raster.values[i], raster.maxval)
             }
+        })
+    }
+
+    /// The states of every pixel of `raster` in a ROS YAML's `scale` mode, as nav2's
+    /// map_server reads it: a pixel that is not fully opaque is Unknown, and an opaque one
+    /// is classified by its colour ([`classify`](Self::classify); its scaled occupancies
+    /// between the thresholds are Unknown here too).
+    pub fn classify_scale(&self, raster: &Raster) -> Grid<Occ> {
+        cells_of(raster, |i| match raster.alpha.get(i) {
+            Some(&a) if u32::from(a) != raster.alpha_max => Occ::Unknown,
+            _ => self.classify(raster.values[i], raster.maxval),
         })
     }
 

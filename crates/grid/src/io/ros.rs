@@ -17,9 +17,10 @@
 //! `free_thresh`, else Unknown — `scale` mode's intermediate occupancies have no place in
 //! a three-state map, so they are Unknown too. In `trinary` mode a PNG pixel's alpha is
 //! averaged in with its colour, as both map_servers do
-//! ([`Thresholds::classify_trinary`]); in `scale` mode a fully transparent pixel is
-//! Unknown (nav2 makes every pixel not fully opaque Unknown, ROS 1 only those between the
-//! thresholds). `raw` mode follows nav2 (see [`Thresholds::classify_raw`]). Image row 0 is
+//! ([`Thresholds::classify_trinary`]); in `scale` mode a pixel that is not fully opaque is
+//! Unknown, as in nav2 (ROS 1 makes Unknown only the fully transparent ones between the
+//! thresholds; [`Thresholds::classify_scale`]). `raw` mode follows nav2 (see
+//! [`Thresholds::classify_raw`]). Image row 0 is
 //! grid row 0 (the top); `origin` stays the lower-left corner.
 
 use std::path::{Path, PathBuf};
@@ -42,7 +43,8 @@ pub enum RosMode {
     /// Occupied, free or unknown by the thresholds.
     #[default]
     Trinary,
-    /// Thresholds, with occupancies in between scaled (Unknown here); alpha 0 is Unknown.
+    /// Thresholds, with occupancies in between scaled (Unknown here); a pixel not fully
+    /// opaque is Unknown (nav2).
     Scale,
     /// The pixel value is the occupancy in percent.
     Raw,
@@ -100,7 +102,7 @@ pub fn parse_ros_yaml_meta(text: &str, yaml_path: &Path) -> Result<RosMapMeta, M
         ))));
     }
     let docs = YamlLoader::load_from_str(text)
-        .map_err(|e| err(MapErrorKind::YamlSyntax(e.to_string())))?;
+        .map_err(|e| err(MapErrorKind::YamlSyntax(tidy_yaml_error(&e.to_string()))))?;
     let doc = match docs.first() {
         Some(d @ Yaml::Hash(_)) => d,
         Some(other) => {
@@ -162,11 +164,18 @@ pub fn parse_ros_yaml_meta(text: &str, yaml_path: &Path) -> Result<RosMapMeta, M
         _ => return Err(bad("origin", "a list of three numbers [x, y, yaw]", y)),
     };
 
+    // As nav2 reads it: an integer (any but 0 negates) or a YAML boolean, yaml-cpp's
+    // spellings (`yes`, `on`, …) included.
     let y = field("negate")?;
     let negate = match y {
-        Yaml::Integer(0) | Yaml::Boolean(false) => false,
-        Yaml::Integer(1) | Yaml::Boolean(true) => true,
-        _ => return Err(bad("negate", "0 or 1", y)),
+        Yaml::Integer(i) => *i != 0,
+        Yaml::Boolean(b) => *b,
+        Yaml::String(s) => match s.to_ascii_lowercase().as_str() {
+            "y" | "yes" | "on" | "true" => true,
+            "n" | "no" | "off" | "false" => false,
+            _ => return Err(bad("negate", "0 or 1 (or a boolean)", y)),
+        },
+        _ => return Err(bad("negate", "0 or 1 (or a boolean)", y)),
     };
 
     let threshold = |name: &'static str| -> Result<f64, MapError> {
@@ -186,11 +195,12 @@ pub fn parse_ros_yaml_meta(text: &str, yaml_path: &Path) -> Result<RosMapMeta, M
         }));
     }
 
+    // nav2 lower-cases the mode before it reads it.
     let mode = match &doc["mode"] {
         Yaml::BadValue | Yaml::Null => RosMode::Trinary,
-        Yaml::String(s) if s == "trinary" => RosMode::Trinary,
-        Yaml::String(s) if s == "scale" => RosMode::Scale,
-        Yaml::String(s) if s == "raw" => RosMode::Raw,
+        Yaml::String(s) if s.eq_ignore_ascii_case("trinary") => RosMode::Trinary,
+        Yaml::String(s) if s.eq_ignore_ascii_case("scale") => RosMode::Scale,
+        Yaml::String(s) if s.eq_ignore_ascii_case("raw") => RosMode::Raw,
         y => return Err(bad("mode", "trinary, scale or raw", y)),
     };
 
@@ -269,7 +279,7 @@ pub fn parse_ros_yaml(
     let raster = decode(&bytes, &image, &fits)?;
     let cells = match meta.mode {
         RosMode::Trinary => meta.thresholds.classify_trinary(&raster),
-        RosMode::Scale => meta.thresholds.classify_raster(&raster),
+        RosMode::Scale => meta.thresholds.classify_scale(&raster),
         RosMode::Raw => meta.thresholds.classify_raw(&raster),
     };
     let map = GridMap {
@@ -278,6 +288,18 @@ pub fn parse_ros_yaml(
         origin: meta.origin,
     };
     finish(map, res, yaml_path, opts.border)
+}
+
+/// `message` of the YAML parser with its debug print of a key (`String("image"):
+/// duplicated key in mapping`) written as the key (`image: duplicated key in mapping`).
+fn tidy_yaml_error(message: &str) -> String {
+    match message.strip_prefix("String(\"") {
+        Some(rest) => match rest.split_once("\"):") {
+            Some((key, after)) => format!("{key}:{after}"),
+            None => message.to_string(),
+        },
+        None => message.to_string(),
+    }
 }
 
 /// The ROS map YAML for `map` whose image is saved as `image` (written as given, so
@@ -342,6 +364,7 @@ fn show(y: &Yaml) -> String {
         Yaml::Integer(i) => i.to_string(),
         Yaml::String(s) => format!("{s:?}"),
         Yaml::Boolean(b) => b.to_string(),
+        Yaml::Array(a) if a.len() == 1 => "a list of 1 item".to_string(),
         Yaml::Array(a) => format!("a list of {} items", a.len()),
         Yaml::Hash(_) => "a mapping".to_string(),
         Yaml::Alias(_) => "an alias".to_string(),
