@@ -164,6 +164,11 @@ pub struct Trial {
     pub trial: u32,
     /// The run's seed.
     pub seed: u64,
+    /// Its position in the study's whole list of trials, kept when `--trials` leaves trials
+    /// out ([`Plan::first_trials`]): a shard picks its trials by it, so that `--trials K
+    /// --shard I/N` runs the first trials of shard I/N, which the shard's later runs into
+    /// the same store then find done.
+    pub number: usize,
 }
 
 /// Whether a strategy draws random numbers: random assigners, random-order greedy, MA's
@@ -923,6 +928,7 @@ fn resolve(
                         start_variant: sv as u32,
                         trial: t,
                         seed,
+                        number: trials.len(),
                     });
                 }
             }

@@ -55,14 +55,15 @@ impl std::fmt::Display for Shard {
 }
 
 impl Shard {
-    /// Whether trial number `i` of the plan belongs to this shard.
+    /// Whether trial number `i` of the whole study ([`Trial::number`]) belongs to this
+    /// shard.
     pub fn contains(&self, i: usize) -> bool {
         i % self.count == self.index - 1
     }
 
-    /// How many of a plan's `trials` (numbers `0..trials`) belong to this shard.
-    pub fn share(&self, trials: usize) -> usize {
-        (trials + self.count - self.index) / self.count
+    /// How many of `trials` belong to this shard.
+    pub fn share(&self, trials: &[Trial]) -> usize {
+        trials.iter().filter(|t| self.contains(t.number)).count()
     }
 }
 
@@ -115,9 +116,7 @@ pub fn run(plan: &Plan, db: &Path, opts: &RunOptions) -> Result<RunSummary, Benc
     let mine: Vec<&Trial> = plan
         .trials
         .iter()
-        .enumerate()
-        .filter(|(i, _)| opts.shard.is_none_or(|s| s.contains(*i)))
-        .map(|(_, t)| t)
+        .filter(|t| opts.shard.is_none_or(|s| s.contains(t.number)))
         .collect();
     // A new store is made only for a run that fits in memory: refused, it leaves no file.
     // (Its pending trials are these; an existing store's are known once it is read.)

@@ -95,7 +95,16 @@ fn trials_for_repeats_only_the_strategies_it_names() {
     assert_eq!(narrow.trials.len(), 2 * 2 * 2 + (1 + 1) * 2);
     let all = plan();
     for t in &narrow.trials {
-        assert!(all.trials.contains(t), "{} not in the full plan", t.key);
+        // The same trial, but for its place in the list (`number`).
+        let same = |a: &&bench::Trial| {
+            (&a.key, a.env, a.variant, a.start_variant, a.trial, a.seed)
+                == (&t.key, t.env, t.variant, t.start_variant, t.trial, t.seed)
+        };
+        assert!(
+            all.trials.iter().any(|a| same(&a)),
+            "{} not in the full plan",
+            t.key
+        );
     }
     let random_office = |p: &Plan| {
         p.trials
@@ -268,20 +277,62 @@ fn shard_syntax() {
 }
 
 /// Regression: `--dry-run --shard 2/2` reported the whole plan's trial count. A shard's
-/// share is the number of trials the runner takes for it.
+/// share is the number of trials the runner takes for it, with `--trials` too.
 #[test]
 fn regression_shard_share_is_the_trials_the_shard_runs() {
-    for trials in 0..20 {
+    let dir = tempfile::tempdir().unwrap();
+    for first in [None, Some(1)] {
+        let mut p = plan();
+        if let Some(n) = first {
+            p.first_trials(n);
+        }
         for count in 1..6 {
             let mut sum = 0;
             for index in 1..=count {
                 let s = Shard { index, count };
-                let runs = (0..trials).filter(|&i| s.contains(i)).count();
-                assert_eq!(s.share(trials), runs, "{s} of {trials}");
-                sum += runs;
+                let db = dir
+                    .path()
+                    .join(format!("{first:?}-{s}.sqlite").replace('/', "of"));
+                let shard = Some(s);
+                let ran = bench::runner::run(&p, &db, &RunOptions { shard, ..opts(1) })
+                    .unwrap()
+                    .ran;
+                assert_eq!(s.share(&p.trials), ran, "{s} of {}", p.trials.len());
+                sum += ran;
             }
-            assert_eq!(sum, trials);
+            assert_eq!(sum, p.trials.len());
         }
+    }
+}
+
+/// Regression: a shard was picked by a trial's place in the list `--trials` had left, so
+/// `--trials 1 --shard I/N` ran trials of other shards, which the shard's later runs into
+/// the same store did not find done (and ran again, as other shards did). The first trials
+/// of a shard are now a part of it.
+#[test]
+fn regression_the_first_trials_of_a_shard_are_a_part_of_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let whole = plan();
+    let mut first = plan();
+    first.first_trials(1);
+    assert!(first.trials.len() < whole.trials.len());
+    for index in 1..=3 {
+        let shard = Some(Shard { index, count: 3 });
+        let db = dir.path().join(format!("s{index}.sqlite"));
+        let early = bench::runner::run(&first, &db, &RunOptions { shard, ..opts(1) }).unwrap();
+        let later = bench::runner::run(&whole, &db, &RunOptions { shard, ..opts(1) }).unwrap();
+        assert_eq!(later.already_done, early.ran, "shard {index}/3");
+        assert_eq!(later.total, early.ran + later.ran);
+        let keys: std::collections::BTreeSet<String> =
+            rows(&db).into_iter().map(|r| r.key).collect();
+        let mine: std::collections::BTreeSet<String> = whole
+            .trials
+            .iter()
+            .enumerate()
+            .filter(|(i, _)| i % 3 == index - 1)
+            .map(|(_, t)| t.key.clone())
+            .collect();
+        assert_eq!(keys, mine, "shard {index}/3 holds its own trials only");
     }
 }
 

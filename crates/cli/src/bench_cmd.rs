@@ -182,7 +182,7 @@ fn run_study(a: RunArgs) -> Result<()> {
     // The trials this command runs: the shard's share of the plan, when it runs one.
     let (trials, shard_text) = match shard {
         Some(s) => (
-            s.share(plan.trials.len()),
+            s.share(&plan.trials),
             format!(", shard {s} of {} trials", plan.trials.len()),
         ),
         None => (plan.trials.len(), String::new()),
