@@ -432,6 +432,20 @@ pub fn explore_many<'py>(
         j.cfg.record_trace = false;
         jobs.push(j);
     }
+    // The checks each run's start makes (its sensor on its map's cells, the starts given),
+    // made for every run before any starts: a sensor once per spec, resolution, clearance
+    // and kind of candidates.
+    let mut sensed = std::collections::HashSet::new();
+    for (i, j) in jobs.iter().enumerate() {
+        let sensor = (
+            j.cfg.sensor.to_string(),
+            j.map.map.resolution.to_bits(),
+            j.cfg.clearance_m.to_bits(),
+            format!("{:?}", j.cfg.strategy.candidates),
+        );
+        sim::check_run(&j.map.map, &j.cfg, sensed.insert(sensor))
+            .map_err(|e| value_error(format!("run {i}: {e}")))?;
+    }
     check_memory(&jobs, threads, memory_mb)?;
     let pool = match threads {
         // No more threads than runs: a thread with no run to take would only be started.

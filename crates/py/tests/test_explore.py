@@ -603,3 +603,25 @@ def test_explore_many_progress_takes_numpy_bools(office, capsys):
     assert "explore_many" in capsys.readouterr().err  # tqdm's bar or the plain line
     assert frontier.explore_many([dict(map=office)], progress=np.False_) == rows
     assert capsys.readouterr().err == ""
+
+
+def test_regression_explore_many_checks_every_run_before_any_starts(office):
+    """Regression: a run whose sensor its map's cells cannot carry (sonar on 0.25 m cells),
+    or whose start is on a wall, was refused only when it started, after the runs before
+    it had run (and their results were lost)."""
+    # A run of seconds first: had it started, progress would have been told of it.
+    slow = dict(map=frontier.Map.generate("office", seed=0, size=(40, 30), resolution=0.1),
+                strategy="ma-cc", robots=4, seed=1)
+    for bad, message in [
+        (dict(map=office, sensor="sonar"), "^run 1: .*sonar"),
+        (dict(map=office, start=(0, 0)), r"^run 1: start \(0, 0\)"),
+    ]:
+        calls = []
+        with pytest.raises(ValueError, match=message):
+            frontier.explore_many(
+                [slow, bad], threads=1, progress=lambda done, n: calls.append(done)
+            )
+        assert calls == [], "no run started"
+    # A good start is still taken, and the sensor checked once serves every run.
+    rows = frontier.explore_many([dict(map=office, seed=k, start=(5, 5)) for k in range(3)])
+    assert len(rows) == 3

@@ -45,6 +45,6 @@ pub use metrics::{
 };
 pub use motion::Motion;
 pub use run::{
-    BUMP_S, Session, Status, check_config, check_range_beyond_clearance, check_sensor_range, run,
-    run_pausing,
+    BUMP_S, Session, Status, check_config, check_range_beyond_clearance, check_run,
+    check_sensor_range, run, run_pausing,
 };

@@ -265,39 +265,21 @@ impl<'a> Session<'a> {
     ) -> Result<Self, SimError> {
         let started = Instant::now();
         check_config(&cfg)?;
+        check_clutter(&truth, &cfg)?;
         let res = truth.resolution;
         let cells = &truth.cells;
         let (w, h) = (cells.width(), cells.height());
-        if let Some(c) = &cfg.clutter
-            && (c.width(), c.height()) != (w, h)
-        {
-            return Err(SimError::BadParameter {
-                field: "clutter",
-                expected: "a layer of the map's size",
-                found: format!("{}x{} for a {w}x{h} map", c.width(), c.height()),
-            });
-        }
         // Where the robot's body can be: the plane's free cells less the off-plane clutter.
         let body = cfg.clutter.as_ref().map(|c| truth::with_clutter(cells, c));
-        let clearance_cells = grid::units::cells(cfg.clearance_m, res);
         let cells_for_body = body.as_ref().unwrap_or(cells);
-        let trav_truth = truth::traversable(cells_for_body, clearance_cells);
+        let trav_truth = body_traversable(cells_for_body, &truth, &cfg);
         let components = truth::components(cells_for_body, &trav_truth);
         let starts: Vec<Cell> = if cfg.starts.is_empty() {
             let mut rng = seed::rng(cfg.seed, "start");
             let first = truth::random_start(&components, &mut rng, cfg.clearance_m)?;
             truth::team_starts(cells_for_body, &trav_truth, first, cfg.robots)?
         } else {
-            if cfg.starts.len() != cfg.robots {
-                return Err(SimError::BadParameter {
-                    field: "--start",
-                    expected: "one start cell per robot (or one, for the whole team)",
-                    found: format!("{} starts for {} robots", cfg.starts.len(), cfg.robots),
-                });
-            }
-            for &s in &cfg.starts {
-                truth::check_start(cells_for_body, &trav_truth, s)?;
-            }
+            check_given_starts(cells_for_body, &trav_truth, &cfg)?;
             cfg.starts.clone()
         };
         let reachable = truth::reachable_from(&components.0, cells.index(starts[0]));
@@ -308,11 +290,7 @@ impl<'a> Session<'a> {
         };
         drop((trav_truth, components));
 
-        let sensor = cfg.sensor.build(res)?;
-        check_sensor_range(cfg.strategy.candidates, &cfg.sensor, res)?;
-        check_range_beyond_clearance(&cfg.sensor, cfg.clearance_m, res)?;
-        let sweep = cfg.sensor.sweep().build(res)?;
-        let sonar = cfg.sensor.sonar(res).transpose()?;
+        let (sensor, sweep, sonar) = build_sensing(&cfg, res)?;
         let imperfect = sonar.is_some() || cfg.clutter.is_some();
         let m = cfg.robots;
         let len = cells.len();
@@ -363,7 +341,7 @@ impl<'a> Session<'a> {
             belief,
             unseen,
             skip_known,
-            upkeep: FrontierUpkeep::new(w, h, clearance_cells),
+            upkeep: FrontierUpkeep::new(w, h, grid::units::cells(cfg.clearance_m, res)),
             planner: Planner::new(w, h, m),
             lists: GoalLists::new(len),
             offer: Offer::new(len),
@@ -894,6 +872,77 @@ impl<'a> Session<'a> {
             trace: team.trace,
         }
     }
+}
+
+/// Refuse a clutter layer that is not of `truth`'s size.
+fn check_clutter(truth: &GridMap, cfg: &RunConfig) -> Result<(), SimError> {
+    let (w, h) = (truth.cells.width(), truth.cells.height());
+    match &cfg.clutter {
+        Some(c) if (c.width(), c.height()) != (w, h) => Err(SimError::BadParameter {
+            field: "clutter",
+            expected: "a layer of the map's size",
+            found: format!("{}x{} for a {w}x{h} map", c.width(), c.height()),
+        }),
+        _ => Ok(()),
+    }
+}
+
+/// Where the robot's body may stand in `body` (the plane's cells less the clutter): free
+/// and keeping the clearance.
+fn body_traversable(body: &Grid<Occ>, truth: &GridMap, cfg: &RunConfig) -> Vec<bool> {
+    truth::traversable(body, grid::units::cells(cfg.clearance_m, truth.resolution))
+}
+
+/// Refuse starts given that are not one per robot, or where a robot cannot stand.
+fn check_given_starts(body: &Grid<Occ>, trav: &[bool], cfg: &RunConfig) -> Result<(), SimError> {
+    if cfg.starts.len() != cfg.robots {
+        return Err(SimError::BadParameter {
+            field: "--start",
+            expected: "one start cell per robot (or one, for the whole team)",
+            found: format!("{} starts for {} robots", cfg.starts.len(), cfg.robots),
+        });
+    }
+    for &s in &cfg.starts {
+        truth::check_start(body, trav, s)?;
+    }
+    Ok(())
+}
+
+/// The sensor, its 360° sweep and (for the sonar kinds) the ring, built for cells of `res`
+/// metres, with the checks of the range against the candidates and the clearance.
+#[allow(clippy::type_complexity)]
+fn build_sensing(
+    cfg: &RunConfig,
+    res: f64,
+) -> Result<(Box<dyn Sensor>, Box<dyn Sensor>, Option<SonarSensor>), SimError> {
+    let sensor = cfg.sensor.build(res)?;
+    check_sensor_range(cfg.strategy.candidates, &cfg.sensor, res)?;
+    check_range_beyond_clearance(&cfg.sensor, cfg.clearance_m, res)?;
+    let sweep = cfg.sensor.sweep().build(res)?;
+    let sonar = cfg.sensor.sonar(res).transpose()?;
+    Ok((sensor, sweep, sonar))
+}
+
+/// Whether a run of `truth` as `cfg` says would start: every check [`Session::start`] makes
+/// before it runs (parameters, clutter, sensor for the map's cells, starts given), without
+/// running it, so that a batch can refuse a bad run before any other starts. `sensing`
+/// false leaves the sensor's checks out (a batch makes them once per sensor and
+/// resolution).
+pub fn check_run(truth: &GridMap, cfg: &RunConfig, sensing: bool) -> Result<(), SimError> {
+    check_config(cfg)?;
+    check_clutter(truth, cfg)?;
+    if sensing {
+        build_sensing(cfg, truth.resolution)?;
+    }
+    if !cfg.starts.is_empty() {
+        let body = cfg
+            .clutter
+            .as_ref()
+            .map(|c| truth::with_clutter(&truth.cells, c));
+        let body = body.as_ref().unwrap_or(&truth.cells);
+        check_given_starts(body, &body_traversable(body, truth, cfg), cfg)?;
+    }
+    Ok(())
 }
 
 /// The robot speeds accepted, in metres per second: a millimetre to a kilometre a second.
