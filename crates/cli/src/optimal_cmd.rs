@@ -94,6 +94,10 @@ pub struct OptimalArgs {
     /// Print one JSON object instead of the summary.
     #[arg(long)]
     pub json: bool,
+    /// Leave the wall-clock time out of the JSON (null), so that equal runs print equal
+    /// bytes (as `explore --no-timing`).
+    #[arg(long)]
+    pub no_timing: bool,
 }
 
 /// One compared online run.
@@ -549,7 +553,7 @@ fn to_json(
         "nodes_generated": out.stats.generated,
         "nodes_stored": out.stats.stored,
         "bytes": out.stats.bytes,
-        "seconds": out.stats.seconds,
+        "seconds": (!a.no_timing).then_some(out.stats.seconds),
         "positions": positions(out)
             .iter()
             .map(|&c| {

@@ -196,6 +196,30 @@ fn map_info_gives_sizes_in_metres_without_float_noise() {
     );
 }
 
+/// Regression: `optimal --json` always printed its wall-clock seconds, so two equal runs
+/// never printed the same bytes; `--no-timing` leaves them out, as `explore`'s does.
+#[test]
+fn optimal_json_without_timing_is_the_same_every_time() {
+    let args = [
+        "optimal",
+        "--env",
+        "maze",
+        "--size",
+        "6x5",
+        "--resolution",
+        "0.5",
+        "--json",
+        "--no-timing",
+    ];
+    let first = ok(&args);
+    assert_eq!(first, ok(&args));
+    let v: serde_json::Value = serde_json::from_str(&first).unwrap();
+    assert!(
+        v["seconds"].is_null() && v["status"] == "optimal",
+        "{first}"
+    );
+}
+
 /// Regression: a map at 1e-9 m per cell was "0.00 m x 0.00 m" across.
 #[test]
 fn map_info_gives_sizes_below_a_centimetre() {
