@@ -64,7 +64,7 @@ pub fn block_side(width_m: f64, resolution: f64) -> usize {
     if !(resolution.is_finite() && resolution > 0.0) {
         return 1;
     }
-    ((width_m / resolution + 1e-9).floor() as usize).clamp(1, 8)
+    (grid::units::cells(width_m, resolution).floor() as usize).clamp(1, 8)
 }
 
 /// The segmentation kept between decisions.
