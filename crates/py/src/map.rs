@@ -448,6 +448,27 @@ impl Map {
         slf
     }
 
+    /// Maps are equal when their name, cells, resolution, origin and marked start are (a
+    /// pickled and unpickled map equals the map).
+    fn __eq__(&self, other: &Self) -> bool {
+        self.name == other.name
+            && self.start == other.start
+            && (Arc::ptr_eq(&self.map, &other.map) || *self.map == *other.map)
+    }
+
+    /// A hash that equal maps share: of the name, size, resolution, origin and start, not of
+    /// every cell, so that it costs nothing on large maps (a map is immutable).
+    fn __hash__(&self) -> u64 {
+        use std::hash::{Hash, Hasher};
+        let mut h = std::collections::hash_map::DefaultHasher::new();
+        self.name.hash(&mut h);
+        (self.map.width(), self.map.height()).hash(&mut h);
+        self.map.resolution.to_bits().hash(&mut h);
+        self.map.origin.map(f64::to_bits).hash(&mut h);
+        self.start.hash(&mut h);
+        h.finish()
+    }
+
     fn __repr__(&self) -> String {
         format!(
             "Map('{}', {}x{} cells at {} m)",

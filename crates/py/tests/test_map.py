@@ -395,3 +395,21 @@ def test_regression_an_empty_path_and_a_huge_resolution_are_named_plainly():
         frontier.Map.load("")
     with pytest.raises(ValueError, match=r"at most 1000, found '1e308'$"):
         frontier.Map.from_numpy(np.zeros((2, 2), bool), 1e308)
+
+
+def test_regression_an_unpickled_map_equals_the_map(office):
+    """Regression: Map had no __eq__, so pickle.loads(pickle.dumps(m)) == m was False."""
+    import pickle
+
+    again = pickle.loads(pickle.dumps(office))
+    assert again == office and hash(again) == hash(office)
+    assert len({office, again}) == 1
+    other = frontier.Map.generate("office", seed=4, size=(15, 12), resolution=0.25)
+    assert other != office
+    array = office.to_numpy()
+    # Equality is of the contents: the same cells, resolution, origin and name.
+    assert frontier.Map.from_numpy(array, 0.25, name=office.name) == office
+    assert frontier.Map.from_numpy(array, 0.5, name=office.name) != office
+    renamed = frontier.Map.from_numpy(array, 0.25, name="other")
+    assert renamed != office
+    assert office != "office"

@@ -84,6 +84,10 @@ class Map:
     @property
     def start(self) -> Optional[Tuple[int, int]]:
         """The start the file marks (x, y), or None; runs start there unless given one."""
+    def __eq__(self, other: object, /) -> bool:
+        """Equal when name, cells, resolution, origin and marked start are."""
+    def __hash__(self) -> int:
+        """A hash equal maps share."""
     def __reduce__(
         self,
     ) -> Tuple[
