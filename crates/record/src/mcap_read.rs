@@ -60,6 +60,9 @@ pub enum RecordError {
     /// The bytes are not a readable MCAP file.
     #[error("expected an MCAP file, found: {0}")]
     Mcap(String),
+    /// A checksum the file carries does not match its bytes.
+    #[error("damaged: {0} (the file changed after it was written)")]
+    Damaged(String),
     /// No channel carries OccupancyGrid messages (or the asked topic is missing).
     #[error("expected {expected}, found {found}")]
     NoMap {
@@ -253,11 +256,22 @@ fn for_each_message(
                 limit,
                 why: why(),
             },
+            e @ (mcap::McapError::BadChunkCrc { .. }
+            | mcap::McapError::BadDataCrc { .. }
+            | mcap::McapError::BadSummaryCrc { .. }) => RecordError::Damaged(e.to_string()),
             e => RecordError::Mcap(e.to_string()),
         }
     };
+    // Every checksum the file carries is checked (a CRC of 0 means none was written), so
+    // that a damaged recording is refused rather than read as another map. A chunk is
+    // checked as its end is read: checking it first would hold it whole, decompressed,
+    // where its records are now read as they come.
     let mut reader = LinearReader::new_with_options(
-        LinearReaderOptions::default().with_record_length_limit(limit),
+        LinearReaderOptions::default()
+            .with_record_length_limit(limit)
+            .with_validate_chunk_crcs(true)
+            .with_validate_data_section_crc(true)
+            .with_validate_summary_section_crc(true),
     );
     let short = |what: &str| RecordError::Mcap(format!("a {what} record shorter than its fields"));
     let mut schemas: std::collections::HashMap<u16, String> = Default::default();

@@ -1,0 +1,56 @@
+//! A recording whose bytes changed after it was written is refused as damaged, by the
+//! checksums MCAP keeps, rather than read as another map.
+
+mod common;
+
+use record::msgs::{OccupancyGrid, RosMessage};
+
+/// A recording of the map messages `maps` on `/map` in one uncompressed chunk.
+fn uncompressed(maps: &[Vec<u8>]) -> Vec<u8> {
+    let mut out = mcap::WriteOptions::new()
+        .profile("ros2")
+        .compression(None)
+        .create(std::io::Cursor::new(Vec::new()))
+        .expect("writer");
+    let schema = out
+        .add_schema(
+            OccupancyGrid::TYPE,
+            "ros2msg",
+            OccupancyGrid::definition().as_bytes(),
+        )
+        .expect("schema");
+    let map = out
+        .add_channel(schema, "/map", "cdr", &Default::default())
+        .expect("channel");
+    for (k, data) in maps.iter().enumerate() {
+        let header = mcap::records::MessageHeader {
+            channel_id: map,
+            sequence: k as u32,
+            log_time: 1,
+            publish_time: 0,
+        };
+        out.write_to_known_channel(&header, data).expect("message");
+    }
+    out.finish().expect("finish");
+    out.into_inner().into_inner()
+}
+
+/// Regression: chunk checksums were not checked, so a cell changed inside a recording was
+/// read as a wall without a word (and other changes as misleading errors).
+#[test]
+fn regression_a_changed_cell_is_refused_as_damage() {
+    let cells: Vec<i8> = vec![0, 0, 100, -1, 0, 100, 0, 0, -1, -1, 0, 0];
+    let bytes = uncompressed(&[common::grid_message(4, 3, cells.clone())]);
+    let (map, _) = record::last_map(&bytes, None).expect("the recording as written");
+    assert_eq!(map.cells.len(), 12);
+    let at = bytes
+        .windows(cells.len())
+        .position(|w| w.iter().zip(&cells).all(|(&b, &c)| b == c as u8))
+        .expect("the cells, uncompressed");
+    let mut changed = bytes.clone();
+    changed[at] = 100; // a free cell made a wall
+    let e = record::last_map(&changed, None)
+        .expect_err("a changed chunk")
+        .to_string();
+    assert!(e.contains("damaged: Chunk CRC failed"), "{e}");
+}
