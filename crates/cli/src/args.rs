@@ -21,9 +21,10 @@ pub fn load_map_file(
         MapFileError::TopicWithoutMcap => {
             anyhow::anyhow!("--topic chooses the map topic of an MCAP recording (a FILE.mcap map)")
         }
-        MapFileError::McapOption(_) => anyhow::anyhow!(
-            "--resolution / --border / --dungeon: an MCAP recording's map carries its own \
-             resolution"
+        MapFileError::McapOption(name) => anyhow::anyhow!(
+            "--{name}: an MCAP recording's map carries its own resolution and cells, so \
+             --{name} does not apply to {}",
+            path.display()
         ),
         MapFileError::DungeonResolution(found) => anyhow::anyhow!(
             "--dungeon: expected one --resolution (square cells) for {}, found {}",
@@ -76,8 +77,8 @@ pub struct MapSource {
     /// --env, the resolution to generate at.
     #[arg(allow_hyphen_values = true, long)]
     pub resolution: Option<String>,
-    /// Add a wall one cell thick around the map (any format; Stage floor plans often have
-    /// none); the origin and a dungeon's marked start move with the cells.
+    /// Add a wall one cell thick around the map (any file but an MCAP recording; Stage floor
+    /// plans often have none); the origin and a dungeon's marked start move with the cells.
     #[arg(long)]
     pub border: bool,
     /// Read --map as a dungeon PNG of learned-exploration work (Chen et al. 2019): pixels
@@ -205,6 +206,20 @@ pub fn parse_cell(s: &str, flag: &str) -> Result<grid::Cell> {
 }
 
 impl MapSource {
+    /// Refuse an output file `path` (given as `flag`) that is the `--map` file itself:
+    /// writing it would destroy the recording or plan the run reads.
+    pub fn check_not_the_map(&self, flag: &str, path: &Path) -> Result<()> {
+        if let Some(map) = &self.map
+            && same_file(map, path)
+        {
+            bail!(
+                "{flag} {}: expected a file other than the --map it reads, found that file",
+                path.display()
+            );
+        }
+        Ok(())
+    }
+
     /// How a map file is read with these flags (`--resolution`, `--border`), within
     /// `memory_mb` MiB (the command's `--memory-mb`) and the memory available.
     pub fn load_options(&self, memory_mb: Option<u64>) -> Result<grid::io::LoadOptions> {
@@ -337,6 +352,11 @@ impl MapSource {
             .collect();
         Ok(Grid::from_vec(map.width(), map.height(), cells))
     }
+}
+
+/// Whether `a` and `b` name one file that exists (through links and `..`).
+pub fn same_file(a: &Path, b: &Path) -> bool {
+    matches!((a.canonicalize(), b.canonicalize()), (Ok(x), Ok(y)) if x == y)
 }
 
 /// Check, before a run, that the file `flag` names can be written: its folder exists, it

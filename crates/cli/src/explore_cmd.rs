@@ -185,6 +185,7 @@ pub fn run(a: ExploreArgs) -> Result<()> {
     for (k, (flag, path)) in outputs.iter().enumerate() {
         if let Some(path) = path {
             crate::args::check_output_file(flag, path)?;
+            a.source.check_not_the_map(flag, path)?;
             // One file for two outputs would keep only the one written last.
             if let Some((other, _)) = outputs[..k].iter().find(|(_, p)| p.as_ref() == Some(path)) {
                 anyhow::bail!(

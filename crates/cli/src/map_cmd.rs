@@ -22,8 +22,8 @@ pub enum MapCommand {
         /// maps, 1 if not given for .map and .txt, and overriding a ROS YAML's own.
         #[arg(allow_hyphen_values = true, long)]
         resolution: Option<String>,
-        /// Add a wall one cell thick around the map (any format; the origin and a dungeon's
-        /// marked start move with the cells).
+        /// Add a wall one cell thick around the map (any file but an MCAP recording; the
+        /// origin and a dungeon's marked start move with the cells).
         #[arg(long)]
         border: bool,
         /// The OccupancyGrid topic of an MCAP file (default: its only one, or /map).

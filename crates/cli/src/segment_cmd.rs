@@ -72,6 +72,13 @@ pub fn run(a: SegmentArgs) -> Result<()> {
     }
     if let Some(out) = &a.out {
         crate::args::check_output_file("--out", out)?;
+        a.source.check_not_the_map("--out", out)?;
+        if let Some(truth) = a.truth.as_ref().filter(|t| crate::args::same_file(t, out)) {
+            bail!(
+                "--out {}: expected a file other than the --truth it reads, found that file",
+                truth.display()
+            );
+        }
     }
     let truth = a
         .source

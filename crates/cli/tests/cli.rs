@@ -2421,3 +2421,40 @@ fn regression_a_full_coverage_goal_reached_is_complete() {
     let half = run("0.5");
     assert_eq!(half["complete"].as_bool(), Some(false), "{half}");
 }
+
+/// Regression: `explore --map run.mcap --mcap run.mcap` wrote its own recording over the
+/// one it read, losing the user's other topics; an output that is the map file (however
+/// spelled) is refused, and the file is left as it was.
+#[test]
+fn an_output_is_never_the_map_it_reads() {
+    let dir = tempfile::tempdir().unwrap();
+    let rec = dir.path().join("rec.mcap");
+    let rec_s = rec.to_str().unwrap();
+    ok(&[
+        "explore",
+        "--env",
+        "maze",
+        "--size",
+        "6x5",
+        "--resolution",
+        "0.5",
+        "--mcap",
+        rec_s,
+    ]);
+    let before = std::fs::read(&rec).unwrap();
+    let same = dir.path().join("sub").join("..").join("rec.mcap");
+    std::fs::create_dir(dir.path().join("sub")).unwrap();
+    for out in [rec_s, same.to_str().unwrap()] {
+        let e = err(&["explore", "--map", rec_s, "--mcap", out]);
+        assert!(
+            e.contains("--mcap") && e.contains("expected a file other than the --map it reads"),
+            "{e}"
+        );
+    }
+    let e = err(&["segment", "--map", rec_s, "--out", rec_s]);
+    assert!(
+        e.contains("expected a file other than the --map it reads"),
+        "{e}"
+    );
+    assert_eq!(std::fs::read(&rec).unwrap(), before);
+}

@@ -192,11 +192,11 @@ pub fn read_file(
                 "topic: chooses the map topic of an MCAP recording (a .mcap file), found {}",
                 path.display()
             ),
-            MapFileError::McapOption(_) => {
-                "resolution / border / dungeon: an MCAP recording's map \
-                                        carries its own resolution"
-                    .to_string()
-            }
+            MapFileError::McapOption(name) => format!(
+                "{name}: an MCAP recording's map carries its own resolution and cells, so \
+                 {name} does not apply to {}",
+                path.display()
+            ),
             MapFileError::DungeonResolution(found) => format!(
                 "dungeon: expected one resolution (square cells) for {}, found {}",
                 path.display(),
@@ -221,8 +221,8 @@ impl Map {
     /// `.txt`, or an MCAP recording (`.mcap`: its last OccupancyGrid, on `topic` if it has
     /// several). `dungeon=True` reads a PNG as a dungeon map of learned-exploration work
     /// (free above 150, the start marked by pixels of value 208, kept as `start`).
-    /// `border=True` adds a wall one cell thick around the map, of any format (the origin
-    /// and a dungeon PNG's start move with the cells). A `resolution` given with a ROS YAML overrides the YAML's. A map whose
+    /// `border=True` adds a wall one cell thick around the map, of any file but an MCAP
+    /// recording (the origin and a dungeon PNG's start move with the cells). A `resolution` given with a ROS YAML overrides the YAML's. A map whose
     /// loading would need more than `memory_mb` MiB (the CLI's `--memory-mb`) or the memory
     /// available is refused before it is loaded.
     #[staticmethod]

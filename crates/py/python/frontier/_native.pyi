@@ -39,7 +39,8 @@ class Map:
         `resolution`, MovingAI `.map`, HouseExpo `.json`, ASCII `.txt`, the last
         OccupancyGrid of an MCAP recording on `topic`; `dungeon=True`: a dungeon PNG and its
         marked start). `border=True` adds a wall one cell thick around the map, of any
-        format (the origin and a dungeon PNG's start move with the cells). A `resolution` given with a ROS YAML overrides the
+        file but an MCAP recording (the origin and a dungeon PNG's start move with the
+        cells). A `resolution` given with a ROS YAML overrides the
         YAML's. A map whose
         loading would need more than `memory_mb` MiB (the CLI's `--memory-mb`) or the memory
         available is refused before it is loaded."""
