@@ -59,6 +59,12 @@ pub enum MapMsgError {
     /// The origin has a non-finite coordinate or a non-unit orientation.
     #[error("map message: expected a finite origin with a unit quaternion, found {0}")]
     BadOrigin(String),
+    /// The origin tilts the grid (a roll or pitch), which a planar map cannot be read with.
+    #[error(
+        "map message: expected an origin turned about the vertical axis only (a level map), \
+         found orientation ({0}): the grid is tilted"
+    )]
+    TiltedOrigin(String),
 }
 
 /// Where a map lies in the world: size, resolution and origin, with the transforms between
@@ -153,6 +159,14 @@ fn frame_of_parts(info: &MapMetaData, data_len: usize) -> Result<MapFrame, MapMs
         return Err(MapMsgError::BadOrigin(format!(
             "position ({}, {}, {}), orientation ({}, {}, {}, {})",
             p.x, p.y, p.z, q.x, q.y, q.z, q.w
+        )));
+    }
+    // A yaw alone leaves x and y at 0; 1e-3 (of a unit quaternion) is a tilt of about 0.1°,
+    // beyond what rounding leaves. The height, z, is the level the map lies at: dropped.
+    if q.x.abs() > 1e-3 * norm || q.y.abs() > 1e-3 * norm {
+        return Err(MapMsgError::TiltedOrigin(format!(
+            "{}, {}, {}, {}",
+            q.x, q.y, q.z, q.w
         )));
     }
     Ok(MapFrame {
@@ -344,6 +358,23 @@ mod tests {
         m.info.origin.position.x = 0.0;
         m.info.origin.orientation.w = 0.0;
         assert!(matches!(map_from_msg(&m), Err(MapMsgError::BadOrigin(_))));
+        // Regression: a roll of 0.5 rad was read as no rotation at all (the yaw alone kept).
+        let (s, c) = (0.25f64.sin(), 0.25f64.cos());
+        m.info.origin.orientation.x = s;
+        m.info.origin.orientation.w = c;
+        assert!(matches!(
+            map_from_msg(&m),
+            Err(MapMsgError::TiltedOrigin(_))
+        ));
+        // A yaw alone, and a height, are read.
+        m.info.origin.orientation.x = 0.0;
+        m.info.origin.orientation.z = s;
+        m.info.origin.position.z = 3.5;
+        let frame = map_from_msg(&m).expect("a level map");
+        assert!((frame.origin[2] - 0.5).abs() < 1e-12, "{:?}", frame.origin);
+        m.info.origin.orientation = Default::default();
+        m.info.origin.orientation.w = 1.0;
+        m.info.origin.position.z = 0.0;
         let huge = msg(u32::MAX, u32::MAX, vec![]);
         assert!(matches!(
             map_from_msg(&huge),
