@@ -104,6 +104,16 @@ def test_a_run_recorded_by_frontier_decodes_with_mcap_ros2(cli, tmp_path):
     assert info.returncode == 0, info.stderr
     assert "60 x 48 cells" in info.stdout, info.stdout
 
+    # Regression: the channels lacked the `offered_qos_profiles` metadata MCAP's ros2
+    # profile requires; every checksum holds too.
+    with open(out, "rb") as f:
+        reader = make_reader(f, validate_crcs=True)
+        index = reader.get_summary()
+        assert index is not None and index.channels
+        for ch in index.channels.values():
+            assert ch.metadata == {"offered_qos_profiles": ""}, (ch.topic, ch.metadata)
+        assert sum(1 for _ in reader.iter_messages()) == len(msgs)
+
 
 def test_a_map_recorded_with_mcap_ros2_is_explored_by_frontier(cli, tmp_path):
     # A 12 x 8 room (walls around), origin at (-1, 2), as a SLAM node would publish it.

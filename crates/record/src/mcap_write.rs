@@ -55,6 +55,13 @@ pub struct RunWriter<W: Write + Seek> {
     sequence: u32,
 }
 
+/// A channel's metadata under MCAP's `ros2` profile, whose `offered_qos_profiles` key is
+/// required: empty, as no publisher offered these topics (a player uses its default QoS;
+/// `ros2 bag play --qos-profile-overrides-path` makes `/map` transient local, see ros.md).
+fn ros2_metadata() -> BTreeMap<String, String> {
+    BTreeMap::from([("offered_qos_profiles".to_string(), String::new())])
+}
+
 fn schema<M: RosMessage>(w: &mut mcap::Writer<impl Write + Seek>) -> mcap::McapResult<u16> {
     w.add_schema(M::TYPE, "ros2msg", M::definition().as_bytes())
 }
@@ -69,8 +76,8 @@ impl<W: Write + Seek> RunWriter<W> {
         let grid = schema::<OccupancyGrid>(&mut out)?;
         let pose = schema::<PoseStamped>(&mut out)?;
         let markers = schema::<MarkerArray>(&mut out)?;
-        let none = BTreeMap::new();
-        let mut channel = |s, t| out.add_channel(s, t, "cdr", &none);
+        let meta = ros2_metadata();
+        let mut channel = |s, t| out.add_channel(s, t, "cdr", &meta);
         let ids = (
             channel(grid, MAP_TOPIC)?,
             channel(grid, BELIEF_TOPIC)?,
@@ -121,13 +128,13 @@ impl<W: Write + Seek> RunWriter<W> {
     fn robot(&mut self, k: usize) -> mcap::McapResult<(u16, u16)> {
         while self.robots.len() <= k {
             let r = self.robots.len();
-            let none = BTreeMap::new();
+            let meta = ros2_metadata();
             let pose = self
                 .out
-                .add_channel(self.pose_schema, &pose_topic(r), "cdr", &none)?;
+                .add_channel(self.pose_schema, &pose_topic(r), "cdr", &meta)?;
             let goal = self
                 .out
-                .add_channel(self.pose_schema, &goal_topic(r), "cdr", &none)?;
+                .add_channel(self.pose_schema, &goal_topic(r), "cdr", &meta)?;
             self.robots.push((pose, goal));
         }
         Ok(self.robots[k])
