@@ -75,9 +75,41 @@ pub fn load(
         MapErrorKind::ResolutionRequired(what) => {
             MapFileError::ResolutionRequired(e.path.display().to_string(), what)
         }
+        // The formats the map files of `grid` read, and recordings besides.
+        MapErrorKind::UnknownFormat(ext) => MapFileError::Load(format!(
+            "{}: unknown map format {ext:?}: expected {MAP_FORMATS}",
+            e.path.display()
+        )),
+        MapErrorKind::Folder => MapFileError::Load(match recording_in(&e.path) {
+            // A rosbag2 bag is a folder holding the recording.
+            Some(file) => format!(
+                "{}: is a folder, expected one map file: give the recording in it, {}",
+                e.path.display(),
+                file.display()
+            ),
+            None => format!(
+                "{}: is a folder, expected one map file ({MAP_FORMATS})",
+                e.path.display()
+            ),
+        }),
         _ => MapFileError::Load(e.to_string()),
     })?;
     Ok((map, None))
+}
+
+/// The extensions of the map files [`load`] reads.
+const MAP_FORMATS: &str = ".yaml, .yml, .pgm, .png, .map, .json (HouseExpo), .txt or .mcap \
+                           (a recording)";
+
+/// The first `.mcap` file (by name) in `folder`, if any.
+fn recording_in(folder: &Path) -> Option<std::path::PathBuf> {
+    let mut found: Vec<_> = std::fs::read_dir(folder)
+        .ok()?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| is_mcap(p))
+        .collect();
+    found.sort();
+    found.into_iter().next()
 }
 
 #[cfg(test)]
@@ -119,6 +151,36 @@ mod tests {
             first(&opts(None, false), true),
             MapFileError::McapOption("dungeon")
         );
+    }
+
+    /// Regression: the unknown-format and folder messages listed every format but the
+    /// recordings `--map` also reads, and a rosbag2 bag's folder was not pointed into.
+    #[test]
+    fn format_and_folder_errors_name_recordings_too() {
+        let dir = std::env::temp_dir().join(format!("record-map-errors-{}", std::process::id()));
+        let bag = dir.join("rosbag2_x");
+        std::fs::create_dir_all(&bag).unwrap();
+        let msg = |p: &Path| match load(p, &opts(None, false), None, false).unwrap_err() {
+            MapFileError::Load(m) => m,
+            e => panic!("{e:?}"),
+        };
+        let e = msg(&dir.join("plan.bmp"));
+        assert!(e.ends_with(".txt or .mcap (a recording)"), "{e}");
+        let e = msg(&bag);
+        assert!(
+            e.contains("is a folder, expected one map file (.yaml"),
+            "{e}"
+        );
+        std::fs::write(bag.join("rosbag2_x_0.mcap"), b"").unwrap();
+        let e = msg(&bag);
+        assert!(
+            e.ends_with(&format!(
+                "give the recording in it, {}",
+                bag.join("rosbag2_x_0.mcap").display()
+            )),
+            "{e}"
+        );
+        let _ = std::fs::remove_dir_all(&dir);
     }
 
     #[test]

@@ -259,6 +259,12 @@ fn for_each_message(
             e @ (mcap::McapError::BadChunkCrc { .. }
             | mcap::McapError::BadDataCrc { .. }
             | mcap::McapError::BadSummaryCrc { .. }) => RecordError::Damaged(e.to_string()),
+            mcap::McapError::UnexpectedEof if len == 0 => RecordError::Mcap("an empty file".into()),
+            mcap::McapError::UnexpectedEof => RecordError::Mcap(
+                "a file that ends in the middle of a record: cut short, or still being \
+                 written"
+                    .into(),
+            ),
             e => RecordError::Mcap(e.to_string()),
         }
     };
@@ -435,7 +441,7 @@ pub fn read_last_map(
             topics.push((ch.topic.clone(), ch.schema.clone(), ch.encoding.clone()));
         }
         let wanted = match topic {
-            Some(t) => ch.topic == t,
+            Some(t) => same_topic(&ch.topic, t),
             None => GRID_SCHEMAS.contains(&ch.schema.as_str()),
         };
         if !wanted {
@@ -474,7 +480,7 @@ pub fn read_last_map(
         } else {
             topics
                 .iter()
-                .map(|(t, s, _)| format!("{t} ({s})"))
+                .map(|(t, s, _)| format!("{t} ({})", schema_name(s)))
                 .collect::<Vec<_>>()
                 .join(", ")
         }
@@ -506,7 +512,7 @@ pub fn read_last_map(
     if !GRID_SCHEMAS.contains(&schema.as_str()) || encoding != "cdr" {
         return Err(RecordError::WrongType {
             topic: name,
-            found: format!("{schema} in {encoding} encoding"),
+            found: format!("{} in {encoding} encoding", schema_name(schema)),
         });
     }
     let data = data?;
@@ -523,6 +529,21 @@ pub fn read_last_map(
         },
     })?;
     Ok((map, name))
+}
+
+/// Whether a recording's topic `recorded` is the one `asked` names: the same name, or the
+/// same but for the leading `/` of a ROS 2 name (`--topic map` finds `/map`).
+fn same_topic(recorded: &str, asked: &str) -> bool {
+    recorded.strip_prefix('/').unwrap_or(recorded) == asked.strip_prefix('/').unwrap_or(asked)
+}
+
+/// A channel's schema name as messages show it (a channel may have none).
+fn schema_name(schema: &str) -> &str {
+    if schema.is_empty() {
+        "no schema"
+    } else {
+        schema
+    }
 }
 
 /// Why a CDR OccupancyGrid gave no map.

@@ -54,3 +54,31 @@ fn regression_a_changed_cell_is_refused_as_damage() {
         .to_string();
     assert!(e.contains("damaged: Chunk CRC failed"), "{e}");
 }
+
+/// Regression: an empty file and one cut short both said "MCAP file ended in the middle of
+/// a record".
+#[test]
+fn regression_empty_and_cut_short_recordings_say_so() {
+    let e = record::last_map(&[], None).expect_err("empty").to_string();
+    assert_eq!(e, "expected an MCAP file, found: an empty file");
+    let bytes = uncompressed(&[common::grid_message(2, 1, vec![0, 100])]);
+    let e = record::last_map(&bytes[..bytes.len() / 2], None)
+        .expect_err("cut short")
+        .to_string();
+    assert!(
+        e.ends_with("ends in the middle of a record: cut short, or still being written"),
+        "{e}"
+    );
+}
+
+/// Regression: `--topic map` did not find `/map`, the ROS 2 name of the same topic.
+#[test]
+fn regression_a_topic_is_found_without_its_leading_slash() {
+    let bytes = uncompressed(&[common::grid_message(2, 1, vec![0, 100])]);
+    let (map, topic) = record::last_map(&bytes, Some("map")).expect("map is /map");
+    assert_eq!((map.width(), topic.as_str()), (2, "/map"));
+    let e = record::last_map(&bytes, Some("scan"))
+        .expect_err("no such topic")
+        .to_string();
+    assert!(e.contains("messages on topic scan"), "{e}");
+}
