@@ -53,7 +53,8 @@ pub fn write_run<W: Write + Seek>(
                           upkeep: &FrontierUpkeep,
                           rec: &mut RunWriter<W>,
                           next_goal: &mut usize|
-     -> Result<()> {
+     -> Result<bool> {
+        let mut wrote_belief = false;
         while *next_goal < trace.goals.len() && trace.goals[*next_goal].event <= upto {
             let g = trace.goals[*next_goal];
             if let Some(cell) = g.goal {
@@ -62,6 +63,7 @@ pub fn write_run<W: Write + Seek>(
             }
             if (*next_goal).is_multiple_of(every) {
                 rec.belief(t, belief)?;
+                wrote_belief = true;
                 frontiers.clear();
                 frontiers.extend(upkeep.frontiers.cells().iter().map(|&c| world(c)));
                 let candidates: Vec<(f64, f64)> = trace
@@ -75,8 +77,10 @@ pub fn write_run<W: Write + Seek>(
             }
             *next_goal += 1;
         }
-        Ok(())
+        Ok(wrote_belief)
     };
+    // Whether the last belief written is the belief as it is now.
+    let mut written = false;
     let mut changed = Vec::new();
     for (k, ev) in trace.events.iter().enumerate() {
         let end = trace.change_ends[k] as usize;
@@ -86,6 +90,7 @@ pub fn write_run<W: Write + Seek>(
             changed.push(c);
         }
         start = end;
+        written &= changed.is_empty();
         upkeep.update(&belief.cells, &changed);
         let r = ev.robot as usize;
         let (from, to) = (belief_cell(w, last[r]), belief_cell(w, ev.cell));
@@ -95,7 +100,7 @@ pub fn write_run<W: Write + Seek>(
         last[r] = ev.cell;
         let (x, y) = world(ev.cell);
         rec.pose(ev.t, r, x, y, heading[r])?;
-        emit_goals(
+        written |= emit_goals(
             k as u32 + 1,
             ev.t,
             &belief,
@@ -105,8 +110,11 @@ pub fn write_run<W: Write + Seek>(
         )?;
     }
     let t_end = trace.events.last().map_or(0.0, |e| e.t);
-    emit_goals(u32::MAX, t_end, &belief, &upkeep, &mut rec, &mut next_goal)?;
-    rec.belief(t_end, &belief)?;
+    written |= emit_goals(u32::MAX, t_end, &belief, &upkeep, &mut rec, &mut next_goal)?;
+    // The final belief, unless a snapshot just wrote it (at the run's last decision).
+    if !written {
+        rec.belief(t_end, &belief)?;
+    }
     let mut out = rec.finish()?;
     out.flush()?;
     Ok(())

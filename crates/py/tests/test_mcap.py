@@ -74,6 +74,9 @@ def test_a_run_recorded_by_frontier_decodes_with_mcap_ros2(cli, tmp_path):
     assert len(grid.data) == 60 * 48
     assert set(grid.data) <= {-1, 0, 100}
     beliefs = [m for t, _, _, m in msgs if t == "/frontier/belief"]
+    # Regression: the final belief was written twice at the same log time.
+    belief_times = [lt for t, _, lt, _ in msgs if t == "/frontier/belief"]
+    assert len(belief_times) == len(set(belief_times)), belief_times
     # The last belief knows every cell the run covered and nothing the map does not have.
     last = beliefs[-1]
     known_free = sum(1 for v in last.data if v == 0)
