@@ -3,36 +3,9 @@
 
 mod common;
 
-use record::msgs::{OccupancyGrid, RosMessage};
-
 /// A recording of the map messages `maps` on `/map` in one uncompressed chunk.
 fn uncompressed(maps: &[Vec<u8>]) -> Vec<u8> {
-    let mut out = mcap::WriteOptions::new()
-        .profile("ros2")
-        .compression(None)
-        .create(std::io::Cursor::new(Vec::new()))
-        .expect("writer");
-    let schema = out
-        .add_schema(
-            OccupancyGrid::TYPE,
-            "ros2msg",
-            OccupancyGrid::definition().as_bytes(),
-        )
-        .expect("schema");
-    let map = out
-        .add_channel(schema, "/map", "cdr", &Default::default())
-        .expect("channel");
-    for (k, data) in maps.iter().enumerate() {
-        let header = mcap::records::MessageHeader {
-            channel_id: map,
-            sequence: k as u32,
-            log_time: 1,
-            publish_time: 0,
-        };
-        out.write_to_known_channel(&header, data).expect("message");
-    }
-    out.finish().expect("finish");
-    out.into_inner().into_inner()
+    common::recording_with(None, &[], maps)
 }
 
 /// Regression: chunk checksums were not checked, so a cell changed inside a recording was

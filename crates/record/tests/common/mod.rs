@@ -42,9 +42,18 @@ pub fn noise(n: usize, seed: u64) -> Vec<u8> {
 /// A recording in zstd-compressed chunks: `noise` messages on `/noise`, then the map
 /// messages `maps` on `/map`, all logged at 1 ns.
 pub fn recording(noise: &[Vec<u8>], maps: &[Vec<u8>]) -> Vec<u8> {
+    recording_with(Some(mcap::Compression::Zstd), noise, maps)
+}
+
+/// [`recording`] with its chunks compressed as `compression` says (`None`: stored).
+pub fn recording_with(
+    compression: Option<mcap::Compression>,
+    noise: &[Vec<u8>],
+    maps: &[Vec<u8>],
+) -> Vec<u8> {
     let mut out = mcap::WriteOptions::new()
         .profile("ros2")
-        .compression(Some(mcap::Compression::Zstd))
+        .compression(compression)
         .create(std::io::Cursor::new(Vec::new()))
         .expect("writer");
     let schema = out
