@@ -1107,29 +1107,31 @@ fn load_env(
                 memory: memory_limit(memory_mb),
             };
             let topic = e.topic.as_ref().map(|t| t.get_ref().as_str());
-            let (map, _) = record::map_file::load(&path, &opts, topic, false).map_err(|err| {
-                use record::map_file::MapFileError;
-                let (field, message) = match err {
-                    MapFileError::McapOption(field) => (
-                        field,
-                        "an MCAP recording's map carries its own resolution (give no \
+            let map = record::map_file::load(&path, &opts, topic, false)
+                .map_err(|err| {
+                    use record::map_file::MapFileError;
+                    let (field, message) = match err {
+                        MapFileError::McapOption(field) => (
+                            field,
+                            "an MCAP recording's map carries its own resolution (give no \
                          `resolution` or `border`)"
-                            .to_string(),
-                    ),
-                    MapFileError::TopicWithoutMcap => ("topic", TOPIC_WITHOUT_MCAP.to_string()),
-                    // A scenario reads no dungeon maps, so this is not met.
-                    MapFileError::DungeonResolution(_) => (
-                        "resolution",
-                        "expected one resolution (square cells)".to_string(),
-                    ),
-                    MapFileError::ResolutionRequired(file, what) => (
-                        "resolution",
-                        format!("{file}: `resolution` is required for {what}"),
-                    ),
-                    MapFileError::Load(message) => ("map", message),
-                };
-                src.error(span_of(m), format!("{key}.{field}"), message)
-            })?;
+                                .to_string(),
+                        ),
+                        MapFileError::TopicWithoutMcap => ("topic", TOPIC_WITHOUT_MCAP.to_string()),
+                        // A scenario reads no dungeon maps, so this is not met.
+                        MapFileError::DungeonResolution(_) => (
+                            "resolution",
+                            "expected one resolution (square cells)".to_string(),
+                        ),
+                        MapFileError::ResolutionRequired(file, what) => (
+                            "resolution",
+                            format!("{file}: `resolution` is required for {what}"),
+                        ),
+                        MapFileError::Load(message) => ("map", message),
+                    };
+                    src.error(span_of(m), format!("{key}.{field}"), message)
+                })?
+                .map;
             let name = match &e.name {
                 Some(n) => n.get_ref().clone(),
                 None => path

@@ -8,14 +8,14 @@ use grid::{Grid, GridMap, Occ};
 use world::{EnvKind, EnvSpec};
 
 /// A map file as `--map` reads it (with `--resolution`, `--border`, `--topic` and
-/// `--dungeon`), and the start it marks (a dungeon PNG's), if any. A recording's map is
-/// checked against `opts.memory` as a map file is.
+/// `--dungeon`), the start it marks (a dungeon PNG's) and the topic a recording's map was
+/// read from. A recording's map is checked against `opts.memory` as a map file is.
 pub fn load_map_file(
     path: &Path,
     opts: &grid::io::LoadOptions,
     topic: Option<&str>,
     dungeon: bool,
-) -> Result<(GridMap, Option<grid::Cell>)> {
+) -> Result<record::map_file::MapFile> {
     use record::map_file::MapFileError;
     record::map_file::load(path, opts, topic, dungeon).map_err(|e| match e {
         MapFileError::TopicWithoutMcap => {
@@ -255,7 +255,8 @@ impl MapSource {
                 bail!("--env-seed applies to generated environments (--env), not to --map");
             }
             let opts = self.load_options(memory_mb)?;
-            let (map, start) = load_map_file(path, &opts, self.topic.as_deref(), self.dungeon)?;
+            let record::map_file::MapFile { map, start, .. } =
+                load_map_file(path, &opts, self.topic.as_deref(), self.dungeon)?;
             let name = path
                 .file_stem()
                 .map(|s| s.to_string_lossy().into_owned())

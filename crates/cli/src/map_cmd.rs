@@ -55,7 +55,7 @@ pub fn run(cmd: MapCommand) -> Result<()> {
         memory_mb,
     } = cmd;
     let resolution = resolution.as_deref().map(parse_resolution).transpose()?;
-    let (map, start) = crate::args::load_map_file(
+    let record::map_file::MapFile { map, start, topic } = crate::args::load_map_file(
         &file,
         &grid::io::LoadOptions {
             resolution,
@@ -84,10 +84,14 @@ pub fn run(cmd: MapCommand) -> Result<()> {
             "free": free, "occupied": occupied, "unknown": unknown,
             "free_components": components,
             "start": start.map(|c| [c.x, c.y]),
+            "topic": topic,
         });
         println!("{}", serde_json::to_string_pretty(&v)?);
     } else {
         println!("{}", file.display());
+        if let Some(topic) = &topic {
+            println!("  topic       {topic} (its last map)");
+        }
         // To the centimetre; a size below one (a resolution of 1e-9 m) as it is, not 0.00.
         let metres = |cells: usize| {
             let m = cells as f64 * map.resolution;

@@ -166,6 +166,7 @@ fn env_writes_a_ros_map_that_map_info_reads_back() {
     assert_eq!(info["resolution"], 0.5);
     assert_eq!(info["free_components"], 1);
     assert_eq!(info["unknown"], 0);
+    assert_eq!(info["topic"], serde_json::Value::Null, "not a recording");
 }
 
 /// Regression: `map info --json` gave a 604-cell width at 0.05 m as 30.200000000000003 m.
@@ -1680,6 +1681,15 @@ fn a_run_recorded_as_mcap_is_a_map_again() {
     };
     assert_eq!(info("/map")["width"], a["width"]);
     assert_eq!(info("/frontier/belief")["height"], a["height"]);
+    // It says which topic it read: the one asked for (by its name without the slash too),
+    // or, among several grid topics, /map.
+    assert_eq!(info("/frontier/belief")["topic"], "/frontier/belief");
+    assert_eq!(info("map")["topic"], "/map");
+    let chosen: serde_json::Value =
+        serde_json::from_str(&ok(&["map", "info", rec_s, "--json"])).unwrap();
+    assert_eq!(chosen["topic"], "/map");
+    let text = ok(&["map", "info", rec_s]);
+    assert!(text.contains("topic       /map (its last map)"), "{text}");
     let e = err(&[
         "explore",
         "--map",

@@ -186,7 +186,7 @@ pub fn read_file(
         memory: sim::memory::limit(memory_mb, grid::machine::available()),
     };
     // As the CLI's --dungeon: `border` adds a wall (and moves the start with the cells).
-    let (map, start) =
+    let record::map_file::MapFile { map, start, .. } =
         record::map_file::load(path, &opts, topic, dungeon).map_err(|e| match e {
             MapFileError::TopicWithoutMcap => format!(
                 "topic: chooses the map topic of an MCAP recording (a .mcap file), found {}",

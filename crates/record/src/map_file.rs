@@ -35,15 +35,25 @@ pub enum MapFileError {
     Load(String),
 }
 
-/// The map in the file at `path` and the start it marks (a dungeon PNG's), read with
-/// `opts` (its memory bound applies to recordings too); `topic` chooses a recording's map
-/// topic, `dungeon` reads a PNG as a dungeon map.
+/// A map read from a file.
+#[derive(Debug, Clone)]
+pub struct MapFile {
+    /// The map.
+    pub map: GridMap,
+    /// The start the file marks (a dungeon PNG's).
+    pub start: Option<Cell>,
+    /// The topic a recording's map was read from (`None` for other files).
+    pub topic: Option<String>,
+}
+
+/// The map in the file at `path`, read with `opts` (its memory bound applies to recordings
+/// too); `topic` chooses a recording's map topic, `dungeon` reads a PNG as a dungeon map.
 pub fn load(
     path: &Path,
     opts: &LoadOptions,
     topic: Option<&str>,
     dungeon: bool,
-) -> Result<(GridMap, Option<Cell>), MapFileError> {
+) -> Result<MapFile, MapFileError> {
     let mcap = is_mcap(path);
     if topic.is_some() && !mcap {
         return Err(MapFileError::TopicWithoutMcap);
@@ -59,9 +69,13 @@ pub fn load(
         if let Some(name) = pixel_option {
             return Err(MapFileError::McapOption(name));
         }
-        let map =
+        let (map, topic) =
             crate::mcap_read::load_map(path, topic, opts.memory).map_err(MapFileError::Load)?;
-        return Ok((map, None));
+        return Ok(MapFile {
+            map,
+            start: None,
+            topic: Some(topic),
+        });
     }
     if dungeon {
         let Some((r, _)) = opts.resolution.filter(|(x, y)| x == y) else {
@@ -69,7 +83,11 @@ pub fn load(
         };
         let d =
             grid::io::load_dungeon(path, r, opts).map_err(|e| MapFileError::Load(e.to_string()))?;
-        return Ok((d.map, Some(d.start)));
+        return Ok(MapFile {
+            map: d.map,
+            start: Some(d.start),
+            topic: None,
+        });
     }
     let map = grid::io::load_map(path, opts).map_err(|e| match e.kind {
         MapErrorKind::ResolutionRequired(what) => {
@@ -94,7 +112,11 @@ pub fn load(
         }),
         _ => MapFileError::Load(e.to_string()),
     })?;
-    Ok((map, None))
+    Ok(MapFile {
+        map,
+        start: None,
+        topic: None,
+    })
 }
 
 /// The extensions of the map files [`load`] reads.

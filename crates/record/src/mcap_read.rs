@@ -136,14 +136,14 @@ pub enum RecordError {
 /// most [`crate::occupancy::MAX_CELLS`] bytes).
 pub const MAX_FILE_BYTES: u64 = 8 << 30;
 
-/// The last OccupancyGrid on `topic` of the MCAP recording at `path`, read a record at a
-/// time within `memory` ([`read_last_map`]); the error names the file. Used by every front
+/// The last OccupancyGrid on `topic` of the MCAP recording at `path`, with its topic name,
+/// read a record at a time within `memory` ([`read_last_map`]); the error names the file. Used by every front
 /// end that takes a recording as a map, with the memory it checks map files against.
 pub fn load_map(
     path: &std::path::Path,
     topic: Option<&str>,
     memory: Option<Available>,
-) -> Result<GridMap, String> {
+) -> Result<(GridMap, String), String> {
     // Bounded like a map file: a device, pipe or directory is refused unopened (`/dev/zero`
     // reports length 0 and reads without end), and so is a file over the limit.
     let (file, len) = grid::io::open_at_most(path, MAX_FILE_BYTES).map_err(|e| match e.kind {
@@ -155,9 +155,7 @@ pub fn load_map(
         _ => e.to_string(),
     })?;
     let source = std::io::BufReader::with_capacity(READ_BUFFER_BYTES, file);
-    let (map, _) = read_last_map(source, len, topic, memory)
-        .map_err(|e| format!("{}: {e}", path.display()))?;
-    Ok(map)
+    read_last_map(source, len, topic, memory).map_err(|e| format!("{}: {e}", path.display()))
 }
 
 /// A channel of a recording: its topic, its schema's name and its message encoding.
