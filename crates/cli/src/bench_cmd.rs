@@ -168,6 +168,7 @@ fn run_study(a: RunArgs) -> Result<()> {
         (None, None) => bail!("give a scenario file or --suite NAME"),
     };
     let mut plan = plan;
+    let whole = plan.trials.len();
     match a.trials {
         Some(0) => bail!("--trials: expected at least 1 trial per start variant, found 0"),
         Some(n) => plan.first_trials(n),
@@ -181,9 +182,17 @@ fn run_study(a: RunArgs) -> Result<()> {
             .unwrap_or_else(|| PathBuf::from(format!("{}.sqlite", plan.name)));
     // The trials this command runs: the shard's share of the plan, when it runs one.
     let (trials, shard_text) = match shard {
+        // A shard is a share of the whole study, of which --trials keeps the first trials
+        // per start: say both, or 78 of 8,640 trials reads as a wrong share.
         Some(s) => (
             s.share(&plan.trials),
-            format!(", shard {s} of {} trials", plan.trials.len()),
+            match a.trials {
+                Some(n) if plan.trials.len() < whole => format!(
+                    ", shard {s} of the study's {whole} trials, within the {} of --trials {n}",
+                    plan.trials.len()
+                ),
+                _ => format!(", shard {s} of {} trials", plan.trials.len()),
+            },
         ),
         None => (plan.trials.len(), String::new()),
     };

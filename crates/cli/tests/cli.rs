@@ -1871,6 +1871,15 @@ resolution = 0.5
         "--no-progress",
     ]);
     assert_eq!(bench_rows(&db), bench_rows(&whole));
+    // Regression: a shard of the first trials said "shard 1/2 of 4 trials" for a share of
+    // the whole study's 8, so its count read as a wrong share of 4.
+    let out = frontier(&["bench", s, "--dry-run", "--trials", "1", "--shard", "1/2"]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    assert!(
+        stderr.contains("variants, shard 1/2 of the study's 8 trials, within the 4 of --trials 1)"),
+        "{stderr}"
+    );
     // Zero trials is a mistake, not an empty study.
     let msg = err(&["bench", s, "--db", d, "--trials", "0"]);
     assert!(msg.contains("--trials: expected at least 1"), "{msg}");
