@@ -653,6 +653,22 @@ fn not_writable(path: &Path, e: rusqlite::Error) -> BenchError {
     }
 }
 
+/// The error for a store path that ends with a path separator (`study.sqlite/`), if it
+/// does: the file system looks for a folder there, SQLite opens the file, so a file's
+/// checks would be skipped while SQLite wrote into it.
+fn ends_as_a_folder(path: &Path) -> Result<(), BenchError> {
+    let text = path.as_os_str().to_string_lossy();
+    if text.ends_with(std::path::is_separator) && text.len() > 1 {
+        return Err(BenchError::Store {
+            path: path.to_path_buf(),
+            message: "ends with a path separator, so it names a folder; expected a results \
+                      database file (e.g. study.sqlite)"
+                .into(),
+        });
+    }
+    Ok(())
+}
+
 /// The error for an SQLite database that is not a results store, given its `tables`.
 fn not_a_store(path: &Path, tables: &[String]) -> BenchError {
     let found = if tables.is_empty() {
@@ -741,6 +757,7 @@ impl Store {
         path: &Path,
         check: impl FnOnce(&Store) -> Result<bool, BenchError>,
     ) -> Result<Store, BenchError> {
+        ends_as_a_folder(path)?;
         if path.is_dir() {
             return Err(BenchError::Store {
                 path: path.to_path_buf(),
@@ -765,9 +782,12 @@ impl Store {
             if journal {
                 // A write cut short must be rolled back before the file can be read, which a
                 // read-only connection cannot do. Whether the file is a store this program
-                // may write is told without the journal first, so that only a store is
-                // rolled back (by merely reading it for writing).
-                Store::inspect(path, false)?;
+                // may write is told without the journal first, so that only a store (or a
+                // database holding nothing) is rolled back (by merely reading it for
+                // writing).
+                if !Store::blank(path, false)? {
+                    Store::inspect(path, false)?;
+                }
                 Connection::open(path)
                     .and_then(|c| {
                         c.busy_timeout(std::time::Duration::from_secs(30))?;
@@ -775,10 +795,14 @@ impl Store {
                     })
                     .map_err(|e| not_writable(path, e))?;
             }
-            let (store, versioned) = Store::inspect(path, true)?;
-            let finished = check(&store)?;
-            if finished && versioned && !journal && !sibling(path, "-wal").exists() {
-                return Ok(store);
+            // A database that holds nothing, not even a table (what a first run cut short
+            // while it made the file leaves), is made into a store as a new file is.
+            if !Store::blank(path, true)? {
+                let (store, versioned) = Store::inspect(path, true)?;
+                let finished = check(&store)?;
+                if finished && versioned && !journal && !sibling(path, "-wal").exists() {
+                    return Ok(store);
+                }
             }
         }
         let conn = Connection::open(path).map_err(|e| not_writable(path, e))?;
@@ -815,6 +839,7 @@ impl Store {
     /// stays as it was. It must be an SQLite database that passes `quick_check` and a
     /// results store of this table layout.
     pub fn open_read_only(path: &Path) -> Result<Store, BenchError> {
+        ends_as_a_folder(path)?;
         let meta = match std::fs::metadata(path) {
             Ok(m) => m,
             Err(e) => {
@@ -865,17 +890,10 @@ impl Store {
         }
     }
 
-    /// Open the existing, non-empty file `path` read-only and check that it is a results
-    /// store this program can use, writing nothing to it or beside it: an SQLite database
-    /// (by its header), passing `quick_check`, with frontier's `meta` table, a table
-    /// layout version this program reads and, at that version, frontier's tables and
-    /// columns. Also whether it records its layout version: a store whose making was cut
-    /// short before it did, with frontier's tables and columns, passes without.
-    ///
-    /// Not `whole`: only what the file is, read as immutable (any `-journal` beside it
-    /// ignored) and without `quick_check`, for a file whose last write was cut short and
-    /// which cannot be read whole before it is rolled back.
-    fn inspect(path: &Path, whole: bool) -> Result<(Store, bool), BenchError> {
+    /// The existing, non-empty file `path` opened read-only as an SQLite database (by its
+    /// header): `whole`, with its `-wal` and checked by `quick_check`; else as immutable,
+    /// any `-journal` beside it ignored.
+    fn read_for_inspection(path: &Path, whole: bool) -> Result<Connection, BenchError> {
         let header = sqlite_header(path)?;
         let conn = if whole {
             open_read_only(path, wal_mode(&header))?
@@ -887,6 +905,39 @@ impl Store {
         if whole {
             check_integrity(&conn, path)?;
         }
+        Ok(conn)
+    }
+
+    /// Whether the existing, non-empty SQLite database `path` holds nothing, not even a
+    /// table or a user version, read as [`Store::inspect`] reads it (`whole`: with its `-wal`, checked by
+    /// `quick_check`), writing nothing to it or beside it.
+    fn blank(path: &Path, whole: bool) -> Result<bool, BenchError> {
+        let conn = Store::read_for_inspection(path, whole)?;
+        // Nothing in its schema, and no version a program set: a file SQLite made and
+        // nothing wrote into (one with a user version belongs to some program).
+        let (schema, version): (i64, i64) = conn
+            .query_row(
+                "SELECT (SELECT COUNT(*) FROM sqlite_master), (SELECT user_version FROM \
+                 pragma_user_version)",
+                [],
+                |r| Ok((r.get(0)?, r.get(1)?)),
+            )
+            .map_err(BenchError::sql(path))?;
+        Ok(schema == 0 && version == 0)
+    }
+
+    /// Open the existing, non-empty file `path` read-only and check that it is a results
+    /// store this program can use, writing nothing to it or beside it: an SQLite database
+    /// (by its header), passing `quick_check`, with frontier's `meta` table, a table
+    /// layout version this program reads and, at that version, frontier's tables and
+    /// columns. Also whether it records its layout version: a store whose making was cut
+    /// short before it did, with frontier's tables and columns, passes without.
+    ///
+    /// Not `whole`: only what the file is, read as immutable (any `-journal` beside it
+    /// ignored) and without `quick_check`, for a file whose last write was cut short and
+    /// which cannot be read whole before it is rolled back.
+    fn inspect(path: &Path, whole: bool) -> Result<(Store, bool), BenchError> {
+        let conn = Store::read_for_inspection(path, whole)?;
         let tables = table_names(&conn, path)?;
         let meta_columns = columns(&conn, "meta").map_err(BenchError::sql(path))?;
         if meta_columns != ["key", "value"] {
@@ -1289,6 +1340,7 @@ impl Store {
     /// and as `out` — so a bad input changes nothing: no input is written, and `out` is
     /// neither created nor changed. The copy is one transaction, all or nothing.
     pub fn merge(out: &Path, inputs: &[PathBuf]) -> Result<Merged, BenchError> {
+        ends_as_a_folder(out)?;
         let mut study: Option<(String, String, &Path)> = None;
         for input in inputs {
             let (scenario, fingerprint) = Store::open_read_only(input)?.study()?;

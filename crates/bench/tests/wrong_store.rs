@@ -550,3 +550,91 @@ fn store_with_a_write_cut_short_resumes_and_a_foreign_one_is_refused_unchanged()
         journal
     );
 }
+
+/// Regression: a first run cut short while it made its store (an SQLite file with no table
+/// yet, in WAL mode, perhaps with an empty `-wal` beside it) left a file every later run
+/// refused as "not a frontier results database (it has no tables)", so an interrupted
+/// Slurm shard failed at every resubmission. A database that holds nothing is made into a
+/// store as a new file is; one a program set a version on is still refused (above).
+#[test]
+fn regression_a_store_cut_short_before_its_tables_resumes() {
+    let dir = tempfile::tempdir().unwrap();
+    let whole = dir.path().join("whole.sqlite");
+    run(ONE, &whole);
+    for wal in [false, true] {
+        let db = dir.path().join(format!("cut-{wal}.sqlite"));
+        let conn = Connection::open(&db).unwrap();
+        if wal {
+            conn.query_row("PRAGMA journal_mode=WAL", [], |_| Ok(()))
+                .unwrap();
+        } else {
+            conn.execute_batch("PRAGMA page_size = 4096; VACUUM;")
+                .unwrap();
+        }
+        drop(conn);
+        assert!(
+            std::fs::metadata(&db).unwrap().len() > 0,
+            "an SQLite header"
+        );
+        if wal {
+            // What a process killed right after switching to WAL leaves beside the file.
+            std::fs::write(format!("{}-wal", db.display()), [0u8; 0]).unwrap();
+        }
+        let summary = bench::runner::run(&plan(ONE), &db, &opts()).unwrap();
+        assert_eq!((summary.ran, summary.already_done), (2, 0));
+        // The same rows as a run into a new file, but for the wall-clock time.
+        let rows = |p: &Path| {
+            let mut rows = Store::open_read_only(p).unwrap().rows().unwrap();
+            rows.iter_mut().for_each(|r| r.wall_s = 0.0);
+            rows
+        };
+        assert_eq!(rows(&db), rows(&whole));
+    }
+}
+
+/// Regression: a store path with a trailing separator (`notes.db/`) skipped every check of
+/// an existing file (the file system found no file there) while SQLite opened the file and
+/// added frontier's tables to another program's database. It is refused, unchanged.
+#[test]
+fn regression_a_store_path_ending_in_a_separator_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let notes = dir.path().join("notes.db");
+    foreign_database(&notes, false);
+    let good = dir.path().join("good.sqlite");
+    run(ONE, &good);
+    let before = snapshot(&notes);
+    let slashed = PathBuf::from(format!("{}/", notes.display()));
+    for (what, e) in [
+        (
+            "a run",
+            bench::runner::run(&plan(ONE), &slashed, &opts()).map(drop),
+        ),
+        ("open_raw", Store::open_raw(&slashed).map(drop)),
+        ("open_read_only", Store::open_read_only(&slashed).map(drop)),
+        (
+            "merge into it",
+            Store::merge(&slashed, std::slice::from_ref(&good)).map(drop),
+        ),
+        (
+            "merge of it",
+            Store::merge(
+                &dir.path().join("m.sqlite"),
+                &[good.clone(), slashed.clone()],
+            )
+            .map(drop),
+        ),
+    ] {
+        let e = e.expect_err(what).to_string();
+        assert_eq!(
+            e,
+            format!(
+                "{}: ends with a path separator, so it names a folder; expected a results \
+                 database file (e.g. study.sqlite)",
+                slashed.display()
+            ),
+            "{what}"
+        );
+        assert_eq!(snapshot(&notes), before, "{what}");
+    }
+    assert!(!dir.path().join("m.sqlite").exists());
+}
