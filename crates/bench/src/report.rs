@@ -198,6 +198,13 @@ pub(crate) fn slug(s: &str) -> String {
         .collect()
 }
 
+/// The file-name part of an environment and sensor's plots: their slugs joined by `+`,
+/// which no slug holds, so that two settings never share a file (environment `a` with
+/// sensor `b-c`, and `a-b` with `c`, were both `a-b-c`).
+fn setting_slug(env: &str, sensor: &str) -> String {
+    format!("{}+{}", slug(env), slug(sensor))
+}
+
 /// "mean ± sd" written with `f`, or the mean alone when the sd is undefined (one value).
 pub(crate) fn mean_sd(mean: f64, sd: f64, f: impl Fn(f64) -> String) -> String {
     if sd.is_finite() {
@@ -289,7 +296,7 @@ fn build(
         }
         for ((e, sensor, robots), by_strategy) in settings.iter().filter(|(k, _)| &k.0 == env) {
             let name = format!("{e} · {sensor} · {robots} robot(s)");
-            let id = slug(&format!("{e}-{sensor}-m{robots}"));
+            let id = format!("{}+m{robots}", setting_slug(e, sensor));
             blocks.push(Block::Heading(3, name.clone()));
             blocks.push(summary_table(by_strategy));
             blocks.push(Block::Para(
@@ -374,7 +381,7 @@ fn build(
                     format!("{env} · {sensor}: time vs robots"),
                 ));
                 blocks.push(Block::Svg(
-                    slug(&format!("time-{env}-{sensor}")),
+                    format!("time-{}", setting_slug(env, sensor)),
                     plots::line_chart(
                         &format!("Mean exploration time vs robots — {env} · {sensor}"),
                         "robots",

@@ -1195,3 +1195,52 @@ fn regression_a_failed_replay_leaves_no_report_behind() {
         std::fs::read_dir(&out).map(|d| d.count())
     );
 }
+
+/// Regression: a setting's plot files were named by its environment and sensor joined by
+/// '-', so environment `a` with `laser-limited-sonar` and `a-laser-limited` with `sonar`
+/// wrote the same `box-…svg` and `coverage-…svg`, and report.md showed one setting's
+/// charts under the other's heading. Every setting has files of its own.
+#[test]
+fn regression_two_settings_never_share_a_plot_file() {
+    let text = r#"
+name = "slug"
+seed = 1
+robots = [1]
+sensors = ["sonar", "laser-limited-sonar"]
+strategies = ["cf"]
+
+[[env]]
+kind = "empty"
+name = "a"
+size = [3, 3]
+resolution = 0.1
+
+[[env]]
+kind = "empty"
+name = "a-laser-limited"
+size = [3, 3]
+resolution = 0.1
+"#;
+    let dir = tempfile::tempdir().unwrap();
+    let db = dir.path().join("slug.sqlite");
+    let plan = Plan::resolve(&source(text), Unbuilt::Error).unwrap();
+    bench::runner::run(&plan, &db, &opts(2)).unwrap();
+    let out = dir.path().join("report");
+    bench::report::write(&db, &out, &bench::report::ReportOptions::default()).unwrap();
+    let md = std::fs::read_to_string(out.join("report.md")).unwrap();
+    let mut boxes: Vec<&str> = md
+        .lines()
+        .filter_map(|l| l.strip_prefix("![")?.split("](plots/box-").nth(1))
+        .collect();
+    assert_eq!(boxes.len(), 4, "{md}");
+    boxes.sort_unstable();
+    boxes.dedup();
+    assert_eq!(boxes.len(), 4, "two settings share a box plot: {md}");
+    for b in boxes {
+        let file = b.trim_end_matches(')');
+        assert!(
+            out.join("plots").join(format!("box-{file}")).exists(),
+            "{file}"
+        );
+    }
+}
