@@ -135,34 +135,61 @@ pub fn run(plan: &Plan, db: &Path, opts: &RunOptions) -> Result<RunSummary, Benc
     // (an edited scenario) leaves it as it was; one that holds every environment and trial
     // of this run stays read-only, as nothing is left to write (a finished study re-run for
     // its report, from a store the user may only read).
+    // The trials still to run, of those in `done`, at most `limit` of them.
+    let pending_of = |done: &std::collections::BTreeSet<String>| -> Vec<&Trial> {
+        let mut pending: Vec<&Trial> = mine
+            .iter()
+            .copied()
+            .filter(|t| !done.contains(&t.key))
+            .collect();
+        if let Some(limit) = opts.limit {
+            pending.truncate(limit);
+        }
+        pending
+    };
+    // An existing store's pending trials are checked against the memory while it is still
+    // read-only, so that a run refused for its memory writes nothing into it either.
+    let mut memory_checked = new_store;
     let store = Store::open_unless_finished(db, &plan.name, &plan.fingerprint(), |s| {
         let mut have_envs = true;
         for p in &pictures {
             have_envs &= s.check_env(p, &source)?;
         }
         let done = check_setups(plan, s, db)?;
+        check_memory(
+            plan,
+            &pending_of(&done),
+            opts.threads,
+            opts.memory_mb,
+            grid::machine::available(),
+        )?;
+        memory_checked = true;
         Ok(have_envs && mine.iter().all(|t| done.contains(&t.key)))
     })?;
+    let done = check_setups(plan, &store, db)?;
+    let done_count = mine.iter().filter(|t| done.contains(&t.key)).count();
+    let pending = pending_of(&done);
+    if !memory_checked {
+        // A file that held nothing yet, made into a store as a new file is.
+        check_memory(
+            plan,
+            &pending,
+            opts.threads,
+            opts.memory_mb,
+            grid::machine::available(),
+        )?;
+    }
     if store.is_writable() {
         store.describe(&plan.description)?;
         for p in &pictures {
             store.put_env(p, &source)?;
         }
     }
-    let done = check_setups(plan, &store, db)?;
-    let mut pending: Vec<&Trial> = mine
-        .iter()
-        .copied()
-        .filter(|t| !done.contains(&t.key))
-        .collect();
     let mut summary = RunSummary {
         total: mine.len(),
-        already_done: mine.len() - pending.len(),
+        already_done: done_count,
         ..RunSummary::default()
     };
-    if let Some(limit) = opts.limit {
-        pending.truncate(limit);
-    }
     let bar = if opts.progress {
         let bar =
             ProgressBar::with_draw_target(Some(pending.len() as u64), ProgressDrawTarget::stderr());
@@ -175,15 +202,6 @@ pub fn run(plan: &Plan, db: &Path, opts: &RunOptions) -> Result<RunSummary, Benc
     } else {
         ProgressBar::hidden()
     };
-    if !new_store {
-        check_memory(
-            plan,
-            &pending,
-            opts.threads,
-            opts.memory_mb,
-            grid::machine::available(),
-        )?;
-    }
     let optimal_cache = crate::competitive::Cache::new(store.optimal_paths()?);
     let store = Mutex::new(store);
     let failed = Mutex::new(Vec::new());

@@ -638,3 +638,34 @@ fn regression_a_store_path_ending_in_a_separator_is_refused() {
     }
     assert!(!dir.path().join("m.sqlite").exists());
 }
+
+/// Regression: a run into an existing store that its memory check refused had first
+/// written the scenario's new environments and description into the store; it is checked
+/// while the store is still read-only, and a refused run leaves the store as it was.
+#[test]
+fn regression_a_run_refused_for_its_memory_leaves_the_store_unchanged() {
+    let dir = tempfile::tempdir().unwrap();
+    let db = dir.path().join("one.sqlite");
+    run(ONE, &db);
+    let before = snapshot(&db);
+    let bigger = format!(
+        "{}\n[[env]]\nkind = \"office\"\nseeds = [0]\nsize = [60, 60]\nresolution = 0.05\n",
+        ONE.replace(
+            "name = \"one\"",
+            "name = \"one\"\ndescription = \"new text\""
+        )
+    );
+    let plan = plan(&bigger);
+    let e = bench::runner::run(
+        &plan,
+        &db,
+        &RunOptions {
+            memory_mb: Some(20),
+            ..opts()
+        },
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("more than --memory-mb 20"), "{e}");
+    assert_eq!(snapshot(&db), before);
+}
