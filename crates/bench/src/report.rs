@@ -138,8 +138,9 @@ pub fn write(
 }
 
 /// Refuses `out` when it, or the nearest of its parents that exists, is not a folder: the
-/// report is written into `out`, made with its missing parents.
-fn check_report_folder(out: &Path) -> Result<(), BenchError> {
+/// report is written into `out`, made with its missing parents. A run that writes a report
+/// after it checks this before it starts.
+pub fn check_report_folder(out: &Path) -> Result<(), BenchError> {
     for dir in out.ancestors().filter(|d| !d.as_os_str().is_empty()) {
         let Ok(meta) = std::fs::metadata(dir) else {
             continue;

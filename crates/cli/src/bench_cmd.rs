@@ -203,6 +203,11 @@ fn run_study(a: RunArgs) -> Result<()> {
         plan.variants.len(),
         db.display()
     );
+    // The report is written once every trial has run: a folder it cannot be written into
+    // is refused now, not after the whole study.
+    if let Some(out) = &a.report {
+        bench::report::check_report_folder(out)?;
+    }
     if a.dry_run {
         for env in &plan.envs {
             println!(

@@ -2477,3 +2477,33 @@ fn an_output_is_never_the_map_it_reads() {
     );
     assert_eq!(std::fs::read(&rec).unwrap(), before);
 }
+
+/// Regression: `bench FILE --report R` with R a file ran every trial, then failed to
+/// write the report ("is a file; expected the folder"): a long study ended in an error. The
+/// folder is checked before anything runs (and by `--dry-run`).
+#[test]
+fn regression_bench_report_into_a_file_is_refused_before_running() {
+    let dir = tempfile::tempdir().unwrap();
+    let study = tiny_study(dir.path(), 2);
+    let db = dir.path().join("r.sqlite");
+    for dry in [true, false] {
+        let mut args = vec![
+            "bench",
+            study.to_str().unwrap(),
+            "--db",
+            db.to_str().unwrap(),
+            "--no-progress",
+            "--report",
+            study.to_str().unwrap(),
+        ];
+        if dry {
+            args.push("--dry-run");
+        }
+        let e = err(&args);
+        assert!(
+            e.contains("is a file; expected the folder to write the report into"),
+            "{e}"
+        );
+        assert!(!db.exists(), "trials ran before the refusal");
+    }
+}
