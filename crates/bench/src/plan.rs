@@ -387,6 +387,24 @@ fn s_max_value(src: &Source, v: &toml::Spanned<i64>, key: &str) -> Result<Option
     }
 }
 
+/// The longest study, environment or strategy name: each is part of file names (the
+/// database's, a report's plots and replays), which the file system bounds (255 bytes).
+const MAX_NAME_CHARS: usize = 100;
+
+/// Whether `name` can name an environment or a strategy's label: not empty, at most
+/// [`MAX_NAME_CHARS`] characters, and without '|' (which separates a trial key's parts) or
+/// control characters (which would break a report's lines).
+fn plain_name(name: &str) -> bool {
+    !name.is_empty()
+        && name.chars().count() <= MAX_NAME_CHARS
+        && !name.contains('|')
+        && !name.chars().any(char::is_control)
+}
+
+/// What [`plain_name`] expects, as a message's "expected".
+const PLAIN_NAME: &str = "expected a non-empty name of at most 100 characters, without '|' or \
+                          control characters";
+
 /// The study's `name`, which is also the default database file (`NAME.sqlite`, beside
 /// where the study runs): a plain file name, neither empty, hidden, nor a path elsewhere.
 fn study_name(src: &Source, n: &toml::Spanned<String>) -> Result<String, BenchError> {
@@ -395,13 +413,15 @@ fn study_name(src: &Source, n: &toml::Spanned<String>) -> Result<String, BenchEr
         || name.starts_with('.')
         || name.contains(['/', '\\'])
         || name.chars().any(char::is_control)
+        || name.chars().count() > MAX_NAME_CHARS
     {
         return Err(src.error(
             span_of(n),
             "name",
             format!(
                 "expected a plain file name (the default database is NAME.sqlite): not empty, \
-                 not starting with '.', without '/', '\\' or control characters; found {name:?}"
+                 at most {MAX_NAME_CHARS} characters, not starting with '.', without '/', '\\' \
+                 or control characters; found {name:?}"
             ),
         ));
     }
@@ -579,11 +599,11 @@ fn resolve(
             strategy.replan.every_moves = every;
         }
         if let Some(l) = &e.label {
-            if l.get_ref().is_empty() || l.get_ref().contains('|') {
+            if !plain_name(l.get_ref()) {
                 return Err(src.error(
                     span_of(l),
                     format!("strategy[{i}].label"),
-                    "expected a non-empty name without '|'",
+                    format!("{PLAIN_NAME}, found {:?}", l.get_ref()),
                 ));
             }
             label = l.get_ref().clone();
@@ -851,15 +871,13 @@ fn resolve(
                 .name
                 .as_ref()
                 .map_or(Some(entry.span()), span_of);
-            if env.name.is_empty() || env.name.contains('|') {
-                // The name is part of each trial's key, whose parts '|' separates.
+            if !plain_name(&env.name) {
+                // The name is part of each trial's key, whose parts '|' separates, and of
+                // the report's file names.
                 return Err(src.error(
                     name_span,
                     format!("{key}.name"),
-                    format!(
-                        "expected a non-empty name without '|', found '{}'",
-                        env.name
-                    ),
+                    format!("{PLAIN_NAME}, found {:?}", env.name),
                 ));
             }
             if envs.iter().any(|e| e.name == env.name) {

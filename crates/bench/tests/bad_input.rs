@@ -418,16 +418,37 @@ fn regression_environment_names_that_break_keys_or_files_are_refused() {
             &format!("name = \"{name}\"\nkind = \"empty\""),
         )
     };
-    for bad in ["", "a|b"] {
+    // Regression too: a newline split the report's headings and table rows, and a name of
+    // 300 characters ran its trials, then no report could be written ("File name too
+    // long"). Written as TOML strings, then as the message quotes them.
+    let long = "e".repeat(101);
+    for (bad, found) in [
+        ("", r#""""#.to_string()),
+        ("a|b", r#""a|b""#.to_string()),
+        (r"a\nb", r#""a\nb""#.to_string()),
+        (long.as_str(), format!("{long:?}")),
+    ] {
         let e = error_of(&named(bad));
         assert!(e.starts_with("s.toml:7: key `env[0].name`"), "{bad}: {e}");
         assert!(
             e.contains(&format!(
-                "expected a non-empty name without '|', found '{bad}'"
+                "expected a non-empty name of at most 100 characters, without '|' or control \
+                 characters, found {found}"
             )),
             "{bad}: {e}"
         );
     }
+    Plan::resolve(&source(&named(&"e".repeat(100))), Unbuilt::Error)
+        .expect("100 characters are a name");
+    let label = format!(
+        "{}\n[[strategy]]\npreset = \"cf\"\nlabel = \"a\\tb\"\n",
+        ONE.replace("strategies = [\"cf\"]\n", "")
+    );
+    let e = error_of(&label);
+    assert!(
+        e.contains("key `strategy[0].label`") && e.contains(r#"found "a\tb""#),
+        "{e}"
+    );
     let two = format!(
         "{}\n[[env]]\nname = \"a_b\"\nkind = \"empty\"\nsize = [4, 4]\nresolution = 0.5\n",
         named("a/b")
