@@ -185,8 +185,8 @@ pub fn is_stochastic(s: &Strategy) -> bool {
     )
 }
 
-/// The labels `trials_for` names (each must be one of the study's strategies), or `None`
-/// without it (every stochastic strategy is repeated).
+/// The labels `trials_for` names (each must be one of the study's strategies that draws
+/// random numbers), or `None` without it (every stochastic strategy is repeated).
 fn trials_for(
     src: &Source,
     f: &ScenarioFile,
@@ -206,6 +206,30 @@ fn trials_for(
                 format!(
                     "expected one of the study's strategies ({}), found '{label}'",
                     known.join(", ")
+                ),
+            ));
+        }
+        let deterministic = strategies
+            .iter()
+            .any(|(l, st)| l == label && !is_stochastic(st));
+        if deterministic {
+            let drawing: Vec<&str> = strategies
+                .iter()
+                .filter(|(_, st)| is_stochastic(st))
+                .map(|(l, _)| l.as_str())
+                .collect();
+            return Err(src.error(
+                span_of(s),
+                format!("trials_for[{i}]"),
+                format!(
+                    "expected a strategy that draws random numbers ({}), found '{label}', \
+                     which is deterministic: at a fixed start its trials would all be one run, \
+                     so it runs once (repeat_deterministic = true repeats every strategy)",
+                    if drawing.is_empty() {
+                        "the study has none".to_string()
+                    } else {
+                        drawing.join(", ")
+                    }
                 ),
             ));
         }

@@ -84,11 +84,11 @@ fn plan_lists_trials_with_stable_keys_and_seeds() {
     assert!(same.len() == 4 && same.iter().all(|&s| s == same[0]));
 }
 
-/// `trials_for` repeats only the strategies it names: the others run once per fixed
-/// start, with the seeds and keys they have in the plan without it.
+/// `trials_for` repeats only the strategies it names (here none): the others run once per
+/// fixed start, with the seeds and keys they have in the plan without it.
 #[test]
 fn trials_for_repeats_only_the_strategies_it_names() {
-    let text = TINY.replace("trials = 2\n", "trials = 2\ntrials_for = [\"cf\"]\n");
+    let text = TINY.replace("trials = 2\n", "trials = 2\ntrials_for = []\n");
     let narrow = Plan::resolve(&source(&text), Unbuilt::Error).expect("resolves");
     // maze: random starts repeat every strategy (2 trials); office: fixed start, so `cf`
     // (deterministic) and `random` (not named) run once; times 2 robot counts.
@@ -113,10 +113,24 @@ fn trials_for_repeats_only_the_strategies_it_names() {
             .count()
     };
     assert_eq!((random_office(&narrow), random_office(&all)), (2, 4));
-    let e = error_of(("trials = 2", "trials = 2\ntrials_for = [\"cf\", \"nope\"]"));
+    let e = error_of((
+        "trials = 2",
+        "trials = 2\ntrials_for = [\"random\", \"nope\"]",
+    ));
     assert!(e.starts_with("tiny.toml:8: key `trials_for[1]`"), "{e}");
     assert!(
         e.contains("expected one of the study's strategies (cf, random), found 'nope'"),
+        "{e}"
+    );
+    // Regression: naming a deterministic strategy was accepted and did nothing (it runs
+    // once at a fixed start whatever the list says), so `trials` seemed ignored.
+    let e = error_of(("trials = 2", "trials = 2\ntrials_for = [\"cf\"]"));
+    assert!(e.starts_with("tiny.toml:8: key `trials_for[0]`"), "{e}");
+    assert!(
+        e.contains(
+            "expected a strategy that draws random numbers (random), found 'cf', which is \
+             deterministic"
+        ),
         "{e}"
     );
 }
