@@ -31,6 +31,29 @@ def test_check_env_passes(office):
         check_env(ExploreEnv(office, **kwargs), skip_render_check=True)
 
 
+def test_observation_space_bounds_the_pose_and_candidates_by_the_map(office):
+    """A pose and a candidate lie on the map's cells (any cell, with a view, whose maps may
+    differ in size), and a heading within [-pi, pi]; every observation of an episode is in
+    the space."""
+    env = ExploreEnv(office, k=16)
+    h, w = env.observation_space["belief"].shape
+    pose = env.observation_space["pose"]
+    assert pose.low.tolist() == pytest.approx([0, 0, -np.pi])
+    assert pose.high.tolist() == pytest.approx([w - 1, h - 1, np.pi])
+    cand = env.observation_space["candidates"]
+    assert cand.high[:, :2].tolist() == [[w - 1, h - 1]] * 16
+    assert np.isinf(cand.high[:, 2:]).all() and (cand.low == 0).all()
+    assert np.isinf(ExploreEnv(office, view=21).observation_space["pose"].high[:2]).all()
+    policy = RandomPolicy(3)
+    obs, _ = env.reset(seed=2)
+    while True:
+        assert env.observation_space.contains(obs), obs["pose"]
+        obs, _, terminated, truncated, _ = env.step(policy(obs))
+        if terminated or truncated:
+            break
+    assert env.observation_space.contains(obs)
+
+
 def test_registered():
     env = gymnasium.make("frontier/Explore-v0", maps="cave", size=(8, 8), resolution=0.25, k=8)
     obs, _ = env.reset(seed=1)

@@ -28,6 +28,17 @@ def test_parallel_api(office):
     parallel_api_test(ExploreParallelEnv(office, robots=3, k=8), num_cycles=50)
 
 
+def test_observations_are_in_the_space_with_the_team_on_the_map(office):
+    env = ExploreParallelEnv(office, robots=3, k=8)
+    space = env.observation_space("robot_0")
+    h, w = space["belief"].shape
+    assert space["team"].high[:, :2].tolist() == [[w - 1, h - 1]] * 3
+    obs, _ = env.reset(seed=5)
+    while env.agents:
+        assert all(space.contains(o) for o in obs.values())
+        obs, *_ = env.step({a: 0 for a in env.agents})
+
+
 def test_same_seed_identical_episodes(office):
     env = ExploreParallelEnv(office, robots=2, k=8)
     first = lambda env, obs: {a: 0 for a in env.agents}  # noqa: E731

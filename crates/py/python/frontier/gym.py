@@ -317,14 +317,33 @@ def _core_args(
     )
 
 
-def _spaces(shape: Tuple[int, int], k: int) -> Tuple[spaces.Dict, spaces.Discrete]:
+def _pose_bounds(map_shape: Optional[Tuple[int, int]]) -> Tuple[np.ndarray, np.ndarray]:
+    """The bounds of a pose (x, y in map cells, heading in radians): the map's cells when
+    every episode's map has ``map_shape``, else any cell (a view's maps may differ)."""
+    pi = np.float32(np.pi)
+    if map_shape is None:
+        high = np.array([np.inf, np.inf, pi], np.float32)
+    else:
+        h, w = map_shape
+        high = np.array([w - 1, h - 1, pi], np.float32)
+    return np.array([0.0, 0.0, -pi], np.float32), high
+
+
+def _spaces(
+    shape: Tuple[int, int], k: int, view: Optional[int]
+) -> Tuple[spaces.Dict, spaces.Discrete]:
+    """The observation and action spaces of an environment whose layers have ``shape``
+    (the map's, or a ``view``'s crop, whose maps may differ in size)."""
     h, w = shape
+    low, high = _pose_bounds(None if view is not None else shape)
+    # Candidates: x, y (cells, as a pose's), path cost (m) and gain (m²); padding is 0.
+    cand_high = np.tile(np.array([high[0], high[1], np.inf, np.inf], np.float32), (k, 1))
     obs = spaces.Dict(
         {
             "belief": spaces.Box(0, 2, (h, w), np.uint8),
             "frontier": spaces.Box(0, 1, (h, w), np.uint8),
-            "pose": spaces.Box(-np.inf, np.inf, (3,), np.float32),
-            "candidates": spaces.Box(0.0, np.inf, (k, 4), np.float32),
+            "pose": spaces.Box(low, high, (3,), np.float32),
+            "candidates": spaces.Box(np.zeros((k, 4), np.float32), cand_high, (k, 4), np.float32),
             "action_mask": spaces.Box(0, 1, (k,), np.int8),
         }
     )
@@ -460,7 +479,7 @@ class ExploreEnv(gymnasium.Env):
         self._wrap = invalid_action == "wrap"
         self._view = view
         self.render_mode = render_mode
-        self.observation_space, self.action_space = _spaces(self._core.shape, self._core.k)
+        self.observation_space, self.action_space = _spaces(self._core.shape, self._core.k, view)
         self._obs: Optional[Dict[str, np.ndarray]] = None
         self._seed = 0
 
@@ -572,7 +591,7 @@ class ExploreVectorEnv(VectorEnv):
         self._started = False
         self.num_envs = num_envs
         self.single_observation_space, self.single_action_space = _spaces(
-            core.shape, core.k
+            core.shape, core.k, view
         )
         self.observation_space = batch_space(self.single_observation_space, num_envs)
         self.action_space = batch_space(self.single_action_space, num_envs)

@@ -31,6 +31,7 @@ from .gym import (
     _episode_seed,
     _map_index,
     _map_option,
+    _pose_bounds,
     _seed,
     _spaces,
 )
@@ -80,10 +81,10 @@ class ExploreParallelEnv(ParallelEnv):
         m = self._core.robots
         self.possible_agents: List[str] = [f"robot_{i}" for i in range(m)]
         self.agents: List[str] = []
-        single, self._action_space = _spaces(self._core.shape, self._core.k)
-        self._observation_space = spaces.Dict(
-            dict(single.spaces, team=spaces.Box(-np.inf, np.inf, (m, 3), np.float32))
-        )
+        single, self._action_space = _spaces(self._core.shape, self._core.k, view)
+        low, high = _pose_bounds(None if view is not None else self._core.shape)
+        team = spaces.Box(np.tile(low, (m, 1)), np.tile(high, (m, 1)), (m, 3), np.float32)
+        self._observation_space = spaces.Dict(dict(single.spaces, team=team))
         self._rng: Optional[np.random.Generator] = None
         self._obs: List[Dict[str, np.ndarray]] = []
         self._seed = 0
