@@ -690,7 +690,7 @@ fn resolve(
                     return Err(src.error(
                         span_of(r),
                         format!("robots[{i}]"),
-                        "at most 1000 robots",
+                        format!("expected at most 1000 robots, found {n}"),
                     ));
                 }
                 if out.contains(&(n as usize)) {
@@ -869,7 +869,10 @@ fn resolve(
                         _ => Err(src.error(
                             span_of(s),
                             format!("{key}.start"),
-                            "expected a cell [x, y]",
+                            format!(
+                                "expected a cell [x, y] of two integers of at most 2^31 - 1 in \
+                                 size, found {v:?}"
+                            ),
                         )),
                     }
                 })

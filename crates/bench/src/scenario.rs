@@ -242,15 +242,26 @@ impl Source {
         }
         // The file may grow between the check and the read: read no more than the limit.
         let file = std::fs::File::open(path).map_err(BenchError::io(path))?;
-        let mut text = String::new();
-        std::io::Read::read_to_string(
+        let mut bytes = Vec::new();
+        std::io::Read::read_to_end(
             &mut std::io::Read::take(file, MAX_SCENARIO_BYTES + 1),
-            &mut text,
+            &mut bytes,
         )
         .map_err(BenchError::io(path))?;
-        if text.len() as u64 > MAX_SCENARIO_BYTES {
+        if bytes.len() as u64 > MAX_SCENARIO_BYTES {
             return Err(too_large("more, growing while read".into()));
         }
+        let text = String::from_utf8(bytes).map_err(|e| {
+            // Where the first byte that is not UTF-8 is, as a line and a column.
+            let good = &e.as_bytes()[..e.utf8_error().valid_up_to()];
+            let line = 1 + good.iter().filter(|&&b| b == b'\n').count();
+            let column = 1 + good.iter().rev().take_while(|&&b| b != b'\n').count();
+            refuse(format!(
+                "expected a scenario file of UTF-8 text (TOML), found a byte that is not UTF-8 \
+                 at line {line}, column {column} (byte {})",
+                good.len()
+            ))
+        })?;
         Ok(Source {
             file: path.display().to_string(),
             text,

@@ -517,3 +517,31 @@ fn regression_a_range_within_the_clearance_is_refused_at_plan_time() {
     let fine = short.replace("sensors", "clearance = 0.4\nsensors");
     Plan::resolve(&source(&fine), Unbuilt::Error).expect("0.5 m of range beyond 0.4 m");
 }
+
+/// Regression: three scenario errors did not say what they found: a file with a byte that
+/// is not UTF-8 ("stream did not contain valid UTF-8", without where), `robots = [1001]`
+/// ("at most 1000 robots") and `start = [1, 1, 1]` ("expected a cell [x, y]").
+#[test]
+fn regression_scenario_errors_say_what_they_found() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("s.toml");
+    std::fs::write(&path, b"name = \"one\"\nseed = 1 # caf\xe9\n").unwrap();
+    let e = Source::read(&path).unwrap_err().to_string();
+    assert!(
+        e.ends_with(
+            "expected a scenario file of UTF-8 text (TOML), found a byte that is not UTF-8 at \
+             line 2, column 15 (byte 27)"
+        ),
+        "{e}"
+    );
+    let e = error_of(&ONE.replace("name = \"one\"", "name = \"one\"\nrobots = [1001]"));
+    assert!(
+        e.contains("key `robots[0]`") && e.contains("expected at most 1000 robots, found 1001"),
+        "{e}"
+    );
+    let e = error_of(&ONE.replace("kind = \"empty\"", "kind = \"empty\"\nstart = [1, 1, 1]"));
+    assert!(
+        e.contains("key `env[0].start`") && e.contains("found [1, 1, 1]"),
+        "{e}"
+    );
+}

@@ -47,7 +47,7 @@ pub struct RunArgs {
     #[arg(allow_negative_numbers = true, long, short = 'j')]
     pub threads: Option<usize>,
     /// Run only shard I of N (1-based, e.g. 3/8), for job arrays.
-    #[arg(long)]
+    #[arg(allow_hyphen_values = true, long)]
     pub shard: Option<String>,
     /// Run at most this many of the pending trials.
     #[arg(allow_negative_numbers = true, long)]

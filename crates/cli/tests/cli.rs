@@ -2164,6 +2164,13 @@ fn regression_bench_dry_run_counts_the_shards_trials() {
         assert!(out.status.success(), "{stderr}");
         assert!(stderr.contains(line), "{stderr}");
     }
+    // Regression: `--shard -1/2` was clap's "unexpected argument '-1'" with a tip to write
+    // `-- -1/2`; a negative shard is a value the shard parser refuses plainly.
+    let e = err(&["bench", s, "--dry-run", "--shard", "-1/2"]);
+    assert!(
+        e.contains("--shard: expected I/N with 1 <= I <= N (e.g. 2/8), found '-1/2'"),
+        "{e}"
+    );
     let db = dir.path().join("s3.sqlite");
     bench_shard(&study, &db, "3/3");
     assert_eq!(
