@@ -365,6 +365,24 @@ fn open_read_only(path: &Path, wal_mode: bool) -> Result<Connection, BenchError>
         {
             open_immutable(path)
         }
+        // A `-wal` beside it (a run killed in WAL mode) that SQLite cannot read without a
+        // `-shm` it may not make there: its unfinished work cannot be read as it is.
+        Err(rusqlite::Error::SqliteFailure(e, _))
+            if matches!(
+                e.extended_code,
+                rusqlite::ffi::SQLITE_READONLY_DIRECTORY | rusqlite::ffi::SQLITE_CANTOPEN
+            ) && !sibling(path, "-shm").exists() =>
+        {
+            Err(BenchError::Store {
+                path: path.to_path_buf(),
+                message: format!(
+                    "has a -wal file beside it (a run killed while writing) but no -shm, which \
+                     SQLite must make to read it, in a folder this user cannot write: copy \
+                     its -shm file too, or resume the study into it once where it may be \
+                     written (SQLite: {e})"
+                ),
+            })
+        }
         other => other.map_err(|e| sql_error(path, e)),
     }
 }

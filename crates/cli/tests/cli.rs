@@ -2514,3 +2514,53 @@ fn regression_bench_report_into_a_file_is_refused_before_running() {
         assert!(!db.exists(), "trials ran before the refusal");
     }
 }
+
+/// Regression: a store copied from a run killed in WAL mode, with its `-wal` but not its
+/// `-shm`, into a folder the user may only read gave "unable to open database file" from
+/// export, report and merge: SQLite must make the `-shm` to read the `-wal`. The message
+/// says so and what to do.
+#[cfg(unix)]
+#[test]
+fn regression_a_killed_store_without_its_shm_in_a_read_only_folder_says_why() {
+    let dir = tempfile::tempdir().unwrap();
+    let study = tiny_study(dir.path(), 7);
+    let good = dir.path().join("good.sqlite");
+    bench_shard(&study, &good, "1/1");
+    let ro = dir.path().join("ro");
+    let out = dir.path().join("out");
+    std::fs::create_dir(&ro).unwrap();
+    std::fs::create_dir(&out).unwrap();
+    let db = ro.join("tiny.sqlite");
+    // A write in WAL mode not yet checkpointed: the store and its -wal as a killed run
+    // leaves them, copied while the connection is open.
+    let conn = rusqlite::Connection::open(&good).unwrap();
+    conn.query_row("PRAGMA journal_mode = WAL", [], |_| Ok(()))
+        .unwrap();
+    conn.query_row("PRAGMA wal_autocheckpoint = 0", [], |_| Ok(()))
+        .unwrap();
+    conn.execute("INSERT INTO meta VALUES ('note', 'written last')", [])
+        .unwrap();
+    assert!(Path::new(&format!("{}-wal", good.display())).exists());
+    std::fs::copy(&good, &db).unwrap();
+    std::fs::copy(
+        format!("{}-wal", good.display()),
+        format!("{}-wal", db.display()),
+    )
+    .unwrap();
+    drop(conn);
+    let d = db.to_str().unwrap();
+    let csv = out.join("all.csv");
+    let o = frontier_on_a_read_only_database(
+        &db,
+        &out,
+        &["bench", "export", d, "--csv", csv.to_str().unwrap()],
+    );
+    let e = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success(), "{e}");
+    assert!(
+        e.contains(&format!(
+            "{d}: has a -wal file beside it (a run killed while writing) but no -shm"
+        )) && e.contains("copy its -shm file too"),
+        "{e}"
+    );
+}
