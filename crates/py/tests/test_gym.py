@@ -1256,3 +1256,41 @@ def test_regression_messages_have_no_runs_of_spaces(office):
     with pytest.raises(ValueError) as e:
         ExploreEnv(office, motion="any-angle")
     assert "  " not in str(e.value), str(e.value)
+
+
+def test_regression_a_second_thread_is_told_the_environment_is_busy():
+    """Regression: a thread calling an environment while another thread's call was under
+    way (the native core steps with the GIL released) got PyO3's bare "Already borrowed"."""
+    import threading
+
+    env = ExploreEnv("office", size=(12, 10), resolution=0.1, k=8)
+    venv = ExploreVectorEnv(2, "office", size=(12, 10), resolution=0.1, k=8)
+    errors = []
+
+    def hammer(step, reset):
+        started = False
+        for _ in range(300):
+            try:
+                if not started or step()[2] is True:
+                    started = False
+                    reset()
+                    started = True
+            except RuntimeError as e:
+                errors.append(str(e))
+            except gymnasium.error.ResetNeeded:
+                errors.append("reset needed")
+                started = False
+
+    for step, reset in (
+        (lambda: env.step(0), lambda: env.reset(seed=1)),
+        (lambda: venv.step(np.zeros(2, dtype=np.int64)), lambda: venv.reset(seed=1)),
+    ):
+        threads = [threading.Thread(target=hammer, args=(step, reset)) for _ in range(4)]
+        for t in threads:
+            t.start()
+        for t in threads:
+            t.join()
+    busy = [e for e in errors if e != "reset needed"]
+    assert busy, "no two calls met"
+    assert all(e.startswith("this environment is in a call from another thread") for e in busy), \
+        set(busy)

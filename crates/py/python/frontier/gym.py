@@ -350,6 +350,28 @@ def _spaces(
     return obs, spaces.Discrete(k)
 
 
+class _OneCallAtATime:
+    """A context that turns PyO3's "Already borrowed" into what happened: an environment's
+    native core releases the GIL while it steps, so a second thread calling into it then
+    finds it borrowed."""
+
+    __slots__ = ()
+
+    def __enter__(self) -> None:
+        return None
+
+    def __exit__(self, kind: Any, err: Any, tb: Any) -> None:
+        # Returns None: any other exception goes on as it is.
+        if kind is RuntimeError and str(err) in ("Already borrowed", "Already mutably borrowed"):
+            raise RuntimeError(
+                "this environment is in a call from another thread: an environment takes one "
+                "call at a time; give each thread an environment of its own"
+            ) from None
+
+
+_ONE_CALL = _OneCallAtATime()
+
+
 def _episode_seed(rng: np.random.Generator) -> int:
     """The run seed of the next episode, drawn from the environment's generator."""
     return int(rng.integers(0, 2**63))
@@ -507,9 +529,10 @@ class ExploreEnv(gymnasium.Env):
         super().reset(seed=seed)
         episode = _episode_seed(self.np_random)
         self._obs = None
-        self._obs = self._core.reset(episode, map=index)
-        self._seed = episode
-        return self._obs, self._info()
+        with _ONE_CALL:
+            self._obs = self._core.reset(episode, map=index)
+            self._seed = episode
+            return self._obs, self._info()
 
     def step(
         self, action: Any
@@ -517,15 +540,17 @@ class ExploreEnv(gymnasium.Env):
         """Send the robot to candidate ``action`` and run to the next decision."""
         if self._obs is None:
             raise gymnasium.error.ResetNeeded("step: call reset() before step()")
-        obs, reward, terminated, truncated = self._core.step(_action(action), self._wrap)
-        self._obs = obs
-        return obs, reward, terminated, truncated, self._info()
+        with _ONE_CALL:
+            obs, reward, terminated, truncated = self._core.step(_action(action), self._wrap)
+            self._obs = obs
+            return obs, reward, terminated, truncated, self._info()
 
     def baseline_action(self, preset: str) -> int:
         """The action ``preset`` (a paper's strategy, e.g. ``"cf-rr"``) would take now."""
         if self._obs is None:
             raise gymnasium.error.ResetNeeded("baseline_action: call reset() before asking")
-        return self._core.baseline_action(preset)
+        with _ONE_CALL:
+            return self._core.baseline_action(preset)
 
     def action_masks(self) -> np.ndarray:
         """The current observation's ``action_mask`` as a (K,) bool array: the method
@@ -671,7 +696,8 @@ class ExploreVectorEnv(VectorEnv):
             for s in given
         ]
         self._started = False
-        obs, coverage, path = self._open("reset").reset(seeds, maps)
+        with _ONE_CALL:
+            obs, coverage, path = self._open("reset").reset(seeds, maps)
         self._started = True
         return obs, _vector_info(coverage, path)
 
@@ -701,9 +727,10 @@ class ExploreVectorEnv(VectorEnv):
         if given.dtype == np.uint64 and (given >= 2**63).any():
             i = int(np.argmax(given >= 2**63))
             raise ValueError(f"actions[{i}]: expected an integer in -2^63..2^63, found {given[i]}")
-        obs, rewards, terminated, truncated, coverage, path = core.step(
-            given.astype(np.int64, copy=False), self._wrap
-        )
+        with _ONE_CALL:
+            obs, rewards, terminated, truncated, coverage, path = core.step(
+                given.astype(np.int64, copy=False), self._wrap
+            )
         return obs, rewards, terminated, truncated, _vector_info(coverage, path)
 
     def baseline_actions(self, preset: str) -> np.ndarray:
@@ -711,7 +738,8 @@ class ExploreVectorEnv(VectorEnv):
         core = self._open("baseline_actions")
         if not self._started:
             raise gymnasium.error.ResetNeeded("baseline_actions: call reset() before asking")
-        return np.asarray(core.baseline_actions(preset), dtype=np.int64)
+        with _ONE_CALL:
+            return np.asarray(core.baseline_actions(preset), dtype=np.int64)
 
 
 class Baseline:

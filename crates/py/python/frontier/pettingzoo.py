@@ -31,6 +31,7 @@ from .gym import (
     _episode_seed,
     _map_index,
     _map_option,
+    _ONE_CALL,
     _pose_bounds,
     _seed,
     _spaces,
@@ -117,10 +118,11 @@ class ExploreParallelEnv(ParallelEnv):
             self._rng = seeding.np_random(seed)[0]
         episode = _episode_seed(self._rng)
         self._obs, self.agents = [], []
-        self._obs = self._core.reset(episode, map=index)
-        self._seed = episode
-        self.agents = list(self.possible_agents)
-        return dict(zip(self.possible_agents, self._obs)), self._infos()
+        with _ONE_CALL:
+            self._obs = self._core.reset(episode, map=index)
+            self._seed = episode
+            self.agents = list(self.possible_agents)
+            return dict(zip(self.possible_agents, self._obs)), self._infos()
 
     @property
     def map_names(self) -> Optional[List[str]]:
@@ -162,10 +164,11 @@ class ExploreParallelEnv(ParallelEnv):
                 f"actions: missing agent {missing[0]!r}, whose decision is due "
                 f"(deciding: {', '.join(due)})"
             )
-        self._obs, reward, terminated, truncated = self._core.step(acts, True)
+        with _ONE_CALL:
+            self._obs, reward, terminated, truncated = self._core.step(acts, True)
+            infos = self._infos()
         agents = self.possible_agents
         obs = dict(zip(agents, self._obs))
-        infos = self._infos()
         self.agents = [] if terminated or truncated else list(agents)
         return (
             obs,
@@ -179,4 +182,5 @@ class ExploreParallelEnv(ParallelEnv):
         """Every agent's action under ``preset`` (the deciding ones chosen together)."""
         if not self._obs:
             raise gymnasium.error.ResetNeeded("baseline_actions: call reset() before asking")
-        return dict(zip(self.possible_agents, self._core.baseline_actions(preset)))
+        with _ONE_CALL:
+            return dict(zip(self.possible_agents, self._core.baseline_actions(preset)))
