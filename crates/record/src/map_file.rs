@@ -220,8 +220,12 @@ mod tests {
         std::fs::create_dir_all(&dir).unwrap();
         let path = dir.join("plan.txt");
         std::fs::write(&path, "####\n#..#\n####\n").unwrap();
-        let (map, start) = load(&path, &opts(Some((0.5, 0.5)), false), None, false).unwrap();
-        assert_eq!((map.width(), map.height(), start), (4, 3, None));
+        let MapFile { map, start, topic } =
+            load(&path, &opts(Some((0.5, 0.5)), false), None, false).unwrap();
+        assert_eq!(
+            (map.width(), map.height(), start, topic),
+            (4, 3, None, None)
+        );
         assert_eq!(map.resolution, 0.5);
         let bitmap = load(&dir.join("plan.png"), &opts(None, false), None, false);
         let want = (dir.join("plan.png").display().to_string(), "a bare bitmap");

@@ -141,7 +141,8 @@ fn a_recording_is_read_a_record_at_a_time() {
     std::fs::write(&path, &bytes).expect("write");
     drop(bytes);
     let (result, peak) = peak_of(|| load_map(&path, None, None));
-    let map = result.expect("the map");
+    let (map, topic) = result.expect("the map");
     assert_eq!((map.width(), map.height()), (3, 2));
+    assert_eq!(topic, "/map");
     assert!(peak < 4 << 20, "{peak} bytes to read a 20 MiB recording");
 }

@@ -324,10 +324,10 @@ mod tests {
                 if mask.count_ones() as usize != a.len() {
                     continue;
                 }
-                let (x, y): (Vec<(usize, f64)>, Vec<(usize, f64)>) =
-                    pooled.iter().copied().enumerate().partition(|(i, _)| mask >> i & 1 == 1);
-                let x: Vec<f64> = x.into_iter().map(|(_, v)| v).collect();
-                let y: Vec<f64> = y.into_iter().map(|(_, v)| v).collect();
+                let side = |inside: bool| -> Vec<f64> {
+                    (0..n).filter(|i| (mask >> i & 1 == 1) == inside).map(|i| pooled[i]).collect()
+                };
+                let (x, y) = (side(true), side(false));
                 if let Ok(r) = mann_whitney_u(&x, &y) {
                     least = least.min(r.p_value);
                 }
