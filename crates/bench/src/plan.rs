@@ -64,7 +64,8 @@ use crate::scenario::{ScenarioFile, Source};
 /// multiple of the cell size is that many cells exactly, and a cell exactly the clearance
 /// from an obstacle keeps it (Holz's d_max), so a clearance at an exact multiple (0.2 m on
 /// 0.05 m cells) blocks one ring of cells fewer; one the quotient fell just short of (0.3
-/// m on 0.05 m) is unchanged).
+/// m on 0.05 m) is unchanged), and a robot with a directional sensor arriving at a frontier
+/// faces each unknown neighbour still unknown after it looked towards their mean direction.
 pub const STRATEGY_REVISION: u32 = 15;
 
 /// A resolved study: environments, variants, common settings and the flat trial list.

@@ -1763,7 +1763,10 @@ impl Team<'_> {
             self.look(robots, r, cell, true);
             self.record(robots, r);
         } else if self.is_open_frontier(goal) && !self.sensor.is_omnidirectional() {
-            // Turn towards the unknown it is next to and look again.
+            // Turn towards the unknown it is next to and look again: first towards all of
+            // it at once (the mean direction), then, while some neighbour is still unknown
+            // (the mean fell between unknown cells on opposite sides, or a narrow field of
+            // view missed some), towards each such neighbour in turn, each at most once.
             let known = self.belief.known();
             let (mut sx, mut sy) = (0.0, 0.0);
             for n in known.neighbours8(goal as usize) {
@@ -1776,6 +1779,23 @@ impl Team<'_> {
             robots[r].heading = sy.atan2(sx);
             self.look(robots, r, cell, false);
             self.record(robots, r);
+            // The neighbours faced, by their place in `neighbours8`'s order.
+            let mut faced = 0u8;
+            while self.is_open_frontier(goal) {
+                let known = self.belief.known();
+                let Some((k, n)) = known
+                    .neighbours8(goal as usize)
+                    .enumerate()
+                    .find(|&(k, n)| known[n] == Occ::Unknown && faced & (1 << k) == 0)
+                else {
+                    break;
+                };
+                faced |= 1 << k;
+                let c = known.cell(n);
+                robots[r].heading = f64::from(c.y - cell.y).atan2(f64::from(c.x - cell.x));
+                self.look(robots, r, cell, false);
+                self.record(robots, r);
+            }
         }
         self.lists.mark_visited(goal);
         robots[r].goal = None;
