@@ -145,6 +145,13 @@ pub fn config(
         None => {}
         Some(-1) => strategy.replan.every_moves = None,
         Some(n) if n > 0 && n <= i64::from(u32::MAX) => {
+            if strategy.draws_its_goal() {
+                return Err(format!(
+                    "--s-max: expected -1 for {}, found {n}: it draws each goal at random, so \
+                     re-planning every {n} moves would walk at random; it re-plans on arrival",
+                    o.strategy
+                ));
+            }
             strategy.replan.every_moves = Some(n as u32)
         }
         Some(n) => {

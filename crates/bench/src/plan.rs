@@ -618,7 +618,21 @@ fn resolve(
             .map_err(|err| src.error(span_of(&e.preset), &key, err.to_string()))?;
         let mut label = e.preset.get_ref().clone();
         if let Some(v) = &e.s_max {
-            strategy.replan.every_moves = s_max_value(src, v, &format!("strategy[{i}].s_max"))?;
+            let key = format!("strategy[{i}].s_max");
+            strategy.replan.every_moves = s_max_value(src, v, &key)?;
+            if strategy.replan.every_moves.is_some() && strategy.draws_its_goal() {
+                return Err(src.error(
+                    span_of(v),
+                    key,
+                    format!(
+                        "expected -1 for {}, found {}: it draws each goal at random, so \
+                         re-planning every few moves would walk at random; it re-plans on \
+                         arrival",
+                        e.preset.get_ref(),
+                        v.get_ref()
+                    ),
+                ));
+            }
             label = format!("{label}/s_max={}", v.get_ref());
         } else if let (Some(every), Some(_)) = (global_s_max, strategy.replan.every_moves) {
             strategy.replan.every_moves = every;

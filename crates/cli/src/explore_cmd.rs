@@ -49,7 +49,7 @@ pub struct ExploreArgs {
     #[arg(allow_negative_numbers = true, long, default_value_t = 1)]
     pub robots: usize,
     /// Re-plan every this many cell moves (Faigl & Kulich's s_max; -1 = on arrival only);
-    /// default: the strategy's.
+    /// default: the strategy's. Not for random and dt*, which draw their goals at random.
     #[arg(long, allow_negative_numbers = true)]
     pub s_max: Option<i64>,
     /// Stop at this coverage (0..1]; default: explore everything reachable.

@@ -2564,3 +2564,42 @@ fn regression_a_killed_store_without_its_shm_in_a_read_only_folder_says_why() {
         "{e}"
     );
 }
+
+/// Regression: `--strategy random --s-max 1` drew a new random frontier cell at every
+/// move, a random walk that did not finish on the default office in 120 s (with `--s-max
+/// 2`: 3,854 km against 788 m); `dt --s-max 1` travelled 25 times as far. A strategy that
+/// draws its goals takes no periodic re-plan, from the CLI or a scenario.
+#[test]
+fn regression_s_max_is_refused_for_strategies_that_draw_their_goals() {
+    for preset in ["random", "dt", "dt500", "dt-rr"] {
+        let e = err(&["explore", "--strategy", preset, "--s-max", "3"]);
+        assert!(
+            e.contains(&format!(
+                "--s-max: expected -1 for {preset}, found 3: it draws each goal at random"
+            )),
+            "{e}"
+        );
+    }
+    ok(&[
+        "explore",
+        "--strategy",
+        "random",
+        "--s-max",
+        "-1",
+        "--size",
+        "12x10",
+    ]);
+    let dir = tempfile::tempdir().unwrap();
+    let study = dir.path().join("s.toml");
+    std::fs::write(
+        &study,
+        "strategies = []\n[[strategy]]\npreset = \"random\"\ns_max = 2\n\n[[env]]\n\
+         kind = \"office\"\n",
+    )
+    .unwrap();
+    let e = err(&["bench", study.to_str().unwrap(), "--dry-run"]);
+    assert!(
+        e.contains("key `strategy[0].s_max`") && e.contains("expected -1 for random, found 2"),
+        "{e}"
+    );
+}

@@ -258,6 +258,14 @@ fn candidates_named(name: &str) -> Option<CandidateKind> {
 }
 
 impl Strategy {
+    /// Whether each decision draws the goal at random (a random frontier cell, or the best
+    /// of random samples): re-planning such a strategy every few moves would discard each
+    /// drawn goal before it is reached and walk at random, so it re-plans on arrival only.
+    pub fn draws_its_goal(&self) -> bool {
+        matches!(self.assigner, AssignerKind::Random)
+            || matches!(self.candidates, CandidateKind::DtSamples { .. })
+    }
+
     /// The preset called `name`.
     pub fn preset(name: &str) -> Result<Strategy, UnknownStrategy> {
         let on_arrival = ReplanPolicy {
