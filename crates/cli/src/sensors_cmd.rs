@@ -17,7 +17,7 @@ use sim::{RunConfig, RunResult};
 use world::clutter::{ClutterParams, furnish};
 use world::{EnvKind, EnvSpec};
 
-use crate::args::{parse_list, parse_size};
+use crate::args::parse_size;
 use crate::demo::mean_sd;
 
 /// Flags of `frontier sensors`.
@@ -46,6 +46,22 @@ pub struct SensorsArgs {
     pub json: bool,
 }
 
+/// The sensor specs of a comma-separated list: a part with `=` and no `:` (`fov=180` of
+/// `lidar:r=8,fov=180,res=1`) is a parameter of the spec before it, not a sensor.
+fn sensor_list(s: &str) -> Vec<String> {
+    let mut out: Vec<String> = Vec::new();
+    for part in s.split(',').map(str::trim) {
+        match out.last_mut() {
+            Some(last) if part.contains('=') && !part.contains(':') => {
+                last.push(',');
+                last.push_str(part);
+            }
+            _ => out.push(part.to_string()),
+        }
+    }
+    out
+}
+
 /// Run `frontier sensors`.
 pub fn run(a: SensorsArgs) -> Result<()> {
     crate::demo::check_seeds(a.seeds)?;
@@ -60,8 +76,17 @@ pub fn run(a: SensorsArgs) -> Result<()> {
         bail!("--env: expected a kind with rooms to furnish (office, hospital), found {kind}");
     }
     let strategy = Strategy::preset(&a.strategy).map_err(|e| anyhow::anyhow!("--strategy: {e}"))?;
-    let sensors: Vec<SensorSpec> = parse_list(&a.sensors, "--sensors", str::parse)?;
-    let names: Vec<&str> = a.sensors.split(',').map(str::trim).collect();
+    let names = sensor_list(&a.sensors);
+    let sensors: Vec<SensorSpec> = names
+        .iter()
+        .map(|n| n.parse().map_err(|e| anyhow::anyhow!("--sensors: {e}")))
+        .collect::<Result<_>>()?;
+    if let Some(k) = (1..sensors.len()).find(|&k| sensors[..k].contains(&sensors[k])) {
+        bail!(
+            "--sensors: expected each sensor once, found {} twice",
+            names[k]
+        );
+    }
     let size_m = a.size.as_deref().map(parse_size).transpose()?;
     let envs: Vec<(world::Environment, grid::Grid<bool>)> = (0..a.seeds)
         .map(|seed| {

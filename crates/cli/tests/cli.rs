@@ -534,6 +534,36 @@ fn sensors_compares_the_three_setups() {
     }
 }
 
+/// Regression: `sensors --sensors lidar:r=8,fov=180,res=1` split the spec `frontier list`
+/// shows at its commas ("sensor 'fov=180': unknown kind"), and a sensor listed twice ran
+/// twice.
+#[test]
+fn regression_sensors_takes_a_lidar_spec_and_each_sensor_once() {
+    let out = ok(&[
+        "sensors",
+        "--seeds",
+        "1",
+        "--size",
+        "12x10",
+        "--sensors",
+        "lidar:r=3,fov=180,res=1,laser",
+        "--json",
+    ]);
+    let v: serde_json::Value = serde_json::from_str(&out).expect("json");
+    let names: Vec<&str> = v["sensors"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|s| s["sensor"].as_str().unwrap())
+        .collect();
+    assert_eq!(names, ["lidar:r=3,fov=180,res=1", "laser"]);
+    let e = err(&["sensors", "--sensors", "sonar,laser,sonar"]);
+    assert!(
+        e.contains("--sensors: expected each sensor once, found sonar twice"),
+        "{e}"
+    );
+}
+
 /// The rows of a results database without the wall times (the only non-deterministic column).
 fn bench_rows(db: &Path) -> Vec<bench::TrialRow> {
     let store = bench::Store::open_read_only(db).expect("open the results database");
