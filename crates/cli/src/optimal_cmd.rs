@@ -259,6 +259,13 @@ pub fn run(a: OptimalArgs) -> Result<()> {
     } else {
         ActionSet::Boundary
     };
+    if a.landmarks > optimal::MAX_LANDMARKS {
+        bail!(
+            "--landmarks: expected at most {}, found {}",
+            optimal::MAX_LANDMARKS,
+            a.landmarks
+        );
+    }
     let cfg = Config {
         goal: a.goal,
         actions,

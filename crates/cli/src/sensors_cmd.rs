@@ -90,7 +90,9 @@ pub fn run(a: SensorsArgs) -> Result<()> {
     let size_m = a.size.as_deref().map(parse_size).transpose()?;
     let envs: Vec<(world::Environment, grid::Grid<bool>)> = (0..a.seeds)
         .map(|seed| {
-            let env = world::generate(&EnvSpec {
+            // Through the CLI's rule: a size or resolution the kind cannot use is named by
+            // its flag.
+            let env = crate::args::generate(&EnvSpec {
                 kind,
                 seed,
                 size_m,
@@ -99,7 +101,7 @@ pub fn run(a: SensorsArgs) -> Result<()> {
             let clutter = furnish(&env, seed, &ClutterParams::default());
             Ok((env, clutter))
         })
-        .collect::<Result<_, world::WorldError>>()?;
+        .collect::<Result<_>>()?;
     let jobs: Vec<(usize, u64)> = (0..sensors.len())
         .flat_map(|s| (0..a.seeds).map(move |seed| (s, seed)))
         .collect();

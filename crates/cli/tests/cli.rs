@@ -305,6 +305,15 @@ fn negative_numbers_are_refused_naming_their_flag() {
             &["map", "info", "x.pgm", "--resolution", "-1,1"],
             "--resolution",
         ),
+        // Regression: these named the library's field, not the flag.
+        (
+            &["sensors", "--size", "1x1"],
+            "--size: width 1 m for office: too small",
+        ),
+        (
+            &["optimal", "--landmarks", "100000"],
+            "--landmarks: expected at most 4096, found 100000",
+        ),
     ] {
         let e = err(args);
         assert!(e.contains(expected), "{args:?}: {e}");

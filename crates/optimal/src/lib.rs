@@ -62,8 +62,8 @@ pub use error::OptimalError;
 pub use heuristic::HeuristicKind;
 pub use problem::{Problem, SensorModel};
 pub use search::{
-    Config, Outcome, Progress, SETUP_BYTES_PER_CELL, Solution, Stats, Status, StopReason,
-    heuristic_value, setup_bytes, solve, solve_with, walk,
+    Config, MAX_LANDMARKS, Outcome, Progress, SETUP_BYTES_PER_CELL, Solution, Stats, Status,
+    StopReason, heuristic_value, setup_bytes, solve, solve_with, walk,
 };
 
 /// A `w` × `h` test map with a wall wherever `walls` holds 0 (maps from random bytes).

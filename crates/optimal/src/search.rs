@@ -1281,6 +1281,9 @@ pub fn solve(problem: &Problem, cfg: &Config) -> Result<Outcome, OptimalError> {
     solve_with(problem, cfg, Duration::MAX, &mut |_| true)
 }
 
+/// The most landmarks the landmark heuristic takes.
+pub const MAX_LANDMARKS: usize = 4096;
+
 /// Set-up bytes per map cell, before the first expansion: the problem's neighbour and
 /// mark tables, two step-cost tables (the search's and the heuristic's), Zobrist keys, the
 /// visibility index and the heuristic's per-cell slots. Measured as peak resident memory
@@ -1330,7 +1333,7 @@ pub fn solve_with(
             found: cfg.weight.to_string(),
         });
     }
-    if cfg.landmarks > 4096 {
+    if cfg.landmarks > MAX_LANDMARKS {
         return Err(OptimalError::BadParameter {
             field: "landmarks",
             expected: "at most 4096 landmarks",
