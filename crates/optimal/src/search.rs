@@ -492,6 +492,13 @@ impl<'p> Engine<'p> {
             + self.fixed_bytes
     }
 
+    /// Whether what the search holds exceeds its memory budget (noted in the statistics).
+    fn over_budget(&mut self) -> bool {
+        let bytes = self.bytes_with(0);
+        self.stats.bytes = self.stats.bytes.max(bytes);
+        bytes > self.cfg.max_bytes
+    }
+
     /// Grow storage for one more state if the budget allows (growth by 1.5×, checked first).
     fn reserve_one(&mut self) -> bool {
         let len = self.nodes.len();
@@ -1009,6 +1016,9 @@ impl<'p> Engine<'p> {
             let rows = std::mem::take(&mut self.seen_rows);
             self.actions(node.pos, &cur, &rows, actions, &mut searched, base);
             (self.cur, self.seen_rows) = (cur, rows);
+            if self.over_budget() {
+                return false;
+            }
             // No candidate perceives a new target: offer the next larger set (the
             // deviation in `actions`).
             next = match self.children(id, node) {
@@ -1037,6 +1047,12 @@ impl<'p> Engine<'p> {
         let nt = self.nt;
         let mut useful = false;
         for k in 0..self.cands.len() {
+            // The caches grow as candidates are looked at (a candidate's view, a child's
+            // heuristic): the budget is checked at each, not only when a state is stored,
+            // or one expansion of a wide open map overshot it several times over.
+            if self.over_budget() {
+                return None;
+            }
             let a = self.cands[k];
             let g2 = node.g + self.cand_dist[k];
             if g2 >= self.inc_cost - EPS {
