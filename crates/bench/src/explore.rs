@@ -122,6 +122,15 @@ pub fn check_generate_memory(spec: &world::EnvSpec, memory_mb: Option<u64>) -> R
     .map_err(|e| e.to_string())
 }
 
+/// Why `preset`, which draws each goal at random ([`Strategy::draws_its_goal`]), takes no
+/// re-plan every `n` moves: the words after a flag's or a key's name.
+pub(crate) fn no_periodic_replan(preset: &str, n: i64) -> String {
+    format!(
+        "expected -1 for {preset}, found {n}: it draws each goal at random, so re-planning \
+         every {n} moves would walk at random; it re-plans on arrival"
+    )
+}
+
 /// Resolve `o` into a run configuration for `map` (with its off-plane `clutter`); the
 /// error names the flag, what was expected and what was found.
 pub fn config(
@@ -146,11 +155,7 @@ pub fn config(
         Some(-1) => strategy.replan.every_moves = None,
         Some(n) if n > 0 && n <= i64::from(u32::MAX) => {
             if strategy.draws_its_goal() {
-                return Err(format!(
-                    "--s-max: expected -1 for {}, found {n}: it draws each goal at random, so \
-                     re-planning every {n} moves would walk at random; it re-plans on arrival",
-                    o.strategy
-                ));
+                return Err(format!("--s-max: {}", no_periodic_replan(&o.strategy, n)));
             }
             strategy.replan.every_moves = Some(n as u32)
         }

@@ -426,9 +426,13 @@ fn plain_name(name: &str) -> bool {
         && !name.chars().any(char::is_control)
 }
 
-/// What [`plain_name`] expects, as a message's "expected".
-const PLAIN_NAME: &str = "expected a non-empty name of at most 100 characters, without '|' or \
-                          control characters";
+/// What [`plain_name`] expects and `name` is, as a message.
+fn not_a_plain_name(name: &str) -> String {
+    format!(
+        "expected a non-empty name of at most {MAX_NAME_CHARS} characters, without '|' or \
+         control characters, found {name:?}"
+    )
+}
 
 /// The study's `name`, which is also the default database file (`NAME.sqlite`, beside
 /// where the study runs): a plain file name, neither empty, hidden, nor a path elsewhere.
@@ -624,13 +628,7 @@ fn resolve(
                 return Err(src.error(
                     span_of(v),
                     key,
-                    format!(
-                        "expected -1 for {}, found {}: it draws each goal at random, so \
-                         re-planning every few moves would walk at random; it re-plans on \
-                         arrival",
-                        e.preset.get_ref(),
-                        v.get_ref()
-                    ),
+                    crate::explore::no_periodic_replan(e.preset.get_ref(), *v.get_ref()),
                 ));
             }
             label = format!("{label}/s_max={}", v.get_ref());
@@ -642,7 +640,7 @@ fn resolve(
                 return Err(src.error(
                     span_of(l),
                     format!("strategy[{i}].label"),
-                    format!("{PLAIN_NAME}, found {:?}", l.get_ref()),
+                    not_a_plain_name(l.get_ref()),
                 ));
             }
             label = l.get_ref().clone();
@@ -919,7 +917,7 @@ fn resolve(
                 return Err(src.error(
                     name_span,
                     format!("{key}.name"),
-                    format!("{PLAIN_NAME}, found {:?}", env.name),
+                    not_a_plain_name(&env.name),
                 ));
             }
             if envs.iter().any(|e| e.name == env.name) {

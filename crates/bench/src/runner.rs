@@ -118,23 +118,6 @@ pub fn run(plan: &Plan, db: &Path, opts: &RunOptions) -> Result<RunSummary, Benc
         .iter()
         .filter(|t| opts.shard.is_none_or(|s| s.contains(t.number)))
         .collect();
-    // A new store is made only for a run that fits in memory: refused, it leaves no file.
-    // (Its pending trials are these; an existing store's are known once it is read.)
-    let new_store = !db.exists();
-    if new_store {
-        let first = &mine[..opts.limit.map_or(mine.len(), |l| l.min(mine.len()))];
-        check_memory(
-            plan,
-            first,
-            opts.threads,
-            opts.memory_mb,
-            grid::machine::available(),
-        )?;
-    }
-    // An existing store is checked against the plan read-only first, so that a refused run
-    // (an edited scenario) leaves it as it was; one that holds every environment and trial
-    // of this run stays read-only, as nothing is left to write (a finished study re-run for
-    // its report, from a store the user may only read).
     // The trials still to run, of those in `done`, at most `limit` of them.
     let pending_of = |done: &std::collections::BTreeSet<String>| -> Vec<&Trial> {
         let mut pending: Vec<&Trial> = mine
@@ -147,8 +130,26 @@ pub fn run(plan: &Plan, db: &Path, opts: &RunOptions) -> Result<RunSummary, Benc
         }
         pending
     };
-    // An existing store's pending trials are checked against the memory while it is still
-    // read-only, so that a run refused for its memory writes nothing into it either.
+    let fits = |pending: &[&Trial]| {
+        check_memory(
+            plan,
+            pending,
+            opts.threads,
+            opts.memory_mb,
+            grid::machine::available(),
+        )
+    };
+    // A new store is made only for a run that fits in memory: refused, it leaves no file.
+    // (Its pending trials are all of them; an existing store's are known once it is read.)
+    let new_store = !db.exists();
+    if new_store {
+        fits(&pending_of(&Default::default()))?;
+    }
+    // An existing store is checked against the plan read-only first, so that a refused run
+    // (an edited scenario) leaves it as it was; one that holds every environment and trial
+    // of this run stays read-only, as nothing is left to write (a finished study re-run for
+    // its report, from a store the user may only read). Its pending trials are checked
+    // against the memory then too, so that a run refused for its memory writes nothing.
     let mut memory_checked = new_store;
     let store = Store::open_unless_finished(db, &plan.name, &plan.fingerprint(), |s| {
         let mut have_envs = true;
@@ -156,13 +157,7 @@ pub fn run(plan: &Plan, db: &Path, opts: &RunOptions) -> Result<RunSummary, Benc
             have_envs &= s.check_env(p, &source)?;
         }
         let done = check_setups(plan, s, db)?;
-        check_memory(
-            plan,
-            &pending_of(&done),
-            opts.threads,
-            opts.memory_mb,
-            grid::machine::available(),
-        )?;
+        fits(&pending_of(&done))?;
         memory_checked = true;
         Ok(have_envs && mine.iter().all(|t| done.contains(&t.key)))
     })?;
@@ -171,13 +166,7 @@ pub fn run(plan: &Plan, db: &Path, opts: &RunOptions) -> Result<RunSummary, Benc
     let pending = pending_of(&done);
     if !memory_checked {
         // A file that held nothing yet, made into a store as a new file is.
-        check_memory(
-            plan,
-            &pending,
-            opts.threads,
-            opts.memory_mb,
-            grid::machine::available(),
-        )?;
+        fits(&pending)?;
     }
     if store.is_writable() {
         store.describe(&plan.description)?;

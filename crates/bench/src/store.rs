@@ -803,9 +803,7 @@ impl Store {
                 // may write is told without the journal first, so that only a store (or a
                 // database holding nothing) is rolled back (by merely reading it for
                 // writing).
-                if !Store::blank(path, false)? {
-                    Store::inspect(path, false)?;
-                }
+                Store::inspect(path, false)?;
                 Connection::open(path)
                     .and_then(|c| {
                         c.busy_timeout(std::time::Duration::from_secs(30))?;
@@ -815,8 +813,7 @@ impl Store {
             }
             // A database that holds nothing, not even a table (what a first run cut short
             // while it made the file leaves), is made into a store as a new file is.
-            if !Store::blank(path, true)? {
-                let (store, versioned) = Store::inspect(path, true)?;
+            if let Some((store, versioned)) = Store::inspect(path, true)? {
                 let finished = check(&store)?;
                 if finished && versioned && !journal && !sibling(path, "-wal").exists() {
                     return Ok(store);
@@ -897,8 +894,9 @@ impl Store {
             Store::inspect(path, false)?;
         }
         match Store::inspect(path, true)? {
-            (store, true) => Ok(store),
-            (_, false) => Err(BenchError::Store {
+            Some((store, true)) => Ok(store),
+            None => Err(not_a_store(path, &[])),
+            Some((_, false)) => Err(BenchError::Store {
                 path: path.to_path_buf(),
                 message: "is not a frontier results database (it has frontier's tables but no \
                           table layout version: it was never finished being made); give \
@@ -906,42 +904,6 @@ impl Store {
                     .into(),
             }),
         }
-    }
-
-    /// The existing, non-empty file `path` opened read-only as an SQLite database (by its
-    /// header): `whole`, with its `-wal` and checked by `quick_check`; else as immutable,
-    /// any `-journal` beside it ignored.
-    fn read_for_inspection(path: &Path, whole: bool) -> Result<Connection, BenchError> {
-        let header = sqlite_header(path)?;
-        let conn = if whole {
-            open_read_only(path, wal_mode(&header))?
-        } else {
-            open_immutable(path)?
-        };
-        conn.busy_timeout(std::time::Duration::from_secs(30))
-            .map_err(BenchError::sql(path))?;
-        if whole {
-            check_integrity(&conn, path)?;
-        }
-        Ok(conn)
-    }
-
-    /// Whether the existing, non-empty SQLite database `path` holds nothing, not even a
-    /// table or a user version, read as [`Store::inspect`] reads it (`whole`: with its `-wal`, checked by
-    /// `quick_check`), writing nothing to it or beside it.
-    fn blank(path: &Path, whole: bool) -> Result<bool, BenchError> {
-        let conn = Store::read_for_inspection(path, whole)?;
-        // Nothing in its schema, and no version a program set: a file SQLite made and
-        // nothing wrote into (one with a user version belongs to some program).
-        let (schema, version): (i64, i64) = conn
-            .query_row(
-                "SELECT (SELECT COUNT(*) FROM sqlite_master), (SELECT user_version FROM \
-                 pragma_user_version)",
-                [],
-                |r| Ok((r.get(0)?, r.get(1)?)),
-            )
-            .map_err(BenchError::sql(path))?;
-        Ok(schema == 0 && version == 0)
     }
 
     /// Open the existing, non-empty file `path` read-only and check that it is a results
@@ -954,8 +916,33 @@ impl Store {
     /// Not `whole`: only what the file is, read as immutable (any `-journal` beside it
     /// ignored) and without `quick_check`, for a file whose last write was cut short and
     /// which cannot be read whole before it is rolled back.
-    fn inspect(path: &Path, whole: bool) -> Result<(Store, bool), BenchError> {
-        let conn = Store::read_for_inspection(path, whole)?;
+    ///
+    /// `None`: the database holds nothing, not even a table or a user version (what a
+    /// first run cut short while it made the file leaves; one with a user version belongs
+    /// to some program), and may be made into a store as a new file is.
+    fn inspect(path: &Path, whole: bool) -> Result<Option<(Store, bool)>, BenchError> {
+        let header = sqlite_header(path)?;
+        let conn = if whole {
+            open_read_only(path, wal_mode(&header))?
+        } else {
+            open_immutable(path)?
+        };
+        conn.busy_timeout(std::time::Duration::from_secs(30))
+            .map_err(BenchError::sql(path))?;
+        if whole {
+            check_integrity(&conn, path)?;
+        }
+        let (schema, user_version): (i64, i64) = conn
+            .query_row(
+                "SELECT (SELECT COUNT(*) FROM sqlite_master), (SELECT user_version FROM \
+                 pragma_user_version)",
+                [],
+                |r| Ok((r.get(0)?, r.get(1)?)),
+            )
+            .map_err(BenchError::sql(path))?;
+        if schema == 0 && user_version == 0 {
+            return Ok(None);
+        }
         let tables = table_names(&conn, path)?;
         let meta_columns = columns(&conn, "meta").map_err(BenchError::sql(path))?;
         if meta_columns != ["key", "value"] {
@@ -971,7 +958,7 @@ impl Store {
             store.check_schema(v)?;
         }
         match (layout_difference(&store.conn, path)?, &version) {
-            (None, _) => Ok((store, version.is_some())),
+            (None, _) => Ok(Some((store, version.is_some()))),
             (Some(_), None) => Err(not_a_store(path, &tables)),
             (Some(why), Some(v)) => Err(store.problem(format!(
                 "records table layout {v}, but its tables are not that layout's ({why}); it \

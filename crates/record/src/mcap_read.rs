@@ -137,8 +137,9 @@ pub enum RecordError {
 pub const MAX_FILE_BYTES: u64 = 8 << 30;
 
 /// The last OccupancyGrid on `topic` of the MCAP recording at `path`, with its topic name,
-/// read a record at a time within `memory` ([`read_last_map`]); the error names the file. Used by every front
-/// end that takes a recording as a map, with the memory it checks map files against.
+/// read a record at a time within `memory` ([`read_last_map`]); the error names the file.
+/// Used by every front end that takes a recording as a map, with the memory it checks map
+/// files against.
 pub fn load_map(
     path: &std::path::Path,
     topic: Option<&str>,
