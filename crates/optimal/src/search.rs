@@ -287,11 +287,31 @@ struct VisCache {
     word_off: Vec<u32>,
     word_len: Vec<[u32; 2]>,
     word_data: Vec<(u32, u64)>,
+    /// The most marks one view holds (the sensor's disc): room kept for the next view.
+    most: usize,
+}
+
+/// Make room for `most` more entries in `v`, growing by a quarter of its length rather
+/// than doubling it, so that what the memory budget counts stays near what is held.
+fn room_for<T>(v: &mut Vec<T>, most: usize) {
+    if v.capacity() - v.len() < most {
+        v.reserve_exact(most.max(v.len() / 4));
+    }
+}
+
+/// The bytes [`room_for`] would add to `v` (of `size`-byte entries) for `most` more.
+fn room_bytes<T>(v: &[T], cap: usize, most: usize, size: usize) -> usize {
+    if cap - v.len() < most {
+        most.max(v.len() / 4) * size
+    } else {
+        0
+    }
 }
 
 impl VisCache {
-    fn new(n: usize) -> Self {
+    fn new(n: usize, most: usize) -> Self {
         Self {
+            most,
             off: vec![NONE; n],
             len: vec![0; n],
             data: Vec::new(),
@@ -305,6 +325,7 @@ impl VisCache {
     fn get(&mut self, problem: &Problem, pos: u32) -> (usize, usize) {
         let p = pos as usize;
         if self.off[p] == NONE {
+            room_for(&mut self.data, self.most);
             let start = self.data.len();
             problem.seen_marks(pos, &mut self.obs, &mut self.data);
             self.off[p] = start as u32;
@@ -325,6 +346,7 @@ impl VisCache {
         let p = pos as usize;
         if self.word_off[p] == NONE {
             let (o, l) = self.get(problem, pos);
+            room_for(&mut self.word_data, 2 * self.most);
             let start = self.word_data.len();
             let marks = &self.data[o..o + l];
             push_words(
@@ -346,6 +368,28 @@ impl VisCache {
         }
         let (o, [a, b]) = (self.word_off[p] as usize, self.word_len[p]);
         ((o, a as usize), (o + a as usize, b as usize))
+    }
+
+    /// The bytes the next view may add to what [`VisCache::bytes`] counts.
+    fn growth_bytes(&self) -> usize {
+        room_bytes(&self.data, self.data.capacity(), self.most, 4)
+            + room_bytes(
+                &self.word_data,
+                self.word_data.capacity(),
+                2 * self.most,
+                16,
+            )
+    }
+
+    /// Forget every computed view, returning its memory: views are computed again on use,
+    /// the same, so the search's results do not change.
+    fn forget(&mut self) {
+        self.off.fill(NONE);
+        self.len.fill(0);
+        self.data = Vec::new();
+        self.word_off.fill(NONE);
+        self.word_len.fill([0; 2]);
+        self.word_data = Vec::new();
     }
 
     /// Whether position `pos` perceives a target (a mark below `nt`) not in `bits`.
@@ -453,7 +497,7 @@ impl<'p> Engine<'p> {
             cfg: cfg.clone(),
             need: problem.needed(cfg.goal),
             heur,
-            vis: VisCache::new(n),
+            vis: VisCache::new(n, problem.model().disc_cells()),
             reach,
             scratch: ActionScratch::new(n),
             rows,
@@ -493,10 +537,17 @@ impl<'p> Engine<'p> {
     }
 
     /// Whether what the search holds exceeds its memory budget (noted in the statistics).
+    /// Over it, the cached views are forgotten first (they are computed again when asked
+    /// for): the budget is exceeded only if the rest still holds more than three quarters
+    /// of it, so that views are not computed again and again for a few candidates each.
     fn over_budget(&mut self) -> bool {
         let bytes = self.bytes_with(0);
         self.stats.bytes = self.stats.bytes.max(bytes);
-        bytes > self.cfg.max_bytes
+        if bytes + self.vis.growth_bytes() <= self.cfg.max_bytes {
+            return false;
+        }
+        self.vis.forget();
+        self.bytes_with(0) + self.vis.growth_bytes() > self.cfg.max_bytes / 4 * 3
     }
 
     /// Grow storage for one more state if the budget allows (growth by 1.5×, checked first).
@@ -598,7 +649,7 @@ impl<'p> Engine<'p> {
         }
         let mut cost = 0.0;
         while count < self.need {
-            if deadline.is_some_and(|d| Instant::now() >= d) {
+            if deadline.is_some_and(|d| Instant::now() >= d) || self.over_budget() {
                 self.greedy_rows = rows;
                 return None;
             }
@@ -607,7 +658,11 @@ impl<'p> Engine<'p> {
             let mut searched = false;
             while let Some(actions) = next {
                 self.actions(pos, &cur, &rows, actions, &mut searched, None);
-                best = self.greedy_choice(&cur, rate);
+                let Some(choice) = self.greedy_choice(&cur, rate) else {
+                    self.greedy_rows = rows;
+                    return None;
+                };
+                best = choice;
                 next = if best.is_some() {
                     None
                 } else {
@@ -704,12 +759,18 @@ impl<'p> Engine<'p> {
     }
 
     /// The greedy step among the candidates: the nearest that perceives a new target or,
-    /// with `rate`, the best new targets per unit of path; `None` if none perceives one.
-    fn greedy_choice(&mut self, cur: &[u64], rate: bool) -> Option<(f64, u32)> {
+    /// with `rate`, the best new targets per unit of path; `Some(None)` if none perceives
+    /// one, `None` if the memory budget ran out.
+    fn greedy_choice(&mut self, cur: &[u64], rate: bool) -> Option<Option<(f64, u32)>> {
         let nt = self.nt;
         let mut best: Option<(f64, u32)> = None;
         let mut best_rate = 0.0;
         for k in 0..self.cands.len() {
+            // Each view asked for may be computed and kept: the budget is checked as for
+            // the search's children.
+            if self.over_budget() {
+                return None;
+            }
             let a = self.cands[k];
             let d = self.cand_dist[k];
             if rate {
@@ -736,7 +797,7 @@ impl<'p> Engine<'p> {
                 best = Some((d, a));
             }
         }
-        best
+        Some(best)
     }
 
     /// Try to improve the incumbent with the blocks of cells `seed` from the root: in each
@@ -752,7 +813,7 @@ impl<'p> Engine<'p> {
         let mut cost = 0.0;
         let mut positions = vec![pos];
         for block in seed {
-            if count >= self.need {
+            if count >= self.need || self.over_budget() {
                 break;
             }
             let mut best: Option<(usize, u32)> = None;
@@ -1428,6 +1489,36 @@ mod tests {
             ..Config::default()
         };
         assert!(solve(&p, &cfg).is_ok());
+    }
+
+    /// Regression: the greedy completions that give the search its upper bounds computed
+    /// a view for every candidate they weighed and kept it, with no look at the budget: an
+    /// open 60 x 60 m map at 0.2 m with `--memory-mb 150` counted 214 MiB and held 191 MiB.
+    /// Here every perceived cell is an action, so the completions weigh them all.
+    /// Views are now forgotten when the budget is reached (and computed again when asked
+    /// for), so the bounds are the same within a budget the views alone would exceed.
+    #[test]
+    fn greedy_views_stay_within_the_budget() {
+        let (p, _) = crate::walled_problem(80, 60, &[1; 4800], 2440, SensorModel::Los(10.0))
+            .expect("an open problem");
+        let cfg = Config {
+            max_nodes: 1,
+            actions: ActionSet::All,
+            ..Config::default()
+        };
+        let free = solve(&p, &cfg).expect("solve");
+        let need = setup_bytes(p.cells().len(), p.model()) as usize;
+        let max_bytes = need / 10 * 13;
+        let held = solve(&p, &Config { max_bytes, ..cfg }).expect("solve");
+        assert!(
+            held.stats.bytes <= max_bytes,
+            "{} > {max_bytes}",
+            held.stats.bytes
+        );
+        assert_eq!(
+            (held.lower_bound, held.upper_bound, held.status),
+            (free.lower_bound, free.upper_bound, free.status)
+        );
     }
 
     proptest! {
