@@ -10,6 +10,7 @@
 //! frontier bench report all.sqlite --out report/
 //! ```
 
+use crate::out::outln;
 use std::path::PathBuf;
 
 use anyhow::{Context, Result, bail};
@@ -111,7 +112,7 @@ pub fn run(a: BenchArgs) -> Result<()> {
     match a.command {
         Some(BenchCommand::Merge { out, inputs }) => {
             let bench::Merged { added, total } = bench::Store::merge(&out, &inputs)?;
-            println!(
+            outln!(
                 "merged {} database(s) into {}: {added} new trial(s), {total} in all",
                 inputs.len(),
                 out.display()
@@ -121,13 +122,13 @@ pub fn run(a: BenchArgs) -> Result<()> {
         Some(BenchCommand::Export { db, csv }) => {
             crate::args::check_output_file("--csv", &csv)?;
             let n = bench::Store::open_read_only(&db)?.export_csv(&csv)?;
-            println!("wrote {n} trial(s) to {}", csv.display());
+            outln!("wrote {n} trial(s) to {}", csv.display());
             Ok(())
         }
         Some(BenchCommand::Report { db, out, alpha }) => report(&db, &out, alpha),
         Some(BenchCommand::Suites) => {
             for (name, what, _) in bench::suites::SUITES {
-                println!("  {name:<14} {what}");
+                outln!("  {name:<14} {what}");
             }
             Ok(())
         }
@@ -140,7 +141,7 @@ fn report(db: &std::path::Path, out: &std::path::Path, alpha: f64) -> Result<()>
         bail!("--alpha: expected a level in (0, 1), found {alpha}");
     }
     bench::report::write(db, out, &bench::report::ReportOptions { alpha })?;
-    println!(
+    outln!(
         "wrote {} and {}",
         out.join("report.md").display(),
         out.join("report.html").display()
@@ -210,7 +211,7 @@ fn run_study(a: RunArgs) -> Result<()> {
     }
     if a.dry_run {
         for env in &plan.envs {
-            println!(
+            outln!(
                 "env {:<28} {}x{} cells at {} m, {} start variant(s)",
                 env.name,
                 env.map.width(),
@@ -220,7 +221,7 @@ fn run_study(a: RunArgs) -> Result<()> {
             );
         }
         for v in &plan.variants {
-            println!(
+            outln!(
                 "variant {:<22} {:<28} robots {:<3}{}",
                 v.label,
                 v.sensor.to_string(),

@@ -5,6 +5,7 @@
 //! the mean ± sd path length per strategy — the form of Holz et al.'s Tables 1–3 — and
 //! writes one picture per environment and strategy.
 
+use crate::out::{out, outln};
 use std::path::PathBuf;
 
 use anyhow::{Context, Result, bail};
@@ -187,18 +188,18 @@ pub fn run(a: DemoArgs) -> Result<()> {
             info.map.resolution
         );
     }
-    print!("{table}");
+    out!("{table}");
     if incomplete.is_empty() {
-        println!("\nall {} runs explored everything reachable", jobs.len());
+        outln!("\nall {} runs explored everything reachable", jobs.len());
     } else {
-        println!("\n{} runs did not finish:", incomplete.len());
+        outln!("\n{} runs did not finish:", incomplete.len());
         for line in &incomplete {
-            println!("  {line}");
+            outln!("  {line}");
         }
     }
     std::fs::write(a.out.join("table.txt"), &table)
         .with_context(|| format!("writing {}", a.out.join("table.txt").display()))?;
-    println!(
+    outln!(
         "pictures of seed 0 in {}/ · {:.1} s wall time",
         a.out.display(),
         elapsed

@@ -1,5 +1,6 @@
 //! `frontier env`: generate a built-in environment and write it.
 
+use crate::out::outln;
 use std::path::PathBuf;
 
 use anyhow::{Context, Result, bail};
@@ -31,10 +32,10 @@ pub struct EnvArgs {
 }
 
 /// Print every kind with its defaults.
-pub fn print_kinds() {
+pub fn print_kinds() -> anyhow::Result<()> {
     for &kind in EnvKind::all() {
         let info = kind.info();
-        println!(
+        outln!(
             "  {:<9} {:>5} m x {:<5} m at {:<5} m/cell  {}",
             kind.to_string(),
             info.size_m.0,
@@ -43,12 +44,13 @@ pub fn print_kinds() {
             info.description
         );
     }
+    Ok(())
 }
 
 /// Run `frontier env`.
 pub fn run(a: EnvArgs) -> Result<()> {
     if a.list {
-        print_kinds();
+        print_kinds()?;
         return Ok(());
     }
     let Some(kind) = a.kind.as_deref() else {
@@ -73,7 +75,7 @@ pub fn run(a: EnvArgs) -> Result<()> {
     let env = crate::args::generate(&spec)?;
     grid::io::save_map(&env.map, out).context("--out")?;
     let (free, occ, unk) = env.map.counts();
-    println!(
+    outln!(
         "{}: {}x{} cells at {} m ({} free, {} occupied, {} unknown{}) written to {}",
         env.name,
         env.map.width(),

@@ -1,5 +1,6 @@
 //! `frontier explore`: one run, a summary or JSON, pictures and a trace.
 
+use crate::out::{out, outln};
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
@@ -260,7 +261,7 @@ pub fn run(a: ExploreArgs) -> Result<()> {
             .with_context(|| format!("--mcap {}: writing", path.display()))?;
     }
     if a.json {
-        println!(
+        outln!(
             "{}",
             serde_json::to_string_pretty(&report::summary_json(
                 &truth,
@@ -270,9 +271,9 @@ pub fn run(a: ExploreArgs) -> Result<()> {
             ))?
         );
     } else {
-        print!("{}", report::summary_text(&truth, &cfg, &result));
+        out!("{}", report::summary_text(&truth, &cfg, &result));
         if let Some(dir) = &a.out {
-            println!("pictures and trace written to {}", dir.display());
+            outln!("pictures and trace written to {}", dir.display());
         }
         for (what, path) in [
             ("animation", &a.gif),
@@ -280,7 +281,7 @@ pub fn run(a: ExploreArgs) -> Result<()> {
             ("recording", &a.mcap),
         ] {
             if let Some(path) = path {
-                println!("{what} written to {}", path.display());
+                outln!("{what} written to {}", path.display());
             }
         }
     }

@@ -13,11 +13,13 @@ mod explore_cmd;
 mod map_cmd;
 mod mcap_out;
 mod optimal_cmd;
+mod out;
 mod report;
 mod segment_cmd;
 mod sensors_cmd;
 
 use clap::{Parser, Subcommand};
+use out::outln;
 
 /// Frontier-based robot exploration: every strategy from the classic papers, on real and
 /// generated maps.
@@ -67,10 +69,7 @@ fn main() {
         Command::Optimal(a) => optimal_cmd::run(*a),
         Command::Bench(a) => bench_cmd::run(*a),
         Command::Sensors(a) => sensors_cmd::run(a),
-        Command::List => {
-            list();
-            Ok(())
-        }
+        Command::List => list(),
     };
     if let Err(e) = result {
         eprintln!("error: {e:#}");
@@ -94,8 +93,8 @@ fn die_quietly_on_closed_pipe() {
 #[cfg(not(unix))]
 fn die_quietly_on_closed_pipe() {}
 
-fn list() {
-    println!("strategies (--strategy):");
+fn list() -> anyhow::Result<()> {
+    outln!("strategies (--strategy):");
     // names aligned to the longest single name (the family line of Faigl & Kulich's
     // presets is longer and runs over)
     let width = explore::strategy::PRESETS
@@ -105,23 +104,22 @@ fn list() {
         .max()
         .unwrap_or(10);
     for (name, what) in explore::strategy::PRESETS {
-        println!("  {name:<width$} {what}");
+        outln!("  {name:<width$} {what}");
     }
-    println!("\nenvironments (--env):");
-    env_cmd::print_kinds();
-    println!("\nsensors (--sensor), ranges in metres or in cells with suffix c:");
-    println!("  los:r=5                   360° line of sight (Quattrini Li et al.'s laser)");
-    println!("  footprint:r=5             every cell within r, through walls");
-    println!("  lidar:r=8,fov=180,res=1   beams over a field of view (Holz: 180°, 1°)");
-    println!("  sonar                     Yamauchi's ring of 16 sonars, 25° cones, 10 ft (r=...)");
-    println!("  laser-limited-sonar       the sonar ring, each reading capped by the planar laser");
-    println!(
-        "  laser                     planar laser, 360° at 1°, 10 ft (= lidar:r=3.048,fov=360)"
-    );
-    println!(
+    outln!("\nenvironments (--env):");
+    env_cmd::print_kinds()?;
+    outln!("\nsensors (--sensor), ranges in metres or in cells with suffix c:");
+    outln!("  los:r=5                   360° line of sight (Quattrini Li et al.'s laser)");
+    outln!("  footprint:r=5             every cell within r, through walls");
+    outln!("  lidar:r=8,fov=180,res=1   beams over a field of view (Holz: 180°, 1°)");
+    outln!("  sonar                     Yamauchi's ring of 16 sonars, 25° cones, 10 ft (r=...)");
+    outln!("  laser-limited-sonar       the sonar ring, each reading capped by the planar laser");
+    outln!("  laser                     planar laser, 360° at 1°, 10 ft (= lidar:r=3.048,fov=360)");
+    outln!(
         "  square:r=3.5              Explore-Bench's grid simulator: the square window of side 2r"
     );
-    println!("  (sonar needs --belief evidence, the default with it; --clutter adds furniture");
-    println!("   off the laser plane to generated offices and hospitals)");
-    println!("\nbelief maps (--belief): known (ternary), reflection (Holz), evidence (Yamauchi)");
+    outln!("  (sonar needs --belief evidence, the default with it; --clutter adds furniture");
+    outln!("   off the laser plane to generated offices and hospitals)");
+    outln!("\nbelief maps (--belief): known (ternary), reflection (Holz), evidence (Yamauchi)");
+    Ok(())
 }

@@ -1,5 +1,6 @@
 //! `frontier map info`: what a map file holds.
 
+use crate::out::outln;
 use std::path::PathBuf;
 
 use anyhow::Result;
@@ -86,11 +87,11 @@ pub fn run(cmd: MapCommand) -> Result<()> {
             "start": start.map(|c| [c.x, c.y]),
             "topic": topic,
         });
-        println!("{}", serde_json::to_string_pretty(&v)?);
+        outln!("{}", serde_json::to_string_pretty(&v)?);
     } else {
-        println!("{}", file.display());
+        outln!("{}", file.display());
         if let Some(topic) = &topic {
-            println!("  topic       {topic} (its last map)");
+            outln!("  topic       {topic} (its last map)");
         }
         // To the centimetre; a size below one (a resolution of 1e-9 m) as it is, not 0.00.
         let metres = |cells: usize| {
@@ -101,24 +102,24 @@ pub fn run(cmd: MapCommand) -> Result<()> {
                 grid::Num(m).to_string()
             }
         };
-        println!(
+        outln!(
             "  size        {w} x {h} cells, {} m x {} m",
             metres(w),
             metres(h)
         );
-        println!(
+        outln!(
             "  resolution  {} m/cell, origin [{}, {}, {}]",
             grid::Num(map.resolution),
             map.origin[0],
             map.origin[1],
             map.origin[2]
         );
-        println!("  cells       {free} free, {occupied} occupied, {unknown} unknown");
-        println!(
+        outln!("  cells       {free} free, {occupied} occupied, {unknown} unknown");
+        outln!(
             "  free space  {components} connected component(s) (8-connected, no corner squeezing)"
         );
         if let Some(c) = start {
-            println!("  start       {},{} (the file's mark)", c.x, c.y);
+            outln!("  start       {},{} (the file's mark)", c.x, c.y);
         }
     }
     Ok(())

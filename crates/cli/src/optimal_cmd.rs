@@ -2,6 +2,7 @@
 //! Basilico 2012) for a map, start and sensor, and the competitive ratios of online
 //! strategies run with the same sensor and on-arrival perception from the same start.
 
+use crate::out::outln;
 use std::path::PathBuf;
 use std::sync::Once;
 use std::sync::atomic::{AtomicU8, Ordering};
@@ -343,7 +344,7 @@ pub fn run(a: OptimalArgs) -> Result<()> {
             &out,
             &compared,
         );
-        println!("{}", serde_json::to_string_pretty(&v)?);
+        outln!("{}", serde_json::to_string_pretty(&v)?);
     } else {
         print_summary(
             (map.width(), map.height()),
@@ -353,9 +354,9 @@ pub fn run(a: OptimalArgs) -> Result<()> {
             start,
             &out,
             &compared,
-        );
+        )?;
         if let Some(dir) = &a.out {
-            println!("picture written to {}", dir.join("optimal.png").display());
+            outln!("picture written to {}", dir.join("optimal.png").display());
         }
     }
     if out.stop == Some(optimal::StopReason::Interrupted) {
@@ -464,9 +465,9 @@ fn print_summary(
     start: Cell,
     out: &Outcome,
     compared: &[Compared],
-) {
+) -> anyhow::Result<()> {
     let res = co.resolution();
-    println!(
+    outln!(
         "{name}: {}x{} cells at {} m (cell size {}), start {start}{}, sensor {}, goal {}",
         co.map.width(),
         co.map.height(),
@@ -480,21 +481,21 @@ fn print_summary(
         a.sensor,
         a.goal
     );
-    println!(
+    outln!(
         "targets {} (need {}), {} free cells no position can perceive",
         out.targets,
         out.needed,
         co.problem.unperceivable()
     );
     if a.cell_size > 1 {
-        println!(
+        outln!(
             "the coarse map keeps {:.0}% of the free area reachable from the start",
             100.0 * co.kept_area
         );
     }
-    println!("{}", out.message);
-    println!("{}", length_line(out, res));
-    println!(
+    outln!("{}", out.message);
+    outln!("{}", length_line(out, res));
+    outln!(
         "nodes expanded {}, generated {}, stored {}, {:.1} MiB, {:.3} s",
         out.stats.expanded,
         out.stats.generated,
@@ -506,7 +507,7 @@ fn print_summary(
         .iter()
         .map(|&c| co.to_fine(c, fine.0, fine.1).to_string())
         .collect();
-    println!("positions (map cells): {}", ps.join(" "));
+    outln!("positions (map cells): {}", ps.join(" "));
     let proven = out.status == optimal::Status::Optimal;
     for c in compared {
         // Without a proven optimum the ratio is only known to lie between the ratios to
@@ -518,11 +519,15 @@ fn print_summary(
             (None, Some(m)) => format!("≤ {m:.3} (no path found)"),
             (None, None) => "n/a".into(),
         };
-        println!(
+        outln!(
             "{:<10} length {:.2} m, coverage {:.3} ({}), competitive ratio {ratio}",
-            c.name, c.length_m, c.coverage, c.reason,
+            c.name,
+            c.length_m,
+            c.coverage,
+            c.reason,
         );
     }
+    Ok(())
 }
 
 fn to_json(

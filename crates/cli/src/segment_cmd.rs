@@ -6,6 +6,7 @@
 //! closed, so that each room is one connected free region (the convention of public
 //! room-segmentation datasets).
 
+use crate::out::outln;
 use std::path::PathBuf;
 
 use anyhow::{Context, Result, bail};
@@ -119,9 +120,9 @@ pub fn run(a: SegmentArgs) -> Result<()> {
             "critical_points": seg.critical.len(),
             "scores": s,
         });
-        println!("{}", serde_json::to_string_pretty(&v)?);
+        outln!("{}", serde_json::to_string_pretty(&v)?);
     } else {
-        println!(
+        outln!(
             "{}: {} segments ({} critical points, rule {})",
             truth.name,
             seg.count,
@@ -129,21 +130,26 @@ pub fn run(a: SegmentArgs) -> Result<()> {
             rule.name()
         );
         if let Some(s) = scores {
-            print_scores(&s);
+            print_scores(&s)?;
         }
     }
     Ok(())
 }
 
-fn print_scores(s: &RoomScores) {
-    println!(
+fn print_scores(s: &RoomScores) -> anyhow::Result<()> {
+    outln!(
         "  rooms {}, recovered {} (overlap >= 80 % both ways)",
-        s.rooms, s.matched
+        s.rooms,
+        s.matched
     );
-    println!(
+    outln!(
         "  precision {:.3}  recall {:.3}  F1 {:.3}  ARI {:.3}",
-        s.precision, s.recall, s.f1, s.ari
+        s.precision,
+        s.recall,
+        s.f1,
+        s.ari
     );
+    Ok(())
 }
 
 /// The room labels of a generated office or hospital; `None` for kinds without rooms.

@@ -7,6 +7,7 @@
 //! per sensor, the mean ± sd over seeds of map accuracy, phantom frontier regions, goals on
 //! phantoms, the share of clutter mapped, coverage and path length ([`sim::MapAudit`]).
 
+use crate::out::outln;
 use anyhow::{Result, bail};
 use clap::Args;
 use explore::strategy::Strategy;
@@ -151,7 +152,7 @@ pub fn run(a: SensorsArgs) -> Result<()> {
                 })
             })
             .collect();
-        println!(
+        outln!(
             "{}",
             serde_json::to_string_pretty(&json!({
                 "env": kind.to_string(),
@@ -166,11 +167,13 @@ pub fn run(a: SensorsArgs) -> Result<()> {
     let pm = |(m, sd): (f64, f64), scale: f64, digits: usize| {
         format!("{:.digits$} ± {:.digits$}", m * scale, sd * scale)
     };
-    println!(
+    outln!(
         "Furnished {kind}s at {} m per cell, strategy {}, evidence grid; mean ± sd over {} seeds\n",
-        a.resolution, strategy.name, a.seeds
+        a.resolution,
+        strategy.name,
+        a.seeds
     );
-    println!(
+    outln!(
         "{:<22}{:>14}{:>17}{:>17}{:>15}{:>15}{:>15}{:>14}{:>16}",
         "sensor",
         "map right %",
@@ -183,7 +186,7 @@ pub fn run(a: SensorsArgs) -> Result<()> {
         "path m"
     );
     for (name, row) in names.iter().zip(&rows) {
-        println!(
+        outln!(
             "{:<22}{:>14}{:>17}{:>17}{:>15}{:>15}{:>15}{:>14}{:>16}",
             name,
             pm(row.accuracy, 100.0, 1),
@@ -196,7 +199,7 @@ pub fn run(a: SensorsArgs) -> Result<()> {
             pm(row.path, 1.0, 1),
         );
     }
-    println!(
+    outln!(
         "\nphantom regions: frontier regions with a cell that is not free in truth, per \
          decision, and their share of all frontier regions; phantom goals: goals chosen on \
          such cells; phantom free: cells believed free at the end that are not (walls \

@@ -2642,3 +2642,32 @@ fn regression_s_max_is_refused_for_strategies_that_draw_their_goals() {
         "{e}"
     );
 }
+
+/// Regression: a write to standard output that failed (a full disk behind `> file`)
+/// panicked in `println!` with a backtrace and exit code 101; it is an error that says
+/// what failed. `/dev/full` fails every write with "No space left on device".
+#[test]
+fn a_full_standard_output_is_an_error_not_a_panic() {
+    let Ok(full) = std::fs::OpenOptions::new().write(true).open("/dev/full") else {
+        return;
+    };
+    for args in [
+        &["list"][..],
+        &["explore", "--env", "office", "--size", "12x10", "--json"],
+        &["env", "--list"],
+        &["bench", "suites"],
+    ] {
+        let out = Command::new(env!("CARGO_BIN_EXE_frontier"))
+            .args(args)
+            .stdout(full.try_clone().unwrap())
+            .output()
+            .expect("run frontier");
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{args:?}: {stderr}");
+        assert!(
+            stderr.starts_with("error: writing to standard output:")
+                && !stderr.contains("panicked"),
+            "{args:?}: {stderr}"
+        );
+    }
+}
