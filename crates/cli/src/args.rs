@@ -2,7 +2,7 @@
 
 use std::path::{Path, PathBuf};
 
-use anyhow::{Context, Result, bail};
+use anyhow::{Result, bail};
 use clap::Args;
 use grid::{Grid, GridMap, Occ};
 use world::{EnvKind, EnvSpec};
@@ -206,20 +206,6 @@ pub fn parse_cell(s: &str, flag: &str) -> Result<grid::Cell> {
 }
 
 impl MapSource {
-    /// Refuse an output file `path` (given as `flag`) that is the `--map` file itself:
-    /// writing it would destroy the recording or plan the run reads.
-    pub fn check_not_the_map(&self, flag: &str, path: &Path) -> Result<()> {
-        if let Some(map) = &self.map
-            && same_file(map, path)
-        {
-            bail!(
-                "{flag} {}: expected a file other than the --map it reads, found that file",
-                path.display()
-            );
-        }
-        Ok(())
-    }
-
     /// How a map file is read with these flags (`--resolution`, `--border`), within
     /// `memory_mb` MiB (the command's `--memory-mb`) and the memory available.
     pub fn load_options(&self, memory_mb: Option<u64>) -> Result<grid::io::LoadOptions> {
@@ -355,11 +341,6 @@ impl MapSource {
     }
 }
 
-/// Whether `a` and `b` name one file that exists (through links and `..`).
-pub fn same_file(a: &Path, b: &Path) -> bool {
-    matches!((a.canonicalize(), b.canonicalize()), (Ok(x), Ok(y)) if x == y)
-}
-
 /// Check, before a run, that the file `flag` names can be written: its folder exists, it
 /// is not itself a folder, and it opens for writing (a file that is there is left as it
 /// is, one made for the test is removed), so that a long run does not end in an error
@@ -383,13 +364,16 @@ pub fn check_output_file(flag: &str, path: &Path) -> Result<()> {
         );
     }
     let existed = path.exists();
+    // Through a symbolic link whose target is not there yet, the test makes the target:
+    // that is the file to remove, not the link.
+    let target = crate::files::written_at(path);
     match std::fs::OpenOptions::new()
         .append(true)
         .create(true)
         .open(path)
     {
         Ok(_) if !existed => {
-            let _ = std::fs::remove_file(path);
+            let _ = std::fs::remove_file(target);
         }
         Ok(_) => {}
         Err(e) => bail!(
@@ -401,35 +385,10 @@ pub fn check_output_file(flag: &str, path: &Path) -> Result<()> {
 }
 
 /// Refuse `dir` for the folder `flag` names if a file is there: checked before any work,
-/// the folder itself made later ([`make_output_folder`]), once the command's input is read.
+/// the folder itself made later ([`crate::files::make_output_folder`]), once the command's input is read.
 pub fn check_output_folder(flag: &str, dir: &Path) -> Result<()> {
     if dir.exists() && !dir.is_dir() {
         bail!("{flag} {}: expected a folder, found a file", dir.display());
     }
     Ok(())
-}
-
-/// Create the output folder `flag` names before a run (or reuse it) and check that files
-/// can be written in it, so that a bad path is refused before the work rather than after
-/// it.
-pub fn make_output_folder(flag: &str, dir: &Path) -> Result<()> {
-    check_output_folder(flag, dir)?;
-    std::fs::create_dir_all(dir)
-        .with_context(|| format!("{flag} {}: cannot create the folder", dir.display()))?;
-    // A folder that is there may not be ours to write in (another user's, read-only).
-    let probe = dir.join(format!(".frontier-write-check-{}", std::process::id()));
-    match std::fs::OpenOptions::new()
-        .write(true)
-        .create_new(true)
-        .open(&probe)
-    {
-        Ok(_) => {
-            let _ = std::fs::remove_file(&probe);
-            Ok(())
-        }
-        Err(e) => bail!(
-            "{flag} {}: expected a folder files can be written in, found {e}",
-            dir.display()
-        ),
-    }
 }

@@ -120,7 +120,7 @@ pub fn run(a: BenchArgs) -> Result<()> {
             Ok(())
         }
         Some(BenchCommand::Export { db, csv }) => {
-            crate::args::check_output_file("--csv", &csv)?;
+            crate::files::Files::new().writes("--csv", &csv)?;
             let n = bench::Store::open_read_only(&db)?.export_csv(&csv)?;
             outln!("wrote {n} trial(s) to {}", csv.display());
             Ok(())
@@ -181,6 +181,9 @@ fn run_study(a: RunArgs) -> Result<()> {
     let db =
         a.db.clone()
             .unwrap_or_else(|| PathBuf::from(format!("{}.sqlite", plan.name)));
+    if db.as_os_str() == "-" {
+        bail!("--db -: expected a database file name, found '-'");
+    }
     // The trials this command runs: the shard's share of the plan, when it runs one.
     let (trials, shard_text) = match shard {
         // A shard is a share of the whole study, of which --trials keeps the first trials
@@ -208,7 +211,20 @@ fn run_study(a: RunArgs) -> Result<()> {
     // is refused now, not after the whole study.
     if let Some(out) = &a.report {
         bench::report::check_report_folder(out)?;
+        if crate::files::same_file(&db, out) {
+            bail!(
+                "--report {}: expected a folder for the report, found the path of the --db",
+                out.display()
+            );
+        }
+        crate::files::Files::new().writes_into("--report", out, &["report.md", "report.html"])?;
     }
+    // Made now, so that a folder that cannot be made is refused before the study (and
+    // removed again if the study fails before the report is written).
+    let _report_folder = match (&a.report, a.dry_run) {
+        (Some(out), false) => Some(crate::files::make_output_folder("--report", out)?),
+        _ => None,
+    };
     if a.dry_run {
         for env in &plan.envs {
             outln!(

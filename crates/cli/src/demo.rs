@@ -90,7 +90,7 @@ pub fn run(a: DemoArgs) -> Result<()> {
         );
     }
     // Made once every flag is read: a refused command leaves no folder behind.
-    crate::args::make_output_folder("--out", &a.out)?;
+    let _folder = crate::files::make_output_folder("--out", &a.out)?;
     // One environment per (kind, seed), shared by all strategies.
     let envs: Vec<Vec<world::Environment>> = kinds
         .iter()

@@ -60,7 +60,16 @@ pub fn run(a: EnvArgs) -> Result<()> {
     let Some(out) = &a.out else {
         bail!("--out FILE is required (.png, .yaml, .pgm, .map or .txt)")
     };
-    crate::args::check_output_file("--out", out)?;
+    let mut files = crate::files::Files::new();
+    files.writes("--out", out)?;
+    let ext = out
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    if matches!(ext.as_deref(), Some("yaml" | "yml")) {
+        // The image beside it.
+        files.writes("--out", &out.with_extension("pgm"))?;
+    }
     let resolution = match a.resolution.as_deref().map(parse_resolution).transpose()? {
         Some((x, y)) if x != y => bail!("--resolution: give one number (cells are square)"),
         r => r.map(|r| r.0),

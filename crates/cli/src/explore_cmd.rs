@@ -180,32 +180,35 @@ fn progress_bar(elapsed: Duration) -> ProgressBar {
     bar
 }
 
+/// The files `--out` writes.
+const OUT_FILES: [&str; 5] = [
+    "final.png",
+    "map.png",
+    "belief.yaml",
+    "belief.pgm",
+    "trace.json",
+];
+
 /// Run `frontier explore`.
 pub fn run(a: ExploreArgs) -> Result<()> {
-    let outputs = [("--gif", &a.gif), ("--html", &a.html), ("--mcap", &a.mcap)];
-    for (k, (flag, path)) in outputs.iter().enumerate() {
+    let mut files = crate::files::Files::new();
+    files.reads_source(&a.source);
+    for (flag, path) in [("--gif", &a.gif), ("--html", &a.html), ("--mcap", &a.mcap)] {
         if let Some(path) = path {
-            crate::args::check_output_file(flag, path)?;
-            a.source.check_not_the_map(flag, path)?;
-            // One file for two outputs would keep only the one written last.
-            if let Some((other, _)) = outputs[..k].iter().find(|(_, p)| p.as_ref() == Some(path)) {
-                anyhow::bail!(
-                    "{flag} {}: expected a file of its own, found the file {other} names",
-                    path.display()
-                );
-            }
+            files.writes(flag, path)?;
         }
     }
     if let Some(dir) = &a.out {
-        crate::args::check_output_folder("--out", dir)?;
+        files.writes_into("--out", dir, &OUT_FILES)?;
     }
     let truth = a.source.resolve(a.seed, a.memory_mb)?;
     let cfg = config(&a, &truth)?;
-    // Once the map and every flag are read and before the run: a failing command leaves
-    // no folder behind, and one that cannot be made fails before a long run.
-    if let Some(dir) = &a.out {
-        crate::args::make_output_folder("--out", dir)?;
-    }
+    // Once the map and every flag are read and before the run: a folder that cannot be
+    // made fails before a long run, and one made is removed again if the run fails.
+    let _folder = match &a.out {
+        Some(dir) => Some(crate::files::make_output_folder("--out", dir)?),
+        None => None,
+    };
     let result = run_with_progress(
         &truth,
         &cfg,

@@ -10,6 +10,7 @@ mod bench_cmd;
 mod demo;
 mod env_cmd;
 mod explore_cmd;
+mod files;
 mod map_cmd;
 mod mcap_out;
 mod optimal_cmd;

@@ -176,8 +176,10 @@ pub fn run(a: OptimalArgs) -> Result<()> {
         let strategy = Strategy::preset(name).map_err(|e| anyhow::anyhow!("--compare: {e}"))?;
         presets.push((name, strategy));
     }
+    let mut files = crate::files::Files::new();
+    files.reads_source(&a.source);
     if let Some(dir) = &a.out {
-        crate::args::check_output_folder("--out", dir)?;
+        files.writes_into("--out", dir, &["optimal.png"])?;
     }
     let truth = a
         .source
@@ -280,9 +282,10 @@ pub fn run(a: OptimalArgs) -> Result<()> {
     };
     check_setup_memory(map, a.cell_size, &spec, a.memory_mb)?;
     // Once every flag is checked and before the search: a failing command leaves no folder.
-    if let Some(dir) = &a.out {
-        crate::args::make_output_folder("--out", dir)?;
-    }
+    let _folder = match &a.out {
+        Some(dir) => Some(crate::files::make_output_folder("--out", dir)?),
+        None => None,
+    };
     let co = coarsen_problem(map, a.cell_size, start, &spec)?;
     if co.kept_area < KEPT_AREA_WARNING {
         eprintln!(

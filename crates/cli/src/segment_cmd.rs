@@ -71,15 +71,13 @@ pub fn run(a: SegmentArgs) -> Result<()> {
     if a.truth.is_some() && a.source.map.is_none() {
         bail!("--truth goes with --map; a generated office or hospital has its own rooms");
     }
+    let mut files = crate::files::Files::new();
+    files.reads_source(&a.source);
+    if let Some(truth) = &a.truth {
+        files.reads_map("--truth", truth);
+    }
     if let Some(out) = &a.out {
-        crate::args::check_output_file("--out", out)?;
-        a.source.check_not_the_map("--out", out)?;
-        if let Some(truth) = a.truth.as_ref().filter(|t| crate::args::same_file(t, out)) {
-            bail!(
-                "--out {}: expected a file other than the --truth it reads, found that file",
-                truth.display()
-            );
-        }
+        files.writes("--out", out)?;
     }
     let truth = a
         .source

@@ -2083,7 +2083,7 @@ fn regression_output_paths_are_checked_before_the_run() {
     let e = err(&["explore", "--env", "office", "--gif", same, "--html", same]);
     assert!(
         e.contains(&format!(
-            "--html {same}: expected a file of its own, found the file --gif names"
+            "--html {same}: expected a file of its own, found the file --gif writes ({same})"
         )),
         "{e}"
     );
@@ -2512,13 +2512,19 @@ fn an_output_is_never_the_map_it_reads() {
     for out in [rec_s, same.to_str().unwrap()] {
         let e = err(&["explore", "--map", rec_s, "--mcap", out]);
         assert!(
-            e.contains("--mcap") && e.contains("expected a file other than the --map it reads"),
+            e.contains("--mcap")
+                && e.contains(
+                    "expected a file other than the files the command reads, found the --map \
+                     it reads"
+                ),
             "{e}"
         );
     }
     let e = err(&["segment", "--map", rec_s, "--out", rec_s]);
     assert!(
-        e.contains("expected a file other than the --map it reads"),
+        e.contains(
+            "expected a file other than the files the command reads, found the --map it reads"
+        ),
         "{e}"
     );
     assert_eq!(std::fs::read(&rec).unwrap(), before);
@@ -2550,6 +2556,47 @@ fn regression_bench_report_into_a_file_is_refused_before_running() {
             e.contains("is a file; expected the folder to write the report into"),
             "{e}"
         );
+        assert!(!db.exists(), "trials ran before the refusal");
+    }
+    // Regression: a report folder that is the --db's path, that cannot be made, or that
+    // holds a folder where report.html goes failed after every trial had run (the second
+    // with "No such file or directory" and no flag named).
+    let inner = dir.path().join("rr");
+    std::fs::create_dir_all(inner.join("report.html")).unwrap();
+    for (report, says) in [
+        (
+            db.clone(),
+            "--report".to_string()
+                + " "
+                + db.to_str().unwrap()
+                + ": expected a folder for the report, found the path of the --db",
+        ),
+        (
+            Path::new("/proc/frontier-report").to_path_buf(),
+            "--report /proc/frontier-report: expected a folder that can be made".to_string(),
+        ),
+        (
+            inner.clone(),
+            format!(
+                "--report {}: expected a folder where report.html can be written",
+                inner.display()
+            ),
+        ),
+    ] {
+        // /proc takes no new folder (Linux).
+        if report.starts_with("/proc") && !Path::new("/proc/self").exists() {
+            continue;
+        }
+        let e = err(&[
+            "bench",
+            study.to_str().unwrap(),
+            "--db",
+            db.to_str().unwrap(),
+            "--no-progress",
+            "--report",
+            report.to_str().unwrap(),
+        ]);
+        assert!(e.contains(&says), "{e}");
         assert!(!db.exists(), "trials ran before the refusal");
     }
 }
@@ -2670,4 +2717,97 @@ fn a_full_standard_output_is_an_error_not_a_panic() {
             "{args:?}: {stderr}"
         );
     }
+}
+
+/// Regression: outputs were checked against the `--map` path alone, as text. `--out r1`
+/// wrote over the `r1/belief.yaml` the run read, `--gif depot.pgm` over the image a map
+/// YAML names, `--mcap` over a hard link of the map, and `--gif same --html ./same` or
+/// `--out od --gif od/final.png` kept only the output written last; a dangling symbolic
+/// link given as an output was replaced by a file; `-` became a file named `-`; a folder
+/// where `--out` writes `trace.json` failed after the run; and a run refused after its
+/// `--out` folder was made left the folder behind.
+#[test]
+fn regression_outputs_are_never_inputs_nor_each_other() {
+    let dir = tempfile::tempdir().unwrap();
+    let at = |name: &str| dir.path().join(name).to_str().unwrap().to_string();
+    let small = ["--env", "office", "--size", "12x10"];
+    let explore = |extra: &[&str]| {
+        let mut args = vec!["explore"];
+        args.extend_from_slice(&small);
+        args.extend_from_slice(extra);
+        err(&args)
+    };
+    // A built map explored again into its own folder.
+    let r1 = at("r1");
+    let mut args = vec!["explore"];
+    args.extend_from_slice(&small);
+    args.extend_from_slice(&["--out", &r1]);
+    ok(&args);
+    let belief = at("r1/belief.yaml");
+    let before = std::fs::read(&belief).unwrap();
+    let e = err(&["explore", "--map", &belief, "--out", &r1]);
+    assert!(
+        e.contains(&format!(
+            "--out {r1}: expected a folder whose belief.yaml is not a file the command reads, \
+             found the --map it reads"
+        )),
+        "{e}"
+    );
+    // The image its YAML names, and a hard link of it.
+    let pgm = at("r1/belief.pgm");
+    let e = err(&["explore", "--map", &belief, "--gif", &pgm]);
+    assert!(e.contains("found the image of the --map it reads"), "{e}");
+    let link = at("hard.pgm");
+    std::fs::hard_link(&pgm, &link).unwrap();
+    let e = err(&["explore", "--map", &belief, "--mcap", &link]);
+    assert!(e.contains("found the image of the --map it reads"), "{e}");
+    assert_eq!(std::fs::read(&belief).unwrap(), before);
+    // Two outputs on one file, however spelled.
+    let same = at("same");
+    let dotted = format!("{}/./same", dir.path().display());
+    let e = explore(&["--gif", &same, "--html", &dotted]);
+    assert!(
+        e.contains("expected a file of its own, found the file --gif writes"),
+        "{e}"
+    );
+    let od = at("od");
+    std::fs::create_dir(&od).unwrap();
+    let inside = at("od/final.png");
+    let e = explore(&["--out", &od, "--gif", &inside]);
+    assert!(
+        e.contains("expected a folder whose final.png is a file of its own"),
+        "{e}"
+    );
+    let fresh = at("fresh");
+    let e = explore(&["--out", &fresh, "--gif", &fresh]);
+    assert!(e.contains("expected a folder of its own"), "{e}");
+    // A dangling symbolic link: the file it names is written, the link stays.
+    let target = at("target.gif");
+    let sym = at("link.gif");
+    std::os::unix::fs::symlink(&target, &sym).unwrap();
+    let e = explore(&["--gif", &sym, "--robots", "0"]);
+    assert!(e.contains("--robots"), "{e}");
+    assert!(
+        std::fs::symlink_metadata(&sym)
+            .unwrap()
+            .file_type()
+            .is_symlink()
+    );
+    assert!(!Path::new(&target).exists());
+    // `-`.
+    let e = explore(&["--gif", "-"]);
+    assert!(
+        e.contains("--gif -: expected a file name, found '-'"),
+        "{e}"
+    );
+    // A folder where a file of --out goes.
+    let od5 = at("od5");
+    std::fs::create_dir_all(dir.path().join("od5/trace.json")).unwrap();
+    let e = explore(&["--out", &od5]);
+    assert!(e.contains("found a folder"), "{e}");
+    // A run refused after its folder was made leaves none.
+    let edx = at("edx");
+    let e = explore(&["--out", &edx, "--start", "0,0"]);
+    assert!(e.contains("start"), "{e}");
+    assert!(!Path::new(&edx).exists());
 }

@@ -39,7 +39,8 @@ pub use pgm::{encode_pgm, parse_pgm};
 pub use png::{encode_png, parse_png};
 pub use raster::{Raster, Thresholds};
 pub use ros::{
-    MAX_YAML_BYTES, RosMapMeta, RosMode, parse_ros_yaml, parse_ros_yaml_meta, to_ros_yaml,
+    MAX_YAML_BYTES, RosMapMeta, RosMode, parse_ros_yaml, parse_ros_yaml_meta, ros_image_of,
+    to_ros_yaml,
 };
 
 use crate::grid::Grid;

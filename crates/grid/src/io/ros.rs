@@ -217,6 +217,28 @@ pub fn parse_ros_yaml_meta(text: &str, yaml_path: &Path) -> Result<RosMapMeta, M
     })
 }
 
+/// The image file a map YAML at `yaml_path` names: relative to the YAML's folder.
+fn image_path(yaml_path: &Path, meta: &RosMapMeta) -> PathBuf {
+    match yaml_path.parent() {
+        Some(dir) if meta.image.is_relative() => dir.join(&meta.image),
+        _ => meta.image.clone(),
+    }
+}
+
+/// The image file the map YAML at `path` names, if `path` is a readable map YAML (a
+/// `.yaml` or `.yml` of at most [`MAX_YAML_BYTES`] that parses); `None` otherwise.
+pub fn ros_image_of(path: &Path) -> Option<PathBuf> {
+    let ext = path.extension()?.to_str()?.to_ascii_lowercase();
+    if !matches!(ext.as_str(), "yaml" | "yml") {
+        return None;
+    }
+    let bytes = super::read_bytes_at_most(path, MAX_YAML_BYTES as u64).ok()?;
+    let text = std::str::from_utf8(&bytes).ok()?;
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    let meta = parse_ros_yaml_meta(text, path).ok()?;
+    Some(image_path(path, &meta))
+}
+
 /// Load a ROS map: parse the YAML `text` of the file `yaml_path`, then read its image
 /// (a relative `image` path is taken from the YAML's folder).
 ///
@@ -227,10 +249,7 @@ pub fn parse_ros_yaml(
     opts: &LoadOptions,
 ) -> Result<GridMap, MapError> {
     let meta = parse_ros_yaml_meta(text, yaml_path)?;
-    let image = match yaml_path.parent() {
-        Some(dir) if meta.image.is_relative() => dir.join(&meta.image),
-        _ => meta.image.clone(),
-    };
+    let image = image_path(yaml_path, &meta);
     let image_err = |source| {
         MapError::new(
             yaml_path,
