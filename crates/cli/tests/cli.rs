@@ -2800,6 +2800,11 @@ fn regression_outputs_are_never_inputs_nor_each_other() {
         e.contains("--gif -: expected a file name, found '-'"),
         "{e}"
     );
+    let e = err(&["bench", "--suite", "quick", "--db", "-", "--dry-run"]);
+    assert!(
+        e.contains("--db -: expected a database file name, found '-'"),
+        "{e}"
+    );
     // A folder where a file of --out goes.
     let od5 = at("od5");
     std::fs::create_dir_all(dir.path().join("od5/trace.json")).unwrap();
