@@ -193,13 +193,18 @@ const OUT_FILES: [&str; 5] = [
 pub fn run(a: ExploreArgs) -> Result<()> {
     let mut files = crate::files::Files::new();
     files.reads_source(&a.source);
-    for (flag, path) in [("--gif", &a.gif), ("--html", &a.html), ("--mcap", &a.mcap)] {
-        if let Some(path) = path {
-            files.writes(flag, path)?;
-        }
-    }
     if let Some(dir) = &a.out {
         files.writes_into("--out", dir, &OUT_FILES)?;
+    }
+    let outputs = [
+        ("--gif", &a.gif, &["gif"][..], "a GIF animation"),
+        ("--html", &a.html, &["html", "htm"][..], "an HTML page"),
+        ("--mcap", &a.mcap, &["mcap"][..], "an MCAP recording"),
+    ];
+    for (flag, path, exts, what) in outputs {
+        if let Some(path) = path {
+            files.writes_as(flag, path, exts, what)?;
+        }
     }
     let truth = a.source.resolve(a.seed, a.memory_mb)?;
     let cfg = config(&a, &truth)?;

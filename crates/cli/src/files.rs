@@ -112,6 +112,33 @@ impl Files {
         Ok(())
     }
 
+    /// [`Files::writes`] for a file of one format, whose name must end in one of `exts`
+    /// (lower case, any case accepted): `--gif run.png` wrote a GIF under a PNG's name.
+    pub fn writes_as(&mut self, flag: &str, path: &Path, exts: &[&str], what: &str) -> Result<()> {
+        // An input it would lose, or a folder, is the worse mistake: said first.
+        self.writes(flag, path)?;
+        let ext = path
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(str::to_ascii_lowercase);
+        if !ext.as_deref().is_some_and(|e| exts.contains(&e)) {
+            let names = exts
+                .iter()
+                .map(|e| format!(".{e}"))
+                .collect::<Vec<_>>()
+                .join(" or ");
+            let found = match path.extension() {
+                Some(e) => format!("'.{}'", e.to_string_lossy()),
+                None => "no extension".to_string(),
+            };
+            bail!(
+                "{flag} {}: expected a file name ending in {names} (it writes {what}), found {found}",
+                path.display()
+            );
+        }
+        Ok(())
+    }
+
     /// The command writes the files `names` into the folder `dir` given as `flag`:
     /// refused if `dir` is a file, or one of its files is a folder, a file the command
     /// reads or another output. The folder is made later ([`make_output_folder`]).

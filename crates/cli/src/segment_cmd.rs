@@ -77,7 +77,7 @@ pub fn run(a: SegmentArgs) -> Result<()> {
         files.reads_map("--truth", truth);
     }
     if let Some(out) = &a.out {
-        files.writes("--out", out)?;
+        files.writes_as("--out", out, &["png"], "a PNG picture")?;
     }
     let truth = a
         .source

@@ -2037,20 +2037,15 @@ fn regression_output_paths_are_checked_before_the_run() {
     // only after the whole run, and the error did not name the flag.
     // (Linux's /proc: a folder no one, not even root, can add a file to.)
     let proc_fs = std::path::Path::new("/proc/self").exists();
-    for flag in ["--gif", "--html", "--mcap"]
+    for (flag, ext) in [("--gif", "gif"), ("--html", "html"), ("--mcap", "mcap")]
         .into_iter()
         .filter(|_| proc_fs)
     {
-        let e = err(&[
-            "explore",
-            "--env",
-            "office",
-            flag,
-            "/proc/frontier-test.out",
-        ]);
+        let file = format!("/proc/frontier-test.{ext}");
+        let e = err(&["explore", "--env", "office", flag, &file]);
         assert!(
             e.contains(&format!(
-                "{flag} /proc/frontier-test.out: expected a file that can be written"
+                "{flag} {file}: expected a file that can be written"
             )),
             "{e}"
         );
@@ -2078,7 +2073,7 @@ fn regression_output_paths_are_checked_before_the_run() {
     assert!(e.contains("castle"), "{e}");
     assert!(!new.exists(), "the check left {}", new.display());
     // Regression: one file named by two outputs kept only the one written last.
-    let same = dir.path().join("same.out");
+    let same = dir.path().join("same.gif");
     let same = same.to_str().expect("utf-8");
     let e = err(&["explore", "--env", "office", "--gif", same, "--html", same]);
     assert!(
@@ -2763,8 +2758,8 @@ fn regression_outputs_are_never_inputs_nor_each_other() {
     assert!(e.contains("found the image of the --map it reads"), "{e}");
     assert_eq!(std::fs::read(&belief).unwrap(), before);
     // Two outputs on one file, however spelled.
-    let same = at("same");
-    let dotted = format!("{}/./same", dir.path().display());
+    let same = at("same.gif");
+    let dotted = format!("{}/./same.gif", dir.path().display());
     let e = explore(&["--gif", &same, "--html", &dotted]);
     assert!(
         e.contains("expected a file of its own, found the file --gif writes"),
@@ -2775,12 +2770,19 @@ fn regression_outputs_are_never_inputs_nor_each_other() {
     let inside = at("od/final.png");
     let e = explore(&["--out", &od, "--gif", &inside]);
     assert!(
-        e.contains("expected a folder whose final.png is a file of its own"),
+        e.contains(&format!(
+            "--gif {inside}: expected a file of its own, found the file --out writes ({inside})"
+        )),
         "{e}"
     );
     let fresh = at("fresh");
     let e = explore(&["--out", &fresh, "--gif", &fresh]);
-    assert!(e.contains("expected a folder of its own"), "{e}");
+    assert!(
+        e.contains(&format!(
+            "--gif {fresh}: expected a file of its own, found the folder --out writes"
+        )),
+        "{e}"
+    );
     // A dangling symbolic link: the file it names is written, the link stays.
     let target = at("target.gif");
     let sym = at("link.gif");
@@ -2795,6 +2797,14 @@ fn regression_outputs_are_never_inputs_nor_each_other() {
     );
     assert!(!Path::new(&target).exists());
     // `-`.
+    // A format under another's name.
+    let e = explore(&["--gif", &at("run.png")]);
+    assert!(
+        e.contains("expected a file name ending in .gif (it writes a GIF animation), found '.png'"),
+        "{e}"
+    );
+    let e = err(&["segment", "--env", "office", "--out", &at("seg.gif")]);
+    assert!(e.contains("expected a file name ending in .png"), "{e}");
     let e = explore(&["--gif", "-"]);
     assert!(
         e.contains("--gif -: expected a file name, found '-'"),
