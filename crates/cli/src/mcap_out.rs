@@ -81,6 +81,10 @@ pub fn write_run<W: Write + Seek>(
     };
     // Whether the last belief written is the belief as it is now.
     let mut written = false;
+    // A team's events come in the order its robots set out, and a later move can end
+    // earlier: the shared topics (goals, belief, markers) are stamped with the latest time
+    // reached, so that each topic's times never go back.
+    let mut now = 0.0f64;
     let mut changed = Vec::new();
     for (k, ev) in trace.events.iter().enumerate() {
         let end = trace.change_ends[k] as usize;
@@ -100,16 +104,17 @@ pub fn write_run<W: Write + Seek>(
         last[r] = ev.cell;
         let (x, y) = world(ev.cell);
         rec.pose(ev.t, r, x, y, heading[r])?;
+        now = now.max(ev.t);
         written |= emit_goals(
             k as u32 + 1,
-            ev.t,
+            now,
             &belief,
             &upkeep,
             &mut rec,
             &mut next_goal,
         )?;
     }
-    let t_end = trace.events.last().map_or(0.0, |e| e.t);
+    let t_end = now;
     written |= emit_goals(u32::MAX, t_end, &belief, &upkeep, &mut rec, &mut next_goal)?;
     // The final belief, unless a snapshot just wrote it (at the run's last decision).
     if !written {

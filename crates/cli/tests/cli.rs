@@ -2826,3 +2826,46 @@ fn regression_outputs_are_never_inputs_nor_each_other() {
     assert!(e.contains("start"), "{e}");
     assert!(!Path::new(&edx).exists());
 }
+
+/// Regression: a team's recording stamped each goal, belief and marker message with the
+/// time of the event it followed, and a team's events come in the order its robots set
+/// out, not the order their moves end: `/frontier/robot1/goal` went from 20.1776 s back to
+/// 20.1678 s. Every topic's log times now never go back.
+#[test]
+fn regression_a_team_recording_never_goes_back_in_time() {
+    let dir = tempfile::tempdir().unwrap();
+    let rec = dir.path().join("team.mcap");
+    ok(&[
+        "explore",
+        "--env",
+        "office",
+        "--size",
+        "20x15",
+        "--robots",
+        "3",
+        "--strategy",
+        "ha-rfe",
+        "--mcap",
+        rec.to_str().unwrap(),
+    ]);
+    let bytes = std::fs::read(&rec).unwrap();
+    let mut last = std::collections::HashMap::<String, u64>::new();
+    let mut count = 0;
+    for m in mcap::MessageStream::new(&bytes).unwrap() {
+        let m = m.unwrap();
+        let t = last.entry(m.channel.topic.clone()).or_insert(0);
+        assert!(
+            m.log_time >= *t,
+            "{}: {} after {}",
+            m.channel.topic,
+            m.log_time,
+            t
+        );
+        *t = m.log_time;
+        count += 1;
+    }
+    assert!(
+        count > 100 && last.contains_key("/frontier/robot1/goal"),
+        "{last:?}"
+    );
+}
