@@ -5,7 +5,10 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use grid::{Grid, GridMap, Occ};
-use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray2, PyUntypedArrayMethods};
+use numpy::{
+    PyArray1, PyArrayDescrMethods, PyArrayMethods, PyReadonlyArray2, PyUntypedArray,
+    PyUntypedArrayMethods,
+};
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 use pyo3::types::PyBytes;
@@ -270,13 +273,15 @@ impl Map {
         check_resolution(resolution)?;
         let cells: Vec<Occ>;
         let (h, w);
-        if let Ok(a) = array.extract::<PyReadonlyArray2<'_, bool>>() {
+        if let Some(a) = bool_bytes(array)? {
             (h, w) = (a.shape()[0], a.shape()[1]);
             check_cells(w, h)?;
+            // numpy takes any nonzero byte of a bool array for True (a view of other bytes
+            // as bool holds them): so does this, and no Rust bool is read from the array.
             cells = a
                 .as_array()
                 .iter()
-                .map(|&o| if o { Occ::Occupied } else { Occ::Free })
+                .map(|&o| if o != 0 { Occ::Occupied } else { Occ::Free })
                 .collect();
         } else if let Ok(a) = array.extract::<PyReadonlyArray2<'_, u8>>() {
             (h, w) = (a.shape()[0], a.shape()[1]);
@@ -587,6 +592,21 @@ fn start_arg(v: &Bound<'_, PyAny>) -> PyResult<Option<(i32, i32)>> {
             x.1, y.1
         ))),
     }
+}
+
+/// A 2-D numpy bool array's bytes, as a view of them as uint8 (`None` for anything else).
+/// Its bytes may be other than 0 and 1 (`np.array([5], np.uint8).view(bool)`), which a Rust
+/// `bool` must not be, so the array is read as bytes only.
+fn bool_bytes<'py>(array: &Bound<'py, PyAny>) -> PyResult<Option<PyReadonlyArray2<'py, u8>>> {
+    let py = array.py();
+    let Ok(a) = array.cast::<PyUntypedArray>() else {
+        return Ok(None);
+    };
+    if a.ndim() != 2 || !a.dtype().is_equiv_to(&numpy::dtype::<bool>(py)) {
+        return Ok(None);
+    }
+    let bytes = array.call_method1("view", (numpy::dtype::<u8>(py),))?;
+    Ok(bytes.extract::<PyReadonlyArray2<'py, u8>>().ok())
 }
 
 /// Refuse an array of more cells than any map file may hold ([`grid::io::MAX_CELLS`]),

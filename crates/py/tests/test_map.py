@@ -413,3 +413,23 @@ def test_regression_an_unpickled_map_equals_the_map(office):
     renamed = frontier.Map.from_numpy(array, 0.25, name="other")
     assert renamed != office
     assert office != "office"
+
+
+def test_regression_bool_array_with_other_bytes():
+    # A bool view of bytes other than 0 and 1: numpy takes every nonzero byte for True, and
+    # the map read them as Rust bools (undefined behaviour): 5 became a cell of value 6, and
+    # 255 a cell of value 0.
+    raw = np.array([[0, 5, 1, 0], [0, 0, 0, 255], [2, 0, 128, 0]], np.uint8)
+    b = raw.view(bool)
+    m = frontier.Map.from_numpy(b, 1.0)
+    expected = np.where(raw != 0, 2, 1).astype(np.uint8)
+    assert np.array_equal(m.to_numpy(), expected)
+    assert m == frontier.Map.from_numpy(raw != 0, 1.0)
+    assert m.free_cells == int((raw == 0).sum())
+    # Not contiguous, and Fortran-ordered, read the same.
+    wide = np.zeros((3, 8), np.uint8)
+    wide[:, ::2] = raw
+    assert np.array_equal(frontier.Map.from_numpy(wide.view(bool)[:, ::2], 1.0).to_numpy(), expected)
+    assert np.array_equal(frontier.Map.from_numpy(np.asfortranarray(b), 1.0).to_numpy(), expected)
+    # The array is left as it was.
+    assert b.dtype == np.bool_ and np.array_equal(b.view(np.uint8), raw)
