@@ -72,6 +72,17 @@ impl Default for ExploreOptions {
 /// user's `--memory-mb`) or what the machine has available, before anything map-sized is
 /// allocated; the error says what would not fit, the limit and how to make it fit.
 pub fn check_memory(cfg: &RunConfig, map: &GridMap, memory_mb: Option<u64>) -> Result<(), String> {
+    check_memory_with(cfg, map, memory_mb, 0)
+}
+
+/// [`check_memory`] with `extra` bytes the command needs beside the run (a replay page
+/// made of its trace).
+pub fn check_memory_with(
+    cfg: &RunConfig,
+    map: &GridMap,
+    memory_mb: Option<u64>,
+    extra: u64,
+) -> Result<(), String> {
     let (w, h) = (map.width(), map.height());
     let what = format!(
         "exploring this {w}x{h} map with {} robot{} ({})",
@@ -96,7 +107,7 @@ pub fn check_memory(cfg: &RunConfig, map: &GridMap, memory_mb: Option<u64>) -> R
     );
     sim::memory::check(
         &what,
-        sim::memory::run_bytes(w * h, map.resolution, cfg),
+        sim::memory::run_bytes(w * h, map.resolution, cfg).saturating_add(extra),
         memory_mb,
         grid::machine::available(),
         &fix,

@@ -1,6 +1,7 @@
 //! `frontier explore`: one run, a summary or JSON, pictures and a trace.
 
 use crate::out::{out, outln};
+use std::io::Write;
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
@@ -119,14 +120,13 @@ pub fn config(a: &ExploreArgs, truth: &Truth) -> Result<RunConfig> {
     };
     let cfg = bench::explore::config(&opts, &truth.map, truth.clutter.clone())
         .map_err(anyhow::Error::msg)?;
-    check_memory(&cfg, truth, a.memory_mb)?;
+    let page = match a.html {
+        Some(_) => sim::memory::replay_bytes(truth.map.cells.len(), truth.map.resolution, &cfg),
+        None => 0,
+    };
+    bench::explore::check_memory_with(&cfg, &truth.map, a.memory_mb, page)
+        .map_err(anyhow::Error::msg)?;
     Ok(cfg)
-}
-
-/// Refuse a run whose estimated peak memory exceeds `--memory-mb` or what the machine has
-/// available, before anything map-sized is allocated.
-pub fn check_memory(cfg: &RunConfig, truth: &Truth, memory_mb: Option<u64>) -> Result<()> {
-    bench::explore::check_memory(cfg, &truth.map, memory_mb).map_err(anyhow::Error::msg)
 }
 
 /// Steps of the loop between two looks at the clock.
@@ -237,8 +237,13 @@ pub fn run(a: ExploreArgs) -> Result<()> {
         grid::io::save_map(&built, &belief)
             .with_context(|| format!("writing {}", belief.display()))?;
         let trace = dir.join("trace.json");
-        let text = serde_json::to_string(&report::trace_json(&truth, &cfg, &result))?;
-        std::fs::write(&trace, text).with_context(|| format!("writing {}", trace.display()))?;
+        let file = std::fs::File::create(&trace)
+            .with_context(|| format!("writing {}", trace.display()))?;
+        let mut w = std::io::BufWriter::new(file);
+        report::write_trace_json(&mut w, &truth, &cfg, &result)
+            .map_err(anyhow::Error::from)
+            .and_then(|()| w.flush().map_err(anyhow::Error::from))
+            .with_context(|| format!("writing {}", trace.display()))?;
     }
     if let Some(path) = &a.gif {
         let bytes =

@@ -1,5 +1,8 @@
 //! What a run prints: the human summary, the JSON summary and the trace file.
 
+use std::io::Write;
+
+use serde::Serialize;
 use serde_json::{Value, json};
 use sim::{RunConfig, RunResult};
 
@@ -21,30 +24,121 @@ pub fn summary_json(truth: &Truth, cfg: &RunConfig, r: &RunResult, timing: bool)
     bench::explore::summary_json(&truth.name, &truth.map, cfg, r, timing)
 }
 
-/// The trace file: trails, decisions and frontier counts, cells as [x, y].
-pub fn trace_json(truth: &Truth, cfg: &RunConfig, r: &RunResult) -> Value {
+/// A list of flat cell indices, written as a JSON array of `[x, y]` one cell at a time.
+struct CellList<'a> {
+    cells: &'a grid::Grid<grid::Occ>,
+    list: Vec<u32>,
+}
+
+impl Serialize for CellList<'_> {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.collect_seq(self.list.iter().map(|&i| cell_json(self.cells, i)))
+    }
+}
+
+/// Write `items` as a JSON array, one element at a time: a run's trace can hold millions
+/// of events, and a JSON tree of them all took 28 times the memory of the run itself.
+fn write_seq<W: Write, T: Serialize>(
+    w: &mut W,
+    items: impl Iterator<Item = T>,
+) -> serde_json::Result<()> {
+    w.write_all(b"[").map_err(serde_json::Error::io)?;
+    for (k, item) in items.enumerate() {
+        if k > 0 {
+            w.write_all(b",").map_err(serde_json::Error::io)?;
+        }
+        serde_json::to_writer(&mut *w, &item)?;
+    }
+    w.write_all(b"]").map_err(serde_json::Error::io)
+}
+
+/// Write `key` and the array `items` (or `null` without a trace), then `,`.
+fn write_field<W: Write, T: Serialize, I: Iterator<Item = T>>(
+    w: &mut W,
+    key: &str,
+    items: Option<I>,
+) -> serde_json::Result<()> {
+    write!(w, "\"{key}\":").map_err(serde_json::Error::io)?;
+    match items {
+        Some(items) => write_seq(w, items)?,
+        None => w.write_all(b"null").map_err(serde_json::Error::io)?,
+    }
+    w.write_all(b",").map_err(serde_json::Error::io)
+}
+
+/// Write the trace file of a run (`trace.json`: trails, goals, events, the
+/// decision-theoretic samples, frontier cells left) to `w`, compact, keys in order,
+/// element by element.
+pub fn write_trace_json<W: Write>(
+    w: &mut W,
+    truth: &Truth,
+    cfg: &RunConfig,
+    r: &RunResult,
+) -> serde_json::Result<()> {
     let cells = &truth.map.cells;
     let trace = r.trace.as_ref();
-    json!({
-        "env": truth.name,
-        "width": cells.width(),
-        "height": cells.height(),
-        "resolution": truth.map.resolution,
-        "strategy": cfg.strategy.name,
-        "seed": cfg.seed,
-        "trails": trace.map(|t| t.trails().iter().map(|trail| trail.iter().map(|&i| cell_json(cells, i)).collect::<Vec<_>>()).collect::<Vec<_>>()),
-        "goals": trace.map(|t| t.goals.iter().map(|g| json!({
-            "t": round(t.events.get((g.event as usize).saturating_sub(1)).map_or(0.0, |e| e.t), 4),
-            "event": g.event, "robot": g.robot, "goal": g.goal.map(|c| cell_json(cells, c)),
-        })).collect::<Vec<_>>()),
-        "events": trace.map(|t| t.events.iter().map(|e| json!([round(e.t, 4), e.robot, cell_json(cells, e.cell), round(e.dist_m, 4), round(e.coverage, 6), e.frontiers])).collect::<Vec<_>>()),
-        "dt_decisions": trace.map(|t| t.dt.iter().map(|d| json!({
-            "event": d.event, "robot": d.robot, "fell_back": d.fell_back,
-            "chosen": d.chosen.map(|c| cell_json(cells, c)),
-            "samples": d.samples.iter().map(|s| json!([cell_json(cells, s.cell), round(s.gain, 3), if s.cost_m.is_finite() { json!(round(s.cost_m, 3)) } else { Value::Null }, round(s.utility, 6)])).collect::<Vec<_>>(),
-        })).collect::<Vec<_>>()),
-        "frontiers_left": r.frontiers_left.iter().map(|&i| cell_json(cells, i)).collect::<Vec<_>>(),
-    })
+    let io = serde_json::Error::io;
+    let scalar = |w: &mut W, key: &str, v: Value| -> serde_json::Result<()> {
+        write!(w, "\"{key}\":{v},").map_err(io)
+    };
+    w.write_all(b"{").map_err(io)?;
+    write_field(
+        w,
+        "dt_decisions",
+        trace.map(|t| {
+            t.dt.iter().map(|d| {
+                json!({
+                    "event": d.event, "robot": d.robot, "fell_back": d.fell_back,
+                    "chosen": d.chosen.map(|c| cell_json(cells, c)),
+                    "samples": d.samples.iter().map(|s| json!([cell_json(cells, s.cell), round(s.gain, 3), if s.cost_m.is_finite() { json!(round(s.cost_m, 3)) } else { Value::Null }, round(s.utility, 6)])).collect::<Vec<_>>(),
+                })
+            })
+        }),
+    )?;
+    scalar(w, "env", json!(truth.name))?;
+    write_field(
+        w,
+        "events",
+        trace.map(|t| {
+            t.events.iter().map(|e| {
+                json!([
+                    round(e.t, 4),
+                    e.robot,
+                    cell_json(cells, e.cell),
+                    round(e.dist_m, 4),
+                    round(e.coverage, 6),
+                    e.frontiers
+                ])
+            })
+        }),
+    )?;
+    write_field(
+        w,
+        "frontiers_left",
+        Some(r.frontiers_left.iter().map(|&i| cell_json(cells, i))),
+    )?;
+    write_field(
+        w,
+        "goals",
+        trace.map(|t| {
+            t.goals.iter().map(|g| {
+                json!({
+                    "t": round(t.events.get((g.event as usize).saturating_sub(1)).map_or(0.0, |e| e.t), 4),
+                    "event": g.event, "robot": g.robot, "goal": g.goal.map(|c| cell_json(cells, c)),
+                })
+            })
+        }),
+    )?;
+    scalar(w, "height", json!(cells.height()))?;
+    scalar(w, "resolution", json!(truth.map.resolution))?;
+    scalar(w, "seed", json!(cfg.seed))?;
+    scalar(w, "strategy", json!(cfg.strategy.name))?;
+    write_field(
+        w,
+        "trails",
+        trace.map(|t| t.trails().into_iter().map(|list| CellList { cells, list })),
+    )?;
+    write!(w, "\"width\":{}}}", cells.width()).map_err(io)
 }
 
 /// A few lines for people.

@@ -39,11 +39,66 @@ const PER_CELL_DT: u64 = 32;
 /// be a few percent of the cells), beside its route matrices.
 const PER_CELL_MA: u64 = 8;
 
+/// Trace bytes per move (its event, the trail and the belief changes beside it): about
+/// 70 measured on a 1 M-cell office at 0.05 m with a one-cell sensor (923,000 moves).
+const TRACE_PER_MOVE: u64 = 80;
+/// Trace bytes per cell: its belief changes (a cell changes about once, the reflection
+/// belief's a few times).
+const TRACE_PER_CELL: u64 = 16;
+/// Trace bytes per decision-theoretic sample kept with its decision (cell, gain, cost,
+/// utility).
+const TRACE_PER_SAMPLE: u64 = 32;
+/// Replay page bytes per move and per cell beside the trace (its events and changes
+/// packed, base64-encoded and embedded in the page): about 220 and 40 measured on the
+/// office above (243 MiB beside the trace's 64).
+const REPLAY_PER_MOVE: u64 = 260;
+const REPLAY_PER_CELL: u64 = 48;
+
+/// The most moves a run of a sensor of `range_cells` cells is expected to take on a map
+/// of `cells` cells: every cell for a one-cell sensor, fewer as the sensor sees farther,
+/// taken as cells / sqrt(range) (measured: a one-cell sensor on a 1 M-cell office
+/// 923,000 moves; `dt500` with a 30-cell range there 88,000 against 183,000; `dt500` and
+/// Holz's 160-cell laser on willow-full's 1.1 M cells about 29,000 against 87,000).
+pub fn moves_bound(cells: usize, range_cells: f64) -> u64 {
+    (cells as f64 / range_cells.max(1.0).sqrt()).ceil() as u64
+}
+
+/// Estimated bytes of the trace a run of `cfg` keeps when it records one (`--out`,
+/// `--gif`, `--html`, `--mcap`): its moves, belief changes and, for the decision-theoretic
+/// samples, every decision's samples (decisions taken as one per half range of moves:
+/// 1,351 decisions in the 88,000 moves above, against 12,200).
+pub fn trace_bytes(cells: usize, resolution: f64, cfg: &RunConfig) -> u64 {
+    let range = cfg.sensor.range_cells(resolution);
+    let moves = moves_bound(cells, range);
+    let samples = match cfg.strategy.candidates {
+        CandidateKind::DtSamples { n } => {
+            let decisions = moves / (range / 2.0).max(1.0) as u64;
+            decisions
+                .saturating_mul(n as u64)
+                .saturating_mul(TRACE_PER_SAMPLE)
+        }
+        _ => 0,
+    };
+    TRACE_PER_CELL
+        .saturating_mul(cells as u64)
+        .saturating_add(TRACE_PER_MOVE.saturating_mul(moves))
+        .saturating_add(samples)
+}
+
+/// Estimated bytes of making a run's replay page (`--html`) beside its trace.
+pub fn replay_bytes(cells: usize, resolution: f64, cfg: &RunConfig) -> u64 {
+    let moves = moves_bound(cells, cfg.sensor.range_cells(resolution));
+    REPLAY_PER_CELL
+        .saturating_mul(cells as u64)
+        .saturating_add(REPLAY_PER_MOVE.saturating_mul(moves))
+}
+
 /// Estimated peak bytes of running `cfg` on a map of `cells` cells of `resolution` metres:
 /// the per-cell arrays, the coverage candidates' scans (which grow with the range's cube,
 /// not the map: [`CandidateKind::scan_bytes_bound`]), MA's route matrices
-/// and what building the sensor takes (the `los` kind's ray template, up to about 480 MiB
-/// at 256 cells of range, whatever the map's size). `tests/memory.rs` checks that it
+/// what building the sensor takes (the `los` kind's ray template, up to about 480 MiB
+/// at 256 cells of range, whatever the map's size) and the trace, when the run keeps one
+/// ([`trace_bytes`]). `tests/memory.rs` checks that it
 /// bounds whole runs' peaks.
 pub fn run_bytes(cells: usize, resolution: f64, cfg: &RunConfig) -> u64 {
     let mut per_cell = PER_CELL + PER_CELL_PER_ROBOT * cfg.robots.max(1) as u64;
@@ -63,10 +118,16 @@ pub fn run_bytes(cells: usize, resolution: f64, cfg: &RunConfig) -> u64 {
         }
         _ => 0,
     };
+    let trace = if cfg.record_trace {
+        trace_bytes(cells, resolution, cfg)
+    } else {
+        0
+    };
     BASE_BYTES
         .saturating_add(per_cell.saturating_mul(cells as u64))
         .saturating_add(scans)
         .saturating_add(matrices)
+        .saturating_add(trace)
         .saturating_add(cfg.sensor.build_bytes(resolution))
 }
 

@@ -67,3 +67,42 @@ fn the_run_estimate_bounds_what_a_run_takes() {
         }
     }
 }
+
+/// Regression: the trace a run keeps for `--out`, `--gif`, `--html` and `--mcap` was not in
+/// the estimate, and with a short sensor it outgrows the run (a one-cell sensor on a 1 M-cell
+/// office: 65 MiB without it, 128 MiB with it, against 72 MiB estimated). The estimate of
+/// a recording run bounds its peak, where the one without the trace does not.
+#[test]
+fn the_trace_estimate_bounds_a_recorded_run() {
+    let _turn = counting::turn();
+    let small = env(world::EnvKind::Office, (14.0, 10.0));
+    let large = env(world::EnvKind::Office, (40.0, 30.0));
+    let mut beyond = 0;
+    for (truth, preset, sensor) in [
+        (&small, "dt500", "los:r=30c"),
+        (&small, "cf", "lidar:r=8,fov=180,res=1"),
+        (&large, "cf-rr", "los:r=1c"),
+    ] {
+        let mut cfg = RunConfig::new(Strategy::preset(preset).unwrap());
+        cfg.sensor = sensor.parse().unwrap();
+        cfg.record_trace = true;
+        let estimate = sim::memory::run_bytes(truth.cells.len(), truth.resolution, &cfg);
+        let (_, peak) = counting::peak_of(|| sim::run(truth, &cfg).unwrap());
+        let peak = peak as u64;
+        assert!(
+            peak <= estimate,
+            "{preset} with {sensor}, recorded: took {} KiB, estimated {} KiB",
+            peak >> 10,
+            estimate >> 10
+        );
+        cfg.record_trace = false;
+        let untraced = sim::memory::run_bytes(truth.cells.len(), truth.resolution, &cfg);
+        beyond += usize::from(peak > untraced);
+    }
+    // The BASE_BYTES allowance covers small runs; the trace of the one-cell sensor's run on
+    // the 480,000-cell office is larger.
+    assert!(
+        beyond >= 1,
+        "no recorded run outgrew the estimate without its trace"
+    );
+}
