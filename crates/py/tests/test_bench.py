@@ -221,3 +221,36 @@ def test_regression_every_store_gives_the_same_column_types(cli, store, tmp_path
     assert full.schema == none.schema
     assert full["seed"].dtype == pl.UInt64 and full["map_file"].dtype == pl.String
     assert pl.concat([full, none]).height == full.height
+
+
+def test_regression_seeds_are_uint64_in_every_store(store, tmp_path):
+    """Regression: pandas made a store's seeds int64 when all were below 2^63 and uint64
+    otherwise, so that the frames of two shards concatenated into float64 seeds, and a seed
+    of 2^53 + 1 came back as 2^53. Seeds are uint64 in every store; a seed outside
+    0..2^64 is refused, not wrapped."""
+    pd = pytest.importorskip("pandas")
+    import sqlite3
+
+    small = tmp_path / "small.sqlite"
+    shutil.copy(store / "tiny.sqlite", small)
+    conn = sqlite3.connect(small)
+    conn.execute("UPDATE trials SET seed = '9007199254740993'")  # 2^53 + 1
+    conn.commit()
+    conn.close()
+    full = frontier.bench.load(store / "tiny.sqlite")
+    low = frontier.bench.load(small)
+    assert full["seed"].dtype == low["seed"].dtype == "uint64"
+    assert max(full["seed"]) >= 2**63 and set(low["seed"]) == {2**53 + 1}
+    both = pd.concat([full, low])
+    assert both["seed"].dtype == "uint64"
+    assert both["seed"].tolist() == full["seed"].tolist() + [2**53 + 1] * len(low)
+    assert len(both[both["seed"] == 2**53 + 1]) == len(low)
+    pl = pytest.importorskip("polars")
+    assert frontier.bench.load(small, backend="polars")["seed"].dtype == pl.UInt64
+    conn = sqlite3.connect(small)
+    conn.execute("UPDATE trials SET seed = '-1'")
+    conn.commit()
+    conn.close()
+    with pytest.raises(ValueError, match=r"small\.sqlite: trial .*: seed: expected an integer "
+                       r"in 0\.\.2\^64, found -1"):
+        frontier.bench.load(small)

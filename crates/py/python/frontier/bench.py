@@ -3,8 +3,8 @@
 The rows come through the bench crate's own reader, so the columns are exactly those of
 ``frontier bench export`` (CSV): one row per trial, ordered by key. JSON columns
 (``starts``, ``path_lengths``, ``coverage_curve``, ``idle_s``) are decoded into lists, and
-``seed`` (kept as decimal text, an unsigned 64-bit number) into an int, as pandas reads the
-CSV's.
+``seed`` (kept as decimal text, an unsigned 64-bit number) into an int (a data frame's
+column: uint64 in every store, whatever its seeds' values).
 """
 
 from __future__ import annotations
@@ -29,7 +29,13 @@ def rows(db: Union[str, "os.PathLike[str]"]) -> List[Dict[str, Any]]:
             if isinstance(r.get(c), str):
                 r[c] = json.loads(r[c])
         if isinstance(r.get("seed"), str):
-            r["seed"] = int(r["seed"])
+            seed = int(r["seed"])
+            if not 0 <= seed < 2**64:
+                raise ValueError(
+                    f"{os.fspath(db)}: trial {r.get('key')}: seed: expected an integer in "
+                    f"0..2^64, found {r['seed']}"
+                )
+            r["seed"] = seed
     return out
 
 
@@ -39,8 +45,9 @@ def load(db: Union[str, "os.PathLike[str]"], backend: str = "pandas") -> Any:
 
     Every store gives the same column types, whatever its trials filled, so that frames
     of several stores (a study's shards) concatenate: a numeric column no trial filled is
-    float64 of NaN (polars: the column's type, all null), ``optimal_proven`` is pandas'
-    nullable ``boolean`` (polars: ``Boolean``), and an empty store's frame has every
+    float64 of NaN (polars: the column's type, all null), ``seed`` is uint64 (polars:
+    ``UInt64``), ``optimal_proven`` is pandas' nullable ``boolean`` (polars: ``Boolean``),
+    and an empty store's frame has every
     column's type (pandas: the one it reads a filled column as)."""
     _text("backend", backend, "'pandas' or 'polars'")
     if backend not in ("pandas", "polars"):
@@ -58,6 +65,10 @@ def load(db: Union[str, "os.PathLike[str]"], backend: str = "pandas") -> Any:
             if from_rows[c].dtype == object:
                 from_rows[c] = pd.to_numeric(from_rows[c]).astype("float64")
         from_rows["optimal_proven"] = from_rows["optimal_proven"].astype("boolean")
+        # pandas makes seeds int64 when all are below 2^63 and uint64 otherwise, and frames
+        # of the two concatenate into float64, which changes seeds of 2^53 and more: seeds
+        # are uint64 in every store, as an empty store's are and polars' are.
+        from_rows["seed"] = from_rows["seed"].astype("uint64")
         return from_rows
     import polars as pl
 
