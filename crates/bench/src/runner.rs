@@ -296,7 +296,8 @@ fn check_setups(
 }
 
 /// Refuse to start when the largest trials, one per worker thread, would need more memory
-/// at once than `memory_mb` MiB or the machine has `available` (estimated before any runs).
+/// at once than `memory_mb` MiB or the machine has `available` (estimated before any runs):
+/// each trial's run and, with `[optimal]`, its optimal path's search budget.
 fn check_memory(
     plan: &Plan,
     pending: &[&Trial],
@@ -310,20 +311,24 @@ fn check_memory(
         .iter()
         .map(|t| {
             let map = &plan.envs[t.env].map;
-            (
-                sim::memory::run_bytes(map.cells.len(), map.resolution, &plan.config(t)),
-                t.key.clone(),
-            )
+            let run = sim::memory::run_bytes(map.cells.len(), map.resolution, &plan.config(t));
+            // The optimal path is searched beside the run's result, within its budget.
+            let v = &plan.variants[t.variant];
+            let search = match &plan.optimal {
+                Some(spec) if crate::competitive::OptimalSpec::applies(&v.sensor, v.robots) => {
+                    (spec.memory_mb as u64).saturating_mul(1 << 20)
+                }
+                _ => 0,
+            };
+            (run.saturating_add(search), t.key.clone())
         })
         .collect();
-    sim::memory::check_batch(
-        "trials",
-        &needs,
-        workers,
-        memory_mb,
-        available,
-        "use fewer threads (-j) or maps with fewer cells",
-    )
+    let fix = if plan.optimal.is_some() {
+        "use fewer threads (-j), maps with fewer cells, or a smaller [optimal] memory_mb"
+    } else {
+        "use fewer threads (-j) or maps with fewer cells"
+    };
+    sim::memory::check_batch("trials", &needs, workers, memory_mb, available, fix)
     .map_err(|e| BenchError::Other(e.to_string()))
 }
 

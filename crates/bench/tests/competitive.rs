@@ -162,3 +162,40 @@ fn bad_optimal_settings_name_the_key() {
     let e = Plan::resolve(&src, Unbuilt::Error).unwrap_err().to_string();
     assert!(e.contains("budget"), "{e}");
 }
+
+/// Regression: the `[optimal]` search's budget was not in a study's memory check, so
+/// `memory_mb = 1500` under `--memory-mb 200` with two threads was estimated at 33 MiB and
+/// took 2,372 MiB. Each trial that gets an optimal path now counts its search's budget.
+#[test]
+fn the_optimal_search_budget_counts_in_the_memory_check() {
+    let p = plan(&STUDY.replace("max_nodes = 200000", "max_nodes = 200000\nmemory_mb = 300"));
+    let dir = tempfile::tempdir().expect("tempdir");
+    let db = dir.path().join("r.sqlite");
+    let e = bench::runner::run(
+        &p,
+        &db,
+        &RunOptions {
+            threads: Some(1),
+            memory_mb: Some(200),
+            ..RunOptions::default()
+        },
+    )
+    .expect_err("refused");
+    let e = e.to_string();
+    assert!(
+        e.contains("more than --memory-mb 200") && e.contains("[optimal] memory_mb"),
+        "{e}"
+    );
+    // Without the search the trials fit.
+    let runs = plan(&STUDY.replace("[optimal]\nmax_nodes = 200000\n", ""));
+    bench::runner::run(
+        &runs,
+        &dir.path().join("s.sqlite"),
+        &RunOptions {
+            threads: Some(1),
+            memory_mb: Some(200),
+            ..RunOptions::default()
+        },
+    )
+    .expect("runs without [optimal] fit");
+}
