@@ -281,6 +281,21 @@ pub fn run(a: OptimalArgs) -> Result<()> {
         coarse_incumbent: a.coarse_incumbent,
     };
     check_setup_memory(map, a.cell_size, &spec, a.memory_mb)?;
+    // The compared runs explore the full map after the search, each within --memory-mb:
+    // checked now, before the search.
+    let mut runs = Vec::with_capacity(presets.len());
+    for (name, strategy) in presets {
+        let mut rc = RunConfig::new(strategy);
+        rc.sensor = spec;
+        rc.sensing = Some(SensingMode::OnArrival);
+        rc.starts = vec![start];
+        rc.seed = a.seed;
+        // The same goal as the optimum: stop once G of the free cells are perceived.
+        rc.coverage_goal = Some(a.goal);
+        bench::explore::check_memory(&rc, map, Some(a.memory_mb as u64))
+            .map_err(|e| anyhow::anyhow!("--compare {name}: {e}"))?;
+        runs.push((name, rc));
+    }
     // Once every flag is checked and before the search: a failing command leaves no folder.
     let _folder = match &a.out {
         Some(dir) => Some(crate::files::make_output_folder("--out", dir)?),
@@ -302,14 +317,7 @@ pub fn run(a: OptimalArgs) -> Result<()> {
     let optimal_m = out.upper_bound * res;
 
     let mut compared = Vec::new();
-    for (name, strategy) in presets {
-        let mut rc = RunConfig::new(strategy);
-        rc.sensor = spec;
-        rc.sensing = Some(SensingMode::OnArrival);
-        rc.starts = vec![start];
-        rc.seed = a.seed;
-        // The same goal as the optimum: stop once G of the free cells are perceived.
-        rc.coverage_goal = Some(a.goal);
+    for (name, rc) in runs {
         let r = sim::run(map, &rc).with_context(|| format!("running {name}"))?;
         let length_m = r.path_length_m.first().copied().unwrap_or(0.0);
         compared.push(Compared {

@@ -2895,3 +2895,37 @@ fn regression_merge_refuses_its_input_as_output_and_a_missing_folder() {
     );
     assert!(!dir.path().join("nod").exists());
 }
+
+/// Regression: `optimal --compare` ran its presets on the full map with no memory check;
+/// only the coarse search's set-up was checked (`--cell-size 40` on a 4000 x 4000 map
+/// passed `--memory-mb 150` and took 416 MiB). Each compared run is checked before the
+/// search.
+#[test]
+fn regression_optimal_checks_its_compared_runs_memory() {
+    let args = [
+        "optimal",
+        "--env",
+        "empty",
+        "--size",
+        "60x60",
+        "--resolution",
+        "0.05",
+        "--cell-size",
+        "10",
+        "--sensor",
+        "los:r=2",
+        "--memory-mb",
+        "60",
+        "--max-nodes",
+        "10",
+    ];
+    ok(&args);
+    let mut compared = args.to_vec();
+    compared.extend(["--compare", "cf"]);
+    let e = err(&compared);
+    assert!(
+        e.contains("--compare cf: exploring this 1200x1200 map with 1 robot (cf) needs about")
+            && e.contains("more than --memory-mb 60"),
+        "{e}"
+    );
+}
