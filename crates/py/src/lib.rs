@@ -24,7 +24,7 @@ use std::path::PathBuf;
 
 use pyo3::exceptions::{PyOverflowError, PyRuntimeError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::{PyBool, PyBytes, PyFloat, PyMapping, PyString};
+use pyo3::types::{PyBool, PyBytes, PyComplex, PyFloat, PyInt, PyMapping, PyString};
 
 /// A `ValueError` carrying `e`'s message.
 pub(crate) fn value_error(e: impl std::fmt::Display) -> PyErr {
@@ -53,9 +53,34 @@ pub(crate) fn is_bool(v: &Bound<'_, PyAny>) -> bool {
             .is_ok_and(|n| matches!(n.to_string().as_str(), "numpy.bool" | "numpy.bool_"))
 }
 
-/// `v` as a float: an int beyond a float's range is infinite, as `float("1e400")` and the
-/// CLI's `1e400` are, so that the argument's range check refuses it with its message.
+/// Whether `v` is a complex number: Python's, numpy's (`np.complex64`, a 0-d array of a
+/// complex dtype...) or any other `numbers.Complex` that is no `numbers.Real`. A float of
+/// one is its real part (numpy's gives only a `ComplexWarning`), so it is no real number.
+pub(crate) fn is_complex(v: &Bound<'_, PyAny>) -> bool {
+    if v.is_instance_of::<PyFloat>() || v.is_instance_of::<PyInt>() {
+        return false;
+    }
+    if v.is_instance_of::<PyComplex>() {
+        return true;
+    }
+    let complex_dtype = v
+        .getattr("dtype")
+        .and_then(|d| d.getattr("kind"))
+        .is_ok_and(|k| k.eq("c").unwrap_or(false));
+    complex_dtype
+        || v.py().import("numbers").is_ok_and(|numbers| {
+            let abc = |name| numbers.getattr(name).and_then(|c| v.is_instance(&c));
+            matches!((abc("Complex"), abc("Real")), (Ok(true), Ok(false)))
+        })
+}
+
+/// `v` as a float (a complex number is none): an int beyond a float's range is infinite, as
+/// `float("1e400")` and the CLI's `1e400` are, so that the argument's range check refuses it
+/// with its message.
 fn real(v: &Bound<'_, PyAny>) -> Option<f64> {
+    if is_complex(v) {
+        return None;
+    }
     match v.extract::<f64>() {
         Ok(x) => Some(x),
         Err(e) if e.is_instance_of::<PyOverflowError>(v.py()) => {
@@ -70,7 +95,8 @@ fn real(v: &Bound<'_, PyAny>) -> Option<f64> {
     }
 }
 
-/// Argument `name` as a real number (an int, a float or a numpy scalar; not a bool).
+/// Argument `name` as a real number (an int, a float or a numpy scalar; not a bool or a
+/// complex number).
 pub(crate) fn real_arg(v: &Bound<'_, PyAny>, name: &str, what: &str) -> PyResult<f64> {
     if is_bool(v) || v.is_instance_of::<PyString>() {
         return Err(type_error(name, what, v));
@@ -151,7 +177,8 @@ pub(crate) fn u64_arg(v: &Bound<'_, PyAny>, name: &str) -> PyResult<u64> {
     })
 }
 
-/// One number of a pair (an int, a float or a numpy number; not a bool).
+/// One number of a pair (an int, a float or a numpy number; not a bool or a complex
+/// number).
 pub(crate) fn real_item(v: &Bound<'_, PyAny>) -> Option<f64> {
     if is_bool(v) || v.is_instance_of::<PyString>() {
         return None;

@@ -625,3 +625,53 @@ def test_regression_explore_many_checks_every_run_before_any_starts(office):
     # A good start is still taken, and the sensor checked once serves every run.
     rows = frontier.explore_many([dict(map=office, seed=k, start=(5, 5)) for k in range(3)])
     assert len(rows) == 3
+
+
+def test_regression_numpy_complex_numbers_are_no_real_numbers(office):
+    """Regression: a numpy complex number was taken for its real part (with only a
+    ComplexWarning) wherever a real number is taken, where Python's complex was refused:
+    Map.from_numpy(a, np.complex128(0.1+5j)) made a map of 0.1 m cells."""
+    import warnings
+
+    a = office.to_numpy()
+    c = np.complex128(0.25 + 5j)
+    for call, message in [
+        (lambda: frontier.Map.from_numpy(a, c),
+         "resolution: expected a number of metres per cell, found complex128"),
+        (lambda: frontier.Map.from_numpy(a, np.complex64(0.25)),
+         "resolution: expected a number of metres per cell, found complex64"),
+        (lambda: frontier.Map.from_numpy(a, np.array(0.25 + 0j)),
+         "resolution: expected a number of metres per cell, found ndarray"),
+        (lambda: frontier.explore(office, clearance=np.complex128(0.1 + 3j)),
+         "clearance: expected a number of metres, found complex128"),
+        (lambda: frontier.explore(office, speed=np.clongdouble(1)),
+         "speed: expected a number of metres per second, found clongdouble"),
+        (lambda: frontier.explore(office, goal=np.complex128(0.9)),
+         "goal: expected a number or None, found complex128"),
+        (lambda: frontier.explore_many([dict(map=office, clearance=c)]),
+         "run 0: clearance: expected a number of metres, found complex128"),
+        (lambda: frontier.Map.generate("office", size=(np.complex128(20 + 1j), 20)),
+         r"size: expected \(width, height\) in metres, found np.complex128\(20\+1j\) "
+         r"\(complex128\) among its values"),
+        (lambda: frontier.Map.generate("office", resolution=c),
+         "resolution: expected a number of metres per cell, found complex128"),
+        (lambda: frontier.Map.load("plan.png", resolution=c),
+         r"resolution: expected a number of metres per cell or a pair \(x, y\), "
+         "found complex128"),
+        (lambda: frontier.Map.load("plan.png", resolution=(0.25, np.complex64(0.25))),
+         "resolution: expected a number of metres per cell or a pair"),
+        (lambda: frontier.gym.ExploreEnv(office, clearance=np.complex128(0.1 + 1j)),
+         "clearance: expected a number of metres, found complex128"),
+        (lambda: frontier.explore(office, clearance=0.1 + 0j),
+         "clearance: expected a number of metres, found complex"),
+    ]:
+        # Warnings recorded, not raised: a ComplexWarning raised as an error would make
+        # the conversion fail, which is what the test is about.
+        with warnings.catch_warnings(record=True) as seen:
+            warnings.simplefilter("always")
+            with pytest.raises(TypeError, match=f"^{message}"):
+                call()
+        assert [str(w.message) for w in seen] == [], message
+    # Real numpy numbers, and 0-d arrays of them, are still numbers.
+    assert frontier.Map.from_numpy(a, np.array(0.25)).resolution == 0.25
+    assert frontier.Map.from_numpy(a, np.float32(0.25)).resolution == 0.25
