@@ -68,6 +68,19 @@ pub fn run(cmd: MapCommand) -> Result<()> {
     )?;
     let (free, occupied, unknown) = map.counts();
     let cells = &map.cells;
+    // Beside the map (a byte a cell): the labels (4 bytes a cell) and one 8-byte entry
+    // per run of free cells in a row (at most one per two cells).
+    sim::memory::check(
+        &format!(
+            "counting the free components of this {}x{} map",
+            map.width(),
+            map.height()
+        ),
+        sim::memory::BASE_BYTES.saturating_add(9u64.saturating_mul(cells.len() as u64)),
+        memory_mb,
+        grid::machine::available(),
+        "use a map with fewer, larger cells",
+    )?;
     let (_, components) = label(
         cells.width(),
         cells.height(),

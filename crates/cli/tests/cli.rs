@@ -2929,3 +2929,26 @@ fn regression_optimal_checks_its_compared_runs_memory() {
         "{e}"
     );
 }
+
+/// Regression: `map info` counted the free components (4 bytes a cell of labels and a list
+/// of runs) after loading within `--memory-mb` without counting them: an 8000 x 8000 open
+/// map passed `--memory-mb 130` and took 310 MiB. That count is checked too.
+#[test]
+fn regression_map_info_checks_the_components_memory() {
+    let dir = tempfile::tempdir().unwrap();
+    let map = dir.path().join("open.map");
+    let rows = vec![".".repeat(2000); 2000].join("\n");
+    std::fs::write(
+        &map,
+        format!("type octile\nheight 2000\nwidth 2000\nmap\n{rows}\n"),
+    )
+    .unwrap();
+    let map = map.to_str().unwrap();
+    let e = err(&["map", "info", map, "--memory-mb", "30"]);
+    assert!(
+        e.contains("counting the free components of this 2000x2000 map needs about")
+            && e.contains("more than --memory-mb 30"),
+        "{e}"
+    );
+    assert!(ok(&["map", "info", map, "--memory-mb", "60"]).contains("1 connected component"));
+}
