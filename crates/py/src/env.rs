@@ -13,6 +13,7 @@ use std::path::PathBuf;
 use std::sync::{Arc, Mutex, MutexGuard};
 
 use bench::explore::ExploreOptions;
+use explore::assign::AssignerKind;
 use explore::candidates::CandidateKind;
 use explore::decision::Goal;
 use explore::strategy::Strategy;
@@ -242,6 +243,10 @@ struct State {
     /// What each kept observation set's part for this environment holds (by the set's
     /// place in its [`ObsPool`]).
     marks: Vec<Mark>,
+    /// The assigners' proposals for the pending decision (baseline actions), each made
+    /// once: a proposal draws from the episode's strategy stream, so asking again would
+    /// draw again and change the answer and the episode.
+    proposals: Vec<(AssignerKind, Vec<Option<Goal>>)>,
 }
 
 /// What one kept observation set holds of an environment's belief and frontier layers
@@ -270,7 +275,28 @@ impl State {
             needs_reset: false,
             pending: None,
             marks: Vec::new(),
+            proposals: Vec::new(),
         }
+    }
+
+    /// The goals `assigner` proposes for the pending decision among `cells` (the same
+    /// candidates at every call of the decision), proposed once per decision: asked again,
+    /// it gives the same goals without drawing from the strategy stream again.
+    fn propose(
+        &mut self,
+        assigner: AssignerKind,
+        cells: &[u32],
+    ) -> Result<&[Option<Goal>], String> {
+        let at = match self.proposals.iter().position(|(a, _)| *a == assigner) {
+            Some(at) => at,
+            None => {
+                let s = self.session.as_mut().expect("a session");
+                let goals = guarded(|| s.propose(assigner, cells).to_vec())?;
+                self.proposals.push((assigner, goals));
+                self.proposals.len() - 1
+            }
+        };
+        Ok(&self.proposals[at].1)
     }
 
     /// Start the episode of `seed` on map `index` of the list or folder (None: the map the
@@ -309,6 +335,7 @@ impl State {
     /// Run to the next decision with a candidate to offer, or to the end: why it ended.
     fn next_decision(&mut self) -> Result<Option<EndReason>, String> {
         let spec = self.spec.clone();
+        self.proposals.clear();
         let s = self.session.as_mut().expect("a session");
         let m = s.config().robots;
         self.shown.resize_with(m, Vec::new);
@@ -1204,7 +1231,8 @@ impl EnvCore {
     }
 
     /// The action a paper's preset would take now: its assigner's choice among the offered
-    /// candidates (drawing from the episode's strategy stream).
+    /// candidates (drawing from the episode's strategy stream at the first ask of a
+    /// decision; asked again, it gives the same action without drawing).
     fn baseline_action(
         &mut self,
         #[pyo3(from_py_with = preset_arg)] preset: String,
@@ -1217,18 +1245,17 @@ impl EnvCore {
             return Ok(0);
         }
         let cells: Vec<u32> = st.offered().iter().map(|g| g.cell).collect();
-        let Some(s) = st.session.as_mut().filter(|_| !st.done) else {
+        if st.session.is_none() || st.done {
             return Err(value_error(
                 "baseline_action() after the episode ended: call reset() first",
             ));
-        };
-        let chosen = guarded(|| {
-            s.propose(strategy.assigner, &cells)
-                .first()
-                .copied()
-                .flatten()
-        })
-        .map_err(internal)?;
+        }
+        let chosen = st
+            .propose(strategy.assigner, &cells)
+            .map_err(internal)?
+            .first()
+            .copied()
+            .flatten();
         Ok(chosen
             .and_then(|g| cells.iter().position(|&c| c == g.cell))
             .unwrap_or(0))
@@ -1467,15 +1494,14 @@ impl VecEnvCore {
                 let mut guard = lock(st);
                 let st = &mut *guard;
                 let cells: Vec<u32> = st.offered().iter().map(|g| g.cell).collect();
-                let Some(s) = st.session.as_mut().filter(|_| !st.done) else {
+                if st.session.is_none() || st.done {
                     return Ok(0);
-                };
-                let chosen = guarded(|| {
-                    s.propose(strategy.assigner, &cells)
-                        .first()
-                        .copied()
-                        .flatten()
-                })?;
+                }
+                let chosen = st
+                    .propose(strategy.assigner, &cells)?
+                    .first()
+                    .copied()
+                    .flatten();
                 Ok(chosen
                     .and_then(|g| cells.iter().position(|&c| c == g.cell))
                     .unwrap_or(0))
@@ -1670,7 +1696,7 @@ impl TeamEnvCore {
             // Ended at its reset: nothing is offered, and the next step ends the episode.
             return Ok(vec![0; st.spec.options.robots]);
         }
-        let Some(s) = st.session.as_mut().filter(|_| !st.done) else {
+        let Some(s) = st.session.as_ref().filter(|_| !st.done) else {
             return Err(value_error(
                 "baseline_actions() after the episode ended: call reset() first",
             ));
@@ -1678,7 +1704,10 @@ impl TeamEnvCore {
         let mut cells: Vec<u32> = st.shown.iter().flatten().map(|g| g.cell).collect();
         cells.sort_by_key(|&c| s.candidate_position(c).unwrap_or(usize::MAX));
         cells.dedup();
-        let chosen = guarded(|| s.propose(strategy.assigner, &cells).to_vec()).map_err(internal)?;
+        let chosen = st
+            .propose(strategy.assigner, &cells)
+            .map_err(internal)?
+            .to_vec();
         Ok(st
             .shown
             .iter()

@@ -1294,3 +1294,44 @@ def test_regression_a_second_thread_is_told_the_environment_is_busy():
     assert busy, "no two calls met"
     assert all(e.startswith("this environment is in a call from another thread") for e in busy), \
         set(busy)
+
+
+def test_regression_asking_a_baseline_again_changes_nothing():
+    """Regression: every ask of a baseline drew from the episode's strategy stream again, so
+    Baseline("random")(env) gave another action at each call of one decision, and a
+    baseline episode that asked once more per step (to log the action) travelled another
+    path (759.1 m instead of 729.7 m on this map with strategy "dt")."""
+    m = frontier.Map.generate("office", seed=3)
+    e = ExploreEnv(m, strategy="dt")
+    e.reset(seed=1)
+    asks = [Baseline("random")(e) for _ in range(5)]
+    assert asks == [asks[0]] * 5
+    e.step(asks[0])
+    asks = [Baseline("random")(e) for _ in range(5)]
+    assert asks == [asks[0]] * 5
+
+    def run(asks_per_step, preset):
+        env = ExploreEnv(m, strategy="dt")
+        obs, _ = env.reset(seed=1)
+        trace = []
+        while True:
+            actions = [Baseline(preset)(env) for _ in range(asks_per_step)]
+            assert actions == [actions[0]] * asks_per_step
+            obs, reward, terminated, truncated, info = env.step(actions[0])
+            trace.append((actions[0], reward, obs["belief"].tobytes(), obs["pose"].tobytes(),
+                          obs["candidates"].tobytes()))
+            if terminated or truncated:
+                return trace, info["path_length_m"]
+
+    for preset in ("random", "dt"):
+        once, path = run(1, preset)
+        assert run(3, preset) == (once, path), preset
+    v = ExploreVectorEnv(2, m, strategy="dt")
+    v.reset(seed=1)
+    asks = [Baseline("random")(v).tolist() for _ in range(4)]
+    assert asks == [asks[0]] * 4
+    pettingzoo = pytest.importorskip("frontier.pettingzoo")
+    p = pettingzoo.ExploreParallelEnv(m, robots=2, strategy="dt")
+    p.reset(seed=1)
+    asks = [Baseline("random")(p) for _ in range(4)]
+    assert asks == [asks[0]] * 4
