@@ -45,7 +45,18 @@ pub struct SensorsArgs {
     /// Print one JSON object instead of the table.
     #[arg(long)]
     pub json: bool,
+    /// Refuse the comparison up front if its estimated memory (the furnished environments,
+    /// the runs side by side and their results) exceeds this many MiB (the memory the
+    /// machine has available is always checked).
+    #[arg(allow_negative_numbers = true, long, value_parser = crate::args::parse_memory_mb)]
+    pub memory_mb: Option<u64>,
 }
+
+/// Bytes a cell of a furnished environment held for the whole comparison: the map, its
+/// rooms and the clutter layer.
+const ENV_BYTES_PER_CELL: u64 = 8;
+/// Bytes a cell of each run's result kept until the table is made (its belief and audit).
+const RESULT_BYTES_PER_CELL: u64 = 4;
 
 /// The sensor specs of a comma-separated list: a part with `=` and no `:` (`fov=180` of
 /// `lidar:r=8,fov=180,res=1`) is a parameter of the spec before it, not a sensor.
@@ -61,6 +72,60 @@ fn sensor_list(s: &str) -> Vec<String> {
         }
     }
     out
+}
+
+/// Refuse a comparison whose environments, runs side by side (one per worker thread) and
+/// results would need more than `--memory-mb` or the memory available, before any
+/// environment is generated. A size the kind cannot take passes: generating it says why.
+fn check_memory(
+    a: &SensorsArgs,
+    kind: EnvKind,
+    size_m: Option<(f64, f64)>,
+    strategy: &Strategy,
+    sensors: &[SensorSpec],
+) -> Result<()> {
+    let spec = EnvSpec {
+        kind,
+        seed: 0,
+        size_m,
+        resolution: Some(a.resolution),
+    };
+    let Ok(cells) = spec.cells() else {
+        return Ok(());
+    };
+    let runs = sensors.len() as u64 * a.seeds;
+    let held = (ENV_BYTES_PER_CELL * a.seeds + RESULT_BYTES_PER_CELL * runs).saturating_mul(cells);
+    let largest = sensors
+        .iter()
+        .map(|&sensor| {
+            let mut cfg = RunConfig::new(strategy.clone());
+            cfg.sensor = sensor;
+            cfg.belief = BeliefKind::Evidence;
+            sim::memory::run_bytes(
+                usize::try_from(cells).unwrap_or(usize::MAX),
+                a.resolution,
+                &cfg,
+            )
+        })
+        .max()
+        .unwrap_or(0);
+    let workers = rayon::current_num_threads().min(runs as usize).max(1) as u64;
+    sim::memory::check(
+        &format!(
+            "comparing {} sensor{} on {} furnished {kind}{} of {cells} cells ({workers} \
+             run{} at once)",
+            sensors.len(),
+            if sensors.len() == 1 { "" } else { "s" },
+            a.seeds,
+            if a.seeds == 1 { "" } else { "s" },
+            if workers == 1 { "" } else { "s" },
+        ),
+        held.saturating_add(largest.saturating_mul(workers)),
+        a.memory_mb,
+        grid::machine::available(),
+        "use fewer --seeds, a smaller --size or a coarser --resolution",
+    )?;
+    Ok(())
 }
 
 /// Run `frontier sensors`.
@@ -89,6 +154,7 @@ pub fn run(a: SensorsArgs) -> Result<()> {
         );
     }
     let size_m = a.size.as_deref().map(parse_size).transpose()?;
+    check_memory(&a, kind, size_m, &strategy, &sensors)?;
     let envs: Vec<(world::Environment, grid::Grid<bool>)> = (0..a.seeds)
         .map(|seed| {
             // Through the CLI's rule: a size or resolution the kind cannot use is named by

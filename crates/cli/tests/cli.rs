@@ -2952,3 +2952,31 @@ fn regression_map_info_checks_the_components_memory() {
     );
     assert!(ok(&["map", "info", map, "--memory-mb", "60"]).contains("1 connected component"));
 }
+
+/// Regression: `sensors` generated every furnished environment and ran its runs side by
+/// side with no memory estimate and no `--memory-mb`, and aborted under `ulimit -v`
+/// ("memory allocation of 32000000 bytes failed"). It is checked before anything is
+/// generated.
+#[test]
+fn regression_sensors_checks_its_memory_first() {
+    let e = err(&[
+        "sensors",
+        "--env",
+        "office",
+        "--size",
+        "40x30",
+        "--resolution",
+        "0.05",
+        "--seeds",
+        "2",
+        "--sensors",
+        "laser",
+        "--memory-mb",
+        "30",
+    ]);
+    assert!(
+        e.contains("comparing 1 sensor on 2 furnished offices of 480000 cells")
+            && e.contains("more than --memory-mb 30"),
+        "{e}"
+    );
+}
