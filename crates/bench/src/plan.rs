@@ -825,6 +825,7 @@ fn resolve(
     let mut extents = Vec::new();
     let mut env_total: u64 = 0;
     let mut total: u64 = 0;
+    let mut plan_bytes: u64 = 0;
     for (i, entry) in f.env.iter().enumerate() {
         let extent = env_extent(src, i, entry)?;
         env_total += extent.count;
@@ -841,15 +842,28 @@ fn resolve(
         // Start variants: k perturbations, or one (fixed or drawn by each trial's seed).
         let fixed = entry.get_ref().start.is_some() || perturbations > 0;
         let starts = u64::from(perturbations.max(1));
+        // A trial's key names its environment (the name given, else a generated name or a
+        // file's stem: taken as 64 characters), variant and sensor.
+        let name_len = entry
+            .get_ref()
+            .name
+            .as_ref()
+            .map_or(64, |n| n.get_ref().len() + 12) as u64;
+        let mut per_env_bytes = 0u64;
         let per_env = variants.iter().fold(0u64, |sum, v| {
             let n = if !fixed || v.repeated || common.repeat_deterministic {
                 common.trials
             } else {
                 1
             };
-            sum.saturating_add(starts.saturating_mul(u64::from(n)))
+            let count = starts.saturating_mul(u64::from(n));
+            let key = name_len + v.label.len() as u64 + v.sensor.to_string().len() as u64 + 40;
+            per_env_bytes = per_env_bytes
+                .saturating_add(count.saturating_mul(TRIAL_BYTES.saturating_add(2 * key)));
+            sum.saturating_add(count)
         });
         total = total.saturating_add(extent.count.saturating_mul(per_env));
+        plan_bytes = plan_bytes.saturating_add(extent.count.saturating_mul(per_env_bytes));
         extents.push(extent);
     }
     if total > MAX_PLAN_TRIALS {
@@ -862,6 +876,16 @@ fn resolve(
             ),
         ));
     }
+    // The trials' list and their keys (each key twice: the trial's and the uniqueness
+    // check's), before any is made: 2 M trials with names of 100 characters took 1.5 GiB.
+    sim::memory::check(
+        &format!("planning the study's {total} trials"),
+        sim::memory::BASE_BYTES.saturating_add(plan_bytes),
+        memory_mb,
+        grid::machine::available(),
+        "lower trials, perturbations or the variants, use shorter names, or split the study",
+    )
+    .map_err(|e| src.error(f.trials.as_ref().and_then(span_of), "trials", e.to_string()))?;
     check_env_memory(src, &extents, memory_limit(memory_mb))?;
 
     let mut envs: Vec<EnvInstance> = Vec::new();
@@ -1277,6 +1301,10 @@ fn load_env(
 /// Most trials one scenario may plan (the `faigl2013` suite has 77,040); each is held in
 /// memory with its key.
 pub const MAX_PLAN_TRIALS: u64 = 2_000_000;
+
+/// Bytes of a planned trial beside its key's characters: the [`Trial`], its key's string
+/// and the uniqueness check's node.
+const TRIAL_BYTES: u64 = 300;
 
 /// Most environments one scenario may plan (the suites have up to 4); each is generated or
 /// loaded, held in memory and pictured in the results database.

@@ -545,3 +545,23 @@ fn regression_scenario_errors_say_what_they_found() {
         "{e}"
     );
 }
+
+/// Regression: a study's trials and their keys were made before any memory check: 2 M
+/// trials with names of 100 characters took 1.5 GiB under `--memory-mb 40` before the
+/// trials' own check refused them. Their memory is estimated from the counts first.
+#[test]
+fn planning_many_trials_is_checked_before_they_are_made() {
+    let text = ONE
+        .replace("sensors =", "trials = 200000\nsensors =")
+        .replace("strategies = [\"cf\"]", "strategies = [\"random\"]");
+    let src = source(&text);
+    let e = Plan::resolve_within(&src, Unbuilt::Error, Some(20))
+        .expect_err("refused")
+        .to_string();
+    assert!(
+        e.contains("key `trials`: planning the study's 200000 trials needs about")
+            && e.contains("more than --memory-mb 20"),
+        "{e}"
+    );
+    assert!(Plan::resolve_within(&src, Unbuilt::Error, Some(1000)).is_ok());
+}
