@@ -1576,6 +1576,10 @@ fn regression_bench_into_a_read_only_folder_says_what_must_be_writable() {
     );
     let new = ro.join("new.sqlite");
     let n = new.to_str().unwrap();
+    // The study's other half, to merge into the read-only store.
+    let other = out.join("other.sqlite");
+    bench_shard(&study, &other, "2/2");
+    let o2 = other.to_str().unwrap();
     let cases: [(&[&str], String); 3] = [
         (
             &["bench", s, "--db", d, "-j", "1", "--no-progress"],
@@ -1592,7 +1596,7 @@ fn regression_bench_into_a_read_only_folder_says_what_must_be_writable() {
             ),
         ),
         (
-            &["bench", "merge", d, d],
+            &["bench", "merge", d, o2],
             format!("{d}: cannot be written by this user"),
         ),
     ];
@@ -2883,7 +2887,9 @@ fn regression_merge_refuses_its_input_as_output_and_a_missing_folder() {
     let q_s = q.to_str().unwrap();
     let e = err(&["bench", "merge", q_s, q_s]);
     assert!(
-        e.contains("expected an output database other than the inputs"),
+        e.contains(&format!(
+            "{q_s}: expected an output database other than the inputs, found the input {q_s}"
+        )),
         "{e}"
     );
     assert_eq!(std::fs::read(&q).unwrap(), before);
