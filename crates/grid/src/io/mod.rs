@@ -272,8 +272,8 @@ pub(crate) const PGM_BYTES_PER_PIXEL: u64 = 4;
 pub(crate) const PNG_BYTES_PER_PIXEL: u64 = 6;
 
 /// How to make a map's loading fit in memory, said in every refusal.
-const MEMORY_FIX: &str = "use a map with fewer, larger cells (scale the image down, or read a \
-                          .json plan at a coarser resolution)";
+const MEMORY_FIX: &str = "use a map with fewer, larger cells (scale the image down, or give a \
+                          HouseExpo plan or a resampled map a coarser resolution)";
 
 /// A map's `(width, height)` in cells.
 type Size = (u64, u64);
