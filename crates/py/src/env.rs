@@ -18,6 +18,7 @@ use explore::candidates::CandidateKind;
 use explore::decision::Goal;
 use explore::strategy::Strategy;
 use grid::{GridMap, Occ};
+use numpy::ndarray::ArrayD;
 use numpy::{
     Element, IxDyn, PyArray1, PyArrayDyn, PyArrayMethods, PyReadonlyArray1, PyReadwriteArrayDyn,
     PyUntypedArrayMethods, npyffi,
@@ -616,7 +617,10 @@ struct ObsArrays {
 }
 
 impl ObsArrays {
-    /// New arrays of zeros for `n` environments (`None`: one, no leading axis).
+    /// New arrays of zeros for `n` environments (`None`: one, no leading axis). Their memory
+    /// is a Rust vector's, which numpy does not own: an array of it that is read-only cannot
+    /// be made writeable again from Python (numpy lets the owner of its data do that, or an
+    /// array of a writeable buffer's, and a vector kept for numpy is neither).
     fn zeros(py: Python<'_>, spec: &Spec, n: Option<usize>) -> Self {
         let (h, w) = spec.shape;
         let dims = |rest: &[usize]| {
@@ -626,12 +630,16 @@ impl ObsArrays {
                     .collect::<Vec<_>>(),
             )
         };
+        // Zeros: every element type here (u8, f32, i8) defaults to 0.
+        fn zeros<T: Element + Clone + Default>(py: Python<'_>, dims: IxDyn) -> Py<PyArrayDyn<T>> {
+            PyArrayDyn::from_owned_array(py, ArrayD::from_elem(dims, T::default())).unbind()
+        }
         Self {
-            belief: PyArrayDyn::zeros(py, dims(&[h, w]), false).unbind(),
-            frontier: PyArrayDyn::zeros(py, dims(&[h, w]), false).unbind(),
-            pose: PyArrayDyn::zeros(py, dims(&[3]), false).unbind(),
-            candidates: PyArrayDyn::zeros(py, dims(&[spec.k, FEATURES]), false).unbind(),
-            mask: PyArrayDyn::zeros(py, dims(&[spec.k]), false).unbind(),
+            belief: zeros(py, dims(&[h, w])),
+            frontier: zeros(py, dims(&[h, w])),
+            pose: zeros(py, dims(&[3])),
+            candidates: zeros(py, dims(&[spec.k, FEATURES])),
+            mask: zeros(py, dims(&[spec.k])),
         }
     }
 
@@ -668,7 +676,8 @@ impl ObsArrays {
     ) -> PyResult<R> {
         for a in [&self.belief, &self.frontier] {
             let a = a.bind(py);
-            // SAFETY: the array owns its data (made by `zeros`), the GIL is held, and only
+            // SAFETY: the array's data is a Rust vector only the array holds (made by
+            // `zeros`), mutable and aligned for its elements, the GIL is held, and only
             // the pool references it (a kept set is lent only when no view, buffer or dict
             // of Python's holds an array of it; a new set is not Python's yet), so making
             // it writeable again lets no one else write.
@@ -713,9 +722,9 @@ impl ObsArrays {
     }
 
     /// The arrays as a dict of numpy arrays. The belief and frontier layers go out as
-    /// read-only views of the kept arrays: numpy lets the owner of an array make it
-    /// writeable again, but not a view of a read-only array, so a caller cannot turn the
-    /// flag back on and write into a layer that later observations are written over.
+    /// read-only views of the kept arrays, which own no data (see [`Self::zeros`]): a caller
+    /// can make neither writeable again (the view, nor the kept array that is its `base`),
+    /// so cannot write into a layer that later observations are written over.
     fn into_dict(self, py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
         let d = PyDict::new(py);
         d.set_item("belief", self.belief.bind(py).call_method0("view")?)?;

@@ -867,6 +867,53 @@ def test_regression_observation_layers_cannot_be_made_writeable(office):
 
 
 
+def test_regression_observation_layers_bases_cannot_be_made_writeable(office):
+    """Regression: a layer was a read-only view of the kept array that owned its data, and
+    numpy lets an owner be made writeable again: obs["belief"].base.flags.writeable = True
+    and a write into it succeeded, and the episode's later observations, which copy only
+    the cells that changed, kept the write. No array of a layer's base chain can be."""
+    from frontier.pettingzoo import ExploreParallelEnv
+
+    def chain(a):
+        while isinstance(a, np.ndarray):
+            yield a
+            a = a.base
+
+    env = ExploreEnv(office, k=4)
+    venv = ExploreVectorEnv(2, office, k=4)
+    team = ExploreParallelEnv(office, robots=2, k=4)
+    observations = [env.reset(seed=0)[0], venv.reset(seed=0)[0],
+                    *team.reset(seed=0)[0].values()]
+    observations += [env.step(0)[0], venv.step(np.zeros(2, int))[0]]
+    for obs in observations:
+        for key in ("belief", "frontier"):
+            arrays = list(chain(obs[key]))
+            assert len(arrays) >= 2
+            for a in arrays:
+                with pytest.raises(ValueError, match="cannot set WRITEABLE flag"):
+                    a.flags.writeable = True
+                assert not a.flags.writeable
+    # An episode whose observations are tampered with where it can be equals a fresh one.
+    def episode(tamper):
+        e = ExploreEnv(office, k=4)
+        obs, _ = e.reset(seed=5)
+        trace = []
+        for t in range(20):
+            for a in (a for key in ("belief", "frontier") if tamper for a in chain(obs[key])):
+                try:
+                    a.flags.writeable = True
+                    a[...] = 2
+                except ValueError:
+                    pass
+            obs, reward, terminated, truncated, _ = e.step(t % 3)
+            trace.append((obs["belief"].tobytes(), obs["frontier"].tobytes(), reward))
+            if terminated or truncated:
+                break
+        return trace
+
+    assert episode(True) == episode(False)
+
+
 def test_regression_vector_reset_infos_hold_what_step_infos_hold(office):
     venv = ExploreVectorEnv(2, office, k=4)
     obs, infos = venv.reset(seed=0)
