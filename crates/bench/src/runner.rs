@@ -329,7 +329,7 @@ fn check_memory(
         "use fewer threads (-j) or maps with fewer cells"
     };
     sim::memory::check_batch("trials", &needs, workers, memory_mb, available, fix)
-    .map_err(|e| BenchError::Other(e.to_string()))
+        .map_err(|e| BenchError::Other(e.to_string()))
 }
 
 /// Worker threads for `pending` trials when `requested` were asked for: never more than

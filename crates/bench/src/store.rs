@@ -1370,17 +1370,6 @@ impl Store {
         let Some((scenario, fingerprint, first)) = study else {
             return Err(BenchError::Other("merge: no input databases".into()));
         };
-        // Once the inputs are known to be shards of one study.
-        if let Some(input) = inputs.iter().find(|i| same_file(i, out)) {
-            return Err(BenchError::Store {
-                path: out.to_path_buf(),
-                message: format!(
-                    "expected an output database other than the inputs, found the input {} \
-                     (merging a database into itself adds nothing and rewrites it)",
-                    input.display()
-                ),
-            });
-        }
         let existed = std::fs::metadata(out).is_ok_and(|m| m.len() > 0);
         if existed {
             let have = Store::open_read_only(out)?;
