@@ -237,18 +237,17 @@ pub fn run(a: ExploreArgs) -> Result<()> {
         grid::io::save_map(&built, &belief)
             .with_context(|| format!("writing {}", belief.display()))?;
         let trace = dir.join("trace.json");
-        let file = std::fs::File::create(&trace)
-            .with_context(|| format!("writing {}", trace.display()))?;
-        let mut w = std::io::BufWriter::new(file);
-        report::write_trace_json(&mut w, &truth, &cfg, &result)
-            .map_err(anyhow::Error::from)
-            .and_then(|()| w.flush().map_err(anyhow::Error::from))
-            .with_context(|| format!("writing {}", trace.display()))?;
+        crate::files::write_whole(&trace, |file| {
+            let mut w = std::io::BufWriter::new(file);
+            report::write_trace_json(&mut w, &truth, &cfg, &result)?;
+            Ok(w.flush()?)
+        })
+        .with_context(|| format!("writing {}", trace.display()))?;
     }
     if let Some(path) = &a.gif {
         let bytes =
             viz::animate::animate_gif(&truth.map, &result, &viz::animate::GifOptions::default())?;
-        std::fs::write(path, bytes)
+        crate::files::write_whole(path, |mut file| Ok(file.write_all(&bytes)?))
             .with_context(|| format!("--gif {}: writing", path.display()))?;
     }
     if let Some(path) = &a.html {
@@ -264,14 +263,15 @@ pub fn run(a: ExploreArgs) -> Result<()> {
             truth.map.resolution
         );
         let page = viz::replay::replay_html(&truth.map, &result, &truth.name, &meta)?;
-        std::fs::write(path, page)
+        crate::files::write_whole(path, |mut file| Ok(file.write_all(page.as_bytes())?))
             .with_context(|| format!("--html {}: writing", path.display()))?;
     }
     if let Some(path) = &a.mcap {
-        let file = std::fs::File::create(path)
-            .with_context(|| format!("--mcap {}: writing", path.display()))?;
-        crate::mcap_out::write_run(std::io::BufWriter::new(file), &truth.map, &cfg, &result)
-            .with_context(|| format!("--mcap {}: writing", path.display()))?;
+        crate::files::write_whole(path, |file| {
+            let w = std::io::BufWriter::new(file);
+            crate::mcap_out::write_run(w, &truth.map, &cfg, &result)
+        })
+        .with_context(|| format!("--mcap {}: writing", path.display()))?;
     }
     if a.json {
         outln!(

@@ -117,6 +117,10 @@ impl Files {
     pub fn writes_as(&mut self, flag: &str, path: &Path, exts: &[&str], what: &str) -> Result<()> {
         // An input it would lose, or a folder, is the worse mistake: said first.
         self.writes(flag, path)?;
+        // A link (/dev/stdout) or a device names no format.
+        if std::fs::symlink_metadata(path).is_ok_and(|m| !m.is_file() && !m.is_dir()) {
+            return Ok(());
+        }
         let ext = path
             .extension()
             .and_then(|e| e.to_str())
@@ -197,6 +201,38 @@ impl Files {
     }
 }
 
+/// Write the file `path` whole or not at all: `write` fills a new file beside it, which
+/// then takes its name, so that a command stopped while writing (Ctrl-C during a long
+/// recording) leaves the file that was there, or none, never a cut-off one under the name
+/// (the new one stays as a hidden `.NAME.PID.part`). A path that is not a plain file or
+/// nothing yet (a symbolic link such as `/dev/stdout`, a device, a pipe) is written in
+/// place, through it.
+pub fn write_whole(path: &Path, write: impl FnOnce(std::fs::File) -> Result<()>) -> Result<()> {
+    let plain = match std::fs::symlink_metadata(path) {
+        Ok(m) => m.is_file(),
+        Err(e) => e.kind() == std::io::ErrorKind::NotFound,
+    };
+    let Some(name) = path.file_name().filter(|_| plain) else {
+        return write(std::fs::File::create(path)?);
+    };
+    let part = path.with_file_name(format!(
+        ".{}.{}.part",
+        name.to_string_lossy(),
+        std::process::id()
+    ));
+    let file = std::fs::OpenOptions::new()
+        .write(true)
+        .create_new(true)
+        .open(&part)?;
+    match write(file).and_then(|()| Ok(std::fs::rename(&part, path)?)) {
+        Ok(()) => Ok(()),
+        Err(e) => {
+            let _ = std::fs::remove_file(&part);
+            Err(e)
+        }
+    }
+}
+
 /// An output folder a command made: removed again when it is dropped still empty (the
 /// command failed before it wrote anything), so that a failing command leaves no folder.
 #[must_use]
@@ -244,5 +280,35 @@ pub fn make_output_folder(flag: &str, dir: &Path) -> Result<MadeFolder> {
             "{flag} {}: expected a folder files can be written in, found {e}",
             dir.display()
         ),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::io::Write;
+
+    /// Regression: an `--mcap` recording was written in place, so a run stopped while
+    /// writing it left a cut-off file under its name (4.5 MiB of willow's). A write that
+    /// fails half-way leaves the file that was there, and a whole one replaces it; no part
+    /// file is left either way.
+    #[test]
+    fn a_file_is_written_whole_or_not_at_all() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("run.mcap");
+        std::fs::write(&path, b"the earlier recording").unwrap();
+        let e = write_whole(&path, |mut f| {
+            f.write_all(b"half of a new one")?;
+            anyhow::bail!("stopped")
+        });
+        assert!(e.is_err());
+        assert_eq!(std::fs::read(&path).unwrap(), b"the earlier recording");
+        write_whole(&path, |mut f| Ok(f.write_all(b"a new recording")?)).unwrap();
+        assert_eq!(std::fs::read(&path).unwrap(), b"a new recording");
+        let names: Vec<_> = std::fs::read_dir(dir.path())
+            .unwrap()
+            .map(|e| e.unwrap().file_name())
+            .collect();
+        assert_eq!(names, ["run.mcap"]);
     }
 }
