@@ -1382,3 +1382,36 @@ def test_regression_asking_a_baseline_again_changes_nothing():
     p.reset(seed=1)
     asks = [Baseline("random")(p) for _ in range(4)]
     assert asks == [asks[0]] * 4
+
+
+def test_regression_asking_a_baseline_leaves_the_episode_as_it_was():
+    """Regression: the first ask of a baseline at a decision drew from the episode's strategy
+    stream, so an agent that logged Baseline("random")'s action beside its own got another
+    episode than one that did not ask (with strategy "dt", which samples its candidates from
+    that stream). The ask draws from a copy, which the episode takes only if the step takes
+    the asked action (then the episode is the baseline's, as in a run of the preset)."""
+    m = frontier.Map.generate("office", seed=3)
+
+    def run(actions=None):
+        env = ExploreEnv(m, strategy="dt")
+        obs, _ = env.reset(seed=1)
+        taken, trace = [], []
+        for t in range(80):
+            if actions is None:
+                asked = Baseline("random")(env)
+                offered = int(obs["action_mask"].sum())
+                if offered < 2:
+                    break  # no action other than the asked one
+                action = (asked + 1) % offered
+            else:
+                action = actions[t]
+            obs, reward, terminated, truncated, info = env.step(action)
+            taken.append(action)
+            trace.append((reward, obs["belief"].tobytes(), obs["candidates"].tobytes()))
+            if terminated or truncated:
+                break
+        return taken, trace
+
+    taken, asked = run()
+    assert len(taken) >= 20, len(taken)
+    assert run(taken)[1] == asked

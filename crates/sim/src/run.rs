@@ -118,6 +118,10 @@ struct Team<'a> {
     offered: CandidateSet,
     /// Goals an assigner proposed.
     proposed: Vec<Option<Goal>>,
+    /// Each proposal of the pending decision with the strategy stream as it left it: the
+    /// stream is put back after a proposal, and taken from the proposal whose goals are
+    /// chosen ([`Session::choose`]).
+    asked: Vec<(Vec<Option<Goal>>, Pcg64Mcg)>,
     /// Buffers of information-gain predictions.
     gain_scratch: sense::gain::GainScratch,
     /// The fill that tells whether a robot is penned in ([`Team::back_off`]).
@@ -406,6 +410,7 @@ impl<'a> Session<'a> {
                 CandidateSet::default()
             },
             proposed: vec![None; m],
+            asked: Vec::new(),
             gain_scratch: sense::gain::GainScratch::new(),
             pocket: Pocket::default(),
             truth,
@@ -567,8 +572,25 @@ impl<'a> Session<'a> {
 
     /// The goals `assigner` would give the deciding robots if only `cells` (candidates of the
     /// pending decision, in this order) were offered: a paper's rule acting as a policy.
-    /// Draws from the run's strategy stream as the rule would in a run.
+    /// Draws from a copy of the run's strategy stream, as the rule would in a run: the run
+    /// takes that draw only if [`Session::choose`] then gives these goals, so asking for a
+    /// proposal that is not taken leaves the run's random draws as they were. (State the
+    /// assigners keep across decisions, MTSP's routes and SGA's centres, is updated by the
+    /// proposal.)
     pub fn propose(&mut self, assigner: AssignerKind, cells: &[u32]) -> &[Option<Goal>] {
+        let t = &mut self.team;
+        let before = t.pending.then(|| t.rng.clone());
+        self.propose_drawing(assigner, cells);
+        let t = &mut self.team;
+        if let Some(before) = before {
+            let after = std::mem::replace(&mut t.rng, before);
+            t.asked.push((t.proposed.clone(), after));
+        }
+        &self.team.proposed
+    }
+
+    /// [`Session::propose`], drawing from the run's strategy stream itself.
+    fn propose_drawing(&mut self, assigner: AssignerKind, cells: &[u32]) -> &[Option<Goal>] {
         let t = &mut self.team;
         if !t.pending {
             t.proposed.fill(None);
@@ -647,6 +669,14 @@ impl<'a> Session<'a> {
             };
             t.out[r] = Some(Goal { cell, cost });
         }
+        // The stream as the proposal of these goals left it, if one was asked for.
+        let taken = t.asked.iter().position(|(proposed, _)| {
+            (0..m).all(|r| !t.deciding[r] || proposed[r].map(|g| g.cell) == goals[r])
+        });
+        if let Some(k) = taken {
+            t.rng = t.asked.swap_remove(k).1;
+        }
+        t.asked.clear();
         t.pending = false;
         t.conclude(&mut self.robots, Instant::now());
         Ok(())
