@@ -860,13 +860,7 @@ fn optimal_flags_are_checked() {
 #[test]
 fn optimal_ctrl_c_stops_the_search_with_its_bounds() {
     let dir = tempfile::tempdir().unwrap();
-    let map = dir.path().join("open.map");
-    let rows = vec![".".repeat(40); 40].join("\n");
-    std::fs::write(
-        &map,
-        format!("type octile\nheight 40\nwidth 40\nmap\n{rows}\n"),
-    )
-    .unwrap();
+    let map = open_map(dir.path(), 40);
     let child = Command::new(env!("CARGO_BIN_EXE_frontier"))
         .args([
             "optimal",
@@ -2931,13 +2925,7 @@ fn regression_optimal_checks_its_compared_runs_memory() {
 #[test]
 fn regression_map_info_checks_the_components_memory() {
     let dir = tempfile::tempdir().unwrap();
-    let map = dir.path().join("open.map");
-    let rows = vec![".".repeat(2000); 2000].join("\n");
-    std::fs::write(
-        &map,
-        format!("type octile\nheight 2000\nwidth 2000\nmap\n{rows}\n"),
-    )
-    .unwrap();
+    let map = open_map(dir.path(), 2000);
     let map = map.to_str().unwrap();
     let e = err(&["map", "info", map, "--memory-mb", "30"]);
     assert!(

@@ -841,7 +841,8 @@ def test_regression_render_draws_the_robot_at_the_centre_of_a_view(office):
     assert (env.render()[y, x] == blue).all()
 
 
-def test_regression_observation_layers_cannot_be_made_writeable(office):
+def _first_observations(office):
+    """Observations of a reset and a step of each environment type (a 4-candidate office)."""
     from frontier.pettingzoo import ExploreParallelEnv
 
     env = ExploreEnv(office, k=4)
@@ -849,8 +850,11 @@ def test_regression_observation_layers_cannot_be_made_writeable(office):
     team = ExploreParallelEnv(office, robots=2, k=4)
     observations = [env.reset(seed=0)[0], venv.reset(seed=0)[0],
                     *team.reset(seed=0)[0].values()]
-    observations += [env.step(0)[0], venv.step(np.zeros(2, int))[0]]
-    for obs in observations:
+    return observations + [env.step(0)[0], venv.step(np.zeros(2, int))[0]]
+
+
+def test_regression_observation_layers_cannot_be_made_writeable(office):
+    for obs in _first_observations(office):
         for key in ("belief", "frontier"):
             before = obs[key].copy()
             with pytest.raises(ValueError):
@@ -859,6 +863,7 @@ def test_regression_observation_layers_cannot_be_made_writeable(office):
                 obs[key][...] = 2
             assert np.array_equal(obs[key], before)
     # Still written only when no one holds them: held observations never change.
+    env = ExploreEnv(office, k=4)
     first, _ = env.reset(seed=3)
     kept = first["belief"].copy()
     for _ in range(5):
@@ -872,20 +877,12 @@ def test_regression_observation_layers_bases_cannot_be_made_writeable(office):
     numpy lets an owner be made writeable again: obs["belief"].base.flags.writeable = True
     and a write into it succeeded, and the episode's later observations, which copy only
     the cells that changed, kept the write. No array of a layer's base chain can be."""
-    from frontier.pettingzoo import ExploreParallelEnv
-
     def chain(a):
         while isinstance(a, np.ndarray):
             yield a
             a = a.base
 
-    env = ExploreEnv(office, k=4)
-    venv = ExploreVectorEnv(2, office, k=4)
-    team = ExploreParallelEnv(office, robots=2, k=4)
-    observations = [env.reset(seed=0)[0], venv.reset(seed=0)[0],
-                    *team.reset(seed=0)[0].values()]
-    observations += [env.step(0)[0], venv.step(np.zeros(2, int))[0]]
-    for obs in observations:
+    for obs in _first_observations(office):
         for key in ("belief", "frontier"):
             arrays = list(chain(obs[key]))
             assert len(arrays) >= 2
