@@ -22,6 +22,10 @@ use sense::{FootprintSensor, LosSensor, Observation, Pose, Sensor, SensorSpec};
 
 use crate::error::OptimalError;
 
+/// The widest footprint, in cells, the search takes (past the map's diagonal a footprint
+/// is cut to it): its bounds' tables grow with the cube of the range.
+pub const MAX_FOOTPRINT_CELLS: f64 = 1024.0;
+
 /// Marks a cell that is not a target.
 pub const NOT_TARGET: u32 = u32::MAX;
 
@@ -138,6 +142,24 @@ impl Problem {
             return Err(OptimalError::BadStart {
                 cell: start,
                 why: "not a free cell".into(),
+            });
+        }
+        // A footprint reaching past the map's diagonal perceives what one reaching it does;
+        // its bounds' tables grow with the range (the coverage rate's with its cube).
+        let diagonal = ((cells.width().pow(2) + cells.height().pow(2)) as f64)
+            .sqrt()
+            .ceil();
+        let model = match model {
+            SensorModel::Footprint(r) if r > diagonal => SensorModel::Footprint(diagonal.max(1.0)),
+            m => m,
+        };
+        if let SensorModel::Footprint(r) = model
+            && r > MAX_FOOTPRINT_CELLS
+        {
+            return Err(OptimalError::BadParameter {
+                field: "sensor range",
+                expected: "a footprint of at most 1024 cells (or one past the map's diagonal)",
+                found: format!("{r} cells"),
             });
         }
         let sensor = match model {
@@ -335,5 +357,47 @@ impl Problem {
                 }
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod footprint_range_tests {
+    use super::*;
+
+    /// Regression: `optimal --sensor footprint:r=100000c` on a 5 x 5 ring tried to allocate
+    /// 40 GB for the coverage-rate bound's table of offsets and aborted, and 2000 cells took
+    /// 92 s (the bound's scan grows with the cube of the range). A footprint past the map's
+    /// diagonal is cut to it, the same perception, and one wider than 1024 cells is refused.
+    #[test]
+    fn a_footprint_past_the_map_is_cut_to_its_diagonal() {
+        let mut ring = Grid::new(5, 5, Occ::Occupied);
+        for (x, y) in [
+            (1, 1),
+            (2, 1),
+            (3, 1),
+            (1, 2),
+            (3, 2),
+            (1, 3),
+            (2, 3),
+            (3, 3),
+        ] {
+            ring.set(Cell::new(x, y), Occ::Free);
+        }
+        let start = Cell::new(1, 1);
+        let wide = Problem::new(&ring, start, SensorModel::Footprint(100_000.0)).expect("cut");
+        assert_eq!(wide.model().range(), 8.0);
+        let cut = Problem::new(&ring, start, SensorModel::Footprint(8.0)).expect("valid");
+        let cfg = crate::Config::default();
+        let (a, b) = (
+            crate::solve(&wide, &cfg).unwrap(),
+            crate::solve(&cut, &cfg).unwrap(),
+        );
+        assert_eq!((a.upper_bound, a.status), (b.upper_bound, b.status));
+        let open = Grid::new(1100, 1100, Occ::Free);
+        let e = Problem::new(&open, start, SensorModel::Footprint(1500.0)).unwrap_err();
+        assert!(
+            e.to_string().contains("a footprint of at most 1024 cells"),
+            "{e}"
+        );
     }
 }
