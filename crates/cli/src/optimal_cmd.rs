@@ -251,7 +251,12 @@ pub fn run(a: OptimalArgs) -> Result<()> {
             }
             c
         }
-        None => default_start(map).context("the map has no free cell")?,
+        // A dungeon's marked start, as `explore` takes it.
+        None => match truth.start {
+            Some(c) if map.cells.get(c).is_free() => c,
+            Some(c) => bail!("the map's marked start {c}: not a free cell"),
+            None => default_start(map).context("the map has no free cell")?,
+        },
     };
     let actions = if a.all_cells {
         ActionSet::All

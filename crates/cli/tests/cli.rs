@@ -1792,6 +1792,23 @@ fn a_dungeon_png_gives_its_marked_start() {
     .unwrap();
     assert_eq!(info["start"], serde_json::json!([5, 3]));
     assert_eq!(info["free"], 60);
+    // Regression: `optimal` started at the free cell nearest the centre, not the mark.
+    let opt: serde_json::Value = serde_json::from_str(&ok(&[
+        "optimal",
+        "--map",
+        p,
+        "--dungeon",
+        "--resolution",
+        "0.1",
+        "--sensor",
+        "los:r=2c",
+        "--max-nodes",
+        "100",
+        "--json",
+        "--no-timing",
+    ]))
+    .unwrap();
+    assert_eq!(opt["start"], serde_json::json!([5, 3]), "{opt}");
     // --border walls it (a regression: it was ignored), and the start moves with the cells.
     let info: serde_json::Value = serde_json::from_str(&ok(&[
         "map",
