@@ -62,6 +62,35 @@ fn segment_bytes(cells: usize) -> u64 {
     sim::memory::BASE_BYTES + SEGMENT_BYTES_PER_CELL.saturating_mul(cells as u64)
 }
 
+/// Refuse ground-truth rooms that share no cell with the segmented free space, and warn
+/// when they cover less than half of it: the scores count only the common cells, so a truth
+/// of another plan (of the map's size) or one free cell scored F1 1 and ARI 1.
+fn check_rooms_cover(labels: &[u32], rooms: &[u32], truth: Option<&std::path::Path>) -> Result<()> {
+    let free = labels.iter().filter(|&&l| l != NONE).count();
+    let common = labels
+        .iter()
+        .zip(rooms)
+        .filter(|&(&l, &r)| l != NONE && r != 0)
+        .count();
+    let source = truth.map_or_else(
+        || "the rooms".to_string(),
+        |t| format!("--truth {}", t.display()),
+    );
+    if free > 0 && common == 0 {
+        bail!(
+            "{source}: expected rooms that cover the map's free cells, found none of its {free} \
+             free cells in a room"
+        );
+    }
+    if 2 * common < free {
+        eprintln!(
+            "warning: {source}: its rooms cover {common} of the map's {free} free cells; the \
+             scores count only those"
+        );
+    }
+    Ok(())
+}
+
 /// Run `frontier segment`.
 pub fn run(a: SegmentArgs) -> Result<()> {
     let rule: Rule = a
@@ -98,6 +127,9 @@ pub fn run(a: SegmentArgs) -> Result<()> {
         (None, Some(_)) => None,
     };
     let seg = segment(&truth.map.cells, rule);
+    if let Some(r) = &rooms {
+        check_rooms_cover(&seg.labels, r.data(), a.truth.as_deref())?;
+    }
     let scores = rooms.as_ref().map(|r| score(&seg.labels, r.data()));
     if let Some(out) = &a.out {
         picture(&truth.map, &seg)

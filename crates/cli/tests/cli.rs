@@ -2980,3 +2980,36 @@ fn regression_sensors_checks_its_memory_first() {
         "{e}"
     );
 }
+
+/// Regression: `segment --truth` scored against any plan of the map's size, counting only
+/// the cells free in both: a truth of walls only scored ARI 1 with 0 rooms, and one with a
+/// single free cell F1 1 and ARI 1 against 7 segments. A truth sharing no free cell is
+/// refused, and one covering less than half the free cells is warned about.
+#[test]
+fn regression_segment_truth_must_cover_the_map() {
+    let dir = tempfile::tempdir().unwrap();
+    let map = dir.path().join("office.txt");
+    let m = map.to_str().unwrap();
+    ok(&["env", "office", "--size", "12x10", "--out", m]);
+    let text = std::fs::read_to_string(&map).unwrap();
+    let walls = dir.path().join("walls.txt");
+    std::fs::write(&walls, text.replace('.', "#")).unwrap();
+    let e = err(&["segment", "--map", m, "--truth", walls.to_str().unwrap()]);
+    assert!(
+        e.contains("expected rooms that cover the map's free cells, found none of its"),
+        "{e}"
+    );
+    let one = dir.path().join("one.txt");
+    let first = text.find('.').unwrap();
+    let mut cells = text.replace('.', "#").into_bytes();
+    cells[first] = b'.';
+    std::fs::write(&one, cells).unwrap();
+    let out = frontier(&["segment", "--map", m, "--truth", one.to_str().unwrap()]);
+    assert!(out.status.success());
+    let warning = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        warning.contains("its rooms cover 1 of the map's")
+            && warning.contains("the scores count only those"),
+        "{warning}"
+    );
+}
