@@ -39,6 +39,10 @@ fn bad(name: &Path, field: &'static str, expected: &str, found: String) -> MapEr
     )
 }
 
+/// How far from the origin, in cells, a plan's vertices may lie (2^40): cell centres there
+/// are still exact to a ten-thousandth of a cell.
+const FAR_CELLS: f64 = 1_099_511_627_776.0;
+
 /// The `[x, y]` pairs (or `[x0, y0, x1, y1]` boxes) of a JSON array, as numbers.
 fn numbers(v: &Value, n: usize) -> Option<Vec<f64>> {
     let a = v.as_array()?;
@@ -255,6 +259,24 @@ pub(crate) fn parse_houseexpo_checked(
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
             (a.min(p.1), b.max(p.1))
         });
+    // Cell centres are offsets from the outline's corner: far from the origin they are no
+    // longer distinct numbers (a square offset by 1e17 m lost 44 % of its cells), and the
+    // outline's size would overflow the cell count.
+    let far = [x_min, x_max, y_min, y_max]
+        .iter()
+        .fold(0.0f64, |m, v| m.max(v.abs()));
+    if far / resolution > FAR_CELLS {
+        return Err(bad(
+            name,
+            "verts",
+            &format!(
+                "vertices within {FAR_CELLS:e} cells of the origin ({} m at {resolution} m a \
+                 cell), where cell centres stay exact",
+                FAR_CELLS * resolution
+            ),
+            format!("a vertex {far:e} m away"),
+        ));
+    }
     // One obstacle cell around the outline's box.
     let w = ((x_max - x_min) / resolution).ceil() + 2.0;
     let h = ((y_max - y_min) / resolution).ceil() + 2.0;
@@ -440,6 +462,32 @@ mod tests {
         let count = |id| h.rooms.iter().filter(|&&r| r == id).count();
         assert_eq!((count(1), count(2)), (32, 16));
         assert_eq!(h.map.origin, [-0.5, -0.5, 0.0]);
+    }
+
+    /// Regression: a 32 x 32 m square offset by 1e17 m rasterised to 2304 free cells at 0.5 m
+    /// instead of 4096 (its cell centres were no longer distinct numbers), without a word,
+    /// and a vertex at 1e300 m was "18446744073709551615x18446744073709551615 cells".
+    #[test]
+    fn a_plan_far_from_the_origin_is_refused() {
+        for (text, found) in [
+            (
+                r#"{"verts": [[1e17,1e17],[1.00000000000000032e17,1e17],
+                    [1.00000000000000032e17,1.00000000000000032e17],[1e17,1.00000000000000032e17]]}"#,
+                "found a vertex 1.0000000000000003e17 m away",
+            ),
+            (
+                r#"{"verts": [[0,0],[1e300,0],[1e300,1e300]]}"#,
+                "found a vertex 1e300 m away",
+            ),
+        ] {
+            let e = parse_houseexpo(text, Path::new("t.json"), 0.5)
+                .expect_err("refused")
+                .to_string();
+            assert!(
+                e.contains("field 'verts': expected vertices within") && e.contains(found),
+                "{e}"
+            );
+        }
     }
 
     /// Regression: a room box with its corners the wrong way round, [4, 2, 0, 0], covered no
