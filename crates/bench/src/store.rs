@@ -589,35 +589,13 @@ fn under_a_file(path: &Path, file: &Path) -> BenchError {
     }
 }
 
-/// Whether `a` and `b` name the same existing file, however they are spelled (relative or
-/// absolute, with `..`, through symbolic or hard links). A path that does not exist is no
-/// existing file, so it is the same as none.
-fn same_file(a: &Path, b: &Path) -> bool {
-    let (Ok(ma), Ok(mb)) = (std::fs::metadata(a), std::fs::metadata(b)) else {
-        return false;
-    };
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::MetadataExt;
-        ma.dev() == mb.dev() && ma.ino() == mb.ino()
-    }
-    #[cfg(not(unix))]
-    {
-        let _ = (ma, mb);
-        matches!(
-            (std::fs::canonicalize(a), std::fs::canonicalize(b)),
-            (Ok(x), Ok(y)) if x == y
-        )
-    }
-}
-
 /// Refuse to write `out` when it is the database `db` or one of its SQLite files beside it
 /// (`-wal`, `-shm`, `-journal`): writing there would destroy the results being read.
 /// `what` names what was to be written ("the CSV", "the report"). Check right before
 /// anything is written, once the directories of `out` exist.
 pub fn refuse_overwriting(db: &Path, out: &Path, what: &str) -> Result<(), BenchError> {
     for suffix in ["", "-wal", "-shm", "-journal"] {
-        if same_file(&sibling(db, suffix), out) {
+        if grid::io::same_existing_file(&sibling(db, suffix), out) {
             let which = if suffix.is_empty() {
                 "the results database".to_string()
             } else {

@@ -38,15 +38,11 @@ pub fn written_at(path: &Path) -> PathBuf {
     }
 }
 
-/// Whether `a` and `b` name one file: the same file that exists (also through hard links),
-/// or the same place for a file not made yet.
+/// Whether `a` and `b` name one file: the same file that exists (also through hard links,
+/// [`grid::io::same_existing_file`]), or the same place for a file not made yet.
 pub fn same_file(a: &Path, b: &Path) -> bool {
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::MetadataExt;
-        if let (Ok(x), Ok(y)) = (std::fs::metadata(a), std::fs::metadata(b)) {
-            return (x.dev(), x.ino()) == (y.dev(), y.ino());
-        }
+    if a.exists() && b.exists() {
+        return grid::io::same_existing_file(a, b);
     }
     written_at(a) == written_at(b)
 }

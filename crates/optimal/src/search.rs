@@ -291,21 +291,25 @@ struct VisCache {
     most: usize,
 }
 
-/// Make room for `most` more entries in `v`, growing by a quarter of its length rather
-/// than doubling it, so that what the memory budget counts stays near what is held.
-fn room_for<T>(v: &mut Vec<T>, most: usize) {
-    if v.capacity() - v.len() < most {
-        v.reserve_exact(most.max(v.len() / 4));
-    }
-}
-
-/// The bytes [`room_for`] would add to `v` (of `size`-byte entries) for `most` more.
-fn room_bytes<T>(v: &[T], cap: usize, most: usize, size: usize) -> usize {
-    if cap - v.len() < most {
-        most.max(v.len() / 4) * size
+/// The entries [`room_for`] adds to a vector of `len` entries and capacity `cap` for `most`
+/// more: none if they fit, else a quarter of its length (at least `most`).
+fn growth(len: usize, cap: usize, most: usize) -> usize {
+    if cap - len < most {
+        most.max(len / 4)
     } else {
         0
     }
+}
+
+/// Make room for `most` more entries in `v`, growing by a quarter of its length rather
+/// than doubling it, so that what the memory budget counts stays near what is held.
+fn room_for<T>(v: &mut Vec<T>, most: usize) {
+    v.reserve_exact(growth(v.len(), v.capacity(), most));
+}
+
+/// The bytes [`room_for`] would add to `v` for `most` more entries.
+fn room_bytes<T>(v: &Vec<T>, most: usize) -> usize {
+    growth(v.len(), v.capacity(), most) * std::mem::size_of::<T>()
 }
 
 impl VisCache {
@@ -372,13 +376,7 @@ impl VisCache {
 
     /// The bytes the next view may add to what [`VisCache::bytes`] counts.
     fn growth_bytes(&self) -> usize {
-        room_bytes(&self.data, self.data.capacity(), self.most, 4)
-            + room_bytes(
-                &self.word_data,
-                self.word_data.capacity(),
-                2 * self.most,
-                16,
-            )
+        room_bytes(&self.data, self.most) + room_bytes(&self.word_data, 2 * self.most)
     }
 
     /// Forget every computed view, returning its memory: views are computed again on use,

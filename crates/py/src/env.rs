@@ -245,8 +245,9 @@ struct State {
     /// place in its [`ObsPool`]).
     marks: Vec<Mark>,
     /// The assigners' proposals for the pending decision (baseline actions), each made
-    /// once: a proposal draws from the episode's strategy stream, so asking again would
-    /// draw again and change the answer and the episode.
+    /// once: asked again, an assigner that keeps state between decisions (MTSP's routes,
+    /// SGA's centres) could answer otherwise, and the session would keep one more
+    /// proposal ([`sim::Session::propose`]).
     proposals: Vec<(AssignerKind, Vec<Option<Goal>>)>,
 }
 
@@ -282,7 +283,7 @@ impl State {
 
     /// The goals `assigner` proposes for the pending decision among `cells` (the same
     /// candidates at every call of the decision), proposed once per decision: asked again,
-    /// it gives the same goals without drawing from the strategy stream again.
+    /// it gives the same goals without running the assigner again.
     fn propose(
         &mut self,
         assigner: AssignerKind,
@@ -1240,8 +1241,8 @@ impl EnvCore {
     }
 
     /// The action a paper's preset would take now: its assigner's choice among the offered
-    /// candidates (drawing from the episode's strategy stream at the first ask of a
-    /// decision; asked again, it gives the same action without drawing).
+    /// candidates (drawing from a copy of the episode's strategy stream, which the episode
+    /// takes only if the step takes this action; asked again, the same action).
     fn baseline_action(
         &mut self,
         #[pyo3(from_py_with = preset_arg)] preset: String,

@@ -52,6 +52,7 @@ const TRACE_PER_SAMPLE: u64 = 32;
 /// packed, base64-encoded and embedded in the page): about 220 and 40 measured on the
 /// office above (243 MiB beside the trace's 64).
 const REPLAY_PER_MOVE: u64 = 260;
+/// Replay page bytes per cell (the truth's classes and the changes, packed).
 const REPLAY_PER_CELL: u64 = 48;
 
 /// The most moves a run of a sensor of `range_cells` cells is expected to take on a map
@@ -59,7 +60,7 @@ const REPLAY_PER_CELL: u64 = 48;
 /// taken as cells / sqrt(range) (measured: a one-cell sensor on a 1 M-cell office
 /// 923,000 moves; `dt500` with a 30-cell range there 88,000 against 183,000; `dt500` and
 /// Holz's 160-cell laser on willow-full's 1.1 M cells about 29,000 against 87,000).
-pub fn moves_bound(cells: usize, range_cells: f64) -> u64 {
+fn moves_bound(cells: usize, range_cells: f64) -> u64 {
     (cells as f64 / range_cells.max(1.0).sqrt()).ceil() as u64
 }
 

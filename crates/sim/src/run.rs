@@ -589,12 +589,12 @@ impl<'a> Session<'a> {
         &self.team.proposed
     }
 
-    /// [`Session::propose`], drawing from the run's strategy stream itself.
-    fn propose_drawing(&mut self, assigner: AssignerKind, cells: &[u32]) -> &[Option<Goal>] {
+    /// [`Session::propose`] into `proposed`, drawing from the run's strategy stream itself.
+    fn propose_drawing(&mut self, assigner: AssignerKind, cells: &[u32]) {
         let t = &mut self.team;
         if !t.pending {
             t.proposed.fill(None);
-            return &t.proposed;
+            return;
         }
         t.offered.clear();
         for &c in cells {
@@ -603,7 +603,7 @@ impl<'a> Session<'a> {
             }
         }
         if assigner == AssignerKind::Nearest && t.nearest_from_searches(&self.robots) {
-            return &t.proposed;
+            return;
         }
         let mut ctx = DecisionCtx {
             known: t.belief.known(),
@@ -621,7 +621,6 @@ impl<'a> Session<'a> {
             memory: &mut t.memory,
         };
         assigner.assign(&mut ctx, &t.offered, &mut t.proposed);
-        &t.proposed
     }
 
     /// Give the deciding robots their goals (one entry per robot; `None` = no goal, the robot

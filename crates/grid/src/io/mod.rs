@@ -60,6 +60,29 @@ pub fn missing_folder(path: &Path) -> Option<&Path> {
         .filter(|d| !d.as_os_str().is_empty() && !d.is_dir())
 }
 
+/// Whether `a` and `b` name the same existing file, however they are spelled (relative or
+/// absolute, with `..`, through symbolic or hard links). A path that does not exist is no
+/// existing file, so it is the same as none. The one test of every writer that must not
+/// write over what it reads (study stores, the CLI's outputs).
+pub fn same_existing_file(a: &Path, b: &Path) -> bool {
+    let (Ok(ma), Ok(mb)) = (std::fs::metadata(a), std::fs::metadata(b)) else {
+        return false;
+    };
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::MetadataExt;
+        ma.dev() == mb.dev() && ma.ino() == mb.ino()
+    }
+    #[cfg(not(unix))]
+    {
+        let _ = (ma, mb);
+        matches!(
+            (std::fs::canonicalize(a), std::fs::canonicalize(b)),
+            (Ok(x), Ok(y)) if x == y
+        )
+    }
+}
+
 /// Whether `r` metres per cell is a resolution maps may have: positive and at most
 /// [`MAX_RESOLUTION_M`] (so not NaN). The one rule of map files, map messages, the CLI and
 /// Python.
