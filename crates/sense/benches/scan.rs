@@ -1,13 +1,18 @@
 //! One `los` scan + `KnownGrid` integration at r = 100 cells, the template build, the
 //! ray template against shadow casting ([`sense::shadow`]) at several ranges, and Holz et
 //! al.'s laser at 0.05 m facing a move heading (beam tree) and another (beams walked), and
-//! Explore-Bench's square window at 0.1 m.
+//! Explore-Bench's square window at 0.1 m; and a scan read from a remembered line of sight
+//! ([`sense::SightCache`]) against shadow casting at r = 35 (7 m at 0.2 m), with all in
+//! range unseen or only a strip at its edge.
 
 use std::hint::black_box;
 
 use criterion::{BatchSize, Criterion, criterion_group, criterion_main};
 use grid::{Cell, Grid, Occ};
-use sense::{Belief, KnownGrid, LidarSensor, LosSensor, LosTemplate, Observation, Pose, Sensor};
+use sense::{
+    Belief, KnownGrid, LidarSensor, LosSensor, LosTemplate, Observation, Pose, Sensor, SightBudget,
+    SightCache, Unseen,
+};
 
 const N: usize = 400;
 const R: f64 = 100.0;
@@ -28,6 +33,22 @@ fn rooms() -> Grid<Occ> {
     for y in (10..N).step_by(40) {
         for x in (10..N).step_by(40) {
             g.set(Cell::new(x as i32, y as i32), Occ::Occupied);
+        }
+    }
+    g
+}
+
+/// 400×400 cells, about 5 % of them single obstacles scattered at random (a fixed
+/// sequence), as the `potholes` environment's.
+fn holes() -> Grid<Occ> {
+    let mut g = Grid::new(N, N, Occ::Free);
+    let mut x = 0x9e37_79b9_7f4a_7c15u64;
+    for c in g.data_mut() {
+        x ^= x << 13;
+        x ^= x >> 7;
+        x ^= x << 17;
+        if x.is_multiple_of(20) {
+            *c = Occ::Occupied;
         }
     }
     g
@@ -116,6 +137,35 @@ fn bench(c: &mut Criterion) {
                 black_box(obs.len())
             })
         });
+    }
+    // A remembered line of sight against shadow casting, r = 35.
+    let los = LosSensor::new(35.0).expect("valid range");
+    for (name, truth) in [("holes", holes()), ("rooms", rooms())] {
+        let cache =
+            SightCache::new(&truth, los.clone(), SightBudget::new(u64::MAX / 2)).expect("fits");
+        let mut obs = Observation::new();
+        // The second scan from a cell makes its set.
+        cache.scan(pose, &mut obs);
+        cache.scan(pose, &mut obs);
+        let fresh = Unseen::new(&truth, 1, 2);
+        // Sensed: everything but the last 5 columns in range, east of the robot.
+        let mut most = Unseen::new(&truth, 1, 2);
+        let sensed = (0..truth.len() as u32).filter(|&i| (i as usize % N) < 220 + 30);
+        most.record(0, sensed);
+        for (which, unseen) in [("unseen", &fresh), ("strip", &most)] {
+            c.bench_function(&format!("los_scan_unseen_r35_{name}_{which}"), |b| {
+                b.iter(|| {
+                    los.scan_unseen(black_box(&truth), pose, unseen, &mut obs);
+                    black_box(obs.len())
+                })
+            });
+            c.bench_function(&format!("sight_scan_unseen_r35_{name}_{which}"), |b| {
+                b.iter(|| {
+                    cache.scan_unseen(pose, black_box(unseen), &mut obs);
+                    black_box(obs.len())
+                })
+            });
+        }
     }
     let mut g = c.benchmark_group("template");
     g.sample_size(10);

@@ -27,6 +27,9 @@
 //! the line-of-sight sensor; the latter also stops each octant's shadow casting after the
 //! last block holding one), so that a robot crossing explored space pays little for it.
 //!
+//! [`SightCache`] remembers, per cell of one ground truth, what the line-of-sight sensor
+//! sees from it, for the many runs of a study on one map (the same scans, made once).
+//!
 //! Information gain ([`gain`]): the expected entropy drop of a predicted scan on a belief
 //! ([`Sensor::predict`]), for decision-theoretic exploration.
 //!
@@ -63,6 +66,7 @@ pub mod ray_template;
 pub mod segment;
 pub mod sensor;
 pub mod shadow;
+pub mod sight_cache;
 pub mod sonar;
 pub mod spec;
 pub mod square;
@@ -80,6 +84,7 @@ pub use los::LosSensor;
 pub use ray_template::{LosTemplate, MAX_TEMPLATE_RANGE_CELLS};
 pub use segment::{los_visible, segment_clear};
 pub use sensor::{Observation, Pose, Sensor};
+pub use sight_cache::{SightBudget, SightCache};
 pub use sonar::{SonarError, SonarMode, SonarParams, SonarReading, SonarSensor};
 pub use spec::{Range, SensorSpec, YAMAUCHI_RANGE};
 pub use square::SquareSensor;

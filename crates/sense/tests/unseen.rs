@@ -5,54 +5,10 @@
 mod common;
 
 use common::origin_in;
+use common::sensed::{Sensed, arb_case, unseen_of};
 use grid::{Grid, Occ};
 use proptest::prelude::*;
 use sense::{LidarSensor, LosSensor, Observation, Pose, Sensor, SquareSensor, Unseen};
-
-/// Who sensed a cell before the scan: nobody, one robot, or two.
-#[derive(Clone, Copy, Debug, PartialEq)]
-enum Sensed {
-    None,
-    One(usize),
-    Two(usize, usize),
-}
-
-/// A random ground truth (some of it Unknown, the outside of a plan), the number of robots
-/// and, per cell, who of them has sensed it.
-fn arb_case() -> impl Strategy<Value = (Grid<Occ>, usize, Vec<Sensed>)> {
-    (1usize..=40, 1usize..=40, 0u32..=60, 1usize..=3, 0u32..=100).prop_flat_map(
-        |(w, h, density, robots, known)| {
-            proptest::collection::vec((0u32..100, 0u32..100, 0usize..3, 0usize..3), w * h).prop_map(
-                move |rolls| {
-                    let truth: Vec<Occ> = rolls
-                        .iter()
-                        .map(|&(roll, ..)| match roll {
-                            r if r < density && r % 4 == 0 => Occ::Unknown,
-                            r if r < density => Occ::Occupied,
-                            _ => Occ::Free,
-                        })
-                        .collect();
-                    let sensed = rolls
-                        .iter()
-                        .map(|&(_, k, a, b)| {
-                            let (a, b) = (a % robots, b % robots);
-                            match k {
-                                k if k >= known => Sensed::None,
-                                k if k % 3 == 0 && a != b => Sensed::Two(a, b),
-                                _ => Sensed::One(a),
-                            }
-                        })
-                        .collect();
-                    (
-                        Grid::from_vec(w, h, truth).expect("w*h cells"),
-                        robots,
-                        sensed,
-                    )
-                },
-            )
-        },
-    )
-}
 
 /// For every robot: the two scans agree on the cells that would tell it something (nobody
 /// sensed them, or one other robot did), and the short one reports only what the full one
@@ -66,19 +22,7 @@ fn check(
     pose: Pose,
     exact: bool,
 ) -> Result<(), TestCaseError> {
-    let mut unseen = Unseen::new(truth, robots, shift);
-    for (i, &s) in sensed.iter().enumerate() {
-        match s {
-            Sensed::None => {}
-            Sensed::One(a) => {
-                unseen.record(a, [i as u32]);
-            }
-            Sensed::Two(a, b) => {
-                unseen.record(a, [i as u32]);
-                unseen.record(b, [i as u32]);
-            }
-        }
-    }
+    let mut unseen = unseen_of(truth, robots, sensed, shift);
     let mut full = Observation::new();
     sensor.scan(truth, pose, &mut full);
     let mut all = full.cells.clone();
@@ -129,7 +73,7 @@ proptest! {
 
     #[test]
     fn lidar_scan_unseen_keeps_every_unknown_cell(
-        (truth, robots, sensed) in arb_case(),
+        (truth, robots, sensed) in arb_case(40),
         r in prop_oneof![0.0f64..12.0, 12.0f64..60.0],
         fov in prop_oneof![Just(360.0), Just(180.0), 1.0f64..360.0],
         res in prop_oneof![Just(1.0), 0.25f64..20.0],
@@ -144,7 +88,7 @@ proptest! {
 
     #[test]
     fn los_scan_unseen_keeps_every_unknown_cell(
-        (truth, robots, sensed) in arb_case(),
+        (truth, robots, sensed) in arb_case(40),
         // Below 20 cells the ray template scans, from 20 on shadow casting.
         r in prop_oneof![0.0f64..20.0, 20.0f64..45.0],
         shift in 0u32..=4,
@@ -157,7 +101,7 @@ proptest! {
 
     #[test]
     fn square_scan_unseen_keeps_every_unknown_cell(
-        (truth, robots, sensed) in arb_case(),
+        (truth, robots, sensed) in arb_case(40),
         r in 0.0f64..30.0,
         shift in 0u32..=4,
         (sx, sy) in (0i32..40, 0i32..40),

@@ -9,3 +9,4 @@ use grid::{Cell, Grid, Occ};
 pub fn origin_in(grid: &Grid<Occ>, x: i32, y: i32) -> Cell {
     Cell::new(x % grid.width() as i32, y % grid.height() as i32)
 }
+pub mod sensed;
