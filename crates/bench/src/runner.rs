@@ -192,19 +192,38 @@ pub fn run(plan: &Plan, db: &Path, opts: &RunOptions) -> Result<RunSummary, Benc
         ProgressBar::hidden()
     };
     let optimal_cache = crate::competitive::Cache::new(store.optimal_paths()?);
+    // What the trials leave of the memory limit is the line of sight's to remember.
+    let budget = sim::BatchSights::budget(
+        opts.memory_mb,
+        grid::machine::available(),
+        trials_at_once(plan, &pending, opts.threads),
+    );
+    let sights = sim::BatchSights::new(
+        pending.iter().map(|t| {
+            (
+                t.env,
+                &plan.envs[t.env].map,
+                plan.variants[t.variant].sensor,
+            )
+        }),
+        budget,
+    );
     let store = Mutex::new(store);
     let failed = Mutex::new(Vec::new());
     let fatal: Mutex<Option<BenchError>> = Mutex::new(None);
     let ran = std::sync::atomic::AtomicUsize::new(0);
     let work = || {
-        pending.par_iter().for_each(|t| {
+        pending.par_iter().enumerate().for_each(|(i, t)| {
             if fatal.lock().map(|f| f.is_some()).unwrap_or(true) {
                 return;
             }
             let t0 = Instant::now();
             let cfg = plan.config(t);
             let map = &plan.envs[t.env].map;
-            let outcome = std::panic::catch_unwind(AssertUnwindSafe(|| sim::run(map, &cfg)));
+            let sight = sights.get(i, map);
+            let outcome = std::panic::catch_unwind(AssertUnwindSafe(|| {
+                sim::run_sharing(map, &cfg, sight.as_ref())
+            }));
             let wall_s = t0.elapsed().as_secs_f64();
             let message = match outcome {
                 Ok(Ok(result)) => {
@@ -295,19 +314,10 @@ fn check_setups(
     Ok(stored.into_keys().collect())
 }
 
-/// Refuse to start when the largest trials, one per worker thread, would need more memory
-/// at once than `memory_mb` MiB or the machine has `available` (estimated before any runs):
-/// each trial's run and, with `[optimal]`, its optimal path's search budget.
-fn check_memory(
-    plan: &Plan,
-    pending: &[&Trial],
-    threads: Option<usize>,
-    memory_mb: Option<u64>,
-    available: Option<grid::memory::Available>,
-) -> Result<(), BenchError> {
-    let workers = worker_threads(threads, pending.len())
-        .unwrap_or_else(|| rayon::current_num_threads().min(pending.len()));
-    let needs: Vec<(u64, String)> = pending
+/// Each of `pending` trials' estimated bytes (its run and, with `[optimal]`, its optimal
+/// path's search budget) with its key.
+fn trial_needs(plan: &Plan, pending: &[&Trial]) -> Vec<(u64, String)> {
+    pending
         .iter()
         .map(|t| {
             let map = &plan.envs[t.env].map;
@@ -322,7 +332,29 @@ fn check_memory(
             };
             (run.saturating_add(search), t.key.clone())
         })
-        .collect();
+        .collect()
+}
+
+/// The bytes the largest of `pending` trials take when one runs on each worker thread.
+fn trials_at_once(plan: &Plan, pending: &[&Trial], threads: Option<usize>) -> u64 {
+    let workers = worker_threads(threads, pending.len())
+        .unwrap_or_else(|| rayon::current_num_threads().min(pending.len()));
+    sim::memory::at_once(&trial_needs(plan, pending), workers)
+}
+
+/// Refuse to start when the largest trials, one per worker thread, would need more memory
+/// at once than `memory_mb` MiB or the machine has `available` (estimated before any runs):
+/// each trial's run and, with `[optimal]`, its optimal path's search budget.
+fn check_memory(
+    plan: &Plan,
+    pending: &[&Trial],
+    threads: Option<usize>,
+    memory_mb: Option<u64>,
+    available: Option<grid::memory::Available>,
+) -> Result<(), BenchError> {
+    let workers = worker_threads(threads, pending.len())
+        .unwrap_or_else(|| rayon::current_num_threads().min(pending.len()));
+    let needs = trial_needs(plan, pending);
     let fix = if plan.optimal.is_some() {
         "use fewer threads (-j), maps with fewer cells, or a smaller [optimal] memory_mb"
     } else {

@@ -143,7 +143,7 @@ fn run_with_progress(truth: &Truth, cfg: &RunConfig, progress: bool) -> Result<s
     let steps = if progress { PROGRESS_STEPS } else { u64::MAX };
     let started = Instant::now();
     let mut bar: Option<(ProgressBar, Instant)> = None;
-    let result = sim::run_pausing(&truth.map, cfg, steps, |session| {
+    let result = sim::run_pausing(&truth.map, cfg, None, steps, |session| {
         let now = Instant::now();
         if now.duration_since(started) < PROGRESS_AFTER
             || bar

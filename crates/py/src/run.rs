@@ -10,7 +10,7 @@ use pyo3::types::{PyDict, PyList};
 use rayon::prelude::*;
 use sim::{RunConfig, RunResult};
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
-use std::sync::{Condvar, Mutex};
+use std::sync::{Arc, Condvar, Mutex};
 use std::time::Duration;
 
 use crate::map::{Map, memory_mb_arg};
@@ -188,8 +188,9 @@ fn clutter_layer(map: &Map, v: &Bound<'_, PyAny>) -> PyResult<grid::Grid<bool>> 
 }
 
 /// Refuse a batch whose largest runs, one per thread, would need more memory at once than
-/// `memory_mb` MiB or the machine has available (as `frontier bench` does for its trials).
-fn check_memory(jobs: &[Job], threads: Option<usize>, memory_mb: Option<u64>) -> PyResult<()> {
+/// `memory_mb` MiB or the machine has available (as `frontier bench` does for its trials);
+/// returns the bytes they take at once.
+fn check_memory(jobs: &[Job], threads: Option<usize>, memory_mb: Option<u64>) -> PyResult<u64> {
     let workers = threads
         .unwrap_or_else(rayon::current_num_threads)
         .min(jobs.len());
@@ -209,13 +210,23 @@ fn check_memory(jobs: &[Job], threads: Option<usize>, memory_mb: Option<u64>) ->
         grid::machine::available(),
         "use fewer threads (threads=...) or maps with fewer cells",
     )
-    .map_err(|e| value_error(e.to_string()))
+    .map_err(|e| value_error(e.to_string()))?;
+    Ok(sim::memory::at_once(&needs, workers))
 }
 
-/// Run a job (panics caught) until it ends, or until `stop` is raised (`None`).
-fn execute(j: &Job, stop: &AtomicBool) -> Result<Option<RunResult>, String> {
-    guarded(|| sim::run_pausing(&j.map.map, &j.cfg, SLICE, |_| !stop.load(Ordering::Relaxed)))?
-        .map_err(|e| e.to_string())
+/// Run a job (panics caught), its scans through `sight` if given ([`sim::BatchSights`]),
+/// until it ends, or until `stop` is raised (`None`).
+fn execute(
+    j: &Job,
+    sight: Option<&Arc<sense::SightCache>>,
+    stop: &AtomicBool,
+) -> Result<Option<RunResult>, String> {
+    guarded(|| {
+        sim::run_pausing(&j.map.map, &j.cfg, sight, SLICE, |_| {
+            !stop.load(Ordering::Relaxed)
+        })
+    })?
+    .map_err(|e| e.to_string())
 }
 
 /// Steps of a run between two looks at the stop flag (a run stops within a few
@@ -362,7 +373,7 @@ pub fn explore<'py>(
 ) -> PyResult<(String, Bound<'py, PyAny>, Bound<'py, PyAny>)> {
     let j = job(&map, kwargs.as_ref(), memory_mb)?;
     let stop = AtomicBool::new(false);
-    let r = with_checks(py, &stop, || execute(&j, &stop), |_| Ok(()))?
+    let r = with_checks(py, &stop, || execute(&j, None, &stop), |_| Ok(()))?
         .map_err(|e| {
             if e.starts_with("internal error") {
                 internal(e)
@@ -446,7 +457,13 @@ pub fn explore_many<'py>(
         sim::check_run(&j.map.map, &j.cfg, sensed.insert(sensor))
             .map_err(|e| value_error(format!("run {i}: {e}")))?;
     }
-    check_memory(&jobs, threads, memory_mb)?;
+    let at_once = check_memory(&jobs, threads, memory_mb)?;
+    // Runs on the same map share what the line-of-sight sensor sees from its cells.
+    let sights = sim::BatchSights::new(
+        jobs.iter()
+            .map(|j| (Arc::as_ptr(&j.map.map) as usize, &*j.map.map, j.cfg.sensor)),
+        sim::BatchSights::budget(memory_mb, grid::machine::available(), at_once),
+    );
     let pool = match threads {
         // No more threads than runs: a thread with no run to take would only be started.
         Some(n) => Some(
@@ -461,11 +478,14 @@ pub fn explore_many<'py>(
     let work = || {
         let all = || -> Vec<Result<Option<String>, String>> {
             jobs.par_iter()
-                .map(|j| {
+                .enumerate()
+                .map(|(i, j)| {
                     if stop.load(Ordering::Relaxed) {
                         return Ok(None);
                     }
-                    let r = execute(j, &stop).map(|r| r.map(|r| summary(j, &r, timing)));
+                    let sight = sights.get(i, &j.map.map);
+                    let r = execute(j, sight.as_ref(), &stop)
+                        .map(|r| r.map(|r| summary(j, &r, timing)));
                     done.fetch_add(1, Ordering::Relaxed);
                     r
                 })

@@ -148,6 +148,25 @@ def test_explore_many_matches_explore_in_order(office):
     assert (df.groupby("strategy").size() == 3).all()
 
 
+def test_explore_many_on_one_map_shares_its_line_of_sight_with_the_same_rows():
+    # Runs of a batch on one map share what the line-of-sight sensor sees from each cell
+    # (made at the second scan from a cell, read at later ones): every row equals the run
+    # made alone, for one robot and teams, with the ray template (3 m = 15 cells) and
+    # shadow casting (5 m = 25 cells).
+    holes = frontier.Map.generate("potholes", seed=2, size=(12, 10), resolution=0.2)
+    runs = [
+        dict(map=holes, strategy=s, robots=m, sensor=f"los:r={r}", seed=seed)
+        for s, m in (("cf-rr", 1), ("ha-cc", 3), ("ma-rfe", 3))
+        for r in (3, 5)
+        for seed in range(3)
+    ]
+    rows = frontier.explore_many(runs, threads=2)
+    for run, row in zip(runs, rows):
+        kw = {k: v for k, v in run.items() if k != "map"}
+        one = frontier.explore(holes, **kw).row()
+        assert {k: row[k] for k in one} == one, run
+
+
 @pytest.mark.parametrize(
     "kwargs,error,message",
     [

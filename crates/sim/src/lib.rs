@@ -8,7 +8,9 @@
 //! or the coverage goal is met (Faigl & Kulich's steps 1–8; DESIGN.md "One loop").
 //! [`Session`] is the same loop stopped at every decision, so that goals can come from
 //! outside (a learning agent in the Python package's Gymnasium environment); `run()` is a
-//! session whose strategy decides.
+//! session whose strategy decides. A batch of runs on the same maps (a study's trials)
+//! shares what the line-of-sight sensor sees from each cell ([`BatchSights`],
+//! [`run_sharing`]).
 //!
 //! `sim` is deterministic given (map, configuration, seed): all randomness comes from
 //! streams derived from the seed, and ties are broken by robot id and cell index.
@@ -35,6 +37,7 @@ pub mod metrics;
 pub mod motion;
 pub mod run;
 pub mod seed;
+pub mod sight;
 pub mod spin_pool;
 pub mod truth;
 
@@ -46,5 +49,6 @@ pub use metrics::{
 pub use motion::Motion;
 pub use run::{
     BUMP_S, Session, Status, check_config, check_range_beyond_clearance, check_run,
-    check_sensor_range, run, run_pausing,
+    check_sensor_range, run, run_pausing, run_sharing,
 };
+pub use sight::BatchSights;

@@ -219,8 +219,15 @@ pub fn check_batch(
         if workers == 1 { "" } else { "s" },
         largest.div_ceil(1 << 20)
     );
-    let at_once = order.iter().take(workers).map(|&k| needs[k].0).sum();
-    check(&what, at_once, budget_mb, available, fix)
+    check(&what, at_once(needs, workers), budget_mb, available, fix)
+}
+
+/// The bytes the largest of `needs` (estimated bytes of each run) take when one runs on
+/// each of `workers` threads: what [`check_batch`] checks.
+pub fn at_once(needs: &[(u64, String)], workers: usize) -> u64 {
+    let mut bytes: Vec<u64> = needs.iter().map(|n| n.0).collect();
+    bytes.sort_unstable_by(|a, b| b.cmp(a));
+    bytes.iter().take(workers.max(1)).sum()
 }
 
 #[cfg(test)]

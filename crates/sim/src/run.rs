@@ -128,6 +128,9 @@ struct Team<'a> {
     pocket: Pocket,
     sensor: Box<dyn Sensor>,
     sweep: Box<dyn Sensor>,
+    /// The line of sight remembered per cell, shared with other runs of the same ground
+    /// truth ([`Session::share_sight`]): the same scans as `sensor`'s.
+    sight: Option<std::sync::Arc<sense::SightCache>>,
     belief: Box<dyn Belief>,
     /// Who sensed which cell: a team's overlap, and what a scan could still tell (`None`
     /// for a single robot whose scans report everything).
@@ -216,16 +219,36 @@ pub fn run(truth: &GridMap, cfg: &RunConfig) -> Result<RunResult, SimError> {
     Ok(session.finish())
 }
 
+/// [`run()`], its scans made through `sight` where it serves the run
+/// ([`Session::share_sight`]): the same result.
+pub fn run_sharing(
+    truth: &GridMap,
+    cfg: &RunConfig,
+    sight: Option<&std::sync::Arc<sense::SightCache>>,
+) -> Result<RunResult, SimError> {
+    let mut session = Session::start(Cow::Borrowed(truth), Cow::Borrowed(cfg), false)?;
+    if let Some(s) = sight {
+        session.share_sight(s.clone());
+    }
+    session.advance();
+    Ok(session.finish())
+}
+
 /// [`run()`], pausing every `steps` steps of the loop to call `between` with the session
-/// (to show progress, or to look at a stop flag): the same run. `between` returning
-/// `false` stops it, without a result (`None`).
+/// (to show progress, or to look at a stop flag), its scans made through `sight` where it
+/// serves the run ([`Session::share_sight`]): the same run. `between` returning `false`
+/// stops it, without a result (`None`).
 pub fn run_pausing(
     truth: &GridMap,
     cfg: &RunConfig,
+    sight: Option<&std::sync::Arc<sense::SightCache>>,
     steps: u64,
     mut between: impl FnMut(&Session<'_>) -> bool,
 ) -> Result<Option<RunResult>, SimError> {
     let mut session = Session::start(Cow::Borrowed(truth), Cow::Borrowed(cfg), false)?;
+    if let Some(s) = sight {
+        session.share_sight(s.clone());
+    }
     while session.advance_for(steps).is_none() {
         if !between(&session) {
             return Ok(None);
@@ -342,6 +365,7 @@ impl<'a> Session<'a> {
             range_cells: sensor.range_cells(),
             sensor,
             sweep,
+            sight: None,
             belief,
             unseen,
             skip_known,
@@ -801,6 +825,20 @@ impl<'a> Session<'a> {
         &self.team.cfg
     }
 
+    /// Scan through `sight`, the line of sight of this run's ground truth remembered per
+    /// cell and shared with other runs of it: the same scans, made once for all of them.
+    /// Taken only if the run senses with the line-of-sight sensor of the cache's range on
+    /// the very ground truth the cache was made for; returns whether it was.
+    pub fn share_sight(&mut self, sight: std::sync::Arc<sense::SightCache>) -> bool {
+        let team = &mut self.team;
+        let los = matches!(team.cfg.sensor, SensorSpec::Los { .. });
+        let serves = los && sight.serves(&team.truth.cells, team.sensor.range_cells());
+        if serves {
+            team.sight = Some(sight);
+        }
+        serves
+    }
+
     /// The result of the run so far (a run stopped before its end reports the step limit).
     pub fn finish(self) -> RunResult {
         let Session {
@@ -1165,11 +1203,17 @@ impl Team<'_> {
             );
         } else {
             let sensor = if sweep { &self.sweep } else { &self.sensor };
-            match &mut self.unseen {
-                Some(u) if self.skip_known => {
+            let sight = self.sight.as_ref().filter(|_| !sweep);
+            match (&mut self.unseen, sight) {
+                (Some(u), Some(sight)) if self.skip_known => {
+                    u.look_as(who.0);
+                    sight.scan_unseen(pose, u, &mut self.obs);
+                }
+                (Some(u), None) if self.skip_known => {
                     u.look_as(who.0);
                     sensor.scan_unseen(&self.truth.cells, pose, u, &mut self.obs);
                 }
+                (_, Some(sight)) => sight.scan(pose, &mut self.obs),
                 _ => sensor.scan(&self.truth.cells, pose, &mut self.obs),
             }
             self.belief.integrate(&self.obs, &mut self.changed);

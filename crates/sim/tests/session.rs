@@ -215,14 +215,14 @@ fn advancing_in_slices_equals_one_advance() {
             assert_same_run(&s.finish(), &want, &format!("{preset} slice {slice}"));
             // the same through run_pausing; stopped at the first pause, no result
             let mut looks = 0;
-            let paused = sim::run_pausing(&map, &cfg, slice, |_| {
+            let paused = sim::run_pausing(&map, &cfg, None, slice, |_| {
                 looks += 1;
                 true
             });
             let paused = paused.expect("run").expect("never stopped");
             assert_same_run(&paused, &want, &format!("{preset} run_pausing {slice}"));
             assert_eq!(looks, pauses, "{preset} slice {slice}");
-            let stopped = sim::run_pausing(&map, &cfg, slice, |_| false).expect("run");
+            let stopped = sim::run_pausing(&map, &cfg, None, slice, |_| false).expect("run");
             assert!(stopped.is_none(), "{preset} slice {slice}");
         }
     }
