@@ -466,6 +466,31 @@ pub struct Memory {
     pub segments: crate::segment::State,
 }
 
+/// What assigners carry from one decision to the next and so changes what they decide
+/// later: Solanas & Garcia's cluster centres (MTSP starts its clusters afresh, the others
+/// keep only buffers). A proposal that is only asked for ([`Memory::put_back`]) must not
+/// leave it changed.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Kept {
+    sga_centres: Vec<crate::kmeans::Point>,
+}
+
+impl Memory {
+    /// A copy of what the assigners carry between decisions.
+    pub fn kept(&self) -> Kept {
+        Kept {
+            sga_centres: self.sga.centres().to_vec(),
+        }
+    }
+
+    /// Put `kept` back as what the assigners carry, returning what they carried.
+    pub fn put_back(&mut self, kept: Kept) -> Kept {
+        Kept {
+            sga_centres: self.sga.replace_centres(kept.sga_centres),
+        }
+    }
+}
+
 /// A goal chosen for one robot, with its path cost in cells.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Goal {

@@ -103,6 +103,14 @@ struct Robot {
     goal_was_frontier: bool,
 }
 
+/// A proposal of the pending decision and what it left: the strategy stream and the
+/// assigners' kept state, taken by the session only with the proposal's goals.
+struct Asked {
+    goals: Vec<Option<Goal>>,
+    rng: Pcg64Mcg,
+    kept: explore::decision::Kept,
+}
+
 /// Everything the loop owns besides the robots.
 struct Team<'a> {
     truth: Cow<'a, GridMap>,
@@ -118,10 +126,10 @@ struct Team<'a> {
     offered: CandidateSet,
     /// Goals an assigner proposed.
     proposed: Vec<Option<Goal>>,
-    /// Each proposal of the pending decision with the strategy stream as it left it: the
-    /// stream is put back after a proposal, and taken from the proposal whose goals are
-    /// chosen ([`Session::choose`]).
-    asked: Vec<(Vec<Option<Goal>>, Pcg64Mcg)>,
+    /// Each proposal of the pending decision ([`Asked`]): the strategy stream and what the
+    /// assigners carry between decisions are put back after a proposal, and taken from the
+    /// proposal whose goals are chosen ([`Session::choose`]).
+    asked: Vec<Asked>,
     /// Buffers of information-gain predictions.
     gain_scratch: sense::gain::GainScratch,
     /// The fill that tells whether a robot is penned in ([`Team::back_off`]).
@@ -603,12 +611,15 @@ impl<'a> Session<'a> {
     /// proposal.)
     pub fn propose(&mut self, assigner: AssignerKind, cells: &[u32]) -> &[Option<Goal>] {
         let t = &mut self.team;
-        let before = t.pending.then(|| t.rng.clone());
+        let before = t.pending.then(|| (t.rng.clone(), t.memory.kept()));
         self.propose_drawing(assigner, cells);
         let t = &mut self.team;
-        if let Some(before) = before {
-            let after = std::mem::replace(&mut t.rng, before);
-            t.asked.push((t.proposed.clone(), after));
+        if let Some((rng, kept)) = before {
+            t.asked.push(Asked {
+                goals: t.proposed.clone(),
+                rng: std::mem::replace(&mut t.rng, rng),
+                kept: t.memory.put_back(kept),
+            });
         }
         &self.team.proposed
     }
@@ -692,12 +703,16 @@ impl<'a> Session<'a> {
             };
             t.out[r] = Some(Goal { cell, cost });
         }
-        // The stream as the proposal of these goals left it, if one was asked for.
-        let taken = t.asked.iter().position(|(proposed, _)| {
-            (0..m).all(|r| !t.deciding[r] || proposed[r].map(|g| g.cell) == goals[r])
+        // The stream and kept state as the last proposal of these goals left them, if one
+        // was asked for: the one the caller acted on (asked for after any other that
+        // happened to propose the same goals).
+        let taken = t.asked.iter().rposition(|a| {
+            (0..m).all(|r| !t.deciding[r] || a.goals[r].map(|g| g.cell) == goals[r])
         });
         if let Some(k) = taken {
-            t.rng = t.asked.swap_remove(k).1;
+            let a = t.asked.swap_remove(k);
+            t.rng = a.rng;
+            t.memory.put_back(a.kept);
         }
         t.asked.clear();
         t.pending = false;

@@ -363,3 +363,108 @@ fn nearest_candidates_among_many_equal_a_full_search() {
         "{many} of {decisions} decisions had many candidates"
     );
 }
+
+/// Regression: an assigner that keeps state between decisions (SGA its cluster centres)
+/// updated it when it was only asked, so that a session which asked a proposal without
+/// taking it went on otherwise than one that did not ask; and a session that took goals
+/// two proposals shared took the strategy stream as the first of them left it, not as the
+/// one acted on. A proposal now works on a copy of that state and stream, which the
+/// session adopts from the last proposal of the goals it takes.
+#[test]
+fn regression_asking_a_proposal_leaves_the_kept_state_as_it_was() {
+    let map = office();
+    // (preset, robots, seed): sga-rfe's case went otherwise when an ask changed its centres,
+    // ma-rfe's when an earlier proposal of the same goals gave the session its stream.
+    for (preset, robots, seed) in [
+        ("sga-rfe", 4, 2),
+        ("sga-af", 3, 0),
+        ("ma-rfe", 3, 0),
+        ("ga-rfe", 3, 1),
+    ] {
+        {
+            let cfg = config(preset, robots, seed);
+            let want = sim::run(&map, &cfg).expect("run");
+            // Ask twice, take the second.
+            let mut s =
+                Session::start(Cow::Borrowed(&map), Cow::Borrowed(&cfg), true).expect("start");
+            while s.advance() == Status::Decide {
+                let first = common::proposed_goals(&mut s, &cfg);
+                let second = common::proposed_goals(&mut s, &cfg);
+                assert_eq!(first, second, "{preset}: the same proposal asked again");
+                s.choose(&second).expect("proposed");
+            }
+            assert_same_run(
+                &s.finish(),
+                &want,
+                &format!("{preset} seed {seed}, asked twice"),
+            );
+            // Ask another assigner's proposal, and one not taken, before the strategy's.
+            let mut s =
+                Session::start(Cow::Borrowed(&map), Cow::Borrowed(&cfg), true).expect("start");
+            while s.advance() == Status::Decide {
+                let cells = s.candidates().to_vec();
+                let _ = s.propose(explore::assign::AssignerKind::Greedy, &cells);
+                let goals = common::proposed_goals(&mut s, &cfg);
+                s.choose(&goals).expect("proposed");
+            }
+            assert_same_run(
+                &s.finish(),
+                &want,
+                &format!("{preset} seed {seed}, asked other"),
+            );
+            // Take greedy's goals, asking the strategy's proposal first or not: the same.
+            let greedy = |ask: bool| {
+                let mut s =
+                    Session::start(Cow::Borrowed(&map), Cow::Borrowed(&cfg), true).expect("start");
+                while s.advance() == Status::Decide {
+                    if ask {
+                        let _ = common::proposed_goals(&mut s, &cfg);
+                    }
+                    let cells = s.candidates().to_vec();
+                    let goals: Vec<Option<u32>> = s
+                        .propose(explore::assign::AssignerKind::Greedy, &cells)
+                        .iter()
+                        .map(|g| g.map(|g| g.cell))
+                        .collect();
+                    s.choose(&goals).expect("proposed");
+                }
+                s.finish()
+            };
+            assert_same_run(
+                &greedy(true),
+                &greedy(false),
+                &format!("{preset} seed {seed}, greedy's goals"),
+            );
+            // Take the strategy's goals at every other decision and greedy's between, asking
+            // the strategy at every decision or only when its goals are taken: the same.
+            let alternate = |ask_always: bool| {
+                let mut s =
+                    Session::start(Cow::Borrowed(&map), Cow::Borrowed(&cfg), true).expect("start");
+                let mut k = 0;
+                while s.advance() == Status::Decide {
+                    let own = k % 2 == 0;
+                    k += 1;
+                    let strategy =
+                        (own || ask_always).then(|| common::proposed_goals(&mut s, &cfg));
+                    let goals = match strategy {
+                        Some(g) if own => g,
+                        _ => {
+                            let cells = s.candidates().to_vec();
+                            s.propose(explore::assign::AssignerKind::Greedy, &cells)
+                                .iter()
+                                .map(|g| g.map(|g| g.cell))
+                                .collect()
+                        }
+                    };
+                    s.choose(&goals).expect("proposed");
+                }
+                s.finish()
+            };
+            assert_same_run(
+                &alternate(true),
+                &alternate(false),
+                &format!("{preset} seed {seed}, alternate"),
+            );
+        }
+    }
+}

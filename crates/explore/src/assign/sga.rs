@@ -69,6 +69,11 @@ impl State {
     pub fn centres(&self) -> &[Point] {
         &self.centres
     }
+
+    /// Make `centres` the kept centres, returning the ones kept so far.
+    pub fn replace_centres(&mut self, centres: Vec<Point>) -> Vec<Point> {
+        std::mem::replace(&mut self.centres, centres)
+    }
 }
 
 /// Side of the blocks unknown cells are pooled into on a `w × h` map.
