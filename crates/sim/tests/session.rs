@@ -4,6 +4,8 @@
 
 mod common;
 
+use common::assert_same_run;
+
 use std::borrow::Cow;
 
 use explore::strategy::Strategy;
@@ -42,17 +44,6 @@ fn external(map: &GridMap, cfg: &RunConfig) -> RunResult {
 fn choose_as_the_assigner(s: &mut Session<'_>, cfg: &RunConfig) {
     let goals = common::proposed_goals(s, cfg);
     s.choose(&goals).expect("a proposed goal is reachable");
-}
-
-/// The same run: paths, decisions, moves, end, coverage curve, belief and starts.
-fn assert_same_run(got: &RunResult, want: &RunResult, what: &str) {
-    assert_eq!(got.path_length_m, want.path_length_m, "{what}");
-    assert_eq!(got.decisions, want.decisions, "{what}");
-    assert_eq!(got.moves, want.moves, "{what}");
-    assert_eq!(got.reason, want.reason, "{what}");
-    assert_eq!(got.coverage_curve, want.coverage_curve, "{what}");
-    assert_eq!(got.belief, want.belief, "{what}");
-    assert_eq!(got.starts, want.starts, "{what}");
 }
 
 #[test]

@@ -2,13 +2,16 @@
 //! be without it, whether the cache is empty, half made or full; and a run takes a cache
 //! only for its own ground truth and range.
 
+mod common;
+
 use std::borrow::Cow;
 use std::sync::Arc;
 
+use common::assert_same_run;
 use explore::strategy::Strategy;
 use grid::GridMap;
 use sense::{BeliefKind, LosSensor, Range, SensorSpec, SightBudget, SightCache};
-use sim::{RunConfig, RunResult, Session};
+use sim::{RunConfig, Session};
 use world::{EnvKind, EnvSpec};
 
 fn map(kind: EnvKind, seed: u64) -> GridMap {
@@ -26,18 +29,6 @@ fn config(preset: &str, robots: usize, r_m: f64, seed: u64) -> RunConfig {
     cfg.robots = robots;
     cfg.seed = seed;
     cfg
-}
-
-/// The same run: paths, decisions, moves, scans, end, coverage curve, overlap and belief.
-fn assert_same_run(got: &RunResult, want: &RunResult, what: &str) {
-    assert_eq!(got.path_length_m, want.path_length_m, "{what}");
-    assert_eq!(got.decisions, want.decisions, "{what}");
-    assert_eq!(got.moves, want.moves, "{what}");
-    assert_eq!(got.scans, want.scans, "{what}");
-    assert_eq!(got.reason, want.reason, "{what}");
-    assert_eq!(got.coverage_curve, want.coverage_curve, "{what}");
-    assert_eq!(got.overlap, want.overlap, "{what}");
-    assert_eq!(got.belief, want.belief, "{what}");
 }
 
 fn cache_for(map: &GridMap, r_m: f64, budget: u64) -> Arc<SightCache> {
