@@ -1,20 +1,23 @@
 //! A fixed ground truth's line of sight, remembered per cell: what [`LosSensor`] sees from
 //! a cell depends on the ground truth alone, so runs on the same map (a study's trials,
-//! the robots of a team, a robot passing a cell again) can share the answer.
+//! a batch of runs) can share the answer.
 //!
 //! A study runs thousands of trials on each of a few maps: the `faigl2013` suite runs about
 //! 8,500 on each of its nine maps and ranges, and every robot of every trial scans from
 //! every cell it enters. Shadow casting ([`crate::shadow`]) costs about the cells it sees
-//! plus its shadows' edges, most on maps of scattered obstacles, and it was a fifth of that
-//! suite. A [`SightCache`] keeps, per cell of one ground truth, the set of cells seen from
-//! it as one bit per target of the sensor's template (in the order a scan reports them),
-//! made by the first scan from that cell; a scan from a remembered cell reads its bits, keeps
-//! those the robot has still to learn from ([`Unseen::tells`]) and reports them in the same
-//! order as [`LosSensor`]: the same observation, bit for bit (a property test checks it).
+//! plus its shadows' edges, most on maps of scattered obstacles. A [`SightCache`] keeps,
+//! per cell of one ground truth, the set of cells seen from it as one bit per cell of the
+//! box in range, row after row. The set is made the second time a scan comes from the
+//! cell, so that cells scanned from once cost no more than without the cache. A scan from
+//! a remembered cell reads its bits 64 at a time against those the robot has still to
+//! learn from ([`Unseen::telling_bits`]) and reports them in the same order as
+//! [`LosSensor`], through a bitmap of the template's ranks: the same observation, bit for
+//! bit (property tests check it).
 //!
-//! The cache holds at most the bytes it is given; past them, scans from cells it has not
-//! remembered are made as [`LosSensor`] makes them. It can be shared between threads: a
-//! cell's set is made once, by whichever scan comes first, and never changes.
+//! The cache takes its bytes from a [`SightBudget`] it may share with other caches; past
+//! them, scans from cells it has not remembered are made as [`LosSensor`] makes them. It
+//! can be shared between threads: a cell's set is made once, by whichever scan comes
+//! first, and never changes.
 
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::{Arc, OnceLock};
