@@ -245,9 +245,9 @@ struct State {
     /// place in its [`ObsPool`]).
     marks: Vec<Mark>,
     /// The assigners' proposals for the pending decision (baseline actions), each made
-    /// once: asked again, an assigner that keeps state between decisions (MTSP's routes,
-    /// SGA's centres) could answer otherwise, and the session would keep one more
-    /// proposal ([`sim::Session::propose`]).
+    /// once: asked again, the session would keep one more proposal, and the last proposal
+    /// of the goals taken is the one whose draws the episode takes
+    /// ([`sim::Session::propose`]).
     proposals: Vec<(AssignerKind, Vec<Option<Goal>>)>,
 }
 
