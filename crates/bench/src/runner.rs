@@ -337,8 +337,7 @@ fn trial_needs(plan: &Plan, pending: &[&Trial]) -> Vec<(u64, String)> {
 
 /// The bytes the largest of `pending` trials take when one runs on each worker thread.
 fn trials_at_once(plan: &Plan, pending: &[&Trial], threads: Option<usize>) -> u64 {
-    let workers = worker_threads(threads, pending.len())
-        .unwrap_or_else(|| rayon::current_num_threads().min(pending.len()));
+    let workers = workers_running(threads, pending.len());
     sim::memory::at_once(&trial_needs(plan, pending), workers)
 }
 
@@ -352,8 +351,7 @@ fn check_memory(
     memory_mb: Option<u64>,
     available: Option<grid::memory::Available>,
 ) -> Result<(), BenchError> {
-    let workers = worker_threads(threads, pending.len())
-        .unwrap_or_else(|| rayon::current_num_threads().min(pending.len()));
+    let workers = workers_running(threads, pending.len());
     let needs = trial_needs(plan, pending);
     let fix = if plan.optimal.is_some() {
         "use fewer threads (-j), maps with fewer cells, or a smaller [optimal] memory_mb"
@@ -362,6 +360,12 @@ fn check_memory(
     };
     sim::memory::check_batch("trials", &needs, workers, memory_mb, available, fix)
         .map_err(|e| BenchError::Other(e.to_string()))
+}
+
+/// The threads `pending` trials run on: [`worker_threads`], or rayon's pool's, no more
+/// than there are trials.
+fn workers_running(requested: Option<usize>, pending: usize) -> usize {
+    worker_threads(requested, pending).unwrap_or_else(|| rayon::current_num_threads().min(pending))
 }
 
 /// Worker threads for `pending` trials when `requested` were asked for: never more than

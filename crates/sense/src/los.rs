@@ -296,28 +296,8 @@ impl Sensor for LosSensor {
     /// also stops each octant after the last column holding a block with such cells, and
     /// with none in range the template walk is not started.
     fn scan_unseen(&self, truth: &Grid<Occ>, pose: Pose, unseen: &Unseen, out: &mut Observation) {
-        out.clear();
-        out.origin = pose.cell;
         let columns = shadow::octant_columns(pose.cell, self.template.range(), unseen);
-        if columns.iter().all(|&c| c == 0) {
-            if let Some(i) = truth.checked_index(pose.cell)
-                && unseen.tells(i)
-            {
-                out.cells.push((i as u32, observed(truth.data()[i])));
-            }
-            return;
-        }
-        let keep = |i: usize| unseen.tells(i);
-        if self.template.range() >= FASTER_FROM_RANGE {
-            self.scan_by_shadows(truth, pose.cell, &columns, keep, &mut out.cells);
-        } else {
-            let cells = &mut out.cells;
-            self.for_each_seen(truth, pose.cell, |i, s| {
-                if keep(i as usize) {
-                    cells.push((i, s));
-                }
-            });
-        }
+        self.scan_unseen_within(truth, pose, unseen, &columns, out);
     }
 
     fn range_cells(&self) -> f64 {
@@ -330,6 +310,41 @@ impl Sensor for LosSensor {
 
     fn predict_unknown(&self, known: &Grid<Occ>, pose: Pose, out: &mut Vec<u32>) {
         self.predict_where(known, pose, |s| s == Occ::Unknown, out);
+    }
+}
+
+impl LosSensor {
+    /// [`Sensor::scan_unseen`] with `columns`, the [`shadow::octant_columns`] of `pose`
+    /// for `unseen`, already found.
+    pub(crate) fn scan_unseen_within(
+        &self,
+        truth: &Grid<Occ>,
+        pose: Pose,
+        unseen: &Unseen,
+        columns: &[i64; 8],
+        out: &mut Observation,
+    ) {
+        out.clear();
+        out.origin = pose.cell;
+        if columns.iter().all(|&c| c == 0) {
+            if let Some(i) = truth.checked_index(pose.cell)
+                && unseen.tells(i)
+            {
+                out.cells.push((i as u32, observed(truth.data()[i])));
+            }
+            return;
+        }
+        let keep = |i: usize| unseen.tells(i);
+        if self.template.range() >= FASTER_FROM_RANGE {
+            self.scan_by_shadows(truth, pose.cell, columns, keep, &mut out.cells);
+        } else {
+            let cells = &mut out.cells;
+            self.for_each_seen(truth, pose.cell, |i, s| {
+                if keep(i as usize) {
+                    cells.push((i, s));
+                }
+            });
+        }
     }
 }
 

@@ -324,7 +324,9 @@ impl SightCache {
                 out.origin = pose.cell;
                 self.report(i, set, |j| unseen.telling_bits(j), &mut out.cells);
             }
-            None => self.sensor.scan_unseen(&self.truth, pose, unseen, out),
+            None => self
+                .sensor
+                .scan_unseen_within(&self.truth, pose, unseen, &columns, out),
         }
     }
 }

@@ -33,11 +33,33 @@ fn config(preset: &str, robots: usize, seed: u64) -> RunConfig {
 
 /// Play a whole run with goals from outside, chosen by the strategy's assigner.
 fn external(map: &GridMap, cfg: &RunConfig) -> RunResult {
+    play(map, cfg, |s, _| common::proposed_goals(s, cfg))
+}
+
+/// Play a whole run with goals from outside: `pick(session, k)` gives the goals of the
+/// k-th decision.
+fn play(
+    map: &GridMap,
+    cfg: &RunConfig,
+    mut pick: impl FnMut(&mut Session<'_>, usize) -> Vec<Option<u32>>,
+) -> RunResult {
     let mut s = Session::start(Cow::Borrowed(map), Cow::Borrowed(cfg), true).expect("start");
+    let mut k = 0;
     while s.advance() == Status::Decide {
-        choose_as_the_assigner(&mut s, cfg);
+        let goals = pick(&mut s, k);
+        s.choose(&goals).expect("proposed goals are reachable");
+        k += 1;
     }
     s.finish()
+}
+
+/// The goals greedy assignment proposes for the pending decision.
+fn greedy_goals(s: &mut Session<'_>) -> Vec<Option<u32>> {
+    let cells = s.candidates().to_vec();
+    s.propose(explore::assign::AssignerKind::Greedy, &cells)
+        .iter()
+        .map(|g| g.map(|g| g.cell))
+        .collect()
 }
 
 /// Give the pending decision the goals the strategy's assigner proposes.
@@ -372,90 +394,45 @@ fn regression_asking_a_proposal_leaves_the_kept_state_as_it_was() {
         ("ma-rfe", 3, 0),
         ("ga-rfe", 3, 1),
     ] {
-        {
-            let cfg = config(preset, robots, seed);
-            let want = sim::run(&map, &cfg).expect("run");
-            // Ask twice, take the second.
-            let mut s =
-                Session::start(Cow::Borrowed(&map), Cow::Borrowed(&cfg), true).expect("start");
-            while s.advance() == Status::Decide {
-                let first = common::proposed_goals(&mut s, &cfg);
-                let second = common::proposed_goals(&mut s, &cfg);
-                assert_eq!(first, second, "{preset}: the same proposal asked again");
-                s.choose(&second).expect("proposed");
-            }
-            assert_same_run(
-                &s.finish(),
-                &want,
-                &format!("{preset} seed {seed}, asked twice"),
-            );
-            // Ask another assigner's proposal, and one not taken, before the strategy's.
-            let mut s =
-                Session::start(Cow::Borrowed(&map), Cow::Borrowed(&cfg), true).expect("start");
-            while s.advance() == Status::Decide {
-                let cells = s.candidates().to_vec();
-                let _ = s.propose(explore::assign::AssignerKind::Greedy, &cells);
-                let goals = common::proposed_goals(&mut s, &cfg);
-                s.choose(&goals).expect("proposed");
-            }
-            assert_same_run(
-                &s.finish(),
-                &want,
-                &format!("{preset} seed {seed}, asked other"),
-            );
-            // Take greedy's goals, asking the strategy's proposal first or not: the same.
-            let greedy = |ask: bool| {
-                let mut s =
-                    Session::start(Cow::Borrowed(&map), Cow::Borrowed(&cfg), true).expect("start");
-                while s.advance() == Status::Decide {
-                    if ask {
-                        let _ = common::proposed_goals(&mut s, &cfg);
-                    }
-                    let cells = s.candidates().to_vec();
-                    let goals: Vec<Option<u32>> = s
-                        .propose(explore::assign::AssignerKind::Greedy, &cells)
-                        .iter()
-                        .map(|g| g.map(|g| g.cell))
-                        .collect();
-                    s.choose(&goals).expect("proposed");
+        let cfg = config(preset, robots, seed);
+        let what = |how: &str| format!("{preset} seed {seed}, {how}");
+        let want = sim::run(&map, &cfg).expect("run");
+        // Ask twice, take the second.
+        let twice = play(&map, &cfg, |s, _| {
+            let first = common::proposed_goals(s, &cfg);
+            let second = common::proposed_goals(s, &cfg);
+            assert_eq!(first, second, "{preset}: the same proposal asked again");
+            second
+        });
+        assert_same_run(&twice, &want, &what("asked twice"));
+        // Ask another assigner's proposal, not taken, before the strategy's.
+        let other = play(&map, &cfg, |s, _| {
+            greedy_goals(s);
+            common::proposed_goals(s, &cfg)
+        });
+        assert_same_run(&other, &want, &what("asked other"));
+        // Take greedy's goals, asking the strategy's proposal first or not: the same.
+        let greedy = |ask: bool| {
+            play(&map, &cfg, |s, _| {
+                if ask {
+                    common::proposed_goals(s, &cfg);
                 }
-                s.finish()
-            };
-            assert_same_run(
-                &greedy(true),
-                &greedy(false),
-                &format!("{preset} seed {seed}, greedy's goals"),
-            );
-            // Take the strategy's goals at every other decision and greedy's between, asking
-            // the strategy at every decision or only when its goals are taken: the same.
-            let alternate = |ask_always: bool| {
-                let mut s =
-                    Session::start(Cow::Borrowed(&map), Cow::Borrowed(&cfg), true).expect("start");
-                let mut k = 0;
-                while s.advance() == Status::Decide {
-                    let own = k % 2 == 0;
-                    k += 1;
-                    let strategy =
-                        (own || ask_always).then(|| common::proposed_goals(&mut s, &cfg));
-                    let goals = match strategy {
-                        Some(g) if own => g,
-                        _ => {
-                            let cells = s.candidates().to_vec();
-                            s.propose(explore::assign::AssignerKind::Greedy, &cells)
-                                .iter()
-                                .map(|g| g.map(|g| g.cell))
-                                .collect()
-                        }
-                    };
-                    s.choose(&goals).expect("proposed");
+                greedy_goals(s)
+            })
+        };
+        assert_same_run(&greedy(true), &greedy(false), &what("greedy's goals"));
+        // Take the strategy's goals at every other decision and greedy's between, asking
+        // the strategy at every decision or only when its goals are taken: the same.
+        let alternate = |ask_always: bool| {
+            play(&map, &cfg, |s, k| {
+                let own = k % 2 == 0;
+                let strategy = (own || ask_always).then(|| common::proposed_goals(s, &cfg));
+                match strategy {
+                    Some(g) if own => g,
+                    _ => greedy_goals(s),
                 }
-                s.finish()
-            };
-            assert_same_run(
-                &alternate(true),
-                &alternate(false),
-                &format!("{preset} seed {seed}, alternate"),
-            );
-        }
+            })
+        };
+        assert_same_run(&alternate(true), &alternate(false), &what("alternate"));
     }
 }
