@@ -196,29 +196,37 @@ pub fn config(
     }
     cfg.clutter = clutter;
     if let Some(first) = o.start {
-        if !map.cells.contains(first) {
-            return Err(format!(
-                "--start {},{}: outside the {}x{} map",
-                first.x,
-                first.y,
-                map.width(),
-                map.height()
-            ));
-        }
-        if o.robots == 1 {
-            cfg.starts = vec![first];
+        let trav =
+            sim::truth::traversable(&map.cells, grid::units::cells(o.clearance, map.resolution));
+        sim::truth::check_start(&map.cells, &trav, first).map_err(|e| named_start(first, e))?;
+        cfg.starts = if o.robots == 1 {
+            vec![first]
         } else {
-            let trav = sim::truth::traversable(
-                &map.cells,
-                grid::units::cells(o.clearance, map.resolution),
-            );
-            sim::truth::check_start(&map.cells, &trav, first).map_err(|e| e.to_string())?;
-            cfg.starts = sim::truth::team_starts(&map.cells, &trav, first, o.robots)
-                .map_err(|e| e.to_string())?;
-        }
+            sim::truth::team_starts(&map.cells, &trav, first, o.robots)
+                .map_err(|e| e.to_string())?
+        };
     }
     sim::check_config(&cfg).map_err(|e| e.to_string())?;
     Ok(cfg)
+}
+
+/// A start refused by the run, named by its flag as the user gave it (a team starts
+/// around it).
+fn named_start(start: Cell, e: sim::SimError) -> String {
+    match e {
+        sim::SimError::BadStart { why, .. } => format!("--start {},{}: {why}", start.x, start.y),
+        e => e.to_string(),
+    }
+}
+
+/// Why `start` cannot be the first robot's start on `map` for a robot with `clearance_m`
+/// metres of clearance (outside the map, or not a cell the robot fits in), as [`config`]
+/// refuses it; `None` if it can.
+pub fn start_problem(map: &GridMap, start: Cell, clearance_m: f64) -> Option<String> {
+    let trav = sim::truth::traversable(&map.cells, grid::units::cells(clearance_m, map.resolution));
+    sim::truth::check_start(&map.cells, &trav, start)
+        .err()
+        .map(|e| named_start(start, e))
 }
 
 /// Round to `digits` decimals so that JSON stays short and stable.

@@ -2,7 +2,7 @@
 
 use std::path::{Path, PathBuf};
 
-use anyhow::{Result, bail};
+use anyhow::{Context, Result, bail};
 use clap::Args;
 use grid::{Grid, GridMap, Occ};
 use world::{EnvKind, EnvSpec};
@@ -320,17 +320,7 @@ impl MapSource {
         let Some(path) = &self.clutter_map else {
             return Ok(None);
         };
-        let layer = grid::io::load_map(path, opts)?;
-        if (layer.width(), layer.height()) != (map.width(), map.height()) {
-            bail!(
-                "--clutter-map {}: expected the map's size {}x{} cells, found {}x{}",
-                path.display(),
-                map.width(),
-                map.height(),
-                layer.width(),
-                layer.height()
-            );
-        }
+        let layer = load_layer("--clutter-map", path, map, opts)?;
         let cells = layer
             .cells
             .data()
@@ -339,6 +329,32 @@ impl MapSource {
             .collect();
         Ok(Grid::from_vec(map.width(), map.height(), cells))
     }
+}
+
+/// Load `path`, given by `flag`, as a layer of `map`: the same plan, so a bare bitmap
+/// takes the map's cell size unless `opts` (the command's --resolution) gives one, and
+/// the layer must have the map's size. Errors name the flag.
+pub fn load_layer(
+    flag: &str,
+    path: &Path,
+    map: &GridMap,
+    opts: &grid::io::LoadOptions,
+) -> Result<GridMap> {
+    let mut opts = opts.clone();
+    opts.resolution
+        .get_or_insert((map.resolution, map.resolution));
+    let layer = grid::io::load_map(path, &opts).with_context(|| flag.to_string())?;
+    if (layer.width(), layer.height()) != (map.width(), map.height()) {
+        bail!(
+            "{flag} {}: expected the map's size {}x{} cells, found {}x{}",
+            path.display(),
+            map.width(),
+            map.height(),
+            layer.width(),
+            layer.height()
+        );
+    }
+    Ok(layer)
 }
 
 /// Check, before a run, that the file `flag` names can be written: its folder exists, it

@@ -236,17 +236,7 @@ fn truth_rooms(
     map: &GridMap,
     memory_mb: Option<u64>,
 ) -> Result<Grid<u32>> {
-    let t = grid::io::load_map(path, &source.load_options(memory_mb)?)?;
-    if (t.width(), t.height()) != (map.width(), map.height()) {
-        bail!(
-            "--truth {}: {} x {} cells, but the map has {} x {}",
-            path.display(),
-            t.width(),
-            t.height(),
-            map.width(),
-            map.height()
-        );
-    }
+    let t = crate::args::load_layer("--truth", path, map, &source.load_options(memory_mb)?)?;
     let cells = &t.cells;
     // components numbered 1..=count, 0 outside
     let (labels, _) = label(

@@ -440,7 +440,7 @@ fn errors_name_the_flag_and_what_was_found() {
     let e = err(&["explore", "--map", "no/such/map.yaml"]);
     assert!(e.contains("no/such/map.yaml"), "{e}");
     let e = err(&["explore", "--env", "office", "--start", "0,0"]);
-    assert!(e.contains("start (0, 0): the cell is occupied"), "{e}");
+    assert!(e.contains("--start 0,0: the cell is occupied"), "{e}");
     let e = err(&["explore", "--env", "office", "--start", "500,2"]);
     assert!(e.contains("outside the 50x40 map"), "{e}");
     let e = err(&["explore", "--speed=-1"]);
@@ -3011,5 +3011,62 @@ fn regression_segment_truth_must_cover_the_map() {
         warning.contains("its rooms cover 1 of the map's")
             && warning.contains("the scores count only those"),
         "{warning}"
+    );
+}
+
+/// Regression: a missing `--truth` or `--clutter-map` file was reported as needing
+/// `--resolution` (so was a missing `--map` bitmap), without naming the flag; and a bare
+/// bitmap given beside a map with its own resolution could not be read without repeating
+/// it. A layer of the map is the same plan: it takes the map's cell size.
+#[test]
+fn regression_map_layers_name_their_flag_and_take_the_map_cell_size() {
+    let dir = tempfile::tempdir().unwrap();
+    let yaml = dir.path().join("plan.yaml");
+    let y = yaml.to_str().unwrap();
+    ok(&[
+        "env",
+        "office",
+        "--size",
+        "12x10",
+        "--resolution",
+        "0.1",
+        "--out",
+        y,
+    ]);
+    let pgm = dir.path().join("plan.pgm");
+    assert!(
+        pgm.is_file(),
+        "env --out plan.yaml writes plan.pgm beside it"
+    );
+    let missing = dir.path().join("missing.png");
+    let m = missing.to_str().unwrap();
+    let e = err(&["segment", "--map", y, "--truth", m]);
+    assert!(e.contains(&format!("--truth: {m}: cannot read")), "{e}");
+    let e = err(&["explore", "--map", y, "--clutter-map", m]);
+    assert!(
+        e.contains(&format!("--clutter-map: {m}: cannot read")),
+        "{e}"
+    );
+    let e = err(&["explore", "--map", m]);
+    assert!(e.contains(&format!("{m}: cannot read")), "{e}");
+    assert!(!e.contains("--resolution"), "{e}");
+    // the bitmap of the map's own plan, read at the map's 0.1 m
+    let out = frontier(&["segment", "--map", y, "--truth", pgm.to_str().unwrap()]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let out = frontier(&[
+        "explore",
+        "--map",
+        y,
+        "--clutter-map",
+        pgm.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
     );
 }

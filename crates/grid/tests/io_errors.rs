@@ -920,3 +920,19 @@ fn regression_houseexpo_refuses_non_square_resolution() {
     let m = msg(load_map(&bad, &LoadOptions::with_resolution(0.5)));
     assert!(m.contains(r#"found [4,"x"] at vertex 2"#), "{m}");
 }
+
+/// Regression: a bitmap or HouseExpo plan that is not there was said to need a
+/// resolution, as if it had been found.
+#[test]
+fn regression_a_missing_bitmap_is_unreadable_not_short_of_a_resolution() {
+    let dir = scratch("missing-bitmap");
+    for name in ["plan.png", "plan.pgm", "plan.json"] {
+        let path = dir.join(name);
+        let e = msg(load_map(&path, &LoadOptions::default()));
+        assert!(
+            e.starts_with(&format!("{}: cannot read: ", path.display())),
+            "{e}"
+        );
+    }
+    let _ = std::fs::remove_dir_all(dir);
+}

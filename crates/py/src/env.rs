@@ -112,6 +112,13 @@ fn start_session(
     o.seed = seed;
     o.start = o.start.or(marked);
     o.record_trace = false;
+    // A start that does not fit this map is the map's problem, named with it.
+    if let Some(e) = o
+        .start
+        .and_then(|c| bench::explore::start_problem(&map, c, o.clearance))
+    {
+        return Err(format!("map {name}: {e}"));
+    }
     let mut cfg = bench::explore::config(&o, &map, None)?;
     if let Some(c) = spec.candidates {
         cfg.strategy.candidates = c;
@@ -946,6 +953,13 @@ fn spec(
     };
     // Check the options on the first map, and learn the observation's size.
     let (first, name, marked) = py.detach(|| s.map(0, None)).map_err(value_error)?;
+    if let Some(e) = s
+        .options
+        .start
+        .and_then(|c| bench::explore::start_problem(&first, c, s.options.clearance))
+    {
+        return Err(value_error(format!("map {name}: {e}")));
+    }
     let cfg = bench::explore::config(&s.options, &first, None).map_err(value_error)?;
     s.largest = match &s.maps {
         Maps::List(list) => list
@@ -1001,11 +1015,7 @@ fn spec(
 /// episode that draws it (a vector environment's, inside `step()`).
 fn list_start_problem(list: &[Map], start: grid::Cell, clearance_m: f64) -> Option<String> {
     list.iter().find_map(|m| {
-        let cells = &m.map.cells;
-        let trav =
-            sim::truth::traversable(cells, grid::units::cells(clearance_m, m.map.resolution));
-        sim::truth::check_start(cells, &trav, start)
-            .err()
+        bench::explore::start_problem(&m.map, start, clearance_m)
             .map(|e| format!("map {}: {e}", m.name))
     })
 }

@@ -173,7 +173,7 @@ def test_explore_many_on_one_map_shares_its_line_of_sight_with_the_same_rows():
         (dict(strategy="fastest"), ValueError, "--strategy: unknown strategy 'fastest'"),
         (dict(sensor="radar:r=3"), ValueError, "--sensor: sensor 'radar:r=3': unknown kind 'radar'"),
         (dict(start=(500, 2)), ValueError, "--start 500,2: outside the 60x48 map"),
-        (dict(start=(0, 0)), ValueError, r"start \(0, 0\): the cell is occupied"),
+        (dict(start=(0, 0)), ValueError, r"--start 0,0: the cell is occupied"),
         (dict(robots=0), ValueError, "--robots: expected at least 1, found 0"),
         (dict(speed=-1.0), ValueError, "--speed: expected a positive number of metres per second"),
         (dict(goal=2.0), ValueError, r"--goal: expected a coverage share in \(0, 1\]"),
@@ -633,7 +633,7 @@ def test_regression_explore_many_checks_every_run_before_any_starts(office):
                 strategy="ma-cc", robots=4, seed=1)
     for bad, message in [
         (dict(map=office, sensor="sonar"), "^run 1: .*sonar"),
-        (dict(map=office, start=(0, 0)), r"^run 1: start \(0, 0\)"),
+        (dict(map=office, start=(0, 0)), r"^run 1: --start 0,0: the cell is occupied"),
     ]:
         calls = []
         with pytest.raises(ValueError, match=message):

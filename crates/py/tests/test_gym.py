@@ -364,7 +364,7 @@ def test_regression_start_is_checked_on_every_map_of_a_list(office):
     free = office.to_numpy()[2, 2] == 1
     assert free
     ExploreEnv([office, office], start=(2, 2))
-    with pytest.raises(ValueError, match=r"start \(2, 2\): the cell is occupied"):
+    with pytest.raises(ValueError, match=r"--start 2,2: the cell is occupied"):
         ExploreEnv([office, other], start=(2, 2))
 
 
@@ -1104,7 +1104,7 @@ def test_regression_bytes_as_maps_is_a_type_error_naming_maps(office):
         (dict(speed=float("nan")), "--speed: .*found NaN"),
         (dict(clearance=-1.0), "--clearance: expected a non-negative number of metres, found -1"),
         (dict(goal=2.0), r"--goal: expected a coverage share in \(0, 1\], found 2"),
-        (dict(start=(0, 0)), r"map office-s3-15x12m-r0.25: start \(0, 0\): the cell is occupied"),
+        (dict(start=(0, 0)), r"map office-s3-15x12m-r0.25: --start 0,0: the cell is occupied"),
         (dict(maps="office", size=(0, 0)), r"--size: expected WxH in metres \(e.g. 25x20\), "
          "found '0x0'"),
         (dict(maps="office", resolution=0), "--resolution: expected a positive number of "

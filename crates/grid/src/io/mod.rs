@@ -137,6 +137,7 @@ pub fn load_map(path: &Path, opts: &LoadOptions) -> Result<GridMap, MapError> {
             parse_ros_yaml(&text, path, opts)?
         }
         "pgm" | "png" => {
+            must_exist(path)?;
             let (rx, ry) = opts.resolution.ok_or_else(|| {
                 MapError::new(path, MapErrorKind::ResolutionRequired("a bare bitmap"))
             })?;
@@ -186,6 +187,7 @@ pub fn load_map(path: &Path, opts: &LoadOptions) -> Result<GridMap, MapError> {
 /// (`opts.resolution` required and square; `opts.border` grows the rooms' labels by a ring
 /// of 0 with the map), for scoring a segmentation against its room boxes.
 pub fn load_houseexpo(path: &Path, opts: &LoadOptions) -> Result<HouseExpoMap, MapError> {
+    must_exist(path)?;
     let (rx, ry) = opts.resolution.ok_or_else(|| {
         MapError::new(
             path,
@@ -450,6 +452,14 @@ pub fn check_fits(
         limit: memory,
         fix,
     })
+}
+
+/// Refuse a file that is not there (or cannot be looked at) as unreadable, before the
+/// options it would need are asked for: a missing bitmap is not told to need a resolution.
+fn must_exist(path: &Path) -> Result<(), MapError> {
+    std::fs::metadata(path)
+        .map(drop)
+        .map_err(|e| MapError::new(path, MapErrorKind::Read(e)))
 }
 
 /// Refuse a file at `path` that is larger than `memory` before reading it (loading holds
