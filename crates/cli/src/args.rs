@@ -172,14 +172,22 @@ pub fn parse_resolution(s: &str) -> Result<(f64, f64)> {
 }
 
 /// Parse a comma-separated list given to `flag`, each item trimmed and parsed by `item`;
-/// an item's error is reported under the flag's name.
+/// an item's error is reported under the flag's name, and an item given twice is refused.
 pub fn parse_list<T, E: std::fmt::Display>(
     s: &str,
     flag: &str,
     item: impl Fn(&str) -> std::result::Result<T, E>,
 ) -> Result<Vec<T>> {
-    s.split(',')
-        .map(|x| item(x.trim()).map_err(|e| anyhow::anyhow!("{flag}: {e}")))
+    let items: Vec<&str> = s.split(',').map(str::trim).collect();
+    for (i, x) in items.iter().enumerate() {
+        if items[..i].contains(x) {
+            // the same runs twice, with the same seeds: twice the time for the same numbers
+            bail!("{flag}: expected each item once, found {x} twice in '{s}'");
+        }
+    }
+    items
+        .into_iter()
+        .map(|x| item(x).map_err(|e| anyhow::anyhow!("{flag}: {e}")))
         .collect()
 }
 

@@ -3070,3 +3070,18 @@ fn regression_map_layers_name_their_flag_and_take_the_map_cell_size() {
         String::from_utf8_lossy(&out.stderr)
     );
 }
+
+/// Regression: `demo --envs office,office` ran every office run twice, with the same seeds.
+#[test]
+fn regression_demo_lists_refuse_an_item_given_twice() {
+    let e = err(&["demo", "--envs", "office, cave,office"]);
+    assert!(
+        e.contains("--envs: expected each item once, found office twice in 'office, cave,office'"),
+        "{e}"
+    );
+    let e = err(&["demo", "--strategies", "cf,cf"]);
+    assert!(
+        e.contains("--strategies: expected each item once, found cf twice"),
+        "{e}"
+    );
+}
