@@ -92,6 +92,9 @@ pub struct RunSummary {
     pub already_done: usize,
     /// Trials run and stored now.
     pub ran: usize,
+    /// Trials run now that another run writing to the same database stored first
+    /// (the store keeps the first row of a trial).
+    pub stored_meanwhile: usize,
     /// Trials that failed: (key, message).
     pub failed: Vec<(String, String)>,
     /// Wall-clock seconds of this run.
@@ -212,6 +215,7 @@ pub fn run(plan: &Plan, db: &Path, opts: &RunOptions) -> Result<RunSummary, Benc
     let failed = Mutex::new(Vec::new());
     let fatal: Mutex<Option<BenchError>> = Mutex::new(None);
     let ran = std::sync::atomic::AtomicUsize::new(0);
+    let meanwhile = std::sync::atomic::AtomicUsize::new(0);
     let work = || {
         pending.par_iter().enumerate().for_each(|(i, t)| {
             if fatal.lock().map(|f| f.is_some()).unwrap_or(true) {
@@ -236,8 +240,9 @@ pub fn run(plan: &Plan, db: &Path, opts: &RunOptions) -> Result<RunSummary, Benc
                                 .map_err(|e| BenchError::Other(e.to_string()))
                                 .and_then(|s| s.insert(&r));
                             match inserted {
-                                Ok(_) => {
-                                    ran.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                                Ok(new) => {
+                                    let count = if new { &ran } else { &meanwhile };
+                                    count.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
                                     None
                                 }
                                 Err(e) => {
@@ -281,6 +286,7 @@ pub fn run(plan: &Plan, db: &Path, opts: &RunOptions) -> Result<RunSummary, Benc
     failed.sort();
     summary.failed = failed;
     summary.ran = ran.into_inner();
+    summary.stored_meanwhile = meanwhile.into_inner();
     summary.wall_s = started.elapsed().as_secs_f64();
     Ok(summary)
 }

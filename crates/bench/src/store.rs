@@ -340,6 +340,25 @@ pub struct Merged {
     pub total: usize,
 }
 
+/// Run `f` again while SQLite answers that the database is busy, for up to the 30 s the
+/// connections wait for a lock. Switching to WAL mode needs the file to itself and is
+/// answered busy at once, without the busy handler's wait, when another run is opening the
+/// same new store: one of two runs started together failed with "database is locked".
+fn while_busy<T>(mut f: impl FnMut() -> rusqlite::Result<T>) -> rusqlite::Result<T> {
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(30);
+    loop {
+        match f() {
+            Err(e)
+                if e.sqlite_error_code() == Some(rusqlite::ErrorCode::DatabaseBusy)
+                    && std::time::Instant::now() < deadline =>
+            {
+                std::thread::sleep(std::time::Duration::from_millis(5));
+            }
+            other => return other,
+        }
+    }
+}
+
 /// A read-only connection to `path`, whose SQLite header says whether it is in WAL mode.
 /// A database in WAL mode (left so by an older version or a killed run, or another
 /// program's) makes every reader create a `-wal` and `-shm` file beside it and leave them
@@ -802,9 +821,9 @@ impl Store {
         let sql = BenchError::sql(path);
         conn.busy_timeout(std::time::Duration::from_secs(30))
             .map_err(sql)?;
-        let mode: String = conn
-            .query_row("PRAGMA journal_mode=WAL", [], |r| r.get(0))
-            .map_err(|e| not_writable(path, e))?;
+        let mode: String =
+            while_busy(|| conn.query_row("PRAGMA journal_mode=WAL", [], |r| r.get(0)))
+                .map_err(|e| not_writable(path, e))?;
         if !mode.eq_ignore_ascii_case("wal") {
             return Err(BenchError::Store {
                 path: path.to_path_buf(),

@@ -167,6 +167,40 @@ fn one_and_two_threads_give_identical_databases() {
     assert_eq!((again.ran, again.already_done), (0, p.trials.len()));
 }
 
+/// Regression: two runs of one study started together into one new database: one of them
+/// could fail at once with "database is locked" (switching the new file to WAL mode is
+/// answered busy without waiting), and each counted as run now every trial it ran, also
+/// those the other had stored first. Every trial is stored once, and counted once as new.
+#[test]
+fn regression_two_runs_into_one_new_database_count_each_trial_once() {
+    for round in 0..4 {
+        let dir = tempfile::tempdir().unwrap();
+        let p = plan();
+        let db = dir.path().join("shared.sqlite");
+        let barrier = std::sync::Barrier::new(2);
+        let (a, b) = std::thread::scope(|s| {
+            let run = || {
+                barrier.wait();
+                bench::runner::run(&p, &db, &opts(1))
+            };
+            let a = s.spawn(run);
+            let b = s.spawn(run);
+            (a.join().unwrap(), b.join().unwrap())
+        });
+        let (a, b) = (a.unwrap(), b.unwrap());
+        let n = p.trials.len();
+        assert_eq!(a.ran + b.ran, n, "round {round}: each trial new once");
+        for s in [&a, &b] {
+            assert_eq!(
+                s.already_done + s.ran + s.stored_meanwhile,
+                n,
+                "round {round}: every trial done before, run now or stored by the other"
+            );
+        }
+        assert_eq!(rows(&db).len(), n);
+    }
+}
+
 #[test]
 fn resuming_an_interrupted_run_gives_the_uninterrupted_results() {
     let dir = tempfile::tempdir().unwrap();

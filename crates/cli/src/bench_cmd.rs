@@ -268,19 +268,27 @@ fn run_study(a: RunArgs) -> Result<()> {
     };
     let summary =
         bench::runner::run(&plan, &db, &opts).with_context(|| format!("running {}", plan.name))?;
+    let run_now = summary.ran + summary.stored_meanwhile;
     let rate = if summary.wall_s > 0.0 {
-        summary.ran as f64 / summary.wall_s
+        run_now as f64 / summary.wall_s
     } else {
         0.0
     };
     eprintln!(
-        "{} of {} trials done before, {} run now in {:.1} s ({rate:.2} trials/s), {} failed",
+        "{} of {} trials done before, {run_now} run now in {:.1} s ({rate:.2} trials/s), {} failed",
         summary.already_done,
         summary.total,
-        summary.ran,
         summary.wall_s,
         summary.failed.len()
     );
+    if summary.stored_meanwhile > 0 {
+        eprintln!(
+            "  {} of them another run into {} had stored meanwhile (the first row of a \
+             trial is kept): run a study once per database, or its shards into one each",
+            summary.stored_meanwhile,
+            db.display()
+        );
+    }
     for (key, why) in &summary.failed {
         eprintln!("  failed: {key}: {why}");
     }

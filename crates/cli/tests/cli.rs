@@ -3085,3 +3085,43 @@ fn regression_demo_lists_refuse_an_item_given_twice() {
         "{e}"
     );
 }
+
+/// Regression: of two `bench` runs started together into one new database, one could fail
+/// at once with "database is locked": switching the new file to WAL mode is answered busy
+/// without waiting for the other run. (A race: the rounds make it show.)
+#[test]
+fn regression_two_bench_runs_started_together_into_one_new_database_both_finish() {
+    for round in 0..20 {
+        let dir = tempfile::tempdir().unwrap();
+        let db = dir.path().join("shared.sqlite");
+        let args = [
+            "bench",
+            "--suite",
+            "multirobot",
+            "--limit",
+            "5",
+            "-j",
+            "1",
+            "--no-progress",
+            "--db",
+            db.to_str().unwrap(),
+        ];
+        let spawn = || {
+            Command::new(env!("CARGO_BIN_EXE_frontier"))
+                .args(args)
+                .stdout(std::process::Stdio::null())
+                .stderr(std::process::Stdio::piped())
+                .spawn()
+                .expect("run frontier")
+        };
+        let (a, b) = (spawn(), spawn());
+        for child in [a, b] {
+            let out = child.wait_with_output().unwrap();
+            assert!(
+                out.status.success(),
+                "round {round}: {}",
+                String::from_utf8_lossy(&out.stderr)
+            );
+        }
+    }
+}
