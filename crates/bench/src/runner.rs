@@ -162,7 +162,9 @@ pub fn run(plan: &Plan, db: &Path, opts: &RunOptions) -> Result<RunSummary, Benc
         let done = check_setups(plan, s, db)?;
         fits(&pending_of(&done))?;
         memory_checked = true;
-        Ok(have_envs && mine.iter().all(|t| done.contains(&t.key)))
+        // An edited description is written too, so that the report says what it now says.
+        let described = s.description_is(&plan.description)?;
+        Ok(have_envs && described && mine.iter().all(|t| done.contains(&t.key)))
     })?;
     let done = check_setups(plan, &store, db)?;
     let done_count = mine.iter().filter(|t| done.contains(&t.key)).count();

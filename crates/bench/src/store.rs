@@ -742,6 +742,15 @@ impl Store {
         }
     }
 
+    /// Whether the store keeps `description` as [`describe`](Self::describe) would
+    /// (an empty one is never written, so any kept text stands for it).
+    pub fn description_is(&self, description: &str) -> Result<bool, BenchError> {
+        Ok(match description.trim() {
+            "" => true,
+            text => self.meta("description")?.as_deref() == Some(text),
+        })
+    }
+
     /// Whether this store was opened for writing (see [`Store::open_unless_finished`] for
     /// one that is not).
     pub fn is_writable(&self) -> bool {

@@ -630,6 +630,31 @@ fn regression_a_scenario_description_reaches_its_report() {
     );
 }
 
+/// Regression: a finished study run again with its scenario's `description` edited, for
+/// its report, kept the store read-only, so the report printed the old text.
+#[test]
+fn regression_an_edited_description_reaches_a_finished_studys_report() {
+    let dir = tempfile::tempdir().unwrap();
+    let db = dir.path().join("a.sqlite");
+    let with = |words: &str| {
+        let text = TINY.replace(
+            "seed = 7\n",
+            &format!("seed = 7\ndescription = \"{words}\"\n"),
+        );
+        Plan::resolve(&source(&text), Unbuilt::Error).unwrap()
+    };
+    bench::runner::run(&with("First words"), &db, &opts(1)).unwrap();
+    let again = bench::runner::run(&with("Second words"), &db, &opts(1)).unwrap();
+    assert_eq!(again.ran, 0, "nothing left to run");
+    let out = dir.path().join("report");
+    bench::report::write(&db, &out, &bench::report::ReportOptions::default()).unwrap();
+    let md = std::fs::read_to_string(out.join("report.md")).unwrap();
+    assert!(
+        md.starts_with("# Benchmark report: tiny\n\nSecond words\n"),
+        "{md}"
+    );
+}
+
 /// Regression: a sonar trial's row named the scenario's belief (`known`) though the run
 /// built the evidence grid, and the report's replay re-ran it with `known`, which a sonar
 /// refuses, so `--report` failed after every trial had run.
