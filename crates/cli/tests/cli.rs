@@ -3125,3 +3125,14 @@ fn regression_two_bench_runs_started_together_into_one_new_database_both_finish(
         }
     }
 }
+
+/// Regression: a sensor whose range the map's cells cannot carry was reported as "sensor:
+/// sensor 'los:r=…': …", not under its flag as every other sensor error is.
+#[test]
+fn regression_a_sensor_range_beyond_the_map_names_the_flag() {
+    let e = err(&["explore", "--sensor", "los:r=1e9"]);
+    assert!(
+        e.contains("error: --sensor: sensor 'los:r=1000000000': range 2000000000 cells"),
+        "{e}"
+    );
+}

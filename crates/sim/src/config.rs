@@ -137,7 +137,7 @@ pub enum SimError {
         clearance_m: f64,
     },
     /// The sensor cannot be built at this resolution.
-    #[error("sensor: {0}")]
+    #[error("--sensor: {0}")]
     // Not a `#[source]`: the message already holds it, and error reporters that print the
     // chain would repeat it.
     Sensor(sense::SenseError),
