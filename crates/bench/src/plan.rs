@@ -1311,7 +1311,7 @@ const TRIAL_BYTES: u64 = 300;
 pub const MAX_PLAN_ENVS: u64 = 10_000;
 
 /// Bytes a planned environment holds per cell (its ground truth, one byte a cell).
-const ENV_HELD_BYTES_PER_CELL: u64 = 1;
+pub(crate) const ENV_HELD_BYTES_PER_CELL: u64 = 1;
 
 /// How many environments one `[[env]]` gives and how large they are, known before any is
 /// generated or loaded.

@@ -201,7 +201,7 @@ pub fn run(plan: &Plan, db: &Path, opts: &RunOptions) -> Result<RunSummary, Benc
     let budget = sim::BatchSights::budget(
         opts.memory_mb,
         grid::machine::available(),
-        trials_at_once(plan, &pending, opts.threads),
+        trials_at_once(plan, &pending, opts.threads).saturating_add(envs_held(plan)),
     );
     let sights = sim::BatchSights::new(
         pending.iter().map(|t| {
@@ -367,7 +367,36 @@ fn check_memory(
         "use fewer threads (-j) or maps with fewer cells"
     };
     sim::memory::check_batch("trials", &needs, workers, memory_mb, available, fix)
-        .map_err(|e| BenchError::Other(e.to_string()))
+        .map_err(|e| BenchError::Other(e.to_string()))?;
+    // A user's budget holds the study's environments beside its trials (the machine's
+    // available memory has them spent already).
+    let held = envs_held(plan);
+    sim::memory::check(
+        &format!(
+            "running {} trial{} on {workers} thread{} beside the {} MiB the study's {} \
+             environment{} hold",
+            needs.len(),
+            if needs.len() == 1 { "" } else { "s" },
+            if workers == 1 { "" } else { "s" },
+            held.div_ceil(1 << 20),
+            plan.envs.len(),
+            if plan.envs.len() == 1 { "" } else { "s" },
+        ),
+        sim::memory::at_once(&needs, workers).saturating_add(held),
+        memory_mb,
+        None,
+        fix,
+    )
+    .map_err(|e| BenchError::Other(e.to_string()))
+}
+
+/// The bytes the plan's environments hold while its trials run.
+fn envs_held(plan: &Plan) -> u64 {
+    plan.envs.iter().fold(0u64, |sum, e| {
+        sum.saturating_add(
+            (e.map.cells.len() as u64).saturating_mul(crate::plan::ENV_HELD_BYTES_PER_CELL),
+        )
+    })
 }
 
 /// The threads `pending` trials run on: [`worker_threads`], or rayon's pool's, no more
@@ -533,8 +562,44 @@ pub fn row(plan: &Plan, t: &Trial, result: &RunResult, wall_s: f64) -> TrialRow 
 
 #[cfg(test)]
 mod tests {
-    use super::{check_memory, worker_threads};
+    use super::{check_memory, envs_held, trial_needs, worker_threads};
     use crate::{Plan, Source, Unbuilt};
+
+    /// Regression: the trials were checked against `--memory-mb` alone, and the study's
+    /// environments, held beside them all along, alone when planned; a study could pass
+    /// both and need more than the budget in all.
+    #[test]
+    fn trials_and_the_environments_held_beside_them_fit_a_budget_together() {
+        let seeds: Vec<String> = (0..40).map(|k| k.to_string()).collect();
+        let text = format!(
+            "name = \"m\"\nsensors = [\"los:r=3c\"]\nstrategies = [\"cf\"]\n\n[[env]]\n\
+             kind = \"office\"\nseeds = [{}]\nsize = [30, 30]\nresolution = 0.05\n",
+            seeds.join(", ")
+        );
+        let src = Source {
+            file: "m.toml".into(),
+            text,
+            dir: None,
+        };
+        let plan = Plan::resolve(&src, Unbuilt::Error).expect("resolves");
+        let pending: Vec<_> = plan.trials.iter().collect();
+        let trials = sim::memory::at_once(&trial_needs(&plan, &pending), 1);
+        let held = envs_held(&plan);
+        assert!(held > 4 << 20, "the environments hold {held} bytes");
+        // room for the trials alone, not for the environments beside them
+        let budget_mb = (trials + held / 2).div_ceil(1 << 20);
+        let e = check_memory(&plan, &pending, Some(1), Some(budget_mb), None)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("running 40 trials on 1 thread beside the")
+                && e.contains("the study's 40 environments hold")
+                && e.contains(&format!("more than --memory-mb {budget_mb}")),
+            "{e}"
+        );
+        let enough = (trials + held).div_ceil(1 << 20);
+        assert!(check_memory(&plan, &pending, Some(1), Some(enough), None).is_ok());
+    }
 
     /// Trials whose maps would not fit in memory together are refused before any runs,
     /// naming the largest trial and the thread count.
