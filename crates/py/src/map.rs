@@ -233,6 +233,7 @@ impl Map {
         path, resolution=None, border=false, *, topic=None, dungeon=false, memory_mb=None
     ))]
     fn load(
+        py: Python<'_>,
         #[pyo3(from_py_with = file_arg)] path: PathBuf,
         resolution: Option<&Bound<'_, PyAny>>,
         #[pyo3(from_py_with = border_arg)] border: bool,
@@ -242,14 +243,16 @@ impl Map {
     ) -> PyResult<Self> {
         crate::check_not_empty(&path, "path")?;
         let resolution = resolution_arg(resolution)?;
-        let (map, name, start) = read_file(
-            &path,
-            resolution,
-            border,
-            topic.as_deref(),
-            dungeon,
-            memory_mb,
-        )
+        let (map, name, start) = crate::run::interruptible(py, move || {
+            read_file(
+                &path,
+                resolution,
+                border,
+                topic.as_deref(),
+                dungeon,
+                memory_mb,
+            )
+        })?
         .map_err(value_error)?;
         let mut m = Self::new(map, name);
         m.start = start;
@@ -350,8 +353,7 @@ impl Map {
             resolution,
         };
         bench::explore::check_generate_memory(&spec, None).map_err(value_error)?;
-        let env = py
-            .detach(|| world::generate(&spec))
+        let env = crate::run::interruptible(py, move || world::generate(&spec))?
             .map_err(|e| value_error(format!("generating {kind}: {e}")))?;
         Ok(Self::new(env.map, env.name))
     }

@@ -247,6 +247,40 @@ impl Drop for Ended<'_> {
     }
 }
 
+/// Run `work` on a thread of its own with the GIL released, waking every [`TICK`] to let
+/// Python handle signals: Ctrl-C raises `KeyboardInterrupt` within a tick. Work that cannot
+/// stop part way (a map being generated or read) is then left to finish in the background,
+/// and its result is dropped.
+pub(crate) fn interruptible<T: Send + 'static>(
+    py: Python<'_>,
+    work: impl FnOnce() -> T + Send + 'static,
+) -> PyResult<T> {
+    use std::sync::mpsc::{RecvTimeoutError, channel};
+    let (tx, rx) = channel();
+    std::thread::Builder::new()
+        .name("frontier-work".into())
+        .spawn(move || {
+            // nobody waits for it any more after an interrupt
+            let _ = tx.send(guarded(work));
+        })
+        .map_err(|e| internal(format!("could not start a thread: {e}")))?;
+    let mut rx = rx;
+    loop {
+        // (a receiver is not Sync: it goes into the closure and comes back)
+        let got;
+        (got, rx) = py.detach(move || (rx.recv_timeout(TICK), rx));
+        match got {
+            Ok(out) => return out.map_err(internal),
+            Err(RecvTimeoutError::Timeout) => py.check_signals()?,
+            Err(RecvTimeoutError::Disconnected) => {
+                return Err(internal(
+                    "internal error (please report): a worker ended".into(),
+                ));
+            }
+        }
+    }
+}
+
 /// Run `work` on another thread with the GIL released, waking every [`TICK`] to let Python
 /// handle signals (Ctrl-C raises `KeyboardInterrupt`) and to call `tick`. An error from
 /// either raises `stop`, which `work` is to watch, and is returned once `work` has ended.

@@ -433,3 +433,24 @@ def test_regression_bool_array_with_other_bytes():
     assert np.array_equal(frontier.Map.from_numpy(np.asfortranarray(b), 1.0).to_numpy(), expected)
     # The array is left as it was.
     assert b.dtype == np.bool_ and np.array_equal(b.view(np.uint8), raw)
+
+
+def test_regression_ctrl_c_interrupts_generating_a_large_map():
+    """Regression: ``Map.generate`` of a large map ran to its end before Python saw Ctrl-C
+    (a 200 x 200 m cave at 0.05 m takes tens of seconds); ``Map.load`` held the GIL as it
+    read. Both now wake every 0.1 s to let Python handle signals."""
+    import _thread
+    import threading
+    import time
+
+    args = dict(kind="cave", seed=0, size=(80, 80), resolution=0.05)
+    t = time.perf_counter()
+    frontier.Map.generate(**args)
+    whole = time.perf_counter() - t
+    t = time.perf_counter()
+    threading.Timer(0.05, _thread.interrupt_main).start()
+    with pytest.raises(KeyboardInterrupt):
+        frontier.Map.generate(**args)
+    interrupted = time.perf_counter() - t
+    # Without the checks the interrupt was raised only once the map was made.
+    assert interrupted < whole / 2, (interrupted, whole)
