@@ -227,6 +227,8 @@ mod tests {
             (4, 3, None, None)
         );
         assert_eq!(map.resolution, 0.5);
+        // a bitmap that is there (one that is not is unreadable first)
+        std::fs::write(dir.join("plan.png"), b"not decoded before the resolution").unwrap();
         let bitmap = load(&dir.join("plan.png"), &opts(None, false), None, false);
         let want = (dir.join("plan.png").display().to_string(), "a bare bitmap");
         assert_eq!(
