@@ -112,6 +112,8 @@ pub struct Truth {
     pub clutter: Option<Grid<bool>>,
     /// The start the map file marks (a dungeon PNG's), if any.
     pub start: Option<grid::Cell>,
+    /// A recording's map's frame and log time, which a run's `--mcap` keeps.
+    pub recorded_at: Option<record::mcap_read::RecordedAt>,
 }
 
 impl Truth {
@@ -249,8 +251,12 @@ impl MapSource {
                 bail!("--env-seed applies to generated environments (--env), not to --map");
             }
             let opts = self.load_options(memory_mb)?;
-            let record::map_file::MapFile { map, start, .. } =
-                load_map_file(path, &opts, self.topic.as_deref(), self.dungeon)?;
+            let record::map_file::MapFile {
+                map,
+                start,
+                recorded_at,
+                ..
+            } = load_map_file(path, &opts, self.topic.as_deref(), self.dungeon)?;
             let name = path
                 .file_stem()
                 .map(|s| s.to_string_lossy().into_owned())
@@ -267,6 +273,7 @@ impl MapSource {
                 map,
                 clutter,
                 start,
+                recorded_at,
             });
         }
         if self.border {
@@ -315,6 +322,7 @@ impl MapSource {
             map: env.map,
             clutter,
             start: None,
+            recorded_at: None,
         })
     }
 

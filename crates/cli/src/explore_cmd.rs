@@ -269,7 +269,7 @@ pub fn run(a: ExploreArgs) -> Result<()> {
     if let Some(path) = &a.mcap {
         crate::files::write_whole(path, |file| {
             let w = std::io::BufWriter::new(file);
-            crate::mcap_out::write_run(w, &truth.map, &cfg, &result)
+            crate::mcap_out::write_run(w, &truth.map, truth.recorded_at.as_ref(), &cfg, &result)
         })
         .with_context(|| format!("--mcap {}: writing", path.display()))?;
     }

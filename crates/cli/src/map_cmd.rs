@@ -56,7 +56,12 @@ pub fn run(cmd: MapCommand) -> Result<()> {
         memory_mb,
     } = cmd;
     let resolution = resolution.as_deref().map(parse_resolution).transpose()?;
-    let record::map_file::MapFile { map, start, topic } = crate::args::load_map_file(
+    let record::map_file::MapFile {
+        map,
+        start,
+        topic,
+        recorded_at,
+    } = crate::args::load_map_file(
         &file,
         &grid::io::LoadOptions {
             resolution,
@@ -99,12 +104,21 @@ pub fn run(cmd: MapCommand) -> Result<()> {
             "free_components": components,
             "start": start.map(|c| [c.x, c.y]),
             "topic": topic,
+            "frame_id": recorded_at.as_ref().map(|r| r.frame_id.clone()),
+            "log_time_ns": recorded_at.as_ref().map(|r| r.log_time),
         });
         outln!("{}", serde_json::to_string_pretty(&v)?);
     } else {
         outln!("{}", file.display());
         if let Some(topic) = &topic {
             outln!("  topic       {topic} (its last map)");
+        }
+        if let Some(r) = &recorded_at {
+            outln!(
+                "  recorded    in frame {} at log time {} ns (a run's --mcap keeps both)",
+                r.frame_id,
+                r.log_time
+            );
         }
         // To the centimetre; a size below one (a resolution of 1e-9 m) as it is, not 0.00.
         let metres = |cells: usize| {

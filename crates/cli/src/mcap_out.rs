@@ -12,16 +12,20 @@ use anyhow::{Context, Result};
 use explore::FrontierUpkeep;
 use grid::{Grid, GridMap, Occ};
 use record::RunWriter;
+use record::mcap_read::RecordedAt;
 use record::occupancy::MapFrame;
 use sim::{RunConfig, RunResult};
 
 /// Belief snapshots written at most.
 pub const MAX_SNAPSHOTS: usize = 60;
 
-/// Write the run `result` of `cfg` on `map` (which must have a trace) to `out`.
+/// Write the run `result` of `cfg` on `map` (which must have a trace) to `out`: in the
+/// frame of the recorded map the run explored and from its log time (`recorded`), so that
+/// it lines up with that recording, or in the `map` frame from time 0.
 pub fn write_run<W: Write + Seek>(
     out: W,
     map: &GridMap,
+    recorded: Option<&RecordedAt>,
     cfg: &RunConfig,
     result: &RunResult,
 ) -> Result<()> {
@@ -31,7 +35,10 @@ pub fn write_run<W: Write + Seek>(
         .context("the run kept no trace to record")?;
     let frame = MapFrame::of(map);
     let (w, h) = (map.width(), map.height());
-    let mut rec = RunWriter::new(out)?;
+    let mut rec = match recorded {
+        Some(r) => RunWriter::with_clock(out, &r.frame_id, r.log_time)?,
+        None => RunWriter::new(out)?,
+    };
     rec.map(0.0, map)?;
     let mut belief = GridMap {
         cells: Grid::new(w, h, Occ::Unknown),

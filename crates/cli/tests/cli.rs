@@ -3136,3 +3136,55 @@ fn regression_a_sensor_range_beyond_the_map_names_the_flag() {
         "{e}"
     );
 }
+
+/// A run on a recording's map, written with `--mcap`, is in the recording's frame and
+/// starts at its map's log time, so that it lines up with the recording (it was in the
+/// `map` frame from 1970). `map info` tells both.
+#[test]
+fn a_run_on_a_recording_keeps_its_frame_and_clock() {
+    let dir = tempfile::tempdir().unwrap();
+    let rec = dir.path().join("bag.mcap");
+    let map = grid::io::parse_ascii(
+        &[
+            "##########",
+            "#........#",
+            "#..##....#",
+            "#........#",
+            "##########",
+        ]
+        .join("\n"),
+        0.25,
+    )
+    .unwrap();
+    let start = 1_750_000_000_000_000_000u64;
+    let file = std::fs::File::create(&rec).unwrap();
+    let mut w = record::RunWriter::with_clock(file, "odom", start).unwrap();
+    w.map(3.0, &map).unwrap();
+    w.finish().unwrap();
+    let out = dir.path().join("run.mcap");
+    let (r, o) = (rec.to_str().unwrap(), out.to_str().unwrap());
+    ok(&["explore", "--map", r, "--sensor", "los:r=1", "--mcap", o]);
+    let bytes = std::fs::read(&out).unwrap();
+    let len = bytes.len() as u64;
+    let on = |topic| {
+        record::mcap_read::read_last_map(&bytes[..], len, Some(topic), None)
+            .unwrap()
+            .at
+    };
+    let recorded = start + 3_000_000_000;
+    assert_eq!(
+        on("/map"),
+        record::mcap_read::RecordedAt {
+            frame_id: "odom".into(),
+            log_time: recorded
+        }
+    );
+    let belief = on("/frontier/belief");
+    assert_eq!(belief.frame_id, "odom");
+    assert!(belief.log_time > recorded, "{belief:?}");
+    let info: serde_json::Value = serde_json::from_str(&ok(&["map", "info", r, "--json"])).unwrap();
+    assert_eq!(
+        (info["frame_id"].as_str(), info["log_time_ns"].as_u64()),
+        (Some("odom"), Some(recorded))
+    );
+}

@@ -44,6 +44,8 @@ pub struct MapFile {
     pub start: Option<Cell>,
     /// The topic a recording's map was read from (`None` for other files).
     pub topic: Option<String>,
+    /// A recording's map's frame and log time (`None` for other files).
+    pub recorded_at: Option<crate::mcap_read::RecordedAt>,
 }
 
 /// The map in the file at `path`, read with `opts` (its memory bound applies to recordings
@@ -69,12 +71,12 @@ pub fn load(
         if let Some(name) = pixel_option {
             return Err(MapFileError::McapOption(name));
         }
-        let (map, topic) =
-            crate::mcap_read::load_map(path, topic, opts.memory).map_err(MapFileError::Load)?;
+        let r = crate::mcap_read::load_map(path, topic, opts.memory).map_err(MapFileError::Load)?;
         return Ok(MapFile {
-            map,
+            map: r.map,
             start: None,
-            topic: Some(topic),
+            topic: Some(r.topic),
+            recorded_at: Some(r.at),
         });
     }
     if dungeon {
@@ -87,6 +89,7 @@ pub fn load(
             map: d.map,
             start: Some(d.start),
             topic: None,
+            recorded_at: None,
         });
     }
     let map = grid::io::load_map(path, opts).map_err(|e| match e.kind {
@@ -116,6 +119,7 @@ pub fn load(
         map,
         start: None,
         topic: None,
+        recorded_at: None,
     })
 }
 
@@ -220,11 +224,15 @@ mod tests {
         std::fs::create_dir_all(&dir).unwrap();
         let path = dir.join("plan.txt");
         std::fs::write(&path, "####\n#..#\n####\n").unwrap();
-        let MapFile { map, start, topic } =
-            load(&path, &opts(Some((0.5, 0.5)), false), None, false).unwrap();
+        let MapFile {
+            map,
+            start,
+            topic,
+            recorded_at,
+        } = load(&path, &opts(Some((0.5, 0.5)), false), None, false).unwrap();
         assert_eq!(
-            (map.width(), map.height(), start, topic),
-            (4, 3, None, None)
+            (map.width(), map.height(), start, topic, recorded_at),
+            (4, 3, None, None, None)
         );
         assert_eq!(map.resolution, 0.5);
         // a bitmap that is there (one that is not is unreadable first)

@@ -144,7 +144,7 @@ pub fn load_map(
     path: &std::path::Path,
     topic: Option<&str>,
     memory: Option<Available>,
-) -> Result<(GridMap, String), String> {
+) -> Result<RecordedMap, String> {
     // Bounded like a map file: a device, pipe or directory is refused unopened (`/dev/zero`
     // reports length 0 and reads without end), and so is a file over the limit.
     let (file, len) = grid::io::open_at_most(path, MAX_FILE_BYTES).map_err(|e| match e.kind {
@@ -396,7 +396,7 @@ impl Refusal {
 /// The fields of an OccupancyGrid before its cells.
 #[derive(serde::Deserialize)]
 struct GridHead {
-    _header: Header,
+    header: Header,
     info: MapMetaData,
 }
 
@@ -414,7 +414,28 @@ fn grid_size(ch: &Channel, data: &[u8]) -> Option<(u32, u32)> {
 /// The last OccupancyGrid on `topic` (default: the recording's only OccupancyGrid topic, or
 /// `/map` among several) of the MCAP file in `bytes`, with its topic name.
 pub fn last_map(bytes: &[u8], topic: Option<&str>) -> Result<(GridMap, String), RecordError> {
-    read_last_map(bytes, bytes.len() as u64, topic, None)
+    read_last_map(bytes, bytes.len() as u64, topic, None).map(|r| (r.map, r.topic))
+}
+
+/// A recording's map, with where and when it was recorded.
+#[derive(Clone, Debug)]
+pub struct RecordedMap {
+    /// The map.
+    pub map: GridMap,
+    /// The topic it was read from.
+    pub topic: String,
+    /// The frame and log time of its message.
+    pub at: RecordedAt,
+}
+
+/// Where and when a recording's map was recorded: what a run on it keeps, so that the run
+/// written as a recording lines up with the one it came from.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct RecordedAt {
+    /// The frame its header names ([`crate::mcap_write::FRAME`] if it names none).
+    pub frame_id: String,
+    /// Its log time, in nanoseconds since the epoch.
+    pub log_time: u64,
 }
 
 /// [`last_map`] of the MCAP file of `len` bytes read from `source` a record at a time (a
@@ -429,7 +450,7 @@ pub fn read_last_map(
     len: u64,
     topic: Option<&str>,
     memory: Option<Available>,
-) -> Result<(GridMap, String), RecordError> {
+) -> Result<RecordedMap, RecordError> {
     // Pass 1: the topics and their types; the latest message on each grid topic, or, for a
     // map whose header is over the cell limit or the memory, why it is refused (its cells
     // are not copied).
@@ -527,7 +548,19 @@ pub fn read_last_map(
             source,
         },
     })?;
-    Ok((map, name))
+    // The header decoded as the map's was: it cannot fail here.
+    let frame_id = decode_prefix::<GridHead>(&data)
+        .map(|h| h.value.header.frame_id)
+        .unwrap_or_default();
+    let frame_id = match frame_id.trim() {
+        "" => crate::mcap_write::FRAME.to_string(),
+        f => f.to_string(),
+    };
+    Ok(RecordedMap {
+        map,
+        topic: name,
+        at: RecordedAt { frame_id, log_time },
+    })
 }
 
 /// Whether a recording's topic `recorded` is the one `asked` names: the same name, or the

@@ -10,7 +10,9 @@
 //! | `/frontier/robot<k>/goal` | `geometry_msgs/msg/PoseStamped` | each goal robot k chose |
 //! | `/frontier/markers` | `visualization_msgs/msg/MarkerArray` | frontier cells and goal candidates at every decision |
 //!
-//! Log times are the run's clock (seconds of robot travel at its speed) in nanoseconds.
+//! Log times and stamps are the run's clock (seconds of robot travel at its speed) in
+//! nanoseconds, from 0, or from the log time of the recorded map the run explored, in that
+//! map's frame ([`RunWriter::with_clock`]): a run then lines up with its recording.
 
 use std::collections::BTreeMap;
 use std::io::{Seek, Write};
@@ -53,6 +55,10 @@ pub struct RunWriter<W: Write + Seek> {
     robots: Vec<(u16, u16)>,
     markers: u16,
     sequence: u32,
+    /// The frame every message is in.
+    frame: String,
+    /// Nanoseconds since the epoch at the run's time 0.
+    start_ns: u64,
 }
 
 /// A channel's metadata under MCAP's `ros2` profile, whose `offered_qos_profiles` key is
@@ -67,8 +73,15 @@ fn schema<M: RosMessage>(w: &mut mcap::Writer<impl Write + Seek>) -> mcap::McapR
 }
 
 impl<W: Write + Seek> RunWriter<W> {
-    /// Start a recording into `out` (zstd-compressed chunks).
+    /// Start a recording into `out` (zstd-compressed chunks), in the [`FRAME`] frame, its
+    /// time 0 at the epoch.
     pub fn new(out: W) -> mcap::McapResult<Self> {
+        Self::with_clock(out, FRAME, 0)
+    }
+
+    /// Start a recording into `out` whose messages are in `frame`, the run's time 0 being
+    /// `start_ns` nanoseconds after the epoch (the log time of the recorded map explored).
+    pub fn with_clock(out: W, frame: &str, start_ns: u64) -> mcap::McapResult<Self> {
         let mut out = mcap::WriteOptions::new()
             .profile("ros2")
             .library(concat!("frontier ", env!("CARGO_PKG_VERSION")))
@@ -91,11 +104,18 @@ impl<W: Write + Seek> RunWriter<W> {
             robots: Vec::new(),
             markers: ids.2,
             sequence: 0,
+            frame: frame.to_string(),
+            start_ns,
         })
     }
 
+    /// Nanoseconds since the epoch at the run's time `t_s`.
+    fn nanos(&self, t_s: f64) -> u64 {
+        self.start_ns.saturating_add(Time::from_secs(t_s).nanos())
+    }
+
     fn put(&mut self, channel_id: u16, t_s: f64, data: &[u8]) -> mcap::McapResult<()> {
-        let t = Time::from_secs(t_s).nanos();
+        let t = self.nanos(t_s);
         self.sequence += 1;
         let header = mcap::records::MessageHeader {
             channel_id,
@@ -106,22 +126,22 @@ impl<W: Write + Seek> RunWriter<W> {
         self.out.write_to_known_channel(&header, data)
     }
 
-    fn header(t_s: f64) -> Header {
+    fn header(&self, t_s: f64) -> Header {
         Header {
-            stamp: Time::from_secs(t_s),
-            frame_id: FRAME.into(),
+            stamp: Time::from_nanos(self.nanos(t_s)),
+            frame_id: self.frame.clone(),
         }
     }
 
     /// The explored map, at time `t_s`.
     pub fn map(&mut self, t_s: f64, map: &GridMap) -> mcap::McapResult<()> {
-        let msg = msg_from_map(map, FRAME, Time::from_secs(t_s));
+        let msg = msg_from_map(map, &self.frame, Time::from_nanos(self.nanos(t_s)));
         self.put(self.map, t_s, &encode(&msg))
     }
 
     /// A belief snapshot (same frame as the map).
     pub fn belief(&mut self, t_s: f64, belief: &GridMap) -> mcap::McapResult<()> {
-        let msg = msg_from_map(belief, FRAME, Time::from_secs(t_s));
+        let msg = msg_from_map(belief, &self.frame, Time::from_nanos(self.nanos(t_s)));
         self.put(self.belief, t_s, &encode(&msg))
     }
 
@@ -143,7 +163,7 @@ impl<W: Write + Seek> RunWriter<W> {
     /// Robot `k`'s pose (world metres and yaw).
     pub fn pose(&mut self, t_s: f64, k: usize, x: f64, y: f64, yaw: f64) -> mcap::McapResult<()> {
         let msg = PoseStamped {
-            header: Self::header(t_s),
+            header: self.header(t_s),
             pose: Pose::planar(x, y, yaw),
         };
         let ch = self.robot(k)?.0;
@@ -153,7 +173,7 @@ impl<W: Write + Seek> RunWriter<W> {
     /// A goal robot `k` chose.
     pub fn goal(&mut self, t_s: f64, k: usize, x: f64, y: f64) -> mcap::McapResult<()> {
         let msg = PoseStamped {
-            header: Self::header(t_s),
+            header: self.header(t_s),
             pose: Pose::planar(x, y, 0.0),
         };
         let ch = self.robot(k)?.1;
@@ -168,7 +188,7 @@ impl<W: Write + Seek> RunWriter<W> {
         candidates: &[(f64, f64)],
         cell_m: f64,
     ) -> mcap::McapResult<()> {
-        let msg = markers(&Self::header(t_s), frontiers, candidates, cell_m);
+        let msg = markers(&self.header(t_s), frontiers, candidates, cell_m);
         self.put(self.markers, t_s, &encode(&msg))
     }
 
@@ -245,6 +265,48 @@ mod tests {
     use super::*;
     use crate::mcap_read::last_map;
     use grid::io::parse_ascii;
+
+    /// A run written on its recording's clock: its messages are in the recording's frame and
+    /// logged from the recorded map's log time on, their stamps the same times.
+    #[test]
+    fn a_run_on_a_recordings_clock_keeps_its_frame_and_time() {
+        use crate::mcap_read::read_last_map;
+        let map = parse_ascii("####\n#..#\n####\n", 0.1).unwrap();
+        let start = 1_700_000_000_250_000_000u64;
+        let mut w =
+            RunWriter::with_clock(std::io::Cursor::new(Vec::new()), "world", start).unwrap();
+        w.map(0.0, &map).unwrap();
+        w.belief(2.5, &map).unwrap();
+        let bytes = w.finish().unwrap().into_inner();
+        let len = bytes.len() as u64;
+        let on = |topic| {
+            read_last_map(&bytes[..], len, Some(topic), None)
+                .unwrap()
+                .at
+        };
+        let at = on(MAP_TOPIC);
+        assert_eq!((at.frame_id.as_str(), at.log_time), ("world", start));
+        let at = on(BELIEF_TOPIC);
+        assert_eq!(
+            (at.frame_id.as_str(), at.log_time),
+            ("world", start + 2_500_000_000)
+        );
+        assert_eq!(
+            Time::from_nanos(start + 2_500_000_000),
+            Time {
+                sec: 1_700_000_002,
+                nanosec: 750_000_000
+            }
+        );
+        // Without a clock: the `map` frame, from 0.
+        let mut w = RunWriter::new(std::io::Cursor::new(Vec::new())).unwrap();
+        w.map(1.0, &map).unwrap();
+        let bytes = w.finish().unwrap().into_inner();
+        let at = read_last_map(&bytes[..], bytes.len() as u64, None, None)
+            .unwrap()
+            .at;
+        assert_eq!((at.frame_id.as_str(), at.log_time), (FRAME, 1_000_000_000));
+    }
 
     #[test]
     fn a_run_written_reads_back() {

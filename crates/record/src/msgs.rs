@@ -76,6 +76,15 @@ impl Time {
         }
     }
 
+    /// The time `ns` nanoseconds after the epoch (at most `i32::MAX` seconds).
+    pub fn from_nanos(ns: u64) -> Self {
+        let sec = (ns / 1_000_000_000).min(i32::MAX as u64);
+        Self {
+            sec: sec as i32,
+            nanosec: (ns % 1_000_000_000) as u32,
+        }
+    }
+
     /// Seconds since the epoch.
     pub fn secs(self) -> f64 {
         f64::from(self.sec) + f64::from(self.nanosec) * 1e-9

@@ -17,7 +17,7 @@ use counting::{peak_of, turn};
 
 /// [`read_last_map`] of `bytes` on `/map` within `memory`.
 fn read(bytes: &[u8], memory: Option<Available>) -> Result<grid::GridMap, RecordError> {
-    read_last_map(bytes, bytes.len() as u64, Some("/map"), memory).map(|(map, _)| map)
+    read_last_map(bytes, bytes.len() as u64, Some("/map"), memory).map(|r| r.map)
 }
 
 /// Regression: a recording's map was checked against the cell limit only, so a map message
@@ -141,8 +141,8 @@ fn a_recording_is_read_a_record_at_a_time() {
     std::fs::write(&path, &bytes).expect("write");
     drop(bytes);
     let (result, peak) = peak_of(|| load_map(&path, None, None));
-    let (map, topic) = result.expect("the map");
-    assert_eq!((map.width(), map.height()), (3, 2));
-    assert_eq!(topic, "/map");
+    let r = result.expect("the map");
+    assert_eq!((r.map.width(), r.map.height()), (3, 2));
+    assert_eq!(r.topic, "/map");
     assert!(peak < 4 << 20, "{peak} bytes to read a 20 MiB recording");
 }
