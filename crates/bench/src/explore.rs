@@ -17,6 +17,9 @@ pub struct ExploreOptions {
     pub seed: u64,
     /// Start cell of the first robot (`--start`); `None` = chosen by seed.
     pub start: Option<Cell>,
+    /// Whether `start` is the one the map file marks (a dungeon PNG's), not `--start`:
+    /// a refusal names it so.
+    pub start_marked: bool,
     /// Strategy preset (`--strategy`).
     pub strategy: String,
     /// Sensor spec (`--sensor`).
@@ -51,6 +54,7 @@ impl Default for ExploreOptions {
         Self {
             seed: 0,
             start: None,
+            start_marked: false,
             strategy: "cf-rr".into(),
             sensor: "los:r=5".into(),
             belief: None,
@@ -198,7 +202,8 @@ pub fn config(
     if let Some(first) = o.start {
         let trav =
             sim::truth::traversable(&map.cells, grid::units::cells(o.clearance, map.resolution));
-        sim::truth::check_start(&map.cells, &trav, first).map_err(|e| named_start(first, e))?;
+        sim::truth::check_start(&map.cells, &trav, first)
+            .map_err(|e| named_start(first, o.start_marked, e))?;
         cfg.starts = if o.robots == 1 {
             vec![first]
         } else {
@@ -210,23 +215,26 @@ pub fn config(
     Ok(cfg)
 }
 
-/// A start refused by the run, named by its flag as the user gave it (a team starts
-/// around it).
-fn named_start(start: Cell, e: sim::SimError) -> String {
+/// A start refused by the run, named as the user gave it: by its flag, or as the start the
+/// map file marks (`marked`). A team starts around it.
+fn named_start(start: Cell, marked: bool, e: sim::SimError) -> String {
     match e {
+        sim::SimError::BadStart { why, .. } if marked => {
+            format!("the start the map marks, {},{}: {why}", start.x, start.y)
+        }
         sim::SimError::BadStart { why, .. } => format!("--start {},{}: {why}", start.x, start.y),
         e => e.to_string(),
     }
 }
 
 /// Why `start` cannot be the first robot's start on `map` for a robot with `clearance_m`
-/// metres of clearance (outside the map, or not a cell the robot fits in), as [`config`]
-/// refuses it; `None` if it can.
-pub fn start_problem(map: &GridMap, start: Cell, clearance_m: f64) -> Option<String> {
+/// metres of clearance (outside the map, or not a cell the robot fits in), named as
+/// [`config`] names it (`marked`: the start the map file marks); `None` if it can.
+pub fn start_problem(map: &GridMap, start: Cell, marked: bool, clearance_m: f64) -> Option<String> {
     let trav = sim::truth::traversable(&map.cells, grid::units::cells(clearance_m, map.resolution));
     sim::truth::check_start(&map.cells, &trav, start)
         .err()
-        .map(|e| named_start(start, e))
+        .map(|e| named_start(start, marked, e))
 }
 
 /// Round to `digits` decimals so that JSON stays short and stable.

@@ -95,15 +95,16 @@ pub struct ExploreArgs {
 
 /// Resolve flags into a run configuration (everything but the map).
 pub fn config(a: &ExploreArgs, truth: &Truth) -> Result<RunConfig> {
-    let start = a
+    let given = a
         .start
         .as_deref()
         .map(|s| parse_cell(s, "--start"))
-        .transpose()?
-        .or(truth.start);
+        .transpose()?;
+    let start = given.or(truth.start);
     let opts = bench::explore::ExploreOptions {
         seed: a.seed,
         start,
+        start_marked: given.is_none() && start.is_some(),
         strategy: a.strategy.clone(),
         sensor: a.sensor.clone(),
         belief: a.belief.clone(),

@@ -1824,6 +1824,23 @@ fn a_dungeon_png_gives_its_marked_start() {
     assert_eq!((&info["width"], &info["height"]), (&14.into(), &10.into()));
     assert_eq!(info["start"], serde_json::json!([6, 4]));
     assert_eq!((&info["free"], &info["occupied"]), (&60.into(), &80.into()));
+    // Regression: a marked start the robot does not fit in was refused as "--start 5,3",
+    // a flag the user never gave.
+    let e = err(&[
+        "explore",
+        "--map",
+        p,
+        "--dungeon",
+        "--resolution",
+        "0.1",
+        "--clearance",
+        "0.35",
+    ]);
+    assert!(
+        e.contains("the start the map marks, 5,3: the cell is free but closer to an obstacle")
+            && !e.contains("--start"),
+        "{e}"
+    );
     // Without a marker: an error naming the file.
     pixels[(3 * w + 4) as usize] = 255;
     pixels[(3 * w + 5) as usize] = 255;

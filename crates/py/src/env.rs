@@ -110,12 +110,13 @@ fn start_session(
 ) -> Result<Session<'static>, String> {
     let mut o = spec.options.clone();
     o.seed = seed;
+    o.start_marked = o.start.is_none() && marked.is_some();
     o.start = o.start.or(marked);
     o.record_trace = false;
     // A start that does not fit this map is the map's problem, named with it.
     if let Some(e) = o
         .start
-        .and_then(|c| bench::explore::start_problem(&map, c, o.clearance))
+        .and_then(|c| bench::explore::start_problem(&map, c, o.start_marked, o.clearance))
     {
         return Err(format!("map {name}: {e}"));
     }
@@ -956,7 +957,7 @@ fn spec(
     if let Some(e) = s
         .options
         .start
-        .and_then(|c| bench::explore::start_problem(&first, c, s.options.clearance))
+        .and_then(|c| bench::explore::start_problem(&first, c, false, s.options.clearance))
     {
         return Err(value_error(format!("map {name}: {e}")));
     }
@@ -1015,7 +1016,7 @@ fn spec(
 /// episode that draws it (a vector environment's, inside `step()`).
 fn list_start_problem(list: &[Map], start: grid::Cell, clearance_m: f64) -> Option<String> {
     list.iter().find_map(|m| {
-        bench::explore::start_problem(&m.map, start, clearance_m)
+        bench::explore::start_problem(&m.map, start, false, clearance_m)
             .map(|e| format!("map {}: {e}", m.name))
     })
 }
