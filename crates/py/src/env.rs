@@ -113,14 +113,16 @@ fn start_session(
     o.start_marked = o.start.is_none() && marked.is_some();
     o.start = o.start.or(marked);
     o.record_trace = false;
-    // A start that does not fit this map is the map's problem, named with it.
-    if let Some(e) = o
-        .start
-        .and_then(|c| bench::explore::start_problem(&map, c, o.start_marked, o.clearance))
-    {
-        return Err(format!("map {name}: {e}"));
-    }
-    let mut cfg = bench::explore::config(&o, &map, None)?;
+    let mut cfg = bench::explore::config(&o, &map, None).map_err(|e| {
+        // A start that does not fit this map is the map's problem, named with it.
+        match o
+            .start
+            .and_then(|c| bench::explore::start_problem(&map, c, o.start_marked, o.clearance))
+        {
+            Some(start) => format!("map {name}: {start}"),
+            None => e,
+        }
+    })?;
     if let Some(c) = spec.candidates {
         cfg.strategy.candidates = c;
     }
