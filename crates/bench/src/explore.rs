@@ -72,6 +72,15 @@ impl Default for ExploreOptions {
     }
 }
 
+impl ExploreOptions {
+    /// Start at the cell the map file marks (a dungeon PNG's) unless `--start` gave one;
+    /// a refusal then names it as the map's.
+    pub fn or_marked_start(&mut self, marked: Option<Cell>) {
+        self.start_marked = self.start.is_none() && marked.is_some();
+        self.start = self.start.or(marked);
+    }
+}
+
 /// Refuse a run of `cfg` on `map` whose estimated peak memory exceeds `memory_mb` (the
 /// user's `--memory-mb`) or what the machine has available, before anything map-sized is
 /// allocated; the error says what would not fit, the limit and how to make it fit.

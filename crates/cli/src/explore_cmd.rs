@@ -95,16 +95,15 @@ pub struct ExploreArgs {
 
 /// Resolve flags into a run configuration (everything but the map).
 pub fn config(a: &ExploreArgs, truth: &Truth) -> Result<RunConfig> {
-    let given = a
+    let start = a
         .start
         .as_deref()
         .map(|s| parse_cell(s, "--start"))
         .transpose()?;
-    let start = given.or(truth.start);
-    let opts = bench::explore::ExploreOptions {
+    let mut opts = bench::explore::ExploreOptions {
         seed: a.seed,
         start,
-        start_marked: given.is_none() && start.is_some(),
+        start_marked: false,
         strategy: a.strategy.clone(),
         sensor: a.sensor.clone(),
         belief: a.belief.clone(),
@@ -119,6 +118,7 @@ pub fn config(a: &ExploreArgs, truth: &Truth) -> Result<RunConfig> {
         record_trace: a.out.is_some() || a.gif.is_some() || a.html.is_some() || a.mcap.is_some(),
         motion: Some(a.motion.clone()),
     };
+    opts.or_marked_start(truth.start);
     let cfg = bench::explore::config(&opts, &truth.map, truth.clutter.clone())
         .map_err(anyhow::Error::msg)?;
     let page = match a.html {

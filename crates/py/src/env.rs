@@ -110,19 +110,9 @@ fn start_session(
 ) -> Result<Session<'static>, String> {
     let mut o = spec.options.clone();
     o.seed = seed;
-    o.start_marked = o.start.is_none() && marked.is_some();
-    o.start = o.start.or(marked);
+    o.or_marked_start(marked);
     o.record_trace = false;
-    let mut cfg = bench::explore::config(&o, &map, None).map_err(|e| {
-        // A start that does not fit this map is the map's problem, named with it.
-        match o
-            .start
-            .and_then(|c| bench::explore::start_problem(&map, c, o.start_marked, o.clearance))
-        {
-            Some(start) => format!("map {name}: {start}"),
-            None => e,
-        }
-    })?;
+    let mut cfg = config_on(&o, &map, name)?;
     if let Some(c) = spec.candidates {
         cfg.strategy.candidates = c;
     }
@@ -146,6 +136,20 @@ fn start_session(
         // An option out of range (--speed, --clearance, --goal) is wrong on every map.
         SimError::BadParameter { .. } => e.to_string(),
         _ => format!("map {name}: {e}"),
+    })
+}
+
+/// [`bench::explore::config`] of `o` on map `name` (`map`): a start that does not fit the
+/// map is the map's problem, named with it.
+fn config_on(o: &ExploreOptions, map: &GridMap, name: &str) -> Result<sim::RunConfig, String> {
+    bench::explore::config(o, map, None).map_err(|e| {
+        match o
+            .start
+            .and_then(|c| bench::explore::start_problem(map, c, o.start_marked, o.clearance))
+        {
+            Some(start) => format!("map {name}: {start}"),
+            None => e,
+        }
     })
 }
 
@@ -956,14 +960,7 @@ fn spec(
     };
     // Check the options on the first map, and learn the observation's size.
     let (first, name, marked) = py.detach(|| s.map(0, None)).map_err(value_error)?;
-    if let Some(e) = s
-        .options
-        .start
-        .and_then(|c| bench::explore::start_problem(&first, c, false, s.options.clearance))
-    {
-        return Err(value_error(format!("map {name}: {e}")));
-    }
-    let cfg = bench::explore::config(&s.options, &first, None).map_err(value_error)?;
+    let cfg = config_on(&s.options, &first, &name).map_err(value_error)?;
     s.largest = match &s.maps {
         Maps::List(list) => list
             .iter()

@@ -150,8 +150,7 @@ struct Job {
 /// Resolve one run; `memory_mb` is the user's budget (the CLI's `--memory-mb`).
 fn job(map: &Map, kw: Option<&Bound<'_, PyDict>>, memory_mb: Option<u64>) -> PyResult<Job> {
     let mut o = options(kw)?;
-    o.start_marked = o.start.is_none() && map.start.is_some();
-    o.start = o.start.or(map.start);
+    o.or_marked_start(map.start);
     let clutter = match kw.map(|kw| kw.get_item("clutter")).transpose()?.flatten() {
         Some(v) if !v.is_none() => Some(clutter_layer(map, &v)?),
         _ => None,

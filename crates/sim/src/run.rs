@@ -222,9 +222,21 @@ struct Team<'a> {
 
 /// Run one exploration of `truth` as configured.
 pub fn run(truth: &GridMap, cfg: &RunConfig) -> Result<RunResult, SimError> {
+    run_sharing(truth, cfg, None)
+}
+
+/// A session of `cfg` on `truth` for a whole run, its scans made through `sight` where it
+/// serves the run ([`Session::share_sight`]).
+fn start_sharing<'a>(
+    truth: &'a GridMap,
+    cfg: &'a RunConfig,
+    sight: Option<&std::sync::Arc<sense::SightCache>>,
+) -> Result<Session<'a>, SimError> {
     let mut session = Session::start(Cow::Borrowed(truth), Cow::Borrowed(cfg), false)?;
-    session.advance();
-    Ok(session.finish())
+    if let Some(s) = sight {
+        session.share_sight(s.clone());
+    }
+    Ok(session)
 }
 
 /// [`run()`], its scans made through `sight` where it serves the run
@@ -234,10 +246,7 @@ pub fn run_sharing(
     cfg: &RunConfig,
     sight: Option<&std::sync::Arc<sense::SightCache>>,
 ) -> Result<RunResult, SimError> {
-    let mut session = Session::start(Cow::Borrowed(truth), Cow::Borrowed(cfg), false)?;
-    if let Some(s) = sight {
-        session.share_sight(s.clone());
-    }
+    let mut session = start_sharing(truth, cfg, sight)?;
     session.advance();
     Ok(session.finish())
 }
@@ -253,10 +262,7 @@ pub fn run_pausing(
     steps: u64,
     mut between: impl FnMut(&Session<'_>) -> bool,
 ) -> Result<Option<RunResult>, SimError> {
-    let mut session = Session::start(Cow::Borrowed(truth), Cow::Borrowed(cfg), false)?;
-    if let Some(s) = sight {
-        session.share_sight(s.clone());
-    }
+    let mut session = start_sharing(truth, cfg, sight)?;
     while session.advance_for(steps).is_none() {
         if !between(&session) {
             return Ok(None);
