@@ -83,19 +83,26 @@ impl ExploreOptions {
 
 /// Refuse a run of `cfg` on `map` whose estimated peak memory exceeds `memory_mb` (the
 /// user's `--memory-mb`) or what the machine has available, before anything map-sized is
-/// allocated; the error says what would not fit, the limit and how to make it fit.
-pub fn check_memory(cfg: &RunConfig, map: &GridMap, memory_mb: Option<u64>) -> Result<(), String> {
-    check_memory_with(cfg, map, memory_mb, 0)
-}
-
-/// [`check_memory`] with `extra` bytes the command needs beside the run (a replay page
-/// made of its trace).
-pub fn check_memory_with(
-    cfg: &RunConfig,
+/// allocated; the error says what would not fit, the limit and how to make it fit. A
+/// recording run's trace is capped at what that limit leaves ([`check_memory_with`]).
+pub fn check_memory(
+    cfg: &mut RunConfig,
     map: &GridMap,
     memory_mb: Option<u64>,
-    extra: u64,
 ) -> Result<(), String> {
+    check_memory_with(cfg, map, memory_mb, false).map(|_| ())
+}
+
+/// [`check_memory`], with the replay page made of the run's trace beside it when `page`
+/// (`--html`). A run that records a trace gets [`RunConfig::trace_events`] from the same
+/// limit: one whose trace outgrows its estimate (`random` can) then ends at `trace limit`
+/// instead of being killed for memory. Returns that limit, to name it if the run stops there.
+pub fn check_memory_with(
+    cfg: &mut RunConfig,
+    map: &GridMap,
+    memory_mb: Option<u64>,
+    page: bool,
+) -> Result<Option<grid::memory::Available>, String> {
     let (w, h) = (map.width(), map.height());
     let what = format!(
         "exploring this {w}x{h} map with {} robot{} ({})",
@@ -118,14 +125,35 @@ pub fn check_memory_with(
             String::new()
         }
     );
+    let extra = match page {
+        true => sim::memory::replay_bytes(w * h, map.resolution, cfg),
+        false => 0,
+    };
+    let fix = match cfg.record_trace {
+        true => format!(
+            "{fix}; the trace it records for pictures, a replay or trajectories takes about \
+             {} MiB of it (a run that records none keeps none)",
+            sim::memory::trace_bytes(w * h, map.resolution, cfg)
+                .saturating_add(extra)
+                .div_ceil(1 << 20)
+        ),
+        false => fix,
+    };
+    let available = grid::machine::available();
     sim::memory::check(
         &what,
         sim::memory::run_bytes(w * h, map.resolution, cfg).saturating_add(extra),
         memory_mb,
-        grid::machine::available(),
+        available,
         &fix,
     )
-    .map_err(|e| e.to_string())
+    .map_err(|e| e.to_string())?;
+    let limit = sim::memory::limit(memory_mb, available).filter(|_| cfg.record_trace);
+    if let Some(limit) = limit {
+        cfg.trace_events =
+            sim::memory::trace_events_within(limit.bytes, w * h, map.resolution, cfg, page);
+    }
+    Ok(limit)
 }
 
 /// Refuse to generate the environment `spec` when its generation would need more than

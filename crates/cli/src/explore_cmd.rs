@@ -1,6 +1,7 @@
 //! `frontier explore`: one run, a summary or JSON, pictures and a trace.
 
 use crate::out::{out, outln};
+use grid::memory::Available;
 use std::io::Write;
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
@@ -93,8 +94,9 @@ pub struct ExploreArgs {
     pub no_progress: bool,
 }
 
-/// Resolve flags into a run configuration (everything but the map).
-pub fn config(a: &ExploreArgs, truth: &Truth) -> Result<RunConfig> {
+/// Resolve flags into a run configuration (everything but the map), checked against the
+/// memory it may spend, and the limit that caps its trace when it records one.
+pub fn config(a: &ExploreArgs, truth: &Truth) -> Result<(RunConfig, Option<Available>)> {
     let start = a
         .start
         .as_deref()
@@ -119,15 +121,12 @@ pub fn config(a: &ExploreArgs, truth: &Truth) -> Result<RunConfig> {
         motion: Some(a.motion.clone()),
     };
     opts.or_marked_start(truth.start);
-    let cfg = bench::explore::config(&opts, &truth.map, truth.clutter.clone())
+    let mut cfg = bench::explore::config(&opts, &truth.map, truth.clutter.clone())
         .map_err(anyhow::Error::msg)?;
-    let page = match a.html {
-        Some(_) => sim::memory::replay_bytes(truth.map.cells.len(), truth.map.resolution, &cfg),
-        None => 0,
-    };
-    bench::explore::check_memory_with(&cfg, &truth.map, a.memory_mb, page)
-        .map_err(anyhow::Error::msg)?;
-    Ok(cfg)
+    let limit =
+        bench::explore::check_memory_with(&mut cfg, &truth.map, a.memory_mb, a.html.is_some())
+            .map_err(anyhow::Error::msg)?;
+    Ok((cfg, limit))
 }
 
 /// Steps of the loop between two looks at the clock.
@@ -208,7 +207,7 @@ pub fn run(a: ExploreArgs) -> Result<()> {
         }
     }
     let truth = a.source.resolve(a.seed, a.memory_mb)?;
-    let cfg = config(&a, &truth)?;
+    let (cfg, trace_limit) = config(&a, &truth)?;
     // Once the map and every flag are read and before the run: a folder that cannot be
     // made fails before a long run, and one made is removed again if the run fails.
     let _folder = match &a.out {
@@ -273,6 +272,15 @@ pub fn run(a: ExploreArgs) -> Result<()> {
             crate::mcap_out::write_run(w, &truth.map, truth.recorded_at.as_ref(), &cfg, &result)
         })
         .with_context(|| format!("--mcap {}: writing", path.display()))?;
+    }
+    if let Some(limit) = trace_limit.filter(|_| result.reason == sim::EndReason::TraceLimit) {
+        eprintln!(
+            "warning: the run stopped after {} moves, before it explored everything: the \
+             trace that --out, --gif, --html and --mcap are made of filled what {limit} \
+             leaves beside the run (the strategy moved far more than expected); without \
+             those flags, or with more memory, it runs to the end",
+            result.moves
+        );
     }
     if a.json {
         outln!(

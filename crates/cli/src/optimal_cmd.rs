@@ -297,7 +297,7 @@ pub fn run(a: OptimalArgs) -> Result<()> {
         rc.seed = a.seed;
         // The same goal as the optimum: stop once G of the free cells are perceived.
         rc.coverage_goal = Some(a.goal);
-        bench::explore::check_memory(&rc, map, Some(a.memory_mb as u64))
+        bench::explore::check_memory(&mut rc, map, Some(a.memory_mb as u64))
             .map_err(|e| anyhow::anyhow!("--compare {name}: {e}"))?;
         runs.push((name, rc));
     }

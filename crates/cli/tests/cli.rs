@@ -353,6 +353,65 @@ fn regression_memory_budget_of_zero_is_refused() {
     );
 }
 
+/// Regression: a recorded run whose trace outgrew its estimate (`random` crossing a maze
+/// for every goal: 1.4 times the moves expected here) grew past the memory the command had
+/// checked. Its trace is capped at what `--memory-mb` leaves beside the run: the run ends
+/// there, says so, and still writes what it recorded.
+#[test]
+fn regression_a_trace_that_outgrows_its_memory_ends_the_run() {
+    let dir = tempfile::tempdir().unwrap();
+    let out_dir = dir.path().join("out");
+    let args = |mb: &'static str| {
+        vec![
+            "explore",
+            "--env",
+            "maze",
+            "--env-seed",
+            "3",
+            "--size",
+            "14x10",
+            "--resolution",
+            "0.05",
+            "--sensor",
+            "los:r=2c",
+            "--strategy",
+            "random",
+            "--json",
+            "--no-timing",
+            "--no-progress",
+            "--memory-mb",
+            mb,
+        ]
+    };
+    let mut capped = args("100");
+    capped.extend(["--out", out_dir.to_str().unwrap()]);
+    let out = frontier(&capped);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("warning: the run stopped after")
+            && stderr.contains("filled what --memory-mb 100 leaves beside the run"),
+        "{stderr}"
+    );
+    let j: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(j["reason"], "trace limit");
+    assert!(j["coverage"].as_f64().unwrap() < 1.0);
+    assert!(out_dir.join("trace.json").is_file());
+    // Without a trace the same budget runs to the end.
+    let out = frontier(&args("100"));
+    let j: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(j["reason"], "complete");
+    assert!(
+        out.stderr.is_empty(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
 /// Regression: `--out DIR` was made, parents and all, before the map was read or the flags
 /// checked, so a command that failed left an empty folder behind.
 #[test]

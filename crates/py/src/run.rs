@@ -155,8 +155,8 @@ fn job(map: &Map, kw: Option<&Bound<'_, PyDict>>, memory_mb: Option<u64>) -> PyR
         Some(v) if !v.is_none() => Some(clutter_layer(map, &v)?),
         _ => None,
     };
-    let cfg = config(&o, &map.map, clutter).map_err(value_error)?;
-    bench::explore::check_memory(&cfg, &map.map, memory_mb).map_err(value_error)?;
+    let mut cfg = config(&o, &map.map, clutter).map_err(value_error)?;
+    bench::explore::check_memory(&mut cfg, &map.map, memory_mb).map_err(value_error)?;
     Ok(Job {
         map: map.clone(),
         cfg,

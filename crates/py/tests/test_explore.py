@@ -111,6 +111,17 @@ def test_clutter_equals_cli_clutter_map(cli, office, tmp_path):
         frontier.explore(office, clutter="tables")
 
 
+def test_trajectories_that_outgrow_their_memory_end_the_run():
+    # Regression: random crossing a maze for every goal takes 1.4 times the moves its
+    # estimate expects here, and its trajectories grew past the memory checked.
+    maze = frontier.Map.generate("maze", seed=3, size=(14, 10), resolution=0.05)
+    kw = dict(strategy="random", sensor="los:r=2c", memory_mb=100)
+    with pytest.warns(RuntimeWarning, match="the run stopped after .* moves, before it"):
+        r = frontier.explore(maze, **kw)
+    assert r.reason == "trace limit" and r.coverage < 1.0
+    assert sum(len(t) for t in r.trajectories) > 1_000_000
+
+
 def test_arrays(office):
     r = frontier.explore(office, robots=2, seed=1)
     assert r.belief.shape == office.shape and r.belief.dtype == np.uint8

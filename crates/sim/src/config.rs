@@ -69,6 +69,11 @@ pub struct RunConfig {
     pub max_moves: u64,
     /// Keep a per-step trace (trails, goals, frontier counts) for pictures.
     pub record_trace: bool,
+    /// Most events a recorded trace may hold: the run ends there
+    /// ([`crate::EndReason::TraceLimit`]) rather than outgrow the memory left for it
+    /// ([`crate::memory::trace_events_within`]). A trace's length is estimated before the
+    /// run, but a strategy that wanders (`random`) can outrun any estimate.
+    pub trace_events: u64,
     /// Obstacles off the laser plane (same size as the map, true = obstacle): planar
     /// sensors miss them, sonar hears them and the robot's body is stopped by them.
     pub clutter: Option<Grid<bool>>,
@@ -95,6 +100,7 @@ impl RunConfig {
             coverage: CoverageKind::ReachableFree,
             max_moves: 10_000_000,
             record_trace: false,
+            trace_events: u64::MAX,
             clutter: None,
             motion: crate::motion::Motion::Grid,
         }

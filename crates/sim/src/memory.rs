@@ -55,40 +55,86 @@ const REPLAY_PER_MOVE: u64 = 260;
 /// Replay page bytes per cell (the truth's classes and the changes, packed).
 const REPLAY_PER_CELL: u64 = 48;
 
-/// The most moves a run of a sensor of `range_cells` cells is expected to take on a map
-/// of `cells` cells: every cell for a one-cell sensor, fewer as the sensor sees farther,
-/// taken as cells / sqrt(range) (measured: a one-cell sensor on a 1 M-cell office
+/// Moves of a `random` run, cells^1.5 times this over the range squared, for sensors that
+/// see a few cells: each arrival reveals about range² cells and the next goal is anywhere,
+/// so the decisions grow with the cells over range² and each trip with the map's side. At
+/// most 0.22 measured (offices of 14 × 10 and 20 × 14 m at 0.05 m with 1–5-cell ranges,
+/// willow-full with 10 cells: 2.5–2.9 M moves).
+const RANDOM_NEAR: f64 = 0.3;
+/// Moves of a `random` run, cells^1.5 times this over the root of the range, for sensors
+/// that walls stop first (measured at most 0.0085: willow-full with a 5 m `los` and Holz's
+/// 8 m laser, nav2's depot with 0.5 and 5 m).
+const RANDOM_FAR: f64 = 0.012;
+
+/// The most moves a run of `cfg` with a sensor of `range_cells` cells is expected to take
+/// on a map of `cells` cells: every cell for a one-cell sensor, fewer as the sensor sees
+/// farther, taken as cells / sqrt(range) (measured: a one-cell sensor on a 1 M-cell office
 /// 923,000 moves; `dt500` with a 30-cell range there 88,000 against 183,000; `dt500` and
-/// Holz's 160-cell laser on willow-full's 1.1 M cells about 29,000 against 87,000).
-fn moves_bound(cells: usize, range_cells: f64) -> u64 {
-    (cells as f64 / range_cells.max(1.0).sqrt()).ceil() as u64
+/// Holz's 160-cell laser on willow-full's 1.1 M cells about 29,000 against 87,000). `random`
+/// sends the robot across the map for every goal, so its moves grow faster than the cells
+/// ([`RANDOM_NEAR`], [`RANDOM_FAR`]); a maze can still exceed that (1.4 times on a 14 ×
+/// 10 m maze at 0.05 m with a 2-cell range), which is why a recorded run's trace is capped
+/// at run time too ([`trace_events_within`]). Never more than `cfg.max_moves`.
+fn moves_bound(cells: usize, range_cells: f64, cfg: &RunConfig) -> u64 {
+    let (n, r) = (cells as f64, range_cells.max(1.0));
+    let mut moves = n / r.sqrt();
+    if cfg.strategy.assigner == AssignerKind::Random {
+        moves = moves.max(n * n.sqrt() * (RANDOM_NEAR / (r * r)).max(RANDOM_FAR / r.sqrt()));
+    }
+    (moves.ceil() as u64).min(cfg.max_moves)
+}
+
+/// Trace bytes per move of a run of `cfg`: its event and, for the decision-theoretic
+/// samples, its share of every decision's samples (decisions taken as one per half range
+/// of moves: 1,351 decisions in the 88,000 moves above, against 12,200).
+fn trace_per_move(resolution: f64, cfg: &RunConfig) -> u64 {
+    let range = cfg.sensor.range_cells(resolution);
+    let samples = match cfg.strategy.candidates {
+        CandidateKind::DtSamples { n } => {
+            (n as f64 * TRACE_PER_SAMPLE as f64 / (range / 2.0).max(1.0)).ceil() as u64
+        }
+        _ => 0,
+    };
+    TRACE_PER_MOVE.saturating_add(samples)
 }
 
 /// Estimated bytes of the trace a run of `cfg` keeps when it records one (`--out`,
 /// `--gif`, `--html`, `--mcap`): its moves, belief changes and, for the decision-theoretic
-/// samples, every decision's samples (decisions taken as one per half range of moves:
-/// 1,351 decisions in the 88,000 moves above, against 12,200).
+/// samples, every decision's samples.
 pub fn trace_bytes(cells: usize, resolution: f64, cfg: &RunConfig) -> u64 {
-    let range = cfg.sensor.range_cells(resolution);
-    let moves = moves_bound(cells, range);
-    let samples = match cfg.strategy.candidates {
-        CandidateKind::DtSamples { n } => {
-            let decisions = moves / (range / 2.0).max(1.0) as u64;
-            decisions
-                .saturating_mul(n as u64)
-                .saturating_mul(TRACE_PER_SAMPLE)
-        }
-        _ => 0,
-    };
+    let moves = moves_bound(cells, cfg.sensor.range_cells(resolution), cfg);
     TRACE_PER_CELL
         .saturating_mul(cells as u64)
-        .saturating_add(TRACE_PER_MOVE.saturating_mul(moves))
-        .saturating_add(samples)
+        .saturating_add(trace_per_move(resolution, cfg).saturating_mul(moves))
+}
+
+/// The most events the trace of a recorded run of `cfg` may hold within `limit` bytes, the
+/// memory a command may spend ([`limit`]): what the run without its trace, the trace's
+/// per-cell part and, with `page`, the replay page made of it leave, at the trace's (and
+/// the page's) bytes per move. The run's estimate ([`run_bytes`]) fitting in `limit`
+/// leaves at least the moves it expects; [`RunConfig::trace_events`] takes this.
+pub fn trace_events_within(
+    limit: u64,
+    cells: usize,
+    resolution: f64,
+    cfg: &RunConfig,
+    page: bool,
+) -> u64 {
+    let mut untraced = cfg.clone();
+    untraced.record_trace = false;
+    let mut fixed = run_bytes(cells, resolution, &untraced)
+        .saturating_add(TRACE_PER_CELL.saturating_mul(cells as u64));
+    let mut per_move = trace_per_move(resolution, cfg);
+    if page {
+        fixed = fixed.saturating_add(REPLAY_PER_CELL.saturating_mul(cells as u64));
+        per_move = per_move.saturating_add(REPLAY_PER_MOVE);
+    }
+    limit.saturating_sub(fixed) / per_move.max(1)
 }
 
 /// Estimated bytes of making a run's replay page (`--html`) beside its trace.
 pub fn replay_bytes(cells: usize, resolution: f64, cfg: &RunConfig) -> u64 {
-    let moves = moves_bound(cells, cfg.sensor.range_cells(resolution));
+    let moves = moves_bound(cells, cfg.sensor.range_cells(resolution), cfg);
     REPLAY_PER_CELL
         .saturating_mul(cells as u64)
         .saturating_add(REPLAY_PER_MOVE.saturating_mul(moves))
@@ -235,6 +281,51 @@ mod tests {
     use super::*;
     use explore::strategy::Strategy;
     use grid::memory::Limit;
+
+    /// The trace cap a command derives from its memory limit ([`trace_events_within`])
+    /// leaves exactly the moves the estimate expects when the estimate fills the limit
+    /// (with and without a replay page), fewer under a smaller limit: a run the estimate
+    /// lets through is not cut short before it.
+    #[test]
+    fn the_trace_cap_of_a_fitting_run_is_its_expected_moves() {
+        let cells = 280 * 200;
+        for (preset, sensor, res) in [
+            ("random", "los:r=2c", 0.05),
+            ("random", "lidar:r=8,fov=180,res=1", 0.05),
+            ("cf-rr", "los:r=1c", 0.05),
+            ("dt500", "los:r=30c", 0.1),
+        ] {
+            let mut cfg = RunConfig::new(Strategy::preset(preset).unwrap());
+            cfg.sensor = sensor.parse().unwrap();
+            cfg.record_trace = true;
+            let moves = moves_bound(cells, cfg.sensor.range_cells(res), &cfg);
+            for page in [false, true] {
+                let mut limit = run_bytes(cells, res, &cfg);
+                if page {
+                    limit += replay_bytes(cells, res, &cfg);
+                }
+                let events = trace_events_within(limit, cells, res, &cfg, page);
+                assert_eq!(events, moves, "{preset} {sensor} page {page}");
+                let less = trace_events_within(limit - (1 << 20), cells, res, &cfg, page);
+                assert!(less < events, "{preset} {sensor} page {page}: {less}");
+            }
+        }
+    }
+
+    /// `random`'s moves are bounded by more than the others' (it crosses the map for every
+    /// goal), and never by more than the run's move limit.
+    #[test]
+    fn random_expects_more_moves_within_the_move_limit() {
+        let sensor: sense::SensorSpec = "los:r=2c".parse().unwrap();
+        let range = sensor.range_cells(0.05);
+        let cf = RunConfig::new(Strategy::preset("cf").unwrap());
+        let mut random = RunConfig::new(Strategy::preset("random").unwrap());
+        let cells = 1_100_000;
+        assert!(moves_bound(cells, range, &random) > 10 * moves_bound(cells, range, &cf));
+        assert_eq!(moves_bound(cells, range, &random), random.max_moves);
+        random.max_moves = 1000;
+        assert_eq!(moves_bound(cells, range, &random), 1000);
+    }
 
     #[test]
     fn estimate_grows_with_robots_and_coverage_candidates() {

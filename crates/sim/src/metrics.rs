@@ -14,6 +14,9 @@ pub enum EndReason {
     NoReachableFrontier,
     /// The move limit was hit.
     StepLimit,
+    /// The recorded trace reached the most events the memory left for it holds
+    /// ([`crate::RunConfig::trace_events`]): the run stopped rather than outgrow it.
+    TraceLimit,
 }
 
 impl EndReason {
@@ -30,6 +33,7 @@ impl EndReason {
             EndReason::GoalReached => "goal reached",
             EndReason::NoReachableFrontier => "no reachable frontier",
             EndReason::StepLimit => "step limit",
+            EndReason::TraceLimit => "trace limit",
         }
     }
 }

@@ -508,6 +508,13 @@ impl<'a> Session<'a> {
             if team.moves >= team.cfg.max_moves {
                 break EndReason::StepLimit;
             }
+            if team
+                .trace
+                .as_ref()
+                .is_some_and(|t| t.events.len() as u64 >= team.cfg.trace_events)
+            {
+                break EndReason::TraceLimit;
+            }
             // The active robot with the earliest clock moves next; none is left to move
             // once every robot is idle or no robot can reach a candidate.
             let Some(r) = (0..m)

@@ -189,6 +189,42 @@ fn step_limit_is_a_stated_reason() {
     assert_eq!(r.moves, 10);
 }
 
+/// A recorded run's trace stops at `trace_events`: the run ends there, its reason stated,
+/// rather than outgrow the memory left for the trace; a run that records none, or one
+/// under a cap it does not reach, runs as without one.
+#[test]
+fn trace_limit_is_a_stated_reason() {
+    let env = world::generate(&EnvSpec {
+        kind: EnvKind::Office,
+        seed: 3,
+        size_m: None,
+        resolution: None,
+    })
+    .unwrap();
+    let mut cfg = RunConfig::new(Strategy::preset("random").unwrap());
+    cfg.record_trace = true;
+    let whole = sim::run(&env.map, &cfg).unwrap();
+    assert_eq!(whole.reason, EndReason::Complete);
+    let events = whole.trace.as_ref().unwrap().events.len() as u64;
+    cfg.trace_events = events / 2;
+    let capped = sim::run(&env.map, &cfg).unwrap();
+    assert_eq!(capped.reason, EndReason::TraceLimit);
+    assert_eq!(
+        capped.trace.as_ref().unwrap().events.len() as u64,
+        events / 2
+    );
+    assert!(capped.coverage < whole.coverage);
+    cfg.trace_events = events;
+    assert_eq!(sim::run(&env.map, &cfg).unwrap().moves, whole.moves);
+    cfg.record_trace = false;
+    cfg.trace_events = 1;
+    let untraced = sim::run(&env.map, &cfg).unwrap();
+    assert_eq!(
+        (untraced.reason, untraced.moves),
+        (whole.reason, whole.moves)
+    );
+}
+
 #[test]
 fn bad_parameters_are_named() {
     let env = world::generate(&EnvSpec {

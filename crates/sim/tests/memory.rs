@@ -106,3 +106,26 @@ fn the_trace_estimate_bounds_a_recorded_run() {
         "no recorded run outgrew the estimate without its trace"
     );
 }
+
+/// Regression: `random` sends the robot across the map for every goal, so its moves grow
+/// faster than the cells, and its recorded trace outgrew the estimate (willow-full with a
+/// 10-cell `los`: 2.5 M moves against the 348,000 allowed, a peak of 152 MiB against 121
+/// MiB estimated). Its recorded run's estimate bounds its peak.
+#[test]
+fn the_trace_estimate_bounds_a_recorded_random_run() {
+    let _turn = counting::turn();
+    let truth = env(world::EnvKind::Office, (14.0, 10.0));
+    let mut cfg = RunConfig::new(Strategy::preset("random").unwrap());
+    cfg.sensor = "los:r=2c".parse().unwrap();
+    cfg.record_trace = true;
+    let estimate = sim::memory::run_bytes(truth.cells.len(), truth.resolution, &cfg);
+    let (r, peak) = counting::peak_of(|| sim::run(&truth, &cfg).unwrap());
+    assert_eq!(r.reason, sim::EndReason::Complete);
+    assert!(
+        peak as u64 <= estimate,
+        "random with los:r=2c, recorded ({} moves): took {} MiB, estimated {} MiB",
+        r.moves,
+        peak >> 20,
+        estimate >> 20
+    );
+}

@@ -294,7 +294,9 @@ def explore(
     wall-clock fields
     (``decide_ms``, ``timing_ms``), which are ``None`` otherwise so that equal runs give
     equal results. A run whose estimated peak memory exceeds ``memory_mb`` MiB (the CLI's
-    ``--memory-mb``) or what the machine has available is refused before it starts. Raises
+    ``--memory-mb``) or what the machine has available is refused before it starts; one
+    whose trajectories outgrow that memory stops there (``reason`` ``"trace limit"``, with a
+    ``RuntimeWarning``). Raises
     ``ValueError`` with the CLI's message for a bad argument, ``TypeError`` naming it for
     one of a wrong type."""
     if not isinstance(map, Map):
@@ -310,7 +312,17 @@ def explore(
     if clutter is not None:
         kw["clutter"] = clutter
     text, belief_arr, trails = _native.explore(map, kw, timing, memory_mb)
-    return ExploreResult(json.loads(text), belief_arr, trails)
+    result = ExploreResult(json.loads(text), belief_arr, trails)
+    if result.summary["reason"] == "trace limit":
+        warnings.warn(
+            f"the run stopped after {result.summary['moves']} moves, before it explored "
+            "everything: the trajectories filled the memory left beside the run (the "
+            "strategy moved far more than expected); with trajectories=False, or more "
+            "memory_mb, it runs to the end",
+            RuntimeWarning,
+            stacklevel=2,
+        )
+    return result
 
 
 #: Keys a run of :func:`explore_many` may not give, and what to do instead: the arguments
