@@ -8,14 +8,19 @@ use grid::{Occ, SQRT2};
 use sim::{EndReason, RunConfig, RunResult};
 use world::{EnvKind, EnvSpec};
 
-fn run(kind: EnvKind, preset: &str, seed: u64) -> (grid::GridMap, RunResult) {
-    let env = world::generate(&EnvSpec {
+/// The built-in environment `kind` of `seed` at its default size and resolution.
+fn generated(kind: EnvKind, seed: u64) -> world::Environment {
+    world::generate(&EnvSpec {
         kind,
         seed,
         size_m: None,
         resolution: None,
     })
-    .expect("generate");
+    .expect("generate")
+}
+
+fn run(kind: EnvKind, preset: &str, seed: u64) -> (grid::GridMap, RunResult) {
+    let env = generated(kind, seed);
     let mut cfg = RunConfig::new(Strategy::preset(preset).expect("preset"));
     cfg.seed = seed;
     cfg.record_trace = true;
@@ -155,13 +160,7 @@ fn closest_frontier_beats_random() {
 
 #[test]
 fn coverage_goal_stops_early() {
-    let env = world::generate(&EnvSpec {
-        kind: EnvKind::Office,
-        seed: 3,
-        size_m: None,
-        resolution: None,
-    })
-    .unwrap();
+    let env = generated(EnvKind::Office, 3);
     let mut cfg = RunConfig::new(Strategy::preset("cf-rr").unwrap());
     cfg.coverage_goal = Some(0.5);
     let r = sim::run(&env.map, &cfg).unwrap();
@@ -175,13 +174,7 @@ fn coverage_goal_stops_early() {
 
 #[test]
 fn step_limit_is_a_stated_reason() {
-    let env = world::generate(&EnvSpec {
-        kind: EnvKind::Office,
-        seed: 3,
-        size_m: None,
-        resolution: None,
-    })
-    .unwrap();
+    let env = generated(EnvKind::Office, 3);
     let mut cfg = RunConfig::new(Strategy::preset("cf").unwrap());
     cfg.max_moves = 10;
     let r = sim::run(&env.map, &cfg).unwrap();
@@ -194,13 +187,7 @@ fn step_limit_is_a_stated_reason() {
 /// under a cap it does not reach, runs as without one.
 #[test]
 fn trace_limit_is_a_stated_reason() {
-    let env = world::generate(&EnvSpec {
-        kind: EnvKind::Office,
-        seed: 3,
-        size_m: None,
-        resolution: None,
-    })
-    .unwrap();
+    let env = generated(EnvKind::Office, 3);
     let mut cfg = RunConfig::new(Strategy::preset("random").unwrap());
     cfg.record_trace = true;
     let whole = sim::run(&env.map, &cfg).unwrap();
@@ -227,13 +214,7 @@ fn trace_limit_is_a_stated_reason() {
 
 #[test]
 fn bad_parameters_are_named() {
-    let env = world::generate(&EnvSpec {
-        kind: EnvKind::Empty,
-        seed: 0,
-        size_m: None,
-        resolution: None,
-    })
-    .unwrap();
+    let env = generated(EnvKind::Empty, 0);
     let mut cfg = RunConfig::new(Strategy::preset("cf").unwrap());
     cfg.speed = 0.0;
     let e = sim::run(&env.map, &cfg).unwrap_err().to_string();
