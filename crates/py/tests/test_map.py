@@ -437,14 +437,16 @@ def test_regression_bool_array_with_other_bytes():
 
 def test_regression_ctrl_c_interrupts_generating_a_large_map():
     """Regression: ``Map.generate`` of a large map ran to its end before Python saw Ctrl-C
-    (a 200 x 200 m cave at 0.05 m takes tens of seconds); ``Map.load`` held the GIL as it
-    read. Both now wake every 0.1 s to let Python handle signals."""
+    (a 200 x 200 m cave at 0.05 m took tens of seconds, 2 s now); ``Map.load`` held the
+    GIL as it read. Both now wake every 0.1 s to let Python handle signals."""
     import _thread
     import signal
     import threading
     import time
 
-    args = dict(kind="cave", seed=0, size=(80, 80), resolution=0.05)
+    # About 1.3 s in a release build: long beside the 0.05 s before the interrupt and the
+    # 0.1 s between looks.
+    args = dict(kind="cave", seed=0, size=(160, 160), resolution=0.05)
     t = time.perf_counter()
     frontier.Map.generate(**args)
     whole = time.perf_counter() - t
