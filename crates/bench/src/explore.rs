@@ -129,25 +129,23 @@ pub fn check_memory_with(
         true => sim::memory::replay_bytes(w * h, map.resolution, cfg),
         false => 0,
     };
-    let fix = match cfg.record_trace {
+    // The trace is named where it is a large part of the need (a quarter or more), so
+    // that a run refused for its recording says so; a small one is left out.
+    let needed = sim::memory::run_bytes(w * h, map.resolution, cfg).saturating_add(extra);
+    let trace = match cfg.record_trace {
+        true => sim::memory::trace_bytes(w * h, map.resolution, cfg).saturating_add(extra),
+        false => 0,
+    };
+    let fix = match trace >= needed / 4 {
         true => format!(
             "{fix}; the trace it records for pictures, a replay or trajectories takes about \
              {} MiB of it (a run that records none keeps none)",
-            sim::memory::trace_bytes(w * h, map.resolution, cfg)
-                .saturating_add(extra)
-                .div_ceil(1 << 20)
+            trace.div_ceil(1 << 20)
         ),
         false => fix,
     };
     let available = grid::machine::available();
-    sim::memory::check(
-        &what,
-        sim::memory::run_bytes(w * h, map.resolution, cfg).saturating_add(extra),
-        memory_mb,
-        available,
-        &fix,
-    )
-    .map_err(|e| e.to_string())?;
+    sim::memory::check(&what, needed, memory_mb, available, &fix).map_err(|e| e.to_string())?;
     let limit = sim::memory::limit(memory_mb, available).filter(|_| cfg.record_trace);
     if let Some(limit) = limit {
         cfg.trace_events =

@@ -401,6 +401,15 @@ fn regression_a_trace_that_outgrows_its_memory_ends_the_run() {
     assert_eq!(j["reason"], "trace limit");
     assert!(j["coverage"].as_f64().unwrap() < 1.0);
     assert!(out_dir.join("trace.json").is_file());
+    // A budget below the estimate is refused up front, the trace named as most of it.
+    let mut refused = args("40");
+    refused.extend(["--out", out_dir.to_str().unwrap()]);
+    let e = err(&refused);
+    assert!(
+        e.contains("more than --memory-mb 40")
+            && e.contains("the trace it records for pictures, a replay or trajectories"),
+        "{e}"
+    );
     // Without a trace the same budget runs to the end.
     let out = frontier(&args("100"));
     let j: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
