@@ -268,12 +268,12 @@ def test_memory_mb_bounds_the_environments_maps(tmp_path, write_png):
         pixels[[0, -1], :] = pixels[:, [0, -1]] = 0
         write_png(folder / f"{name}.png", pixels)
     # The environment is sized on the map seed 0 picks, b_small (index 1 of 2): 16 MiB and
-    # a run on a_large needs 26 MiB.
+    # a run on a_large needs 24 MiB.
     env = ExploreEnv(folder, resolution=0.25, view=16, memory_mb=20)
     assert env.map_names == ["a_large", "b_small"]
     env.reset(seed=0, options={"map": 1})
     with pytest.raises(ValueError, match=r"an episode on map a_large \(400x400 cells\) needs "
-                       r"about 26 MiB, more than --memory-mb 20; leave the largest maps out"):
+                       r"about 24 MiB, more than --memory-mb 20; leave the largest maps out"):
         env.reset(seed=0, options={"map": 0})
     ExploreEnv(folder, resolution=0.25, view=16, memory_mb=64).reset(seed=0, options={"map": 0})
 

@@ -102,7 +102,7 @@ def test_memory_mb_bounds_the_team_environment(office):
     """Regression: the team environment took no memory_mb; a budget too small for it is
     refused when it is made, naming it, and one that holds it changes no episode."""
     with pytest.raises(ValueError, match=r"running this environment of 3 robots \(.*\) needs "
-                       r"about 17 MiB, more than --memory-mb 16; use a smaller k"):
+                       r"about 18 MiB, more than --memory-mb 16; use a smaller k"):
         ExploreParallelEnv(office, robots=3, memory_mb=16)
     with pytest.raises(TypeError, match="memory_mb: expected an int, found bool"):
         ExploreParallelEnv(office, robots=3, memory_mb=True)

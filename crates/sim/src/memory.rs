@@ -6,7 +6,8 @@
 //! so its peak is close to linear in the map's cells. The coefficients below are upper
 //! bounds of peak resident memory measured on whole runs of the 0.05 m willow-full floor
 //! plan (1.1 M cells): 42 B/cell for one robot, 75 with 5 robots, 113 with 10, 64 for
-//! `dt500`, 160 for a 5-robot `ha-cc`. MA adds its route matrices, at most
+//! `dt500`, 160 for a 5-robot `ha-cc`; large teams on small maps add up to 18 B/cell and
+//! 0.25 MiB per robot (measured on teams of 20–200). MA adds its route matrices, at most
 //! [`matrix_budget`] (4 MiB and 24 B/cell), and
 //! 8 B/cell of per-goal buffers: a 5-robot `ma-af` run on a 1.7 M-cell warehouse at 3 cm
 //! peaked at 221 MiB (178 MiB without matrices), of 229 MiB counted. A map the loader
@@ -27,9 +28,19 @@ pub const BASE_BYTES: u64 = 16 << 20;
 
 /// Per-cell bytes of a single-robot run (truth, belief, frontier, one field, candidates).
 const PER_CELL: u64 = 48;
-/// Per-cell bytes each robot adds (its search field: state, cost and the canonical walks'
-/// directions; its cost rows).
-const PER_CELL_PER_ROBOT: u64 = 10;
+/// Per-cell bytes each robot past the first adds: its search field (state, cost and the
+/// canonical walks' directions, 11 bytes a cell, allocated whole) and what a search that
+/// settles the map lists (its settled cells, its queued turning cells), and GA's searches
+/// begun again toward other goals. Measured as the growth from 20 to 80 robots on a
+/// generated 40 × 30 m office at 0.1 m (120,000 cells), per robot: 1.1–1.3 MB for the
+/// coordination study's presets and SGA, 1.5–1.8 MB for MinPos, IA, HA and MA, 2.1–2.2
+/// MB for GA (18 bytes a cell).
+const PER_CELL_PER_ROBOT: u64 = 18;
+/// Bytes each robot past the first adds whatever the map (its searches' buckets, queues
+/// and guide; the first's are in [`BASE_BYTES`]). With 200 robots on a 20 × 15 m office at
+/// 0.1 m (30,000 cells) a robot took 0.35–0.6 MB, about 0.2 MB more than its cells account
+/// for.
+const PER_ROBOT: u64 = 256 << 10;
 /// Per-cell bytes of the coverage (CC) candidates' visibility cache.
 const PER_CELL_COVERAGE: u64 = 128;
 /// Per-cell bytes of the decision-theoretic samples' gain evaluation.
@@ -148,7 +159,8 @@ pub fn replay_bytes(cells: usize, resolution: f64, cfg: &RunConfig) -> u64 {
 /// ([`trace_bytes`]). `tests/memory.rs` checks that it
 /// bounds whole runs' peaks.
 pub fn run_bytes(cells: usize, resolution: f64, cfg: &RunConfig) -> u64 {
-    let mut per_cell = PER_CELL + PER_CELL_PER_ROBOT * cfg.robots.max(1) as u64;
+    let robots = cfg.robots.max(1) as u64;
+    let mut per_cell = PER_CELL.saturating_add(PER_CELL_PER_ROBOT.saturating_mul(robots - 1));
     per_cell += match cfg.strategy.candidates {
         CandidateKind::Coverage => PER_CELL_COVERAGE,
         CandidateKind::DtSamples { .. } => PER_CELL_DT,
@@ -172,6 +184,7 @@ pub fn run_bytes(cells: usize, resolution: f64, cfg: &RunConfig) -> u64 {
     };
     BASE_BYTES
         .saturating_add(per_cell.saturating_mul(cells as u64))
+        .saturating_add(PER_ROBOT.saturating_mul(robots - 1))
         .saturating_add(scans)
         .saturating_add(matrices)
         .saturating_add(trace)

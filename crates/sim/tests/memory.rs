@@ -68,6 +68,30 @@ fn the_run_estimate_bounds_what_a_run_takes() {
     }
 }
 
+/// Regression: a robot's search field was counted at 10 bytes a cell, which the other
+/// coefficients' slack covered for five or ten robots but not for large teams (200 robots
+/// on a 20 × 15 m office at 0.1 m: MinPos peaked at 118 MiB against 80 MiB estimated;
+/// 1,000 robots of `greedy` on 40 × 30 m at 1.32 GiB against 1.17 GiB). Teams of 200 on a
+/// small office, where the robots' searches are most of the run, stay within it (the
+/// heap of `greedy`'s: 52 MiB, against 51 MiB estimated before).
+#[test]
+fn the_run_estimate_bounds_a_large_team() {
+    let _turn = counting::turn();
+    let mut spec = world::EnvSpec::new(world::EnvKind::Office, 3);
+    spec.size_m = Some((15.0, 12.0));
+    spec.resolution = Some(0.1);
+    let truth = world::generate(&spec).unwrap().map;
+    for preset in ["greedy", "ga-rfe", "ha-rfe"] {
+        let (peak, estimate) = peak_and_estimate(&truth, preset, 200);
+        assert!(
+            peak <= estimate,
+            "{preset} with 200 robots: took {} KiB, estimated {} KiB",
+            peak >> 10,
+            estimate >> 10
+        );
+    }
+}
+
 /// Regression: the trace a run keeps for `--out`, `--gif`, `--html` and `--mcap` was not in
 /// the estimate, and with a short sensor it outgrows the run (a one-cell sensor on a 1 M-cell
 /// office: 65 MiB without it, 128 MiB with it, against 72 MiB estimated). The estimate of
