@@ -258,6 +258,15 @@ fn for_each_message(
             e @ (mcap::McapError::BadChunkCrc { .. }
             | mcap::McapError::BadDataCrc { .. }
             | mcap::McapError::BadSummaryCrc { .. }) => RecordError::Damaged(e.to_string()),
+            // The reader does no I/O of its own (the file is read here): its I/O errors
+            // are its decompressors', like its decompression errors. A chunk's checksum is
+            // of its decompressed bytes, so a changed compressed byte fails here first.
+            mcap::McapError::Io(e) => {
+                RecordError::Damaged(format!("a compressed chunk does not decompress ({e})"))
+            }
+            mcap::McapError::DecompressionError(e) => {
+                RecordError::Damaged(format!("a compressed chunk does not decompress ({e})"))
+            }
             mcap::McapError::UnexpectedEof if len == 0 => RecordError::Mcap("an empty file".into()),
             mcap::McapError::UnexpectedEof => RecordError::Mcap(
                 "a file that ends in the middle of a record: cut short, or still being \

@@ -55,3 +55,44 @@ fn regression_a_topic_is_found_without_its_leading_slash() {
         .to_string();
     assert!(e.contains("messages on topic scan"), "{e}");
 }
+
+/// Regression: a changed byte inside a compressed chunk was "expected an MCAP file, found:
+/// I/O error from writing, or reading a compression stream" (lz4), or a decompression
+/// error, since a chunk's checksum is of its decompressed bytes and decompressing fails
+/// first. Every such change is now refused as damage, with what the decompressor said.
+#[test]
+fn regression_a_changed_compressed_chunk_is_refused_as_damage() {
+    let cells: Vec<i8> = (0..400)
+        .map(|i| match i {
+            _ if i % 7 == 0 => 100,
+            _ if i % 5 == 0 => -1,
+            _ => 0,
+        })
+        .collect();
+    for compression in [mcap::Compression::Lz4, mcap::Compression::Zstd] {
+        let maps = [common::grid_message(20, 20, cells.clone())];
+        let bytes = common::recording_with(Some(compression), &[], &maps);
+        record::last_map(&bytes, None).expect("the recording as written");
+        let mut undecompressed = 0;
+        for at in 0..bytes.len() {
+            let mut changed = bytes.clone();
+            changed[at] ^= 0x5a;
+            let Err(e) = record::last_map(&changed, None) else {
+                continue;
+            };
+            let e = e.to_string();
+            assert!(
+                !e.contains("compression stream")
+                    && !e.contains("found: Error during decompression"),
+                "{compression:?}, byte {at}: {e}"
+            );
+            if e.starts_with("damaged: a compressed chunk does not decompress (") {
+                undecompressed += 1;
+            }
+        }
+        assert!(
+            undecompressed > 0,
+            "{compression:?}: no change failed to decompress"
+        );
+    }
+}
