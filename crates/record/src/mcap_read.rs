@@ -132,6 +132,14 @@ pub enum RecordError {
     Read(#[source] std::io::Error),
 }
 
+impl RecordError {
+    /// A compressed chunk whose bytes the decompressor refused (`why`): damage, since a
+    /// chunk's checksum is of its decompressed bytes and cannot be checked first.
+    fn undecompressed(why: impl std::fmt::Display) -> Self {
+        RecordError::Damaged(format!("a compressed chunk does not decompress ({why})"))
+    }
+}
+
 /// Recordings larger than this are refused before reading (the map message itself is at
 /// most [`crate::occupancy::MAX_CELLS`] bytes).
 pub const MAX_FILE_BYTES: u64 = 8 << 30;
@@ -259,14 +267,9 @@ fn for_each_message(
             | mcap::McapError::BadDataCrc { .. }
             | mcap::McapError::BadSummaryCrc { .. }) => RecordError::Damaged(e.to_string()),
             // The reader does no I/O of its own (the file is read here): its I/O errors
-            // are its decompressors', like its decompression errors. A chunk's checksum is
-            // of its decompressed bytes, so a changed compressed byte fails here first.
-            mcap::McapError::Io(e) => {
-                RecordError::Damaged(format!("a compressed chunk does not decompress ({e})"))
-            }
-            mcap::McapError::DecompressionError(e) => {
-                RecordError::Damaged(format!("a compressed chunk does not decompress ({e})"))
-            }
+            // are its decompressors', like its decompression errors.
+            mcap::McapError::Io(e) => RecordError::undecompressed(e),
+            mcap::McapError::DecompressionError(e) => RecordError::undecompressed(e),
             mcap::McapError::UnexpectedEof if len == 0 => RecordError::Mcap("an empty file".into()),
             mcap::McapError::UnexpectedEof => RecordError::Mcap(
                 "a file that ends in the middle of a record: cut short, or still being \

@@ -131,9 +131,7 @@ pub fn trace_events_within(
     cfg: &RunConfig,
     page: bool,
 ) -> u64 {
-    let mut untraced = cfg.clone();
-    untraced.record_trace = false;
-    let mut fixed = run_bytes(cells, resolution, &untraced)
+    let mut fixed = untraced_bytes(cells, resolution, cfg)
         .saturating_add(TRACE_PER_CELL.saturating_mul(cells as u64));
     let mut per_move = trace_per_move(resolution, cfg);
     if page {
@@ -159,6 +157,15 @@ pub fn replay_bytes(cells: usize, resolution: f64, cfg: &RunConfig) -> u64 {
 /// ([`trace_bytes`]). `tests/memory.rs` checks that it
 /// bounds whole runs' peaks.
 pub fn run_bytes(cells: usize, resolution: f64, cfg: &RunConfig) -> u64 {
+    let trace = match cfg.record_trace {
+        true => trace_bytes(cells, resolution, cfg),
+        false => 0,
+    };
+    untraced_bytes(cells, resolution, cfg).saturating_add(trace)
+}
+
+/// [`run_bytes`] without the trace, whether or not `cfg` records one.
+fn untraced_bytes(cells: usize, resolution: f64, cfg: &RunConfig) -> u64 {
     let robots = cfg.robots.max(1) as u64;
     let mut per_cell = PER_CELL.saturating_add(PER_CELL_PER_ROBOT.saturating_mul(robots - 1));
     per_cell += match cfg.strategy.candidates {
@@ -177,17 +184,11 @@ pub fn run_bytes(cells: usize, resolution: f64, cfg: &RunConfig) -> u64 {
         }
         _ => 0,
     };
-    let trace = if cfg.record_trace {
-        trace_bytes(cells, resolution, cfg)
-    } else {
-        0
-    };
     BASE_BYTES
         .saturating_add(per_cell.saturating_mul(cells as u64))
         .saturating_add(PER_ROBOT.saturating_mul(robots - 1))
         .saturating_add(scans)
         .saturating_add(matrices)
-        .saturating_add(trace)
         .saturating_add(cfg.sensor.build_bytes(resolution))
 }
 
