@@ -109,7 +109,8 @@ pub fn scan_bytes_bound(cells: usize, range_cells: f64, resolution: f64) -> u64 
     (keys * disk * 12.0) as u64
 }
 
-/// `cid` of a cell already found not to be a covering cell in this decision.
+/// The key set's word of a cell already found not to be a covering cell in this decision
+/// (no key set starts there: a set's words are fewer than the keys).
 const NOT_ELIGIBLE: u32 = u32::MAX;
 
 /// Visibility buffers and the last cover, kept across decisions.
@@ -136,9 +137,10 @@ pub struct State {
     masks: Vec<(usize, u64)>,
     /// The blocks of fine maps (unused when the cover is cell by cell).
     coarse: Coarse,
-    /// Candidate id of each scanned cell (or `NOT_ELIGIBLE`), valid where `stamp == epoch`.
-    cid: Vec<u32>,
-    stamp: Vec<u32>,
+    /// Per scanned cell, valid where its stamp is `epoch`: its candidate's key set, or
+    /// none (`NOT_ELIGIBLE` as the word). One load per (target, covering cell) pair finds
+    /// where to set the target's bits; the pairs are the cover's hot loop.
+    cell_span: Vec<(u32, Span)>,
     epoch: u32,
     /// Candidate id → map cell (a block's representative cell on fine maps).
     cands: Vec<u32>,
@@ -527,12 +529,11 @@ fn cover_on(ctx: &mut DecisionCtx<'_>, st: &mut State, block: usize, only: Optio
     // The grid the laser looks over: the belief, or its blocks on fine maps.
     let scanned = if block > 1 { &st.coarse.grid } else { known };
     let n = scanned.len();
-    if st.cid.len() != n {
-        st.cid = vec![0; n];
-        st.stamp = vec![0; n];
+    if st.cell_span.len() != n {
+        st.cell_span = vec![(0, Span::default()); n];
         st.epoch = 0;
     }
-    st.epoch = crate::upkeep::next_gen(st.epoch, &mut st.stamp);
+    st.epoch = next_epoch(st.epoch, &mut st.cell_span);
 
     let lists = ctx.lists;
     let reach = ctx.planner.component(r, ctx.robots[r], known, ctx.upkeep);
@@ -620,7 +621,7 @@ fn cover_on(ctx: &mut DecisionCtx<'_>, st: &mut State, block: usize, only: Optio
         st.coverable.clear();
         st.coverable.resize(words, 0);
         let mut spilled = false;
-        let (cid, stamp, epoch) = (&mut st.cid, &mut st.stamp, st.epoch);
+        let (cell_span, epoch) = (&mut st.cell_span, st.epoch);
         let (cands, cand_block, bits, spans, masks) = (
             &mut st.cands,
             &mut st.cand_block,
@@ -643,21 +644,25 @@ fn cover_on(ctx: &mut DecisionCtx<'_>, st: &mut State, block: usize, only: Optio
             let mut seen_by_any = false;
             for &i in &st.vis.entries[k as usize].free {
                 let iu = i as usize;
-                let id = if stamp[iu] == epoch {
-                    cid[iu]
+                let (at_epoch, known_span) = cell_span[iu];
+                let sp = if at_epoch == epoch {
+                    known_span
                 } else {
-                    stamp[iu] = epoch;
                     let cell = if block > 1 {
                         representative(known, block, coarse.grid.width(), iu, &eligible)
                     } else {
                         eligible(iu).then_some(i)
                     };
                     let Some(cell) = cell else {
-                        cid[iu] = NOT_ELIGIBLE;
+                        cell_span[iu] = (
+                            epoch,
+                            Span {
+                                word: NOT_ELIGIBLE,
+                                ..Span::default()
+                            },
+                        );
                         continue;
                     };
-                    let id = cands.len() as u32;
-                    cid[iu] = id;
                     cands.push(cell);
                     cand_block.push(i);
                     let (w0, w1) = if full {
@@ -668,19 +673,20 @@ fn cover_on(ctx: &mut DecisionCtx<'_>, st: &mut State, block: usize, only: Optio
                         let hi = row_keys[(y + rows + 1).min(sh)] as usize;
                         (lo / 64, hi.div_ceil(64).max(lo / 64))
                     };
-                    spans.push(Span {
+                    let sp = Span {
                         word: w0 as u32,
                         at: bits.len() as u32,
                         len: (w1 - w0) as u32,
-                    });
+                    };
+                    spans.push(sp);
+                    cell_span[iu] = (epoch, sp);
                     bits.resize(bits.len() + w1 - w0, 0);
-                    id
+                    sp
                 };
-                if id == NOT_ELIGIBLE {
+                if sp.word == NOT_ELIGIBLE {
                     continue;
                 }
                 seen_by_any = true;
-                let sp = spans[id as usize];
                 for &(w, m) in masks.iter() {
                     let j = w.wrapping_sub(sp.word as usize);
                     if j < sp.len as usize {
@@ -701,7 +707,7 @@ fn cover_on(ctx: &mut DecisionCtx<'_>, st: &mut State, block: usize, only: Optio
         }
         debug_assert!(false, "a key outside the rows its covering cell can see");
         full = true;
-        st.epoch = crate::upkeep::next_gen(st.epoch, &mut st.stamp);
+        st.epoch = next_epoch(st.epoch, &mut st.cell_span);
     }
     st.vis.sweep();
 
@@ -827,6 +833,16 @@ fn new_keys<'a>(row: &'a [u64], covered: &'a [u64], word: u32) -> impl Iterator<
 }
 
 /// The frontier cells of key `k`: `front[key_start[k]..key_start[k + 1]]`.
+/// The next stamp of `cell_span` (all entries made stale when the stamps wrap around).
+fn next_epoch(epoch: u32, cell_span: &mut [(u32, Span)]) -> u32 {
+    if epoch == u32::MAX {
+        cell_span.fill((0, Span::default()));
+        1
+    } else {
+        epoch + 1
+    }
+}
+
 fn key_cells<'a>(front: &'a [u32], key_start: &[u32], k: usize) -> &'a [u32] {
     &front[key_start[k] as usize..key_start[k + 1] as usize]
 }
