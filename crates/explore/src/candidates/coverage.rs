@@ -832,7 +832,6 @@ fn new_keys<'a>(row: &'a [u64], covered: &'a [u64], word: u32) -> impl Iterator<
         })
 }
 
-/// The frontier cells of key `k`: `front[key_start[k]..key_start[k + 1]]`.
 /// The next stamp of `cell_span` (all entries made stale when the stamps wrap around).
 fn next_epoch(epoch: u32, cell_span: &mut [(u32, Span)]) -> u32 {
     if epoch == u32::MAX {
@@ -843,6 +842,7 @@ fn next_epoch(epoch: u32, cell_span: &mut [(u32, Span)]) -> u32 {
     }
 }
 
+/// The frontier cells of key `k`: `front[key_start[k]..key_start[k + 1]]`.
 fn key_cells<'a>(front: &'a [u32], key_start: &[u32], k: usize) -> &'a [u32] {
     &front[key_start[k] as usize..key_start[k + 1] as usize]
 }
