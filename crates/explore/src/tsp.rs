@@ -1032,6 +1032,24 @@ mod tests {
         any
     }
 
+    /// 3-opt passes of `tsp` on its route and plain passes on `plain` (the same route)
+    /// until neither moves: the same moves, pass after pass.
+    fn same_passes_as_plain(
+        tsp: &mut OpenTsp,
+        plain: &mut [u32],
+        n: usize,
+        d: &[f64],
+    ) -> Result<(), TestCaseError> {
+        loop {
+            let moved = tsp.three_opt(n, d);
+            prop_assert_eq!(moved, three_opt_plain(plain, n, d));
+            prop_assert_eq!(&tsp.route[..], &plain[..]);
+            if !moved {
+                return Ok(());
+            }
+        }
+    }
+
     proptest! {
         /// Regression test for the 3-opt pass that reads each (i, j)'s terms once: the same
         /// moves as the plain pass, pass after pass, on random symmetric instances (integer
@@ -1057,14 +1075,7 @@ mod tests {
             let mut plain = route.clone();
             let mut tsp = OpenTsp::new();
             tsp.route = route;
-            loop {
-                let moved = tsp.three_opt(n, &d);
-                prop_assert_eq!(moved, three_opt_plain(&mut plain, n, &d));
-                prop_assert_eq!(&tsp.route, &plain);
-                if !moved {
-                    break;
-                }
-            }
+            same_passes_as_plain(&mut tsp, &mut plain, n, &d)?;
         }
     }
 
@@ -1092,14 +1103,7 @@ mod tests {
             tsp.best = best;
             tsp.route = route;
             tsp.kicked = true;
-            loop {
-                let moved = tsp.three_opt(n, &d);
-                prop_assert_eq!(moved, three_opt_plain(&mut plain, n, &d));
-                prop_assert_eq!(&tsp.route, &plain);
-                if !moved {
-                    break;
-                }
-            }
+            same_passes_as_plain(&mut tsp, &mut plain, n, &d)?;
         }
 
         /// A full-effort solve whose kicked routes skip the triples known to fail finds the
