@@ -426,15 +426,13 @@ impl State {
             if shown.is_empty() {
                 continue;
             }
-            let a = actions.get(r).copied().unwrap_or(i64::MAX);
-            let n = shown.len() as i64;
-            let a = if wrap { a.rem_euclid(n) } else { a };
+            let (a, chosen) = taken(shown, actions.get(r).copied().unwrap_or(i64::MAX), wrap);
             let who = if self.shown.len() > 1 {
                 format!(" of robot {r}")
             } else {
                 String::new()
             };
-            let Some(g) = usize::try_from(a).ok().and_then(|a| shown.get(a)) else {
+            let Some(g) = chosen else {
                 return Err(format!(
                     "action{who} {a}: expected the index of one of the {} candidates offered \
                      (see the action_mask)",
@@ -479,16 +477,11 @@ impl State {
             return (2, 0.0);
         }
         let offered = self.offered();
-        let n = offered.len() as i64;
-        if n == 0 {
+        if offered.is_empty() {
             return (0, 0.0);
         }
         let few = u8::from(offered.len() < self.spec.k);
-        let a = if wrap { action.rem_euclid(n) } else { action };
-        let cells = usize::try_from(a)
-            .ok()
-            .and_then(|a| offered.get(a))
-            .map_or(0.0, |g| g.cost);
+        let cells = taken(offered, action, wrap).1.map_or(0.0, |g| g.cost);
         (few, 1.6 * cells + 0.37 * self.last_us)
     }
 
@@ -642,6 +635,17 @@ impl State {
     fn offered(&self) -> &[Goal] {
         self.shown.first().map_or(&[], Vec::as_slice)
     }
+}
+
+/// The candidate of `shown` that `action` names (with `wrap`, taken modulo their number),
+/// and the index it was read as; `None` if it names none.
+fn taken(shown: &[Goal], action: i64, wrap: bool) -> (i64, Option<&Goal>) {
+    let a = match shown.len() {
+        0 => action,
+        n if wrap => action.rem_euclid(n as i64),
+        _ => action,
+    };
+    (a, usize::try_from(a).ok().and_then(|i| shown.get(i)))
 }
 
 /// One environment's part of the observation buffers.
