@@ -78,6 +78,10 @@ pub struct State {
     /// The nodes of one route through a cluster without a matrix ([`on_demand`]).
     ncell: Vec<grid::Cell>,
     ndist: Vec<f64>,
+    /// One cluster's goal cells and its participants' costs to them, participant by
+    /// participant ([`fill_bounds`]).
+    ccell: Vec<grid::Cell>,
+    ccost: Vec<f64>,
     /// Entries the route matrices may hold in all, if not [`matrix_budget`]'s (tests).
     budget: Option<usize>,
     /// Each cluster's route matrix: cluster j's, `(c + 1) × (c + 1)` for its c goals
@@ -115,6 +119,8 @@ impl Default for State {
             cstart: Vec::new(),
             ncell: Vec::new(),
             ndist: Vec::new(),
+            ccell: Vec::new(),
+            ccost: Vec::new(),
             budget: None,
             gm: Vec::new(),
             goff: Vec::new(),
@@ -457,22 +463,67 @@ fn bounds(st: &mut State, known: &Grid<Occ>, budget: usize) {
         let off = st.gm.len();
         st.goff.push(off);
         st.gm.resize(off + n * n, 0.0);
-        for (a, &ga) in cluster.iter().enumerate() {
-            let ga = ga as usize;
-            let ca = cell(ga);
-            for (b, &gb) in cluster.iter().enumerate().skip(a + 1) {
-                let gb = gb as usize;
-                let costs = (0..np).map(|q| (st.dist[q * ng + ga], st.dist[q * ng + gb]));
-                let d = bound(ca, cell(gb), costs);
-                st.gm[off + (a + 1) * n + b + 1] = d;
-                st.gm[off + (b + 1) * n + a + 1] = d;
-            }
+        st.ccell.clear();
+        st.ccell.extend(cluster.iter().map(|&g| cell(g as usize)));
+        st.ccost.clear();
+        for q in 0..np {
+            let row = &st.dist[q * ng..(q + 1) * ng];
+            st.ccost.extend(cluster.iter().map(|&g| row[g as usize]));
         }
+        fill_bounds(&st.ccell, &st.ccost, &mut st.gm[off..off + n * n]);
         if n > crate::tsp::FULL_3OPT_UP_TO {
             st.fast
                 .goal_neighbours(n, &st.gm[off..off + n * n], &mut st.lists);
         }
         st.loff.push(st.lists.len());
+    }
+}
+
+/// The goal part of a cluster's route matrix `m` (`n × n`, n = the goals + 1, node a + 1
+/// = goal a): [`bound`] between every two goals, from the goals' `cells` and the
+/// participants' costs to them (`costs[q * goals + a]`: participant q's to goal a). The
+/// same bits as [`bound`] pair by pair (a maximum is exact, so the order of its terms
+/// does not matter), computed a row at a time over contiguous costs: pair by pair, each
+/// pair read one cost per participant from as many places and wrote its mirror entry a row
+/// further, which on clusters of hundreds of goals (`ma-af`) took as long as routing them.
+/// Rows and column 0 are left as they are.
+fn fill_bounds(cells: &[grid::Cell], costs: &[f64], m: &mut [f64]) {
+    let c = cells.len();
+    let n = c + 1;
+    debug_assert_eq!(m.len(), n * n, "a matrix of the cluster's size");
+    for a in 0..c {
+        // goals a + 1.. of row a + 1 (columns a + 2..n)
+        let row = &mut m[(a + 1) * n + a + 2..(a + 2) * n];
+        let ca = cells[a];
+        for (d, &cb) in row.iter_mut().zip(&cells[a + 1..]) {
+            *d = ca.octile(cb);
+        }
+        for q in costs.chunks_exact(c) {
+            let x = q[a];
+            if !x.is_finite() {
+                continue;
+            }
+            for (d, &y) in row.iter_mut().zip(&q[a + 1..]) {
+                // `d.max(t)` for a finite y, as a select (no NaN here: x and y finite)
+                let t = (x - y).abs();
+                *d = if y.abs() < f64::INFINITY && t > *d {
+                    t
+                } else {
+                    *d
+                };
+            }
+        }
+    }
+    // The lower triangle mirrors the upper, in tiles that stay in the cache.
+    const TILE: usize = 32;
+    for a0 in (1..n).step_by(TILE) {
+        for b0 in (a0..n).step_by(TILE) {
+            for a in a0..(a0 + TILE).min(n) {
+                for b in b0.max(a + 1)..(b0 + TILE).min(n) {
+                    m[b * n + a] = m[a * n + b];
+                }
+            }
+        }
     }
 }
 
@@ -537,4 +588,52 @@ fn route(
         .get(1)
         .map(|&v| cluster[st.at[v as usize - 1]] as usize);
     (c + penalty, first)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        /// The rows filled at once hold [`bound`]'s bits for every pair, unreachable
+        /// goals (infinite costs) included, and leave row and column 0 alone.
+        #[test]
+        fn filled_bounds_are_the_pairwise_bounds(
+            goals in prop::collection::vec((0i32..40, 0i32..40), 1..60),
+            np in 1usize..6,
+            raw in prop::collection::vec(0u32..400, 360),
+            inf in prop::collection::vec(0u8..10, 360),
+        ) {
+            let c = goals.len();
+            let cells: Vec<grid::Cell> =
+                goals.iter().map(|&(x, y)| grid::Cell::new(x, y)).collect();
+            // path costs: whole steps and diagonals, some unreachable
+            let costs: Vec<f64> = (0..np * c)
+                .map(|i| match inf[i % inf.len()] {
+                    0 => f64::INFINITY,
+                    _ => f64::from(raw[i % raw.len()] % 37)
+                        + grid::SQRT2 * f64::from(raw[i % raw.len()] / 37),
+                })
+                .collect();
+            let n = c + 1;
+            let mut m = vec![-1.0; n * n];
+            fill_bounds(&cells, &costs, &mut m);
+            for a in 0..c {
+                for b in a + 1..c {
+                    let want = bound(
+                        cells[a],
+                        cells[b],
+                        (0..np).map(|q| (costs[q * c + a], costs[q * c + b])),
+                    );
+                    prop_assert_eq!(m[(a + 1) * n + b + 1].to_bits(), want.to_bits());
+                    prop_assert_eq!(m[(b + 1) * n + a + 1].to_bits(), want.to_bits());
+                }
+            }
+            for a in 0..n {
+                prop_assert_eq!(m[a], -1.0);
+                prop_assert_eq!(m[a * n], -1.0);
+            }
+        }
+    }
 }
