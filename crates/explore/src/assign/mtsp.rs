@@ -483,9 +483,9 @@ fn bounds(st: &mut State, known: &Grid<Occ>, budget: usize) {
 /// = goal a): [`bound`] between every two goals, from the goals' `cells` and the
 /// participants' costs to them (`costs[q * goals + a]`: participant q's to goal a). The
 /// same bits as [`bound`] pair by pair (a maximum is exact, so the order of its terms
-/// does not matter), computed a row at a time over contiguous costs: pair by pair, each
-/// pair read one cost per participant from as many places and wrote its mirror entry a row
-/// further, which on clusters of hundreds of goals (`ma-af`) took as long as routing them.
+/// does not matter), computed a row at a time over contiguous costs: a pair at a time
+/// reads one cost per participant from as many places and writes its mirror a matrix row
+/// away, which on clusters of hundreds of goals (`ma-af`) costs as much as routing them.
 /// Rows and column 0 are left as they are.
 fn fill_bounds(cells: &[grid::Cell], costs: &[f64], m: &mut [f64]) {
     let c = cells.len();
@@ -504,7 +504,7 @@ fn fill_bounds(cells: &[grid::Cell], costs: &[f64], m: &mut [f64]) {
                 continue;
             }
             for (d, &y) in row.iter_mut().zip(&q[a + 1..]) {
-                // `d.max(t)` for a finite y, as a select (no NaN here: x and y finite)
+                // `d.max(t)` for a finite y, as a select (x is finite: t is never NaN)
                 let t = (x - y).abs();
                 *d = if y.abs() < f64::INFINITY && t > *d {
                     t
