@@ -251,10 +251,11 @@ impl FrontierUpkeep {
     }
 }
 
-/// The next generation stamp, clearing `stamps` when the counter wraps.
-pub(crate) fn next_gen(epoch: u32, stamps: &mut [u32]) -> u32 {
+/// The next generation stamp, clearing `stamps` when the counter wraps (to their default:
+/// a stamp of 0, or an entry stamped 0 with what it keeps beside the stamp).
+pub(crate) fn next_gen<T: Clone + Default>(epoch: u32, stamps: &mut [T]) -> u32 {
     if epoch == u32::MAX {
-        stamps.fill(0);
+        stamps.fill(T::default());
         1
     } else {
         epoch + 1

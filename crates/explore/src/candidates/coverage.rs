@@ -533,7 +533,7 @@ fn cover_on(ctx: &mut DecisionCtx<'_>, st: &mut State, block: usize, only: Optio
         st.cell_span = vec![(0, Span::default()); n];
         st.epoch = 0;
     }
-    st.epoch = next_epoch(st.epoch, &mut st.cell_span);
+    st.epoch = crate::upkeep::next_gen(st.epoch, &mut st.cell_span);
 
     let lists = ctx.lists;
     let reach = ctx.planner.component(r, ctx.robots[r], known, ctx.upkeep);
@@ -707,7 +707,7 @@ fn cover_on(ctx: &mut DecisionCtx<'_>, st: &mut State, block: usize, only: Optio
         }
         debug_assert!(false, "a key outside the rows its covering cell can see");
         full = true;
-        st.epoch = next_epoch(st.epoch, &mut st.cell_span);
+        st.epoch = crate::upkeep::next_gen(st.epoch, &mut st.cell_span);
     }
     st.vis.sweep();
 
@@ -830,16 +830,6 @@ fn new_keys<'a>(row: &'a [u64], covered: &'a [u64], word: u32) -> impl Iterator<
                 })
             })
         })
-}
-
-/// The next stamp of `cell_span` (all entries made stale when the stamps wrap around).
-fn next_epoch(epoch: u32, cell_span: &mut [(u32, Span)]) -> u32 {
-    if epoch == u32::MAX {
-        cell_span.fill((0, Span::default()));
-        1
-    } else {
-        epoch + 1
-    }
 }
 
 /// The frontier cells of key `k`: `front[key_start[k]..key_start[k + 1]]`.
