@@ -165,10 +165,11 @@ pub struct Trial {
     pub trial: u32,
     /// The run's seed.
     pub seed: u64,
-    /// Its position in the study's whole list of trials, kept when `--trials` leaves trials
-    /// out ([`Plan::first_trials`]): a shard picks its trials by it, so that `--trials K
+    /// Its place in the order shards deal the study's trials out by (trial numbers first,
+    /// then the study's order), kept when `--trials` leaves trials out
+    /// ([`Plan::first_trials`]): a shard picks its trials by it, so that `--trials K
     /// --shard I/N` runs the first trials of shard I/N, which the shard's later runs into
-    /// the same store then find done.
+    /// the same store then find done, and every shard gets an even share of them.
     pub number: usize,
 }
 
@@ -1021,6 +1022,14 @@ fn resolve(
         total,
         "the trials counted before planning"
     );
+    // Shards deal the trials out by trial number first: in the study's order, the first
+    // trials of the repeated strategies' starts lie `trials` apart, so dealing that order
+    // out gave `--trials 1 --shard I/1000` of faigl2013 from 5 to 78 trials a shard.
+    let mut order: Vec<usize> = (0..trials.len()).collect();
+    order.sort_by_key(|&i| (trials[i].trial, i));
+    for (number, &i) in order.iter().enumerate() {
+        trials[i].number = number;
+    }
     let optimal = f
         .optimal
         .as_ref()

@@ -376,12 +376,42 @@ fn regression_the_first_trials_of_a_shard_are_a_part_of_it() {
         let mine: std::collections::BTreeSet<String> = whole
             .trials
             .iter()
-            .enumerate()
-            .filter(|(i, _)| i % 3 == index - 1)
-            .map(|(_, t)| t.key.clone())
+            .filter(|t| t.number % 3 == index - 1)
+            .map(|t| t.key.clone())
             .collect();
         assert_eq!(keys, mine, "shard {index}/3 holds its own trials only");
     }
+}
+
+/// Regression: shards dealt out the study's trials in its order, where the first trials of
+/// the repeated strategies' starts lie 20 apart, so `--trials 1 --shard I/1000` of
+/// faigl2013 ran 78 trials in one shard and 5 in another. Every shard now gets an even
+/// share of the first trials, and of the whole study.
+#[test]
+fn regression_the_first_trials_spread_evenly_over_the_shards() {
+    let whole = bench::suites::plan("faigl2013").expect("faigl2013 resolves");
+    let mut first = bench::suites::plan("faigl2013").expect("faigl2013 resolves");
+    first.first_trials(1);
+    for count in [7, 32, 1000] {
+        for p in [&whole, &first] {
+            let shares: Vec<usize> = (1..=count)
+                .map(|index| Shard { index, count }.share(&p.trials))
+                .collect();
+            let (lo, hi) = (shares.iter().min().unwrap(), shares.iter().max().unwrap());
+            assert!(
+                hi - lo <= 1,
+                "{count} shards of {} trials: {lo}..{hi}",
+                p.trials.len()
+            );
+            assert_eq!(shares.iter().sum::<usize>(), p.trials.len());
+        }
+    }
+    let mut numbers: Vec<usize> = whole.trials.iter().map(|t| t.number).collect();
+    numbers.sort_unstable();
+    assert!(
+        numbers.iter().enumerate().all(|(i, &n)| i == n),
+        "numbers are a permutation"
+    );
 }
 
 /// The error of resolving `text` with `line` replaced by `with`.
