@@ -13,6 +13,7 @@
 //! slower and no larger than the list itself.
 
 use crate::heuristic::has;
+use crate::room::{room_bytes, room_for};
 
 /// Entries per block.
 pub(crate) const BLOCK: usize = 64;
@@ -43,10 +44,14 @@ impl BlockMasks {
 
     /// Append the blocks of the list `targets` (its entries in list order); its blocks are
     /// numbered on from those of the lists before it.
-    pub(crate) fn push_list(&mut self, targets: impl Iterator<Item = u32>) {
+    pub(crate) fn push_list(&mut self, targets: impl ExactSizeIterator<Item = u32>) {
         if self.start.is_empty() {
             self.start.push(0);
         }
+        // Room first, so that what the memory budget counts grows as it was told.
+        let n = targets.len();
+        room_for(&mut self.start, n.div_ceil(BLOCK), 0, usize::MAX);
+        room_for(&mut self.pairs, n, 0, usize::MAX);
         let mut targets = targets.peekable();
         while targets.peek().is_some() {
             // Gather the block's bits by word (pairs in first-seen order: order is free).
@@ -90,6 +95,12 @@ impl BlockMasks {
             .iter()
             .map(|&(word, m)| (m & !bits[word as usize]).count_ones() as usize)
             .sum()
+    }
+
+    /// The bytes [`BlockMasks::push_list`] may add for a list of `n` targets.
+    pub(crate) fn growth_bytes(&self, n: usize) -> usize {
+        room_bytes(&self.start, n.div_ceil(BLOCK), 0, usize::MAX)
+            + room_bytes(&self.pairs, n, 0, usize::MAX)
     }
 
     /// Bytes held.

@@ -68,8 +68,9 @@ use crate::block_masks::{BLOCK, BlockMasks};
 use crate::coverage_rate::CoverageRate;
 use crate::held_karp::PathBound;
 use crate::problem::{Problem, SensorModel};
+use crate::room::{RESERVED_POSITIONS, room_bytes, room_for};
 use crate::skip_budget::SkipBudget;
-use crate::step_cost::{FieldCache, reserve_positions};
+use crate::step_cost::FieldCache;
 use crate::viewpoint_distance::ViewpointDistance;
 
 /// Which lower bound guides the search.
@@ -420,23 +421,40 @@ impl Heuristic {
     }
 
     /// The distance order of position `pos` (computed on first use).
+    /// How the orders make room for one more position: (entries appended, first room, the
+    /// cap in entries). A full list is appended before it is cut to `order_len`.
+    fn order_room(&self) -> (usize, usize, usize) {
+        let first = self
+            .order_len
+            .saturating_mul(RESERVED_POSITIONS)
+            .saturating_add(self.n_targets);
+        (self.n_targets, first, self.cache_cap_bytes / 16)
+    }
+
+    /// The bytes the caches may add for the next position they take in ([`Heuristic::bytes`]
+    /// counts what they hold).
+    pub(crate) fn growth_bytes(&self) -> usize {
+        let (need, first, limit) = self.order_room();
+        room_bytes(&self.orders, need, first, limit)
+            + self.blocks.growth_bytes(self.order_len)
+            + self.fields.growth_bytes()
+    }
+
     fn order(&mut self, problem: &Problem, pos: u32) -> usize {
         let s = self.order_slot[pos as usize];
         if s != u32::MAX {
             return s as usize * self.order_len;
         }
-        if self.orders.len() * 16 + self.blocks.bytes() > self.cache_cap_bytes {
+        // A full list is appended before it is cut to `order_len`.
+        let (need, first, limit) = self.order_room();
+        if self.orders.len() * 16 + self.blocks.bytes() > self.cache_cap_bytes
+            || !room_for(&mut self.orders, need, first, limit)
+        {
             self.orders.clear();
             self.order_slot.fill(u32::MAX);
             self.blocks.clear();
+            room_for(&mut self.orders, need, first, limit);
         }
-        // A full list is appended before it is cut to `order_len`.
-        reserve_positions(
-            &mut self.orders,
-            self.order_len,
-            self.n_targets,
-            self.cache_cap_bytes,
-        );
         let base = self.orders.len();
         let slot = base / self.order_len;
         let targets = problem.targets();

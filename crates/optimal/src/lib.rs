@@ -22,7 +22,8 @@
 //! - [`search`]: A*, weighted A*, limits and bounds (step costs: `step_cost`, from
 //!   per-position distance fields when a shortest path lies inside the perceived space;
 //!   `recent`: the last expanded states' perceived sets and reachable components, from
-//!   which their descendants' are rebuilt);
+//!   which their descendants' are rebuilt; `room`: the caches' growth, within the memory
+//!   budget);
 //! - [`coarse`]: solving on a coarsened map (the paper's cell sizes 1, 2, 4), and a first
 //!   incumbent from a coarser map for searches that will stop with bounds.
 //!
@@ -51,6 +52,7 @@ pub(crate) mod held_karp;
 pub mod heuristic;
 pub mod problem;
 pub(crate) mod recent;
+pub(crate) mod room;
 pub mod search;
 pub(crate) mod skip_budget;
 pub(crate) mod step_cost;

@@ -43,6 +43,7 @@ use crate::error::OptimalError;
 use crate::heuristic::{Heuristic, HeuristicKind, MixHasher, dist, has, push_words, set};
 use crate::problem::{Problem, SensorModel};
 use crate::recent::{self, Recent};
+use crate::room::{room_bytes, room_for};
 use crate::step_cost::StepCosts;
 use explore::plan::Reachability;
 
@@ -291,27 +292,6 @@ struct VisCache {
     most: usize,
 }
 
-/// The entries [`room_for`] adds to a vector of `len` entries and capacity `cap` for `most`
-/// more: none if they fit, else a quarter of its length (at least `most`).
-fn growth(len: usize, cap: usize, most: usize) -> usize {
-    if cap - len < most {
-        most.max(len / 4)
-    } else {
-        0
-    }
-}
-
-/// Make room for `most` more entries in `v`, growing by a quarter of its length rather
-/// than doubling it, so that what the memory budget counts stays near what is held.
-fn room_for<T>(v: &mut Vec<T>, most: usize) {
-    v.reserve_exact(growth(v.len(), v.capacity(), most));
-}
-
-/// The bytes [`room_for`] would add to `v` for `most` more entries.
-fn room_bytes<T>(v: &Vec<T>, most: usize) -> usize {
-    growth(v.len(), v.capacity(), most) * std::mem::size_of::<T>()
-}
-
 impl VisCache {
     fn new(n: usize, most: usize) -> Self {
         Self {
@@ -329,7 +309,7 @@ impl VisCache {
     fn get(&mut self, problem: &Problem, pos: u32) -> (usize, usize) {
         let p = pos as usize;
         if self.off[p] == NONE {
-            room_for(&mut self.data, self.most);
+            room_for(&mut self.data, self.most, 0, usize::MAX);
             let start = self.data.len();
             problem.seen_marks(pos, &mut self.obs, &mut self.data);
             self.off[p] = start as u32;
@@ -350,7 +330,7 @@ impl VisCache {
         let p = pos as usize;
         if self.word_off[p] == NONE {
             let (o, l) = self.get(problem, pos);
-            room_for(&mut self.word_data, 2 * self.most);
+            room_for(&mut self.word_data, 2 * self.most, 0, usize::MAX);
             let start = self.word_data.len();
             let marks = &self.data[o..o + l];
             push_words(
@@ -376,7 +356,8 @@ impl VisCache {
 
     /// The bytes the next view may add to what [`VisCache::bytes`] counts.
     fn growth_bytes(&self) -> usize {
-        room_bytes(&self.data, self.most) + room_bytes(&self.word_data, 2 * self.most)
+        room_bytes(&self.data, self.most, 0, usize::MAX)
+            + room_bytes(&self.word_data, 2 * self.most, 0, usize::MAX)
     }
 
     /// Forget every computed view, returning its memory: views are computed again on use,
@@ -457,6 +438,42 @@ struct Engine<'p> {
     nt: u32,
 }
 
+/// Bytes a table of Zobrist keys with `capacity` (`HashMap::capacity`) holds: its buckets
+/// (7 in 8 of them usable) of a key, a state and a control byte, and a group of control
+/// bytes more. Counting the capacity alone at 16 bytes an entry missed a sixth of it.
+fn table_bytes(capacity: usize) -> usize {
+    if capacity == 0 {
+        return 0;
+    }
+    let buckets = if capacity < 8 {
+        capacity + 1
+    } else {
+        capacity / 7 * 8
+    };
+    buckets * (std::mem::size_of::<(u64, u32)>() + 1) + 16
+}
+
+/// The capacity of a full table of `capacity` after `reserve` asked room for `want`
+/// entries in all: buckets for the larger of `want` and one more entry, 8 for each 7,
+/// rounded up to a power of two (the standard library's hash table;
+/// `table_growth_is_predicted` checks it). Counting only what was asked for let the table
+/// pass the budget by up to a half of it.
+fn table_capacity_grown(capacity: usize, want: usize) -> usize {
+    let cap = want.max(capacity + 1);
+    let buckets = if cap < 4 {
+        4
+    } else if cap < 8 {
+        8
+    } else {
+        (cap.saturating_mul(8) / 7).next_power_of_two()
+    };
+    if buckets <= 8 {
+        buckets - 1
+    } else {
+        buckets / 8 * 7
+    }
+}
+
 impl<'p> Engine<'p> {
     fn new(problem: &'p Problem, cfg: &Config) -> Self {
         let n = problem.cells().len();
@@ -527,25 +544,28 @@ impl<'p> Engine<'p> {
         let nodes = self.nodes.capacity().max(self.nodes.len() + extra_nodes);
         nodes * std::mem::size_of::<Node>()
             + self.open.capacity() * 32
-            + self.table.capacity() * 16
+            + table_bytes(self.table.capacity())
             + self.heur.bytes()
             + self.vis.bytes()
             + self.recent.bytes()
             + self.fixed_bytes
     }
 
-    /// Whether what the search holds exceeds its memory budget (noted in the statistics).
-    /// Over it, the cached views are forgotten first (they are computed again when asked
+    /// Whether what the search holds, with what its caches' next growth would add
+    /// ([`crate::room`]), exceeds its memory budget (what it holds is noted in the
+    /// statistics). Over it, the cached views are forgotten first (they are computed again when asked
     /// for): the budget is exceeded only if the rest still holds more than three quarters
     /// of it, so that views are not computed again and again for a few candidates each.
     fn over_budget(&mut self) -> bool {
         let bytes = self.bytes_with(0);
         self.stats.bytes = self.stats.bytes.max(bytes);
-        if bytes + self.vis.growth_bytes() <= self.cfg.max_bytes {
+        let growth = self.vis.growth_bytes() + self.heur.growth_bytes();
+        if bytes + growth <= self.cfg.max_bytes {
             return false;
         }
         self.vis.forget();
-        self.bytes_with(0) + self.vis.growth_bytes() > self.cfg.max_bytes / 4 * 3
+        let growth = self.vis.growth_bytes() + self.heur.growth_bytes();
+        self.bytes_with(0) + growth > self.cfg.max_bytes / 4 * 3
     }
 
     /// Grow storage for one more state if the budget allows (growth by 1.5×, checked first).
@@ -558,9 +578,14 @@ impl<'p> Engine<'p> {
             return true;
         }
         let grow = (len / 2).max(1024);
-        let projected = self.bytes_with(grow)
-            + grow * 48
-            + (self.table.capacity().max(len + grow) - self.table.capacity()) * 16;
+        let table = self.table.capacity();
+        let table_grown = if self.table.len() == table {
+            table_capacity_grown(table, len + grow)
+        } else {
+            table
+        };
+        let projected =
+            self.bytes_with(grow) + grow * 48 + table_bytes(table_grown) - table_bytes(table);
         if projected > self.cfg.max_bytes {
             return false;
         }
@@ -1491,6 +1516,55 @@ mod tests {
             ..Config::default()
         };
         assert!(solve(&p, &cfg).is_ok());
+    }
+
+    /// The standard library's hash table grows as [`table_capacity_grown`] predicts, as
+    /// [`Engine::reserve_one`] grows it: from full, by half its entries or 1024.
+    #[test]
+    fn table_growth_is_predicted() {
+        let mut t: HashMap<u64, u32, BuildHasherDefault<MixHasher>> = HashMap::default();
+        let mut next = 0u64;
+        for _ in 0..12 {
+            while t.len() < t.capacity() {
+                t.insert(next, 0);
+                next += 1;
+            }
+            let (len, cap) = (t.len(), t.capacity());
+            let grow = (len / 2).max(1024);
+            t.reserve(grow);
+            assert_eq!(
+                t.capacity(),
+                table_capacity_grown(cap, len + grow),
+                "{len} + {grow}"
+            );
+        }
+    }
+
+    /// Regression: the heuristic's caches (the positions' distance orders and path-cost
+    /// fields) were emptied once their entries passed their share of the budget, but grew
+    /// by doubling before that, to twice the share: the search counted more bytes than its
+    /// budget in one step. An open 60 x 60 m map at 0.2 m with `--memory-mb 200` stopped
+    /// after 6 s having counted 236 MiB (resident 184 MiB); the table of states, counted
+    /// at 16 bytes an entry and grown by the standard library's rounding, added to it. The
+    /// caches now grow only up to their share.
+    #[test]
+    fn heuristic_caches_stay_within_the_budget() {
+        let (p, _) = crate::walled_problem(60, 45, &[1; 2700], 1300, SensorModel::Los(4.0))
+            .expect("an open problem");
+        let need = setup_bytes(p.cells().len(), p.model()) as usize;
+        for times in [2, 3, 5, 8] {
+            let max_bytes = need * times;
+            let cfg = Config {
+                max_bytes,
+                ..Config::default()
+            };
+            let held = solve(&p, &cfg).expect("solve");
+            assert!(
+                held.stats.bytes <= max_bytes,
+                "{} > {max_bytes} ({times} x the set-up)",
+                held.stats.bytes
+            );
+        }
     }
 
     /// Regression: the greedy completions that give the search its upper bounds computed

@@ -30,6 +30,7 @@ use std::hash::BuildHasherDefault;
 
 use crate::heuristic::{MixHasher, has, push_words};
 use crate::problem::Problem;
+use crate::room::{RESERVED_POSITIONS, room_bytes, room_for};
 
 const NONE: u32 = u32::MAX;
 /// Buckets in use at once: a step costs at most √2 < 2, so labels reach two buckets ahead.
@@ -64,25 +65,6 @@ struct Slot {
     tag: u32,
     /// The cell's mark (it is a target: every reachable cell can be perceived).
     mark: u32,
-}
-
-/// Positions whose per-position data (fields here, orders in [`crate::heuristic`]) a cache
-/// makes room for at once: a corridor floor start visits about 50, and growing a cache by
-/// copying it whole was 3.5 % of that benchmark's time.
-const RESERVED_POSITIONS: usize = 64;
-
-/// On a cache's first use, reserve room in `v` for [`RESERVED_POSITIONS`] positions of
-/// `per_position` entries plus `extra`, within `cap_bytes`.
-pub(crate) fn reserve_positions<T>(
-    v: &mut Vec<T>,
-    per_position: usize,
-    extra: usize,
-    cap_bytes: usize,
-) {
-    if v.capacity() == 0 {
-        let want = per_position * RESERVED_POSITIONS + extra;
-        v.reserve_exact(want.min(cap_bytes / std::mem::size_of::<T>().max(1)));
-    }
 }
 
 /// Dijkstra inside the perceived free space, on the problem's reachable cells.
@@ -651,15 +633,29 @@ impl FieldCache {
         }
     }
 
+    /// How the fields make room for one more: (entries a field, first room, the cap in
+    /// entries).
+    fn room(&self) -> (usize, usize, usize) {
+        let first = self.len.saturating_mul(RESERVED_POSITIONS);
+        (self.len, first, self.cap_bytes / 8)
+    }
+
+    /// The bytes the next field may add to [`FieldCache::bytes`].
+    pub(crate) fn growth_bytes(&self) -> usize {
+        let (len, first, limit) = self.room();
+        room_bytes(&self.cost, len, first, limit)
+    }
+
     /// The offset of the field of reachable flat cell `pos` in `cost`.
     fn of(&mut self, pos: u32) -> usize {
         let p = pos as usize;
         if self.slot[p] == NONE {
-            if (self.cost.len() + self.len) * 8 > self.cap_bytes {
+            let (len, first, limit) = self.room();
+            if !room_for(&mut self.cost, len, first, limit) {
                 self.cost.clear();
                 self.slot.fill(NONE);
+                room_for(&mut self.cost, len, first, limit);
             }
-            reserve_positions(&mut self.cost, self.len, 0, self.cap_bytes);
             self.slot[p] = (self.cost.len() / self.len.max(1)) as u32;
             self.steps.field(pos, &mut self.cost);
         }
