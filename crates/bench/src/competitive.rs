@@ -67,8 +67,9 @@ impl Default for OptimalSpec {
 /// heuristic, which decides the bounds reached when a node budget stops it (v3: Held–Karp
 /// over viewpoint sets; v4: the footprint's viewpoint distances, field step costs; v5: the
 /// skip-budget bound with two far points and its direct term; v6: path costs are exact
-/// sums, the diagonal step √2 to 32 binary places).
-const SEARCH_REVISION: u32 = 6;
+/// sums, the diagonal step √2 to 32 binary places; v7: the caches grow within the memory
+/// budget, so a search the budget stops stops later, with other bounds).
+const SEARCH_REVISION: u32 = 7;
 
 impl OptimalSpec {
     /// A text naming every setting (part of the study's fingerprint and of cache keys), and
