@@ -1022,9 +1022,10 @@ fn resolve(
         total,
         "the trials counted before planning"
     );
-    // Shards deal the trials out by trial number first: in the study's order, the first
-    // trials of the repeated strategies' starts lie `trials` apart, so dealing that order
-    // out gave `--trials 1 --shard I/1000` of faigl2013 from 5 to 78 trials a shard.
+    // Shards deal the trials out by trial number first. In the study's order the first
+    // runs of the repeated strategies' starts lie `common.trials` apart, and every N-th
+    // trial of that order would give `--trials 1 --shard I/1000` of faigl2013 from 5 to 78
+    // trials a shard; dealt by trial number first, every shard gets 8 or 9.
     let mut order: Vec<usize> = (0..trials.len()).collect();
     order.sort_by_key(|&i| (trials[i].trial, i));
     for (number, &i) in order.iter().enumerate() {

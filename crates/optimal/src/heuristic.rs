@@ -420,7 +420,6 @@ impl Heuristic {
         }
     }
 
-    /// The distance order of position `pos` (computed on first use).
     /// How the orders make room for one more position: (entries appended, first room, the
     /// cap in entries). A full list is appended before it is cut to `order_len`.
     fn order_room(&self) -> (usize, usize, usize) {
@@ -440,6 +439,7 @@ impl Heuristic {
             + self.fields.growth_bytes()
     }
 
+    /// The distance order of position `pos` (computed on first use).
     fn order(&mut self, problem: &Problem, pos: u32) -> usize {
         let s = self.order_slot[pos as usize];
         if s != u32::MAX {

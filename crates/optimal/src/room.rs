@@ -87,7 +87,8 @@ mod tests {
                 prop_assert_eq!((v.capacity() - before) * 8, said);
                 prop_assert!(v.capacity() - v.len() >= most);
                 v.extend(std::iter::repeat_n(0, most));
-                prop_assert!(v.capacity() <= limit.max(most).max(before), "{} > {}", v.capacity(), limit);
+                let most_held = limit.max(most).max(before);
+                prop_assert!(v.capacity() <= most_held, "{} > {}", v.capacity(), most_held);
             }
         }
     }

@@ -553,9 +553,10 @@ impl<'p> Engine<'p> {
 
     /// Whether what the search holds, with what its caches' next growth would add
     /// ([`crate::room`]), exceeds its memory budget (what it holds is noted in the
-    /// statistics). Over it, the cached views are forgotten first (they are computed again when asked
-    /// for): the budget is exceeded only if the rest still holds more than three quarters
-    /// of it, so that views are not computed again and again for a few candidates each.
+    /// statistics). Over it, the cached views are forgotten first (they are computed again
+    /// when asked for): the budget is exceeded only if the rest still holds more than three
+    /// quarters of it, so that views are not computed again and again for a few candidates
+    /// each.
     fn over_budget(&mut self) -> bool {
         let bytes = self.bytes_with(0);
         self.stats.bytes = self.stats.bytes.max(bytes);
