@@ -421,13 +421,15 @@ impl Heuristic {
     }
 
     /// How the orders make room for one more position: (entries appended, first room, the
-    /// cap in entries). A full list is appended before it is cut to `order_len`.
+    /// cap in entries: what their blocks leave of the caches' share). A full list is
+    /// appended before it is cut to `order_len`.
     fn order_room(&self) -> (usize, usize, usize) {
         let first = self
             .order_len
             .saturating_mul(RESERVED_POSITIONS)
             .saturating_add(self.n_targets);
-        (self.n_targets, first, self.cache_cap_bytes / 16)
+        let limit = self.cache_cap_bytes.saturating_sub(self.blocks.bytes()) / 16;
+        (self.n_targets, first, limit)
     }
 
     /// The bytes the caches may add for the next position they take in ([`Heuristic::bytes`]
@@ -445,11 +447,8 @@ impl Heuristic {
         if s != u32::MAX {
             return s as usize * self.order_len;
         }
-        // A full list is appended before it is cut to `order_len`.
         let (need, first, limit) = self.order_room();
-        if self.orders.len() * 16 + self.blocks.bytes() > self.cache_cap_bytes
-            || !room_for(&mut self.orders, need, first, limit)
-        {
+        if !room_for(&mut self.orders, need, first, limit) {
             self.orders.clear();
             self.order_slot.fill(u32::MAX);
             self.blocks.clear();
