@@ -130,6 +130,8 @@ pub struct Scratch {
     pub lazy: LazyCosts,
     /// Per row: how many of its found pairs were already looked at.
     pub scan: Vec<usize>,
+    /// MinPos' robots that may be strictly closer to a goal, by octile distance to it.
+    pub nearest: Vec<(f64, usize)>,
 }
 
 impl Scratch {

@@ -16,6 +16,7 @@
 //! - robots decide independently, so two deciding robots may pick the same goal, as in the
 //!   paper.
 
+use crate::assign::costs::LazyCosts;
 use crate::assign::greedy::Scratch;
 use crate::candidates::CandidateSet;
 use crate::decision::{DecisionCtx, Goal};
@@ -92,10 +93,11 @@ fn best_goal(
 /// Give goals to the deciding robots: each the goal where it ranks best.
 ///
 /// The deciding robot's search grows bucket by bucket; a goal it settles at cost c is
-/// ranked by growing the other robots' searches just past c − [`TIE_CELLS`] (a robot
-/// closer than that has then settled the goal). Once a goal of rank 0 is found, the
-/// bucket of its cost is finished and the search stops: every goal not settled costs
-/// more. Without one, the search stops once every goal it can reach and has not settled
+/// ranked by growing each other robot's search until it settles the goal or passes
+/// c − [`TIE_CELLS`] ([`closer`]), nearest robots first as the crow flies, so that a rank
+/// that cannot beat the best is known after fewer searches. Once a goal of rank 0 is
+/// found, the bucket of its cost is finished and the search stops: every goal not settled
+/// costs more. Without one, the search stops once every goal it can reach and has not settled
 /// (costing at least the next bucket B) has, by the other searches grown to B, at least as
 /// many robots strictly closer as the best rank so far (tried as B doubles); a goal's rank
 /// is counted only as far as it can still beat the best. The result is that of [`solve`]
@@ -134,13 +136,12 @@ fn best_lazy(
     r: usize,
     allowed: impl Fn(usize) -> bool,
 ) -> Option<(usize, f64, usize)> {
-    let m = ctx.robots.len();
     let mut best: Option<(usize, f64, usize)> = None;
     let mut seen = 0;
     // The next bound at which to try the rank bound of the goals not settled yet.
     let mut check = 1;
     loop {
-        let lazy = &mut s.lazy;
+        let (lazy, nearest) = (&mut s.lazy, &mut s.nearest);
         let done = lazy.step(ctx, candidates, r, false);
         let upto = lazy.found(r).len();
         for n in seen..upto {
@@ -161,15 +162,9 @@ fn best_lazy(
             };
             let mut rank = 0;
             if threshold > 0.0 {
-                for k in 0..m {
-                    // A robot no nearer than the threshold as the crow flies (the octile
-                    // distance bounds every path from below) is not strictly closer.
-                    if k == r || octile(ctx, k, cell) >= threshold {
-                        continue;
-                    }
-                    // every goal closer to robot k than the threshold is then settled
-                    lazy.grow(ctx, candidates, k, threshold as usize);
-                    if ctx.planner.map(k).cost(cell).is_some_and(|d| d < threshold) {
+                by_octile(ctx, r, cell, threshold, |_| true, nearest);
+                for &(_, k) in nearest.iter() {
+                    if closer(ctx, candidates, lazy, k, cell, threshold) {
                         rank += 1;
                         if rank > limit {
                             break;
@@ -224,6 +219,57 @@ fn open_goals(
     open.retain(|&j| reach.contains(goals[j] as usize));
 }
 
+/// Write to `out` the robots other than `r` with `keep` that are nearer to `cell` than
+/// `threshold` as the crow flies, nearest first (ties by index): the octile distance bounds
+/// every path from below, so no other robot is strictly closer, and the nearest are the
+/// likeliest to be.
+fn by_octile(
+    ctx: &DecisionCtx<'_>,
+    r: usize,
+    cell: usize,
+    threshold: f64,
+    keep: impl Fn(usize) -> bool,
+    out: &mut Vec<(f64, usize)>,
+) {
+    out.clear();
+    out.extend(
+        (0..ctx.robots.len())
+            .filter(|&k| k != r && keep(k))
+            .map(|k| (octile(ctx, k, cell), k))
+            .filter(|&(d, _)| d < threshold),
+    );
+    out.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+}
+
+/// Whether robot `k`'s path cost to candidate `cell` is below `threshold`, its search
+/// grown only until that is known: until it settles the candidate, or every cost below
+/// the threshold (the answer of the search grown through the threshold's bucket, which
+/// went on past a candidate it settled early).
+fn closer(
+    ctx: &mut DecisionCtx<'_>,
+    candidates: &CandidateSet,
+    lazy: &mut LazyCosts,
+    k: usize,
+    cell: usize,
+    threshold: f64,
+) -> bool {
+    let through = threshold as usize;
+    loop {
+        let map = ctx.planner.map(k);
+        if map.is_settled(cell) {
+            return map.cost(cell).is_some_and(|d| d < threshold);
+        }
+        let next = lazy.next_bucket(ctx, k);
+        if next > through {
+            return false; // every cost below the threshold is settled, the candidate's not
+        }
+        if lazy.grow(ctx, candidates, k, next) {
+            // complete, or every candidate robot k reaches is settled
+            return ctx.planner.map(k).cost(cell).is_some_and(|d| d < threshold);
+        }
+    }
+}
+
 /// Octile distance from robot `k` to cell `c`, a lower bound of its path cost.
 fn octile(ctx: &DecisionCtx<'_>, k: usize, c: usize) -> f64 {
     let w = ctx.known.width();
@@ -234,8 +280,8 @@ fn octile(ctx: &DecisionCtx<'_>, k: usize, c: usize) -> f64 {
 /// Whether every allowed goal robot `r` reaches and has not settled ranks at least `p` for
 /// it ([`open_goals`]), when its search has settled every goal of cost below `bound`: such
 /// a goal costs robot `r` at least `bound`, so every other robot closer to it than
-/// `bound` − [`TIE_CELLS`] is strictly closer than robot `r` (the other searches grow that
-/// far to tell).
+/// `bound` − [`TIE_CELLS`] is strictly closer than robot `r` (the other searches grow until
+/// they tell, at most that far).
 fn ranks_at_least(
     ctx: &mut DecisionCtx<'_>,
     candidates: &CandidateSet,
@@ -267,18 +313,22 @@ fn ranks_at_least(
             return false;
         }
     }
-    for k in (0..m).filter(|&k| near[k]) {
-        lazy.grow(ctx, candidates, k, threshold as usize);
-    }
-    // Only the robots grown above can be strictly closer (the octile bound); the others'
-    // maps need not be read.
-    let planner = &*ctx.planner;
-    open.iter().all(|&j| {
+    // Each search grows only as far as the goals it is asked about need, nearest robots
+    // first, and the first goal with fewer than p robots strictly closer answers no.
+    let nearest = &mut s.nearest;
+    for &j in open.iter() {
         let cell = candidates.cells()[j] as usize;
-        let closer = (0..m)
-            .filter(|&k| near[k] && planner.map(k).cost(cell).is_some_and(|d| d < threshold))
-            .take(p)
-            .count();
-        closer >= p
-    })
+        by_octile(ctx, r, cell, threshold, |k| near[k], nearest);
+        let mut closer_robots = 0;
+        for &(_, k) in nearest.iter() {
+            if closer_robots >= p {
+                break;
+            }
+            closer_robots += usize::from(closer(ctx, candidates, lazy, k, cell, threshold));
+        }
+        if closer_robots < p {
+            return false;
+        }
+    }
+    true
 }
