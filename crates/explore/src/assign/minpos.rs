@@ -94,8 +94,8 @@ fn best_goal(
 ///
 /// The deciding robot's search grows bucket by bucket; a goal it settles at cost c is
 /// ranked by growing each other robot's search until it settles the goal or passes
-/// c − [`TIE_CELLS`] ([`closer`]), nearest robots first as the crow flies, so that a rank
-/// that cannot beat the best is known after fewer searches. Once a goal of rank 0 is
+/// c − [`TIE_CELLS`], nearest robots first as the crow flies, so that a rank that cannot
+/// beat the best is known after fewer searches. Once a goal of rank 0 is
 /// found, the bucket of its cost is finished and the search stops: every goal not settled
 /// costs more. Without one, the search stops once every goal it can reach and has not settled
 /// (costing at least the next bucket B) has, by the other searches grown to B, at least as
