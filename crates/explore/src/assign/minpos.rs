@@ -243,8 +243,7 @@ fn by_octile(
 
 /// Whether robot `k`'s path cost to candidate `cell` is below `threshold`, its search
 /// grown only until that is known: until it settles the candidate, or every cost below
-/// the threshold (the answer of the search grown through the threshold's bucket, which
-/// went on past a candidate it settled early).
+/// the threshold (the same answer as growing it through the threshold's bucket).
 fn closer(
     ctx: &mut DecisionCtx<'_>,
     candidates: &CandidateSet,
