@@ -1,7 +1,8 @@
 //! What one decision sees: the team, the shared belief, and per-robot reachability maps.
 //!
-//! A decision is the middle of the one exploration loop (DESIGN.md): candidates are
-//! generated from the belief, then an assigner gives goals to the robots that decide.
+//! A decision is the middle of the one exploration loop (ARCHITECTURE.md "Bird's-eye
+//! view"): candidates are generated from the belief, then an assigner gives goals to the
+//! robots that decide.
 //! Costs come from one reachability map per robot per decision (Holz et al.'s
 //! "path search without goal specification"), computed lazily: a nearest-frontier
 //! query stops at the first candidate it settles, and the team assigners grow each
@@ -526,11 +527,11 @@ impl Offer {
     }
 }
 
-/// One decision of the exploration loop (DESIGN.md: the loop exists once): the generator
-/// `candidates` fills `offer.candidates`; frontier regions shorter than `min_region_m`
-/// metres (explore_lite's `min_frontier_size`; 0 keeps every region) are not offered; then
-/// `assigner`, if given, writes the deciding robots' goals to `out` (without one, the caller
-/// chooses among the candidates).
+/// One decision of the exploration loop (which exists once; ARCHITECTURE.md "Bird's-eye
+/// view"): the generator `candidates` fills `offer.candidates`; frontier regions shorter
+/// than `min_region_m` metres (explore_lite's `min_frontier_size`; 0 keeps every region)
+/// are not offered; then `assigner`, if given, writes the deciding robots' goals to `out`
+/// (without one, the caller chooses among the candidates).
 ///
 /// The minimum region size acts on the generators that offer frontier cells or regions:
 /// for all frontier cells it drops the cells of smaller regions (counted in

@@ -1,4 +1,4 @@
-//! Frontier cells and frontier regions (Yamauchi 1997), as DESIGN.md defines them.
+//! Frontier cells and frontier regions (Yamauchi 1997), as defined below.
 //!
 //! A *frontier cell* is traversable (see [`Traversability`]) and has at least one Unknown
 //! 8-neighbour; cells outside the grid are not Unknown. A *frontier region* (Holz et al.'s

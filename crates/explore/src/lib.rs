@@ -1,20 +1,32 @@
-//! `explore`: frontiers, traversability and grid planning for frontier-based exploration.
+//! `explore`: everything one decision of frontier-based exploration needs — frontiers,
+//! traversability, grid planning, goal candidates, assigners, and the strategies built from
+//! them. The simulation's loop (`sim`) and the ROS node's explorer both decide through
+//! [`decision::decide`].
 //!
-//! It follows Yamauchi (1997) for frontier cells and regions (centroids, minimum size, the
-//! nearest frontier by path cost) and Holz et al. (2010) for traversability with a robot
-//! clearance, the reachability map and keeping frontiers up to date as the map grows:
-//!
-//! - [`traversability`]: known Free and farther than the clearance from every known obstacle,
-//!   maintained incrementally;
-//! - [`frontier`]: the frontier definitions, a sparse frontier set, regions, and the
+//! - [`traversability`]: known Free and no closer than the robot's clearance to any known
+//!   obstacle (Holz et al. 2010's `d_max`), maintained incrementally;
+//! - [`frontier`]: frontier cells and regions (Yamauchi 1997), a sparse frontier set, and the
 //!   from-scratch detector (the test oracle);
 //! - [`upkeep`]: incremental frontier upkeep whose cost is proportional to the cells an
 //!   observation changed, not to the map;
-//! - [`plan`]: Dijkstra reachability maps, the nearest-goal search, and A*;
+//! - [`plan`]: Holz et al.'s reachability map (Dijkstra on a bucket queue, in Sturtevant &
+//!   Rabin's canonical order), the nearest-goal search (Yamauchi's nearest frontier), the
+//!   same searches resumed and guided toward goals, a flood fill, and A*;
 //! - [`decision`]: what one decision sees (team, belief, per-robot reachability maps,
-//!   Yamauchi's visited and inaccessible lists);
-//! - [`candidates`]: goal candidates (all frontier cells; Yamauchi's region centroids);
-//! - [`assign`]: assigners (nearest by path; Holz's random-frontier baseline);
+//!   Yamauchi's visited and inaccessible lists), the state kept between decisions
+//!   ([`decision::Memory`]), and the decision step itself ([`decision::decide`]);
+//! - [`candidates`]: goal candidates — all frontier cells, Yamauchi's region centroids,
+//!   Faigl & Kulich's (2013) representatives of free edges (RFE) and coverage candidates
+//!   (CC), and decision-theoretic samples near frontiers (González-Baños & Latombe 2002);
+//! - [`assign`]: assigners — nearest by path; Holz's random frontier; the coordination
+//!   study's greedy (Faigl & Kulich's IA), greedy with utility and MinPos (Bautin et al.
+//!   2012); Faigl & Kulich's random-order greedy (GA), Hungarian (HA), multiple-TSP (MA) and
+//!   Solanas & Garcia's (SGA); the decision-theoretic utility `I·exp(−λL)`; and Holz's same
+//!   segment first;
+//! - [`kmeans`]: k-means with k-means++ seeding, for RFE, MA and SGA;
+//! - [`tsp`]: open travelling-salesman routes by path distance, for MA;
+//! - [`segment`]: room segmentation of partial maps (Holz et al. 2010 §2.4), kept between
+//!   decisions for same segment first, and scored against ground-truth rooms;
 //! - [`bits`]: sets of cells as one bit per cell, for sets that touch few of a map's pages;
 //! - [`strategy`]: strategies as (candidates, assigner, re-plan policy) triples and the
 //!   papers' presets.

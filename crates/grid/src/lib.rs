@@ -6,7 +6,8 @@
 //! ([`GridMap`]). Raster algorithms live here too: the exact Euclidean distance transform
 //! (Felzenszwalb & Huttenlocher) and connected components. Map files (ROS map_server
 //! YAML + PGM/PNG, bare bitmaps, MovingAI `.map`, ASCII art) are read and written by
-//! [`io`].
+//! [`io`], which also reads HouseExpo JSON floor plans with their rooms and the dungeon PNGs
+//! of learned exploration with their marked start.
 //!
 //! `grid` knows nothing about robots, sensors or strategies.
 //!

@@ -5,7 +5,7 @@
 //! incrementally, decide goals with the strategy's (candidate generator, assigner,
 //! re-plan policy) triple, and move cell by cell along 8-connected shortest paths at speed
 //! v — concurrently, in the order of their clocks — until no reachable frontier is left
-//! or the coverage goal is met (Faigl & Kulich's steps 1–8; DESIGN.md "One loop").
+//! or the coverage goal is met (Faigl & Kulich's steps 1–8; ARCHITECTURE.md "Bird's-eye view").
 //! [`Session`] is the same loop stopped at every decision, so that goals can come from
 //! outside (a learning agent in the Python package's Gymnasium environment); `run()` is a
 //! session whose strategy decides. A batch of runs on the same maps (a study's trials)

@@ -1,4 +1,5 @@
-//! What a run reports: DESIGN.md's metrics, the end reason, phase timings and a trace.
+//! What a run reports: its metrics (path lengths, time, coverage, decisions, map audit), the
+//! end reason, phase timings and a trace.
 
 use grid::{Cell, Grid, Occ};
 

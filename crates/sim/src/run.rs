@@ -1,4 +1,4 @@
-//! The loop (DESIGN.md "One loop for every strategy"; Faigl & Kulich's steps 1–8).
+//! The loop (ARCHITECTURE.md "Bird's-eye view"; Faigl & Kulich's steps 1–8).
 //!
 //! Robots move concurrently: the robot whose clock is earliest (ties: lowest id) makes the
 //! next cell move, so the team's moves interleave as they would in continuous time at

@@ -7,6 +7,7 @@
 //! | `.yaml`, `.yml` | ROS map_server YAML + PGM/PNG image ([`ros`]) | from the YAML |
 //! | `.pgm`, `.png` | bare bitmap, e.g. a Stage floor plan ([`bitmap`]) | required in [`LoadOptions`] |
 //! | `.map` | MovingAI benchmark map ([`movingai`]) | default 1 m |
+//! | `.json` | HouseExpo floor plan, its outline in metres ([`houseexpo`], [`load_houseexpo`]) | required in [`LoadOptions`] |
 //! | `.txt` | ASCII art: `#` wall, `.` free, `?` unknown ([`ascii`]) | default 1 m |
 //!
 //! Every failure is a [`MapError`] naming the file and what is wrong; nothing a file
