@@ -5,8 +5,8 @@
 //! cost (the aim: a team decision within 5× a `cf` decision).
 //!
 //! `cargo bench -p sim --bench team [PRESET ...]` (criterion, 10 samples a preset; the
-//! `ma-*` and `*-cc` presets take a minute or more a run); before each preset's samples its
-//! decisions and the share of time spent deciding are printed once.
+//! whole list takes several minutes, `ma-af` the longest); before each preset's samples
+//! its decisions and the share of time spent deciding are printed once.
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use explore::strategy::Strategy;
@@ -14,24 +14,35 @@ use sim::RunConfig;
 use std::time::Duration;
 use world::{EnvKind, EnvSpec};
 
-const PRESETS: [&str; 17] = [
+/// `cf`, the yardstick, then every team preset of docs/teams.md's table, in its order.
+const PRESETS: [&str; 27] = [
     "cf",
-    "nearest",
     "greedy",
     "greedy-utility",
+    "nearest",
     "minpos",
-    "ga-af",
+    "nearest-af",
+    "nearest-rfe",
+    "greedy-utility-af",
+    "greedy-utility-rfe",
+    "minpos-af",
+    "minpos-rfe",
     "ia-af",
+    "ia-rfe",
     "ha-af",
-    "ma-af",
-    "sga-af",
-    "ha-centroids",
     "ha-rfe",
-    "ma-rfe",
+    "ga-af",
+    "ga-rfe",
+    "sga-af",
+    "sga-rfe",
+    "ha-centroids",
+    "ga-cc",
+    "ia-cc",
     "ha-cc",
-    "ma-cc",
     "sga-cc",
-    "minpos-cc",
+    "ma-rfe",
+    "ma-cc",
+    "ma-af",
 ];
 
 fn config(preset: &str) -> RunConfig {
