@@ -124,8 +124,6 @@ pub struct Scratch {
     pub order: Vec<usize>,
     /// Per-assigner extra buffer of reals (utilities, sub-matrix costs).
     pub values: Vec<f64>,
-    /// Per-assigner extra buffer of flags (MinPos' robots near the goals in question).
-    pub flags: Vec<bool>,
     /// Pairs found by the robots' searches, grown only as far as needed.
     pub lazy: LazyCosts,
     /// Per row: how many of its found pairs were already looked at.

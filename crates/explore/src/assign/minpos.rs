@@ -162,7 +162,7 @@ fn best_lazy(
             };
             let mut rank = 0;
             if threshold > 0.0 {
-                by_octile(ctx, r, cell, threshold, |_| true, nearest);
+                by_octile(ctx, r, cell, threshold, nearest);
                 for &(_, k) in nearest.iter() {
                     if closer(ctx, candidates, lazy, k, cell, threshold) {
                         rank += 1;
@@ -219,22 +219,21 @@ fn open_goals(
     open.retain(|&j| reach.contains(goals[j] as usize));
 }
 
-/// Write to `out` the robots other than `r` with `keep` that are nearer to `cell` than
-/// `threshold` as the crow flies, nearest first (ties by index): the octile distance bounds
-/// every path from below, so no other robot is strictly closer, and the nearest are the
-/// likeliest to be.
+/// Write to `out` the robots other than `r` that are nearer to `cell` than `threshold` as
+/// the crow flies, nearest first (ties by index): the octile distance bounds every path
+/// from below, so no other robot is strictly closer, and the nearest are the likeliest to
+/// be.
 fn by_octile(
     ctx: &DecisionCtx<'_>,
     r: usize,
     cell: usize,
     threshold: f64,
-    keep: impl Fn(usize) -> bool,
     out: &mut Vec<(f64, usize)>,
 ) {
     out.clear();
     out.extend(
         (0..ctx.robots.len())
-            .filter(|&k| k != r && keep(k))
+            .filter(|&k| k != r)
             .map(|k| (octile(ctx, k, cell), k))
             .filter(|&(d, _)| d < threshold),
     );
@@ -292,22 +291,16 @@ fn ranks_at_least(
 ) -> bool {
     let m = ctx.robots.len();
     let threshold = bound as f64 - TIE_CELLS;
-    let (lazy, open, near) = (&mut s.lazy, &mut s.order, &mut s.flags);
+    let (lazy, open) = (&mut s.lazy, &mut s.order);
     open_goals(ctx, candidates, r, allowed, open);
     // Only robots nearer than the threshold as the crow flies to a goal in question can be
     // strictly closer to it: if some goal has fewer than p of them, the answer is no, and
     // the other robots' searches need not grow.
-    near.clear();
-    near.resize(m, false);
     for &j in open.iter() {
-        let cell = candidates.cells()[j];
-        let mut count = 0;
-        for (k, near_k) in near.iter_mut().enumerate() {
-            if k != r && octile(ctx, k, cell as usize) < threshold {
-                count += 1;
-                *near_k = true;
-            }
-        }
+        let cell = candidates.cells()[j] as usize;
+        let count = (0..m)
+            .filter(|&k| k != r && octile(ctx, k, cell) < threshold)
+            .count();
         if count < p {
             return false;
         }
@@ -317,7 +310,7 @@ fn ranks_at_least(
     let nearest = &mut s.nearest;
     for &j in open.iter() {
         let cell = candidates.cells()[j] as usize;
-        by_octile(ctx, r, cell, threshold, |k| near[k], nearest);
+        by_octile(ctx, r, cell, threshold, nearest);
         let mut closer_robots = 0;
         for &(_, k) in nearest.iter() {
             if closer_robots >= p {
