@@ -1,13 +1,16 @@
 #!/usr/bin/env python3
-"""Faigl & Kulich 2013, Table I beside ours, from a `frontier bench report` of faigl2013.
+"""Faigl & Kulich 2013, Table I beside ours, from a `frontier bench report` of faigl2013
+or faigl2013-real.
 
     frontier bench --suite faigl2013 --trials 1 --db faigl.sqlite --report faigl-report/
     scripts/faigl2013-table.py faigl-report/report.md
 
 Prints, as Markdown: the paper's eleven comparisons per (rho, m) with our verdicts
-(`ours/paper` per environment: empty = the paper's em, office = jh, potholes), how many of
-our verdicts are the paper's and how many are the opposite (+ against -), and the mean
-longest path L of every method. Only the Python standard library is needed.
+(`ours (paper)`, per environment: empty = the paper's em, office = jh, potholes; a real
+floor plan of faigl2013-real, named after its file, is compared with jh, the paper's real
+building), how many of our verdicts are the paper's and how many are the opposite (+
+against -), and the mean longest path L of every method. Only the Python standard library
+is needed.
 """
 import re
 import sys
@@ -54,7 +57,9 @@ def parse(text):
     for line in text.splitlines():
         h = head.match(line)
         if h:
-            env, rho, m = h.group(1).split("-")[0], int(h.group(2)), int(h.group(3))
+            name, rho, m = h.group(1), int(h.group(2)), int(h.group(3))
+            # a generated environment is KIND-sSEED; a floor plan keeps its file's stem
+            env = name.split("-")[0] if name.split("-")[0] in ENVS else name
             cols = None
             continue
         if line.startswith("#"):
@@ -78,8 +83,11 @@ def main():
     if len(sys.argv) != 2:
         sys.exit(__doc__)
     verdict, mean = parse(open(sys.argv[1], encoding="utf-8").read())
-    ref = paper()
+    table = paper()
+    # a real floor plan is compared with jh, the paper's real building (our "office")
+    ref = lambda e, *k: table.get((e if e in ENVS else "office", *k))
     envs = [e for e in ENVS if any(k[0] == e for k in mean)]
+    envs += sorted({k[0] for k in mean} - set(ENVS))
     settings = sorted({(k[1], k[2]) for k in mean})
     dash = lambda v: v.replace("-", "–")
     print("| ρ (m) | m | " + " | ".join(f"{a.upper()} vs {b.upper()}" for a, b in PAIRS) + " |")
@@ -88,14 +96,14 @@ def main():
         row = []
         for a, b in PAIRS:
             ours = "/".join(dash(verdict.get((e, rho, m, a, b), "·")) for e in envs)
-            theirs = "/".join(dash(ref.get((e, rho, m, a, b), "·")) for e in envs)
+            theirs = "/".join(dash(ref(e, rho, m, a, b) or "·") for e in envs)
             row.append(f"{ours} ({theirs})")
         print(f"| {rho} | {m} | " + " | ".join(row) + " |")
     print()
     for e in envs:
         same = opposite = n = 0
         for (env, rho, m, a, b), v in verdict.items():
-            p = ref.get((env, rho, m, a, b))
+            p = ref(env, rho, m, a, b)
             if env != e or p is None:
                 continue
             n += 1

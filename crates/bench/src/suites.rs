@@ -36,6 +36,11 @@ pub const SUITES: &[(&str, &str, &str)] = &[
         include_str!("../suites/faigl2013.toml"),
     ),
     (
+        "faigl2013-real",
+        "Faigl & Kulich 2013 on the real floor plans in a folder (--maps DIR), rho = 5 m, m in {3,5}",
+        include_str!("../suites/faigl2013-real.toml"),
+    ),
+    (
         "quattrini2012",
         "Quattrini Li et al. 2012: online strategies with sensing on arrival",
         include_str!("../suites/quattrini2012.toml"),
@@ -59,7 +64,7 @@ pub fn source(name: &str) -> Result<Source, BenchError> {
 }
 
 /// The suites whose environments are the maps of a folder (`--maps DIR`).
-pub const MAP_FOLDER_SUITES: &[&str] = &["holz2010-real"];
+pub const MAP_FOLDER_SUITES: &[&str] = &["holz2010-real", "faigl2013-real"];
 
 /// Resolve suite `name`, leaving out strategies that are not built yet (see
 /// [`Plan::skipped`]).

@@ -911,6 +911,70 @@ fn the_real_floor_plan_suite_runs_on_the_yaml_maps_of_a_folder() {
     assert!(e.contains("--maps") && e.contains("holz2010-real"), "{e}");
 }
 
+/// Faigl & Kulich on the real floor plans of a folder: the paper's twelve strategies at
+/// ρ = 5 m with 3 and 5 robots, 20 distinct starts per plan and one run of each (paired
+/// starts, as the paper's Table I compares them), s_max = 7, the robot's 0.3 m clearance.
+#[test]
+fn the_real_faigl2013_suite_pairs_twenty_starts_per_floor_plan() {
+    let dir = tempfile::tempdir().unwrap();
+    // 10 × 6 m at 0.1 m: two rooms joined by a door 1.5 m wide
+    let (w, h) = (100usize, 60usize);
+    let mut px = vec![0u8; w * h];
+    for y in 1..h - 1 {
+        for x in 1..w - 1 {
+            let wall = x == 50 && !(20..35).contains(&y);
+            px[y * w + x] = if wall { 0 } else { 254 };
+        }
+    }
+    let mut pgm = format!("P5\n{w} {h}\n255\n").into_bytes();
+    pgm.extend_from_slice(&px);
+    std::fs::write(dir.path().join("plan.pgm"), pgm).unwrap();
+    std::fs::write(
+        dir.path().join("plan.yaml"),
+        "image: plan.pgm\nresolution: 0.1\norigin: [0.0, 0.0, 0.0]\nnegate: 0\n\
+         occupied_thresh: 0.65\nfree_thresh: 0.196\n",
+    )
+    .unwrap();
+    let p = bench::suites::plan_with_maps("faigl2013-real", Some(dir.path()), None).unwrap();
+    assert_eq!(p.envs.len(), 1);
+    assert_eq!(p.variants.len(), 12 * 2);
+    assert_eq!(p.trials.len(), 12 * 2 * 20, "one run per start and variant");
+    assert!(
+        p.variants
+            .iter()
+            .all(|v| v.sensor.to_string() == "los:r=5" && [3, 5].contains(&v.robots)),
+        "{:?}",
+        p.variants
+            .iter()
+            .map(|v| (v.sensor.to_string(), v.robots))
+            .collect::<Vec<_>>()
+    );
+    assert_eq!(p.common.clearance_m, 0.3);
+    let firsts: std::collections::BTreeSet<_> = p.envs[0]
+        .starts
+        .iter()
+        .map(|s| s.as_ref().expect("a fixed start")[0])
+        .collect();
+    assert_eq!(firsts.len(), 20, "20 distinct starts");
+    // a shard of it runs
+    let db = dir.path().join("real.sqlite");
+    let o = RunOptions {
+        shard: Some(Shard {
+            index: 1,
+            count: 48,
+        }),
+        ..opts(2)
+    };
+    let s = bench::runner::run(&p, &db, &o).unwrap();
+    assert!(s.failed.is_empty(), "{:?}", s.failed);
+    assert_eq!(s.ran, 10);
+    assert!(
+        rows(&db)
+            .iter()
+            .all(|r| r.coverage == 1.0 && r.max_path > 0.0)
+    );
+}
+
 /// `TINY` with `edits` applied (each `(from, to)` must occur), and `extra` appended.
 fn edited(edits: &[(&str, &str)], extra: &str) -> Plan {
     let mut text = TINY.to_string();

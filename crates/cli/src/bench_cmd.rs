@@ -35,10 +35,11 @@ pub struct RunArgs {
     #[arg(conflicts_with = "suite", required_unless_present = "suite")]
     pub scenario: Option<PathBuf>,
     /// Built-in suite: quick, holz2010, holz2010-real (with --maps), multirobot, faigl2013,
-    /// quattrini2012.
+    /// faigl2013-real (with --maps), quattrini2012.
     #[arg(long)]
     pub suite: Option<String>,
-    /// The folder of ROS map_server .yaml maps a map-folder suite runs on (holz2010-real).
+    /// The folder of ROS map_server .yaml maps a map-folder suite runs on (holz2010-real,
+    /// faigl2013-real).
     #[arg(long, requires = "suite")]
     pub maps: Option<PathBuf>,
     /// Results database; re-running with the same database resumes (default: NAME.sqlite).
