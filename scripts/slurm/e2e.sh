@@ -9,8 +9,10 @@
 # checks that the merged database holds exactly the trials of an unsharded `frontier bench`
 # run (every column but the wall time) and that the report was written. The daemons it
 # started are stopped on exit, whatever happens. FRONTIER may name the binary to test
-# (default: a release build of this checkout); KEEP=1 keeps the temporary directory.
+# (default: a release build of this checkout); KEEP=1 keeps the temporary directory; MAPS
+# names the folder of a map-folder suite (MAPS=maps/ scripts/slurm/e2e.sh holz2010-real).
 set -euo pipefail
+if [[ -n ${MAPS:-} ]]; then MAPS=$(cd "$MAPS" && pwd); export MAPS; fi
 cd "$(dirname "$0")/../.."
 ROOT=$(pwd)
 STUDY=${1:-quick}
@@ -155,7 +157,7 @@ shards=("$OUT"/shard-*-of-"$N".sqlite)
 [[ -s $OUT/report/report.html ]] || fail "no report.html"
 say "merge job $MERGE done; running $STUDY unsharded for comparison"
 
-"$FRONTIER" bench --suite "$STUDY" --db "$T/unsharded.sqlite" --no-progress
+"$FRONTIER" bench --suite "$STUDY" ${MAPS:+--maps "$MAPS"} --db "$T/unsharded.sqlite" --no-progress
 "$FRONTIER" bench export "$T/unsharded.sqlite" --csv "$T/unsharded.csv" >/dev/null
 "$FRONTIER" bench export "$OUT/all.sqlite" --csv "$T/merged.csv" >/dev/null
 python3 - "$T/unsharded.csv" "$T/merged.csv" <<'EOF'
