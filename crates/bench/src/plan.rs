@@ -65,8 +65,9 @@ use crate::scenario::{ScenarioFile, Source};
 /// from an obstacle keeps it (Holz's d_max), so a clearance at an exact multiple (0.2 m on
 /// 0.05 m cells) blocks one ring of cells fewer; one the quotient fell just short of (0.3
 /// m on 0.05 m) is unchanged), and a robot with a directional sensor arriving at a frontier
-/// faces each unknown neighbour still unknown after it looked towards their mean direction.
-pub const STRATEGY_REVISION: u32 = 15;
+/// faces each unknown neighbour still unknown after it looked towards their mean direction;
+/// v16: MA's k-means starts from the last decision's cluster centres.
+pub const STRATEGY_REVISION: u32 = 16;
 
 /// A resolved study: environments, variants, common settings and the flat trial list.
 #[derive(Clone, Debug)]

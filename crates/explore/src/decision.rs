@@ -468,12 +468,13 @@ pub struct Memory {
 }
 
 /// What assigners carry from one decision to the next and so changes what they decide
-/// later: Solanas & Garcia's cluster centres (MTSP starts its clusters afresh, the others
-/// keep only buffers). A proposal that is only asked for ([`Memory::put_back`]) must not
-/// leave it changed.
+/// later: Solanas & Garcia's cluster centres and the MTSP assigner's (the others keep only
+/// buffers). A proposal that is only asked for ([`Memory::put_back`]) must not leave it
+/// changed.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Kept {
     sga_centres: Vec<crate::kmeans::Point>,
+    mtsp_centres: Vec<crate::kmeans::Point>,
 }
 
 impl Memory {
@@ -481,6 +482,7 @@ impl Memory {
     pub fn kept(&self) -> Kept {
         Kept {
             sga_centres: self.sga.centres().to_vec(),
+            mtsp_centres: self.mtsp.centres().to_vec(),
         }
     }
 
@@ -488,6 +490,7 @@ impl Memory {
     pub fn put_back(&mut self, kept: Kept) -> Kept {
         Kept {
             sga_centres: self.sga.replace_centres(kept.sga_centres),
+            mtsp_centres: self.mtsp.replace_centres(kept.mtsp_centres),
         }
     }
 }

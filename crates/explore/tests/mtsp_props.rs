@@ -24,6 +24,26 @@ fn decide(fx: &mut Fixture, kind: CandidateKind) -> (CandidateSet, Vec<Option<Go
     (cands, out)
 }
 
+/// A random `w × h` known map with its frontier upkeep and `m` robots spread over its
+/// largest component (`None`: no component).
+fn team_on_random_map(
+    w: usize,
+    h: usize,
+    bits: &[u8],
+    cut: usize,
+    m: usize,
+) -> Option<(Grid<Occ>, explore::FrontierUpkeep, Vec<u32>)> {
+    let (known, up) = random_upkept(w, h, bits, cut);
+    let start = largest_component_cell(&known, &up)?;
+    let mut reach = Reachability::new(w, h);
+    reach.compute(start, |i| up.is_traversable(&known, i));
+    let settled = reach.settled();
+    let robots = (0..m)
+        .map(|k| settled[(k * 7919) % settled.len()])
+        .collect();
+    Some((known, up, robots))
+}
+
 /// Smallest total over all injective maps of the smaller side into the larger.
 fn brute_force(rows: usize, cols: usize, cost: &[f64]) -> f64 {
     fn rec(i: usize, rows: usize, cols: usize, cost: &[f64], used: &mut Vec<bool>) -> f64 {
@@ -98,14 +118,9 @@ proptest! {
         cc in any::<bool>(),
     ) {
         let (w, h) = (20, 20);
-        let (known, up) = random_upkept(w, h, &bits, cut);
-        let Some(start) = largest_component_cell(&known, &up) else {
+        let Some((known, up, robots)) = team_on_random_map(w, h, &bits, cut, m) else {
             return Ok(());
         };
-        let mut reach = Reachability::new(w, h);
-        reach.compute(start, |i| up.is_traversable(&known, i));
-        let settled = reach.settled().to_vec();
-        let robots: Vec<u32> = (0..m).map(|k| settled[(k * 7919) % settled.len()]).collect();
         let kind = if cc { CandidateKind::Coverage } else { CandidateKind::AllFrontiers };
         let mut fx = Fixture::new(known.clone(), robots.clone(), 4.0, seed);
         // Robot `keep` (if any) keeps a goal chosen in a first decision.
@@ -209,5 +224,58 @@ proptest! {
             fx2.goals[keep] = first2[keep].map(|g| g.cell);
         }
         prop_assert_eq!(decide(&mut fx2, kind).1, out);
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    /// Regression: MA seeded k-means++ afresh at every decision, so a robot's cluster, and
+    /// its goal, jumped across the map from one decision to the next (a 5-robot `ma-cc`
+    /// run on willow-full: 547 of 4,104 goals over 10 m from the robot's previous one). A
+    /// decision's k-means starts from the centres the last one left when their number is
+    /// the same: its clusters are Lloyd's from those centres, whatever the generator draws.
+    #[test]
+    fn regression_clusters_start_from_the_last_decisions_centres(
+        bits in prop::collection::vec(0u8..100, 37),
+        cut in 6usize..18,
+        m in 2usize..5,
+        seed in 0u64..100,
+        shift in -3.0f64..3.0,
+        draws in 0usize..5,
+    ) {
+        use explore::kmeans::{Init, KMeans, Point};
+        let (w, h) = (20, 20);
+        let Some((known, _, robots)) = team_on_random_map(w, h, &bits, cut, m) else {
+            return Ok(());
+        };
+        let mut fx = Fixture::new(known, robots, 4.0, seed);
+        decide(&mut fx, CandidateKind::AllFrontiers);
+        let first = fx.memory.mtsp.centres().to_vec();
+        if first.is_empty() {
+            return Ok(());
+        }
+        // The same map and team again, from moved centres and another generator state.
+        let moved: Vec<Point> = first.iter().map(|&(x, y)| (x + shift, y - shift)).collect();
+        fx.memory.mtsp.replace_centres(moved.clone());
+        for _ in 0..draws {
+            let _: u64 = fx.rng.random();
+        }
+        decide(&mut fx, CandidateKind::AllFrontiers);
+        let st = &fx.memory.mtsp;
+        let points: Vec<Point> = st
+            .goals()
+            .iter()
+            .map(|&g| ((g as usize % w) as f64, (g as usize / w) as f64))
+            .collect();
+        let mut want = KMeans::new();
+        want.fit(&points, None, Init::Centres(&moved), &mut rand_pcg::Pcg64Mcg::new(0));
+        prop_assert_eq!(st.centres(), want.centres());
+        for j in 0..moved.len() {
+            let members: Vec<u32> = (0..points.len() as u32)
+                .filter(|&g| want.labels()[g as usize] as usize == j)
+                .collect();
+            prop_assert_eq!(st.cluster(j), &members[..]);
+        }
     }
 }
