@@ -24,26 +24,6 @@ fn decide(fx: &mut Fixture, kind: CandidateKind) -> (CandidateSet, Vec<Option<Go
     (cands, out)
 }
 
-/// A random `w × h` known map with its frontier upkeep and `m` robots spread over its
-/// largest component (`None`: no component).
-fn team_on_random_map(
-    w: usize,
-    h: usize,
-    bits: &[u8],
-    cut: usize,
-    m: usize,
-) -> Option<(Grid<Occ>, explore::FrontierUpkeep, Vec<u32>)> {
-    let (known, up) = random_upkept(w, h, bits, cut);
-    let start = largest_component_cell(&known, &up)?;
-    let mut reach = Reachability::new(w, h);
-    reach.compute(start, |i| up.is_traversable(&known, i));
-    let settled = reach.settled();
-    let robots = (0..m)
-        .map(|k| settled[(k * 7919) % settled.len()])
-        .collect();
-    Some((known, up, robots))
-}
-
 /// Smallest total over all injective maps of the smaller side into the larger.
 fn brute_force(rows: usize, cols: usize, cost: &[f64]) -> f64 {
     fn rec(i: usize, rows: usize, cols: usize, cost: &[f64], used: &mut Vec<bool>) -> f64 {
@@ -118,7 +98,7 @@ proptest! {
         cc in any::<bool>(),
     ) {
         let (w, h) = (20, 20);
-        let Some((known, up, robots)) = team_on_random_map(w, h, &bits, cut, m) else {
+        let Some((known, up, robots)) = random_team(w, h, &bits, cut, m) else {
             return Ok(());
         };
         let kind = if cc { CandidateKind::Coverage } else { CandidateKind::AllFrontiers };
@@ -246,7 +226,7 @@ proptest! {
     ) {
         use explore::kmeans::{Init, KMeans, Point};
         let (w, h) = (20, 20);
-        let Some((known, _, robots)) = team_on_random_map(w, h, &bits, cut, m) else {
+        let Some((known, _, robots)) = random_team(w, h, &bits, cut, m) else {
             return Ok(());
         };
         let mut fx = Fixture::new(known, robots, 4.0, seed);

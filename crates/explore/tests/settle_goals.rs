@@ -21,15 +21,10 @@ proptest! {
         every in 1usize..40,
     ) {
         let (w, h) = (48, 36);
-        let (known, up) = random_upkept(w, h, &bits, cut);
-        let Some(start) = largest_component_cell(&known, &up) else {
+        let Some((known, up, robots)) = random_team(w, h, &bits, cut, m) else {
             return Ok(());
         };
         let pass = |i| up.is_traversable(&known, i);
-        let mut reach = Reachability::new(w, h);
-        reach.compute(start, pass);
-        let settled = reach.settled().to_vec();
-        let robots: Vec<u32> = (0..m).map(|k| settled[(k * 7919) % settled.len()]).collect();
         // goals: some free cells everywhere, also out of the robots' reach
         let goals: Vec<u32> = (0..(w * h) as u32)
             .filter(|&i| known[i as usize].is_free())

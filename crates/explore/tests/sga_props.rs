@@ -124,7 +124,7 @@ proptest! {
         range in 1.0f64..6.0,
     ) {
         let (w, h) = (20, 20);
-        let Some((known, robots)) = random_team(w, h, &bits, cut, m) else {
+        let Some((known, _, robots)) = random_team(w, h, &bits, cut, m) else {
             return Ok(());
         };
         let mut fx = Fixture::new(known.clone(), robots.clone(), range, seed);
@@ -197,7 +197,7 @@ proptest! {
         range in 1.0f64..6.0,
     ) {
         let (w, h) = (72, 40);
-        let Some((known, robots)) = random_team(w, h, &bits, cut, m) else {
+        let Some((known, _, robots)) = random_team(w, h, &bits, cut, m) else {
             return Ok(());
         };
         let mut fx = Fixture::new(known, robots, range, seed);
@@ -213,26 +213,6 @@ proptest! {
             }
         }
     }
-}
-
-/// A random belief of `w × h` cells and `m` robots spread over its largest traversable
-/// component (`None` if it has none).
-fn random_team(
-    w: usize,
-    h: usize,
-    bits: &[u8],
-    cut: usize,
-    m: usize,
-) -> Option<(Grid<Occ>, Vec<u32>)> {
-    let (known, up) = random_upkept(w, h, bits, cut);
-    let start = largest_component_cell(&known, &up)?;
-    let mut reach = Reachability::new(w, h);
-    reach.compute(start, |i| up.is_traversable(&known, i));
-    let settled = reach.settled();
-    let robots = (0..m)
-        .map(|k| settled[(k * 7919) % settled.len()])
-        .collect();
-    Some((known, robots))
 }
 
 fn permute(p: &mut Vec<usize>, k: usize, f: &mut dyn FnMut(&[usize])) {

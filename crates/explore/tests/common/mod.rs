@@ -97,6 +97,26 @@ pub fn random_upkept(w: usize, h: usize, bits: &[u8], cut: usize) -> (Grid<Occ>,
     (known, up)
 }
 
+/// A random belief of `w × h` cells ([`random_upkept`]) and `m` robots spread over its
+/// largest traversable component (`None` if it has none).
+pub fn random_team(
+    w: usize,
+    h: usize,
+    bits: &[u8],
+    cut: usize,
+    m: usize,
+) -> Option<(Grid<Occ>, FrontierUpkeep, Vec<u32>)> {
+    let (known, up) = random_upkept(w, h, bits, cut);
+    let start = largest_component_cell(&known, &up)?;
+    let mut reach = Reachability::new(w, h);
+    reach.compute(start, |i| up.is_traversable(&known, i));
+    let settled = reach.settled();
+    let robots = (0..m)
+        .map(|k| settled[(k * 7919) % settled.len()])
+        .collect();
+    Some((known, up, robots))
+}
+
 /// The lowest cell of the largest traversable component.
 pub fn largest_component_cell(known: &Grid<Occ>, up: &FrontierUpkeep) -> Option<usize> {
     let (w, h) = (known.width(), known.height());
