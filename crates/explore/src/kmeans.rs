@@ -2,8 +2,9 @@
 //!
 //! Faigl & Kulich (2013) use "the K-means algorithm" three times without further detail: for
 //! the representatives of a free edge (RFE), for the clusters of goals of the MTSP assignment
-//! (MA, started from the last decision's centres), and for Solanas & Garcia's clusters of unknown cells (SGA, initialised at the map
-//! centre, then from the previous centres). This is the standard algorithm:
+//! (MA, started from the last decision's centres), and for Solanas & Garcia's clusters of
+//! unknown cells (SGA, initialised at the map centre, then from the previous centres). This
+//! is the standard algorithm:
 //!
 //! - seeding by k-means++ (Arthur & Vassilvitskii 2007): the first centre drawn with
 //!   probability ∝ weight, each next one ∝ weight · D² (D = distance to the nearest centre

@@ -618,8 +618,8 @@ impl<'a> Session<'a> {
     /// The goals `assigner` would give the deciding robots if only `cells` (candidates of the
     /// pending decision, in this order) were offered: a paper's rule acting as a policy.
     /// Draws from a copy of the run's strategy stream, and works on a copy of what the
-    /// assigners keep across decisions (SGA's and MA's centres), as the rule would in a run: the run
-    /// takes both only if [`Session::choose`] then gives these goals (from the last
+    /// assigners keep across decisions (SGA's and MA's centres), as the rule would in a run:
+    /// the run takes both only if [`Session::choose`] then gives these goals (from the last
     /// proposal of them), so asking for a proposal that is not taken leaves the run as it
     /// was.
     pub fn propose(&mut self, assigner: AssignerKind, cells: &[u32]) -> &[Option<Goal>] {
