@@ -844,12 +844,24 @@ fn zeroed_page_database_is_refused_on_resume() {
 
 /// A ROS map_server map `NAME.yaml` + `NAME.pgm` in `dir`: three rooms joined by doors.
 fn write_ros_map(dir: &std::path::Path, name: &str) {
-    let (w, h) = (60usize, 20usize);
+    write_walled_map(dir, name, (60, 20), 0.5, |x, y| {
+        (x == 20 && !(2..5).contains(&y)) || (x == 40 && !(15..18).contains(&y))
+    });
+}
+
+/// A ROS map_server map `NAME.yaml` + `NAME.pgm` in `dir` of `(w, h)` cells of `resolution`
+/// metres: free inside a wall around the border, with `wall(x, y)` cells occupied.
+fn write_walled_map(
+    dir: &std::path::Path,
+    name: &str,
+    (w, h): (usize, usize),
+    resolution: f64,
+    wall: impl Fn(usize, usize) -> bool,
+) {
     let mut px = vec![0u8; w * h];
     for y in 1..h - 1 {
         for x in 1..w - 1 {
-            let wall = (x == 20 && !(2..5).contains(&y)) || (x == 40 && !(15..18).contains(&y));
-            px[y * w + x] = if wall { 0 } else { 254 };
+            px[y * w + x] = if wall(x, y) { 0 } else { 254 };
         }
     }
     let mut pgm = format!("P5\n{w} {h}\n255\n").into_bytes();
@@ -858,7 +870,7 @@ fn write_ros_map(dir: &std::path::Path, name: &str) {
     std::fs::write(
         dir.join(format!("{name}.yaml")),
         format!(
-            "image: {name}.pgm\nresolution: 0.5\norigin: [0.0, 0.0, 0.0]\nnegate: 0\n\
+            "image: {name}.pgm\nresolution: {resolution}\norigin: [0.0, 0.0, 0.0]\nnegate: 0\n\
              occupied_thresh: 0.65\nfree_thresh: 0.196\n"
         ),
     )
@@ -918,23 +930,9 @@ fn the_real_floor_plan_suite_runs_on_the_yaml_maps_of_a_folder() {
 fn the_real_faigl2013_suite_pairs_twenty_starts_per_floor_plan() {
     let dir = tempfile::tempdir().unwrap();
     // 10 × 6 m at 0.1 m: two rooms joined by a door 1.5 m wide
-    let (w, h) = (100usize, 60usize);
-    let mut px = vec![0u8; w * h];
-    for y in 1..h - 1 {
-        for x in 1..w - 1 {
-            let wall = x == 50 && !(20..35).contains(&y);
-            px[y * w + x] = if wall { 0 } else { 254 };
-        }
-    }
-    let mut pgm = format!("P5\n{w} {h}\n255\n").into_bytes();
-    pgm.extend_from_slice(&px);
-    std::fs::write(dir.path().join("plan.pgm"), pgm).unwrap();
-    std::fs::write(
-        dir.path().join("plan.yaml"),
-        "image: plan.pgm\nresolution: 0.1\norigin: [0.0, 0.0, 0.0]\nnegate: 0\n\
-         occupied_thresh: 0.65\nfree_thresh: 0.196\n",
-    )
-    .unwrap();
+    write_walled_map(dir.path(), "plan", (100, 60), 0.1, |x, y| {
+        x == 50 && !(20..35).contains(&y)
+    });
     let p = bench::suites::plan_with_maps("faigl2013-real", Some(dir.path()), None).unwrap();
     assert_eq!(p.envs.len(), 1);
     assert_eq!(p.variants.len(), 12 * 2);
