@@ -391,9 +391,10 @@ fn run(
                 .map(|&g| ((g as usize % width) as f64, (g as usize / width) as f64)),
         );
         let k = np.min(ng);
-        let init = match st.centres.len() == k {
-            true => Init::Centres(&st.centres),
-            false => Init::PlusPlus(k),
+        let init = if st.centres.len() == k {
+            Init::Centres(&st.centres)
+        } else {
+            Init::PlusPlus(k)
         };
         st.kmeans.fit(&st.points, None, init, &mut *ctx.rng);
         st.centres.clear();
